@@ -1,0 +1,44 @@
+// flexgait: the command-line program. Exit codes: 0 success, 1 runtime failure, 2 bad usage
+// or bad configuration (one line on stderr naming the key, the value and what is allowed).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <functional>
+#include <system_error>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/version.hpp"
+#include "rimless_commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
+  app.set_version_flag("--version", std::string("flexgait ") + flexgait::kVersion);
+  app.require_subcommand(1);
+  std::function<int()> action;
+  flexgait::cli::add_rimless_commands(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "run with --help for usage\n");
+    return 2;
+  }
+  try {
+    return action ? action() : 2;
+  } catch (const flexgait::ConfigError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,69 @@
+#include "options.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fmt/format.h>
+
+#include "paths.hpp"
+
+extern char** environ;
+
+namespace flexgait::cli {
+
+void add_run_options(CLI::App& app, RunOptions& o, const std::string& default_out) {
+  o.out = default_out;
+  app.add_option("--config", o.config_file, "YAML configuration file (keys as in config.yaml of a run)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--set", o.overrides, "override one key, e.g. --set rimless.mu_s=0.4 (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  app.add_option("--out", o.out, "run directory for config.yaml, CSV logs, summary.json and plots")
+      ->capture_default_str();
+  app.add_flag("--json", o.json, "print summary.json on stdout");
+  app.add_flag("!--no-plot", o.plot, "do not draw the PNG figures");
+}
+
+Config resolve(const Schema& schema, const RunOptions& o, const std::vector<std::string>& extra) {
+  std::vector<std::string> all = extra;
+  all.insert(all.end(), o.overrides.begin(), o.overrides.end());
+  std::optional<std::filesystem::path> file;
+  if (!o.config_file.empty()) file = o.config_file;
+  return resolve_config(schema, file, all);
+}
+
+bool run_plot_script(const std::string& script, const std::vector<std::string>& args) {
+  std::vector<std::filesystem::path> dirs;
+  if (const char* env = std::getenv("FLEXGAIT_PLOT_DIR")) dirs.emplace_back(env);
+  for (const char* d : kPlotDirs) dirs.emplace_back(d);
+  std::filesystem::path path;
+  for (const auto& d : dirs) {
+    if (std::filesystem::exists(d / script)) {
+      path = d / script;
+      break;
+    }
+  }
+  if (path.empty()) {
+    fmt::print(stderr, "warning: plotting script {} not found; no figures drawn\n", script);
+    return false;
+  }
+  std::vector<std::string> argv_s{"/usr/bin/python3", path.string()};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) {
+    fmt::print(stderr, "warning: cannot start /usr/bin/python3; no figures drawn\n");
+    return false;
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    fmt::print(stderr, "warning: {} failed; figures may be missing\n", script);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace flexgait::cli

@@ -1,0 +1,33 @@
+#pragma once
+/// \file options.hpp  Options every run-writing subcommand shares, and their handling.
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+
+namespace flexgait::cli {
+
+struct RunOptions {
+  std::string config_file;            ///< --config
+  std::vector<std::string> overrides; ///< --set key=value, in order
+  std::string out;                    ///< --out
+  bool json = false;                  ///< --json
+  bool plot = true;                   ///< --no-plot clears it
+};
+
+/// Adds --config, --set, --out, --json and --no-plot to a subcommand.
+void add_run_options(CLI::App& app, RunOptions& options, const std::string& default_out);
+
+/// Resolves the configuration: defaults, then --config, then extra (flag-derived) overrides,
+/// then --set (so an explicit --set wins).
+Config resolve(const Schema& schema, const RunOptions& options, const std::vector<std::string>& extra = {});
+
+/// Runs `/usr/bin/python3 <script> <args...>` from the plotting-script directory; returns
+/// false (after printing a warning) if the script is missing or fails. Plots are optional.
+bool run_plot_script(const std::string& script, const std::vector<std::string>& args);
+
+}  // namespace flexgait::cli

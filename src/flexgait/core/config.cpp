@@ -1,0 +1,239 @@
+#include "flexgait/core/config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <sstream>
+
+namespace flexgait {
+namespace {
+
+std::string bound_text(double v) { return fmt::format("{}", v); }
+
+std::string error_text(const std::string& origin, const std::string& key, const std::string& value,
+                       const std::string& problem, const ParamSpec* spec) {
+  std::string msg = fmt::format("{}: key '{}' = '{}': {}", origin, key, value, problem);
+  if (spec != nullptr) {
+    msg += fmt::format("; allowed: {}", spec->allowed());
+    if (!spec->unit.empty()) msg += fmt::format(" ({})", spec->unit);
+  }
+  return msg;
+}
+
+bool parse_double(const std::string& text, double& out) {
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;
+  auto [ptr, ec] = std::from_chars(first, last, out);
+  return ec == std::errc() && ptr == last;
+}
+
+bool parse_int(const std::string& text, std::int64_t& out) {
+  const char* first = text.data();
+  const char* last = text.data() + text.size();
+  if (first != last && *first == '+') ++first;
+  auto [ptr, ec] = std::from_chars(first, last, out);
+  return ec == std::errc() && ptr == last;
+}
+
+void check_range(const ParamSpec& spec, double v, const std::string& text, const std::string& origin) {
+  const bool low_ok = spec.min_inclusive ? v >= spec.min : v > spec.min;
+  const bool high_ok = spec.max_inclusive ? v <= spec.max : v < spec.max;
+  if (!low_ok || !high_ok) throw ConfigError(spec.key, error_text(origin, spec.key, text, "out of range", &spec));
+}
+
+// Flattens a YAML mapping into dotted keys; records the line of each scalar.
+void flatten(const YAML::Node& node, const std::string& prefix, const std::string& file,
+             std::vector<std::tuple<std::string, std::string, std::string>>& out) {
+  for (const auto& item : node) {
+    const std::string name = item.first.as<std::string>();
+    const std::string key = prefix.empty() ? name : prefix + "." + name;
+    const YAML::Node& value = item.second;
+    const std::string origin = fmt::format("{}:{}", file, value.Mark().line + 1);
+    if (value.IsMap()) {
+      flatten(value, key, file, out);
+    } else if (value.IsScalar()) {
+      out.emplace_back(key, value.Scalar(), origin);
+    } else if (value.IsNull()) {
+      throw ConfigError(key, fmt::format("{}: key '{}' has no value", origin, key));
+    } else {
+      throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, key));
+    }
+  }
+}
+
+}  // namespace
+
+std::string ParamSpec::allowed() const {
+  switch (type) {
+    case ParamType::Boolean:
+      return "true or false";
+    case ParamType::Choice: {
+      std::string s = "one of ";
+      for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : "") + choices[i];
+      return s;
+    }
+    case ParamType::Real:
+    case ParamType::Integer: {
+      const std::string what = type == ParamType::Real ? "a finite real number" : "an integer";
+      const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
+      if (has_min && has_max)
+        return fmt::format("{} in {}{}, {}{}", what, min_inclusive ? "[" : "(", bound_text(min),
+                           bound_text(max), max_inclusive ? "]" : ")");
+      if (has_min) return fmt::format("{} {} {}", what, min_inclusive ? ">=" : ">", bound_text(min));
+      if (has_max) return fmt::format("{} {} {}", what, max_inclusive ? "<=" : "<", bound_text(max));
+      return what;
+    }
+  }
+  return {};
+}
+
+Schema& Schema::add(ParamSpec spec) {
+  if (find(spec.key) != nullptr) throw std::logic_error("duplicate configuration key " + spec.key);
+  parse_value(spec, spec.fallback, "default");  // a default outside its own domain is a bug
+  params_.push_back(std::move(spec));
+  return *this;
+}
+
+Schema& Schema::merge(const Schema& other) {
+  for (const auto& p : other.params()) add(p);
+  return *this;
+}
+
+const ParamSpec* Schema::find(const std::string& key) const {
+  for (const auto& p : params_)
+    if (p.key == key) return &p;
+  return nullptr;
+}
+
+ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin) {
+  switch (spec.type) {
+    case ParamType::Real: {
+      double v = 0;
+      if (!parse_double(text, v)) throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a number", &spec));
+      if (!std::isfinite(v)) throw ConfigError(spec.key, error_text(origin, spec.key, text, "not finite", &spec));
+      check_range(spec, v, text, origin);
+      return v;
+    }
+    case ParamType::Integer: {
+      std::int64_t v = 0;
+      if (!parse_int(text, v)) throw ConfigError(spec.key, error_text(origin, spec.key, text, "not an integer", &spec));
+      check_range(spec, static_cast<double>(v), text, origin);
+      return v;
+    }
+    case ParamType::Boolean:
+      if (text == "true") return true;
+      if (text == "false") return false;
+      throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a boolean", &spec));
+    case ParamType::Choice:
+      for (const auto& c : spec.choices)
+        if (c == text) return text;
+      throw ConfigError(spec.key, error_text(origin, spec.key, text, "not an allowed value", &spec));
+  }
+  throw std::logic_error("unhandled parameter type");
+}
+
+std::string format_value(const ConfigValue& value) {
+  struct Visitor {
+    std::string operator()(double v) const {
+      std::string s = fmt::format("{}", v);  // shortest text that round-trips
+      if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+      return s;
+    }
+    std::string operator()(std::int64_t v) const { return fmt::format("{}", v); }
+    std::string operator()(bool v) const { return v ? "true" : "false"; }
+    std::string operator()(const std::string& v) const { return v; }
+  };
+  return std::visit(Visitor{}, value);
+}
+
+const ConfigValue& Config::value(const std::string& key, ParamType expected) const {
+  const ParamSpec* spec = schema_.find(key);
+  if (spec == nullptr) throw std::logic_error("no configuration key " + key);
+  if (spec->type != expected) throw std::logic_error("configuration key " + key + " read with the wrong type");
+  return values_.at(key);
+}
+
+double Config::real(const std::string& key) const { return std::get<double>(value(key, ParamType::Real)); }
+std::int64_t Config::integer(const std::string& key) const {
+  return std::get<std::int64_t>(value(key, ParamType::Integer));
+}
+bool Config::boolean(const std::string& key) const { return std::get<bool>(value(key, ParamType::Boolean)); }
+const std::string& Config::choice(const std::string& key) const {
+  return std::get<std::string>(value(key, ParamType::Choice));
+}
+const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
+
+void Config::set(const std::string& key, const std::string& text, const std::string& origin) {
+  const ParamSpec* spec = schema_.find(key);
+  if (spec == nullptr)
+    throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}')", origin, key, text));
+  values_[key] = parse_value(*spec, text, origin);
+  origins_[key] = origin;
+}
+
+std::string Config::to_yaml() const {
+  YAML::Emitter out;
+  // Build nested maps in schema order: a key's prefix groups are opened once, in order.
+  std::vector<std::string> open;  // currently open path components
+  out << YAML::BeginMap;
+  for (const auto& spec : schema_.params()) {
+    std::vector<std::string> parts;
+    std::stringstream ss(spec.key);
+    for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+    std::size_t common = 0;
+    while (common < open.size() && common + 1 < parts.size() && open[common] == parts[common]) ++common;
+    for (std::size_t i = open.size(); i > common; --i) out << YAML::EndMap;
+    open.resize(common);
+    for (std::size_t i = common; i + 1 < parts.size(); ++i) {
+      out << YAML::Key << parts[i] << YAML::Value << YAML::BeginMap;
+      open.push_back(parts[i]);
+    }
+    out << YAML::Key << parts.back() << YAML::Value << format_value(values_.at(spec.key));
+    std::string comment = spec.doc;
+    if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
+    if (!comment.empty()) out << YAML::Comment(comment);
+  }
+  for (std::size_t i = 0; i < open.size(); ++i) out << YAML::EndMap;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+Config resolve_config(const Schema& schema, const std::optional<std::filesystem::path>& file,
+                      const std::vector<std::string>& overrides) {
+  Config cfg;
+  cfg.schema_ = schema;
+  for (const auto& spec : schema.params()) {
+    cfg.values_[spec.key] = parse_value(spec, spec.fallback, "default");
+    cfg.origins_[spec.key] = "default";
+  }
+  if (file) {
+    const std::string name = file->string();
+    std::ifstream in(*file);
+    if (!in) throw ConfigError("", fmt::format("{}: cannot read configuration file", name));
+    YAML::Node root;
+    try {
+      root = YAML::Load(in);
+    } catch (const YAML::Exception& e) {
+      throw ConfigError("", fmt::format("{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.msg));
+    }
+    if (!root.IsNull()) {
+      if (!root.IsMap()) throw ConfigError("", fmt::format("{}: the top level must be a mapping of keys", name));
+      std::vector<std::tuple<std::string, std::string, std::string>> entries;
+      flatten(root, "", name, entries);
+      for (const auto& [key, text, origin] : entries) cfg.set(key, text, origin);
+    }
+  }
+  for (const auto& item : overrides) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw ConfigError("", fmt::format("--set: '{}' is not of the form key=value", item));
+    cfg.set(item.substr(0, eq), item.substr(eq + 1), "--set");
+  }
+  return cfg;
+}
+
+}  // namespace flexgait

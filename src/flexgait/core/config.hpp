@@ -1,0 +1,102 @@
+#pragma once
+/// \file config.hpp
+/// Typed, validated configuration: a schema of dotted keys (`rimless.K`), values from a
+/// YAML file and from `--set key=value` overrides, resolved into a Config.
+///
+/// Rules (issue 2): an unknown key, a wrong type, a value out of range, NaN or infinity,
+/// or a missing/unreadable file is a ConfigError whose message names the origin (file and
+/// line, or `--set`), the key, the offending value and what is allowed.
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace flexgait {
+
+/// Bad configuration or bad usage. Command-line programs print what() and exit with code 2.
+class ConfigError : public std::runtime_error {
+ public:
+  ConfigError(std::string key, const std::string& message)
+      : std::runtime_error(message), key_(std::move(key)) {}
+  /// The offending dotted key ("" when the error concerns a whole file).
+  const std::string& key() const noexcept { return key_; }
+
+ private:
+  std::string key_;
+};
+
+enum class ParamType { Real, Integer, Boolean, Choice };
+
+/// One documented configuration parameter.
+struct ParamSpec {
+  std::string key;       ///< dotted key, e.g. "rimless.K"
+  ParamType type = ParamType::Real;
+  std::string fallback;  ///< default value, as written in YAML
+  std::string unit;      ///< SI unit, "" for dimensionless
+  std::string doc;       ///< one line: what it is
+  double min = -std::numeric_limits<double>::infinity();  ///< lower bound (Real, Integer)
+  double max = std::numeric_limits<double>::infinity();   ///< upper bound (Real, Integer)
+  bool min_inclusive = true;
+  bool max_inclusive = true;
+  std::vector<std::string> choices;  ///< allowed values (Choice)
+
+  /// Human-readable domain, e.g. "a real number > 0" or "one of flexible, rigid".
+  std::string allowed() const;
+};
+
+/// The set of keys a command accepts, in declaration order.
+class Schema {
+ public:
+  /// Adds a parameter; throws std::logic_error on a duplicate key or a default outside the domain.
+  Schema& add(ParamSpec spec);
+  /// Adds every parameter of another schema.
+  Schema& merge(const Schema& other);
+  const ParamSpec* find(const std::string& key) const;
+  const std::vector<ParamSpec>& params() const { return params_; }
+
+ private:
+  std::vector<ParamSpec> params_;
+};
+
+using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
+
+/// A resolved configuration: every key of its schema has a validated value.
+class Config {
+ public:
+  double real(const std::string& key) const;
+  std::int64_t integer(const std::string& key) const;
+  bool boolean(const std::string& key) const;
+  const std::string& choice(const std::string& key) const;
+  /// Where the value came from: "default", "--set", or "FILE:LINE".
+  const std::string& origin(const std::string& key) const;
+  /// Replaces a value after validation against the schema (used by sweeps).
+  void set(const std::string& key, const std::string& text, const std::string& origin = "--set");
+  /// The resolved configuration as nested YAML, keys in schema order; round-trips through load.
+  std::string to_yaml() const;
+  const Schema& schema() const { return schema_; }
+
+ private:
+  friend Config resolve_config(const Schema&, const std::optional<std::filesystem::path>&,
+                               const std::vector<std::string>&);
+  const ConfigValue& value(const std::string& key, ParamType expected) const;
+  Schema schema_;
+  std::map<std::string, ConfigValue> values_;
+  std::map<std::string, std::string> origins_;
+};
+
+/// Parses `text` as the value of `spec`; throws ConfigError naming origin, key and domain.
+ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin);
+
+/// Formats a value as YAML scalar text that parses back to the identical value.
+std::string format_value(const ConfigValue& value);
+
+/// Resolves defaults, then the YAML file (if any), then `key=value` overrides in order.
+Config resolve_config(const Schema& schema, const std::optional<std::filesystem::path>& file,
+                      const std::vector<std::string>& overrides);
+
+}  // namespace flexgait

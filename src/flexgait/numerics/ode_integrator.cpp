@@ -1,0 +1,166 @@
+#include "flexgait/numerics/ode_integrator.hpp"
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace flexgait::numerics {
+
+struct OdeIntegrator::Impl {
+  OdeSystem* system = nullptr;
+  int n = 0;
+  OdeOptions options;
+  SUNContext ctx = nullptr;
+  void* cvode = nullptr;
+  N_Vector y = nullptr;
+  SUNMatrix jac = nullptr;
+  SUNLinearSolver linear_solver = nullptr;
+  SUNNonlinearSolver nonlinear_solver = nullptr;
+  int n_guards = -1;
+  std::vector<int> directions;
+  std::vector<int> fired;
+  double t = 0.0;
+  std::int64_t restarts = 0;
+  OdeStats finished;  // counts of the segments before the current one (CVodeReInit zeroes CVODE's)
+  std::string last_error;
+
+  OdeStats segment_stats() const {
+    OdeStats s;
+    long v = 0;
+    CVodeGetNumSteps(cvode, &v);
+    s.steps = v;
+    CVodeGetNumRhsEvals(cvode, &v);
+    s.rhs_evals = v;
+    CVodeGetNumGEvals(cvode, &v);
+    s.guard_evals = v;
+    return s;
+  }
+
+  static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
+    const std::span<double> yd(N_VGetArrayPointer(ydot), static_cast<std::size_t>(self->n));
+    return self->system->rhs(t, ys, yd) ? 0 : 1;  // 1: recoverable, CVODE retries a smaller step
+  }
+  static int guards(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
+    self->system->guards(t, ys, std::span<double>(g, static_cast<std::size_t>(self->n_guards)));
+    return 0;
+  }
+  static void on_error(int, const char* module, const char* function, char* msg, void* data) {
+    static_cast<Impl*>(data)->last_error = std::string(module) + "." + function + ": " + msg;
+  }
+  void check(int flag, const char* what) const {
+    if (flag < 0) {
+      throw std::runtime_error(std::string("CVODE ") + what + " failed (flag " + std::to_string(flag) + ")" +
+                               (last_error.empty() ? "" : ": " + last_error));
+    }
+  }
+  ~Impl() {
+    if (cvode != nullptr) CVodeFree(&cvode);
+    if (nonlinear_solver != nullptr) SUNNonlinSolFree(nonlinear_solver);
+    if (linear_solver != nullptr) SUNLinSolFree(linear_solver);
+    if (jac != nullptr) SUNMatDestroy(jac);
+    if (y != nullptr) N_VDestroy(y);
+    if (ctx != nullptr) SUNContext_Free(&ctx);
+  }
+};
+
+OdeIntegrator::OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.system = &system;
+  m.n = n;
+  m.options = options;
+  if (SUNContext_Create(nullptr, &m.ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
+  m.y = N_VNew_Serial(n, m.ctx);
+  N_VConst(0.0, m.y);
+  m.cvode = CVodeCreate(options.method == OdeMethod::Adams ? CV_ADAMS : CV_BDF, m.ctx);
+  if (m.cvode == nullptr || m.y == nullptr) throw std::runtime_error("CVodeCreate failed");
+  m.check(CVodeSetErrHandlerFn(m.cvode, &Impl::on_error, &m), "SetErrHandlerFn");
+  m.check(CVodeInit(m.cvode, &Impl::rhs, 0.0, m.y), "Init");
+  m.check(CVodeSetUserData(m.cvode, &m), "SetUserData");
+  m.check(CVodeSStolerances(m.cvode, options.rtol, options.atol), "SStolerances");
+  m.check(CVodeSetMaxNumSteps(m.cvode, static_cast<long>(options.max_steps)), "SetMaxNumSteps");
+  if (options.max_step > 0) m.check(CVodeSetMaxStep(m.cvode, options.max_step), "SetMaxStep");
+  if (options.method == OdeMethod::Adams) {
+    m.nonlinear_solver = SUNNonlinSol_FixedPoint(m.y, 0, m.ctx);
+    m.check(CVodeSetNonlinearSolver(m.cvode, m.nonlinear_solver), "SetNonlinearSolver");
+  } else {
+    m.jac = SUNDenseMatrix(n, n, m.ctx);
+    m.linear_solver = SUNLinSol_Dense(m.y, m.jac, m.ctx);
+    m.check(CVodeSetLinearSolver(m.cvode, m.linear_solver, m.jac), "SetLinearSolver");
+  }
+  m.check(CVodeSetNoInactiveRootWarn(m.cvode), "SetNoInactiveRootWarn");
+}
+
+OdeIntegrator::~OdeIntegrator() = default;
+
+void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const int> directions) {
+  Impl& m = *impl_;
+  if (static_cast<int>(y.size()) != m.n) throw std::invalid_argument("OdeIntegrator::restart: wrong state size");
+  std::copy(y.begin(), y.end(), N_VGetArrayPointer(m.y));
+  m.t = t;
+  const OdeStats seg = m.segment_stats();
+  m.finished.steps += seg.steps;
+  m.finished.rhs_evals += seg.rhs_evals;
+  m.finished.guard_evals += seg.guard_evals;
+  m.check(CVodeReInit(m.cvode, t, m.y), "ReInit");
+  const int n_guards = static_cast<int>(directions.size());
+  if (n_guards != m.n_guards) {
+    m.check(CVodeRootInit(m.cvode, n_guards, n_guards > 0 ? &Impl::guards : nullptr), "RootInit");
+    m.n_guards = n_guards;
+    m.fired.assign(directions.size(), 0);
+  }
+  m.directions.assign(directions.begin(), directions.end());
+  if (n_guards > 0) m.check(CVodeSetRootDirection(m.cvode, m.directions.data()), "SetRootDirection");
+  ++m.restarts;
+}
+
+StepStatus OdeIntegrator::step(double t_stop) {
+  Impl& m = *impl_;
+  m.check(CVodeSetStopTime(m.cvode, t_stop), "SetStopTime");
+  m.last_error.clear();
+  sunrealtype t_reached = m.t;
+  const int flag = CVode(m.cvode, t_stop, m.y, &t_reached, CV_ONE_STEP);
+  m.check(flag, "step");
+  m.t = t_reached;
+  if (flag == CV_ROOT_RETURN) {
+    m.check(CVodeGetRootInfo(m.cvode, m.fired.data()), "GetRootInfo");
+    return StepStatus::Guard;
+  }
+  return flag == CV_TSTOP_RETURN ? StepStatus::StopTime : StepStatus::Step;
+}
+
+double OdeIntegrator::time() const { return impl_->t; }
+
+std::span<const double> OdeIntegrator::state() const {
+  return {N_VGetArrayPointer(impl_->y), static_cast<std::size_t>(impl_->n)};
+}
+
+void OdeIntegrator::interpolate(double t, std::span<double> y) const {
+  Impl& m = *impl_;
+  N_Vector out = N_VMake_Serial(m.n, y.data(), m.ctx);
+  const int flag = CVodeGetDky(m.cvode, t, 0, out);
+  N_VDestroy(out);
+  m.check(flag, "GetDky");
+}
+
+std::span<const int> OdeIntegrator::guards_fired() const { return impl_->fired; }
+
+OdeStats OdeIntegrator::stats() const {
+  OdeStats s = impl_->segment_stats();
+  s.steps += impl_->finished.steps;
+  s.rhs_evals += impl_->finished.rhs_evals;
+  s.guard_evals += impl_->finished.guard_evals;
+  s.restarts = impl_->restarts;
+  return s;
+}
+
+}  // namespace flexgait::numerics

@@ -1,0 +1,70 @@
+#pragma once
+/// \file ode_integrator.hpp
+/// Event-locating integrator for hybrid systems, on SUNDIALS CVODE (variable-order Adams or
+/// BDF) with root finding on the dense output. SUNDIALS stays behind this interface.
+///
+/// Use: restart() at the start of every mode (after every reset map: CVodeReInit and
+/// CVodeRootInit with the mode's guard directions), then step() until it reports a guard.
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "flexgait/numerics/ode_system.hpp"
+
+namespace flexgait::numerics {
+
+enum class OdeMethod { Adams, Bdf };
+
+struct OdeOptions {
+  double rtol = 1e-10;      ///< relative tolerance
+  double atol = 1e-12;      ///< absolute tolerance (state units)
+  double max_step = 0.0;    ///< largest internal step [s]; 0: no limit
+  OdeMethod method = OdeMethod::Adams;
+  std::int64_t max_steps = 1'000'000;  ///< internal steps allowed per step() call
+};
+
+struct OdeStats {
+  std::int64_t steps = 0;       ///< internal solver steps
+  std::int64_t rhs_evals = 0;   ///< right-hand-side evaluations
+  std::int64_t guard_evals = 0; ///< guard evaluations
+  std::int64_t restarts = 0;    ///< restarts (mode changes)
+};
+
+enum class StepStatus {
+  Step,     ///< one internal step taken; no guard crossed
+  Guard,    ///< a guard crossed; time() is the crossing, guards_fired() says which
+  StopTime, ///< reached the stop time
+};
+
+class OdeIntegrator {
+ public:
+  /// \param system the flow and guards (must outlive the integrator) \param n state dimension
+  OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options);
+  ~OdeIntegrator();
+  OdeIntegrator(const OdeIntegrator&) = delete;
+  OdeIntegrator& operator=(const OdeIntegrator&) = delete;
+
+  /// Starts a new smooth segment at (t, y) with guards of the given crossing directions
+  /// (+1 upward only, -1 downward only, 0 both). Guards that are exactly zero at t are
+  /// ignored until they move away (CVODE's rule).
+  void restart(double t, std::span<const double> y, std::span<const int> directions);
+  /// Takes one internal step, never past t_stop. Throws std::runtime_error with CVODE's
+  /// message if the solver fails.
+  StepStatus step(double t_stop);
+  double time() const;
+  /// State at time() (dim n).
+  std::span<const double> state() const;
+  /// Dense-output interpolant over the last step: writes y(t) for t in [time()-h, time()].
+  void interpolate(double t, std::span<double> y) const;
+  /// Per guard, after StepStatus::Guard: +1 crossed upward, -1 downward, 0 not crossed.
+  std::span<const int> guards_fired() const;
+  OdeStats stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace flexgait::numerics

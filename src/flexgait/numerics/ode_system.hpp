@@ -1,0 +1,19 @@
+#pragma once
+/// \file ode_system.hpp
+/// What an event-driven integrator needs from a model: a smooth flow ẏ = f(t, y) valid in
+/// the current mode, and guard functions g(t, y) whose zero crossings end the mode.
+#include <span>
+
+namespace flexgait::numerics {
+
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  /// ẏ = f(t, y). \param[in] y state (dim n) \param[out] ydot derivative (dim n).
+  /// \return false if the state is outside the model's domain (the solver then retries smaller).
+  virtual bool rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
+  /// Guard values g(t, y) (dim = number of guards given to the integrator's restart).
+  virtual void guards(double t, std::span<const double> y, std::span<double> g) = 0;
+};
+
+}  // namespace flexgait::numerics

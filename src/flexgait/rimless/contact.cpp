@@ -1,0 +1,47 @@
+#include "flexgait/rimless/contact.hpp"
+
+#include <cmath>
+
+namespace flexgait::rimless {
+
+const char* mode_name(FootMode m) {
+  switch (m) {
+    case FootMode::Stick: return "stick";
+    case FootMode::SlipForward: return "slip+";
+    case FootMode::SlipBackward: return "slip-";
+  }
+  return "?";
+}
+
+double leg_angle(const WheelParams& w, int k, double theta) {
+  return std::remainder(theta + 2.0 * w.alpha() * k, 2.0 * std::numbers::pi);
+}
+
+LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double> s) {
+  using S = StateIndex;
+  LegKinematics g;
+  const double y = s[S::y], yd = s[S::yd], td = s[S::thetad];
+  g.beta = leg_angle(w, k, s[S::theta]);
+  g.cb = std::cos(g.beta);
+  g.sb = std::sin(g.beta);
+  g.tb = g.sb / g.cb;
+  const double sec2 = 1.0 / (g.cb * g.cb);
+  g.L = y / g.cb;
+  const double Ldot = (yd + y * g.tb * td) / g.cb;
+  g.delta = w.L0 - g.L;
+  g.delta_dot = -Ldot;
+  g.f = w.K * g.delta + w.C * g.delta_dot;
+  g.gradL = {0.0, 1.0 / g.cb, g.L * g.tb};
+  g.A = {1.0, -g.tb, -y * sec2};
+  g.c = s[S::x] - y * g.tb;
+  g.cdot = s[S::xd] - yd * g.tb - y * td * sec2;
+  g.Adot_qdot = -2.0 * yd * td * sec2 - 2.0 * y * g.tb * td * td * sec2;
+  return g;
+}
+
+double foot_height(const WheelParams& w, int k, std::span<const double> s) {
+  const double beta = leg_angle(w, k, s[StateIndex::theta]);
+  return s[StateIndex::y] - (w.L0 - s[StateIndex::free_delta + k]) * std::cos(beta);
+}
+
+}  // namespace flexgait::rimless

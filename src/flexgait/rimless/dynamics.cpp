@@ -1,0 +1,112 @@
+#include "flexgait/rimless/dynamics.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace flexgait::rimless {
+
+bool solve_constrained(const WheelParams& w, int rows, const std::array<std::array<double, 3>, kMaxContacts>& A,
+                       const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
+                       std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda) {
+  const std::array<double, 3> mass{w.m, w.m, w.I};
+  if (w.I > 0) {
+    // Schur complement: (A M⁻¹ Aᵀ) λ = b - A M⁻¹ F, then a = M⁻¹ (F + Aᵀ λ).
+    const std::array<double, 3> minv{1.0 / mass[0], 1.0 / mass[1], 1.0 / mass[2]};
+    if (rows == 0) {
+      for (int j = 0; j < 3; ++j) a[j] = F[j] * minv[j];
+      return true;
+    }
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxContacts, kMaxContacts> S(rows, rows);
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxContacts, 1> r(rows);
+    for (int i = 0; i < rows; ++i) {
+      double AMF = 0;
+      for (int j = 0; j < 3; ++j) AMF += A[i][j] * minv[j] * F[j];
+      r(i) = b[i] - AMF;
+      for (int k = 0; k < rows; ++k) {
+        double s = 0;
+        for (int j = 0; j < 3; ++j) s += A[i][j] * minv[j] * A[k][j];
+        S(i, k) = s;
+      }
+    }
+    Eigen::LDLT<decltype(S)> ldlt(S);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
+    const double dmax = ldlt.vectorD().maxCoeff(), dmin = ldlt.vectorD().minCoeff();
+    if (!(dmin > 1e-13 * dmax)) return false;
+    const auto lam = ldlt.solve(r).eval();
+    for (int j = 0; j < 3; ++j) {
+      double s = F[j];
+      for (int i = 0; i < rows; ++i) s += A[i][j] * lam(i);
+      a[j] = s * minv[j];
+    }
+    for (int i = 0; i < rows; ++i) lambda[i] = lam(i);
+    return true;
+  }
+  // I = 0: the θ row is a torque balance; solve the full KKT system and reject a singular one.
+  const int n = 3 + rows;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 + kMaxContacts, 3 + kMaxContacts> K(n, n);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 + kMaxContacts, 1> rhs(n);
+  K.setZero();
+  for (int j = 0; j < 3; ++j) {
+    K(j, j) = mass[j];
+    rhs(j) = F[j];
+  }
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      K(j, 3 + i) = -A[i][j];
+      K(3 + i, j) = A[i][j];
+    }
+    rhs(3 + i) = b[i];
+  }
+  if (rows == 0 && std::abs(F[2]) <= 1e-12 * (std::abs(F[0]) + std::abs(F[1]) + 1e-300)) {
+    // Flight with a point mass: no torque acts and θ̈ = 0 (the limit of θ̈ = 0 / I).
+    a = {F[0] / w.m, F[1] / w.m, 0.0};
+    return true;
+  }
+  Eigen::FullPivLU<decltype(K)> lu(K);
+  lu.setThreshold(1e-12);
+  if (!lu.isInvertible()) return false;
+  const auto sol = lu.solve(rhs).eval();
+  for (int j = 0; j < 3; ++j) a[j] = sol(j);
+  for (int i = 0; i < rows; ++i) lambda[i] = sol(3 + i);
+  return true;
+}
+
+Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y) {
+  Dynamics d;
+  std::array<double, 3> F{w.m * w.g * std::sin(w.slope), -w.m * w.g * std::cos(w.slope), 0.0};
+  std::array<std::array<double, 3>, kMaxContacts> A{};
+  std::array<double, kMaxContacts> b{};
+  std::array<int, kMaxContacts> stick_index{};
+  int rows = 0;
+  constexpr double wb = kStickStabilization;
+  for (int i = 0; i < contacts.count; ++i) {
+    const LegKinematics& g = d.leg[i] = leg_kinematics(w, contacts.leg[i], y);
+    ContactForce& cf = d.force[i];
+    cf.f = g.f;
+    for (int j = 0; j < 3; ++j) F[j] += g.f * g.gradL[j];
+    const int s = slip_sign(contacts.mode[i]);
+    if (s == 0) {
+      A[rows] = g.A;
+      b[rows] = -g.Adot_qdot - 2.0 * wb * g.cdot - wb * wb * (g.c - contacts.anchor[i]);
+      stick_index[rows++] = i;
+    } else {
+      cf.D = slip_denominator(w, g, s);
+      if (!(cf.D > 0)) d.failure = "slip with a non-positive friction denominator (Painleve jam)";
+      cf.T = -w.mu_k * s * g.f / cf.D;
+      for (int j = 0; j < 3; ++j) F[j] += g.A[j] * cf.T;
+    }
+  }
+  std::array<double, kMaxContacts> lambda{};
+  if (!solve_constrained(w, rows, A, F, b, d.qdd, lambda)) {
+    d.failure = "no consistent motion: the constrained equations are singular (point mass, I = 0)";
+    return d;
+  }
+  for (int r = 0; r < rows; ++r) d.force[stick_index[r]].T = lambda[r];
+  for (int i = 0; i < contacts.count; ++i) {
+    ContactForce& cf = d.force[i];
+    cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;
+  }
+  return d;
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,49 @@
+#pragma once
+/// \file dynamics.hpp
+/// Accelerations and contact forces of the flexible wheel in a given contact mode
+/// (spec rimless.md, "The model"; Lagrange equations of the first kind):
+///
+///   diag(m, m, I) q̈ = m g (sin φ, -cos φ, 0) + Σ_k [ f_k ∂L_k/∂q + A_kᵀ T_k ]
+///   stick:  A_k q̈ = -Ȧ_k q̇ - 2ω_b ċ_k - ω_b² (c_k - anchor_k)      (T_k is the multiplier)
+///   slip:   T_k = -μ_k s_k f_k / (cos β_k - μ_k s_k sin β_k)
+///   N_k = (f_k - T_k sin β_k) / cos β_k
+///
+/// ω_b (kStickStabilization) is a Baumgarte term that holds a sticking foot on its anchor
+/// against integration drift; it vanishes on the exact solution.
+#include <array>
+#include <span>
+
+#include "flexgait/rimless/contact.hpp"
+
+namespace flexgait::rimless {
+
+/// Baumgarte rate ω_b for sticking feet [1/s].
+inline constexpr double kStickStabilization = 10.0;
+
+struct ContactForce {
+  double f = 0;  ///< axial leg force [N]
+  double T = 0;  ///< tangential ground force on the foot, +x [N]
+  double N = 0;  ///< normal ground force [N]
+  double D = 1;  ///< slip denominator cos β - μ_k s sin β (1 for stick)
+};
+
+struct Dynamics {
+  /// nullptr when the mode has a consistent motion; otherwise why not (a slip jam D <= 0,
+  /// or a singular constrained system, which happens only for I = 0).
+  const char* failure = nullptr;
+  std::array<double, 3> qdd{};  ///< (ẍ, ÿ, θ̈)
+  std::array<ContactForce, kMaxContacts> force{};
+  std::array<LegKinematics, kMaxContacts> leg{};
+};
+
+/// Dynamics of the contact set `contacts` at state y (dim state_size(w)).
+Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y);
+
+/// Solves the constrained system [M -Aᵀ; A 0] [a; λ] = [F; b] with M = diag(m, m, I) and
+/// `rows` constraint rows A (each ∂c/∂q). Works for I = 0 when the system is nonsingular.
+/// \return false if singular (then a and lambda are unspecified).
+bool solve_constrained(const WheelParams& w, int rows, const std::array<std::array<double, 3>, kMaxContacts>& A,
+                       const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
+                       std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda);
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,374 @@
+#include "flexgait/rimless/flexible_wheel.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <deque>
+#include <stdexcept>
+
+#include "flexgait/numerics/ode_integrator.hpp"
+#include "flexgait/rimless/dynamics.hpp"
+#include "flexgait/rimless/mode_selection.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+constexpr int kGuardsPerLeg = 4;
+constexpr double kInactive = 1.0;  // value of an unused guard slot
+
+// The smooth flow and the guards of the current contact mode.
+class WheelFlow final : public numerics::OdeSystem {
+ public:
+  WheelFlow(const WheelParams& w, const ContactSet& contacts) : w_(w), contacts_(contacts) {}
+
+  bool rhs(double, std::span<const double> y, std::span<double> yd) override {
+    using S = StateIndex;
+    const Dynamics d = contact_dynamics(w_, contacts_, y);
+    if (d.failure != nullptr) return false;
+    yd[S::x] = y[S::xd];
+    yd[S::y] = y[S::yd];
+    yd[S::theta] = y[S::thetad];
+    yd[S::xd] = d.qdd[0];
+    yd[S::yd] = d.qdd[1];
+    yd[S::thetad] = d.qdd[2];
+    double damp = 0, fric = 0;
+    for (int i = 0; i < contacts_.count; ++i) {
+      damp += w_.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
+      fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, ≥ 0 in slip
+    }
+    const double rate = w_.C > 0 ? w_.K / w_.C : 0.0;
+    for (int k = 0; k < w_.legs; ++k) {
+      double& dk = yd[S::free_delta + k];
+      dk = 0.0;
+      if (contacts_.find(k) >= 0) continue;
+      const double delta = y[S::free_delta + k];
+      dk = -rate * delta;          // K δ + C δ̇ = 0
+      damp += w_.C * dk * dk;      // C δ̇²
+    }
+    yd[S::w_damp] = damp;
+    yd[S::w_fric] = fric;
+    return true;
+  }
+
+  void guards(double, std::span<const double> y, std::span<double> g) override {
+    std::fill(g.begin(), g.end(), kInactive);
+    const Dynamics d = contact_dynamics(w_, contacts_, y);
+    for (int k = 0; k < w_.legs; ++k) {
+      double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
+      const int i = contacts_.find(k);
+      if (i < 0) {
+        slot[0] = foot_height(w_, k, y);
+        continue;
+      }
+      const ContactForce& cf = d.force[i];
+      const LegKinematics& leg = d.leg[i];
+      slot[0] = cf.N;
+      slot[2] = leg.cb;
+      const int s = slip_sign(contacts_.mode[i]);
+      if (s == 0) {
+        slot[1] = cf.N > 0 ? w_.mu_s - std::abs(cf.T) / cf.N : -1.0;
+      } else {
+        slot[1] = s * leg.cdot;
+        slot[3] = slip_denominator(w_, leg, s);
+      }
+    }
+  }
+
+  void set_contacts(const ContactSet& c) { contacts_ = c; }
+  const ContactSet& contacts() const { return contacts_; }
+
+ private:
+  const WheelParams& w_;
+  ContactSet contacts_;
+};
+
+EventKind slot_kind(int slot, bool on_ground, FootMode mode) {
+  switch (slot) {
+    case 0: return on_ground ? EventKind::LiftOff : EventKind::Touchdown;
+    case 1: return mode == FootMode::Stick ? EventKind::StickToSlip : EventKind::SlipToStick;
+    case 2: return EventKind::FallOver;
+    default: return EventKind::SlipJam;
+  }
+}
+
+}  // namespace
+
+std::string describe_contacts(const ContactSet& c) {
+  if (c.count == 0) return "flight";
+  std::string s;
+  for (int i = 0; i < c.count; ++i) s += fmt::format("{}{}:{}", i ? " " : "", c.leg[i], mode_name(c.mode[i]));
+  return s;
+}
+
+std::vector<double> initial_state(const WheelParams& w, const InitialState& init) {
+  using S = StateIndex;
+  std::vector<double> y(static_cast<std::size_t>(state_size(w)), 0.0);
+  const double delta = w.m * w.g * std::cos(w.slope) / w.K;
+  const double L = w.L0 - delta;
+  y[S::theta] = init.beta;
+  y[S::y] = L * std::cos(init.beta);
+  y[S::x] = y[S::y] * std::tan(init.beta);
+  y[S::xd] = L * init.omega * std::cos(init.beta);
+  y[S::yd] = -L * init.omega * std::sin(init.beta);
+  y[S::thetad] = init.omega;
+  return y;
+}
+
+struct FlexibleWheelSimulator::Impl {
+  WheelParams w;
+  SimulationOptions opt;
+  WheelFlow flow;
+  numerics::OdeIntegrator integrator;
+  std::vector<int> directions;
+  std::vector<double> y;       // scratch state
+  std::vector<double> y_dense; // scratch for dense output
+
+  Impl(const WheelParams& wheel, const SimulationOptions& options)
+      : w(wheel),
+        opt(options),
+        flow(w, ContactSet{}),
+        integrator(flow, state_size(w),
+                   numerics::OdeOptions{options.rtol, options.atol, 0.0,
+                                        options.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf
+                                                                               : numerics::OdeMethod::Adams,
+                                        1'000'000}),
+        directions(static_cast<std::size_t>(kGuardsPerLeg * w.legs), -1),
+        y(static_cast<std::size_t>(state_size(w))),
+        y_dense(static_cast<std::size_t>(state_size(w))) {}
+
+  LogSample sample(double t, std::span<const double> s) const {
+    LogSample out;
+    out.t = t;
+    for (int j = 0; j < 6; ++j) out.q[j] = s[j];
+    const ContactSet& c = flow.contacts();
+    const Dynamics d = contact_dynamics(w, c, s);
+    for (int i = 0; i < c.count; ++i) {
+      out.contact[i] = {c.leg[i], c.mode[i], d.force[i].N, d.force[i].T, d.leg[i].c, d.leg[i].cdot};
+    }
+    out.energy = mechanical_energy(w, c, s);
+    out.w_damp = s[StateIndex::w_damp];
+    out.w_fric = s[StateIndex::w_fric];
+    return out;
+  }
+
+  // After a smooth step: the modes must still be consistent, or an event was missed.
+  const char* check_consistency(std::span<const double> s, std::string& detail) const {
+    const ContactSet& c = flow.contacts();
+    const Dynamics d = contact_dynamics(w, c, s);
+    if (d.failure != nullptr) return d.failure;
+    const double tol_f = 1e-6 * w.m * w.g, tol_v = 1e-6 * std::sqrt(w.g * w.L0);
+    for (int i = 0; i < c.count; ++i) {
+      const ContactForce& cf = d.force[i];
+      const int s_i = slip_sign(c.mode[i]);
+      const bool bad = cf.N < -tol_f || (s_i == 0 && std::abs(cf.T) > w.mu_s * cf.N + tol_f) ||
+                       (s_i != 0 && s_i * d.leg[i].cdot < -tol_v);
+      if (bad) {
+        detail = fmt::format("leg {} in {}: N = {}, T = {}, cdot = {}", c.leg[i], mode_name(c.mode[i]), cf.N, cf.T,
+                             d.leg[i].cdot);
+        return "missed event: the contact mode became inconsistent within one solver step";
+      }
+    }
+    for (int k = 0; k < w.legs; ++k) {
+      if (c.find(k) >= 0) continue;
+      const double h = foot_height(w, k, s);
+      if (h < -1e-7 * w.L0) {
+        detail = fmt::format("leg {} foot height {}", k, h);
+        return "missed event: a free foot went below the ground";
+      }
+    }
+    return nullptr;
+  }
+};
+
+FlexibleWheelSimulator::FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options)
+    : impl_(std::make_unique<Impl>(wheel, options)) {}
+FlexibleWheelSimulator::~FlexibleWheelSimulator() = default;
+
+SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
+  using S = StateIndex;
+  Impl& m = *impl_;
+  const WheelParams& w = m.w;
+  SimulationResult res;
+  std::copy(y0.begin(), y0.end(), m.y.begin());
+  double t = 0.0;
+
+  auto record_event = [&](double te, const std::string& kind, int leg) {
+    res.events.push_back({te, kind, leg, describe_contacts(m.flow.contacts())});
+  };
+  auto fail = [&](double te, const std::string& why, const std::string& detail) {
+    res.failure = detail.empty() ? why : why + " (" + detail + ")";
+    res.events.push_back({te, "failure", -1, *res.failure});
+  };
+
+  // Initial modes: every foot on the ground is treated as landing now.
+  {
+    std::vector<GuardEvent> start;
+    for (int k = 1; k < w.legs; ++k) {  // leg 0 is the stance leg
+      const double h = foot_height(w, k, m.y);
+      if (h < -1e-12 * w.L0) throw std::invalid_argument(fmt::format("initial state: foot {} is below the ground", k));
+    }
+    start.push_back({0, EventKind::Touchdown});
+    const ModeDecision dec = choose_modes(w, ContactSet{}, start, m.y);
+    if (dec.failure != nullptr) {
+      fail(0.0, dec.failure, dec.detail);
+      res.final_state = m.y;
+      return res;
+    }
+    m.flow.set_contacts(dec.contacts);
+  }
+  StepTracker tracker;
+  const double e0 = mechanical_energy(w, m.flow.contacts(), m.y).total();
+  const double ke0 = kinetic_energy(w, m.y);
+  tracker.start(0.0, m.y[S::x], e0, m.flow.contacts());
+  record_event(0.0, "start", m.flow.contacts().leg[0]);
+  if (m.opt.log) res.samples.push_back(m.sample(0.0, m.y));
+  m.integrator.restart(0.0, m.y, m.directions);
+
+  double next_sample = m.opt.sample_dt;
+  long sample_index = 1;
+  double last_touchdown = 0.0;
+  GuardEvent last_event{-1, EventKind::Touchdown};
+  double last_event_time = -1.0;
+  std::deque<double> recent_events;  // times of the latest events (Zeno watch)
+  constexpr std::size_t kZenoCount = 64;
+  constexpr double kZenoWindow = 1e-9;  // s
+
+  while (res.steps_completed < m.opt.steps) {
+    const double t_stop = std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time);
+    numerics::StepStatus status;
+    try {
+      status = m.integrator.step(t_stop);
+    } catch (const std::runtime_error& e) {
+      fail(t, "solver failure", e.what());
+      break;
+    }
+    t = m.integrator.time();
+    if (m.opt.log) {
+      while (next_sample < t) {
+        m.integrator.interpolate(next_sample, m.y_dense);
+        res.samples.push_back(m.sample(next_sample, m.y_dense));
+        next_sample = m.opt.sample_dt * static_cast<double>(++sample_index);
+      }
+    }
+    const auto state = m.integrator.state();
+    std::copy(state.begin(), state.end(), m.y.begin());
+
+    if (status != numerics::StepStatus::Guard) {
+      std::string detail;
+      if (const char* why = m.check_consistency(m.y, detail)) {
+        fail(t, why, detail);
+        break;
+      }
+      const ContactSet& c = m.flow.contacts();
+      if (c.count >= 2 && kinetic_energy(w, m.y) < 1e-12 * w.m * w.g * w.L0) {
+        fail(t, "stopped: the wheel came to rest in double support", "");
+        break;
+      }
+      if (status == numerics::StepStatus::StopTime) {
+        if (t >= m.opt.max_time) fail(t, "time limit sim.max_time reached", fmt::format("{} s", m.opt.max_time));
+        else fail(t, "stopped: no new leg landed within sim.max_step_time", fmt::format("{} s", m.opt.max_step_time));
+        break;
+      }
+      continue;
+    }
+
+    // A guard crossed: collect the events, choose the new modes, restart.
+    const ContactSet before = m.flow.contacts();
+    std::vector<GuardEvent> events;
+    const auto fired = m.integrator.guards_fired();
+    for (int k = 0; k < w.legs; ++k) {
+      const int i = before.find(k);
+      for (int slot = 0; slot < kGuardsPerLeg; ++slot) {
+        if (fired[static_cast<std::size_t>(kGuardsPerLeg * k + slot)] == 0) continue;
+        events.push_back({k, slot_kind(slot, i >= 0, i >= 0 ? before.mode[i] : FootMode::Stick)});
+      }
+    }
+    if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
+
+    bool stop = false;
+    for (const auto& e : events) {
+      if (e.leg == last_event.leg && e.kind == last_event.kind && t - last_event_time < 1e-10) {
+        fail(t, "an event fired again at its own restart point",
+             fmt::format("leg {} {}", e.leg, event_name(e.kind)));
+        stop = true;
+      }
+      if (e.kind == EventKind::Touchdown) {
+        const double beta = leg_angle(w, e.leg, m.y[S::theta]);
+        if (beta > 0 && m.y[S::thetad] < 0 && m.y[S::xd] < 0) {
+          fail(t, "rolled back: a leg behind the hub landed while the wheel moved backwards",
+               fmt::format("leg {}, beta = {}", e.leg, beta));
+          stop = true;
+        }
+      }
+      recent_events.push_back(t);
+      if (recent_events.size() > kZenoCount) recent_events.pop_front();
+    }
+    if (recent_events.size() == kZenoCount && recent_events.back() - recent_events.front() < kZenoWindow) {
+      fail(t, "Zeno sequence: too many events in too short a time",
+           fmt::format("{} events within {} s", kZenoCount, kZenoWindow));
+      stop = true;
+    }
+    if (stop) break;
+
+    const ModeDecision dec = choose_modes(w, before, events, m.y);
+    if (dec.failure != nullptr) {
+      for (const auto& e : events) record_event(t, event_name(e.kind), e.leg);
+      fail(t, dec.failure, dec.detail);
+      break;
+    }
+    m.flow.set_contacts(dec.contacts);
+    if (dec.consistent > 1) ++res.ambiguous_choices;
+    res.jams += dec.jammed_feet;
+    if (dec.jammed_feet > 0) record_event(t, "jam", events.front().leg);
+    for (const auto& e : events) record_event(t, event_name(e.kind), e.leg);
+    last_event = events.back();
+    last_event_time = t;
+
+    const double energy = mechanical_energy(w, dec.contacts, m.y).total();
+    bool new_step = false;
+    for (const auto& e : events) {
+      if (e.kind == EventKind::Touchdown && e.leg != tracker.stance_leg() && dec.contacts.find(e.leg) >= 0) {
+        tracker.touchdown(t, m.y[S::x], energy, e.leg, dec.contacts);
+        ++res.steps_completed;
+        last_touchdown = t;
+        new_step = true;
+      }
+    }
+    if (!new_step) tracker.observe(dec.contacts);
+    if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
+    m.integrator.restart(t, m.y, m.directions);
+  }
+
+  res.t_final = t;
+  res.final_state = m.y;
+  res.final_contacts = m.flow.contacts();
+  if (m.opt.log && (res.samples.empty() || res.samples.back().t < t)) res.samples.push_back(m.sample(t, m.y));
+  res.steps = tracker.steps();
+  if (!res.steps.empty() && !res.steps.back().complete) {
+    res.steps.back().t_end = t;
+    res.steps.back().x_end = m.y[S::x];
+  }
+  res.energy_initial = e0;
+  res.energy_final = mechanical_energy(w, m.flow.contacts(), m.y).total();
+  res.work_damping = m.y[S::w_damp];
+  res.work_friction = m.y[S::w_fric];
+  const double scale = ke0 + w.m * w.g * w.L0 + res.work_damping + res.work_friction;
+  res.energy_balance_error =
+      std::abs(res.energy_final + res.work_damping + res.work_friction - res.energy_initial) / scale;
+  const double t_end = res.steps_completed > 0 ? last_touchdown : t;
+  double x_end = m.y[S::x];
+  for (const auto& st : res.steps)
+    if (st.complete) x_end = st.x_end;
+  res.mean_speed = t_end > 0 ? (x_end - y0[S::x]) / t_end : 0.0;
+  const numerics::OdeStats st = m.integrator.stats();
+  res.solver_steps = st.steps;
+  res.rhs_evals = st.rhs_evals;
+  return res;
+}
+
+SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options) {
+  FlexibleWheelSimulator sim(w, options);
+  return sim.run(initial_state(w, initial));
+}
+
+}  // namespace flexgait::rimless

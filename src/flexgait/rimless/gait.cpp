@@ -1,0 +1,70 @@
+#include "flexgait/rimless/gait.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+void append(std::vector<Phase>& v, Phase p) {
+  if (v.empty() || v.back() != p) v.push_back(p);
+}
+
+Phase phase_of(FootMode m) { return m == FootMode::Stick ? Phase::Stick : Phase::Slip; }
+
+}  // namespace
+
+const char* phase_name(Phase p) {
+  switch (p) {
+    case Phase::Stick: return "stick";
+    case Phase::Slip: return "slip";
+    case Phase::Flight: return "flight";
+  }
+  return "?";
+}
+
+std::string gait_label(const std::vector<Phase>& phases) {
+  if (phases.empty()) return "double";
+  std::string s;
+  for (std::size_t i = 0; i < phases.size(); ++i) s += (i ? "-" : "") + std::string(phase_name(phases[i]));
+  return s;
+}
+
+void StepTracker::start(double t, double x, double energy, const ContactSet& contacts) {
+  steps_.clear();
+  StepRecord r;
+  r.index = 1;
+  r.stance_leg = contacts.count > 0 ? contacts.leg[0] : -1;
+  r.t_start = r.t_end = t;
+  r.x_start = r.x_end = x;
+  r.energy_start = energy;
+  steps_.push_back(r);
+  observe(contacts);
+}
+
+void StepTracker::observe(const ContactSet& contacts) {
+  if (steps_.empty()) return;
+  StepRecord& cur = steps_.back();
+  if (contacts.count == 0) append(cur.single_support, Phase::Flight);
+  if (contacts.count == 1 && contacts.leg[0] == cur.stance_leg) append(cur.single_support, phase_of(contacts.mode[0]));
+  // Whole-contact phases: the current stance foot, and the previous one while it is still down.
+  for (std::size_t back = 0; back < 2 && back < steps_.size(); ++back) {
+    StepRecord& r = steps_[steps_.size() - 1 - back];
+    const int i = contacts.find(r.stance_leg);
+    if (i >= 0) append(r.contact, phase_of(contacts.mode[i]));
+  }
+}
+
+void StepTracker::touchdown(double t, double x, double energy, int leg, const ContactSet& contacts) {
+  StepRecord& cur = steps_.back();
+  cur.t_end = t;
+  cur.x_end = x;
+  cur.complete = true;
+  StepRecord next;
+  next.index = cur.index + 1;
+  next.stance_leg = leg;
+  next.t_start = next.t_end = t;
+  next.x_start = next.x_end = x;
+  next.energy_start = energy;
+  steps_.push_back(next);
+  observe(contacts);
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,54 @@
+#pragma once
+/// \file gait.hpp
+/// Gait classification (spec rimless.md, "Analysis"): a step runs from the touchdown of its
+/// stance leg to the touchdown of the next leg; its label is the sequence of the stance foot's
+/// phases during single support (and `flight` while no foot is down), consecutive repeats merged:
+///
+///   `stick`            sticks all through single support (the landing slip ended in double support)
+///   `slip-stick`       the landing slip runs into single support, then the foot sticks
+///   `stick-slip`       sticks, then slips before the next leg lands
+///   `slip`             slips all through single support (sliding gait)
+///   `slip-stick-slip`  both
+///   `double`           no single support at all
+///
+/// These are the paper's four behaviours (and their combination). The full sequence of the
+/// stance foot over its whole contact, double support included, is kept as `contact_phases`.
+#include <string>
+#include <vector>
+
+#include "flexgait/rimless/contact.hpp"
+
+namespace flexgait::rimless {
+
+enum class Phase : std::uint8_t { Stick, Slip, Flight };
+const char* phase_name(Phase p);
+/// "slip-stick" style label; "double" for an empty sequence.
+std::string gait_label(const std::vector<Phase>& phases);
+
+struct StepRecord {
+  int index = 0;         ///< 1-based; step 1 starts at the initial state
+  int stance_leg = 0;
+  double t_start = 0, t_end = 0;  ///< [s]
+  double x_start = 0, x_end = 0;  ///< hub position [m]
+  double energy_start = 0;        ///< mechanical energy at the start [J]
+  std::vector<Phase> single_support;  ///< stance-foot phases while it is the only foot down
+  std::vector<Phase> contact;         ///< stance-foot phases over its whole contact
+  bool complete = false;              ///< ended by the next touchdown
+};
+
+class StepTracker {
+ public:
+  /// Starts step 1 with the oldest foot on the ground as stance foot.
+  void start(double t, double x, double energy, const ContactSet& contacts);
+  /// Records the modes in force after an event.
+  void observe(const ContactSet& contacts);
+  /// Closes the current step at the touchdown of `leg` and opens the next.
+  void touchdown(double t, double x, double energy, int leg, const ContactSet& contacts);
+  int stance_leg() const { return steps_.empty() ? -1 : steps_.back().stance_leg; }
+  const std::vector<StepRecord>& steps() const { return steps_; }
+
+ private:
+  std::vector<StepRecord> steps_;
+};
+
+}  // namespace flexgait::rimless

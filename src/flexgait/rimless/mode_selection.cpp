@@ -1,0 +1,286 @@
+#include "flexgait/rimless/mode_selection.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "flexgait/rimless/dynamics.hpp"
+#include "flexgait/rimless/energy.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+enum class Option : std::uint8_t { Stick, SlipForward, SlipBackward, Leave };
+
+struct Foot {
+  int leg = 0;
+  bool was_on_ground = false;
+  FootMode previous = FootMode::Stick;
+  double anchor = 0;
+  std::vector<Option> options;  // in order of preference
+};
+
+Option option_of(FootMode m) {
+  return m == FootMode::Stick ? Option::Stick : m == FootMode::SlipForward ? Option::SlipForward : Option::SlipBackward;
+}
+FootMode mode_of(Option o) {
+  return o == Option::Stick ? FootMode::Stick : o == Option::SlipForward ? FootMode::SlipForward : FootMode::SlipBackward;
+}
+const char* option_name(Option o) { return o == Option::Leave ? "leave" : mode_name(mode_of(o)); }
+
+const GuardEvent* event_of(std::span<const GuardEvent> events, int leg) {
+  for (const auto& e : events)
+    if (e.leg == leg) return &e;
+  return nullptr;
+}
+
+void add_unique(std::vector<Option>& v, Option o) {
+  for (Option x : v)
+    if (x == o) return;
+  v.push_back(o);
+}
+
+// Options allowed by the foot's velocity: a moving foot can only slip with its motion (or leave).
+std::vector<Option> velocity_options(double cdot, double tol) {
+  if (cdot > tol) return {Option::SlipForward, Option::Leave};
+  if (cdot < -tol) return {Option::SlipBackward, Option::Leave};
+  return {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave};
+}
+
+bool allowed(const std::vector<Option>& v, Option o) {
+  for (Option x : v)
+    if (x == o) return true;
+  return false;
+}
+
+// Applies jam impulses: P_k along ∂c_k/∂q for the feet in `jam`, so that their ċ becomes 0.
+// Returns false when the impulses are inadmissible (outside the cone or pulling).
+bool apply_impulse(const WheelParams& w, const std::vector<int>& jam, std::span<double> y, double& energy_loss) {
+  using S = StateIndex;
+  std::array<std::array<double, 3>, kMaxContacts> A{};
+  std::array<double, kMaxContacts> b{};
+  std::array<double, kMaxContacts> P{};
+  std::array<double, 3> dv{};
+  std::array<LegKinematics, kMaxContacts> legs{};
+  const int rows = static_cast<int>(jam.size());
+  for (int r = 0; r < rows; ++r) {
+    legs[r] = leg_kinematics(w, jam[r], y);
+    A[r] = legs[r].A;
+    b[r] = -legs[r].cdot;
+  }
+  if (!solve_constrained(w, rows, A, {0.0, 0.0, 0.0}, b, dv, P)) return false;
+  for (int r = 0; r < rows; ++r) {
+    // Tangential impulse P with no axial part: normal impulse = -P tan β must push, and
+    // |P| <= μ_s (normal impulse), i.e. the direction perpendicular to the leg is in the cone.
+    const double normal = -P[r] * legs[r].tb;
+    if (normal < 0 || std::abs(P[r]) > w.mu_s * normal * (1 + 1e-12)) return false;
+  }
+  const double before = kinetic_energy(w, y);
+  y[S::xd] += dv[0];
+  y[S::yd] += dv[1];
+  y[S::thetad] += dv[2];
+  energy_loss = before - kinetic_energy(w, y);
+  y[S::w_fric] += energy_loss;
+  return true;
+}
+
+}  // namespace
+
+const char* event_name(EventKind kind) {
+  switch (kind) {
+    case EventKind::Touchdown: return "touchdown";
+    case EventKind::LiftOff: return "liftoff";
+    case EventKind::StickToSlip: return "stick_to_slip";
+    case EventKind::SlipToStick: return "slip_to_stick";
+    case EventKind::SlipJam: return "slip_jam";
+    case EventKind::FallOver: return "fall_over";
+  }
+  return "?";
+}
+
+ModeTolerances ModeTolerances::of(const WheelParams& w) {
+  return {1e-8 * w.m * w.g, 1e-8 * std::sqrt(w.g * w.L0), 1e-8 * w.g};
+}
+
+ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
+                          std::span<double> y) {
+  using S = StateIndex;
+  ModeDecision out;
+  const ModeTolerances tol = ModeTolerances::of(w);
+  for (const auto& e : events) {
+    if (e.kind == EventKind::FallOver) {
+      out.failure = "fell: a stance leg reached |beta| = pi/2";
+      out.detail = fmt::format("leg {}", e.leg);
+      return out;
+    }
+  }
+
+  // The feet on the ground: the current ones, then the ones landing now.
+  std::vector<Foot> feet;
+  for (int i = 0; i < current.count; ++i)
+    feet.push_back({current.leg[i], true, current.mode[i], current.anchor[i], {}});
+  for (const auto& e : events)
+    if (e.kind == EventKind::Touchdown && current.find(e.leg) < 0) feet.push_back({e.leg, false, FootMode::Stick, 0, {}});
+  if (static_cast<int>(feet.size()) > kMaxContacts) {
+    out.failure = "more feet on the ground than supported";
+    out.detail = fmt::format("{} feet; at most {}", feet.size(), kMaxContacts);
+    return out;
+  }
+
+  // Painlevé jams: a moving foot that cannot slip with its motion (D <= 0 while pressed), or a
+  // slipping foot whose denominator reached 0.
+  std::vector<int> jam;
+  for (const auto& foot : feet) {
+    const LegKinematics g = leg_kinematics(w, foot.leg, y);
+    const GuardEvent* e = event_of(events, foot.leg);
+    const bool moving = std::abs(g.cdot) > tol.velocity;
+    const int s = g.cdot > 0 ? 1 : -1;
+    const bool jammed = (e != nullptr && e->kind == EventKind::SlipJam) ||
+                        (moving && g.f > tol.force && slip_denominator(w, g, s) <= 0);
+    if (jammed) jam.push_back(foot.leg);
+  }
+  if (!jam.empty()) {
+    // Prefer keeping sticking feet stuck (they take an impulse too); else stop the jammed ones only.
+    std::vector<int> with_stuck = jam;
+    for (const auto& foot : feet)
+      if (foot.was_on_ground && foot.previous == FootMode::Stick) with_stuck.push_back(foot.leg);
+    std::vector<double> saved(y.begin(), y.end());
+    double loss = 0;
+    bool done = with_stuck.size() > jam.size() && apply_impulse(w, with_stuck, y, loss);
+    if (!done) {
+      std::copy(saved.begin(), saved.end(), y.begin());
+      done = apply_impulse(w, jam, y, loss);
+    }
+    if (!done) {
+      std::copy(saved.begin(), saved.end(), y.begin());
+      out.failure = "Painleve jam with no admissible impulse";
+      out.detail = fmt::format("{} jammed foot(feet), first leg {}", jam.size(), jam.front());
+      return out;
+    }
+    out.jammed_feet = static_cast<int>(jam.size());
+    out.impulse_energy = loss;
+  }
+
+  // Each foot's options, in order of preference.
+  for (auto& foot : feet) {
+    const LegKinematics g = leg_kinematics(w, foot.leg, y);
+    const std::vector<Option> by_velocity = velocity_options(g.cdot, tol.velocity);
+    const GuardEvent* e = event_of(events, foot.leg);
+    std::vector<Option> preferred;
+    if (foot.was_on_ground && (e == nullptr || e->kind == EventKind::SlipJam)) {
+      preferred.push_back(option_of(foot.previous));
+    }
+    if (e != nullptr && e->kind == EventKind::StickToSlip) {
+      // Incipient slip opposes the sticking force: s = -sign(T_stick) (the spec's rule).
+      ContactSet before = current;
+      const Dynamics d = contact_dynamics(w, before, y);
+      const int i = current.find(foot.leg);
+      const double T = i >= 0 ? d.force[i].T : 0.0;
+      preferred = {T > 0 ? Option::SlipBackward : Option::SlipForward, Option::Leave};
+    } else if (e != nullptr && e->kind == EventKind::SlipToStick) {
+      const int s = slip_sign(foot.previous);
+      preferred = {Option::Stick, s > 0 ? Option::SlipBackward : Option::SlipForward, Option::Leave};
+    } else if (e != nullptr && e->kind == EventKind::LiftOff) {
+      preferred = {Option::Leave, Option::Stick, Option::SlipForward, Option::SlipBackward};
+    } else {
+      for (Option o : {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave}) add_unique(preferred, o);
+    }
+    const bool must_change = e != nullptr && e->kind != EventKind::Touchdown && e->kind != EventKind::SlipJam;
+    for (Option o : preferred) {
+      if (!allowed(by_velocity, o)) continue;
+      if (must_change && foot.was_on_ground && o == option_of(foot.previous)) continue;
+      if (!foot.was_on_ground && o == Option::Leave) continue;  // it just landed with f > 0
+      foot.options.push_back(o);
+    }
+  }
+
+  // Enumerate every combination; score = Σ preference rank; keep the best consistent one.
+  const int n = static_cast<int>(feet.size());
+  std::array<int, kMaxContacts> pick{};
+  std::array<int, kMaxContacts> best{};
+  int best_score = std::numeric_limits<int>::max();
+  std::string tried;
+  for (bool more = true; more;) {
+    bool empty = false;
+    for (int i = 0; i < n; ++i) empty = empty || feet[i].options.empty();
+    if (empty) break;
+    ContactSet trial;
+    int score = 0;
+    for (int i = 0; i < n; ++i) {
+      const Option o = feet[i].options[pick[i]];
+      score += pick[i];
+      if (o == Option::Leave) continue;
+      const int j = trial.count++;
+      trial.leg[j] = feet[i].leg;
+      trial.mode[j] = mode_of(o);
+      const bool keeps_stick = feet[i].was_on_ground && feet[i].previous == FootMode::Stick && o == Option::Stick;
+      trial.anchor[j] = keeps_stick ? feet[i].anchor : leg_kinematics(w, feet[i].leg, y).c;
+    }
+    const Dynamics d = contact_dynamics(w, trial, y);
+    const char* why = d.failure;
+    for (int i = 0; i < n && why == nullptr; ++i) {
+      const Option o = feet[i].options[pick[i]];
+      if (o == Option::Leave) {
+        if (leg_kinematics(w, feet[i].leg, y).f > tol.force) why = "a leaving foot is still pressed (f > 0)";
+        continue;
+      }
+      const int j = trial.find(feet[i].leg);
+      const ContactForce& cf = d.force[j];
+      const LegKinematics& g = d.leg[j];
+      if (cf.N < -tol.force) why = "negative normal force";
+      else if (o == Option::Stick && std::abs(cf.T) > w.mu_s * cf.N + tol.force) why = "stick outside the friction cone";
+      else if (o != Option::Stick && std::abs(g.cdot) <= tol.velocity) {
+        const double cddot = g.A[0] * d.qdd[0] + g.A[1] * d.qdd[1] + g.A[2] * d.qdd[2] + g.Adot_qdot;
+        if (slip_sign(mode_of(o)) * cddot < -tol.acceleration) why = "friction would not oppose the slip";
+      }
+    }
+    if (why == nullptr) {
+      ++out.consistent;
+      if (score < best_score) {
+        best_score = score;
+        best = pick;
+        out.contacts = trial;
+      }
+    } else if (tried.size() < 600) {
+      for (int i = 0; i < n; ++i) tried += fmt::format("{}{}={}", i ? "," : "", feet[i].leg, option_name(feet[i].options[pick[i]]));
+      tried += fmt::format(": {}; ", why);
+    }
+    more = false;
+    for (int i = n - 1; i >= 0; --i) {  // next combination (odometer, last foot fastest)
+      if (++pick[i] < static_cast<int>(feet[i].options.size())) {
+        more = true;
+        break;
+      }
+      pick[i] = 0;
+    }
+  }
+  (void)best;
+  if (out.consistent == 0) {
+    if (w.I == 0) {
+      const bool single = n == 1;
+      out.failure = current.count == 0
+                        ? "I = 0: a landing after a flight has no consistent motion (the leg would have to snap to the "
+                          "friction-cone edge)"
+                    : single ? "I = 0: single-support slip has no consistent motion (the leg would snap to the "
+                               "friction-cone edge, tan(beta) = -mu_k s)"
+                             : "I = 0: no consistent contact mode in double support";
+    } else {
+      out.failure = "no consistent contact mode";
+    }
+    out.detail = tried;
+    return out;
+  }
+
+  // Legs that left keep their compression as free legs, relaxing from here.
+  for (const auto& foot : feet) {
+    if (out.contacts.find(foot.leg) >= 0) continue;
+    const double delta = leg_kinematics(w, foot.leg, y).delta;
+    y[S::free_delta + foot.leg] = w.C > 0 ? delta : 0.0;
+    if (w.C == 0) y[S::w_damp] += 0.5 * w.K * delta * delta;  // an undamped massless leg snaps to rest
+  }
+  return out;
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,61 @@
+#pragma once
+/// \file simulation.hpp
+/// What a rimless-wheel simulation returns (both the flexible and the rigid model): a sampled
+/// log, the events, the steps with their gait labels, and the energy ledger.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flexgait/rimless/contact.hpp"
+#include "flexgait/rimless/energy.hpp"
+#include "flexgait/rimless/gait.hpp"
+
+namespace flexgait::rimless {
+
+struct ContactSample {
+  int leg = -1;                       ///< -1: slot empty
+  FootMode mode = FootMode::Stick;
+  double N = 0, T = 0;                ///< ground reaction [N]
+  double c = 0, cdot = 0;             ///< foot position [m] and velocity [m/s] along the slope
+};
+
+struct LogSample {
+  double t = 0;                       ///< [s]
+  std::array<double, 6> q{};          ///< (x, y, θ, ẋ, ẏ, θ̇)
+  std::array<ContactSample, kMaxContacts> contact{};
+  EnergyTerms energy;
+  double w_damp = 0, w_fric = 0;      ///< dissipated work since t = 0 [J]
+};
+
+struct EventRecord {
+  double t = 0;        ///< [s]
+  std::string kind;    ///< start, touchdown, liftoff, stick_to_slip, slip_to_stick, slip_jam, failure, ...
+  int leg = -1;
+  std::string modes;   ///< feet on the ground after the event, e.g. "3:stick 4:slip+"
+};
+
+struct SimulationResult {
+  std::vector<LogSample> samples;
+  std::vector<EventRecord> events;
+  std::vector<StepRecord> steps;
+  std::optional<std::string> failure;  ///< why the run stopped early; empty if it completed
+  int steps_completed = 0;             ///< touchdowns of new legs
+  double t_final = 0;                  ///< [s]
+  double energy_initial = 0, energy_final = 0;  ///< mechanical energy [J]
+  double work_damping = 0, work_friction = 0;   ///< [J]
+  /// |E_final + W_damp + W_fric - E_initial| / (KE_0 + m g L0 + W_damp + W_fric): relative to the
+  /// energy that flowed, independent of where the potential's zero is.
+  double energy_balance_error = 0;
+  double mean_speed = 0;               ///< hub displacement along the slope / time, to the last touchdown [m/s]
+  int jams = 0;                        ///< feet stopped by jam impulses
+  int ambiguous_choices = 0;           ///< events where more than one mode combination was consistent
+  long long solver_steps = 0, rhs_evals = 0;
+  std::vector<double> final_state;     ///< full state vector at t_final
+  ContactSet final_contacts;
+};
+
+/// "3:stick 4:slip+" for a contact set; "flight" if empty.
+std::string describe_contacts(const ContactSet& contacts);
+
+}  // namespace flexgait::rimless
