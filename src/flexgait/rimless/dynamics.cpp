@@ -71,37 +71,73 @@ bool solve_constrained(const WheelParams& w, int rows, const std::array<std::arr
   return true;
 }
 
-Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y) {
-  Dynamics d;
-  std::array<double, 3> F{w.m * w.g * std::sin(w.slope), -w.m * w.g * std::cos(w.slope), 0.0};
+namespace {
+
+// Legs, applied forces F and stick-constraint rows of the contact set at state q (q, q̇).
+struct Assembly {
+  std::array<double, 3> F{};
   std::array<std::array<double, 3>, kMaxContacts> A{};
   std::array<double, kMaxContacts> b{};
   std::array<int, kMaxContacts> stick_index{};
   int rows = 0;
+};
+
+Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<const double> q, Dynamics& d) {
+  Assembly a;
+  a.F = {w.m * w.g * std::sin(w.slope), -w.m * w.g * std::cos(w.slope), 0.0};
   constexpr double wb = kStickStabilization;
+  d.failure = nullptr;
   for (int i = 0; i < contacts.count; ++i) {
-    const LegKinematics& g = d.leg[i] = leg_kinematics(w, contacts.leg[i], y);
+    const LegKinematics& g = d.leg[i] = leg_kinematics(w, contacts.leg[i], q);
     ContactForce& cf = d.force[i];
+    cf = ContactForce{};
     cf.f = g.f;
-    for (int j = 0; j < 3; ++j) F[j] += g.f * g.gradL[j];
+    for (int j = 0; j < 3; ++j) a.F[j] += g.f * g.gradL[j];
     const int s = slip_sign(contacts.mode[i]);
     if (s == 0) {
-      A[rows] = g.A;
-      b[rows] = -g.Adot_qdot - 2.0 * wb * g.cdot - wb * wb * (g.c - contacts.anchor[i]);
-      stick_index[rows++] = i;
+      a.A[a.rows] = g.A;
+      a.b[a.rows] = -g.Adot_qdot - 2.0 * wb * g.cdot - wb * wb * (g.c - contacts.anchor[i]);
+      a.stick_index[a.rows++] = i;
     } else {
       cf.D = slip_denominator(w, g, s);
       if (!(cf.D > 0)) d.failure = "slip with a non-positive friction denominator (Painleve jam)";
       cf.T = -w.mu_k * s * g.f / cf.D;
-      for (int j = 0; j < 3; ++j) F[j] += g.A[j] * cf.T;
+      for (int j = 0; j < 3; ++j) a.F[j] += g.A[j] * cf.T;
     }
   }
-  std::array<double, kMaxContacts> lambda{};
-  if (!solve_constrained(w, rows, A, F, b, d.qdd, lambda)) {
-    d.failure = "no consistent motion: the constrained equations are singular (point mass, I = 0)";
-    return d;
+  return a;
+}
+
+}  // namespace
+
+Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y) {
+  Dynamics d;
+  std::array<double, 6> q{y[0], y[1], y[2], y[3], y[4], y[5]};
+  d.thetad = q[StateIndex::thetad];
+  Assembly a = assemble(w, contacts, q, d);
+  if (w.I == 0 && a.rows == 0 && contacts.count >= 2 && d.failure == nullptr) {
+    // Torque balance Q_θ(θ̇) = Q0 + (Q1 - Q0) θ̇ = 0 fixes θ̇ (see the header).
+    q[StateIndex::thetad] = 0.0;
+    const double q0 = assemble(w, contacts, q, d).F[2];
+    q[StateIndex::thetad] = 1.0;
+    const double q1 = assemble(w, contacts, q, d).F[2];
+    if (!(std::abs(q1 - q0) > 1e-12 * (std::abs(q0) + std::abs(q1)))) {
+      d.failure = "I = 0: the torque balance does not fix the angular velocity";
+      return d;
+    }
+    q[StateIndex::thetad] = d.thetad = -q0 / (q1 - q0);
+    d.algebraic_thetad = true;
+    a = assemble(w, contacts, q, d);
+    if (d.failure != nullptr) return d;
+    d.qdd = {a.F[0] / w.m, a.F[1] / w.m, 0.0};
+  } else {
+    std::array<double, kMaxContacts> lambda{};
+    if (!solve_constrained(w, a.rows, a.A, a.F, a.b, d.qdd, lambda)) {
+      d.failure = "no consistent motion: the constrained equations are singular (point mass, I = 0)";
+      return d;
+    }
+    for (int r = 0; r < a.rows; ++r) d.force[a.stick_index[r]].T = lambda[r];
   }
-  for (int r = 0; r < rows; ++r) d.force[stick_index[r]].T = lambda[r];
   for (int i = 0; i < contacts.count; ++i) {
     ContactForce& cf = d.force[i];
     cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;

@@ -10,6 +10,12 @@
 ///
 /// ω_b (kStickStabilization) is a Baumgarte term that holds a sticking foot on its anchor
 /// against integration drift; it vanishes on the exact solution.
+///
+/// Point mass (I = 0): the θ row is the torque balance 0 = Q_θ. With a sticking foot it fixes
+/// the multipliers and θ̇ follows from ċ = 0. With two or more feet all slipping no force is free,
+/// and Q_θ, affine in θ̇ through the dampers, fixes θ̇ itself (an index-1 DAE: the I -> 0 limit of
+/// the fast rotation); Dynamics::thetad then differs from the state's θ̇. A single slipping foot
+/// has no consistent motion with I = 0 (spec rimless.md) and is reported.
 #include <array>
 #include <span>
 
@@ -34,6 +40,8 @@ struct Dynamics {
   std::array<double, 3> qdd{};  ///< (ẍ, ÿ, θ̈)
   std::array<ContactForce, kMaxContacts> force{};
   std::array<LegKinematics, kMaxContacts> leg{};
+  double thetad = 0;              ///< the wheel's angular velocity in force [rad/s]
+  bool algebraic_thetad = false;  ///< θ̇ fixed by the torque balance (I = 0, all feet slipping)
 };
 
 /// Dynamics of the contact set `contacts` at state y (dim state_size(w)).

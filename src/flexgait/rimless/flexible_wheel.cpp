@@ -8,72 +8,20 @@
 
 #include "flexgait/numerics/ode_integrator.hpp"
 #include "flexgait/rimless/dynamics.hpp"
+#include "flexgait/rimless/flow.hpp"
 #include "flexgait/rimless/mode_selection.hpp"
 
 namespace flexgait::rimless {
 namespace {
 
-constexpr int kGuardsPerLeg = 4;
-constexpr double kInactive = 1.0;  // value of an unused guard slot
-
-// The smooth flow and the guards of the current contact mode.
+// The smooth flow and the guards of the current contact mode, for the integrator.
 class WheelFlow final : public numerics::OdeSystem {
  public:
   WheelFlow(const WheelParams& w, const ContactSet& contacts) : w_(w), contacts_(contacts) {}
-
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
-    using S = StateIndex;
-    const Dynamics d = contact_dynamics(w_, contacts_, y);
-    if (d.failure != nullptr) return false;
-    yd[S::x] = y[S::xd];
-    yd[S::y] = y[S::yd];
-    yd[S::theta] = y[S::thetad];
-    yd[S::xd] = d.qdd[0];
-    yd[S::yd] = d.qdd[1];
-    yd[S::thetad] = d.qdd[2];
-    double damp = 0, fric = 0;
-    for (int i = 0; i < contacts_.count; ++i) {
-      damp += w_.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
-      fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, ≥ 0 in slip
-    }
-    const double rate = w_.C > 0 ? w_.K / w_.C : 0.0;
-    for (int k = 0; k < w_.legs; ++k) {
-      double& dk = yd[S::free_delta + k];
-      dk = 0.0;
-      if (contacts_.find(k) >= 0) continue;
-      const double delta = y[S::free_delta + k];
-      dk = -rate * delta;          // K δ + C δ̇ = 0
-      damp += w_.C * dk * dk;      // C δ̇²
-    }
-    yd[S::w_damp] = damp;
-    yd[S::w_fric] = fric;
-    return true;
+    return flow_derivative(w_, contacts_, y, yd);
   }
-
-  void guards(double, std::span<const double> y, std::span<double> g) override {
-    std::fill(g.begin(), g.end(), kInactive);
-    const Dynamics d = contact_dynamics(w_, contacts_, y);
-    for (int k = 0; k < w_.legs; ++k) {
-      double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
-      const int i = contacts_.find(k);
-      if (i < 0) {
-        slot[0] = foot_height(w_, k, y);
-        continue;
-      }
-      const ContactForce& cf = d.force[i];
-      const LegKinematics& leg = d.leg[i];
-      slot[0] = cf.N;
-      slot[2] = leg.cb;
-      const int s = slip_sign(contacts_.mode[i]);
-      if (s == 0) {
-        slot[1] = cf.N > 0 ? w_.mu_s - std::abs(cf.T) / cf.N : -1.0;
-      } else {
-        slot[1] = s * leg.cdot;
-        slot[3] = slip_denominator(w_, leg, s);
-      }
-    }
-  }
-
+  void guards(double, std::span<const double> y, std::span<double> g) override { guard_values(w_, contacts_, y, g); }
   void set_contacts(const ContactSet& c) { contacts_ = c; }
   const ContactSet& contacts() const { return contacts_; }
 
@@ -81,15 +29,6 @@ class WheelFlow final : public numerics::OdeSystem {
   const WheelParams& w_;
   ContactSet contacts_;
 };
-
-EventKind slot_kind(int slot, bool on_ground, FootMode mode) {
-  switch (slot) {
-    case 0: return on_ground ? EventKind::LiftOff : EventKind::Touchdown;
-    case 1: return mode == FootMode::Stick ? EventKind::StickToSlip : EventKind::SlipToStick;
-    case 2: return EventKind::FallOver;
-    default: return EventKind::SlipJam;
-  }
-}
 
 }  // namespace
 
@@ -142,6 +81,7 @@ struct FlexibleWheelSimulator::Impl {
     for (int j = 0; j < 6; ++j) out.q[j] = s[j];
     const ContactSet& c = flow.contacts();
     const Dynamics d = contact_dynamics(w, c, s);
+    out.q[StateIndex::thetad] = d.thetad;  // differs from the state's only for I = 0 with all feet slipping
     for (int i = 0; i < c.count; ++i) {
       out.contact[i] = {c.leg[i], c.mode[i], d.force[i].N, d.force[i].T, d.leg[i].c, d.leg[i].cdot};
     }
@@ -280,7 +220,7 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
       const int i = before.find(k);
       for (int slot = 0; slot < kGuardsPerLeg; ++slot) {
         if (fired[static_cast<std::size_t>(kGuardsPerLeg * k + slot)] == 0) continue;
-        events.push_back({k, slot_kind(slot, i >= 0, i >= 0 ? before.mode[i] : FootMode::Stick)});
+        events.push_back({k, guard_event(slot, i >= 0, i >= 0 ? before.mode[i] : FootMode::Stick)});
       }
     }
     if (m.opt.log) res.samples.push_back(m.sample(t, m.y));

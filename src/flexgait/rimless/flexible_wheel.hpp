@@ -4,10 +4,7 @@
 /// (spec rimless.md). Between events the flow is smooth (dynamics.hpp); at events the contact
 /// modes are re-chosen (mode_selection.hpp) and the integrator restarts (CVodeReInit).
 ///
-/// Guards, four per leg k (all located on CVODE's dense output, downward crossings):
-///   free leg:  h_k = y - (L0 - δ_k) cos β_k                       touchdown
-///   stick:     N_k; μ_s - |T_k|/N_k; cos β_k                      lift-off; stick→slip; fall
-///   slip s:    N_k; s ċ_k; cos β_k; cos β_k - μ_k s sin β_k       lift-off; slip→stick; fall; jam
+/// The guards and the flow are in flow.hpp.
 #include <memory>
 #include <span>
 #include <vector>

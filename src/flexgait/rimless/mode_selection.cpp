@@ -43,7 +43,11 @@ void add_unique(std::vector<Option>& v, Option o) {
 }
 
 // Options allowed by the foot's velocity: a moving foot can only slip with its motion (or leave).
-std::vector<Option> velocity_options(double cdot, double tol) {
+// With I = 0 the wheel's rotation carries no energy and θ̇ is not a state: it jumps to the value
+// the new mode fixes (ċ = 0 of a sticking foot, or the torque balance when all feet slip; the
+// I -> 0 limit of the fast rotation), so every option is left to the consistency test.
+std::vector<Option> velocity_options(double cdot, double tol, bool point_mass) {
+  if (point_mass) return {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave};
   if (cdot > tol) return {Option::SlipForward, Option::Leave};
   if (cdot < -tol) return {Option::SlipBackward, Option::Leave};
   return {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave};
@@ -109,6 +113,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   using S = StateIndex;
   ModeDecision out;
   const ModeTolerances tol = ModeTolerances::of(w);
+  if (w.I == 0) y[S::thetad] = contact_dynamics(w, current, y).thetad;  // θ̇ in force (I = 0 DAE)
   for (const auto& e : events) {
     if (e.kind == EventKind::FallOver) {
       out.failure = "fell: a stance leg reached |beta| = pi/2";
@@ -166,7 +171,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   // Each foot's options, in order of preference.
   for (auto& foot : feet) {
     const LegKinematics g = leg_kinematics(w, foot.leg, y);
-    const std::vector<Option> by_velocity = velocity_options(g.cdot, tol.velocity);
+    const std::vector<Option> by_velocity = velocity_options(g.cdot, tol.velocity, w.I == 0);
     const GuardEvent* e = event_of(events, foot.leg);
     std::vector<Option> preferred;
     if (foot.was_on_ground && (e == nullptr || e->kind == EventKind::SlipJam)) {
@@ -199,7 +204,8 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   // Enumerate every combination; score = Σ preference rank; keep the best consistent one.
   const int n = static_cast<int>(feet.size());
   std::array<int, kMaxContacts> pick{};
-  std::array<int, kMaxContacts> best{};
+  std::vector<double> trial_state(y.begin(), y.end());
+  double best_thetad = y[S::thetad];
   int best_score = std::numeric_limits<int>::max();
   std::string tried;
   for (bool more = true; more;) {
@@ -218,7 +224,19 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       const bool keeps_stick = feet[i].was_on_ground && feet[i].previous == FootMode::Stick && o == Option::Stick;
       trial.anchor[j] = keeps_stick ? feet[i].anchor : leg_kinematics(w, feet[i].leg, y).c;
     }
-    const Dynamics d = contact_dynamics(w, trial, y);
+    // I = 0: θ̇ takes the value that makes the first sticking foot's ċ vanish.
+    std::vector<double>& yc = trial_state;
+    std::copy(y.begin(), y.end(), yc.begin());
+    if (w.I == 0) {
+      for (int j = 0; j < trial.count; ++j) {
+        if (trial.mode[j] != FootMode::Stick) continue;
+        const LegKinematics g = leg_kinematics(w, trial.leg[j], yc);
+        yc[S::thetad] = (yc[S::xd] - yc[S::yd] * g.tb) * g.cb * g.cb / yc[S::y];
+        trial.anchor[j] = g.c;
+        break;
+      }
+    }
+    const Dynamics d = contact_dynamics(w, trial, yc);
     const char* why = d.failure;
     for (int i = 0; i < n && why == nullptr; ++i) {
       const Option o = feet[i].options[pick[i]];
@@ -231,7 +249,10 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       const LegKinematics& g = d.leg[j];
       if (cf.N < -tol.force) why = "negative normal force";
       else if (o == Option::Stick && std::abs(cf.T) > w.mu_s * cf.N + tol.force) why = "stick outside the friction cone";
-      else if (o != Option::Stick && std::abs(g.cdot) <= tol.velocity) {
+      else if (o == Option::Stick && std::abs(g.cdot) > tol.velocity) why = "a sticking foot would move";
+      else if (o != Option::Stick && std::abs(g.cdot) > tol.velocity) {
+        if (slip_sign(mode_of(o)) * g.cdot < 0) why = "friction would not oppose the slip";
+      } else if (o != Option::Stick) {
         const double cddot = g.A[0] * d.qdd[0] + g.A[1] * d.qdd[1] + g.A[2] * d.qdd[2] + g.Adot_qdot;
         if (slip_sign(mode_of(o)) * cddot < -tol.acceleration) why = "friction would not oppose the slip";
       }
@@ -240,8 +261,8 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       ++out.consistent;
       if (score < best_score) {
         best_score = score;
-        best = pick;
         out.contacts = trial;
+        best_thetad = d.thetad;
       }
     } else if (tried.size() < 600) {
       for (int i = 0; i < n; ++i) tried += fmt::format("{}{}={}", i ? "," : "", feet[i].leg, option_name(feet[i].options[pick[i]]));
@@ -256,7 +277,6 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       pick[i] = 0;
     }
   }
-  (void)best;
   if (out.consistent == 0) {
     if (w.I == 0) {
       const bool single = n == 1;
@@ -273,6 +293,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     return out;
   }
 
+  if (w.I == 0) y[S::thetad] = best_thetad;  // θ̇ jumps to the value the new mode fixes (I = 0)
   // Legs that left keep their compression as free legs, relaxing from here.
   for (const auto& foot : feet) {
     if (out.contacts.find(foot.leg) >= 0) continue;

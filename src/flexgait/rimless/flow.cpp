@@ -1,0 +1,72 @@
+#include "flexgait/rimless/flow.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "flexgait/rimless/dynamics.hpp"
+
+namespace flexgait::rimless {
+
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
+                     std::span<double> yd) {
+  using S = StateIndex;
+  const Dynamics d = contact_dynamics(w, contacts, y);
+  if (d.failure != nullptr) return false;
+  yd[S::x] = y[S::xd];
+  yd[S::y] = y[S::yd];
+  yd[S::theta] = d.thetad;  // the state's θ̇ unless the torque balance fixes it (I = 0)
+  yd[S::xd] = d.qdd[0];
+  yd[S::yd] = d.qdd[1];
+  yd[S::thetad] = d.qdd[2];
+  double damp = 0, fric = 0;
+  for (int i = 0; i < contacts.count; ++i) {
+    damp += w.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
+    fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, >= 0 in slip
+  }
+  const double rate = w.C > 0 ? w.K / w.C : 0.0;
+  for (int k = 0; k < w.legs; ++k) {
+    double& dk = yd[S::free_delta + k];
+    dk = 0.0;
+    if (contacts.find(k) >= 0) continue;
+    dk = -rate * y[S::free_delta + k];  // K δ + C δ̇ = 0
+    damp += w.C * dk * dk;              // C δ̇²
+  }
+  yd[S::w_damp] = damp;
+  yd[S::w_fric] = fric;
+  return true;
+}
+
+void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g) {
+  std::fill(g.begin(), g.end(), 1.0);
+  const Dynamics d = contact_dynamics(w, contacts, y);
+  for (int k = 0; k < w.legs; ++k) {
+    double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
+    const int i = contacts.find(k);
+    if (i < 0) {
+      slot[0] = foot_height(w, k, y);
+      continue;
+    }
+    const ContactForce& cf = d.force[i];
+    const LegKinematics& leg = d.leg[i];
+    slot[0] = cf.N;
+    slot[2] = leg.cb;
+    const int s = slip_sign(contacts.mode[i]);
+    if (s == 0) {
+      slot[1] = cf.N > 0 ? w.mu_s - std::abs(cf.T) / cf.N : -1.0;
+    } else {
+      slot[1] = s * leg.cdot;
+      slot[3] = slip_denominator(w, leg, s);
+    }
+  }
+}
+
+EventKind guard_event(int slot, bool on_ground, FootMode mode) {
+  switch (slot) {
+    case 0: return on_ground ? EventKind::LiftOff : EventKind::Touchdown;
+    case 1: return mode == FootMode::Stick ? EventKind::StickToSlip : EventKind::SlipToStick;
+    case 2: return EventKind::FallOver;
+    default: return EventKind::SlipJam;
+  }
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,33 @@
+#pragma once
+/// \file flow.hpp
+/// The flexible wheel's smooth flow and guard functions in a fixed contact mode, as free
+/// functions over (parameters, contact set, state) — what the event-driven simulator integrates.
+///
+/// Guards, four per leg k at indices 4k..4k+3 (all fire on downward crossings):
+///   free leg:  h_k = y - (L0 - δ_k) cos β_k                       touchdown
+///   stick:     N_k; μ_s - |T_k|/N_k; cos β_k                      lift-off; stick→slip; fall
+///   slip s:    N_k; s ċ_k; cos β_k; cos β_k - μ_k s sin β_k       lift-off; slip→stick; fall; jam
+/// Unused slots hold +1.
+#include <span>
+
+#include "flexgait/rimless/contact.hpp"
+#include "flexgait/rimless/mode_selection.hpp"
+
+namespace flexgait::rimless {
+
+inline constexpr int kGuardsPerLeg = 4;
+inline int guard_count(const WheelParams& w) { return kGuardsPerLeg * w.legs; }
+
+/// ẏ for state y (dim state_size(w)), including the dissipated-work rates
+/// Ẇ_damp = Σ C δ̇², Ẇ_fric = -Σ T ċ and the free legs' relaxation K δ + C δ̇ = 0.
+/// \return false if the mode has no consistent motion at y (e.g. a slip jam).
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
+                     std::span<double> ydot);
+
+/// Guard values (dim guard_count(w)) of the mode at y.
+void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g);
+
+/// The event a guard slot stands for, given whether its leg is on the ground and its mode.
+EventKind guard_event(int slot, bool on_ground, FootMode mode);
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,112 @@
+// Configuration: parsing, overrides, and every error path names origin, key, value and domain.
+#include "flexgait/core/config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace flexgait {
+namespace {
+
+Schema test_schema() {
+  Schema s;
+  ParamSpec k{"model.K", ParamType::Real, "1000.0", "N/m", "stiffness", 0, 1e9, false, true, {}};
+  ParamSpec n{"model.legs", ParamType::Integer, "10", "", "legs", 3, 100, true, true, {}};
+  ParamSpec b{"run.log", ParamType::Boolean, "true", "", "keep a log", -INFINITY, INFINITY, true, true, {}};
+  ParamSpec c{"run.model", ParamType::Choice, "flexible", "", "model", -INFINITY, INFINITY, true, true, {"flexible", "rigid"}};
+  return s.add(k).add(n).add(b).add(c);
+}
+
+std::filesystem::path write_temp(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("flexgait_config_test_" + name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Runs resolve_config and returns the ConfigError (fails the test if none is thrown).
+ConfigError expect_error(const std::optional<std::filesystem::path>& file, const std::vector<std::string>& sets) {
+  try {
+    resolve_config(test_schema(), file, sets);
+  } catch (const ConfigError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no ConfigError thrown";
+  return ConfigError("", "");
+}
+
+TEST(Config, DefaultsFileAndOverridesInOrder) {
+  const auto file = write_temp("ok.yaml", "model:\n  K: 2500\n  legs: 12\nrun:\n  model: rigid\n");
+  const Config c = resolve_config(test_schema(), file, {"model.K=3e3", "run.log=false"});
+  EXPECT_EQ(c.real("model.K"), 3000.0);
+  EXPECT_EQ(c.integer("model.legs"), 12);
+  EXPECT_EQ(c.boolean("run.log"), false);
+  EXPECT_EQ(c.choice("run.model"), "rigid");
+  EXPECT_EQ(c.origin("model.K"), "--set");
+  EXPECT_EQ(c.origin("model.legs"), file.string() + ":3");
+}
+
+TEST(Config, ResolvedYamlRoundTripsExactly) {
+  const Config c = resolve_config(test_schema(), std::nullopt, {"model.K=0.1"});
+  const auto file = write_temp("roundtrip.yaml", c.to_yaml());
+  const Config again = resolve_config(test_schema(), file, {});
+  EXPECT_EQ(again.real("model.K"), 0.1);  // bit-identical: shortest round-trip text
+  EXPECT_EQ(again.to_yaml(), c.to_yaml());
+}
+
+TEST(Config, UnknownKeyInFileIsAnError) {
+  const auto file = write_temp("typo.yaml", "model:\n  KK: 5\n");
+  const ConfigError e = expect_error(file, {});
+  EXPECT_EQ(e.key(), "model.KK");
+  EXPECT_NE(std::string(e.what()).find("unknown key 'model.KK'"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find(":2"), std::string::npos) << "names the line: " << e.what();
+}
+
+TEST(Config, UnknownKeyInOverrideIsAnError) {
+  const ConfigError e = expect_error(std::nullopt, {"model.k=5"});
+  EXPECT_EQ(e.key(), "model.k");
+  EXPECT_NE(std::string(e.what()).find("--set"), std::string::npos);
+}
+
+TEST(Config, WrongTypeNamesKeyValueAndDomain) {
+  const ConfigError e = expect_error(std::nullopt, {"model.K=stiff"});
+  EXPECT_EQ(e.key(), "model.K");
+  const std::string msg = e.what();
+  EXPECT_NE(msg.find("'stiff'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("allowed: a finite real number in (0, 1000000000]"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("N/m"), std::string::npos) << msg;
+  EXPECT_EQ(expect_error(std::nullopt, {"model.legs=3.5"}).key(), "model.legs");
+  EXPECT_EQ(expect_error(std::nullopt, {"run.log=yes"}).key(), "run.log");
+  EXPECT_EQ(expect_error(std::nullopt, {"run.model=soft"}).key(), "run.model");
+}
+
+TEST(Config, OutOfRangeNanAndInfinityAreErrors) {
+  for (const char* v : {"model.K=0", "model.K=-1", "model.K=nan", "model.K=inf", "model.K=1e10", "model.K="}) {
+    const ConfigError e = expect_error(std::nullopt, {v});
+    EXPECT_EQ(e.key(), "model.K") << v;
+  }
+  const ConfigError e = expect_error(std::nullopt, {"model.legs=2"});
+  EXPECT_NE(std::string(e.what()).find("out of range; allowed: an integer in [3, 100]"), std::string::npos) << e.what();
+}
+
+TEST(Config, MalformedOverridesAndFiles) {
+  EXPECT_NE(std::string(expect_error(std::nullopt, {"model.K"}).what()).find("key=value"), std::string::npos);
+  const ConfigError missing = expect_error(std::filesystem::path("/nonexistent/flexgait.yaml"), {});
+  EXPECT_NE(std::string(missing.what()).find("/nonexistent/flexgait.yaml: cannot read"), std::string::npos);
+  const ConfigError syntax = expect_error(write_temp("bad.yaml", "model: [1, 2\n"), {});
+  EXPECT_NE(std::string(syntax.what()).find("YAML syntax error"), std::string::npos) << syntax.what();
+  EXPECT_EQ(expect_error(write_temp("list.yaml", "model:\n  K: [1, 2]\n"), {}).key(), "model.K");
+  EXPECT_EQ(expect_error(write_temp("null.yaml", "model:\n  K:\n"), {}).key(), "model.K");
+  EXPECT_NE(std::string(expect_error(write_temp("scalar.yaml", "42\n"), {}).what()).find("mapping"), std::string::npos);
+}
+
+TEST(Config, SchemaRejectsDuplicateKeysAndBadDefaults) {
+  Schema s = test_schema();
+  EXPECT_THROW(s.add(*s.find("model.K")), std::logic_error);
+  ParamSpec bad{"x.y", ParamType::Real, "-1", "", "", 0, 1, true, true, {}};
+  EXPECT_THROW(s.add(bad), ConfigError);
+}
+
+}  // namespace
+}  // namespace flexgait

@@ -1,0 +1,160 @@
+// The flexible wheel's invariants (spec rimless.md, "Checks that hold for any correct
+// implementation"): energy balance, the friction cone, sticking feet that do not drift,
+// no event re-fired at its restart point, determinism, and the I -> 0 limit.
+#include "flexgait/rimless/flexible_wheel.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "flexgait/rimless/output.hpp"
+#include "test_support.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+using testing::measured_wheel;
+using testing::run_options;
+
+struct Case {
+  double mu;
+  double I;
+};
+
+class FlexibleWheelInvariants : public ::testing::TestWithParam<Case> {};
+
+// Energy: E(t) + W_damp(t) + W_fric(t) = E(0). At rtol 1e-10 the ledger closes to ~1e-9 of the
+// energy that flowed; the spec's bound is 1e-8 over 20 steps.
+TEST_P(FlexibleWheelInvariants, EnergyBalanceFrictionConeAndNoDrift) {
+  const auto [mu, I] = GetParam();
+  WheelParams w = measured_wheel(mu);
+  w.I = I;
+  const SimulationResult r = simulate_flexible(w, InitialState{}, run_options(20));
+  if (mu > std::tan(w.slope)) {
+    EXPECT_FALSE(r.failure.has_value()) << *r.failure;
+    EXPECT_EQ(r.steps_completed, 20);
+  } else {
+    // μ < tan φ: the wheel slides away, ever faster, and stops stepping (spec rimless.md).
+    ASSERT_TRUE(r.failure.has_value());
+  }
+  EXPECT_LE(r.energy_balance_error, 1e-8);
+  const double scale = r.energy_initial + r.work_damping + r.work_friction;  // >= m g L0 here
+  const double force_tol = 1e-9 * w.m * w.g;  // solver round-off on forces [N]
+  const double power_tol = 1e-10 * w.m * w.g * std::sqrt(w.g * w.L0);  // [W]
+  std::map<int, double> stick_anchor;          // leg -> c at the start of its stick interval
+  for (const LogSample& s : r.samples) {
+    EXPECT_LE(std::abs(s.energy.total() + s.w_damp + s.w_fric - r.energy_initial), 1e-8 * scale) << "t = " << s.t;
+    std::map<int, double> still;
+    for (const ContactSample& c : s.contact) {
+      if (c.leg < 0) continue;
+      EXPECT_GE(c.N, -force_tol) << "t = " << s.t;
+      if (c.mode == FootMode::Stick) {
+        EXPECT_LE(std::abs(c.T), w.mu_s * c.N + force_tol) << "stick outside the cone at t = " << s.t;
+        // ċ = 0 holds to the velocity tolerance the mode selection itself uses (1e-8 sqrt(g L0)):
+        // the stick constraint is imposed on accelerations, so ċ carries the integration error.
+        EXPECT_LE(std::abs(c.cdot), 1e-8 * std::sqrt(w.g * w.L0)) << "sticking foot moves at t = " << s.t;
+        const auto it = stick_anchor.find(c.leg);
+        const double anchor = it == stick_anchor.end() ? c.c : it->second;
+        EXPECT_LE(std::abs(c.c - anchor), 1e-9 * w.L0) << "sticking foot drifts at t = " << s.t;
+        still[c.leg] = anchor;
+      } else {
+        // Friction power T ċ <= 0. At the samples taken on an event (slip->stick, lift-off) ċ or T
+        // sits at 0 within the root tolerance; 1e-10 of the power scale m g sqrt(g L0) covers it.
+        EXPECT_LE(c.T * c.cdot, power_tol) << "friction does not oppose the slip at t = " << s.t;
+      }
+    }
+    stick_anchor = still;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    MuAndInertia, FlexibleWheelInvariants,
+    ::testing::Values(Case{0.05, 0.3}, Case{0.105, 0.3}, Case{0.13, 0.3}, Case{0.2, 0.3}, Case{0.6, 0.3},
+                      Case{1.5, 0.3}, Case{5.0, 0.3}, Case{100.0, 0.3}, Case{0.13, 0.05}, Case{0.6, 0.05},
+                      Case{5.0, 0.05}, Case{0.13, 1.0}, Case{0.6, 1.0}, Case{100.0, 1.0}),
+    [](const auto& info) {
+      return "mu" + std::to_string(static_cast<int>(info.param.mu * 1000)) + "_I" +
+             std::to_string(static_cast<int>(info.param.I * 100));
+    });
+
+TEST(FlexibleWheel, NoEventFiresAgainAtItsRestartPoint) {
+  for (double mu : {0.105, 0.13, 0.2, 0.6, 5.0}) {
+    const SimulationResult r = simulate_flexible(measured_wheel(mu), InitialState{}, run_options(20));
+    ASSERT_FALSE(r.failure.has_value()) << *r.failure;
+    std::map<std::pair<int, std::string>, double> last;
+    for (const EventRecord& e : r.events) {
+      const auto key = std::make_pair(e.leg, e.kind);
+      const auto it = last.find(key);
+      if (it != last.end()) {
+        EXPECT_GT(e.t - it->second, 1e-6) << e.kind << " of leg " << e.leg << " at " << e.t;
+      }
+      last[key] = e.t;
+    }
+  }
+}
+
+TEST(FlexibleWheel, JamsAreResolvedByImpulsesAboveCotAlpha) {
+  // μ >= cot|β| of the landing leg (≈ 3.08 for ten legs): every landing jams (spec rimless.md).
+  const SimulationResult r = simulate_flexible(measured_wheel(5.0), InitialState{}, run_options(10));
+  ASSERT_FALSE(r.failure.has_value()) << *r.failure;
+  EXPECT_GE(r.jams, 10);
+  EXPECT_GT(r.work_friction, 0.0);  // the impulses' energy is booked as friction work
+  const SimulationResult below = simulate_flexible(measured_wheel(1.5), InitialState{}, run_options(10));
+  EXPECT_EQ(below.jams, 0);
+}
+
+TEST(FlexibleWheel, IdenticalBytesOnRerun) {
+  const SimulationResult a = simulate_flexible(measured_wheel(0.13), InitialState{}, run_options(8));
+  const SimulationResult b = simulate_flexible(measured_wheel(0.13), InitialState{}, run_options(8));
+  EXPECT_EQ(log_csv(a), log_csv(b));
+  EXPECT_EQ(events_csv(a), events_csv(b));
+  EXPECT_EQ(summary_json(a, "flexible"), summary_json(b, "flexible"));
+}
+
+TEST(FlexibleWheel, FourGaitBehavioursAppearAsMuVaries) {
+  // The defaults are chosen so that the paper's four behaviours appear for μ in (0, 1.5).
+  std::map<std::string, double> seen;
+  for (double mu : {0.105, 0.11, 0.13, 0.2, 0.6}) {
+    const SimulationResult r = simulate_flexible(measured_wheel(mu), InitialState{}, run_options(20));
+    ASSERT_FALSE(r.failure.has_value()) << *r.failure;
+    seen[gait_label(r.steps[18].single_support)] = mu;
+  }
+  EXPECT_TRUE(seen.count("stick")) << "no sticking gait";
+  EXPECT_TRUE(seen.count("slip-stick")) << "no slip-stick gait";
+  EXPECT_TRUE(seen.count("slip-stick-slip")) << "no slip-stick-slip gait";
+  EXPECT_TRUE(seen.count("slip")) << "no sliding gait";
+}
+
+// Where every single-support phase sticks the point-mass wheel (I = 0) is well posed, and the
+// wheel with inertia I approaches it as O(I).
+TEST(FlexibleWheel, PointMassLimitConverges) {
+  auto final_state = [](double I) {
+    WheelParams w = measured_wheel(1.0);
+    w.I = I;
+    const SimulationResult r = simulate_flexible(w, InitialState{}, run_options(3));
+    EXPECT_FALSE(r.failure.has_value()) << "I = " << I << ": " << *r.failure;
+    return std::make_pair(r.t_final, r.final_state[StateIndex::xd]);
+  };
+  const auto p0 = final_state(0.0);
+  double previous = INFINITY;
+  for (double I : {1e-2, 1e-3, 1e-4}) {
+    const auto p = final_state(I);
+    const double err = std::abs(p.first - p0.first) + std::abs(p.second - p0.second);
+    EXPECT_LT(err, 0.3 * previous) << "I = " << I;  // O(I): a tenfold smaller I, a much smaller gap
+    previous = err;
+  }
+  EXPECT_LT(previous, 1e-3);
+}
+
+TEST(FlexibleWheel, PointMassSlipIsReportedAsIllPosed) {
+  WheelParams w = measured_wheel(0.13);
+  w.I = 0.0;
+  const SimulationResult r = simulate_flexible(w, InitialState{}, run_options(5));
+  ASSERT_TRUE(r.failure.has_value());
+  EXPECT_NE(r.failure->find("I = 0"), std::string::npos) << *r.failure;
+  EXPECT_LE(r.energy_balance_error, 1e-8);
+}
+
+}  // namespace
+}  // namespace flexgait::rimless
