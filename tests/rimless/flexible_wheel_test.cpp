@@ -59,9 +59,10 @@ TEST_P(FlexibleWheelInvariants, EnergyBalanceFrictionConeAndNoDrift) {
         EXPECT_LE(std::abs(c.c - anchor), 1e-9 * w.L0) << "sticking foot drifts at t = " << s.t;
         still[c.leg] = anchor;
       } else {
-        // Friction power T ċ <= 0. At the samples taken on an event (slip->stick, lift-off) ċ or T
-        // sits at 0 within the root tolerance; 1e-10 of the power scale m g sqrt(g L0) covers it.
-        EXPECT_LE(c.T * c.cdot, power_tol) << "friction does not oppose the slip at t = " << s.t;
+        // Friction power T ċ <= 0. On the samples taken at an event CVODE returns the state just past
+        // the crossing, so ċ (slip->stick) or T (lift-off) may sit past 0 by round-off: up to 1e-10 m/s
+        // in ċ and 1e-10 of the power scale m g sqrt(g L0).
+        EXPECT_LE(c.T * c.cdot, 1e-10 * std::abs(c.T) + power_tol) << "friction does not oppose the slip at t = " << s.t;
       }
     }
     stick_anchor = still;
