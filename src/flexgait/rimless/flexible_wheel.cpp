@@ -163,6 +163,7 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
   record_event(0.0, "start", m.flow.contacts().leg[0]);
   if (m.opt.log) res.samples.push_back(m.sample(0.0, m.y));
   m.integrator.restart(0.0, m.y, m.directions);
+  res.restarts.push_back({0.0, m.y, m.flow.contacts()});
 
   double next_sample = m.opt.sample_dt;
   long sample_index = 1;
@@ -277,6 +278,7 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
     if (!new_step) tracker.observe(dec.contacts);
     if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
     m.integrator.restart(t, m.y, m.directions);
+    res.restarts.push_back({t, m.y, dec.contacts});
   }
 
   res.t_final = t;

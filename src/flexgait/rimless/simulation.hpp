@@ -35,10 +35,18 @@ struct EventRecord {
   std::string modes;   ///< feet on the ground after the event, e.g. "3:stick 4:slip+"
 };
 
+/// The hybrid state at the start of a smooth segment (after the reset at an event).
+struct Restart {
+  double t = 0;               ///< [s]
+  std::vector<double> state;  ///< full state vector (flexible: dim state_size(w); rigid: (β, β̇))
+  ContactSet contacts;
+};
+
 struct SimulationResult {
   std::vector<LogSample> samples;
   std::vector<EventRecord> events;
   std::vector<StepRecord> steps;
+  std::vector<Restart> restarts;       ///< every segment start, t = 0 included
   std::optional<std::string> failure;  ///< why the run stopped early; empty if it completed
   int steps_completed = 0;             ///< touchdowns of new legs
   double t_final = 0;                  ///< [s]
