@@ -25,8 +25,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    fmt::print(stderr, "run with --help for usage\n");
+    // Name the deepest subcommand reached, so the hint points at the right --help.
+    std::string path = "flexgait";
+    for (const CLI::App* cur = &app; !cur->get_subcommands().empty();) {
+      cur = cur->get_subcommands().front();
+      path += " " + cur->get_name();
+    }
+    fmt::print(stderr, "error: {}; see '{} --help'\n", e.what(), path);
     return 2;
   }
   try {

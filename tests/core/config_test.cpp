@@ -61,6 +61,7 @@ TEST(Config, UnknownKeyInFileIsAnError) {
   EXPECT_EQ(e.key(), "model.KK");
   EXPECT_NE(std::string(e.what()).find("unknown key 'model.KK'"), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find(":2"), std::string::npos) << "names the line: " << e.what();
+  EXPECT_NE(std::string(e.what()).find("did you mean 'model.K'?"), std::string::npos) << e.what();
 }
 
 TEST(Config, UnknownKeyInOverrideIsAnError) {

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -63,6 +64,35 @@ void flatten(const YAML::Node& node, const std::string& prefix, const std::strin
       throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, key));
     }
   }
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// " (did you mean 'rimless.K'?)" for a near miss, else "".
+std::string suggestion(const Schema& schema, const std::string& key) {
+  std::string best;
+  std::size_t best_d = 4;
+  for (const auto& p : schema.params()) {
+    const std::size_t d = edit_distance(key, p.key);
+    if (d < best_d) {
+      best_d = d;
+      best = p.key;
+    }
+  }
+  return best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best);
 }
 
 }  // namespace
@@ -170,7 +200,7 @@ const std::string& Config::origin(const std::string& key) const { return origins
 void Config::set(const std::string& key, const std::string& text, const std::string& origin) {
   const ParamSpec* spec = schema_.find(key);
   if (spec == nullptr)
-    throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}')", origin, key, text));
+    throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}'){}", origin, key, text, suggestion(schema_, key)));
   values_[key] = parse_value(*spec, text, origin);
   origins_[key] = origin;
 }

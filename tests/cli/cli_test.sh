@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Command-line behaviour: help and version, bad input (exit 2, one line naming the key, the value
+# and what is allowed, nothing written), a run directory with every file, identical bytes on a
+# rerun. Usage: cli_test.sh FLEXGAIT_EXE SOURCE_DIR
+set -u
+exe=$1
+src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+check() {  # check NAME CONDITION...
+  local name=$1
+  shift
+  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
+}
+# expect_usage_error NAME NEEDLE ARGS...: exit code 2, stderr names NEEDLE, no run directory.
+expect_usage_error() {
+  local name=$1 needle=$2
+  shift 2
+  local out="$work/never-$name"
+  "$exe" "$@" --out "$out" --no-plot >"$work/stdout" 2>"$work/stderr"
+  local code=$?
+  check "$name: exit code 2 (got $code)" test "$code" -eq 2
+  check "$name: message names '$needle': $(cat "$work/stderr")" grep -qF -- "$needle" "$work/stderr"
+  check "$name: nothing written" test ! -e "$out"
+}
+
+"$exe" --help >"$work/help" 2>&1
+check "--help exits 0" test $? -eq 0
+check "--help lists rimless" grep -q rimless "$work/help"
+"$exe" rimless simulate --help >"$work/help2" 2>&1
+check "simulate --help documents --omega0 with units" grep -q "initial angular velocity (rad/s)" "$work/help2"
+"$exe" --version >"$work/version" 2>&1
+check "--version" grep -q "^flexgait [0-9]" "$work/version"
+
+expect_usage_error unknown-key "rimless.KK" rimless simulate --set rimless.KK=5
+expect_usage_error out-of-range "rimless.K" rimless simulate --set rimless.K=-1
+expect_usage_error nan "rimless.mu_s" rimless simulate --set rimless.mu_s=nan
+expect_usage_error wrong-type "rimless.legs" rimless simulate --set rimless.legs=ten
+expect_usage_error cross-check "rimless.mu_k" rimless simulate --set rimless.mu_s=0.2 --set rimless.mu_k=0.3
+expect_usage_error beta-range "initial.beta" rimless simulate --set initial.beta=0.5
+expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such.yaml
+printf 'rimless:\n  K: 1000\n  mu: 0.5\n' >"$work/typo.yaml"
+expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
+expect_usage_error bad-model "--model" rimless simulate --model soft
+expect_usage_error no-subcommand "flexgait rimless --help" rimless
+"$exe" rimless simulate --steps 3 --omega0 1.4 --out "$work/run1" --no-plot --json >"$work/summary.out" 2>"$work/err"
+check "simulate exits 0: $(cat "$work/err")" test $? -eq 0
+for f in config.yaml log.csv events.csv steps.csv summary.json; do check "run writes $f" test -s "$work/run1/$f"; done
+check "--json prints the summary" cmp -s "$work/summary.out" "$work/run1/summary.json"
+for key in steps gaits mean_speed energy_initial energy_final work_damping work_friction energy_balance_error failure; do
+  check "summary has $key" grep -q "\"$key\"" "$work/run1/summary.json"
+done
+check "no temporary files left" test -z "$(find "$work/run1" -name '.*tmp*')"
+"$exe" rimless simulate --config "$work/run1/config.yaml" --out "$work/run2" --no-plot >/dev/null 2>&1
+check "config.yaml of a run reproduces it" cmp -s "$work/run1/log.csv" "$work/run2/log.csv"
+"$exe" rimless simulate --steps 3 --out "$work/run3" --no-plot >/dev/null 2>&1
+check "identical bytes on a rerun" cmp -s "$work/run1/events.csv" "$work/run3/events.csv"
+"$exe" rimless simulate --model rigid --steps 3 --out "$work/rigid" --no-plot --json >"$work/rigid.json" 2>&1
+check "rigid model runs" grep -q '"model": "rigid"' "$work/rigid.json"
+if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
+  FLEXGAIT_PLOT_DIR="$src/python" "$exe" rimless simulate --steps 3 --out "$work/plot" >/dev/null 2>&1
+  check "plot written as PNG" sh -c "head -c 8 '$work/plot/rimless.png' | grep -q PNG"
+fi
+echo "$passed passed, $failed failed"
+test "$failed" -eq 0
