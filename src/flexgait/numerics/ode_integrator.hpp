@@ -23,6 +23,7 @@ struct OdeOptions {
   double max_step = 0.0;    ///< largest internal step [s]; 0: no limit
   OdeMethod method = OdeMethod::Adams;
   std::int64_t max_steps = 1'000'000;  ///< internal steps allowed per step() call
+  int max_order = 0;        ///< largest method order; 0: CVODE's default (12 Adams, 5 BDF)
 };
 
 struct OdeStats {

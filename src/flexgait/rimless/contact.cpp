@@ -40,8 +40,9 @@ LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double
 }
 
 double foot_height(const WheelParams& w, int k, std::span<const double> s) {
-  const double beta = leg_angle(w, k, s[StateIndex::theta]);
-  return s[StateIndex::y] - (w.L0 - s[StateIndex::free_delta + k]) * std::cos(beta);
+  // cos is 2π-periodic: no need to wrap the angle (a hot path: every free leg, every step).
+  const double cb = std::cos(s[StateIndex::theta] + 2.0 * w.alpha() * k);
+  return s[StateIndex::y] - (w.L0 - s[StateIndex::free_delta + k]) * cb;
 }
 
 }  // namespace flexgait::rimless

@@ -129,6 +129,7 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
   Impl& m = *impl_;
   const WheelParams& w = m.w;
   SimulationResult res;
+  const numerics::OdeStats stats0 = m.integrator.stats();  // the integrator may have run before
   std::copy(y0.begin(), y0.end(), m.y.begin());
   double t = 0.0;
 
@@ -303,8 +304,8 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
     if (st.complete) x_end = st.x_end;
   res.mean_speed = t_end > 0 ? (x_end - y0[S::x]) / t_end : 0.0;
   const numerics::OdeStats st = m.integrator.stats();
-  res.solver_steps = st.steps;
-  res.rhs_evals = st.rhs_evals;
+  res.solver_steps = st.steps - stats0.steps;
+  res.rhs_evals = st.rhs_evals - stats0.rhs_evals;
   return res;
 }
 
