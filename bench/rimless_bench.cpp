@@ -25,10 +25,10 @@ void FlexibleWheelStep(benchmark::State& state) {
   o.log = false;
   o.rtol = 1e-10;
   FlexibleWheelSimulator sim(w, o);
-  const std::vector<double> y0 = initial_state(w, InitialState{});
+  const RunSpec spec = default_run(w, InitialState{});
   long long steps = 0, events = 0, rhs = 0;
   for (auto _ : state) {
-    const SimulationResult r = sim.run(y0);
+    const SimulationResult r = sim.run(spec);
     steps += r.steps_completed;
     events += static_cast<long long>(r.events.size());
     rhs += r.rhs_evals;

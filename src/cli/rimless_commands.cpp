@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "flexgait/core/run_directory.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
@@ -58,6 +59,65 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   return 0;
 }
 
+struct FixedPointArgs {
+  RunOptions run;
+  std::string model;
+  std::string section = "touchdown";
+};
+
+struct WheelSetup {
+  Config config;
+  rimless::WheelParams wheel;
+  rimless::InitialState initial;
+  rimless::SimulationOptions sim;
+  rimless::Model model;
+};
+
+WheelSetup wheel_setup(const Schema& schema, const RunOptions& run, const std::vector<std::string>& extra) {
+  WheelSetup s{resolve(schema, run, extra), {}, {}, {}, rimless::Model::Flexible};
+  s.wheel = rimless::wheel_from_config(s.config);
+  s.initial = rimless::initial_from_config(s.config);
+  rimless::validate(s.wheel, s.initial);
+  s.sim = rimless::simulation_from_config(s.config);
+  s.model = s.config.choice("sim.model") == "rigid" ? rimless::Model::Rigid : rimless::Model::Flexible;
+  return s;
+}
+
+Schema analysis_command_schema() {
+  Schema s = rimless::rimless_schema();
+  s.merge(rimless::analysis_schema());
+  return s;
+}
+
+int fixed_point(const FixedPointArgs& a) {
+  std::vector<std::string> extra;
+  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
+  const WheelSetup s = wheel_setup(analysis_command_schema(), a.run, extra);
+  const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
+  const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+  const rimless::FixedPointReport rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.model, section, s.initial);
+  const std::string json = rimless::fixed_point_json(rep);
+  const RunDirectory dir(a.run.out);
+  dir.write_config(s.config);
+  dir.write("fixed_point.json", json);
+  if (a.run.json) {
+    fmt::print("{}", json);
+    return 0;
+  }
+  fmt::print("{} wheel, {} section: {}\n", s.config.choice("sim.model"), a.section,
+             rep.converged ? fmt::format("fixed point after {} Newton iterations, residual {:.2e}", rep.iterations,
+                                         rep.residual)
+                           : "no fixed point: " + rep.failure);
+  const auto names = rep.point.names();
+  for (std::size_t i = 0; i < names.size(); ++i) fmt::print("  {:8s} = {:.12g}\n", names[i], rep.point.z(static_cast<Eigen::Index>(i)));
+  for (const auto& m : rep.multipliers) fmt::print("  multiplier {:.6g}{:+.6g}i  |{:.6g}|\n", m.real(), m.imag(), std::abs(m));
+  if (rep.converged)
+    fmt::print("  {} gait '{}', period {:.6f} s, speed {:.6f} m/s, dissipated {:.6f} J per cycle\n",
+               rep.stable ? "stable" : "unstable", rep.gait, rep.period, rep.speed, rep.dissipated);
+  fmt::print("results in {}\n", dir.path().string());
+  return 0;
+}
+
 }  // namespace
 
 void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
@@ -72,6 +132,17 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   sim->add_option("--steps", args->steps, "number of steps (touchdowns of new legs); sets sim.steps");
   sim->add_option("--omega0", args->omega0, "initial angular velocity (rad/s); sets initial.omega");
   sim->callback([args, sim, &action] { action = [args, sim] { return simulate(*args, *sim); }; });
+
+  auto fp_args = std::make_shared<FixedPointArgs>();
+  CLI::App* fp = rimless->add_subcommand("fixed-point", "Find a periodic gait: Newton-Raphson on the Poincare map, "
+                                                        "Floquet multipliers, stability");
+  add_run_options(*fp, fp_args->run, "runs/rimless-fixed-point");
+  fp->add_option("--model", fp_args->model, "flexible or rigid; sets sim.model")
+      ->check(CLI::IsMember({"flexible", "rigid"}));
+  fp->add_option("--section", fp_args->section, "Poincare section: touchdown of a new leg, or stance leg upright")
+      ->check(CLI::IsMember({"touchdown", "upright"}))
+      ->capture_default_str();
+  fp->callback([fp_args, &action] { action = [fp_args] { return fixed_point(*fp_args); }; });
 }
 
 }  // namespace flexgait::cli

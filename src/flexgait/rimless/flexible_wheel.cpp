@@ -15,22 +15,38 @@ namespace flexgait::rimless {
 namespace {
 
 // The smooth flow and the guards of the current contact mode, for the integrator.
+// With the upright section active, one more guard follows the wheel's: sin β of the next leg to
+// pass upright, crossing 0 upward.
 class WheelFlow final : public numerics::OdeSystem {
  public:
   WheelFlow(const WheelParams& w, const ContactSet& contacts) : w_(w), contacts_(contacts) {}
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
     return flow_derivative(w_, contacts_, y, yd);
   }
-  void guards(double, std::span<const double> y, std::span<double> g) override { guard_values(w_, contacts_, y, g); }
+  void guards(double, std::span<const double> y, std::span<double> g) override {
+    const std::size_t n = static_cast<std::size_t>(guard_count(w_));
+    guard_values(w_, contacts_, y, g.first(n));
+    if (upright_leg_ >= 0) g[n] = std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
+  }
   void set_contacts(const ContactSet& c) { contacts_ = c; }
   const ContactSet& contacts() const { return contacts_; }
+  void set_upright_leg(int k) { upright_leg_ = k; }
+  int upright_leg() const { return upright_leg_; }
 
  private:
   const WheelParams& w_;
   ContactSet contacts_;
+  int upright_leg_ = -1;
 };
 
 }  // namespace
+
+RunSpec default_run(const WheelParams& w, const InitialState& initial) {
+  RunSpec spec;
+  spec.y0 = initial_state(w, initial);
+  spec.pending = {{0, EventKind::Touchdown}};  // the stance foot's mode is chosen at t = 0
+  return spec;
+}
 
 std::string describe_contacts(const ContactSet& c) {
   if (c.count == 0) return "flight";
@@ -124,13 +140,17 @@ FlexibleWheelSimulator::FlexibleWheelSimulator(const WheelParams& wheel, const S
     : impl_(std::make_unique<Impl>(wheel, options)) {}
 FlexibleWheelSimulator::~FlexibleWheelSimulator() = default;
 
-SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
+SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* section) {
   using S = StateIndex;
   Impl& m = *impl_;
   const WheelParams& w = m.w;
   SimulationResult res;
   const numerics::OdeStats stats0 = m.integrator.stats();  // the integrator may have run before
-  std::copy(y0.begin(), y0.end(), m.y.begin());
+  if (static_cast<int>(spec.y0.size()) != state_size(w)) throw std::invalid_argument("RunSpec: wrong state size");
+  std::copy(spec.y0.begin(), spec.y0.end(), m.y.begin());
+  const int steps_wanted = spec.steps > 0 ? spec.steps : m.opt.steps;
+  const bool upright_stop = spec.stop_at == Section::Upright;
+  const bool touchdown_stop = spec.stop_at == Section::Touchdown;
   double t = 0.0;
 
   auto record_event = [&](double te, const std::string& kind, int leg) {
@@ -141,27 +161,43 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
     res.events.push_back({te, "failure", -1, *res.failure});
   };
 
-  // Initial modes: every foot on the ground is treated as landing now.
-  {
-    std::vector<GuardEvent> start;
-    for (int k = 1; k < w.legs; ++k) {  // leg 0 is the stance leg
-      const double h = foot_height(w, k, m.y);
-      if (h < -1e-12 * w.L0) throw std::invalid_argument(fmt::format("initial state: foot {} is below the ground", k));
-    }
-    start.push_back({0, EventKind::Touchdown});
-    const ModeDecision dec = choose_modes(w, ContactSet{}, start, m.y);
+  // Modes at t = 0: the pending events (a foot landing now) are handled like any event.
+  for (int k = 0; k < w.legs; ++k) {
+    if (spec.contacts.find(k) >= 0) continue;
+    bool landing = false;
+    for (const auto& e : spec.pending) landing = landing || (e.leg == k && e.kind == EventKind::Touchdown);
+    if (!landing && foot_height(w, k, m.y) < -1e-12 * w.L0)
+      throw std::invalid_argument(fmt::format("initial state: foot {} is below the ground", k));
+  }
+  m.flow.set_contacts(spec.contacts);
+  if (!spec.pending.empty()) {
+    const ModeDecision dec = choose_modes(w, spec.contacts, spec.pending, m.y);
     if (dec.failure != nullptr) {
       fail(0.0, dec.failure, dec.detail);
       res.final_state = m.y;
       return res;
     }
     m.flow.set_contacts(dec.contacts);
+    res.jams += dec.jammed_feet;
   }
+  // The next leg to pass upright: the one with β in [-2α, 0).
+  m.flow.set_upright_leg(-1);
+  if (upright_stop) {
+    for (int k = 0; k < w.legs; ++k) {
+      const double beta = leg_angle(w, k, m.y[S::theta]);
+      if (beta < 0 && beta >= -2.0 * w.alpha() * (1 + 1e-12)) m.flow.set_upright_leg(k);
+    }
+  }
+  m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
+  if (upright_stop) m.directions.push_back(+1);
   StepTracker tracker;
   const double e0 = mechanical_energy(w, m.flow.contacts(), m.y).total();
   const double ke0 = kinetic_energy(w, m.y);
-  tracker.start(0.0, m.y[S::x], e0, m.flow.contacts());
-  record_event(0.0, "start", m.flow.contacts().leg[0]);
+  int stance = -1;  // a foot landing at t = 0 is the stance foot of the first step
+  for (const auto& e : spec.pending)
+    if (e.kind == EventKind::Touchdown && m.flow.contacts().find(e.leg) >= 0) stance = e.leg;
+  tracker.start(0.0, m.y[S::x], e0, m.flow.contacts(), stance);
+  record_event(0.0, "start", m.flow.contacts().count > 0 ? m.flow.contacts().leg[0] : -1);
   if (m.opt.log) res.samples.push_back(m.sample(0.0, m.y));
   m.integrator.restart(0.0, m.y, m.directions);
   res.restarts.push_back({0.0, m.y, m.flow.contacts()});
@@ -175,7 +211,8 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
   constexpr std::size_t kZenoCount = 64;
   constexpr double kZenoWindow = 1e-9;  // s
 
-  while (res.steps_completed < m.opt.steps) {
+  bool hit = false;
+  while (!hit && res.steps_completed < steps_wanted) {
     const double t_stop = std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time);
     numerics::StepStatus status;
     try {
@@ -218,6 +255,17 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
     const ContactSet before = m.flow.contacts();
     std::vector<GuardEvent> events;
     const auto fired = m.integrator.guards_fired();
+    if (upright_stop && fired[static_cast<std::size_t>(guard_count(w))] != 0) {
+      const int k = m.flow.upright_leg();
+      if (!(before.count == 1 && before.leg[0] == k)) {
+        fail(t, "the upright section was crossed outside single support on that leg", describe_contacts(before));
+        break;
+      }
+      if (section != nullptr) *section = {t, m.y, before, k};
+      record_event(t, "section", k);
+      hit = true;
+      break;
+    }
     for (int k = 0; k < w.legs; ++k) {
       const int i = before.find(k);
       for (int slot = 0; slot < kGuardsPerLeg; ++slot) {
@@ -226,6 +274,16 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
       }
     }
     if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
+    if (touchdown_stop) {
+      for (const auto& e : events) {
+        if (e.kind == EventKind::Touchdown && e.leg != tracker.stance_leg() && !hit) {
+          if (section != nullptr) *section = {t, m.y, before, e.leg};
+          record_event(t, "section", e.leg);
+          hit = true;
+        }
+      }
+      if (hit) break;
+    }
 
     bool stop = false;
     for (const auto& e : events) {
@@ -302,7 +360,7 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
   double x_end = m.y[S::x];
   for (const auto& st : res.steps)
     if (st.complete) x_end = st.x_end;
-  res.mean_speed = t_end > 0 ? (x_end - y0[S::x]) / t_end : 0.0;
+  res.mean_speed = t_end > 0 ? (x_end - spec.y0[S::x]) / t_end : 0.0;
   const numerics::OdeStats st = m.integrator.stats();
   res.solver_steps = st.steps - stats0.steps;
   res.rhs_evals = st.rhs_evals - stats0.rhs_evals;
@@ -311,7 +369,7 @@ SimulationResult FlexibleWheelSimulator::run(std::span<const double> y0) {
 
 SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options) {
   FlexibleWheelSimulator sim(w, options);
-  return sim.run(initial_state(w, initial));
+  return sim.run(default_run(w, initial));
 }
 
 }  // namespace flexgait::rimless

@@ -6,9 +6,11 @@
 ///
 /// The guards and the flow are in flow.hpp.
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
+#include "flexgait/rimless/mode_selection.hpp"
 #include "flexgait/rimless/parameters.hpp"
 #include "flexgait/rimless/simulation.hpp"
 
@@ -19,10 +21,25 @@ namespace flexgait::rimless {
 /// rolling about the foot at θ̇ = initial.omega (ċ = 0, δ̇ = 0).
 std::vector<double> initial_state(const WheelParams& w, const InitialState& initial);
 
-/// Why a simulation stops besides completing its steps.
-struct StopRequest {
-  int steps = 0;  ///< stop at this many touchdowns of new legs
+/// Where and how a run starts and stops.
+struct RunSpec {
+  std::vector<double> y0;            ///< full state (dim state_size(w))
+  ContactSet contacts;               ///< feet on the ground at t = 0, before `pending`
+  std::vector<GuardEvent> pending;   ///< events handled at t = 0 (e.g. a touchdown at the section)
+  int steps = 0;                     ///< stop after this many touchdowns of new legs (0: options.steps)
+  std::optional<Section> stop_at;    ///< stop at the first crossing of this section instead
 };
+
+/// The state where a run crossed its stop section.
+struct SectionHit {
+  double t = 0;               ///< [s]
+  std::vector<double> state;  ///< full state at the crossing, before any mode change
+  ContactSet contacts;        ///< feet on the ground just before the crossing
+  int leg = -1;               ///< the leg landing (touchdown) or upright (upright)
+};
+
+/// The start of a default run: initial_state() with every foot's mode chosen at t = 0.
+RunSpec default_run(const WheelParams& w, const InitialState& initial);
 
 class FlexibleWheelSimulator {
  public:
@@ -31,8 +48,8 @@ class FlexibleWheelSimulator {
   FlexibleWheelSimulator(const FlexibleWheelSimulator&) = delete;
   FlexibleWheelSimulator& operator=(const FlexibleWheelSimulator&) = delete;
 
-  /// Simulates from state `y0` at t = 0 (the modes are chosen there) for `options.steps` steps.
-  SimulationResult run(std::span<const double> y0);
+  /// Simulates as `spec` says. If it stops at a section, `section` holds the crossing.
+  SimulationResult run(const RunSpec& spec, SectionHit* section = nullptr);
 
  private:
   struct Impl;

@@ -27,11 +27,11 @@ std::string gait_label(const std::vector<Phase>& phases) {
   return s;
 }
 
-void StepTracker::start(double t, double x, double energy, const ContactSet& contacts) {
+void StepTracker::start(double t, double x, double energy, const ContactSet& contacts, int stance_leg) {
   steps_.clear();
   StepRecord r;
   r.index = 1;
-  r.stance_leg = contacts.count > 0 ? contacts.leg[0] : -1;
+  r.stance_leg = stance_leg >= 0 ? stance_leg : contacts.count > 0 ? contacts.leg[0] : -1;
   r.t_start = r.t_end = t;
   r.x_start = r.x_end = x;
   r.energy_start = energy;

@@ -38,8 +38,8 @@ struct StepRecord {
 
 class StepTracker {
  public:
-  /// Starts step 1 with the oldest foot on the ground as stance foot.
-  void start(double t, double x, double energy, const ContactSet& contacts);
+  /// Starts step 1 with `stance_leg` as stance foot (-1: the oldest foot on the ground).
+  void start(double t, double x, double energy, const ContactSet& contacts, int stance_leg = -1);
   /// Records the modes in force after an event.
   void observe(const ContactSet& contacts);
   /// Closes the current step at the touchdown of `leg` and opens the next.

@@ -11,8 +11,8 @@
 namespace flexgait::rimless {
 namespace {
 
-// Pendulum about the foot: state (β, β̇); guards: β - α (next touchdown, upward) and
-// β + α (rolled back over the previous foot, downward).
+// Pendulum about the foot: state (β, β̇); guards: β - α (next touchdown, upward),
+// β + α (rolled back over the previous foot, downward), β (upright, upward).
 class Pendulum final : public numerics::OdeSystem {
  public:
   explicit Pendulum(const WheelParams& w) : w_(w), J_(w.m * w.L0 * w.L0 + w.I) {}
@@ -24,6 +24,7 @@ class Pendulum final : public numerics::OdeSystem {
   void guards(double, std::span<const double> y, std::span<double> g) override {
     g[0] = y[0] - w_.alpha();
     g[1] = y[0] + w_.alpha();
+    g[2] = y[0];
   }
   double J() const { return J_; }
 
@@ -47,7 +48,8 @@ RigidStepMap rigid_step_map(const WheelParams& w) {
           4.0 * w.m * w.g * w.L0 * std::sin(alpha) * std::sin(w.slope) / (ml2 + w.I)};
 }
 
-SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, const SimulationOptions& opt) {
+SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, const SimulationOptions& opt,
+                                std::optional<Section> stop_at) {
   Pendulum pendulum(w);
   const double J = pendulum.J();
   numerics::OdeIntegrator integ(pendulum, 2,
@@ -94,7 +96,7 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
   StepTracker tracker;
   tracker.start(0.0, first.q[0], res.energy_initial, contacts);
 
-  const std::array<int, 2> dirs{+1, -1};
+  const std::array<int, 3> dirs{+1, -1, +1};
   integ.restart(0.0, y, dirs);
   double t = 0.0, next_sample = opt.sample_dt, last_touchdown = 0.0;
   long sample_index = 1;
@@ -122,6 +124,13 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
       res.failure = "rolled back: the wheel fell back onto the previous leg";
       break;
     }
+    if (integ.guards_fired()[0] == 0) {  // only the upright guard crossed
+      if (stop_at == Section::Upright && res.steps_completed > 0) {
+        res.events.push_back({t, "section", contacts.leg[0], modes()});
+        break;
+      }
+      continue;
+    }
     // Impact: the new foot is 2 L0 sin α further down; angular momentum about it is kept.
     const double omega_minus = y[1];
     const double omega_plus = omega_minus * (w.m * w.L0 * w.L0 * std::cos(2 * alpha) + w.I) / J;
@@ -135,6 +144,10 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
     if (opt.log) res.samples.push_back(after);
     res.events.push_back({t, "touchdown", contacts.leg[0] = ((stance % w.legs) + w.legs) % w.legs, modes()});
     tracker.touchdown(t, after.q[0], after.energy.total(), contacts.leg[0], contacts);
+    if (stop_at == Section::Touchdown) {
+      res.events.push_back({t, "section", contacts.leg[0], modes()});
+      break;
+    }
     integ.restart(t, y, dirs);
   }
   if (res.failure) res.events.push_back({t, "failure", -1, *res.failure});

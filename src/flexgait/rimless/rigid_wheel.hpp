@@ -9,6 +9,8 @@
 /// Its step-to-step map of the post-impact speed is
 ///   ω⁺ₙ₊₁ = r sqrt((ω⁺ₙ)² + a),  r = (m L0² cos 2α + I)/(m L0² + I),  a = 4 m g L0 sin α sin φ/(m L0² + I),
 /// with fixed point ω* = r sqrt(a / (1 - r²)) and multiplier r² (cos²2α for I = 0).
+#include <optional>
+
 #include "flexgait/rimless/parameters.hpp"
 #include "flexgait/rimless/simulation.hpp"
 
@@ -30,6 +32,9 @@ RigidStepMap rigid_step_map(const WheelParams& w);
 /// Simulates the rigid wheel from stance angle initial.beta with angular velocity
 /// initial.omega (integrated with the same event-locating integrator as the flexible wheel).
 /// Impact losses are booked as work_damping (the infinitely stiff, dissipative leg).
-SimulationResult simulate_rigid(const WheelParams& w, const InitialState& initial, const SimulationOptions& options);
+/// With `stop_at` it stops at the first crossing of that section after t = 0: Touchdown right
+/// after the impact (β = -α, ω⁺), Upright at the next β = 0 after an impact.
+SimulationResult simulate_rigid(const WheelParams& w, const InitialState& initial, const SimulationOptions& options,
+                                std::optional<Section> stop_at = std::nullopt);
 
 }  // namespace flexgait::rimless

@@ -13,6 +13,12 @@
 
 namespace flexgait::rimless {
 
+/// Poincaré sections (spec rimless.md, "Analysis"): the touchdown of a new leg (before its
+/// contact mode is chosen), or a leg passing upright, β = 0 upward (the paper's "vertical
+/// equilibrium surface").
+enum class Section { Touchdown, Upright };
+inline const char* section_name(Section s) { return s == Section::Touchdown ? "touchdown" : "upright"; }
+
 struct ContactSample {
   int leg = -1;                       ///< -1: slot empty
   FootMode mode = FootMode::Stick;

@@ -1,0 +1,54 @@
+#pragma once
+/// \file newton.hpp
+/// Fixed points of maps z ↦ P(z) by Newton-Raphson on F(z) = P(z) - z, with a central-difference
+/// Jacobian and a backtracking line search; Floquet multipliers as the eigenvalues of ∂P/∂z.
+#include <Eigen/Dense>
+
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace flexgait::numerics {
+
+/// P: writes P(z) into `out` (same dimension as z), or returns why it cannot be evaluated there
+/// (a simulation that failed, a different gait, ...).
+using VectorMap = std::function<std::optional<std::string>(const Eigen::VectorXd& z, Eigen::VectorXd& out)>;
+
+struct NewtonOptions {
+  double tolerance = 1e-10;    ///< converged when ||P(z) - z||_inf <= tolerance (state units)
+  int max_iterations = 30;
+  double fd_relative_step = 1e-5;  ///< central-difference step h_i = this · max(|z_i|, scale_i)
+  double min_damping = 1.0 / 1024; ///< smallest line-search factor before giving up
+};
+
+struct NewtonIteration {
+  int iteration = 0;
+  double residual = 0;   ///< ||P(z) - z||_inf at the start of the iteration
+  double step_norm = 0;  ///< ||Δz||_inf of the accepted step
+  double damping = 1;    ///< line-search factor of the accepted step
+};
+
+struct NewtonResult {
+  bool converged = false;
+  Eigen::VectorXd z;              ///< last iterate (the fixed point when converged)
+  double residual = 0;            ///< ||P(z) - z||_inf at z
+  int iterations = 0;
+  std::vector<NewtonIteration> history;
+  Eigen::MatrixXd jacobian;       ///< ∂P/∂z at z (central differences)
+  std::string failure;            ///< why it did not converge: no root, left the basin, map failed, ...
+};
+
+/// ∂P/∂z by central differences with steps h (dim z). Returns the failure of a map evaluation.
+std::optional<std::string> central_difference_jacobian(const VectorMap& P, const Eigen::VectorXd& z,
+                                                       const Eigen::VectorXd& h, Eigen::MatrixXd& J);
+
+/// Newton-Raphson from z0. `scale` (dim z, > 0) sets the finite-difference steps.
+NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, const Eigen::VectorXd& scale,
+                                const NewtonOptions& options = {});
+
+/// Eigenvalues of J sorted by modulus, largest first (ties: by real part, then imaginary).
+std::vector<std::complex<double>> floquet_multipliers(const Eigen::MatrixXd& J);
+
+}  // namespace flexgait::numerics

@@ -1,0 +1,131 @@
+#include "flexgait/rimless/fixed_point.hpp"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+namespace flexgait::rimless {
+
+Schema analysis_schema() {
+  Schema s;
+  auto real = [&](const char* key, const char* value, const char* doc, double lo, double hi) {
+    ParamSpec p;
+    p.key = key;
+    p.fallback = value;
+    p.doc = doc;
+    p.min = lo;
+    p.max = hi;
+    s.add(p);
+  };
+  ParamSpec steps;
+  steps.key = "analysis.transient_steps";
+  steps.type = ParamType::Integer;
+  steps.fallback = "20";
+  steps.doc = "steps simulated from the initial state before the Newton iteration starts";
+  steps.min = 0;
+  steps.max = 100000;
+  s.add(steps);
+  real("analysis.rtol", "1e-12", "CVODE relative tolerance of every Poincare-map evaluation", 1e-14, 1e-4);
+  real("analysis.atol", "1e-14", "CVODE absolute tolerance of every Poincare-map evaluation", 1e-16, 1e-4);
+  real("analysis.newton_tol", "1e-10", "Newton convergence: max-norm of P(z) - z", 1e-15, 1e-2);
+  ParamSpec iters;
+  iters.key = "analysis.max_iterations";
+  iters.type = ParamType::Integer;
+  iters.fallback = "30";
+  iters.doc = "Newton iterations allowed";
+  iters.min = 1;
+  iters.max = 1000;
+  s.add(iters);
+  return s;
+}
+
+AnalysisOptions analysis_from_config(const Config& c) {
+  AnalysisOptions o;
+  o.transient_steps = static_cast<int>(c.integer("analysis.transient_steps"));
+  o.rtol = c.real("analysis.rtol");
+  o.atol = c.real("analysis.atol");
+  o.newton.tolerance = c.real("analysis.newton_tol");
+  o.newton.max_iterations = static_cast<int>(c.integer("analysis.max_iterations"));
+  return o;
+}
+
+namespace {
+
+SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt) {
+  SimulationOptions o = sim;
+  o.rtol = opt.rtol;
+  o.atol = opt.atol;
+  o.log = false;
+  return o;
+}
+
+}  // namespace
+
+FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
+                                       const SectionState& guess) {
+  FixedPointReport rep;
+  rep.point = guess;
+  PoincareMap map(w, map_options(sim, opt), guess.model, guess.section);
+  const numerics::VectorMap P = [&](const Eigen::VectorXd& z, Eigen::VectorXd& out) { return map(guess, z, out); };
+  const numerics::NewtonResult nr = numerics::newton_fixed_point(P, guess.z, guess.scale(w), opt.newton);
+  rep.converged = nr.converged;
+  rep.failure = nr.failure;
+  rep.iterations = nr.iterations;
+  rep.residual = nr.residual;
+  rep.history = nr.history;
+  rep.point.z = nr.z;
+  rep.jacobian = nr.jacobian;
+  if (nr.jacobian.size() > 0) {
+    rep.multipliers = numerics::floquet_multipliers(nr.jacobian);
+    rep.stable = nr.converged;
+    for (const auto& m : rep.multipliers) rep.stable = rep.stable && std::abs(m) < 1.0;
+  }
+  const MapStep step = map.apply(rep.point);
+  if (!step.failure) {
+    rep.gait = step.gait;
+    rep.period = step.period;
+    rep.speed = step.period > 0 ? step.distance / step.period : 0.0;
+    rep.dissipated = step.dissipated;
+  }
+  return rep;
+}
+
+FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
+                                  Model model, Section section, const InitialState& initial) {
+  SectionState guess;
+  if (auto e = settle_on_section(w, map_options(sim, opt), model, section, initial, opt.transient_steps, guess)) {
+    FixedPointReport rep;
+    rep.point = guess;
+    rep.failure = "no initial guess: " + *e;
+    return rep;
+  }
+  return find_fixed_point_from(w, sim, opt, guess);
+}
+
+std::string fixed_point_json(const FixedPointReport& r) {
+  nlohmann::ordered_json j;
+  j["converged"] = r.converged;
+  j["iterations"] = r.iterations;
+  j["residual"] = r.residual;
+  j["model"] = r.point.model == Model::Rigid ? "rigid" : "flexible";
+  j["section"] = section_name(r.point.section);
+  j["mode"] = r.point.flight ? "flight" : mode_name(r.point.mode);
+  j["state_names"] = r.point.names();
+  j["state"] = std::vector<double>(r.point.z.data(), r.point.z.data() + r.point.z.size());
+  nlohmann::ordered_json mult = nlohmann::ordered_json::array();
+  for (const auto& m : r.multipliers) mult.push_back({m.real(), m.imag()});
+  j["multipliers"] = mult;
+  j["stable"] = r.stable;
+  j["gait"] = r.gait;
+  j["period"] = r.period;
+  j["speed"] = r.speed;
+  j["dissipated_per_cycle"] = r.dissipated;
+  nlohmann::ordered_json hist = nlohmann::ordered_json::array();
+  for (const auto& h : r.history)
+    hist.push_back({{"iteration", h.iteration}, {"residual", h.residual}, {"step", h.step_norm}, {"damping", h.damping}});
+  j["history"] = hist;
+  j["failure"] = r.failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.failure);
+  return j.dump(2) + "\n";
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,53 @@
+#pragma once
+/// \file fixed_point.hpp
+/// Periodic gaits of the rimless wheel: a fixed point of the Poincaré map by Newton-Raphson,
+/// its Floquet multipliers (eigenvalues of the map's Jacobian) and a stability verdict.
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/numerics/newton.hpp"
+#include "flexgait/rimless/poincare.hpp"
+
+namespace flexgait::rimless {
+
+/// How fixed points are searched (config keys `analysis.*`).
+struct AnalysisOptions {
+  int transient_steps = 20;    ///< steps simulated from the initial state before Newton starts
+  double rtol = 1e-12;         ///< CVODE tolerance of every map evaluation
+  double atol = 1e-14;
+  numerics::NewtonOptions newton;  ///< tolerance 1e-10, 30 iterations
+};
+Schema analysis_schema();
+AnalysisOptions analysis_from_config(const Config& config);
+
+struct FixedPointReport {
+  bool converged = false;
+  std::string failure;                 ///< empty when converged
+  int iterations = 0;
+  double residual = 0;                 ///< ||P(z) - z||_inf
+  std::vector<numerics::NewtonIteration> history;
+  SectionState point;                  ///< the fixed point (or the last iterate)
+  Eigen::MatrixXd jacobian;            ///< ∂P/∂z
+  std::vector<std::complex<double>> multipliers;  ///< sorted by modulus, largest first
+  bool stable = false;                 ///< every multiplier strictly inside the unit circle
+  std::string gait;                    ///< stance-foot phases of the periodic step
+  double period = 0;                   ///< [s]
+  double speed = 0;                    ///< mean hub speed along the slope [m/s]
+  double dissipated = 0;               ///< energy dissipated per cycle [J]
+};
+
+/// Settles on the section from `initial`, then runs Newton from there.
+FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
+                                  Model model, Section section, const InitialState& initial);
+
+/// Newton from a given section point.
+FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
+                                       const SectionState& guess);
+
+/// The report as JSON (keys: converged, iterations, residual, state, state_names, mode, multipliers
+/// as [re, im] pairs, stable, gait, period, speed, dissipated_per_cycle, history, failure).
+std::string fixed_point_json(const FixedPointReport& report);
+
+}  // namespace flexgait::rimless

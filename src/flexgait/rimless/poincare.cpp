@@ -1,0 +1,213 @@
+#include "flexgait/rimless/poincare.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "flexgait/rimless/rigid_wheel.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+bool sticks(const SectionState& p) { return !p.flight && p.mode == FootMode::Stick; }
+
+std::string mode_text(const SectionState& p) { return p.flight ? "flight" : mode_name(p.mode); }
+
+// Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip").
+std::string joined_label(const std::vector<Phase>& first, const std::vector<Phase>& second) {
+  std::vector<Phase> all;
+  for (const auto* part : {&first, &second})
+    for (Phase p : *part)
+      if (all.empty() || all.back() != p) all.push_back(p);
+  return gait_label(all);
+}
+
+}  // namespace
+
+std::vector<std::string> SectionState::names() const {
+  if (model == Model::Rigid) return {"thetad"};
+  const std::string first = section == Section::Touchdown ? "beta" : "y";
+  if (sticks(*this)) return {first, "yd", "thetad"};
+  return {first, "xd", "yd", "thetad"};
+}
+
+Eigen::VectorXd SectionState::scale(const WheelParams& w) const {
+  const double v = std::sqrt(w.g * w.L0), omega = v / w.L0;
+  if (model == Model::Rigid) return Eigen::VectorXd::Constant(1, omega);
+  const double first = section == Section::Touchdown ? w.alpha() : w.L0;
+  if (sticks(*this)) return Eigen::Vector3d(first, v, omega);
+  return Eigen::Vector4d(first, v, v, omega);
+}
+
+RunSpec section_run(const WheelParams& w, const SectionState& p) {
+  using S = StateIndex;
+  RunSpec spec;
+  spec.y0.assign(static_cast<std::size_t>(state_size(w)), 0.0);
+  auto& y = spec.y0;
+  const Eigen::VectorXd& z = p.z;
+  const bool stick = sticks(p);
+  double theta = 0;
+  if (p.section == Section::Touchdown) {
+    const double beta_new = z(0);
+    theta = beta_new + 2.0 * w.alpha();
+    y[S::y] = w.L0 * std::cos(beta_new);
+    y[S::x] = p.flight ? 0.0 : y[S::y] * std::tan(theta);
+    spec.pending = {{w.legs - 1, EventKind::Touchdown}};
+  } else {
+    y[S::y] = z(0);
+    y[S::x] = 0.0;
+  }
+  y[S::theta] = theta;
+  y[S::yd] = z(stick ? 1 : 2);
+  y[S::thetad] = z(stick ? 2 : 3);
+  if (stick) {  // ċ = ẋ - ẏ tan θ - y θ̇ / cos² θ = 0 on leg 0
+    const double c = std::cos(theta);
+    y[S::xd] = y[S::yd] * std::tan(theta) + y[S::y] * y[S::thetad] / (c * c);
+  } else {
+    y[S::xd] = z(1);
+  }
+  if (!p.flight) {
+    spec.contacts.count = 1;
+    spec.contacts.leg[0] = 0;
+    spec.contacts.mode[0] = p.mode;
+    spec.contacts.anchor[0] = 0.0;
+  }
+  return spec;
+}
+
+std::optional<std::string> reduce_crossing(const WheelParams& w, Section section, const SectionHit& hit,
+                                           SectionState& out) {
+  using S = StateIndex;
+  out.model = Model::Flexible;
+  out.section = section;
+  const auto& y = hit.state;
+  out.flight = hit.contacts.count == 0;
+  if (hit.contacts.count > 1)
+    return fmt::format("{} feet on the ground at the {} section", hit.contacts.count, section_name(section));
+  if (section == Section::Upright && out.flight) return std::string("flight at the upright section");
+  out.mode = out.flight ? FootMode::Stick : hit.contacts.mode[0];
+  if (!out.flight) {
+    const int stance = hit.contacts.leg[0];
+    const int expected = section == Section::Touchdown ? (stance + w.legs - 1) % w.legs : stance;
+    if (hit.leg != expected)
+      return fmt::format("leg {} crossed the {} section, leg {} expected", hit.leg, section_name(section), expected);
+  }
+  const bool stick = sticks(out);
+  out.z.resize(stick ? 3 : 4);
+  out.z(0) = section == Section::Touchdown ? leg_angle(w, hit.leg, y[S::theta]) : y[S::y];
+  if (!stick) out.z(1) = y[S::xd];
+  out.z(stick ? 1 : 2) = y[S::yd];
+  out.z(stick ? 2 : 3) = y[S::thetad];
+  return std::nullopt;
+}
+
+PoincareMap::PoincareMap(const WheelParams& w, const SimulationOptions& options, Model model, Section section)
+    : w_(w), options_(options), model_(model), section_(section) {
+  options_.log = false;
+  if (model_ == Model::Flexible) sim_ = std::make_unique<FlexibleWheelSimulator>(w_, options_);
+}
+PoincareMap::~PoincareMap() = default;
+PoincareMap::PoincareMap(PoincareMap&&) noexcept = default;
+
+MapStep PoincareMap::apply(const SectionState& p) {
+  MapStep out;
+  out.next = p;
+  if (model_ == Model::Rigid) {
+    SimulationOptions o = options_;
+    o.steps = 2;
+    const InitialState start{p.z(0), section_ == Section::Touchdown ? -w_.alpha() : 0.0};
+    const SimulationResult r = simulate_rigid(w_, start, o, section_);
+    if (r.failure) {
+      out.failure = *r.failure;
+      return out;
+    }
+    out.next.z = Eigen::VectorXd::Constant(1, r.final_state[5]);
+    out.gait = "stick";
+    out.period = r.t_final;
+    out.distance = r.steps.empty() ? 0.0 : r.final_state[0] - r.steps.front().x_start;
+    out.dissipated = r.work_damping;
+    return out;
+  }
+  RunSpec spec = section_run(w_, p);
+  spec.stop_at = section_;
+  spec.steps = 3;  // a cycle between two crossings holds one touchdown (upright) or none (touchdown)
+  SectionHit hit;
+  hit.leg = -1;
+  const SimulationResult r = sim_->run(spec, &hit);
+  if (r.failure) {
+    out.failure = *r.failure;
+    return out;
+  }
+  if (hit.leg < 0) {
+    out.failure = fmt::format("the {} section was not reached", section_name(section_));
+    return out;
+  }
+  if (auto e = reduce_crossing(w_, section_, hit, out.next)) {
+    out.failure = *e;
+    return out;
+  }
+  if (out.next.flight != p.flight || out.next.mode != p.mode) {
+    out.failure = fmt::format("arrived at the section in another mode ({} instead of {})", mode_text(out.next),
+                              mode_text(p));
+    return out;
+  }
+  using S = StateIndex;
+  out.period = hit.t;
+  out.distance = hit.state[S::x] - spec.y0[S::x];
+  out.dissipated = hit.state[S::w_damp] + hit.state[S::w_fric];
+  out.jams = r.jams;
+  if (section_ == Section::Touchdown || r.steps.size() < 2) {
+    out.gait = r.steps.empty() ? "" : gait_label(r.steps.front().single_support);
+  } else {
+    out.gait = joined_label(r.steps[1].single_support, r.steps[0].single_support);
+  }
+  return out;
+}
+
+std::optional<std::string> PoincareMap::operator()(const SectionState& like, const Eigen::VectorXd& z,
+                                                   Eigen::VectorXd& out) {
+  SectionState p = like;
+  p.z = z;
+  const MapStep s = apply(p);
+  if (s.failure) return s.failure;
+  out = s.next.z;
+  return std::nullopt;
+}
+
+std::optional<std::string> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
+                                             Section section, const InitialState& initial, int transient_steps,
+                                             SectionState& out) {
+  SimulationOptions o = options;
+  o.log = false;
+  o.steps = std::max(1, transient_steps);
+  out.model = model;
+  out.section = section;
+  if (model == Model::Rigid) {
+    const SimulationResult r = simulate_rigid(w, initial, o);
+    if (r.failure) return *r.failure;
+    out.z = Eigen::VectorXd::Constant(1, r.final_state[5]);  // ω⁺ after the last impact
+    if (section == Section::Upright) {
+      SimulationOptions o2 = o;
+      o2.steps = 2;
+      const SimulationResult u = simulate_rigid(w, InitialState{out.z(0), -w.alpha()}, o2, Section::Upright);
+      if (u.failure) return *u.failure;
+      out.z(0) = u.final_state[5];
+    }
+    return std::nullopt;
+  }
+  FlexibleWheelSimulator sim(w, o);
+  const SimulationResult r = sim.run(default_run(w, initial));
+  if (r.failure) return "transient: " + *r.failure;
+  RunSpec next;
+  next.y0 = r.final_state;
+  next.contacts = r.final_contacts;
+  next.stop_at = section;
+  next.steps = 3;
+  SectionHit hit;
+  const SimulationResult r2 = sim.run(next, &hit);
+  if (r2.failure) return "reaching the section: " + *r2.failure;
+  if (hit.leg < 0) return fmt::format("the {} section was not reached", section_name(section));
+  return reduce_crossing(w, section, hit, out);
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,89 @@
+#pragma once
+/// \file poincare.hpp
+/// Poincaré maps of the rimless wheel (spec rimless.md, "Analysis").
+///
+/// Translation invariance removes x: the stance foot is put at c = 0, leg indices are shifted so
+/// that the stance leg is 0. The free legs' leftover compressions are set to 0 at the section:
+/// a free leg does not act on the hub until it lands again, a revolution later, by which time
+/// its compression has decayed by exp(-K T_rev / C) (about e^-130 with the defaults).
+///
+/// Reduced state z (dimension 3 when the stance foot sticks at the section: ċ = 0 fixes ẋ):
+///   touchdown section, just before leg N-1 lands:  z = (β_{N-1}, [ẋ,] ẏ, θ̇),
+///       with y = L0 cos β_{N-1} (the landing foot touches the ground), θ = β_{N-1} + 2α;
+///   upright section, leg 0 at β = 0 in single support:  z = (y, [ẋ,] ẏ, θ̇).
+/// The discrete part of the section state is the stance foot's mode (or flight).
+/// The rigid wheel's reduced state is z = (θ̇): ω⁺ after the impact (touchdown) or ω at β = 0.
+#include <Eigen/Dense>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/simulation.hpp"
+
+namespace flexgait::rimless {
+
+enum class Model { Flexible, Rigid };
+
+struct SectionState {
+  Model model = Model::Flexible;
+  Section section = Section::Touchdown;
+  bool flight = false;                 ///< no foot down before the touchdown (touchdown only)
+  FootMode mode = FootMode::Stick;     ///< the stance foot's mode at the section
+  Eigen::VectorXd z;                   ///< reduced state, see the header
+
+  /// Names of z's components, e.g. {"beta", "yd", "thetad"}.
+  std::vector<std::string> names() const;
+  /// Typical magnitudes of z's components (for finite-difference steps).
+  Eigen::VectorXd scale(const WheelParams& w) const;
+};
+
+/// The flexible wheel's full state at a section point, its feet on the ground, and the events
+/// pending there (the landing at a touchdown section).
+RunSpec section_run(const WheelParams& w, const SectionState& point);
+
+/// Reduces a section crossing of the flexible wheel to a SectionState (leg indices shifted).
+/// Returns an error message if the crossing cannot be reduced (e.g. two feet down).
+std::optional<std::string> reduce_crossing(const WheelParams& w, Section section, const SectionHit& hit,
+                                           SectionState& out);
+
+/// One application of the map, with what happened on the way.
+struct MapStep {
+  std::optional<std::string> failure;  ///< why the next crossing was not reached
+  SectionState next;
+  std::string gait;                    ///< stance-foot phases over the cycle
+  double period = 0;                   ///< time between the crossings [s]
+  double distance = 0;                 ///< hub travel along the slope [m]
+  double dissipated = 0;               ///< W_damp + W_fric over the cycle [J]
+  int jams = 0;
+};
+
+/// The Poincaré map of one model on one section: a simulator kept for repeated evaluations.
+class PoincareMap {
+ public:
+  PoincareMap(const WheelParams& w, const SimulationOptions& options, Model model, Section section);
+  ~PoincareMap();
+  PoincareMap(PoincareMap&&) noexcept;
+  /// P(point). The map keeps the discrete mode: arriving in another mode is a failure.
+  MapStep apply(const SectionState& point);
+  /// The map as a VectorMap on z with the discrete part of `like` (for Newton).
+  std::optional<std::string> operator()(const SectionState& like, const Eigen::VectorXd& z, Eigen::VectorXd& out);
+  Model model() const { return model_; }
+  Section section() const { return section_; }
+
+ private:
+  WheelParams w_;
+  SimulationOptions options_;
+  Model model_;
+  Section section_;
+  std::unique_ptr<FlexibleWheelSimulator> sim_;
+};
+
+/// A first section point: simulate `transient_steps` from `initial` and reduce the next crossing.
+std::optional<std::string> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
+                                             Section section, const InitialState& initial, int transient_steps,
+                                             SectionState& out);
+
+}  // namespace flexgait::rimless
