@@ -5,9 +5,11 @@
 #include <memory>
 
 #include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
+#include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "options.hpp"
 
@@ -118,6 +120,45 @@ int fixed_point(const FixedPointArgs& a) {
   return 0;
 }
 
+struct SweepArgs {
+  RunOptions run;
+  std::string model;
+  std::string section = "touchdown";
+  std::string param;
+  double from = 0, to = 0;
+  int count = 0;
+  int jobs = 0;
+  bool resume = false;
+};
+
+int sweep(const SweepArgs& a) {
+  std::vector<std::string> extra;
+  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
+  const WheelSetup s = wheel_setup(analysis_command_schema(), a.run, extra);
+  rimless::check_sweep_param(s.config.schema(), a.param);
+  rimless::SweepSpec spec{a.param, a.from, a.to, a.count,
+                          a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown};
+  for (int i = 0; i < spec.count; ++i) rimless::sweep_point_config(s.config, spec, i);  // every point valid first
+  const RunDirectory dir(a.run.out);
+  dir.write_config(s.config);
+  SweepJob job;
+  job.dir = dir.path();
+  job.header = rimless::sweep_header();
+  job.count = spec.count;
+  job.jobs = a.jobs;
+  job.resume = a.resume;
+  job.signature = fmt::format("param {} from {} to {} count {} section {}\n{}", spec.param, spec.from, spec.to, spec.count,
+                              a.section, s.config.to_yaml());
+  const Config base = s.config;
+  job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
+  const SweepOutcome out = run_sweep(job);
+  if (a.run.plot) run_plot_script("plot_sweep.py", {dir.path().string(), spec.param});
+  fmt::print("sweep of {} over [{}, {}], {} points: {} computed, {} resumed, {:.2f} s\n", spec.param, spec.from, spec.to,
+             spec.count, out.computed, out.resumed, out.seconds);
+  fmt::print("results in {}\n", (dir.path() / "sweep.csv").string());
+  return 0;
+}
+
 }  // namespace
 
 void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
@@ -143,6 +184,23 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
       ->check(CLI::IsMember({"touchdown", "upright"}))
       ->capture_default_str();
   fp->callback([fp_args, &action] { action = [fp_args] { return fixed_point(*fp_args); }; });
+
+  auto sw = std::make_shared<SweepArgs>();
+  CLI::App* swc = rimless->add_subcommand("sweep", "Sweep one parameter: gait, fixed point, multipliers, stability, "
+                                                   "speed and energy per point, on all cores, resumable");
+  add_run_options(*swc, sw->run, "runs/rimless-sweep");
+  swc->add_option("--param", sw->param, "configuration key to vary (e.g. rimless.slope, initial.omega), or "
+                                        "rimless.mu for mu_s = mu_k")->required();
+  swc->add_option("--from", sw->from, "first value (in the key's unit)")->required();
+  swc->add_option("--to", sw->to, "last value (in the key's unit)")->required();
+  swc->add_option("--count", sw->count, "number of values, evenly spaced, ends included")
+      ->required()->check(CLI::Range(1, 1000000));
+  swc->add_option("--jobs", sw->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
+  swc->add_flag("--resume", sw->resume, "keep the finished points of an interrupted sweep in --out");
+  swc->add_option("--model", sw->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
+  swc->add_option("--section", sw->section, "Poincare section of the fixed points")
+      ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
+  swc->callback([sw, &action] { action = [sw] { return sweep(*sw); }; });
 }
 
 }  // namespace flexgait::cli

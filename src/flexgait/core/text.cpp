@@ -8,6 +8,13 @@ namespace flexgait {
 
 std::string format_number(double v) { return fmt::format("{}", v); }
 
+std::string csv_safe(std::string_view text) {
+  std::string s(text);
+  for (char& ch : s)
+    if (ch == ',' || ch == '"' || ch == '\n' || ch == '\r') ch = ';';
+  return s;
+}
+
 CsvWriter::CsvWriter(const std::vector<std::string>& columns) : columns_(columns.size()) {
   for (std::size_t i = 0; i < columns.size(); ++i) {
     if (i) text_ += ',';

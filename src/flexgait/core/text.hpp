@@ -10,6 +10,9 @@ namespace flexgait {
 /// Shortest decimal text that reads back to the identical double ("nan"/"inf" as such).
 std::string format_number(double v);
 
+/// The text with the characters that would break a CSV cell (, " newline) replaced by ';'.
+std::string csv_safe(std::string_view text);
+
 /// Builds a CSV document in memory, one row at a time; numbers use format_number.
 class CsvWriter {
  public:

@@ -37,10 +37,7 @@ std::string log_csv(const SimulationResult& r) {
 std::string events_csv(const SimulationResult& r) {
   CsvWriter csv({"t", "kind", "leg", "modes"});
   for (const auto& e : r.events) {
-    std::string modes = e.modes;
-    for (char& ch : modes)
-      if (ch == ',' || ch == '"' || ch == '\n') ch = ';';
-    csv.cell(e.t).cell(e.kind).cell(static_cast<long long>(e.leg)).cell(modes).end_row();
+    csv.cell(e.t).cell(e.kind).cell(static_cast<long long>(e.leg)).cell(csv_safe(e.modes)).end_row();
   }
   return csv.str();
 }

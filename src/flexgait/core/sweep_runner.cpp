@@ -1,0 +1,128 @@
+#include "flexgait/core/sweep_runner.hpp"
+
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "flexgait/core/atomic_file.hpp"
+
+namespace flexgait {
+namespace {
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Finished rows of a partial file: complete lines "index,cells"; a torn last line is dropped.
+std::map<int, std::string> read_partial(const std::filesystem::path& p, int count) {
+  std::map<int, std::string> rows;
+  const std::string text = read_text(p);
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) break;  // no newline: torn by an interruption
+    const std::string line = text.substr(start, end - start);
+    start = end + 1;
+    const std::size_t comma = line.find(',');
+    if (comma == std::string::npos) continue;
+    try {
+      const int i = std::stoi(line.substr(0, comma));
+      if (i >= 0 && i < count) rows[i] = line.substr(comma + 1);
+    } catch (const std::exception&) {
+    }
+  }
+  return rows;
+}
+
+class Progress {
+ public:
+  Progress(int total, int done) : total_(total), done_(done), tty_(isatty(STDERR_FILENO) != 0) {}
+  void tick(double seconds, int computed) {
+    ++done_;
+    if (!tty_) return;
+    const int width = 30;
+    const int filled = total_ > 0 ? width * done_ / total_ : width;
+    const double eta = computed > 0 ? seconds / computed * (total_ - done_) : 0.0;
+    fmt::print(stderr, "\r[{}{}] {}/{} points, {:.1f} s, ETA {:.0f} s ", std::string(filled, '#'),
+               std::string(width - filled, '.'), done_, total_, seconds, eta);
+    if (done_ == total_) fmt::print(stderr, "\n");
+  }
+
+ private:
+  int total_, done_;
+  bool tty_;
+};
+
+}  // namespace
+
+SweepOutcome run_sweep(const SweepJob& job) {
+  std::filesystem::create_directories(job.dir);
+  const auto partial = job.dir / (job.name + ".partial.csv");
+  const auto signature = job.dir / (job.name + ".signature");
+  const auto final_csv = job.dir / (job.name + ".csv");
+  std::map<int, std::string> rows;
+  if (std::filesystem::exists(signature)) {
+    if (read_text(signature) != job.signature) {
+      if (job.resume) throw std::invalid_argument(fmt::format("--resume: {} holds a different sweep ({})", job.dir.string(), signature.string()));
+    } else if (job.resume) {
+      rows = read_partial(partial, job.count);
+    }
+  } else if (job.resume) {
+    throw std::invalid_argument(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
+  }
+  if (!job.resume) std::filesystem::remove(partial);
+  write_file_atomic(signature, job.signature);
+  // Rewrite the partial file with only complete rows, so a torn line does not linger.
+  {
+    std::string text;
+    for (const auto& [i, cells] : rows) text += fmt::format("{},{}\n", i, cells);
+    write_file_atomic(partial, text);
+  }
+  SweepOutcome out;
+  out.resumed = static_cast<int>(rows.size());
+  std::vector<int> todo;
+  for (int i = 0; i < job.count; ++i)
+    if (!rows.count(i)) todo.push_back(i);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  std::mutex mutex;
+  Progress progress(job.count, out.resumed);
+  const int threads = job.jobs > 0 ? job.jobs : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, todo.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t k = range.begin(); k != range.end(); ++k) {
+            const int i = todo[k];
+            const std::string cells = job.row(i);
+            const std::lock_guard<std::mutex> lock(mutex);
+            append_file_durable(partial, fmt::format("{},{}\n", i, cells));
+            rows[i] = cells;
+            ++out.computed;
+            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            progress.tick(s, out.computed);
+          }
+        },
+        tbb::simple_partitioner());
+  });
+  std::string text = "index," + job.header + "\n";
+  for (const auto& [i, cells] : rows) text += fmt::format("{},{}\n", i, cells);
+  write_file_atomic(final_csv, text);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace flexgait

@@ -1,0 +1,34 @@
+#pragma once
+/// \file sweep_runner.hpp
+/// Runs independent sweep points on all cores (oneTBB), appends each finished point to a
+/// durable partial file at once (an interrupted sweep loses nothing), resumes from it, shows a
+/// progress bar on a terminal, and writes the final CSV sorted by point index.
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace flexgait {
+
+struct SweepJob {
+  std::filesystem::path dir;      ///< output directory
+  std::string name = "sweep";     ///< files: NAME.csv (final), NAME.partial.csv, NAME.signature
+  std::string header;             ///< CSV header, without "index" (added first)
+  int count = 0;                  ///< points 0 .. count-1
+  int jobs = 0;                   ///< worker threads; 0: all cores
+  bool resume = false;            ///< keep the finished points of an earlier run with the same signature
+  std::string signature;          ///< what defines the sweep (parameters, configuration); checked on resume
+  /// Computes point i; returns its CSV cells (no index, no newline). Must be thread-safe.
+  std::function<std::string(int)> row;
+};
+
+struct SweepOutcome {
+  int computed = 0;  ///< points computed in this run
+  int resumed = 0;   ///< points taken from the partial file
+  double seconds = 0;
+};
+
+/// Runs the job. Throws std::invalid_argument when resuming a sweep with another signature, and
+/// std::runtime_error when the directory already holds a different sweep without --resume.
+SweepOutcome run_sweep(const SweepJob& job);
+
+}  // namespace flexgait

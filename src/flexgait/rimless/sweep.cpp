@@ -1,0 +1,73 @@
+#include "flexgait/rimless/sweep.hpp"
+
+#include <fmt/format.h>
+
+#include "flexgait/core/text.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/rigid_wheel.hpp"
+
+namespace flexgait::rimless {
+
+void check_sweep_param(const Schema& schema, const std::string& param) {
+  if (param == "rimless.mu") return;
+  const ParamSpec* p = schema.find(param);
+  if (p == nullptr)
+    throw ConfigError(param, fmt::format("--param: unknown key '{}'; allowed: a real-valued key of config.yaml, or "
+                                         "rimless.mu (sets mu_s and mu_k)", param));
+  if (p->type != ParamType::Real)
+    throw ConfigError(param, fmt::format("--param: key '{}' is not a real number; allowed: a real-valued key", param));
+}
+
+Config sweep_point_config(const Config& base, const SweepSpec& spec, int i) {
+  Config c = base;
+  const std::string v = format_number(spec.value(i));
+  const std::string origin = fmt::format("sweep point {}", i);
+  if (spec.param == "rimless.mu") {
+    c.set("rimless.mu_s", v, origin);
+    c.set("rimless.mu_k", v, origin);
+  } else {
+    c.set(spec.param, v, origin);
+  }
+  validate(wheel_from_config(c), initial_from_config(c));
+  return c;
+}
+
+std::string sweep_header() {
+  return "value,transient_gait,transient_speed,transient_failure,converged,mode,state,multipliers,max_multiplier,"
+         "stable,gait,period,speed,dissipated_per_cycle,residual,iterations,failure";
+}
+
+std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
+  const Config c = sweep_point_config(base, spec, i);
+  const WheelParams w = wheel_from_config(c);
+  const InitialState initial = initial_from_config(c);
+  SimulationOptions sim = simulation_from_config(c);
+  const AnalysisOptions opt = analysis_from_config(c);
+  const Model model = c.choice("sim.model") == "rigid" ? Model::Rigid : Model::Flexible;
+  sim.log = false;
+  sim.steps = std::max(1, opt.transient_steps);
+  const SimulationResult r = model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
+  std::string transient_gait;
+  for (const auto& s : r.steps)
+    if (s.complete) transient_gait = gait_label(s.single_support);
+
+  std::string row = fmt::format("{},{},{},{}", format_number(spec.value(i)), transient_gait, format_number(r.mean_speed),
+                                csv_safe(r.failure.value_or("")));
+  const FixedPointReport fp = find_fixed_point(w, sim, opt, model, spec.section, initial);
+  std::string state, mult;
+  double max_mult = 0;
+  for (Eigen::Index k = 0; k < fp.point.z.size(); ++k) state += (k ? ";" : "") + format_number(fp.point.z(k));
+  for (std::size_t k = 0; k < fp.multipliers.size(); ++k) {
+    mult += fmt::format("{}{}:{}", k ? ";" : "", format_number(fp.multipliers[k].real()),
+                        format_number(fp.multipliers[k].imag()));
+    max_mult = std::max(max_mult, std::abs(fp.multipliers[k]));
+  }
+  row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", fp.converged ? "true" : "false",
+                     fp.point.flight ? "flight" : mode_name(fp.point.mode), state, mult, format_number(max_mult),
+                     fp.stable ? "true" : "false", fp.gait, format_number(fp.period), format_number(fp.speed),
+                     format_number(fp.dissipated), format_number(fp.residual), fp.iterations, csv_safe(fp.failure));
+  return row;
+}
+
+}  // namespace flexgait::rimless

@@ -1,0 +1,32 @@
+#pragma once
+/// \file sweep.hpp
+/// One point of a parameter sweep of the rimless wheel: the gait reached from the initial state,
+/// the fixed point of the Poincaré map near it, its multipliers, stability, speed and energy per
+/// step. Points are independent, so a sweep runs them on all cores (core/sweep_runner.hpp).
+#include <string>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/rimless/poincare.hpp"
+
+namespace flexgait::rimless {
+
+struct SweepSpec {
+  std::string param;   ///< a configuration key, or "rimless.mu" for mu_s = mu_k
+  double from = 0, to = 0;
+  int count = 1;
+  Section section = Section::Touchdown;
+
+  double value(int i) const { return count == 1 ? from : from + (to - from) * i / (count - 1); }
+};
+
+/// Throws ConfigError if the key is unknown or not a real number.
+void check_sweep_param(const Schema& schema, const std::string& param);
+
+/// The configuration of point i (validated).
+Config sweep_point_config(const Config& base, const SweepSpec& spec, int i);
+
+/// CSV header and cells of one point (no index). Thread-safe.
+std::string sweep_header();
+std::string sweep_row(const Config& base, const SweepSpec& spec, int i);
+
+}  // namespace flexgait::rimless
