@@ -52,8 +52,11 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
       return r;
     }
     const Eigen::MatrixXd A = r.jacobian - Eigen::MatrixXd::Identity(n, n);
+    // J - I is singular when a multiplier is 1 (relative to the Jacobian's own size).
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);
+    const double jnorm = std::max(1.0, r.jacobian.lpNorm<Eigen::Infinity>());
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
-    if (!lu.isInvertible()) {
+    if (svd.singularValues().minCoeff() < 1e-10 * jnorm) {
       r.failure = "singular Newton matrix (a multiplier equals 1): no isolated fixed point";
       r.iterations = it;
       return r;

@@ -154,7 +154,14 @@ MapStep PoincareMap::apply(const SectionState& p) {
   using S = StateIndex;
   out.period = hit.t;
   out.distance = hit.state[S::x] - spec.y0[S::x];
+  // Energy that left the wheel's body: dissipated, or still stored in relaxing free legs (which
+  // the reduced state drops; see the header). On a periodic orbit it equals m g sin φ Δx.
   out.dissipated = hit.state[S::w_damp] + hit.state[S::w_fric];
+  for (int k = 0; k < w_.legs; ++k) {
+    if (hit.contacts.find(k) >= 0) continue;
+    const double d = hit.state[static_cast<std::size_t>(S::free_delta + k)];
+    out.dissipated += 0.5 * w_.K * d * d;
+  }
   out.jams = r.jams;
   if (section_ == Section::Touchdown || r.steps.size() < 2) {
     out.gait = r.steps.empty() ? "" : gait_label(r.steps.front().single_support);

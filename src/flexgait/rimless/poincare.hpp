@@ -56,7 +56,8 @@ struct MapStep {
   std::string gait;                    ///< stance-foot phases over the cycle
   double period = 0;                   ///< time between the crossings [s]
   double distance = 0;                 ///< hub travel along the slope [m]
-  double dissipated = 0;               ///< W_damp + W_fric over the cycle [J]
+  double dissipated = 0;               ///< energy that left the body over the cycle [J]: W_damp + W_fric
+                                       ///< + the free legs' spring energy at the end
   int jams = 0;
 };
 
