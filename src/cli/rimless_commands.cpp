@@ -6,6 +6,8 @@
 
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/sweep_runner.hpp"
+#include "flexgait/core/text.hpp"
+#include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
@@ -139,10 +141,8 @@ int sweep(const SweepArgs& a) {
   rimless::SweepSpec spec{a.param, a.from, a.to, a.count,
                           a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown};
   for (int i = 0; i < spec.count; ++i) rimless::sweep_point_config(s.config, spec, i);  // every point valid first
-  const RunDirectory dir(a.run.out);
-  dir.write_config(s.config);
   SweepJob job;
-  job.dir = dir.path();
+  job.dir = a.run.out;
   job.header = rimless::sweep_header();
   job.count = spec.count;
   job.jobs = a.jobs;
@@ -151,11 +151,94 @@ int sweep(const SweepArgs& a) {
                               a.section, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
+  check_resumable(job);
+  const RunDirectory dir(a.run.out);
+  dir.write_config(s.config);
   const SweepOutcome out = run_sweep(job);
   if (a.run.plot) run_plot_script("plot_sweep.py", {dir.path().string(), spec.param});
   fmt::print("sweep of {} over [{}, {}], {} points: {} computed, {} resumed, {:.2f} s\n", spec.param, spec.from, spec.to,
              spec.count, out.computed, out.resumed, out.seconds);
   fmt::print("results in {}\n", (dir.path() / "sweep.csv").string());
+  return 0;
+}
+
+struct AnalysisArgs {
+  RunOptions run;
+  std::string name;
+  std::vector<double> mus;
+  double from = 0, to = 0;
+  int count = 0;
+  int jobs = 0;
+  bool resume = false;
+  std::string section = "touchdown";
+};
+
+int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
+  const WheelSetup s = wheel_setup(analysis_command_schema(), a.run, {});
+  const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+  auto mus = [&](std::vector<double> fallback) { return a.mus.empty() ? fallback : a.mus; };
+  auto range = [&](double lo, double hi, int n) {
+    return std::make_tuple(cmd.count("--from") ? a.from : lo, cmd.count("--to") ? a.to : hi, cmd.count("--count") ? a.count : n);
+  };
+  const RunDirectory dir(a.run.out);
+  dir.write_config(s.config);
+  std::vector<std::string> files;
+  if (a.name == "gait-vs-friction") {
+    const auto [lo, hi, n] = range(0.1, 1.5, 100);
+    rimless::SweepSpec spec{"rimless.mu", lo, hi, n, section};
+    SweepJob job;
+    job.dir = dir.path();
+    job.header = rimless::sweep_header();
+    job.count = n;
+    job.jobs = a.jobs;
+    job.resume = a.resume;
+    job.signature = fmt::format("gait-vs-friction {} {} {} {}\n{}", lo, hi, n, a.section, s.config.to_yaml());
+    const Config base = s.config;
+    job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
+    run_sweep(job);
+    // Thresholds from the sweep's gaits, refined by bisection.
+    std::vector<std::pair<double, std::string>> points;
+    for (int i = 0; i < n; ++i) points.emplace_back(spec.value(i), rimless::gait_at_friction(base, spec.value(i), section));
+    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, points, section, 1e-4));
+    files = {"sweep.csv", "thresholds.csv"};
+  } else if (a.name == "energy") {
+    dir.write("energy.csv", rimless::single_support_energy_csv(s.config, mus({0.6, 0.105})));
+    files = {"energy.csv"};
+  } else if (a.name == "fixed-points") {
+    dir.write("fixed_points.csv", rimless::behaviour_fixed_points_csv(s.config, mus({0.105, 0.13, 0.2, 0.6}), section));
+    files = {"fixed_points.csv"};
+  } else if (a.name == "robustness") {
+    std::vector<double> eps;
+    for (int k = 0; k <= 12; ++k) eps.push_back(1e-3 * std::pow(10.0, k / 4.0));
+    std::string text;
+    for (double mu : mus({0.105, 0.6})) {
+      const std::string part = rimless::robustness_csv(s.config, mu, eps, 300);
+      text += text.empty() ? part : part.substr(part.find('\n') + 1);
+    }
+    dir.write("robustness.csv", text);
+    files = {"robustness.csv"};
+  } else {  // stagnation
+    const auto [lo, hi, n] = range(0.05, 2.0, 80);
+    SweepJob job;
+    job.dir = dir.path();
+    job.name = "stagnation";
+    job.header = rimless::stagnation_header();
+    job.count = n;
+    job.jobs = a.jobs;
+    job.resume = a.resume;
+    job.signature = fmt::format("stagnation {} {} {}\n{}", lo, hi, n, s.config.to_yaml());
+    const Config base = s.config;
+    const double window = 0.05;
+    const double l = lo, h = hi;
+    const int cnt = n;
+    job.row = [base, l, h, cnt, window](int i) {
+      return rimless::stagnation_row(base, cnt == 1 ? l : l + (h - l) * i / (cnt - 1), window);
+    };
+    run_sweep(job);
+    files = {"stagnation.csv"};
+  }
+  if (a.run.plot) run_plot_script("plot_analysis.py", {a.name, dir.path().string()});
+  for (const auto& f : files) fmt::print("wrote {}\n", (dir.path() / f).string());
   return 0;
 }
 
@@ -201,6 +284,27 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   swc->add_option("--section", sw->section, "Poincare section of the fixed points")
       ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
   swc->callback([sw, &action] { action = [sw] { return sweep(*sw); }; });
+
+  auto an = std::make_shared<AnalysisArgs>();
+  CLI::App* anc = rimless->add_subcommand(
+      "analysis", "The paper's analyses, each a CSV and a PNG: gait-vs-friction (behaviours and thresholds), energy "
+                  "(single support, stick against slip), fixed-points (the four behaviours), robustness (of the "
+                  "sliding gait), stagnation (paper Fig. 12)");
+  add_run_options(*anc, an->run, "runs/rimless-analysis");
+  anc->add_option("name", an->name, "which analysis")
+      ->required()
+      ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation"}));
+  anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k) for energy, fixed-points, robustness")
+      ->delimiter(',');
+  anc->add_option("--from", an->from, "first value: mu (gait-vs-friction, default 0.1) or omega0 in rad/s (stagnation, default 0.05)");
+  anc->add_option("--to", an->to, "last value: mu (default 1.5) or omega0 in rad/s (default 2.0)");
+  anc->add_option("--count", an->count, "number of values (default 100 for gait-vs-friction, 80 for stagnation)")
+      ->check(CLI::Range(1, 1000000));
+  anc->add_option("--jobs", an->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+  anc->add_flag("--resume", an->resume, "keep the finished points of an interrupted run in --out");
+  anc->add_option("--section", an->section, "Poincare section of the fixed points")
+      ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
+  anc->callback([an, anc, &action] { action = [an, anc] { return analysis(*an, *anc); }; });
 }
 
 }  // namespace flexgait::cli

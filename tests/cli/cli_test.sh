@@ -63,5 +63,37 @@ if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
   FLEXGAIT_PLOT_DIR="$src/python" "$exe" rimless simulate --steps 3 --out "$work/plot" >/dev/null 2>&1
   check "plot written as PNG" sh -c "head -c 8 '$work/plot/rimless.png' | grep -q PNG"
 fi
+# Fixed points and sweeps.
+"$exe" rimless fixed-point --out "$work/fp" --json --no-plot >"$work/fp.json" 2>"$work/err"
+check "fixed-point exits 0: $(cat "$work/err")" test $? -eq 0
+for key in converged iterations residual state multipliers stable gait; do
+  check "fixed-point JSON has $key" grep -q "\"$key\"" "$work/fp.json"
+done
+check "fixed point converged" grep -q '"converged": true' "$work/fp.json"
+"$exe" rimless fixed-point --model rigid --section upright --out "$work/fpr" --json --no-plot >"$work/fpr.json" 2>&1
+check "rigid fixed point converged" grep -q '"converged": true' "$work/fpr.json"
+expect_usage_error sweep-bad-param "rimless.nope" rimless sweep --param rimless.nope --from 0 --to 1 --count 3
+expect_usage_error sweep-bad-value "rimless.K" rimless sweep --param rimless.K --from -1 --to 1 --count 3
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --jobs 2 --out "$work/sweep_full" --no-plot >/dev/null 2>&1
+check "sweep writes sweep.csv with 6 points" test "$(wc -l <"$work/sweep_full/sweep.csv")" -eq 7
+# Kill a sweep part-way, resume it, and compare with the one run through.
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --jobs 1 --out "$work/sweep_killed" --no-plot >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 200); do
+  [ -s "$work/sweep_killed/sweep.partial.csv" ] && break
+  sleep 0.01
+done
+kill -9 "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --jobs 2 --resume --out "$work/sweep_killed" --no-plot >/dev/null 2>&1
+check "killed and resumed sweep equals the one run through" cmp -s "$work/sweep_full/sweep.csv" "$work/sweep_killed/sweep.csv"
+expect_usage_error resume-other-sweep "--resume" rimless sweep --param rimless.mu --from 0.3 --to 0.6 --count 6 --resume
+for name in fixed-points energy; do
+  "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
+  check "analysis $name exits 0: $(cat "$work/err")" test $? -eq 0
+done
+"$exe" rimless analysis stagnation --count 4 --from 1.4 --to 1.6 --out "$work/an_stag" --no-plot >/dev/null 2>&1
+check "stagnation writes 4 points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 5
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

@@ -67,21 +67,24 @@ class Progress {
 
 }  // namespace
 
+void check_resumable(const SweepJob& job) {
+  if (!job.resume) return;
+  const auto signature = job.dir / (job.name + ".signature");
+  if (!std::filesystem::exists(signature))
+    throw std::invalid_argument(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
+  if (read_text(signature) != job.signature)
+    throw std::invalid_argument(fmt::format("--resume: {} holds a different sweep (see {})", job.dir.string(),
+                                            signature.string()));
+}
+
 SweepOutcome run_sweep(const SweepJob& job) {
+  check_resumable(job);
   std::filesystem::create_directories(job.dir);
   const auto partial = job.dir / (job.name + ".partial.csv");
   const auto signature = job.dir / (job.name + ".signature");
   const auto final_csv = job.dir / (job.name + ".csv");
   std::map<int, std::string> rows;
-  if (std::filesystem::exists(signature)) {
-    if (read_text(signature) != job.signature) {
-      if (job.resume) throw std::invalid_argument(fmt::format("--resume: {} holds a different sweep ({})", job.dir.string(), signature.string()));
-    } else if (job.resume) {
-      rows = read_partial(partial, job.count);
-    }
-  } else if (job.resume) {
-    throw std::invalid_argument(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
-  }
+  if (job.resume) rows = read_partial(partial, job.count);
   if (!job.resume) std::filesystem::remove(partial);
   write_file_atomic(signature, job.signature);
   // Rewrite the partial file with only complete rows, so a torn line does not linger.

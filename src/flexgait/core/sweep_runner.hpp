@@ -27,8 +27,11 @@ struct SweepOutcome {
   double seconds = 0;
 };
 
-/// Runs the job. Throws std::invalid_argument when resuming a sweep with another signature, and
-/// std::runtime_error when the directory already holds a different sweep without --resume.
+/// Throws std::invalid_argument if `job.resume` is set but its directory holds no sweep with the
+/// same signature. Call it before writing anything.
+void check_resumable(const SweepJob& job);
+
+/// Runs the job (after check_resumable). Without resume an earlier sweep in the directory is replaced.
 SweepOutcome run_sweep(const SweepJob& job);
 
 }  // namespace flexgait

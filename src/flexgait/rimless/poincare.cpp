@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "flexgait/rimless/rigid_wheel.hpp"
 
@@ -109,7 +110,7 @@ PoincareMap::PoincareMap(const WheelParams& w, const SimulationOptions& options,
 PoincareMap::~PoincareMap() = default;
 PoincareMap::PoincareMap(PoincareMap&&) noexcept = default;
 
-MapStep PoincareMap::apply(const SectionState& p) {
+MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
   MapStep out;
   out.next = p;
   if (model_ == Model::Rigid) {
@@ -133,7 +134,13 @@ MapStep PoincareMap::apply(const SectionState& p) {
   spec.steps = 3;  // a cycle between two crossings holds one touchdown (upright) or none (touchdown)
   SectionHit hit;
   hit.leg = -1;
-  const SimulationResult r = sim_->run(spec, &hit);
+  SimulationResult r;
+  try {
+    r = sim_->run(spec, &hit);
+  } catch (const std::invalid_argument& e) {  // e.g. a perturbed point with a foot below the ground
+    out.failure = std::string("infeasible section point: ") + e.what();
+    return out;
+  }
   if (r.failure) {
     out.failure = *r.failure;
     return out;
@@ -146,7 +153,7 @@ MapStep PoincareMap::apply(const SectionState& p) {
     out.failure = *e;
     return out;
   }
-  if (out.next.flight != p.flight || out.next.mode != p.mode) {
+  if (keep_mode && (out.next.flight != p.flight || out.next.mode != p.mode)) {
     out.failure = fmt::format("arrived at the section in another mode ({} instead of {})", mode_text(out.next),
                               mode_text(p));
     return out;

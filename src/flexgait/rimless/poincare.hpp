@@ -67,8 +67,9 @@ class PoincareMap {
   PoincareMap(const WheelParams& w, const SimulationOptions& options, Model model, Section section);
   ~PoincareMap();
   PoincareMap(PoincareMap&&) noexcept;
-  /// P(point). The map keeps the discrete mode: arriving in another mode is a failure.
-  MapStep apply(const SectionState& point);
+  /// P(point). The map keeps the discrete mode: arriving in another mode is a failure, unless
+  /// `keep_mode` is false (then `next` carries the mode it arrived in: for following transients).
+  MapStep apply(const SectionState& point, bool keep_mode = true);
   /// The map as a VectorMap on z with the discrete part of `like` (for Newton).
   std::optional<std::string> operator()(const SectionState& like, const Eigen::VectorXd& z, Eigen::VectorXd& out);
   Model model() const { return model_; }

@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""Figure of a rimless-wheel parameter sweep: gait, largest multiplier, speed and energy per cycle.
+
+Usage: plot_sweep.py RUN_DIR PARAM   (reads RUN_DIR/sweep.csv; writes RUN_DIR/sweep.png atomically)
+"""
+import csv
+import os
+import sys
+import tempfile
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+GAIT_ORDER = ["slip", "slip-stick-slip", "slip-stick", "stick-slip", "stick"]
+
+
+def main(run_dir, param):
+    with open(os.path.join(run_dir, "sweep.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    x = [float(r["value"]) for r in rows]
+    ok = [r["converged"] == "true" for r in rows]
+    gaits = [r["gait"] if r["converged"] == "true" else (r["transient_gait"] or "none") for r in rows]
+    order = GAIT_ORDER + sorted({g for g in gaits if g not in GAIT_ORDER})
+    fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True, constrained_layout=True)
+    ax = axes[0]
+    for conv, marker, label in ((True, "o", "fixed point found"), (False, "x", "no fixed point (transient gait)")):
+        xs = [xi for xi, c in zip(x, ok) if c == conv]
+        ys = [order.index(g) for g, c in zip(gaits, ok) if c == conv]
+        ax.scatter(xs, ys, marker=marker, label=label)
+    ax.set_yticks(range(len(order)))
+    ax.set_yticklabels(order)
+    ax.set_title("Gait (stance-foot phases in single support)")
+    ax.legend(loc="best")
+    ax = axes[1]
+    xs = [xi for xi, c in zip(x, ok) if c]
+    ax.plot(xs, [float(r["max_multiplier"]) for r in rows if r["converged"] == "true"], "o-")
+    ax.axhline(1.0, color="k", lw=0.8, ls="--")
+    ax.set_ylabel("largest |multiplier|")
+    ax = axes[2]
+    ax.plot(xs, [float(r["speed"]) for r in rows if r["converged"] == "true"], "o-")
+    ax.set_ylabel("speed on the orbit [m/s]")
+    ax = axes[3]
+    ax.plot(xs, [float(r["dissipated_per_cycle"]) for r in rows if r["converged"] == "true"], "o-")
+    ax.set_ylabel("energy per step [J]")
+    ax.set_xlabel(param)
+    fd, tmp = tempfile.mkstemp(dir=run_dir, prefix=".sweep.png.", suffix=".png")
+    os.close(fd)
+    fig.savefig(tmp, dpi=100)
+    os.replace(tmp, os.path.join(run_dir, "sweep.png"))
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.stderr.write(__doc__)
+        sys.exit(2)
+    main(sys.argv[1], sys.argv[2])

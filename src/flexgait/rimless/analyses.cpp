@@ -1,0 +1,191 @@
+#include "flexgait/rimless/analyses.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "flexgait/core/text.hpp"
+#include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/sweep.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+Config with_mu(const Config& base, double mu) {
+  SweepSpec spec{"rimless.mu", mu, mu, 1};
+  return sweep_point_config(base, spec, 0);
+}
+
+struct Setup {
+  WheelParams w;
+  InitialState initial;
+  SimulationOptions sim;
+  AnalysisOptions opt;
+};
+
+Setup setup(const Config& c) {
+  Setup s{wheel_from_config(c), initial_from_config(c), simulation_from_config(c), analysis_from_config(c)};
+  validate(s.w, s.initial);
+  return s;
+}
+
+std::string multipliers_text(const FixedPointReport& r, double& largest) {
+  std::string m;
+  largest = 0;
+  for (std::size_t k = 0; k < r.multipliers.size(); ++k) {
+    m += fmt::format("{}{}:{}", k ? ";" : "", format_number(r.multipliers[k].real()),
+                     format_number(r.multipliers[k].imag()));
+    largest = std::max(largest, std::abs(r.multipliers[k]));
+  }
+  return m;
+}
+
+std::string state_text(const Eigen::VectorXd& z) {
+  std::string s;
+  for (Eigen::Index k = 0; k < z.size(); ++k) s += (k ? ";" : "") + format_number(z(k));
+  return s;
+}
+
+}  // namespace
+
+std::string gait_at_friction(const Config& base, double mu, Section section) {
+  const Setup s = setup(with_mu(base, mu));
+  const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, section, s.initial);
+  if (r.converged) return r.gait;
+  SimulationOptions o = s.sim;
+  o.log = false;
+  o.steps = std::max(1, s.opt.transient_steps);
+  const SimulationResult t = simulate_flexible(s.w, s.initial, o);
+  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it)
+    if (it->complete) return gait_label(it->single_support) + " (no fixed point)";
+  return "none";
+}
+
+std::string friction_thresholds_csv(const Config& base, const std::vector<std::pair<double, std::string>>& points,
+                                    Section section, double tolerance) {
+  CsvWriter csv({"mu_low", "mu_high", "gait_below", "gait_above", "threshold"});
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+    if (points[i].second == points[i + 1].second) continue;
+    double lo = points[i].first, hi = points[i + 1].first;
+    const std::string below = points[i].second, above = points[i + 1].second;
+    while (hi - lo > tolerance) {
+      const double mid = 0.5 * (lo + hi);
+      const std::string g = gait_at_friction(base, mid, section);
+      if (g == below) lo = mid;
+      else if (g == above) hi = mid;
+      else break;  // a third behaviour in between: keep the bracket as found
+    }
+    csv.cell(points[i].first).cell(points[i + 1].first).cell(csv_safe(below)).cell(csv_safe(above)).cell(0.5 * (lo + hi));
+    csv.end_row();
+  }
+  return csv.str();
+}
+
+std::string single_support_energy_csv(const Config& base, const std::vector<double>& mus) {
+  CsvWriter csv({"mu", "gait", "phase", "t", "beta", "E_kinetic", "E_total_minus_start"});
+  for (double mu : mus) {
+    const Setup s = setup(with_mu(base, mu));
+    const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, Section::Touchdown, s.initial);
+    if (!r.converged) continue;
+    SimulationOptions o = s.sim;
+    o.log = true;
+    o.rtol = s.opt.rtol;
+    o.atol = s.opt.atol;
+    FlexibleWheelSimulator sim(s.w, o);
+    RunSpec spec = section_run(s.w, r.point);
+    spec.stop_at = Section::Touchdown;
+    spec.steps = 3;
+    const SimulationResult run = sim.run(spec);
+    if (run.samples.empty()) continue;
+    const int stance = s.w.legs - 1;  // the leg landing at the section
+    const double e0 = run.samples.front().energy.total();
+    for (const LogSample& smp : run.samples) {
+      const ContactSample& c = smp.contact[0];
+      if (c.leg != stance || smp.contact[1].leg >= 0) continue;  // single support on the stance leg only
+      const double beta = leg_angle(s.w, stance, smp.q[2]);
+      csv.cell(mu).cell(r.gait).cell(c.mode == FootMode::Stick ? "stick" : "slip").cell(smp.t).cell(beta);
+      csv.cell(smp.energy.kinetic).cell(smp.energy.total() - e0).end_row();
+    }
+  }
+  return csv.str();
+}
+
+std::string behaviour_fixed_points_csv(const Config& base, const std::vector<double>& mus, Section section) {
+  CsvWriter csv({"mu", "gait", "converged", "mode", "state", "max_multiplier", "multipliers", "stable", "period",
+                 "speed", "dissipated_per_cycle", "failure"});
+  for (double mu : mus) {
+    const Setup s = setup(with_mu(base, mu));
+    const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, section, s.initial);
+    double largest = 0;
+    const std::string m = multipliers_text(r, largest);
+    csv.cell(mu).cell(r.gait).cell(r.converged ? "true" : "false").cell(r.point.flight ? "flight" : mode_name(r.point.mode));
+    csv.cell(state_text(r.point.z)).cell(largest).cell(m).cell(r.stable ? "true" : "false").cell(r.period);
+    csv.cell(r.speed).cell(r.dissipated).cell(csv_safe(r.failure)).end_row();
+  }
+  return csv.str();
+}
+
+std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps) {
+  CsvWriter csv({"mu", "component", "sign", "epsilon", "returned", "steps", "failure"});
+  const Setup s = setup(with_mu(base, mu));
+  const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, Section::Touchdown, s.initial);
+  if (!r.converged) return csv.str();
+  SimulationOptions o = s.sim;
+  o.rtol = s.opt.rtol;
+  o.atol = s.opt.atol;
+  PoincareMap map(s.w, o, Model::Flexible, Section::Touchdown);
+  const Eigen::VectorXd scale = r.point.scale(s.w);
+  const auto names = r.point.names();
+  for (Eigen::Index i = 0; i < r.point.z.size(); ++i) {
+    for (int sign : {+1, -1}) {
+      for (double eps : epsilons) {
+        SectionState p = r.point;
+        p.z(i) += sign * eps * scale(i);
+        int steps = 0;
+        bool returned = false;
+        std::string failure;
+        for (; steps < max_steps; ++steps) {
+          const MapStep m = map.apply(p, /*keep_mode=*/false);  // a transient may change modes
+          if (m.failure) {
+            failure = *m.failure;
+            break;
+          }
+          p = m.next;
+          const bool same_mode = p.flight == r.point.flight && p.mode == r.point.mode;
+          if (same_mode && ((p.z - r.point.z).cwiseQuotient(scale)).lpNorm<Eigen::Infinity>() < 1e-6) {
+            returned = true;
+            ++steps;
+            break;
+          }
+        }
+        csv.cell(mu).cell(names[static_cast<std::size_t>(i)]).cell(static_cast<long long>(sign)).cell(eps);
+        csv.cell(returned ? "true" : "false").cell(static_cast<long long>(steps)).cell(csv_safe(failure)).end_row();
+      }
+    }
+  }
+  return csv.str();
+}
+
+std::string stagnation_header() { return "omega0,slide_time_upright,steps,final_energy,failure"; }
+
+std::string stagnation_row(const Config& base, double omega0, double beta_window) {
+  Config c = base;
+  c.set("initial.omega", format_number(omega0), "stagnation sweep");
+  const Setup s = setup(c);
+  SimulationOptions o = s.sim;
+  o.log = true;
+  const SimulationResult r = simulate_flexible(s.w, s.initial, o);
+  // Sliding near upright during the first step, the one the initial energy decides.
+  const double t_first = !r.steps.empty() && r.steps.front().complete ? r.steps.front().t_end : r.t_final;
+  double slide = 0;
+  for (std::size_t i = 0; i + 1 < r.samples.size() && r.samples[i].t < t_first; ++i) {
+    const LogSample& a = r.samples[i];
+    if (a.contact[0].leg < 0 || a.contact[1].leg >= 0 || a.contact[0].mode == FootMode::Stick) continue;
+    if (std::abs(leg_angle(s.w, a.contact[0].leg, a.q[2])) < beta_window) slide += r.samples[i + 1].t - a.t;
+  }
+  const LogSample& last = r.samples.back();
+  return fmt::format("{},{},{},{},{}", format_number(omega0), format_number(slide), r.steps_completed,
+                     format_number(last.energy.kinetic + last.energy.spring), csv_safe(r.failure.value_or("")));
+}
+
+}  // namespace flexgait::rimless
