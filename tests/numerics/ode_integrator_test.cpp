@@ -21,9 +21,18 @@ class Oscillator final : public OdeSystem {
   void guards(double, std::span<const double> y, std::span<double> g) override { g[0] = y[0] - 0.5; }
 };
 
+OdeOptions tight(OdeMethod method = OdeMethod::Adams, bool sensitivities = false) {
+  OdeOptions o;
+  o.rtol = 1e-12;
+  o.atol = 1e-14;
+  o.method = method;
+  o.sensitivities = sensitivities;
+  return o;
+}
+
 std::vector<double> crossings(OdeMethod method, int direction, double t_end) {
   Oscillator osc;
-  OdeIntegrator integ(osc, 2, {1e-12, 1e-14, 0.0, method, 100000});
+  OdeIntegrator integ(osc, 2, tight(method));
   const std::vector<double> y0{1.0, 0.0};
   const std::vector<int> dirs{direction};
   integ.restart(0.0, y0, dirs);
@@ -54,7 +63,7 @@ TEST(OdeIntegrator, LocatesCrossingsToAnalyticTimes) {
 
 TEST(OdeIntegrator, GuardAtZeroOnRestartDoesNotFireThere) {
   Oscillator osc;
-  OdeIntegrator integ(osc, 2, {1e-12, 1e-14, 0.0, OdeMethod::Adams, 100000});
+  OdeIntegrator integ(osc, 2, tight());
   // Start exactly on the guard (y0 = 0.5, moving down): CVODE must not report t = 0.
   const std::vector<double> y0{0.5, -std::sqrt(0.75)};
   const std::vector<int> dirs{0};
@@ -68,7 +77,7 @@ TEST(OdeIntegrator, GuardAtZeroOnRestartDoesNotFireThere) {
 
 TEST(OdeIntegrator, DenseOutputMatchesTheSolution) {
   Oscillator osc;
-  OdeIntegrator integ(osc, 2, {1e-12, 1e-14, 0.0, OdeMethod::Adams, 100000});
+  OdeIntegrator integ(osc, 2, tight());
   const std::vector<double> y0{1.0, 0.0};
   integ.restart(0.0, y0, std::vector<int>{});
   std::vector<double> y(2);
@@ -81,6 +90,25 @@ TEST(OdeIntegrator, DenseOutputMatchesTheSolution) {
     t_prev = integ.time();
   }
   EXPECT_GT(integ.stats().steps, 10);
+}
+
+// Forward sensitivities of the oscillator: ∂y(t)/∂y(0) is the rotation by -t.
+TEST(OdeIntegrator, SensitivitiesOfTheOscillatorAreARotation) {
+  Oscillator osc;
+  OdeIntegrator integ(osc, 2, tight(OdeMethod::Adams, true));
+  const std::vector<double> y0{0.3, -0.7};
+  const std::vector<double> S0{1.0, 0.0, 0.0, 1.0};  // column-major identity
+  integ.restart(0.0, y0, std::vector<int>{}, S0);
+  while (integ.step(2.0) != StepStatus::StopTime) {
+  }
+  std::vector<double> S(4);
+  integ.sensitivities(S);
+  const double c = std::cos(2.0), s = std::sin(2.0);
+  // y(t) = [[c, s], [-s, c]] y0; column-major S = (c, -s, s, c). Tolerance: rtol 1e-12 over a third of a period.
+  EXPECT_NEAR(S[0], c, 1e-9);
+  EXPECT_NEAR(S[1], -s, 1e-9);
+  EXPECT_NEAR(S[2], s, 1e-9);
+  EXPECT_NEAR(S[3], c, 1e-9);
 }
 
 }  // namespace

@@ -27,7 +27,10 @@ class Segment final : public numerics::OdeSystem {
 // First downward crossing of any guard after t0, by bisection on the dense output [s].
 double bisect_next_event(const WheelParams& w, const Restart& start, double t_limit) {
   Segment seg(w, start.contacts);
-  numerics::OdeIntegrator integ(seg, state_size(w), {1e-10, 1e-12, 0.0, numerics::OdeMethod::Adams, 1000000});
+  numerics::OdeOptions opt;
+  opt.rtol = 1e-10;
+  opt.atol = 1e-12;
+  numerics::OdeIntegrator integ(seg, state_size(w), opt);
   integ.restart(start.t, start.state, std::vector<int>{});
   const std::size_t n = static_cast<std::size_t>(guard_count(w));
   std::vector<double> g0(n), g1(n), gm(n), y(start.state.size());

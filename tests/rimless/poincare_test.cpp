@@ -48,9 +48,9 @@ TEST_P(FlexibleFixedPoint, MapsToItselfAndAttractsPerturbations) {
   const FixedPointReport r = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, InitialState{});
   ASSERT_TRUE(r.converged) << r.failure;
   EXPECT_EQ(r.gait, GetParam().label);
-  SimulationOptions map_opt = sim;
-  map_opt.rtol = 1e-12;
-  map_opt.atol = 1e-14;
+  SimulationOptions map_opt = sim;  // exactly the map Newton solved on
+  map_opt.rtol = analysis().rtol;
+  map_opt.atol = analysis().atol;
   PoincareMap map(w, map_opt, Model::Flexible, Section::Touchdown);
   const MapStep once = map.apply(r.point);
   ASSERT_FALSE(once.failure.has_value()) << *once.failure;
@@ -74,6 +74,34 @@ INSTANTIATE_TEST_SUITE_P(FourBehaviours, FlexibleFixedPoint,
                          ::testing::Values(Gait{0.105, "slip"}, Gait{0.13, "slip-stick-slip"},
                                            Gait{0.2, "slip-stick"}, Gait{0.6, "stick"}),
                          [](const auto& info) { return "mu" + std::to_string(static_cast<int>(info.param.mu * 1000)); });
+
+// The variational Jacobian (forward sensitivities, saltation matrices) agrees with finite
+// differences of the map to 1e-6 (the bound), for every behaviour, through jam impulses,
+// on both sections. The reference is central differences of a map integrated at rtol 1e-13,
+// h = 3e-5 of each component's scale: measured, its error is the map's integration noise
+// (~5e-11 at rtol 1e-12, ~5e-12 at 1e-13) over h plus a curvature term ~2e-6 (h / 1e-4)²,
+// i.e. below 5e-7 here; at rtol 1e-12 the noise alone reaches 3e-6.
+TEST(Poincare, VariationalJacobianMatchesFiniteDifferences) {
+  for (double mu : {0.105, 0.13, 0.2, 0.6, 5.0}) {
+    for (Section section : {Section::Touchdown, Section::Upright}) {
+      if (section == Section::Upright && mu != 0.13) continue;  // one upright case keeps the test short
+      const WheelParams w = testing::measured_wheel(mu);
+      const SimulationOptions sim = testing::run_options(1);
+      const auto r = find_fixed_point(w, sim, analysis(), Model::Flexible, section, {});
+      ASSERT_TRUE(r.converged) << r.failure;
+      ASSERT_TRUE(r.jacobian_exact) << r.jacobian_note;
+      SimulationOptions map_opt = sim;
+      map_opt.rtol = 1e-13;
+      map_opt.atol = 1e-16;
+      PoincareMap map(w, map_opt, Model::Flexible, section);
+      const numerics::VectorMap P = [&](const Eigen::VectorXd& z, Eigen::VectorXd& out) { return map(r.point, z, out); };
+      Eigen::MatrixXd reference;
+      const auto failure = numerics::central_difference_jacobian(P, r.point.z, 3e-5 * r.point.scale(w), reference);
+      ASSERT_FALSE(failure.has_value()) << *failure;
+      EXPECT_LE((r.jacobian - reference).lpNorm<Eigen::Infinity>(), 1e-6) << "mu = " << mu << ", " << section_name(section);
+    }
+  }
+}
 
 // The multipliers are a property of the orbit, not of the section: both sections agree.
 TEST(Poincare, MultipliersDoNotDependOnTheSection) {

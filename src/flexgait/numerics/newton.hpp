@@ -19,7 +19,9 @@ using VectorMap = std::function<std::optional<std::string>(const Eigen::VectorXd
 struct NewtonOptions {
   double tolerance = 1e-10;    ///< converged when ||P(z) - z||_inf <= tolerance (state units)
   int max_iterations = 30;
-  double fd_relative_step = 1e-5;  ///< central-difference step h_i = this · max(|z_i|, scale_i)
+  /// Central-difference step h_i = this · max(|z_i|, scale_i). 3e-5 balances the map's integration
+  /// noise (~1e-11 at rtol 1e-12) against the truncation error (measured ~170 h² on the wheel).
+  double fd_relative_step = 3e-5;
   double min_damping = 1.0 / 1024; ///< smallest line-search factor before giving up
 };
 

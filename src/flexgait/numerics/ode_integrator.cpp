@@ -1,12 +1,13 @@
 #include "flexgait/numerics/ode_integrator.hpp"
 
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +20,10 @@ struct OdeIntegrator::Impl {
   SUNContext ctx = nullptr;
   void* cvode = nullptr;
   N_Vector y = nullptr;
+  N_Vector* yS = nullptr;  // sensitivity columns (n of them) when enabled
+  N_Vector work = nullptr; // scratch for the sensitivity right-hand side
+  N_Vector work2 = nullptr;
+  SUNNonlinearSolver sens_solver = nullptr;
   SUNMatrix jac = nullptr;
   SUNLinearSolver linear_solver = nullptr;
   SUNNonlinearSolver nonlinear_solver = nullptr;
@@ -48,6 +53,31 @@ struct OdeIntegrator::Impl {
     const std::span<double> yd(N_VGetArrayPointer(ydot), static_cast<std::size_t>(self->n));
     return self->system->rhs(t, ys, yd) ? 0 : 1;  // 1: recoverable, CVODE retries a smaller step
   }
+  static int linearization_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
+    const std::span<double> yd(N_VGetArrayPointer(ydot), static_cast<std::size_t>(self->n));
+    return self->system->linearization_rhs(t, ys, yd) ? 0 : 1;
+  }
+  // ∂f/∂y · s by a centered directional difference; step scaled to y and s.
+  static int sens_rhs(int, sunrealtype t, N_Vector y, N_Vector ydot, int, N_Vector s, N_Vector sdot, void* data,
+                      N_Vector, N_Vector) {
+    auto* self = static_cast<Impl*>(data);
+    const double snorm = N_VMaxNorm(s);
+    if (snorm == 0.0) {
+      N_VConst(0.0, sdot);
+      return 0;
+    }
+    const double ynorm = N_VMaxNorm(y);
+    const double delta = 6e-6 * std::max(ynorm, 1.0) / snorm;  // ≈ ε^(1/3) relative
+    N_VLinearSum(1.0, y, delta, s, self->work);
+    if (linearization_rhs(t, self->work, sdot, data) != 0) return 1;
+    N_VLinearSum(1.0, y, -delta, s, self->work);
+    if (linearization_rhs(t, self->work, self->work2, data) != 0) return 1;
+    N_VLinearSum(0.5 / delta, sdot, -0.5 / delta, self->work2, sdot);
+    (void)ydot;
+    return 0;
+  }
   static int guards(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
     auto* self = static_cast<Impl*>(data);
     const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
@@ -66,6 +96,10 @@ struct OdeIntegrator::Impl {
   ~Impl() {
     if (cvode != nullptr) CVodeFree(&cvode);
     if (nonlinear_solver != nullptr) SUNNonlinSolFree(nonlinear_solver);
+    if (sens_solver != nullptr) SUNNonlinSolFree(sens_solver);
+    if (yS != nullptr) N_VDestroyVectorArray(yS, n);
+    if (work != nullptr) N_VDestroy(work);
+    if (work2 != nullptr) N_VDestroy(work2);
     if (linear_solver != nullptr) SUNLinSolFree(linear_solver);
     if (jac != nullptr) SUNMatDestroy(jac);
     if (y != nullptr) N_VDestroy(y);
@@ -100,9 +134,48 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options
     m.check(CVodeSetLinearSolver(m.cvode, m.linear_solver, m.jac), "SetLinearSolver");
   }
   m.check(CVodeSetNoInactiveRootWarn(m.cvode), "SetNoInactiveRootWarn");
+  if (options.sensitivities) {
+    m.yS = N_VCloneVectorArray(n, m.y);
+    m.work = N_VClone(m.y);
+    m.work2 = N_VClone(m.y);
+    for (int i = 0; i < n; ++i) {
+      N_VConst(0.0, m.yS[i]);
+      N_VGetArrayPointer(m.yS[i])[i] = 1.0;
+    }
+    m.check(CVodeSensInit1(m.cvode, n, CV_STAGGERED, &Impl::sens_rhs, m.yS), "SensInit1");
+    m.check(CVodeSensEEtolerances(m.cvode), "SensEEtolerances");
+    m.check(CVodeSetSensErrCon(m.cvode, SUNTRUE), "SetSensErrCon");
+    if (options.method == OdeMethod::Adams) {
+      m.sens_solver = SUNNonlinSol_FixedPointSens(n, m.y, 0, m.ctx);
+      m.check(CVodeSetNonlinearSolverSensStg(m.cvode, m.sens_solver), "SetNonlinearSolverSensStg");
+    }
+  }
 }
 
 OdeIntegrator::~OdeIntegrator() = default;
+
+void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const int> directions,
+                            std::span<const double> S) {
+  Impl& m = *impl_;
+  if (m.yS == nullptr) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
+  if (S.size() != static_cast<std::size_t>(m.n) * static_cast<std::size_t>(m.n))
+    throw std::invalid_argument("OdeIntegrator::restart: sensitivities must be n x n");
+  restart(t, y, directions);
+  for (int j = 0; j < m.n; ++j)
+    std::copy(S.begin() + j * m.n, S.begin() + (j + 1) * m.n, N_VGetArrayPointer(m.yS[j]));
+  m.check(CVodeSensReInit(m.cvode, CV_STAGGERED, m.yS), "SensReInit");
+}
+
+void OdeIntegrator::sensitivities(std::span<double> S) const {
+  Impl& m = *impl_;
+  if (m.yS == nullptr) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
+  sunrealtype t = 0;
+  m.check(CVodeGetSens(m.cvode, &t, m.yS), "GetSens");
+  for (int j = 0; j < m.n; ++j) {
+    const double* col = N_VGetArrayPointer(m.yS[j]);
+    std::copy(col, col + m.n, S.begin() + j * m.n);
+  }
+}
 
 void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const int> directions) {
   Impl& m = *impl_;

@@ -24,6 +24,10 @@ struct OdeOptions {
   OdeMethod method = OdeMethod::Adams;
   std::int64_t max_steps = 1'000'000;  ///< internal steps allowed per step() call
   int max_order = 0;        ///< largest method order; 0: CVODE's default (12 Adams, 5 BDF)
+  /// Integrate the variational equation Ṡ = (∂f/∂y) S as well (CVODES forward sensitivities,
+  /// one column per state, staggered corrector, included in the error test). ∂f/∂y·s comes from
+  /// centered directional differences of f.
+  bool sensitivities = false;
 };
 
 struct OdeStats {
@@ -51,6 +55,12 @@ class OdeIntegrator {
   /// (+1 upward only, -1 downward only, 0 both). Guards that are exactly zero at t are
   /// ignored until they move away (CVODE's rule).
   void restart(double t, std::span<const double> y, std::span<const int> directions);
+  /// As restart(), with the sensitivities S = ∂y/∂y_ref at t given column-major (n×n); needs
+  /// OdeOptions::sensitivities.
+  void restart(double t, std::span<const double> y, std::span<const int> directions, std::span<const double> S);
+  /// Sensitivities ∂y(time())/∂y_ref, column-major n×n (after a step; at the guard crossing
+  /// after StepStatus::Guard).
+  void sensitivities(std::span<double> S) const;
   /// Takes one internal step, never past t_stop. Throws std::runtime_error with CVODE's
   /// message if the solver fails.
   StepStatus step(double t_stop);

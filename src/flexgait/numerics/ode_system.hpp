@@ -12,6 +12,11 @@ class OdeSystem {
   /// ẏ = f(t, y). \param[in] y state (dim n) \param[out] ydot derivative (dim n).
   /// \return false if the state is outside the model's domain (the solver then retries smaller).
   virtual bool rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
+  /// The flow whose derivative the sensitivities follow (default: rhs). A system whose rhs holds a
+  /// stabilising term that vanishes on every nearby solution may drop it here.
+  virtual bool linearization_rhs(double t, std::span<const double> y, std::span<double> ydot) {
+    return rhs(t, y, ydot);
+  }
   /// Guard values g(t, y) (dim = number of guards given to the integrator's restart).
   virtual void guards(double t, std::span<const double> y, std::span<double> g) = 0;
 };

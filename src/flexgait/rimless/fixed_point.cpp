@@ -26,7 +26,7 @@ Schema analysis_schema() {
   steps.max = 100000;
   s.add(steps);
   real("analysis.rtol", "1e-12", "CVODE relative tolerance of every Poincare-map evaluation", 1e-14, 1e-4);
-  real("analysis.atol", "1e-14", "CVODE absolute tolerance of every Poincare-map evaluation", 1e-16, 1e-4);
+  real("analysis.atol", "1e-15", "CVODE absolute tolerance of every Poincare-map evaluation", 1e-16, 1e-4);
   real("analysis.newton_tol", "1e-10", "Newton convergence: max-norm of P(z) - z", 1e-15, 1e-2);
   ParamSpec iters;
   iters.key = "analysis.max_iterations";
@@ -74,9 +74,21 @@ FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOpt
   rep.residual = nr.residual;
   rep.history = nr.history;
   rep.point.z = nr.z;
+  rep.jacobian_fd = nr.jacobian;
   rep.jacobian = nr.jacobian;
-  if (nr.jacobian.size() > 0) {
-    rep.multipliers = numerics::floquet_multipliers(nr.jacobian);
+  if (nr.converged) {
+    Eigen::MatrixXd exact;
+    if (auto why = map.jacobian(rep.point, exact)) {
+      rep.jacobian_note = *why;
+    } else {
+      rep.jacobian = exact;
+      rep.jacobian_exact = true;
+      rep.jacobian_difference = (exact - nr.jacobian).lpNorm<Eigen::Infinity>();
+    }
+  }
+  if (rep.jacobian.size() > 0) {
+    rep.multipliers = numerics::floquet_multipliers(rep.jacobian);
+    rep.multipliers_fd = numerics::floquet_multipliers(rep.jacobian_fd);
     rep.stable = nr.converged;
     for (const auto& m : rep.multipliers) rep.stable = rep.stable && std::abs(m) < 1.0;
   }
@@ -115,6 +127,12 @@ std::string fixed_point_json(const FixedPointReport& r) {
   nlohmann::ordered_json mult = nlohmann::ordered_json::array();
   for (const auto& m : r.multipliers) mult.push_back({m.real(), m.imag()});
   j["multipliers"] = mult;
+  nlohmann::ordered_json mult_fd = nlohmann::ordered_json::array();
+  for (const auto& m : r.multipliers_fd) mult_fd.push_back({m.real(), m.imag()});
+  j["multipliers_fd"] = mult_fd;
+  j["jacobian_exact"] = r.jacobian_exact;
+  j["jacobian_difference"] = r.jacobian_difference;
+  if (!r.jacobian_note.empty()) j["jacobian_note"] = r.jacobian_note;
   j["stable"] = r.stable;
   j["gait"] = r.gait;
   j["period"] = r.period;

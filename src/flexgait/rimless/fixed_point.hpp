@@ -16,7 +16,7 @@ namespace flexgait::rimless {
 struct AnalysisOptions {
   int transient_steps = 20;    ///< steps simulated from the initial state before Newton starts
   double rtol = 1e-12;         ///< CVODE tolerance of every map evaluation
-  double atol = 1e-14;
+  double atol = 1e-15;
   numerics::NewtonOptions newton;  ///< tolerance 1e-10, 30 iterations
 };
 Schema analysis_schema();
@@ -29,8 +29,13 @@ struct FixedPointReport {
   double residual = 0;                 ///< ||P(z) - z||_inf
   std::vector<numerics::NewtonIteration> history;
   SectionState point;                  ///< the fixed point (or the last iterate)
-  Eigen::MatrixXd jacobian;            ///< ∂P/∂z
-  std::vector<std::complex<double>> multipliers;  ///< sorted by modulus, largest first
+  Eigen::MatrixXd jacobian;            ///< ∂P/∂z: variational (exact) when available, else central differences
+  bool jacobian_exact = false;         ///< from forward sensitivities and saltation matrices
+  Eigen::MatrixXd jacobian_fd;         ///< ∂P/∂z by central differences (Newton's)
+  double jacobian_difference = -1;     ///< max |exact - central differences| (-1: no exact Jacobian)
+  std::string jacobian_note;           ///< why there is no exact Jacobian
+  std::vector<std::complex<double>> multipliers;  ///< eigenvalues of `jacobian`, largest modulus first
+  std::vector<std::complex<double>> multipliers_fd;  ///< eigenvalues of jacobian_fd
   bool stable = false;                 ///< every multiplier strictly inside the unit circle
   std::string gait;                    ///< stance-foot phases of the periodic step
   double period = 0;                   ///< [s]

@@ -10,6 +10,7 @@
 #include "flexgait/rimless/dynamics.hpp"
 #include "flexgait/rimless/flow.hpp"
 #include "flexgait/rimless/mode_selection.hpp"
+#include "flexgait/rimless/variational.hpp"
 
 namespace flexgait::rimless {
 namespace {
@@ -22,6 +23,14 @@ class WheelFlow final : public numerics::OdeSystem {
   WheelFlow(const WheelParams& w, const ContactSet& contacts) : w_(w), contacts_(contacts) {}
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
     return flow_derivative(w_, contacts_, y, yd);
+  }
+  // Sensitivities: a sticking foot's anchor moves with the perturbed solution (it is where that
+  // solution's foot stopped), so the Baumgarte position term vanishes on every nearby solution.
+  bool linearization_rhs(double, std::span<const double> y, std::span<double> yd) override {
+    ContactSet c = contacts_;
+    for (int i = 0; i < c.count; ++i)
+      if (c.mode[i] == FootMode::Stick) c.anchor[i] = leg_kinematics(w_, c.leg[i], y).c;
+    return flow_derivative(w_, c, y, yd);
   }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
@@ -69,6 +78,20 @@ std::vector<double> initial_state(const WheelParams& w, const InitialState& init
   return y;
 }
 
+namespace {
+
+// The integrator's options.
+numerics::OdeOptions ode_options(const SimulationOptions& o) {
+  numerics::OdeOptions ode;
+  ode.rtol = o.rtol;
+  ode.atol = o.atol;
+  ode.method = o.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf : numerics::OdeMethod::Adams;
+  ode.sensitivities = o.sensitivities;
+  return ode;
+}
+
+}  // namespace
+
 struct FlexibleWheelSimulator::Impl {
   WheelParams w;
   SimulationOptions opt;
@@ -82,14 +105,62 @@ struct FlexibleWheelSimulator::Impl {
       : w(wheel),
         opt(options),
         flow(w, ContactSet{}),
-        integrator(flow, state_size(w),
-                   numerics::OdeOptions{options.rtol, options.atol, 0.0,
-                                        options.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf
-                                                                               : numerics::OdeMethod::Adams,
-                                        1'000'000}),
+        integrator(flow, state_size(w), ode_options(options)),
         directions(static_cast<std::size_t>(kGuardsPerLeg * w.legs), -1),
         y(static_cast<std::size_t>(state_size(w))),
         y_dense(static_cast<std::size_t>(state_size(w))) {}
+
+  // --- linearisation across events (variational.hpp) ---
+  Eigen::VectorXd flow_at(const ContactSet& c, std::span<const double> s) const {
+    Eigen::VectorXd f(static_cast<Eigen::Index>(s.size()));
+    flow_derivative(w, c, s, std::span<double>(f.data(), s.size()));
+    return f;
+  }
+  Eigen::RowVectorXd guard_gradient(int index, std::span<const double> s) {
+    std::vector<double> g(directions.size());
+    return gradient(
+        [&](std::span<const double> x) {
+          flow.guards(0.0, x, g);
+          return g[static_cast<std::size_t>(index)];
+        },
+        s, state_steps(w, s));
+  }
+  // ∂(reset)/∂y with the mode decision held at `chosen`.
+  std::optional<std::string> reset_jacobian(const ContactSet& before, const std::vector<GuardEvent>& events,
+                                            const ContactSet& chosen, std::span<const double> s, Eigen::MatrixXd& R) {
+    auto same = [&](const ContactSet& c) {
+      if (c.count != chosen.count) return false;
+      for (int i = 0; i < c.count; ++i)
+        if (c.leg[i] != chosen.leg[i] || c.mode[i] != chosen.mode[i]) return false;
+      return true;
+    };
+    (void)same;
+    const ModeDecision decided = [&] {
+      std::vector<double> tmp(s.begin(), s.end());
+      return choose_modes(w, before, events, tmp);
+    }();
+    if (!same(decided.contacts)) return std::string("the mode decision is not reproducible");
+    return jacobian(
+        [&](std::span<const double> in, std::span<double> out) {
+          std::copy(in.begin(), in.end(), out.begin());
+          apply_reset(w, before, events, decided, out);
+          return true;
+        },
+        s, state_steps(w, s), R);
+  }
+  Eigen::MatrixXd sensitivities_now() const {
+    const Eigen::Index n = static_cast<Eigen::Index>(y.size());
+    Eigen::MatrixXd S(n, n);
+    integrator.sensitivities(std::span<double>(S.data(), static_cast<std::size_t>(n * n)));
+    return S;
+  }
+  void restart(double t, std::span<const double> s, const Eigen::MatrixXd& S) {
+    if (opt.sensitivities) {
+      integrator.restart(t, s, directions, std::span<const double>(S.data(), static_cast<std::size_t>(S.size())));
+    } else {
+      integrator.restart(t, s, directions);
+    }
+  }
 
   LogSample sample(double t, std::span<const double> s) const {
     LogSample out;
@@ -170,7 +241,10 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
       throw std::invalid_argument(fmt::format("initial state: foot {} is below the ground", k));
   }
   m.flow.set_contacts(spec.contacts);
+  const Eigen::Index n_state = static_cast<Eigen::Index>(m.y.size());
+  Eigen::MatrixXd sens = Eigen::MatrixXd::Identity(n_state, n_state);  // ∂y/∂y(0), with sensitivities
   if (!spec.pending.empty()) {
+    const std::vector<double> y_before = m.y;
     const ModeDecision dec = choose_modes(w, spec.contacts, spec.pending, m.y);
     if (dec.failure != nullptr) {
       fail(0.0, dec.failure, dec.detail);
@@ -179,6 +253,14 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     }
     m.flow.set_contacts(dec.contacts);
     res.jams += dec.jammed_feet;
+    // The section state lies on the landing guard by construction: no timing term, reset only.
+    if (m.opt.sensitivities) {
+      if (auto e = m.reset_jacobian(spec.contacts, spec.pending, dec.contacts, y_before, sens)) {
+        fail(0.0, "sensitivities", *e);
+        res.final_state = m.y;
+        return res;
+      }
+    }
   }
   // The next leg to pass upright: the one with β in [-2α, 0).
   m.flow.set_upright_leg(-1);
@@ -199,7 +281,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
   tracker.start(0.0, m.y[S::x], e0, m.flow.contacts(), stance);
   record_event(0.0, "start", m.flow.contacts().count > 0 ? m.flow.contacts().leg[0] : -1);
   if (m.opt.log) res.samples.push_back(m.sample(0.0, m.y));
-  m.integrator.restart(0.0, m.y, m.directions);
+  m.restart(0.0, m.y, sens);
   res.restarts.push_back({0.0, m.y, m.flow.contacts()});
 
   double next_sample = m.opt.sample_dt;
@@ -255,13 +337,28 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     const ContactSet before = m.flow.contacts();
     std::vector<GuardEvent> events;
     const auto fired = m.integrator.guards_fired();
+    Eigen::MatrixXd S_minus;
+    Eigen::VectorXd f_minus;
+    Eigen::RowVectorXd g_y;
+    if (m.opt.sensitivities) {
+      int first = 0;
+      while (fired[static_cast<std::size_t>(first)] == 0) ++first;
+      S_minus = m.sensitivities_now();
+      f_minus = m.flow_at(before, m.y);
+      g_y = m.guard_gradient(first, m.y);
+    }
+    auto section_sensitivity = [&]() {
+      if (!m.opt.sensitivities) return Eigen::MatrixXd();
+      const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n_state, n_state);
+      return Eigen::MatrixXd(saltation(I, f_minus, Eigen::VectorXd::Zero(n_state), g_y) * S_minus);
+    };
     if (upright_stop && fired[static_cast<std::size_t>(guard_count(w))] != 0) {
       const int k = m.flow.upright_leg();
       if (!(before.count == 1 && before.leg[0] == k)) {
         fail(t, "the upright section was crossed outside single support on that leg", describe_contacts(before));
         break;
       }
-      if (section != nullptr) *section = {t, m.y, before, k};
+      if (section != nullptr) *section = {t, m.y, before, k, section_sensitivity()};
       record_event(t, "section", k);
       hit = true;
       break;
@@ -277,7 +374,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     if (touchdown_stop) {
       for (const auto& e : events) {
         if (e.kind == EventKind::Touchdown && e.leg != tracker.stance_leg() && !hit) {
-          if (section != nullptr) *section = {t, m.y, before, e.leg};
+          if (section != nullptr) *section = {t, m.y, before, e.leg, section_sensitivity()};
           record_event(t, "section", e.leg);
           hit = true;
         }
@@ -310,11 +407,20 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     }
     if (stop) break;
 
+    const std::vector<double> y_minus = m.y;
     const ModeDecision dec = choose_modes(w, before, events, m.y);
     if (dec.failure != nullptr) {
       for (const auto& e : events) record_event(t, event_name(e.kind), e.leg);
       fail(t, dec.failure, dec.detail);
       break;
+    }
+    if (m.opt.sensitivities) {
+      Eigen::MatrixXd R;
+      if (auto e = m.reset_jacobian(before, events, dec.contacts, y_minus, R)) {
+        fail(t, "sensitivities", *e);
+        break;
+      }
+      sens = saltation(R, f_minus, m.flow_at(dec.contacts, m.y), g_y) * S_minus;
     }
     m.flow.set_contacts(dec.contacts);
     if (dec.consistent > 1) ++res.ambiguous_choices;
@@ -336,7 +442,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     }
     if (!new_step) tracker.observe(dec.contacts);
     if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
-    m.integrator.restart(t, m.y, m.directions);
+    m.restart(t, m.y, sens);
     res.restarts.push_back({t, m.y, dec.contacts});
   }
 

@@ -5,6 +5,8 @@
 /// modes are re-chosen (mode_selection.hpp) and the integrator restarts (CVodeReInit).
 ///
 /// The guards and the flow are in flow.hpp.
+#include <Eigen/Dense>
+
 #include <memory>
 #include <optional>
 #include <span>
@@ -36,6 +38,9 @@ struct SectionHit {
   std::vector<double> state;  ///< full state at the crossing, before any mode change
   ContactSet contacts;        ///< feet on the ground just before the crossing
   int leg = -1;               ///< the leg landing (touchdown) or upright (upright)
+  /// With SimulationOptions::sensitivities: ∂y(t_section)/∂y(0), crossing-time correction
+  /// included (n×n); the pending events at t = 0 count as part of the map.
+  Eigen::MatrixXd S;
 };
 
 /// The start of a default run: initial_state() with every foot's mode chosen at t = 0.

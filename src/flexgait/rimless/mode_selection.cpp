@@ -90,7 +90,43 @@ bool apply_impulse(const WheelParams& w, const std::vector<int>& jam, std::span<
   return true;
 }
 
+// Legs that left keep their compression as free legs, relaxing from here.
+void release_legs(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
+                  const ContactSet& after, std::span<double> y) {
+  using S = StateIndex;
+  auto release = [&](int leg) {
+    if (after.find(leg) >= 0) return;
+    const double delta = leg_kinematics(w, leg, y).delta;
+    y[S::free_delta + leg] = w.C > 0 ? delta : 0.0;
+    if (w.C == 0) y[S::w_damp] += 0.5 * w.K * delta * delta;  // an undamped massless leg snaps to rest
+  };
+  for (int i = 0; i < current.count; ++i) release(current.leg[i]);
+  for (const auto& e : events)
+    if (e.kind == EventKind::Touchdown && current.find(e.leg) < 0) release(e.leg);
+}
+
+// θ̇ that the new mode fixes when I = 0: ċ = 0 of the first sticking foot, or the torque balance.
+double point_mass_thetad(const WheelParams& w, const ContactSet& after, std::span<const double> y) {
+  using S = StateIndex;
+  for (int j = 0; j < after.count; ++j) {
+    if (after.mode[j] != FootMode::Stick) continue;
+    const LegKinematics g = leg_kinematics(w, after.leg[j], y);
+    return (y[S::xd] - y[S::yd] * g.tb) * g.cb * g.cb / y[S::y];
+  }
+  return contact_dynamics(w, after, y).thetad;
+}
+
 }  // namespace
+
+void apply_reset(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
+                 const ModeDecision& decision, std::span<double> y) {
+  if (!decision.impulse_legs.empty()) {
+    double loss = 0;
+    apply_impulse(w, decision.impulse_legs, y, loss);  // admissibility was checked when deciding
+  }
+  if (w.I == 0) y[StateIndex::thetad] = point_mass_thetad(w, decision.contacts, y);
+  release_legs(w, current, events, decision.contacts, y);
+}
 
 const char* event_name(EventKind kind) {
   switch (kind) {
@@ -154,9 +190,11 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     std::vector<double> saved(y.begin(), y.end());
     double loss = 0;
     bool done = with_stuck.size() > jam.size() && apply_impulse(w, with_stuck, y, loss);
+    out.impulse_legs = with_stuck;
     if (!done) {
       std::copy(saved.begin(), saved.end(), y.begin());
       done = apply_impulse(w, jam, y, loss);
+      out.impulse_legs = jam;
     }
     if (!done) {
       std::copy(saved.begin(), saved.end(), y.begin());
@@ -294,13 +332,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   }
 
   if (w.I == 0) y[S::thetad] = best_thetad;  // θ̇ jumps to the value the new mode fixes (I = 0)
-  // Legs that left keep their compression as free legs, relaxing from here.
-  for (const auto& foot : feet) {
-    if (out.contacts.find(foot.leg) >= 0) continue;
-    const double delta = leg_kinematics(w, foot.leg, y).delta;
-    y[S::free_delta + foot.leg] = w.C > 0 ? delta : 0.0;
-    if (w.C == 0) y[S::w_damp] += 0.5 * w.K * delta * delta;  // an undamped massless leg snaps to rest
-  }
+  release_legs(w, current, events, out.contacts, y);
   return out;
 }
 

@@ -19,6 +19,7 @@
 /// is booked as friction work.
 #include <span>
 #include <string>
+#include <vector>
 
 #include "flexgait/rimless/contact.hpp"
 
@@ -54,11 +55,18 @@ struct ModeDecision {
   int consistent = 0;             ///< how many combinations were consistent (> 1: the rule decided)
   int jammed_feet = 0;            ///< feet stopped by a jam impulse at this event
   double impulse_energy = 0;      ///< kinetic energy removed by jam impulses [J]
+  std::vector<int> impulse_legs;  ///< the feet that took jam impulses (decided at this event)
 };
 
 /// Decides the modes after `events` fired at state y. On return y's velocities include any jam
 /// impulse, W_fric includes its energy, and legs that left hold their compression as free legs.
 ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
                           std::span<double> y);
+
+/// The state change of an event with its decision held fixed (jam impulses on the decided feet,
+/// θ̇ for I = 0, free-leg compressions of the feet that left), applied to y. choose_modes()
+/// applies the same change; this form is for differentiating the reset (variational.hpp).
+void apply_reset(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
+                 const ModeDecision& decision, std::span<double> y);
 
 }  // namespace flexgait::rimless

@@ -46,6 +46,7 @@ struct SimulationOptions {
   double atol = 1e-12;          ///< CVODE absolute tolerance
   OdeMethodChoice method = OdeMethodChoice::Adams;
   bool log = true;              ///< keep the sampled log (off for maps and sweeps)
+  bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp)
 };
 
 /// The configuration keys of the wheel, the initial state, and the simulation.

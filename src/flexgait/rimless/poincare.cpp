@@ -178,6 +178,55 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
   return out;
 }
 
+std::optional<std::string> PoincareMap::jacobian(const SectionState& p, Eigen::MatrixXd& J) {
+  using S = StateIndex;
+  if (model_ == Model::Rigid) {
+    if (section_ != Section::Touchdown) return std::string("the rigid wheel's exact Jacobian is given at the touchdown section");
+    J = Eigen::MatrixXd::Constant(1, 1, rigid_step_map(w_).derivative(p.z(0)));
+    return std::nullopt;
+  }
+  if (w_.I == 0) return std::string("no variational Jacobian for I = 0 (theta-dot is algebraic there)");
+  const Eigen::Index d = p.z.size();
+  const Eigen::Index n = state_size(w_);
+  // Y_z: the section reconstruction, differentiated centrally.
+  Eigen::MatrixXd Yz(n, d);
+  const Eigen::VectorXd sc = p.scale(w_);
+  for (Eigen::Index i = 0; i < d; ++i) {
+    const double h = 6e-6 * std::max(std::abs(p.z(i)), sc(i));
+    SectionState a = p, b = p;
+    a.z(i) += h;
+    b.z(i) -= h;
+    const RunSpec ra = section_run(w_, a), rb = section_run(w_, b);
+    for (Eigen::Index r = 0; r < n; ++r) Yz(r, i) = (ra.y0[static_cast<std::size_t>(r)] - rb.y0[static_cast<std::size_t>(r)]) / (2 * h);
+  }
+  if (!sens_sim_) {
+    SimulationOptions o = options_;
+    o.sensitivities = true;
+    sens_sim_ = std::make_unique<FlexibleWheelSimulator>(w_, o);
+  }
+  RunSpec spec = section_run(w_, p);
+  spec.stop_at = section_;
+  spec.steps = 3;
+  SectionHit hit;
+  hit.leg = -1;
+  const SimulationResult r = sens_sim_->run(spec, &hit);
+  if (r.failure) return *r.failure;
+  if (hit.leg < 0 || hit.S.size() == 0) return fmt::format("the {} section was not reached", section_name(section_));
+  SectionState next;
+  if (auto e = reduce_crossing(w_, section_, hit, next)) return e;
+  if (next.flight != p.flight || next.mode != p.mode || next.z.size() != d)
+    return std::string("arrived at the section in another mode");
+  // Z_y: z's components are state components (β = θ + const at the touchdown section).
+  std::vector<int> rows{section_ == Section::Touchdown ? S::theta : S::y};
+  if (!sticks(p)) rows.push_back(S::xd);
+  rows.push_back(S::yd);
+  rows.push_back(S::thetad);
+  J.resize(d, d);
+  const Eigen::MatrixXd SY = hit.S * Yz;
+  for (Eigen::Index i = 0; i < d; ++i) J.row(i) = SY.row(rows[static_cast<std::size_t>(i)]);
+  return std::nullopt;
+}
+
 std::optional<std::string> PoincareMap::operator()(const SectionState& like, const Eigen::VectorXd& z,
                                                    Eigen::VectorXd& out) {
   SectionState p = like;

@@ -70,6 +70,12 @@ class PoincareMap {
   /// P(point). The map keeps the discrete mode: arriving in another mode is a failure, unless
   /// `keep_mode` is false (then `next` carries the mode it arrived in: for following transients).
   MapStep apply(const SectionState& point, bool keep_mode = true);
+  /// ∂P/∂z at `point` from the variational equations: CVODES forward sensitivities along the flow,
+  /// saltation matrices at every event and the crossing-time correction at the section
+  /// (variational.hpp); the section reconstruction z -> y is differentiated by central
+  /// differences (it is algebraic). Flexible wheel with I > 0, or the rigid wheel at touchdown
+  /// (analytic). Returns why not, otherwise.
+  std::optional<std::string> jacobian(const SectionState& point, Eigen::MatrixXd& J);
   /// The map as a VectorMap on z with the discrete part of `like` (for Newton).
   std::optional<std::string> operator()(const SectionState& like, const Eigen::VectorXd& z, Eigen::VectorXd& out);
   Model model() const { return model_; }
@@ -81,6 +87,7 @@ class PoincareMap {
   Model model_;
   Section section_;
   std::unique_ptr<FlexibleWheelSimulator> sim_;
+  std::unique_ptr<FlexibleWheelSimulator> sens_sim_;  // with sensitivities, made on first use
 };
 
 /// A first section point: simulate `transient_steps` from `initial` and reduce the next crossing.

@@ -52,10 +52,11 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
                                 std::optional<Section> stop_at) {
   Pendulum pendulum(w);
   const double J = pendulum.J();
-  numerics::OdeIntegrator integ(pendulum, 2,
-                                {opt.rtol, opt.atol, 0.0,
-                                 opt.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf : numerics::OdeMethod::Adams,
-                                 1'000'000});
+  numerics::OdeOptions ode;
+  ode.rtol = opt.rtol;
+  ode.atol = opt.atol;
+  ode.method = opt.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf : numerics::OdeMethod::Adams;
+  numerics::OdeIntegrator integ(pendulum, 2, ode);
   const double alpha = w.alpha();
   const double sphi = std::sin(w.slope), cphi = std::cos(w.slope);
   std::array<double, 2> y{init.beta, init.omega};
