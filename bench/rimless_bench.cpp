@@ -2,7 +2,12 @@
 // the spec's measured parameter set at μ = 0.6 in at most 120 µs.
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
+
+#include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/rimless/dynamics.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/flow.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
@@ -72,6 +77,63 @@ void FlowDerivative(benchmark::State& state) {
   }
 }
 BENCHMARK(FlowDerivative);
+
+// Poincaré-map evaluations (touchdown section, rtol 1e-12 as in the analyses) at the fixed point.
+void PoincareMapEvaluation(benchmark::State& state) {
+  const WheelParams w = wheel(static_cast<double>(state.range(0)) / 1000.0);
+  SimulationOptions sim;
+  AnalysisOptions opt;
+  const FixedPointReport fp = find_fixed_point(w, sim, opt, Model::Flexible, Section::Touchdown, InitialState{});
+  SimulationOptions map_opt = sim;
+  map_opt.rtol = opt.rtol;
+  map_opt.atol = opt.atol;
+  PoincareMap map(w, map_opt, Model::Flexible, Section::Touchdown);
+  for (auto _ : state) {
+    const MapStep s = map.apply(fp.point);
+    benchmark::DoNotOptimize(s.next.z.data());
+  }
+  state.counters["maps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(PoincareMapEvaluation)->Arg(600)->Arg(105)->Unit(benchmark::kMillisecond);
+
+// The variational (exact) Jacobian of the map at the fixed point.
+void PoincareMapJacobian(benchmark::State& state) {
+  const WheelParams w = wheel(0.6);
+  SimulationOptions sim;
+  AnalysisOptions opt;
+  const FixedPointReport fp = find_fixed_point(w, sim, opt, Model::Flexible, Section::Touchdown, InitialState{});
+  SimulationOptions map_opt = sim;
+  map_opt.rtol = opt.rtol;
+  map_opt.atol = opt.atol;
+  PoincareMap map(w, map_opt, Model::Flexible, Section::Touchdown);
+  Eigen::MatrixXd J;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(map.jacobian(fp.point, J));
+  }
+}
+BENCHMARK(PoincareMapJacobian)->Unit(benchmark::kMillisecond);
+
+// A 200-point μ sweep on all cores (the figure of merit), one iteration.
+void FrictionSweep200(benchmark::State& state) {
+  const flexgait::Schema schema = [] {
+    flexgait::Schema s = rimless_schema();
+    return s.merge(analysis_schema());
+  }();
+  const flexgait::Config base = flexgait::resolve_config(schema, std::nullopt, {});
+  const SweepSpec spec{"rimless.mu", 0.1, 1.5, 200, Section::Touchdown};
+  const auto dir = std::filesystem::temp_directory_path() / "flexgait_bench_sweep";
+  for (auto _ : state) {
+    std::filesystem::remove_all(dir);
+    flexgait::SweepJob job;
+    job.dir = dir;
+    job.header = sweep_header();
+    job.count = spec.count;
+    job.signature = "bench";
+    job.row = [&](int i) { return sweep_row(base, spec, i); };
+    benchmark::DoNotOptimize(flexgait::run_sweep(job));
+  }
+}
+BENCHMARK(FrictionSweep200)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
 

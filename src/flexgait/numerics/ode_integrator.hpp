@@ -25,7 +25,7 @@ struct OdeOptions {
   std::int64_t max_steps = 1'000'000;  ///< internal steps allowed per step() call
   int max_order = 0;        ///< largest method order; 0: CVODE's default (12 Adams, 5 BDF)
   /// Integrate the variational equation Ṡ = (∂f/∂y) S as well (CVODES forward sensitivities,
-  /// one column per state, staggered corrector, included in the error test). ∂f/∂y·s comes from
+  /// one column per state, staggered corrector, outside the error test). ∂f/∂y·s comes from
   /// centered directional differences of f.
   bool sensitivities = false;
 };
