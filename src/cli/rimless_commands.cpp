@@ -180,6 +180,15 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   auto range = [&](double lo, double hi, int n) {
     return std::make_tuple(cmd.count("--from") ? a.from : lo, cmd.count("--to") ? a.to : hi, cmd.count("--count") ? a.count : n);
   };
+  // A resumed sweep must match the one in --out: check before anything is written.
+  if (a.resume && (a.name == "gait-vs-friction" || a.name == "stagnation")) {
+    SweepJob probe;
+    probe.dir = a.run.out;
+    probe.name = a.name == "stagnation" ? "stagnation" : "sweep";
+    probe.resume = true;
+    probe.signature = "?";
+    if (!std::filesystem::exists(probe.dir / (probe.name + ".signature"))) check_resumable(probe);
+  }
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);
   std::vector<std::string> files;
