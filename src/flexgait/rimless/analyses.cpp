@@ -61,22 +61,40 @@ std::string gait_at_friction(const Config& base, double mu, Section section) {
   return "none";
 }
 
+namespace {
+
+// Thresholds between lo (gait a) and hi (gait b) by bisection; a third gait found in between
+// splits the bracket and both halves are refined (behaviour windows narrower than the sweep's
+// spacing are found this way).
+void refine_threshold(const Config& base, Section section, double tolerance, double lo, const std::string& a,
+                      double hi, const std::string& b, int depth, CsvWriter& csv) {
+  while (hi - lo > tolerance) {
+    const double mid = 0.5 * (lo + hi);
+    const std::string g = gait_at_friction(base, mid, section);
+    if (g == a) {
+      lo = mid;
+    } else if (g == b) {
+      hi = mid;
+    } else if (depth > 0) {
+      refine_threshold(base, section, tolerance, lo, a, mid, g, depth - 1, csv);
+      refine_threshold(base, section, tolerance, mid, g, hi, b, depth - 1, csv);
+      return;
+    } else {
+      break;
+    }
+  }
+  csv.cell(lo).cell(hi).cell(csv_safe(a)).cell(csv_safe(b)).cell(0.5 * (lo + hi)).end_row();
+}
+
+}  // namespace
+
 std::string friction_thresholds_csv(const Config& base, const std::vector<std::pair<double, std::string>>& points,
                                     Section section, double tolerance) {
   CsvWriter csv({"mu_low", "mu_high", "gait_below", "gait_above", "threshold"});
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if (points[i].second == points[i + 1].second) continue;
-    double lo = points[i].first, hi = points[i + 1].first;
-    const std::string below = points[i].second, above = points[i + 1].second;
-    while (hi - lo > tolerance) {
-      const double mid = 0.5 * (lo + hi);
-      const std::string g = gait_at_friction(base, mid, section);
-      if (g == below) lo = mid;
-      else if (g == above) hi = mid;
-      else break;  // a third behaviour in between: keep the bracket as found
-    }
-    csv.cell(points[i].first).cell(points[i + 1].first).cell(csv_safe(below)).cell(csv_safe(above)).cell(0.5 * (lo + hi));
-    csv.end_row();
+    refine_threshold(base, section, tolerance, points[i].first, points[i].second, points[i + 1].first,
+                     points[i + 1].second, 4, csv);
   }
   return csv.str();
 }

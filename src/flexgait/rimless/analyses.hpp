@@ -19,7 +19,8 @@ namespace flexgait::rimless {
 std::string gait_at_friction(const Config& base, double mu, Section section);
 
 /// Thresholds between behaviours from a μ sweep's rows (value, gait), each refined by bisection
-/// to `tolerance`. CSV: mu_low, mu_high, gait_below, gait_above, threshold.
+/// to `tolerance`; a behaviour met inside a bracket splits it. CSV: mu_low, mu_high (the final
+/// bracket), gait_below, gait_above, threshold.
 std::string friction_thresholds_csv(const Config& base, const std::vector<std::pair<double, std::string>>& points,
                                     Section section, double tolerance);
 
