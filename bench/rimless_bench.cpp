@@ -78,18 +78,26 @@ void FlowDerivative(benchmark::State& state) {
 }
 BENCHMARK(FlowDerivative);
 
-// Poincaré-map evaluations (touchdown section, rtol 1e-12 as in the analyses) at the fixed point.
-void PoincareMapEvaluation(benchmark::State& state) {
-  const WheelParams w = wheel(static_cast<double>(state.range(0)) / 1000.0);
-  SimulationOptions sim;
-  AnalysisOptions opt;
+// The touchdown-section map at the analyses' tolerances, and its fixed point.
+struct MapAtFixedPoint {
+  PoincareMap map;
+  SectionState point;
+};
+MapAtFixedPoint map_at_fixed_point(const WheelParams& w) {
+  const SimulationOptions sim;
+  const AnalysisOptions opt;
   const FixedPointReport fp = find_fixed_point(w, sim, opt, Model::Flexible, Section::Touchdown, InitialState{});
   SimulationOptions map_opt = sim;
   map_opt.rtol = opt.rtol;
   map_opt.atol = opt.atol;
-  PoincareMap map(w, map_opt, Model::Flexible, Section::Touchdown);
+  return {PoincareMap(w, map_opt, Model::Flexible, Section::Touchdown), fp.point};
+}
+
+// Poincaré-map evaluations (touchdown section, rtol 1e-12 as in the analyses) at the fixed point.
+void PoincareMapEvaluation(benchmark::State& state) {
+  auto [map, point] = map_at_fixed_point(wheel(static_cast<double>(state.range(0)) / 1000.0));
   for (auto _ : state) {
-    const MapStep s = map.apply(fp.point);
+    const MapStep s = map.apply(point);
     benchmark::DoNotOptimize(s.next.z.data());
   }
   state.counters["maps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
@@ -98,17 +106,10 @@ BENCHMARK(PoincareMapEvaluation)->Arg(600)->Arg(105)->Unit(benchmark::kMilliseco
 
 // The variational (exact) Jacobian of the map at the fixed point.
 void PoincareMapJacobian(benchmark::State& state) {
-  const WheelParams w = wheel(0.6);
-  SimulationOptions sim;
-  AnalysisOptions opt;
-  const FixedPointReport fp = find_fixed_point(w, sim, opt, Model::Flexible, Section::Touchdown, InitialState{});
-  SimulationOptions map_opt = sim;
-  map_opt.rtol = opt.rtol;
-  map_opt.atol = opt.atol;
-  PoincareMap map(w, map_opt, Model::Flexible, Section::Touchdown);
+  auto [map, point] = map_at_fixed_point(wheel(0.6));
   Eigen::MatrixXd J;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(map.jacobian(fp.point, J));
+    benchmark::DoNotOptimize(map.jacobian(point, J));
   }
 }
 BENCHMARK(PoincareMapJacobian)->Unit(benchmark::kMillisecond);

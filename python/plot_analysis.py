@@ -3,29 +3,17 @@
 
 Usage: plot_analysis.py NAME RUN_DIR   (writes RUN_DIR/NAME.png atomically)
 """
-import csv
 import math
 import os
 import subprocess
 import sys
-import tempfile
 
-import matplotlib
-
-matplotlib.use("Agg")
+from flexgait_plotting import read_rows, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 
 def rows(run_dir, name):
-    with open(os.path.join(run_dir, name), newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def save(fig, run_dir, name):
-    fd, tmp = tempfile.mkstemp(dir=run_dir, prefix=f".{name}.", suffix=".png")
-    os.close(fd)
-    fig.savefig(tmp, dpi=100)
-    os.replace(tmp, os.path.join(run_dir, name))
+    return read_rows(os.path.join(run_dir, name))
 
 
 def gait_vs_friction(run_dir):
@@ -54,7 +42,7 @@ def energy(run_dir):
         ax.set_xlabel("stance-leg angle beta [rad]")
         ax.legend()
     axes[0].set_title("Single support on the periodic orbit: sticking against slipping")
-    save(fig, run_dir, "energy.png")
+    save_atomic(fig, run_dir, "energy.png")
 
 
 def fixed_points(run_dir):
@@ -72,7 +60,7 @@ def fixed_points(run_dir):
     ax.set_ylabel("Im")
     ax.legend(loc="lower left")
     ax.set_title("Floquet multipliers of the four behaviours")
-    save(fig, run_dir, "fixed-points.png")
+    save_atomic(fig, run_dir, "fixed-points.png")
 
 
 def robustness(run_dir):
@@ -89,7 +77,7 @@ def robustness(run_dir):
     ax.set_xscale("log")
     ax.set_xlabel("perturbation (fraction of the component's scale)")
     ax.set_title("Return to the fixed point (o) or not (x)")
-    save(fig, run_dir, "robustness.png")
+    save_atomic(fig, run_dir, "robustness.png")
 
 
 def stagnation(run_dir):
@@ -102,7 +90,7 @@ def stagnation(run_dir):
     axes[1].set_ylabel("final kinetic + spring energy [J]")
     axes[1].set_xlabel("initial angular velocity omega0 [rad/s]")
     axes[0].set_title("Stagnation interval (paper Fig. 12)")
-    save(fig, run_dir, "stagnation.png")
+    save_atomic(fig, run_dir, "stagnation.png")
 
 
 if __name__ == "__main__":

@@ -3,21 +3,11 @@
 
 Usage: plot_rimless.py RUN_DIR   (reads log.csv, steps.csv; writes rimless.png atomically)
 """
-import csv
 import os
 import sys
-import tempfile
 
-import matplotlib
-
-matplotlib.use("Agg")
+from flexgait_plotting import read_rows, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    return rows
 
 
 def column(rows, key, cast=float):
@@ -25,8 +15,8 @@ def column(rows, key, cast=float):
 
 
 def main(run_dir):
-    log = read_csv(os.path.join(run_dir, "log.csv"))
-    steps = read_csv(os.path.join(run_dir, "steps.csv"))
+    log = read_rows(os.path.join(run_dir, "log.csv"))
+    steps = read_rows(os.path.join(run_dir, "steps.csv"))
     t = column(log, "t")
     fig, axes = plt.subplots(4, 1, figsize=(10, 12), constrained_layout=True)
 
@@ -79,10 +69,7 @@ def main(run_dir):
     ax.set_xlabel("t [s]")
     ax.set_title("Energy balance residual")
 
-    fd, tmp = tempfile.mkstemp(dir=run_dir, prefix=".rimless.png.", suffix=".png")
-    os.close(fd)
-    fig.savefig(tmp, dpi=100)
-    os.replace(tmp, os.path.join(run_dir, "rimless.png"))
+    save_atomic(fig, run_dir, "rimless.png")
 
 
 if __name__ == "__main__":

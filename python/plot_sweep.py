@@ -3,22 +3,17 @@
 
 Usage: plot_sweep.py RUN_DIR PARAM   (reads RUN_DIR/sweep.csv; writes RUN_DIR/sweep.png atomically)
 """
-import csv
 import os
 import sys
-import tempfile
 
-import matplotlib
-
-matplotlib.use("Agg")
+from flexgait_plotting import read_rows, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 GAIT_ORDER = ["slip", "slip-stick-slip", "slip-stick", "stick-slip", "stick"]
 
 
 def main(run_dir, param):
-    with open(os.path.join(run_dir, "sweep.csv"), newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(os.path.join(run_dir, "sweep.csv"))
     x = [float(r["value"]) for r in rows]
     ok = [r["converged"] == "true" for r in rows]
     gaits = [r["gait"] if r["converged"] == "true" else (r["transient_gait"] or "none") for r in rows]
@@ -45,10 +40,7 @@ def main(run_dir, param):
     ax.plot(xs, [float(r["dissipated_per_cycle"]) for r in rows if r["converged"] == "true"], "o-")
     ax.set_ylabel("energy per step [J]")
     ax.set_xlabel(param)
-    fd, tmp = tempfile.mkstemp(dir=run_dir, prefix=".sweep.png.", suffix=".png")
-    os.close(fd)
-    fig.savefig(tmp, dpi=100)
-    os.replace(tmp, os.path.join(run_dir, "sweep.png"))
+    save_atomic(fig, run_dir, "sweep.png")
 
 
 if __name__ == "__main__":

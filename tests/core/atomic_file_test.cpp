@@ -5,20 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "flexgait/core/run_directory.hpp"
 
 namespace flexgait {
 namespace {
-
-std::string read(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::filesystem::path fresh_dir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / ("flexgait_atomic_" + name);
@@ -37,7 +28,7 @@ TEST(AtomicFile, WritesAndReplacesWithoutLeftovers) {
   const auto dir = fresh_dir("replace");
   write_file_atomic(dir / "a.csv", "old\n");
   write_file_atomic(dir / "a.csv", std::string(1 << 20, 'x'));
-  EXPECT_EQ(read(dir / "a.csv"), std::string(1 << 20, 'x'));
+  EXPECT_EQ(read_text_file(dir / "a.csv"), std::string(1 << 20, 'x'));
   EXPECT_EQ(count_entries(dir), 1);
 }
 
@@ -48,7 +39,7 @@ TEST(AtomicFile, FailureLeavesTargetUntouched) {
   std::filesystem::create_directories(dir / "blocked" / "inner");
   EXPECT_THROW(write_file_atomic(dir / "blocked", "new"), std::system_error);
   EXPECT_THROW(write_file_atomic(dir / "missing_dir" / "x.txt", "new"), std::system_error);
-  EXPECT_EQ(read(dir / "keep.txt"), "intact");
+  EXPECT_EQ(read_text_file(dir / "keep.txt"), "intact");
   EXPECT_EQ(count_entries(dir), 2);  // keep.txt and blocked/
 }
 
@@ -56,14 +47,14 @@ TEST(AtomicFile, AppendIsDurableAndCumulative) {
   const auto dir = fresh_dir("append");
   append_file_durable(dir / "rows.csv", "a\n");
   append_file_durable(dir / "rows.csv", "b\n");
-  EXPECT_EQ(read(dir / "rows.csv"), "a\nb\n");
+  EXPECT_EQ(read_text_file(dir / "rows.csv"), "a\nb\n");
 }
 
 TEST(RunDirectory, CreatesNestedDirectoryAndRejectsAFile) {
   const auto dir = fresh_dir("rundir");
   RunDirectory run(dir / "x" / "y");
   run.write("summary.json", "{}\n");
-  EXPECT_EQ(read(dir / "x" / "y" / "summary.json"), "{}\n");
+  EXPECT_EQ(read_text_file(dir / "x" / "y" / "summary.json"), "{}\n");
   write_file_atomic(dir / "plain", "file");
   EXPECT_THROW(RunDirectory(dir / "plain"), std::filesystem::filesystem_error);
 }

@@ -12,11 +12,10 @@ namespace {
 
 Schema test_schema() {
   Schema s;
-  ParamSpec k{"model.K", ParamType::Real, "1000.0", "N/m", "stiffness", 0, 1e9, false, true, {}};
-  ParamSpec n{"model.legs", ParamType::Integer, "10", "", "legs", 3, 100, true, true, {}};
-  ParamSpec b{"run.log", ParamType::Boolean, "true", "", "keep a log", -INFINITY, INFINITY, true, true, {}};
-  ParamSpec c{"run.model", ParamType::Choice, "flexible", "", "model", -INFINITY, INFINITY, true, true, {"flexible", "rigid"}};
-  return s.add(k).add(n).add(b).add(c);
+  return s.add(real_param("model.K", "1000.0", "N/m", "stiffness", 0, 1e9, false))
+      .add(integer_param("model.legs", "10", "legs", 3, 100))
+      .add(boolean_param("run.log", "true", "keep a log"))
+      .add(choice_param("run.model", "flexible", "model", {"flexible", "rigid"}));
 }
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
@@ -105,8 +104,7 @@ TEST(Config, MalformedOverridesAndFiles) {
 TEST(Config, SchemaRejectsDuplicateKeysAndBadDefaults) {
   Schema s = test_schema();
   EXPECT_THROW(s.add(*s.find("model.K")), std::logic_error);
-  ParamSpec bad{"x.y", ParamType::Real, "-1", "", "", 0, 1, true, true, {}};
-  EXPECT_THROW(s.add(bad), ConfigError);
+  EXPECT_THROW(s.add(real_param("x.y", "-1", "", "", 0, 1)), ConfigError);
 }
 
 }  // namespace

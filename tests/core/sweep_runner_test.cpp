@@ -5,20 +5,11 @@
 
 #include <atomic>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "flexgait/core/atomic_file.hpp"
 
 namespace flexgait {
 namespace {
-
-std::string read(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 SweepJob job(const std::filesystem::path& dir) {
   SweepJob j;
@@ -53,7 +44,7 @@ TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
   const SweepOutcome resumed = run_sweep(again);
   EXPECT_GE(resumed.resumed, 10);
   EXPECT_EQ(resumed.resumed + resumed.computed, 40);
-  EXPECT_EQ(read(base / "killed" / "sweep.csv"), read(base / "whole" / "sweep.csv"));
+  EXPECT_EQ(read_text_file(base / "killed" / "sweep.csv"), read_text_file(base / "whole" / "sweep.csv"));
 
   SweepJob other = job(base / "killed");
   other.resume = true;

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -59,6 +61,13 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     errno = err;
     fail("cannot rename into place", path);
   }
+}
+
+std::string read_text_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 void append_file_durable(const std::filesystem::path& path, std::string_view content) {

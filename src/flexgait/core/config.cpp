@@ -121,6 +121,46 @@ std::string ParamSpec::allowed() const {
   return {};
 }
 
+ParamSpec real_param(std::string key, std::string fallback, std::string unit, std::string doc, double min, double max,
+                     bool min_inclusive, bool max_inclusive) {
+  ParamSpec p;
+  p.key = std::move(key);
+  p.type = ParamType::Real;
+  p.fallback = std::move(fallback);
+  p.unit = std::move(unit);
+  p.doc = std::move(doc);
+  p.min = min;
+  p.max = max;
+  p.min_inclusive = min_inclusive;
+  p.max_inclusive = max_inclusive;
+  return p;
+}
+
+ParamSpec integer_param(std::string key, std::string fallback, std::string doc, double min, double max) {
+  ParamSpec p = real_param(std::move(key), std::move(fallback), "", std::move(doc), min, max);
+  p.type = ParamType::Integer;
+  return p;
+}
+
+ParamSpec choice_param(std::string key, std::string fallback, std::string doc, std::vector<std::string> choices) {
+  ParamSpec p;
+  p.key = std::move(key);
+  p.type = ParamType::Choice;
+  p.fallback = std::move(fallback);
+  p.doc = std::move(doc);
+  p.choices = std::move(choices);
+  return p;
+}
+
+ParamSpec boolean_param(std::string key, std::string fallback, std::string doc) {
+  ParamSpec p;
+  p.key = std::move(key);
+  p.type = ParamType::Boolean;
+  p.fallback = std::move(fallback);
+  p.doc = std::move(doc);
+  return p;
+}
+
 Schema& Schema::add(ParamSpec spec) {
   if (find(spec.key) != nullptr) throw std::logic_error("duplicate configuration key " + spec.key);
   parse_value(spec, spec.fallback, "default");  // a default outside its own domain is a bug

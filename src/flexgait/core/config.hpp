@@ -49,6 +49,13 @@ struct ParamSpec {
   std::string allowed() const;
 };
 
+/// Builders of documented parameters (bounds inclusive unless said otherwise).
+ParamSpec real_param(std::string key, std::string fallback, std::string unit, std::string doc, double min, double max,
+                     bool min_inclusive = true, bool max_inclusive = true);
+ParamSpec integer_param(std::string key, std::string fallback, std::string doc, double min, double max);
+ParamSpec choice_param(std::string key, std::string fallback, std::string doc, std::vector<std::string> choices);
+ParamSpec boolean_param(std::string key, std::string fallback, std::string doc);
+
 /// The set of keys a command accepts, in declaration order.
 class Schema {
  public:

@@ -7,10 +7,8 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <stdexcept>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -18,17 +16,10 @@
 namespace flexgait {
 namespace {
 
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Finished rows of a partial file: complete lines "index,cells"; a torn last line is dropped.
 std::map<int, std::string> read_partial(const std::filesystem::path& p, int count) {
   std::map<int, std::string> rows;
-  const std::string text = read_text(p);
+  const std::string text = read_text_file(p);
   std::size_t start = 0;
   while (true) {
     const std::size_t end = text.find('\n', start);
@@ -72,7 +63,7 @@ void check_resumable(const SweepJob& job) {
   const auto signature = job.dir / (job.name + ".signature");
   if (!std::filesystem::exists(signature))
     throw std::invalid_argument(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
-  if (read_text(signature) != job.signature)
+  if (read_text_file(signature) != job.signature)
     throw std::invalid_argument(fmt::format("--resume: {} holds a different sweep (see {})", job.dir.string(),
                                             signature.string()));
 }

@@ -8,34 +8,12 @@ namespace flexgait::rimless {
 
 Schema analysis_schema() {
   Schema s;
-  auto real = [&](const char* key, const char* value, const char* doc, double lo, double hi) {
-    ParamSpec p;
-    p.key = key;
-    p.fallback = value;
-    p.doc = doc;
-    p.min = lo;
-    p.max = hi;
-    s.add(p);
-  };
-  ParamSpec steps;
-  steps.key = "analysis.transient_steps";
-  steps.type = ParamType::Integer;
-  steps.fallback = "20";
-  steps.doc = "steps simulated from the initial state before the Newton iteration starts";
-  steps.min = 0;
-  steps.max = 100000;
-  s.add(steps);
-  real("analysis.rtol", "1e-12", "CVODE relative tolerance of every Poincare-map evaluation", 1e-14, 1e-4);
-  real("analysis.atol", "1e-15", "CVODE absolute tolerance of every Poincare-map evaluation", 1e-16, 1e-4);
-  real("analysis.newton_tol", "1e-10", "Newton convergence: max-norm of P(z) - z", 1e-15, 1e-2);
-  ParamSpec iters;
-  iters.key = "analysis.max_iterations";
-  iters.type = ParamType::Integer;
-  iters.fallback = "30";
-  iters.doc = "Newton iterations allowed";
-  iters.min = 1;
-  iters.max = 1000;
-  s.add(iters);
+  s.add(integer_param("analysis.transient_steps", "20",
+                      "steps simulated from the initial state before the Newton iteration starts", 0, 100000));
+  s.add(real_param("analysis.rtol", "1e-12", "", "CVODE relative tolerance of every Poincare-map evaluation", 1e-14, 1e-4));
+  s.add(real_param("analysis.atol", "1e-15", "", "CVODE absolute tolerance of every Poincare-map evaluation", 1e-17, 1e-4));
+  s.add(real_param("analysis.newton_tol", "1e-10", "", "Newton convergence: max-norm of P(z) - z", 1e-15, 1e-2));
+  s.add(integer_param("analysis.max_iterations", "30", "Newton iterations allowed", 1, 1000));
   return s;
 }
 

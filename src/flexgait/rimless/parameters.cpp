@@ -5,65 +5,34 @@
 namespace flexgait::rimless {
 namespace {
 
-ParamSpec real(std::string key, std::string fallback, std::string unit, std::string doc, double min,
-               double max, bool min_inclusive = true, bool max_inclusive = true) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Real;
-  p.fallback = std::move(fallback);
-  p.unit = std::move(unit);
-  p.doc = std::move(doc);
-  p.min = min;
-  p.max = max;
-  p.min_inclusive = min_inclusive;
-  p.max_inclusive = max_inclusive;
-  return p;
-}
-
-ParamSpec integer(std::string key, std::string fallback, std::string doc, double min, double max) {
-  ParamSpec p = real(std::move(key), std::move(fallback), "", std::move(doc), min, max);
-  p.type = ParamType::Integer;
-  return p;
-}
-
-ParamSpec choice(std::string key, std::string fallback, std::string doc, std::vector<std::string> choices) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Choice;
-  p.fallback = std::move(fallback);
-  p.doc = std::move(doc);
-  p.choices = std::move(choices);
-  return p;
-}
-
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
 Schema rimless_schema() {
   Schema s;
-  s.add(real("rimless.m", "1.0", "kg", "total mass", 0, kInf, false));
-  s.add(real("rimless.I", "0.3", "kg m^2", "moment of inertia about the hub (0: point mass)", 0, kInf));
-  s.add(integer("rimless.legs", "10", "number of legs N (alpha = pi/N)", 3, 100));
-  s.add(real("rimless.slope", "0.1", "rad", "slope angle phi", 0, std::numbers::pi / 4));
-  s.add(real("rimless.L0", "1.0", "m", "leg rest length", 0, kInf, false));
-  s.add(real("rimless.K", "1000.0", "N/m", "leg spring stiffness", 0, kInf, false));
-  s.add(real("rimless.C", "30.0", "N s/m", "leg damping", 0, kInf));
-  s.add(real("rimless.mu_s", "0.6", "", "static friction coefficient", 0, kInf));
-  s.add(real("rimless.mu_k", "0.6", "", "kinetic friction coefficient (<= mu_s)", 0, kInf));
-  s.add(real("rimless.g", "9.81", "m/s^2", "gravitational acceleration", 0, kInf, false));
-  s.add(real("initial.omega", "1.4", "rad/s", "initial wheel angular velocity", -100, 100));
-  s.add(real("initial.beta", "0.0", "rad", "initial stance-leg angle from the slope normal, |beta| < pi/N",
+  s.add(real_param("rimless.m", "1.0", "kg", "total mass", 0, kInf, false));
+  s.add(real_param("rimless.I", "0.3", "kg m^2", "moment of inertia about the hub (0: point mass)", 0, kInf));
+  s.add(integer_param("rimless.legs", "10", "number of legs N (alpha = pi/N)", 3, 100));
+  s.add(real_param("rimless.slope", "0.1", "rad", "slope angle phi", 0, std::numbers::pi / 4));
+  s.add(real_param("rimless.L0", "1.0", "m", "leg rest length", 0, kInf, false));
+  s.add(real_param("rimless.K", "1000.0", "N/m", "leg spring stiffness", 0, kInf, false));
+  s.add(real_param("rimless.C", "30.0", "N s/m", "leg damping", 0, kInf));
+  s.add(real_param("rimless.mu_s", "0.6", "", "static friction coefficient", 0, kInf));
+  s.add(real_param("rimless.mu_k", "0.6", "", "kinetic friction coefficient (<= mu_s)", 0, kInf));
+  s.add(real_param("rimless.g", "9.81", "m/s^2", "gravitational acceleration", 0, kInf, false));
+  s.add(real_param("initial.omega", "1.4", "rad/s", "initial wheel angular velocity", -100, 100));
+  s.add(real_param("initial.beta", "0.0", "rad", "initial stance-leg angle from the slope normal, |beta| < pi/N",
              -std::numbers::pi / 2, std::numbers::pi / 2, false, false));
-  s.add(choice("sim.model", "flexible", "flexible legs with stick-slip, or the rigid rimless wheel",
+  s.add(choice_param("sim.model", "flexible", "flexible legs with stick-slip, or the rigid rimless wheel",
                {"flexible", "rigid"}));
-  s.add(integer("sim.steps", "20", "steps to simulate (touchdowns of new legs)", 1, 1e6));
-  s.add(real("sim.max_time", "120.0", "s", "simulated-time limit", 0, kInf, false));
-  s.add(real("sim.max_step_time", "10.0", "s", "a step longer than this is reported as stopped", 0, kInf, false));
-  s.add(real("sim.sample_dt", "0.001", "s", "log sampling interval (events are logged too)", 1e-6, 10));
-  s.add(real("solver.rtol", "1e-10", "", "CVODE relative tolerance", 1e-14, 1e-2));
-  s.add(real("solver.atol", "1e-12", "", "CVODE absolute tolerance", 1e-16, 1e-2));
-  s.add(choice("solver.method", "adams", "CVODE linear multistep method", {"adams", "bdf"}));
+  s.add(integer_param("sim.steps", "20", "steps to simulate (touchdowns of new legs)", 1, 1e6));
+  s.add(real_param("sim.max_time", "120.0", "s", "simulated-time limit", 0, kInf, false));
+  s.add(real_param("sim.max_step_time", "10.0", "s", "a step longer than this is reported as stopped", 0, kInf, false));
+  s.add(real_param("sim.sample_dt", "0.001", "s", "log sampling interval (events are logged too)", 1e-6, 10));
+  s.add(real_param("solver.rtol", "1e-10", "", "CVODE relative tolerance", 1e-14, 1e-2));
+  s.add(real_param("solver.atol", "1e-12", "", "CVODE absolute tolerance", 1e-16, 1e-2));
+  s.add(choice_param("solver.method", "adams", "CVODE linear multistep method", {"adams", "bdf"}));
   return s;
 }
 
