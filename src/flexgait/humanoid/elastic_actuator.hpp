@@ -1,0 +1,68 @@
+#pragma once
+/// \file elastic_actuator.hpp
+/// The elastic gear actuator of the twin (spec humanoid.md, "The elastic actuator (plant)"):
+///
+///   link:   τ = k · dz(θ_m − θ_l) + d (θ̇_m − θ̇_l)     (dz: backlash dead band of total width b)
+///   motor:  J_m θ̈_m = τ_servo − τ,   τ_servo = sat(K_p e + K_i ∫e − K_d θ̇_m),  e = θ_cmd − θ_m
+///   encoder: θ_enc = q · round(θ_m / q),  q = 2π / steps
+///
+/// The servo is critically damped at the configured bandwidth ω (K_p = J_m ω², K_d = 2 J_m ω) with
+/// integral action, so the motor side reaches the command under load and the deflection sits in
+/// the gear, as on the robot. On the link side MuJoCo applies the spring as a joint spring whose
+/// reference is moved each physics step (qpos_spring), the damping −d θ̇_l implicitly (joint
+/// damping; explicit damping blows up at 1 ms, spec "Physics"), and +d θ̇_m through qfrc_applied.
+#include <mujoco/mujoco.h>
+
+#include <vector>
+
+namespace flexgait::humanoid {
+
+struct ActuatorParams {
+  double k = 1000.0;             ///< gear stiffness [Nm/rad]
+  double d = 80.0;               ///< gear damping [Nm s/rad]
+  double backlash = 0.0;         ///< dead band, total width [rad]
+  double torque_limit = 100.0;   ///< servo torque limit [Nm]
+  double rotor_inertia = 0.8;    ///< J_m [kg m^2]
+  double bandwidth = 30.0;       ///< servo bandwidth [Hz]
+  double integral_time = 0.05;   ///< servo integral time [s]
+  double encoder_steps = 501923; ///< steps per output turn
+};
+
+struct ActuatorState {
+  double theta_m = 0;   ///< motor-side angle (output units) [rad]
+  double omega_m = 0;   ///< [rad/s]
+  double integral = 0;  ///< ∫ e dt [rad s]
+};
+
+/// Gear deflection after the dead band, dz(θ_m − θ_l) [rad].
+double gear_deflection(const ActuatorParams& p, double theta_m, double theta_l);
+/// Gear torque on the link [Nm].
+double gear_torque(const ActuatorParams& p, const ActuatorState& s, double theta_l, double omega_l);
+/// Advances the motor side by dt (semi-implicit Euler) with the link state held.
+void step_motor(const ActuatorParams& p, ActuatorState& s, double command, double theta_l, double omega_l, double dt);
+/// The motor-side encoder's reading: θ_m quantised to 2π / encoder_steps.
+double encoder_reading(const ActuatorParams& p, double theta_m);
+
+/// Elastic drives on a set of MuJoCo hinge joints: parameters per joint, motor states, and the
+/// per-physics-step coupling. Modifies the model it is given (its own copy: qpos_spring).
+class ElasticDrives {
+ public:
+  /// \param joints MuJoCo joint ids (hinges whose stiffness and damping the model already holds).
+  ElasticDrives(const mjModel* m, std::vector<int> joints, std::vector<ActuatorParams> params);
+  /// Motors at rest at the link angles of d (no deflection), integrators cleared.
+  void reset_to_links(const mjData* d);
+  /// One physics step: motors advance toward `commands` (dim joints), the spring references and
+  /// the motor-side damping are applied, then mj_step.
+  void step(mjModel* m, mjData* d, const double* commands);
+  const std::vector<ActuatorState>& states() const { return states_; }
+  const std::vector<ActuatorParams>& params() const { return params_; }
+  const std::vector<int>& qpos_index() const { return qpos_; }
+  const std::vector<int>& dof_index() const { return dof_; }
+
+ private:
+  std::vector<int> qpos_, dof_;
+  std::vector<ActuatorParams> params_;
+  std::vector<ActuatorState> states_;
+};
+
+}  // namespace flexgait::humanoid

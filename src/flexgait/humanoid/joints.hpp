@@ -1,0 +1,30 @@
+#pragma once
+/// \file joints.hpp
+/// The actuated joints of the THORMANG-class twin (spec humanoid.md, "The robot"): the waist and
+/// six per leg, in this order. Arms and head are rigid.
+#include <array>
+#include <string_view>
+
+namespace flexgait::humanoid {
+
+inline constexpr int kJoints = 13;
+inline constexpr int kLegJoints = 6;
+
+enum Joint : int {
+  kWaistYaw = 0,
+  kLeftHipYaw, kLeftHipRoll, kLeftHipPitch, kLeftKnee, kLeftAnklePitch, kLeftAnkleRoll,
+  kRightHipYaw, kRightHipRoll, kRightHipPitch, kRightKnee, kRightAnklePitch, kRightAnkleRoll,
+};
+
+inline constexpr std::array<std::string_view, kJoints> kJointNames = {
+    "waist_yaw",
+    "l_hip_yaw", "l_hip_roll", "l_hip_pitch", "l_knee", "l_ankle_pitch", "l_ankle_roll",
+    "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ankle_pitch", "r_ankle_roll",
+};
+
+/// First joint of a leg (side 0: left, 1: right); the leg's joints follow in kinematic order.
+inline constexpr int leg_first_joint(int side) { return side == 0 ? kLeftHipYaw : kRightHipYaw; }
+
+using JointVector = std::array<double, kJoints>;  ///< one value per actuated joint [rad, Nm, ...]
+
+}  // namespace flexgait::humanoid

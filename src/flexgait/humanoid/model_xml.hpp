@@ -1,0 +1,23 @@
+#pragma once
+/// \file model_xml.hpp
+/// The twin as MJCF, written from RobotParams (spec humanoid.md, "The robot"): a free-floating
+/// pelvis, a waist yaw joint to the chest (arms and head rigid on it), two 6-joint legs, box soles.
+/// Inertias follow from the link shapes (inertiafromgeom); only the soles collide with the floor.
+/// Each actuated joint carries its gear stiffness and damping (the spring's reference is moved
+/// by the elastic drives). Sites: "imu" at the pelvis origin, "l_ft"/"r_ft" at the ankle axes
+/// between the ankle-roll link and the foot (the F/T sensors). Joint angles zero: legs straight.
+#include <mujoco/mujoco.h>
+
+#include <string>
+
+#include "flexgait/humanoid/robot_params.hpp"
+
+namespace flexgait::humanoid {
+
+std::string humanoid_mjcf(const RobotParams& robot, const PlantParams& plant);
+
+/// Loads MJCF text into a model (through MuJoCo's virtual file system). Throws std::runtime_error
+/// with MuJoCo's message on failure. The caller owns the model (mj_deleteModel).
+mjModel* load_mjcf(const std::string& xml);
+
+}  // namespace flexgait::humanoid

@@ -1,0 +1,171 @@
+#include "flexgait/humanoid/plant.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "flexgait/humanoid/model_xml.hpp"
+
+namespace flexgait::humanoid {
+namespace {
+
+int require(const mjModel* m, mjtObj type, const std::string& name) {
+  const int id = mj_name2id(m, type, name.c_str());
+  if (id < 0) throw std::logic_error("twin model has no " + name);
+  return id;
+}
+
+int sensor_adr(const mjModel* m, const char* name) { return m->sensor_adr[require(m, mjOBJ_SENSOR, name)]; }
+
+}  // namespace
+
+JointVector standing_pose(const RobotParams& r, double pelvis_height) {
+  const double leg = pelvis_height - r.hip_axes_depth - r.ankle_to_sole;  // hip axes to ankle axes
+  const double reach = r.thigh + r.shank;
+  if (leg <= 0.05 * reach || leg >= reach)
+    throw std::invalid_argument(fmt::format("pelvis height {} m is out of the legs' reach", pelvis_height));
+  // Law of cosines with the hip-ankle line vertical.
+  const double c_knee = (r.thigh * r.thigh + r.shank * r.shank - leg * leg) / (2 * r.thigh * r.shank);
+  const double knee = std::numbers::pi - std::acos(c_knee);
+  const double hip = -std::asin(r.shank * std::sin(knee) / leg);
+  const double ankle = -(knee + hip);
+  JointVector q{};
+  for (int side = 0; side < 2; ++side) {
+    const int j = leg_first_joint(side);
+    q[j + 2] = hip;
+    q[j + 3] = knee;
+    q[j + 4] = ankle;
+  }
+  return q;
+}
+
+HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
+    : robot_(robot), params_(plant), rng_(static_cast<std::uint64_t>(plant.noise_seed)) {
+  model_ = load_mjcf(humanoid_mjcf(robot_, params_));
+  data_ = mj_makeData(model_);
+  std::vector<int> joints;
+  std::vector<ActuatorParams> act;
+  for (int j = 0; j < kJoints; ++j) {
+    joint_id_[j] = require(model_, mjOBJ_JOINT, std::string(kJointNames[j]));
+    joints.push_back(joint_id_[j]);
+    ActuatorParams a;
+    a.k = params_.k_joint[j];
+    a.d = params_.gear_damping;
+    a.backlash = params_.backlash;
+    a.torque_limit = params_.torque_limit;
+    a.rotor_inertia = params_.rotor_inertia;
+    a.bandwidth = params_.servo_bandwidth;
+    a.integral_time = params_.servo_integral_time;
+    a.encoder_steps = params_.encoder_steps;
+    act.push_back(a);
+  }
+  drives_ = std::make_unique<ElasticDrives>(model_, joints, act);
+  floor_geom_ = require(model_, mjOBJ_GEOM, "floor");
+  sole_geom_ = {require(model_, mjOBJ_GEOM, "l_sole"), require(model_, mjOBJ_GEOM, "r_sole")};
+  ft_sensor_adr_ = {sensor_adr(model_, "l_ft_force"), sensor_adr(model_, "l_ft_torque"),
+                    sensor_adr(model_, "r_ft_force"), sensor_adr(model_, "r_ft_torque")};
+  quat_adr_ = sensor_adr(model_, "imu_quat");
+  gyro_adr_ = sensor_adr(model_, "imu_gyro");
+  acc_adr_ = sensor_adr(model_, "imu_acc");
+  reset(JointVector{});
+}
+
+HumanoidPlant::~HumanoidPlant() {
+  if (data_ != nullptr) mj_deleteData(data_);
+  if (model_ != nullptr) mj_deleteModel(model_);
+}
+
+double HumanoidPlant::time() const { return data_->time; }
+double HumanoidPlant::total_mass() const { return model_->body_subtreemass[0]; }
+
+void HumanoidPlant::reset(const JointVector& pose) {
+  mj_resetData(model_, data_);
+  for (int j = 0; j < kJoints; ++j) data_->qpos[model_->jnt_qposadr[joint_id_[j]]] = pose[j];
+  // Level pelvis, then lower it until the lower sole rests on the floor.
+  data_->qpos[0] = data_->qpos[1] = 0.0;
+  data_->qpos[2] = 2.0;
+  data_->qpos[3] = 1.0;
+  data_->qpos[4] = data_->qpos[5] = data_->qpos[6] = 0.0;
+  mj_kinematics(model_, data_);
+  double lowest = INFINITY;
+  for (int side = 0; side < 2; ++side) {
+    const int g = sole_geom_[side];
+    // Box bottom: centre z minus the half-extent along world z (soles are level in a level pose).
+    const double* R = data_->geom_xmat + 9 * g;
+    const double* h = model_->geom_size + 3 * g;
+    const double extent = std::abs(R[6]) * h[0] + std::abs(R[7]) * h[1] + std::abs(R[8]) * h[2];
+    lowest = std::min(lowest, data_->geom_xpos[3 * g + 2] - extent);
+  }
+  data_->qpos[2] -= lowest;
+  mj_forward(model_, data_);
+  drives_->reset_to_links(data_);
+  for (std::size_t i = 0; i < drives_->states().size(); ++i)
+    model_->qpos_spring[drives_->qpos_index()[i]] = data_->qpos[drives_->qpos_index()[i]];
+  read_sensors();
+}
+
+void HumanoidPlant::step(const JointVector& command) {
+  const int n = params_.substeps();
+  for (int k = 0; k < n; ++k) drives_->step(model_, data_, command.data());
+  read_sensors();
+}
+
+void HumanoidPlant::read_sensors() {
+  SensorReadings& s = sensors_;
+  s.t = data_->time;
+  for (int j = 0; j < kJoints; ++j) s.encoder[j] = encoder_reading(drives_->params()[j], drives_->states()[j].theta_m);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  auto noisy = [&](double v, double std) { return std > 0 ? v + std * unit(rng_) : v; };
+  for (int side = 0; side < 2; ++side) {
+    const double* f = data_->sensordata + ft_sensor_adr_[2 * side];
+    const double* t = data_->sensordata + ft_sensor_adr_[2 * side + 1];
+    for (int i = 0; i < 3; ++i) {
+      s.ft[side].force[i] = noisy(f[i], params_.ft_force_noise);
+      s.ft[side].torque[i] = noisy(t[i], params_.ft_torque_noise);
+    }
+  }
+  for (int i = 0; i < 4; ++i) s.imu.quat[i] = data_->sensordata[quat_adr_ + i];
+  for (int i = 0; i < 3; ++i) {
+    s.imu.gyro[i] = noisy(data_->sensordata[gyro_adr_ + i], params_.gyro_noise);
+    s.imu.accel[i] = noisy(data_->sensordata[acc_adr_ + i], params_.accel_noise);
+  }
+}
+
+GroundTruth HumanoidPlant::truth() const {
+  GroundTruth g;
+  g.t = data_->time;
+  for (int j = 0; j < kJoints; ++j) {
+    const double q = data_->qpos[model_->jnt_qposadr[joint_id_[j]]], v = data_->qvel[model_->jnt_dofadr[joint_id_[j]]];
+    g.link_angle[j] = q;
+    g.link_velocity[j] = v;
+    g.motor_angle[j] = drives_->states()[j].theta_m;
+    g.gear_torque[j] = gear_torque(drives_->params()[j], drives_->states()[j], q, v);
+  }
+  for (int i = 0; i < 3; ++i) g.pelvis_pos[i] = data_->qpos[i];
+  for (int i = 0; i < 4; ++i) g.pelvis_quat[i] = data_->qpos[3 + i];
+  const int pelvis = 1;
+  for (int i = 0; i < 3; ++i) g.com[i] = data_->subtree_com[3 * pelvis + i];
+  double fz = 0, mx = 0, my = 0;
+  for (int c = 0; c < data_->ncon; ++c) {
+    const mjContact& con = data_->contact[c];
+    const bool floor = con.geom1 == floor_geom_ || con.geom2 == floor_geom_;
+    if (!floor) continue;
+    const int other = con.geom1 == floor_geom_ ? con.geom2 : con.geom1;
+    if (other != sole_geom_[0] && other != sole_geom_[1]) g.non_sole_contact = true;
+    mjtNum f[6];
+    mj_contactForce(model_, data_, c, f);
+    // Contact frame: first row of con.frame is the normal; the normal force is f[0].
+    const double n = f[0] * con.frame[2];  // world z component of the normal force
+    fz += n;
+    mx += n * con.pos[0];
+    my += n * con.pos[1];
+  }
+  g.normal_force = fz;
+  if (fz > 1e-9) g.zmp = {mx / fz, my / fz};
+  for (int i = 0; i < mjNWARNING; ++i) g.warnings += data_->warning[i].number;
+  return g;
+}
+
+}  // namespace flexgait::humanoid

@@ -1,0 +1,95 @@
+#pragma once
+/// \file plant.hpp
+/// The digital twin as a plant (spec humanoid.md): joint commands in, sensor readings out, at the
+/// control period over a finer physics step. Ground truth (link angles, pelvis pose, COM, true
+/// ZMP from the contact forces) is on a separate path, for evaluation code only: a controller is
+/// handed SensorReadings and nothing else.
+#include <mujoco/mujoco.h>
+
+#include <array>
+#include <memory>
+#include <random>
+
+#include "flexgait/humanoid/elastic_actuator.hpp"
+#include "flexgait/humanoid/joints.hpp"
+#include "flexgait/humanoid/robot_params.hpp"
+
+namespace flexgait::humanoid {
+
+struct ForceTorque {
+  std::array<double, 3> force{};   ///< on the foot from the leg, in the sensor (foot) frame [N]
+  std::array<double, 3> torque{};  ///< [Nm]
+};
+
+struct Imu {
+  std::array<double, 4> quat{1, 0, 0, 0};  ///< pelvis orientation (w, x, y, z), world frame
+  std::array<double, 3> gyro{};            ///< angular rate in the pelvis frame [rad/s]
+  std::array<double, 3> accel{};           ///< specific force in the pelvis frame [m/s^2]
+};
+
+/// What the robot's controller can read.
+struct SensorReadings {
+  double t = 0;                   ///< [s]
+  JointVector encoder{};          ///< motor-side encoders, quantised [rad]
+  std::array<ForceTorque, 2> ft;  ///< left, right ankle F/T
+  Imu imu;
+};
+
+/// What only evaluation code may read.
+struct GroundTruth {
+  double t = 0;
+  JointVector link_angle{}, link_velocity{};  ///< true joint (link-side) angles [rad], [rad/s]
+  JointVector motor_angle{};                  ///< unquantised motor side [rad]
+  JointVector gear_torque{};                  ///< [Nm]
+  std::array<double, 3> pelvis_pos{};         ///< [m]
+  std::array<double, 4> pelvis_quat{1, 0, 0, 0};
+  std::array<double, 3> com{};                ///< whole-body centre of mass [m]
+  std::array<double, 2> zmp{};                ///< centre of pressure of the floor contacts (x, y) [m]
+  double normal_force = 0;                    ///< total floor normal force [N]
+  bool non_sole_contact = false;              ///< a body other than a sole touches the floor
+  int warnings = 0;                           ///< MuJoCo warnings raised so far
+};
+
+class HumanoidPlant {
+ public:
+  HumanoidPlant(const RobotParams& robot, const PlantParams& plant);
+  ~HumanoidPlant();
+  HumanoidPlant(const HumanoidPlant&) = delete;
+  HumanoidPlant& operator=(const HumanoidPlant&) = delete;
+
+  /// Puts the robot in `pose` (link and motor angles), pelvis level, soles on the floor, at rest.
+  void reset(const JointVector& pose);
+  /// Advances one control period with these motor-side position commands [rad].
+  void step(const JointVector& command);
+  const SensorReadings& sensors() const { return sensors_; }
+  GroundTruth truth() const;
+  double time() const;
+  double total_mass() const;
+
+  /// For evaluation and rendering only.
+  const mjModel* model() const { return model_; }
+  const mjData* data() const { return data_; }
+  const PlantParams& params() const { return params_; }
+
+ private:
+  void read_sensors();
+
+  RobotParams robot_;
+  PlantParams params_;
+  mjModel* model_ = nullptr;
+  mjData* data_ = nullptr;
+  std::unique_ptr<ElasticDrives> drives_;
+  std::array<int, kJoints> joint_id_{};
+  int floor_geom_ = -1;
+  std::array<int, 2> sole_geom_{};
+  std::array<int, 4> ft_sensor_adr_{};  // l force, l torque, r force, r torque
+  int quat_adr_ = 0, gyro_adr_ = 0, acc_adr_ = 0;
+  SensorReadings sensors_;
+  std::mt19937_64 rng_;
+};
+
+/// Standing pose: feet under the hips, pelvis at `pelvis_height` above the floor, knee bent so
+/// that hip and ankle pitch are −knee/2 (legs vertical on average). Throws if out of reach.
+JointVector standing_pose(const RobotParams& robot, double pelvis_height);
+
+}  // namespace flexgait::humanoid
