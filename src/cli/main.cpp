@@ -8,6 +8,7 @@
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/version.hpp"
+#include "humanoid_commands.hpp"
 #include "rimless_commands.hpp"
 
 int main(int argc, char** argv) {
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);
+  flexgait::cli::add_humanoid_commands(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

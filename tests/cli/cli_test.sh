@@ -95,5 +95,13 @@ done
 "$exe" rimless analysis stagnation --count 4 --from 1.4 --to 1.6 --out "$work/an_stag" --no-plot >/dev/null 2>&1
 check "stagnation writes 4 points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 5
 
+# Humanoid stiffness bench.
+"$exe" humanoid bench --out "$work/bench" --json --no-plot >"$work/bench.json" 2>"$work/err"
+check "humanoid bench exits 0: $(cat "$work/err")" test $? -eq 0
+for key in k_fit r_squared max_error_uncompensated max_error_compensated; do
+  check "bench summary has $key" grep -q "\"$key\"" "$work/bench.json"
+done
+expect_usage_error bench-bad-k "plant.k_joint" humanoid bench --set plant.k_joint=0
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

@@ -48,9 +48,9 @@ Schema bench_schema() {
   s.add(real_param("plant.gear_damping", "80.0", "Nm s/rad", "gear damping", 0, 10000));
   s.add(real_param("plant.backlash", "0.0", "rad", "backlash dead band, total width", 0, 0.1));
   s.add(real_param("bench.arm_length", "0.3", "m", "hinge to load", 0.01, 5));
-  s.add(real_param("bench.load_mass", "10.0", "kg", "load at the arm's end", 0.01, 1000));
-  s.add(real_param("bench.angle_min", "-1.2", "rad", "first pose (from horizontal, positive down)", -1.5, 1.5));
-  s.add(real_param("bench.angle_max", "1.2", "rad", "last pose", -1.5, 1.5));
+  s.add(real_param("bench.load_mass", "13.6", "kg", "load at the arm's end (13.6 kg at 0.3 m: ±40 Nm)", 0.01, 1000));
+  s.add(real_param("bench.angle_min", "0.2", "rad", "first pose (from horizontal, positive down)", -3.2, 3.2));
+  s.add(real_param("bench.angle_max", "2.94", "rad", "last pose (past hanging straight down at pi/2)", -3.2, 3.2));
   s.add(integer_param("bench.poses", "25", "poses in the sweep", 3, 10000));
   s.add(real_param("bench.settle_time", "2.0", "s", "time at each pose before sampling", 0.1, 100));
   return s;
@@ -95,7 +95,7 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
       b.command = desired;
       b.encoder = encoder_reading(p.actuator, drive.states()[0].theta_m);
       b.link = d->qpos[0];
-      b.gravity_torque = weight_arm * std::cos(b.encoder);
+      b.gravity_torque = weight_arm * std::cos(b.link);  // the torque the gear carries at the true pose
       out.push_back(b);
     }
     return out;

@@ -15,9 +15,9 @@ namespace flexgait::humanoid {
 struct BenchParams {
   ActuatorParams actuator;       ///< the plant's actuator (its k is the truth to recover)
   double arm_length = 0.3;       ///< hinge to load [m]
-  double load_mass = 10.0;       ///< point load at the arm's end [kg]
-  double angle_min = -1.2;       ///< first pose, from horizontal, positive down [rad]
-  double angle_max = 1.2;        ///< last pose [rad]
+  double load_mass = 13.6;       ///< point load at the arm's end [kg] (±40 Nm at 0.3 m, as in the thesis)
+  double angle_min = 0.2;        ///< first pose, from horizontal, positive down [rad]
+  double angle_max = 2.94;       ///< last pose [rad]: the sweep passes hanging straight down (π/2)
   int poses = 25;
   double settle_time = 2.0;      ///< time at each pose before sampling [s]
   double physics_dt = 0.001;     ///< [s]
@@ -29,7 +29,7 @@ struct BenchSample {
   double command = 0;        ///< θ_d [rad]
   double encoder = 0;        ///< θ_enc [rad]
   double link = 0;           ///< true link angle [rad]
-  double gravity_torque = 0; ///< m g l cos θ_enc [Nm]
+  double gravity_torque = 0; ///< m g l cos θ_link [Nm]
 };
 
 struct BenchResult {
