@@ -31,7 +31,6 @@ inline int state_size(const WheelParams& w) { return kStateBase + w.legs; }
 /// along the slope): forward = +x (down the slope).
 enum class FootMode : std::uint8_t { Stick, SlipForward, SlipBackward };
 inline int slip_sign(FootMode m) { return m == FootMode::SlipForward ? 1 : m == FootMode::SlipBackward ? -1 : 0; }
-inline FootMode slip_mode(int s) { return s > 0 ? FootMode::SlipForward : FootMode::SlipBackward; }
 const char* mode_name(FootMode m);
 
 /// At most this many feet on the ground at once (two in the paper; three for many soft legs).
