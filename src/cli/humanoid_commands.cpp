@@ -7,6 +7,8 @@
 
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
+#include "flexgait/core/progress.hpp"
+#include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
 #include "options.hpp"
 
@@ -54,6 +56,36 @@ int bench(const RunOptions& run) {
   return 0;
 }
 
+int walk(const RunOptions& run) {
+  const Config config = resolve(experiments::walk_run_schema(), run);
+  const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
+  const RunDirectory dir(run.out);
+  dir.write_config(config);
+  ProgressBar bar(walking::plan_footsteps(params.walk).duration, "s simulated");
+  const experiments::WalkResult r = experiments::run_walk(params, [&](double t) { bar.show(t); });
+  dir.write("log.csv", experiments::walk_log_csv(r));
+  dir.write("footsteps.csv", experiments::walk_footsteps_csv(r));
+  const std::string summary = experiments::walk_summary_json(r);
+  dir.write("summary.json", summary);
+  dir.write("timing.json", experiments::walk_timing_json(r));
+  if (run.plot) run_plot_script("plot_walk.py", {dir.path().string()});
+  const auto& m = r.metrics;
+  if (run.json) {
+    fmt::print("{}", summary);
+  } else {
+    if (m.fell)
+      fmt::print("FELL at t = {:.2f} s ({}) after {} of {} steps\n", m.fall_time, m.fall_reason, m.steps_completed,
+                 m.steps_planned);
+    else
+      fmt::print("walked {} of {} steps in {:.1f} s (real-time factor {:.1f})\n", m.steps_completed, m.steps_planned,
+                 m.simulated_time, m.real_time_factor);
+    fmt::print("ZMP rms error x {:.4f} m, y {:.4f} m; pelvis roll error max {:.4f} rad, pitch max {:.4f} rad\n",
+               m.zmp_rms_x, m.zmp_rms_y, m.pelvis_roll_error_max, m.pelvis_pitch_error_max);
+    fmt::print("results in {}\n", dir.path().string());
+  }
+  return m.fell ? 1 : 0;
+}
+
 }  // namespace
 
 void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
@@ -65,6 +97,13 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
                "angle error against gravity torque, then repeat with the input compensator");
   add_run_options(*b, *run, "runs/humanoid-bench");
   b->callback([run, &action] { action = [run] { return bench(*run); }; });
+
+  auto walk_run = std::make_shared<RunOptions>();
+  CLI::App* w = humanoid->add_subcommand(
+      "walk", "Walk the twin with the ZMP preview controller (footsteps, preview control, balance, leg IK); "
+              "exit 1 if it falls");
+  add_run_options(*w, *walk_run, "runs/humanoid-walk");
+  w->callback([walk_run, &action] { action = [walk_run] { return walk(*walk_run); }; });
 }
 
 }  // namespace flexgait::cli

@@ -1,5 +1,7 @@
 #include "flexgait/core/sweep_runner.hpp"
 
+#include "flexgait/core/progress.hpp"
+
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -37,24 +39,6 @@ std::map<int, std::string> read_partial(const std::filesystem::path& p, int coun
   return rows;
 }
 
-class Progress {
- public:
-  Progress(int total, int done) : total_(total), done_(done), tty_(isatty(STDERR_FILENO) != 0) {}
-  void tick(double seconds, int computed) {
-    ++done_;
-    if (!tty_) return;
-    const int width = 30;
-    const int filled = total_ > 0 ? width * done_ / total_ : width;
-    const double eta = computed > 0 ? seconds / computed * (total_ - done_) : 0.0;
-    fmt::print(stderr, "\r[{}{}] {}/{} points, {:.1f} s, ETA {:.0f} s ", std::string(filled, '#'),
-               std::string(width - filled, '.'), done_, total_, seconds, eta);
-    if (done_ == total_) fmt::print(stderr, "\n");
-  }
-
- private:
-  int total_, done_;
-  bool tty_;
-};
 
 }  // namespace
 
@@ -92,7 +76,8 @@ SweepOutcome run_sweep(const SweepJob& job) {
 
   const auto t0 = std::chrono::steady_clock::now();
   std::mutex mutex;
-  Progress progress(job.count, out.resumed);
+  ProgressBar progress(job.count, "points");
+  progress.show(out.resumed);
   const int threads = job.jobs > 0 ? job.jobs : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
   arena.execute([&] {
@@ -106,8 +91,7 @@ SweepOutcome run_sweep(const SweepJob& job) {
             append_file_durable(partial, fmt::format("{},{}\n", i, cells));
             rows[i] = cells;
             ++out.computed;
-            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            progress.tick(s, out.computed);
+            progress.show(out.resumed + out.computed);
           }
         },
         tbb::simple_partitioner());

@@ -6,9 +6,11 @@
 ///   motor:  J_m θ̈_m = τ_servo − τ,   τ_servo = sat(K_p e + K_i ∫e − K_d θ̇_m),  e = θ_cmd − θ_m
 ///   encoder: θ_enc = q · round(θ_m / q),  q = 2π / steps
 ///
-/// The servo is critically damped at the configured bandwidth ω (K_p = J_m ω², K_d = 2 J_m ω) with
-/// integral action, so the motor side reaches the command under load and the deflection sits in
-/// the gear, as on the robot. On the link side MuJoCo applies the spring as a joint spring whose
+/// The servo is a stiff PD, critically damped at the configured bandwidth ω (K_p = J_m ω²,
+/// K_d = 2 J_m ω; the motor side sags by τ/K_p, 3.5 % of the gear's τ/k at 30 Hz and k = 1000),
+/// with optional integral action (K_i = K_p / T_i) that takes that sag out. Integral action
+/// destabilises the walking twin (a probe: the stiff-geared twin falls at 1 s/step with
+/// T_i = 0.05 s and walks without it), so it is off by default. On the link side MuJoCo applies the spring as a joint spring whose
 /// reference is moved each physics step (qpos_spring), the damping −d θ̇_l implicitly (joint
 /// damping; explicit damping blows up at 1 ms, spec "Physics"), and +d θ̇_m through qfrc_applied.
 #include <mujoco/mujoco.h>
@@ -24,7 +26,7 @@ struct ActuatorParams {
   double torque_limit = 100.0;   ///< servo torque limit [Nm]
   double rotor_inertia = 0.8;    ///< J_m [kg m^2]
   double bandwidth = 30.0;       ///< servo bandwidth [Hz]
-  double integral_time = 0.05;   ///< servo integral time [s]
+  double integral_time = 0.0;    ///< servo integral time [s]; 0: none (the spec's stiff PD)
   double encoder_steps = 501923; ///< steps per output turn
 };
 

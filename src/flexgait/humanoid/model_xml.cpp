@@ -20,11 +20,11 @@ std::string leg(const RobotParams& r, const PlantParams& p, int side) {
   const double y = side == 0 ? r.hip_yaw_offset_y : -r.hip_yaw_offset_y;
   const int j0 = leg_first_joint(side);
   const double d = p.gear_damping;
-  const double sole_h = 0.02;  // sole plate thickness [m]
+  const double sole_h = r.sole_thickness;
   return fmt::format(R"(
       <body name="{s}_hip_yaw_link" pos="0 {y} {zy}">
         {j_yaw}
-        <geom type="cylinder" size="0.035 0.03" pos="0 0 -0.03" mass="{m_yaw}"/>
+        <geom type="cylinder" size="0.035 0.03" pos="0 0 {com_yaw}" mass="{m_yaw}"/>
         <body name="{s}_hip_roll_link" pos="0 0 {zr}">
           {j_roll}
           <geom type="box" size="0.05 0.04 0.035" mass="{m_roll}"/>
@@ -43,7 +43,7 @@ std::string leg(const RobotParams& r, const PlantParams& p, int side) {
                   <body name="{s}_foot" pos="0 0 0">
                     <site name="{s}_ft" pos="0 0 0" size="0.01"/>
                     <geom name="{s}_sole" type="box" pos="0 0 {sole_z}" size="{half_l} {half_w} {half_h}" mass="{m_foot}"
-                          contype="1" conaffinity="1" condim="3" friction="{mu} 0.005 0.0001" rgba=".3 .3 .8 1"/>
+                          contype="1" conaffinity="1" condim="3" friction="{mu} 0.005 0.0001" solref="{tc} 1" rgba=".3 .3 .8 1"/>
                   </body>
                 </body>
               </body>
@@ -53,7 +53,7 @@ std::string leg(const RobotParams& r, const PlantParams& p, int side) {
       </body>)",
       fmt::arg("s", s), fmt::arg("y", y), fmt::arg("zy", -r.hip_yaw_offset_z),
       fmt::arg("j_yaw", joint(std::string(s) + "_hip_yaw", "0 0 1", p.k_joint[j0 + 0], d)),
-      fmt::arg("m_yaw", r.m_hip_yaw), fmt::arg("zr", -(r.hip_axes_depth - r.hip_yaw_offset_z)),
+      fmt::arg("m_yaw", r.m_hip_yaw), fmt::arg("com_yaw", r.hip_yaw_com_z), fmt::arg("zr", -(r.hip_axes_depth - r.hip_yaw_offset_z)),
       fmt::arg("j_roll", joint(std::string(s) + "_hip_roll", "1 0 0", p.k_joint[j0 + 1], d)),
       fmt::arg("m_roll", r.m_hip_roll),
       fmt::arg("j_pitch", joint(std::string(s) + "_hip_pitch", "0 1 0", p.k_joint[j0 + 2], d)),
@@ -65,7 +65,7 @@ std::string leg(const RobotParams& r, const PlantParams& p, int side) {
       fmt::arg("j_ar", joint(std::string(s) + "_ankle_roll", "1 0 0", p.k_joint[j0 + 5], d)),
       fmt::arg("m_ar", r.m_ankle_roll), fmt::arg("sole_z", -(r.ankle_to_sole - 0.5 * sole_h)),
       fmt::arg("half_l", 0.5 * r.sole_length), fmt::arg("half_w", 0.5 * r.sole_width), fmt::arg("half_h", 0.5 * sole_h),
-      fmt::arg("m_foot", r.m_foot), fmt::arg("mu", r.sole_friction));
+      fmt::arg("m_foot", r.m_foot), fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant));
 }
 
 }  // namespace
@@ -84,17 +84,17 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
   <visual><global offwidth="1280" offheight="720"/></visual>
   <worldbody>
     <light pos="0 -2 4" dir="0 0.4 -1" directional="true"/>
-    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="{mu} 0.005 0.0001" rgba=".8 .85 .8 1"/>
+    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="{mu} 0.005 0.0001" solref="{tc} 1" rgba=".8 .85 .8 1"/>
     <body name="pelvis" pos="0 0 1">
       <freejoint name="root"/>
       <site name="imu" pos="0 0 0" size="0.01"/>
       <geom type="box" size="0.09 0.14 0.05" pos="0 0 0" mass="{m_pelvis}"/>
-      <body name="chest" pos="0 0 0.1">
+      <body name="chest" pos="0 0 {chest_z}">
         {j_waist}
-        <geom type="box" size="0.11 0.15 0.14" pos="0 0 0.16" mass="{m_chest}"/>
-        <geom name="l_arm" type="capsule" fromto="0 0.22 0.28 0 0.22 -0.2" size="0.045" mass="{m_arm}"/>
-        <geom name="r_arm" type="capsule" fromto="0 -0.22 0.28 0 -0.22 -0.2" size="0.045" mass="{m_arm}"/>
-        <geom name="head" type="sphere" size="0.1" pos="0 0 0.42" mass="{m_head}"/>
+        <geom type="box" size="0.11 0.15 0.14" pos="0 0 {chest_com}" mass="{m_chest}"/>
+        <geom name="l_arm" type="capsule" fromto="0 {arm_y} {arm_top} 0 {arm_y} {arm_bottom}" size="0.045" mass="{m_arm}"/>
+        <geom name="r_arm" type="capsule" fromto="0 -{arm_y} {arm_top} 0 -{arm_y} {arm_bottom}" size="0.045" mass="{m_arm}"/>
+        <geom name="head" type="sphere" size="0.1" pos="0 0 {head_z}" mass="{m_head}"/>
       </body>{left}{right}
     </body>
   </worldbody>
@@ -109,9 +109,12 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
   </sensor>
 </mujoco>
 )",
-                     fmt::arg("dt", p.physics_dt), fmt::arg("mu", r.sole_friction),
+                     fmt::arg("dt", p.physics_dt), fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant),
                      fmt::arg("m_pelvis", r.m_pelvis + 0.5 * extra), fmt::arg("m_chest", r.m_chest + 0.5 * extra),
                      fmt::arg("j_waist", joint("waist_yaw", "0 0 1", p.k_joint[kWaistYaw], p.gear_damping)),
+                     fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z),
+                     fmt::arg("arm_y", r.arm_y), fmt::arg("arm_top", r.arm_com_z + 0.24),
+                     fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),
                      fmt::arg("m_arm", r.m_arm), fmt::arg("m_head", r.m_head), fmt::arg("left", leg(r, p, 0)),
                      fmt::arg("right", leg(r, p, 1)));
 }

@@ -64,6 +64,7 @@ HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
   drives_ = std::make_unique<ElasticDrives>(model_, joints, act);
   floor_geom_ = require(model_, mjOBJ_GEOM, "floor");
   sole_geom_ = {require(model_, mjOBJ_GEOM, "l_sole"), require(model_, mjOBJ_GEOM, "r_sole")};
+  ft_site_ = {require(model_, mjOBJ_SITE, "l_ft"), require(model_, mjOBJ_SITE, "r_ft")};
   ft_sensor_adr_ = {sensor_adr(model_, "l_ft_force"), sensor_adr(model_, "l_ft_torque"),
                     sensor_adr(model_, "r_ft_force"), sensor_adr(model_, "r_ft_torque")};
   quat_adr_ = sensor_adr(model_, "imu_quat");
@@ -145,6 +146,12 @@ GroundTruth HumanoidPlant::truth() const {
   }
   for (int i = 0; i < 3; ++i) g.pelvis_pos[i] = data_->qpos[i];
   for (int i = 0; i < 4; ++i) g.pelvis_quat[i] = data_->qpos[3 + i];
+  for (int side = 0; side < 2; ++side) {
+    const double* p = data_->site_xpos + 3 * ft_site_[side];
+    const double* R = data_->site_xmat + 9 * ft_site_[side];
+    for (int i = 0; i < 3; ++i) g.sole_pos[side][i] = p[i] - R[3 * i + 2] * robot_.ankle_to_sole;
+    g.sole_yaw[side] = std::atan2(R[3], R[0]);
+  }
   const int pelvis = 1;
   for (int i = 0; i < 3; ++i) g.com[i] = data_->subtree_com[3 * pelvis + i];
   double fz = 0, mx = 0, my = 0;

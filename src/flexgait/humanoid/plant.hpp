@@ -13,27 +13,9 @@
 #include "flexgait/humanoid/elastic_actuator.hpp"
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/humanoid/sensors.hpp"
 
 namespace flexgait::humanoid {
-
-struct ForceTorque {
-  std::array<double, 3> force{};   ///< on the foot from the leg, in the sensor (foot) frame [N]
-  std::array<double, 3> torque{};  ///< [Nm]
-};
-
-struct Imu {
-  std::array<double, 4> quat{1, 0, 0, 0};  ///< pelvis orientation (w, x, y, z), world frame
-  std::array<double, 3> gyro{};            ///< angular rate in the pelvis frame [rad/s]
-  std::array<double, 3> accel{};           ///< specific force in the pelvis frame [m/s^2]
-};
-
-/// What the robot's controller can read.
-struct SensorReadings {
-  double t = 0;                   ///< [s]
-  JointVector encoder{};          ///< motor-side encoders, quantised [rad]
-  std::array<ForceTorque, 2> ft;  ///< left, right ankle F/T
-  Imu imu;
-};
 
 /// What only evaluation code may read.
 struct GroundTruth {
@@ -45,6 +27,8 @@ struct GroundTruth {
   std::array<double, 4> pelvis_quat{1, 0, 0, 0};
   std::array<double, 3> com{};                ///< whole-body centre of mass [m]
   std::array<double, 2> zmp{};                ///< centre of pressure of the floor contacts (x, y) [m]
+  std::array<std::array<double, 3>, 2> sole_pos{};  ///< left, right: sole centre under the ankle [m]
+  std::array<double, 2> sole_yaw{};           ///< heading of each sole [rad]
   double normal_force = 0;                    ///< total floor normal force [N]
   bool non_sole_contact = false;              ///< a body other than a sole touches the floor
   int warnings = 0;                           ///< MuJoCo warnings raised so far
@@ -82,6 +66,7 @@ class HumanoidPlant {
   std::array<int, kJoints> joint_id_{};
   int floor_geom_ = -1;
   std::array<int, 2> sole_geom_{};
+  std::array<int, 2> ft_site_{};
   std::array<int, 4> ft_sensor_adr_{};  // l force, l torque, r force, r torque
   int quat_adr_ = 0, gyro_adr_ = 0, acc_adr_ = 0;
   SensorReadings sensors_;

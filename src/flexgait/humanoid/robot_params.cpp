@@ -31,9 +31,11 @@ Schema plant_schema() {
   s.add(real_param("plant.torque_limit", "100.0", "Nm", "servo torque limit", 0, kInf, false));
   s.add(real_param("plant.rotor_inertia", "0.8", "kg m^2", "reflected rotor inertia", 1e-4, 100));
   s.add(real_param("plant.servo_bandwidth", "30.0", "Hz", "motor-side position loop bandwidth", 0.1, 1000));
-  s.add(real_param("plant.servo_integral_time", "0.05", "s", "integral time of the position loop", 1e-3, 100));
+  s.add(real_param("plant.servo_integral_time", "0", "s", "integral time of the position loop (0: none, PD only)", 0, 100));
   s.add(real_param("plant.encoder_steps", "501923", "", "encoder steps per output turn", 1, 1e12));
   s.add(real_param("plant.physics_dt", "0.001", "s", "MuJoCo step", 1e-5, 0.002));
+  s.add(real_param("plant.contact_time_constant", "0.005", "s",
+                   "sole-floor contact time constant (MuJoCo solref; softer contacts let the feet rock)", 1e-4, 0.1));
   s.add(real_param("plant.control_period", "0.004", "s", "controller period (a multiple of the physics step)", 1e-4, 0.008));
   s.add(real_param("plant.noise.ft_force", "0.0", "N", "F/T force noise std", 0, 1000));
   s.add(real_param("plant.noise.ft_torque", "0.0", "Nm", "F/T torque noise std", 0, 1000));
@@ -66,6 +68,7 @@ PlantParams plant_from_config(const Config& c) {
   p.encoder_steps = c.real("plant.encoder_steps");
   p.physics_dt = c.real("plant.physics_dt");
   p.control_period = c.real("plant.control_period");
+  p.contact_time_constant = c.real("plant.contact_time_constant");
   p.ft_force_noise = c.real("plant.noise.ft_force");
   p.ft_torque_noise = c.real("plant.noise.ft_torque");
   p.gyro_noise = c.real("plant.noise.gyro");

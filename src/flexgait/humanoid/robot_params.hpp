@@ -27,6 +27,16 @@ struct RobotParams {
   double m_hip_yaw = 0.243, m_hip_roll = 1.045, m_thigh = 3.095, m_shank = 2.401;
   double m_ankle_pitch = 1.045, m_ankle_roll = 0.223, m_foot = 1.689;
   double m_pelvis = 6.869, m_chest = 5.383, m_arm = 4.995, m_head = 2.0;
+  // Where the link masses sit (the twin's link shapes are centred there; the controller's own
+  // model reads the same numbers). Leg links not listed have their centre on their joint axes;
+  // thigh and shank at their midpoints; the foot at the middle of its sole plate.
+  double hip_yaw_com_z = -0.03;   ///< hip yaw link centre below the hip yaw joint [m]
+  double sole_thickness = 0.02;   ///< sole plate [m]
+  double chest_joint_z = 0.10;    ///< waist yaw joint above the pelvis origin [m]
+  double chest_com_z = 0.16;      ///< chest centre above the waist joint [m]
+  double arm_y = 0.22;            ///< arms (rigid, hanging) at ±y from the waist axis [m]
+  double arm_com_z = 0.04;        ///< arm centre above the waist joint [m]
+  double head_z = 0.42;           ///< head centre above the waist joint [m]
 
   /// Mass of the listed links (both legs, pelvis, chest, arms, head) [kg].
   double listed_mass() const {
@@ -42,10 +52,11 @@ struct PlantParams {
   double backlash = 0.0;          ///< dead band, total width [rad]
   double torque_limit = 100.0;    ///< servo torque limit [Nm]
   double rotor_inertia = 0.8;     ///< reflected rotor inertia [kg m^2]
-  double servo_bandwidth = 30.0;  ///< motor-side position loop bandwidth [Hz] (critically damped PD + I)
-  double servo_integral_time = 0.05;  ///< integral time constant of the position loop [s]
+  double servo_bandwidth = 30.0;  ///< motor-side position loop bandwidth [Hz] (critically damped PD)
+  double servo_integral_time = 0.0;   ///< integral time of the position loop [s]; 0: PD only
   double encoder_steps = 501923.0;    ///< encoder steps per output turn
   double physics_dt = 0.001;      ///< MuJoCo step [s]
+  double contact_time_constant = 0.005;  ///< sole-floor contact stiffness as MuJoCo's solref time constant [s] (≥ 2 physics_dt)
   double control_period = 0.004;  ///< controller period [s], a multiple of physics_dt
   double ft_force_noise = 0.0;    ///< std of F/T force noise [N]
   double ft_torque_noise = 0.0;   ///< std of F/T torque noise [Nm]

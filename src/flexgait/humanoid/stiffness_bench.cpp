@@ -47,6 +47,8 @@ Schema bench_schema() {
                    std::numeric_limits<double>::infinity(), false));
   s.add(real_param("plant.gear_damping", "80.0", "Nm s/rad", "gear damping", 0, 10000));
   s.add(real_param("plant.backlash", "0.0", "rad", "backlash dead band, total width", 0, 0.1));
+  s.add(real_param("plant.servo_integral_time", "0.05", "s",
+                   "integral time of the bench servo's position loop (0: PD only; the motor side then sags by tau/Kp)", 0, 100));
   s.add(real_param("bench.arm_length", "0.3", "m", "hinge to load", 0.01, 5));
   s.add(real_param("bench.load_mass", "13.6", "kg", "load at the arm's end (13.6 kg at 0.3 m: ±40 Nm)", 0.01, 1000));
   s.add(real_param("bench.angle_min", "0.2", "rad", "first pose (from horizontal, positive down)", -3.2, 3.2));
@@ -61,6 +63,7 @@ BenchParams bench_from_config(const Config& c) {
   p.actuator.k = c.real("plant.k_joint");
   p.actuator.d = c.real("plant.gear_damping");
   p.actuator.backlash = c.real("plant.backlash");
+  p.actuator.integral_time = c.real("plant.servo_integral_time");
   p.arm_length = c.real("bench.arm_length");
   p.load_mass = c.real("bench.load_mass");
   p.angle_min = c.real("bench.angle_min");

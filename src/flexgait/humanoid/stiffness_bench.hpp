@@ -12,8 +12,16 @@
 
 namespace flexgait::humanoid {
 
+/// The bench's actuator: the twin's, with the servo's integral action on (a servo that holds its
+/// position under load, so the whole error sits in the gear).
+inline ActuatorParams bench_actuator() {
+  ActuatorParams a;
+  a.integral_time = 0.05;
+  return a;
+}
+
 struct BenchParams {
-  ActuatorParams actuator;       ///< the plant's actuator (its k is the truth to recover)
+  ActuatorParams actuator = bench_actuator();  ///< the plant's actuator (its k is the truth to recover)
   double arm_length = 0.3;       ///< hinge to load [m]
   double load_mass = 13.6;       ///< point load at the arm's end [kg] (±40 Nm at 0.3 m, as in the thesis)
   double angle_min = 0.2;        ///< first pose, from horizontal, positive down [rad]

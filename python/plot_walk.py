@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""Figures of a walk: ZMP x/y against the reference, COM, pelvis roll/pitch (IMU), footprints.
+
+Usage: plot_walk.py RUN_DIR   (reads log.csv and footsteps.csv; writes walk.png atomically)
+"""
+import math
+import os
+import sys
+
+from flexgait_plotting import read_rows, save_atomic
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.patches import Polygon  # noqa: E402
+
+
+def column(rows, name):
+    return [float(r[name]) for r in rows]
+
+
+def sole_outline(x, y, yaw, length=0.22, width=0.15):
+    c, s = math.cos(yaw), math.sin(yaw)
+    corners = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]
+    return [(x + c * a * length - s * b * width, y + s * a * length + c * b * width) for a, b in corners]
+
+
+def main(run_dir):
+    rows = read_rows(os.path.join(run_dir, "log.csv"))
+    steps = read_rows(os.path.join(run_dir, "footsteps.csv"))
+    t = column(rows, "t")
+    fig, axes = plt.subplots(2, 2, figsize=(13, 8), constrained_layout=True)
+    for ax, axis in ((axes[0][0], "x"), (axes[0][1], "y")):
+        ax.plot(t, column(rows, f"zmp_ref_{axis}"), "k--", lw=1.2, label="ZMP reference")
+        ax.plot(t, column(rows, f"zmp_true_{axis}"), lw=0.9, label="ZMP (contact forces)")
+        ax.plot(t, column(rows, f"zmp_ft_{axis}"), lw=0.7, alpha=0.7, label="ZMP (F/T sensors)")
+        ax.plot(t, column(rows, f"com_ref_{axis}"), ":", lw=1.2, label="COM planned")
+        ax.plot(t, column(rows, f"com_{axis}"), lw=0.9, label="COM (true)")
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel(f"{axis} [m]")
+        ax.set_title(f"ZMP and COM, {axis}")
+        ax.legend(fontsize=8)
+    ax = axes[1][0]
+    ax.plot(t, column(rows, "imu_roll"), label="pelvis roll (IMU)")
+    ax.plot(t, column(rows, "imu_pitch"), label="pelvis pitch (IMU)")
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("angle error [rad]")
+    ax.set_title("pelvis attitude against the commanded (level)")
+    ax.legend(fontsize=8)
+    ax = axes[1][1]
+    for r in steps:
+        planned = sole_outline(float(r["x"]), float(r["y"]), float(r["yaw"]))
+        colour = "tab:blue" if r["side"] == "left" else "tab:red"
+        ax.add_patch(Polygon(planned, closed=True, fill=False, ls="--", ec=colour, lw=0.8))
+        if r["landed_x"] != "":
+            landed = sole_outline(float(r["landed_x"]), float(r["landed_y"]), float(r["landed_yaw"]))
+            ax.add_patch(Polygon(landed, closed=True, fill=True, alpha=0.25, fc=colour, ec=colour))
+    ax.plot(column(rows, "zmp_true_x"), column(rows, "zmp_true_y"), lw=0.6, color="k", label="ZMP (true)")
+    ax.plot(column(rows, "com_x"), column(rows, "com_y"), lw=0.8, color="tab:green", label="COM (true)")
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("footprints from above (dashed: planned, filled: landed)")
+    ax.legend(fontsize=8)
+    save_atomic(fig, run_dir, "walk.png")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.stderr.write(__doc__)
+        sys.exit(2)
+    main(sys.argv[1])

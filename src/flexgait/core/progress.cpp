@@ -1,0 +1,32 @@
+#include "flexgait/core/progress.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+
+namespace flexgait {
+
+ProgressBar::ProgressBar(double total, std::string unit)
+    : total_(total), unit_(std::move(unit)), tty_(isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()), last_(start_ - std::chrono::seconds(1)) {}
+
+void ProgressBar::show(double done) {
+  if (!tty_ || finished_) return;
+  const auto now = std::chrono::steady_clock::now();
+  const bool end = done >= total_;
+  if (!end && now - last_ < std::chrono::milliseconds(100)) return;
+  last_ = now;
+  const double seconds = std::chrono::duration<double>(now - start_).count();
+  const int width = 30;
+  const int filled = total_ > 0 ? std::clamp(static_cast<int>(width * done / total_), 0, width) : width;
+  const double eta = done > 0 ? seconds / done * std::max(total_ - done, 0.0) : 0.0;
+  fmt::print(stderr, "\r[{}{}] {:.0f}/{:.0f} {}, {:.1f} s, ETA {:.0f} s ", std::string(filled, '#'),
+             std::string(width - filled, '.'), done, total_, unit_, seconds, eta);
+  if (end) {
+    fmt::print(stderr, "\n");
+    finished_ = true;
+  }
+}
+
+}  // namespace flexgait

@@ -1,0 +1,25 @@
+#pragma once
+/// \file progress.hpp
+/// A progress bar on standard error, shown only when it is a terminal (CI logs stay clean).
+#include <chrono>
+#include <string>
+
+namespace flexgait {
+
+class ProgressBar {
+ public:
+  /// \param total work to do, in `unit`s (points, simulated seconds, ...)
+  ProgressBar(double total, std::string unit);
+  /// Shows `done` of the total with the elapsed wall time and an estimate of the rest; redraws at
+  /// most ten times a second except at the end.
+  void show(double done);
+
+ private:
+  double total_;
+  std::string unit_;
+  bool tty_;
+  std::chrono::steady_clock::time_point start_, last_;
+  bool finished_ = false;
+};
+
+}  // namespace flexgait

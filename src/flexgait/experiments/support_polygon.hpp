@@ -1,0 +1,19 @@
+#pragma once
+/// \file support_polygon.hpp
+/// The support polygon of the soles on the floor (convex hull of their corners) and the signed
+/// distance of a point to its boundary: > 0 inside, < 0 outside [m].
+#include <Eigen/Dense>
+
+#include <vector>
+
+#include "flexgait/walking/leg_kinematics.hpp"
+
+namespace flexgait::experiments {
+
+/// Convex hull (counter-clockwise) of the corners of the given sole rectangles.
+std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& soles, double length, double width);
+
+/// Signed distance from p to the boundary of the convex polygon (ccw): positive inside [m].
+double support_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
+
+}  // namespace flexgait::experiments

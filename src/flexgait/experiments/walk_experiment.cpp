@@ -1,0 +1,186 @@
+#include "flexgait/experiments/walk_experiment.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "flexgait/experiments/support_polygon.hpp"
+#include "flexgait/humanoid/plant.hpp"
+
+namespace flexgait::experiments {
+namespace {
+
+struct Accumulator {  // root mean square and maximum of |value|
+  double sum2 = 0, max = 0;
+  int n = 0;
+  void add(double v) {
+    sum2 += v * v;
+    max = std::max(max, std::abs(v));
+    ++n;
+  }
+  double rms() const { return n > 0 ? std::sqrt(sum2 / n) : 0.0; }
+};
+
+}  // namespace
+
+Schema walk_run_schema() {
+  Schema s = humanoid::robot_schema();
+  s.merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
+  s.add(real_param("output.log_period", "0.02", "s", "period of the logged samples", 1e-4, 10));
+  return s;
+}
+
+WalkRunParams walk_run_from_config(const Config& c) {
+  WalkRunParams p;
+  p.robot = humanoid::robot_from_config(c);
+  p.plant = humanoid::plant_from_config(c);
+  p.controller_robot = p.robot;
+  p.walk = walking::walk_from_config(c);
+  p.balance = walking::balance_from_config(c);
+  p.log_period = c.real("output.log_period");
+  return p;
+}
+
+WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double T = params.plant.control_period;
+  walking::WalkingController controller(params.controller_robot, params.walk, params.balance, T);
+  humanoid::HumanoidPlant plant(params.robot, params.plant);
+  plant.reset(controller.initial_pose());
+
+  WalkResult out;
+  out.plan = controller.plan();
+  WalkMetrics& m = out.metrics;
+  m.steps_planned = static_cast<int>(out.plan.steps.size());
+  m.riccati_residual = controller.gains().riccati_residual;
+
+  // Truth → plan frame: the offset between the initial feet.
+  humanoid::GroundTruth g = plant.truth();
+  const Eigen::Vector2d offset =
+      0.5 * (Eigen::Vector2d(g.sole_pos[0][0], g.sole_pos[0][1]) + Eigen::Vector2d(g.sole_pos[1][0], g.sole_pos[1][1])) -
+      0.5 * (Eigen::Vector2d(out.plan.initial[0].x, out.plan.initial[0].y) +
+             Eigen::Vector2d(out.plan.initial[1].x, out.plan.initial[1].y));
+
+  const long ticks = std::lround(out.plan.duration / T);
+  const long log_every = std::max(1L, std::lround(params.log_period / T));
+  const double t_walk0 = out.plan.steps.empty() ? 0.0 : out.plan.steps.front().t_begin;
+  Accumulator zx, zy, zss, zft, roll, pitch, com;
+  m.support_margin_min = INFINITY;
+  std::size_t next_landing = 0;
+  const double settle = 0.5 * params.walk.dsp_ratio * params.walk.step_time;  // after touchdown
+  const double length = params.controller_robot.sole_length, width = params.controller_robot.sole_width;
+  std::vector<walking::Pose> support;
+  support.reserve(2);
+
+  for (long k = 0; k < ticks; ++k) {
+    const double t = k * T;
+    const humanoid::JointVector& command = controller.update(plant.sensors(), t);
+    plant.step(command);
+    g = plant.truth();
+    const walking::ControllerStatus& st = controller.status();
+    const double t_now = g.t;
+
+    // Falls.
+    const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());
+    if (g.pelvis_pos[2] < params.walk.pelvis_height - params.fall_height) m.fall_reason = "pelvis too low";
+    else if (std::abs(walking::roll_of(R)) > params.fall_tilt || std::abs(walking::pitch_of(R)) > params.fall_tilt)
+      m.fall_reason = "pelvis tilted beyond the limit";
+    else if (g.non_sole_contact) m.fall_reason = "a body other than a sole touched the floor";
+    if (!m.fall_reason.empty()) {
+      m.fell = true;
+      m.fall_time = t_now;
+    }
+
+    // Scores over the walk (from the first step's double support on).
+    const Eigen::Vector2d zmp_true = Eigen::Vector2d(g.zmp[0], g.zmp[1]) - offset;
+    const Eigen::Vector2d com_true = Eigen::Vector2d(g.com[0], g.com[1]) - offset;
+    support.clear();
+    const walking::FeetTarget feet = walking::feet_target(out.plan, params.walk.swing_height, t_now);
+    for (int side = 0; side < 2; ++side)
+      if (!feet.swinging[side]) support.push_back(feet.sole[side]);
+    const double margin = support_margin(support_polygon(support, length, width), zmp_true);
+    if (t_now >= t_walk0 && t_now <= out.plan.t_settle && !m.fell) {
+      zx.add(zmp_true.x() - st.zmp_ref.x());
+      zy.add(zmp_true.y() - st.zmp_ref.y());
+      if (feet.swinging[0] || feet.swinging[1]) zss.add(zmp_true.y() - st.zmp_ref.y());
+      if (st.zmp_valid) zft.add((st.zmp_measured - zmp_true).norm());
+      roll.add(st.imu_roll);
+      pitch.add(st.imu_pitch);
+      com.add((com_true - st.com_ref).norm());
+      m.support_margin_min = std::min(m.support_margin_min, margin);
+      for (int side = 0; side < 2; ++side) m.ik_clamped += st.ik[side] != walking::IkStatus::kOk;
+    }
+    // Landings, once the foot has settled.
+    while (next_landing < out.plan.steps.size() && t_now >= out.plan.steps[next_landing].t_land + settle && !m.fell) {
+      const walking::Step& s = out.plan.steps[next_landing];
+      Landing l;
+      l.step = static_cast<int>(next_landing);
+      l.side = s.swing;
+      l.planned_x = s.to.x;
+      l.planned_y = s.to.y;
+      l.planned_yaw = s.to.yaw;
+      l.actual_x = g.sole_pos[s.swing][0] - offset.x();
+      l.actual_y = g.sole_pos[s.swing][1] - offset.y();
+      l.actual_yaw = g.sole_yaw[s.swing];
+      l.error = std::hypot(l.actual_x - l.planned_x, l.actual_y - l.planned_y);
+      out.landings.push_back(l);
+      ++next_landing;
+    }
+
+    if (k % log_every == 0 || m.fell) {
+      WalkSample w;
+      w.t = t_now;
+      w.step = st.step;
+      w.zmp_ref_x = st.zmp_ref.x();
+      w.zmp_ref_y = st.zmp_ref.y();
+      w.zmp_ft_x = st.zmp_measured.x();
+      w.zmp_ft_y = st.zmp_measured.y();
+      w.zmp_true_x = zmp_true.x();
+      w.zmp_true_y = zmp_true.y();
+      w.com_ref_x = st.com_ref.x();
+      w.com_ref_y = st.com_ref.y();
+      w.com_x = com_true.x();
+      w.com_y = com_true.y();
+      w.com_z = g.com[2];
+      w.pelvis_z = g.pelvis_pos[2];
+      w.imu_roll = st.imu_roll;
+      w.imu_pitch = st.imu_pitch;
+      w.roll_correction = st.roll_correction;
+      w.pitch_correction = st.pitch_correction;
+      w.support_margin = margin;
+      for (int side = 0; side < 2; ++side)
+        w.sole[side] = {g.sole_pos[side][0] - offset.x(), g.sole_pos[side][1] - offset.y(), g.sole_pos[side][2]};
+      out.log.push_back(w);
+    }
+    if (progress && k % 250 == 0) progress(t_now);
+    if (m.fell) break;
+  }
+  if (progress) progress(out.plan.duration);
+
+  m.steps_completed = static_cast<int>(out.landings.size());
+  m.zmp_rms_x = zx.rms();
+  m.zmp_rms_y = zy.rms();
+  m.zmp_max_x = zx.max;
+  m.zmp_max_y = zy.max;
+  m.zmp_ss_rms_y = zss.rms();
+  m.zmp_ft_rms_error = zft.rms();
+  m.pelvis_roll_error_max = roll.max;
+  m.pelvis_roll_error_rms = roll.rms();
+  m.pelvis_pitch_error_max = pitch.max;
+  m.pelvis_pitch_error_rms = pitch.rms();
+  for (const auto& l : out.landings) {
+    m.landing_error_max = std::max(m.landing_error_max, l.error);
+    m.landing_error_mean += l.error / static_cast<double>(out.landings.size());
+  }
+  m.com_error_rms = com.rms();
+  m.com_error_max = com.max;
+  if (!std::isfinite(m.support_margin_min)) m.support_margin_min = 0;
+  m.warnings = g.warnings;
+  m.simulated_time = g.t;
+  m.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  m.real_time_factor = m.wall_time > 0 ? m.simulated_time / m.wall_time : 0.0;
+  return out;
+}
+
+}  // namespace flexgait::experiments

@@ -1,0 +1,91 @@
+#pragma once
+/// \file walk_experiment.hpp
+/// A closed-loop walk: the walking controller drives the twin through SensorReadings only; this
+/// evaluation code alone reads the ground truth, to log and score the walk (issue 6 metrics):
+/// fall detection (pelvis too low or tilted, a body other than a sole on the floor), steps
+/// completed, ZMP tracking (true ZMP from contact forces against the reference), pelvis attitude
+/// (IMU against the commanded level attitude), landing errors, COM tracking, support margin.
+///
+/// Frames: the plan's world frame has the initial feet at (0, ±w/2); the twin's truth is moved
+/// into it by the offset between the truth and planned initial feet.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/walking/walk_params.hpp"
+#include "flexgait/walking/walking_controller.hpp"
+
+namespace flexgait::experiments {
+
+struct WalkRunParams {
+  humanoid::RobotParams robot;             ///< the twin (truth)
+  humanoid::PlantParams plant;
+  humanoid::RobotParams controller_robot;  ///< the controller's belief of the robot
+  walking::WalkParams walk;
+  walking::BalanceParams balance;
+  double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
+  double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
+  double fall_tilt = 0.6;                  ///< or tilts this far [rad]
+};
+
+/// Keys robot.*, plant.*, walk.*, balance.*, output.log_period.
+Schema walk_run_schema();
+WalkRunParams walk_run_from_config(const Config& config);
+
+struct WalkSample {
+  double t = 0;
+  int step = -1;
+  double zmp_ref_x = 0, zmp_ref_y = 0;    ///< [m]
+  double zmp_ft_x = 0, zmp_ft_y = 0;      ///< from the F/T sensors (the controller's) [m]
+  double zmp_true_x = 0, zmp_true_y = 0;  ///< from the contact forces [m]
+  double com_ref_x = 0, com_ref_y = 0;    ///< planned [m]
+  double com_x = 0, com_y = 0, com_z = 0; ///< true [m]
+  double pelvis_z = 0;                    ///< true [m]
+  double imu_roll = 0, imu_pitch = 0;     ///< [rad]
+  double roll_correction = 0, pitch_correction = 0;  ///< balance controller [rad]
+  double support_margin = 0;              ///< true ZMP to the planned support polygon's edge [m]
+  std::array<std::array<double, 3>, 2> sole{};  ///< true sole centres [m]
+};
+
+struct Landing {
+  int step = 0, side = 0;
+  double planned_x = 0, planned_y = 0, planned_yaw = 0;
+  double actual_x = 0, actual_y = 0, actual_yaw = 0;
+  double error = 0;  ///< horizontal distance [m]
+};
+
+struct WalkMetrics {
+  bool fell = false;
+  std::string fall_reason;         ///< "" when it did not fall
+  double fall_time = 0;            ///< [s]
+  int steps_planned = 0, steps_completed = 0;
+  double zmp_rms_x = 0, zmp_rms_y = 0;  ///< true ZMP − reference over the walk [m]
+  double zmp_max_x = 0, zmp_max_y = 0;
+  double zmp_ss_rms_y = 0;              ///< the same in single support only [m]
+  double zmp_ft_rms_error = 0;          ///< F/T ZMP against the true one (sensor consistency) [m]
+  double support_margin_min = 0;        ///< smallest true-ZMP margin inside the support polygon [m]
+  double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;   ///< IMU against level [rad]
+  double pelvis_pitch_error_max = 0, pelvis_pitch_error_rms = 0;
+  double landing_error_max = 0, landing_error_mean = 0;          ///< [m]
+  double com_error_rms = 0, com_error_max = 0;                   ///< true COM − planned (xy) [m]
+  int ik_clamped = 0;                   ///< control periods with a leg target out of reach
+  int warnings = 0;                     ///< MuJoCo warnings
+  double simulated_time = 0;            ///< [s]
+  double wall_time = 0;                 ///< [s]
+  double real_time_factor = 0;
+  double riccati_residual = 0;
+};
+
+struct WalkResult {
+  WalkMetrics metrics;
+  std::vector<WalkSample> log;
+  std::vector<Landing> landings;
+  walking::WalkPlan plan;
+};
+
+/// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time.
+WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress = {});
+
+}  // namespace flexgait::experiments

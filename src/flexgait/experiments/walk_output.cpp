@@ -1,0 +1,85 @@
+#include "flexgait/experiments/walk_output.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "flexgait/core/text.hpp"
+
+namespace flexgait::experiments {
+
+std::string walk_log_csv(const WalkResult& r) {
+  CsvWriter csv({"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
+                 "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
+                 "roll_correction", "pitch_correction", "support_margin", "l_sole_x", "l_sole_y", "l_sole_z",
+                 "r_sole_x", "r_sole_y", "r_sole_z"});
+  for (const auto& w : r.log) {
+    csv.cell(w.t).cell(static_cast<long long>(w.step)).cell(w.zmp_ref_x).cell(w.zmp_ref_y).cell(w.zmp_ft_x);
+    csv.cell(w.zmp_ft_y).cell(w.zmp_true_x).cell(w.zmp_true_y).cell(w.com_ref_x).cell(w.com_ref_y).cell(w.com_x);
+    csv.cell(w.com_y).cell(w.com_z).cell(w.pelvis_z).cell(w.imu_roll).cell(w.imu_pitch).cell(w.roll_correction);
+    csv.cell(w.pitch_correction).cell(w.support_margin);
+    for (const auto& s : w.sole) csv.cell(s[0]).cell(s[1]).cell(s[2]);
+    csv.end_row();
+  }
+  return csv.str();
+}
+
+std::string walk_footsteps_csv(const WalkResult& r) {
+  CsvWriter csv({"kind", "step", "side", "x", "y", "yaw", "landed_x", "landed_y", "landed_yaw", "error"});
+  for (int side = 0; side < 2; ++side) {
+    const auto& f = r.plan.initial[side];
+    csv.cell("initial").cell(-1LL).cell(side == 0 ? "left" : "right").cell(f.x).cell(f.y).cell(f.yaw);
+    csv.cell(f.x).cell(f.y).cell(f.yaw).cell(0.0).end_row();
+  }
+  for (std::size_t i = 0; i < r.plan.steps.size(); ++i) {
+    const auto& s = r.plan.steps[i];
+    csv.cell("step").cell(static_cast<long long>(i)).cell(s.swing == 0 ? "left" : "right").cell(s.to.x).cell(s.to.y);
+    csv.cell(s.to.yaw);
+    if (i < r.landings.size()) {
+      const auto& l = r.landings[i];
+      csv.cell(l.actual_x).cell(l.actual_y).cell(l.actual_yaw).cell(l.error);
+    } else {
+      csv.cell("").cell("").cell("").cell("");
+    }
+    csv.end_row();
+  }
+  return csv.str();
+}
+
+std::string walk_summary_json(const WalkResult& r) {
+  const WalkMetrics& m = r.metrics;
+  nlohmann::ordered_json j;
+  j["fell"] = m.fell;
+  j["fall_reason"] = m.fall_reason;
+  j["fall_time"] = m.fall_time;
+  j["steps_planned"] = m.steps_planned;
+  j["steps_completed"] = m.steps_completed;
+  j["zmp_rms_x"] = m.zmp_rms_x;
+  j["zmp_rms_y"] = m.zmp_rms_y;
+  j["zmp_max_x"] = m.zmp_max_x;
+  j["zmp_max_y"] = m.zmp_max_y;
+  j["zmp_single_support_rms_y"] = m.zmp_ss_rms_y;
+  j["zmp_ft_rms_error"] = m.zmp_ft_rms_error;
+  j["support_margin_min"] = m.support_margin_min;
+  j["pelvis_roll_error_max"] = m.pelvis_roll_error_max;
+  j["pelvis_roll_error_rms"] = m.pelvis_roll_error_rms;
+  j["pelvis_pitch_error_max"] = m.pelvis_pitch_error_max;
+  j["pelvis_pitch_error_rms"] = m.pelvis_pitch_error_rms;
+  j["landing_error_max"] = m.landing_error_max;
+  j["landing_error_mean"] = m.landing_error_mean;
+  j["com_error_rms"] = m.com_error_rms;
+  j["com_error_max"] = m.com_error_max;
+  j["ik_clamped"] = m.ik_clamped;
+  j["mujoco_warnings"] = m.warnings;
+  j["riccati_residual"] = m.riccati_residual;
+  j["simulated_time"] = m.simulated_time;
+  return j.dump(2) + "\n";
+}
+
+std::string walk_timing_json(const WalkResult& r) {
+  nlohmann::ordered_json j;
+  j["simulated_time"] = r.metrics.simulated_time;
+  j["wall_time"] = r.metrics.wall_time;
+  j["real_time_factor"] = r.metrics.real_time_factor;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace flexgait::experiments

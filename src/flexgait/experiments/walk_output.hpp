@@ -1,0 +1,19 @@
+#pragma once
+/// \file walk_output.hpp
+/// A walk's files: log.csv (one row per logged sample), footsteps.csv (planned and landed
+/// footprints) and summary.json (the metrics), as text.
+#include <string>
+
+#include "flexgait/experiments/walk_experiment.hpp"
+
+namespace flexgait::experiments {
+
+std::string walk_log_csv(const WalkResult& result);
+std::string walk_footsteps_csv(const WalkResult& result);
+/// The metrics as a JSON object (the names: fell, steps_completed, zmp_rms_x, ...).
+/// Deterministic: the same configuration gives the same bytes.
+std::string walk_summary_json(const WalkResult& result);
+/// Wall-clock time and real-time factor (timing.json; differs run to run).
+std::string walk_timing_json(const WalkResult& result);
+
+}  // namespace flexgait::experiments

@@ -1,0 +1,105 @@
+#include "flexgait/walking/robot_model.hpp"
+
+namespace flexgait::walking {
+
+using humanoid::leg_first_joint;
+
+RobotModel make_robot_model(const humanoid::RobotParams& r) {
+  RobotModel m;
+  const double extra = r.total_mass - r.listed_mass();  // batteries and computers, half pelvis half chest
+  auto& pelvis = m.bodies[0];
+  pelvis.mass = r.m_pelvis + 0.5 * extra;
+  auto& chest = m.bodies[1];
+  chest.parent = 0;
+  chest.joint = humanoid::kWaistYaw;
+  chest.axis = Vector3d::UnitZ();
+  chest.offset = Vector3d(0, 0, r.chest_joint_z);
+  // Chest, arms and head are rigid together: one point mass at their common centre.
+  const double m_upper = r.m_chest + 0.5 * extra + 2 * r.m_arm + r.m_head;
+  chest.mass = m_upper;
+  chest.com = ((r.m_chest + 0.5 * extra) * Vector3d(0, 0, r.chest_com_z) + 2 * r.m_arm * Vector3d(0, 0, r.arm_com_z) +
+               r.m_head * Vector3d(0, 0, r.head_z)) / m_upper;
+  for (int side = 0; side < 2; ++side) {
+    const int b0 = 2 + 7 * side, j0 = leg_first_joint(side);
+    const double y = side == 0 ? r.hip_yaw_offset_y : -r.hip_yaw_offset_y;
+    const std::array<Vector3d, 7> axes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitY(),
+                                          Vector3d::UnitY(), Vector3d::UnitX(), Vector3d::Zero()};
+    const std::array<Vector3d, 7> offsets = {Vector3d(0, y, -r.hip_yaw_offset_z),
+                                             Vector3d(0, 0, -(r.hip_axes_depth - r.hip_yaw_offset_z)),
+                                             Vector3d::Zero(), Vector3d(0, 0, -r.thigh), Vector3d(0, 0, -r.shank),
+                                             Vector3d::Zero(), Vector3d::Zero()};
+    const std::array<double, 7> masses = {r.m_hip_yaw, r.m_hip_roll, r.m_thigh, r.m_shank,
+                                          r.m_ankle_pitch, r.m_ankle_roll, r.m_foot};
+    const std::array<Vector3d, 7> coms = {Vector3d(0, 0, r.hip_yaw_com_z), Vector3d::Zero(), Vector3d(0, 0, -0.5 * r.thigh),
+                                          Vector3d(0, 0, -0.5 * r.shank), Vector3d::Zero(), Vector3d::Zero(),
+                                          Vector3d(0, 0, -(r.ankle_to_sole - 0.5 * r.sole_thickness))};
+    for (int i = 0; i < 7; ++i) {
+      auto& b = m.bodies[b0 + i];
+      b.parent = i == 0 ? 0 : b0 + i - 1;
+      b.joint = i < 6 ? j0 + i : -1;
+      b.axis = axes[i];
+      b.offset = offsets[i];
+      b.mass = masses[i];
+      b.com = coms[i];
+    }
+    m.foot[side] = b0 + 6;
+    m.leg[side] = leg_geometry(r, side);
+  }
+  for (const auto& b : m.bodies) m.total_mass += b.mass;
+  return m;
+}
+
+void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
+                        const humanoid::JointVector& q) {
+  for (int i = 0; i < kBodies; ++i) {
+    const auto& b = model.bodies[i];
+    Pose& f = data.frame[i];
+    if (b.parent < 0) {
+      f = pelvis;
+    } else {
+      const Pose& parent = data.frame[b.parent];
+      f.p = parent.p + parent.R * b.offset;
+      f.R = b.joint >= 0 ? Matrix3d(parent.R * Eigen::AngleAxisd(q[b.joint], b.axis)) : parent.R;
+    }
+    data.com_world[i] = f.p + f.R * b.com;
+  }
+}
+
+Vector3d center_of_mass(const RobotModel& model, const RobotModelData& data) {
+  Vector3d c = Vector3d::Zero();
+  for (int i = 0; i < kBodies; ++i) c += model.bodies[i].mass * data.com_world[i];
+  return c / model.total_mass;
+}
+
+Pose sole_pose(const RobotModel& model, const RobotModelData& data, int side) {
+  const Pose& foot = data.frame[model.foot[side]];
+  return {foot.p + foot.R * Vector3d(0, 0, -model.leg[side].ankle_to_sole), foot.R};
+}
+
+LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, int side, const Vector3d& point) {
+  LegJacobian J;
+  const int b0 = 2 + 7 * side;
+  for (int i = 0; i < 6; ++i) {
+    const Pose& f = data.frame[b0 + i];
+    const Vector3d a = f.R * model.bodies[b0 + i].axis;
+    J.block<3, 1>(0, i) = a.cross(point - f.p);
+    J.block<3, 1>(3, i) = a;
+  }
+  return J;
+}
+
+LegTorque leg_gravity_torque(const RobotModel& model, const RobotModelData& data, int side) {
+  LegTorque tau;
+  const int b0 = 2 + 7 * side;
+  const Vector3d g(0, 0, -kGravity);
+  for (int i = 0; i < 6; ++i) {
+    const Pose& f = data.frame[b0 + i];
+    const Vector3d a = f.R * model.bodies[b0 + i].axis;
+    Vector3d moment = Vector3d::Zero();  // gravity moment of the links below joint i about it
+    for (int k = b0 + i; k < b0 + 7; ++k) moment += (data.com_world[k] - f.p).cross(model.bodies[k].mass * g);
+    tau(i) = -a.dot(moment);
+  }
+  return tau;
+}
+
+}  // namespace flexgait::walking

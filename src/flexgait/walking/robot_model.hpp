@@ -1,0 +1,61 @@
+#pragma once
+/// \file robot_model.hpp
+/// The controller's own rigid-body model of the robot (no simulator inside): the kinematic tree
+/// of the pelvis, the waist and the two legs with point masses at the link centres given by
+/// RobotParams. It gives the whole-body centre of mass, each leg's sole Jacobian and the leg
+/// links' own gravity torque — what the COM planner and the deformation model (spec eqs. 4-6 and
+/// the full form) need. Model (immutable) and Data (frames, scratch) apart; no allocation after
+/// construction.
+#include <array>
+
+#include "flexgait/humanoid/joints.hpp"
+#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/walking/leg_kinematics.hpp"
+
+namespace flexgait::walking {
+
+inline constexpr int kBodies = 16;  ///< pelvis, chest, 2 × (hip yaw, hip roll, thigh, shank, ankle pitch, ankle roll, foot)
+inline constexpr double kGravity = 9.81;  ///< [m/s^2], the twin's
+
+struct RobotModel {
+  struct Body {
+    int parent = -1;                   ///< index of the parent body (−1: the pelvis)
+    int joint = -1;                    ///< actuated joint (humanoid::Joint) between parent and body, −1: rigid
+    Vector3d axis = Vector3d::Zero();  ///< joint axis in the body frame
+    Vector3d offset = Vector3d::Zero();///< body origin in the parent frame at zero angle [m]
+    double mass = 0;                   ///< [kg]
+    Vector3d com = Vector3d::Zero();   ///< centre of mass in the body frame [m]
+  };
+  std::array<Body, kBodies> bodies;    ///< parents before children
+  std::array<int, 2> foot{};           ///< foot body of each leg
+  std::array<LegGeometry, 2> leg;      ///< per side
+  double total_mass = 0;               ///< [kg]
+};
+
+RobotModel make_robot_model(const humanoid::RobotParams& robot);
+
+struct RobotModelData {
+  std::array<Pose, kBodies> frame;         ///< world pose of each body
+  std::array<Vector3d, kBodies> com_world; ///< world position of each body's centre of mass [m]
+};
+
+/// World frames of every body for this pelvis pose and these joint angles.
+void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
+                        const humanoid::JointVector& q);
+/// Whole-body centre of mass after forward_kinematics [m].
+Vector3d center_of_mass(const RobotModel& model, const RobotModelData& data);
+/// World pose of the sole centre of `side` after forward_kinematics.
+Pose sole_pose(const RobotModel& model, const RobotModelData& data, int side);
+
+using LegJacobian = Eigen::Matrix<double, 6, 6>;  ///< rows: linear (3), angular (3); columns: leg joints
+using LegTorque = Eigen::Matrix<double, 6, 1>;    ///< leg joints, kinematic order [Nm]
+
+/// Geometric Jacobian of the point `point` (world) rigidly attached to the foot of `side`, with
+/// respect to that leg's six joints, world frame, after forward_kinematics.
+LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, int side, const Vector3d& point);
+/// The torque each joint of leg `side` must supply to hold that leg's own links below it against
+/// gravity, the leg hanging from the pelvis (g_leg of the spec's full form) [Nm]. Sign: the gear
+/// torque the joint applies to its child, positive about the joint axis.
+LegTorque leg_gravity_torque(const RobotModel& model, const RobotModelData& data, int side);
+
+}  // namespace flexgait::walking

@@ -1,0 +1,181 @@
+#include "flexgait/walking/walking_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace flexgait::walking {
+
+using humanoid::leg_first_joint;
+
+WalkingController::WalkingController(const humanoid::RobotParams& robot, const WalkParams& walk,
+                                     const BalanceParams& balance, double period)
+    : robot_(robot), walk_(walk), balance_(balance), period_(period), model_(make_robot_model(robot)) {
+  if (!(period > 0)) throw std::invalid_argument("WalkingController: the period must be positive");
+  plan_ = plan_footsteps(walk_);
+  // The initial standing pose: COM over the middle of the feet, pelvis level at its height.
+  const FeetTarget feet = feet_target(plan_, walk_.swing_height, 0.0);
+  pelvis_.p = Vector3d(0, 0, walk_.pelvis_height);
+  solve_pose(zmp_reference(plan_, 0.0), feet.sole, Matrix3d::Identity(), 20);
+  initial_pose_ = desired_;
+  const double com_height = center_of_mass(model_, data_).z();
+  gains_ = preview_gains(period_, com_height, walk_.preview_time, walk_.preview_q, walk_.preview_r);
+  // The reference over the whole plan and one horizon beyond (held at its final value).
+  const auto samples = static_cast<std::size_t>(std::ceil(plan_.duration / period_)) + gains_.G_p.size() + 2;
+  ref_x_.resize(samples);
+  ref_y_.resize(samples);
+  for (std::size_t k = 0; k < samples; ++k) {
+    const Eigen::Vector2d p = zmp_reference(plan_, static_cast<double>(k) * period_);
+    ref_x_[k] = p.x();
+    ref_y_[k] = p.y();
+  }
+  const Eigen::Vector2d p0 = zmp_reference(plan_, 0.0);
+  zmp_filtered_ = {p0, p0};
+  for (int axis = 0; axis < 2; ++axis) cart_[axis].x = Eigen::Vector3d(p0(axis), 0, 0);
+}
+
+void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles,
+                                   const Matrix3d& pelvis_R, int iterations) {
+  pelvis_.R = pelvis_R;
+  for (int it = 0; it < iterations; ++it) {
+    for (int side = 0; side < 2; ++side) {
+      const Pose local{pelvis_.R.transpose() * (soles[side].p - pelvis_.p), pelvis_.R.transpose() * soles[side].R};
+      const IkSolution ik = leg_inverse_kinematics(model_.leg[side], local);
+      status_.ik[side] = ik.status;
+      for (int i = 0; i < humanoid::kLegJoints; ++i) desired_[leg_first_joint(side) + i] = ik.q[i];
+    }
+    desired_[humanoid::kWaistYaw] = 0.0;
+    if (it + 1 == iterations) break;
+    forward_kinematics(model_, data_, pelvis_, desired_);
+    const Vector3d c = center_of_mass(model_, data_);
+    pelvis_.p.x() += com.x() - c.x();
+    pelvis_.p.y() += com.y() - c.y();
+  }
+  forward_kinematics(model_, data_, pelvis_, desired_);
+}
+
+void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
+  const double m_foot = model_.bodies[model_.foot[0]].mass;
+  double fz_total = 0;
+  Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+  for (int side = 0; side < 2; ++side) {
+    const Pose& sole = status_.sole[side];
+    const double d = model_.leg[side].ankle_to_sole;
+    // Ground wrench on the foot at the ankle, foot frame: minus the sensor's (leg on foot) and
+    // minus the foot's weight.
+    const Vector3d g_foot = sole.R.transpose() * Vector3d(0, 0, -kGravity * m_foot);
+    const Vector3d f = -Vector3d(s.ft[side].force.data()) - g_foot;
+    const Vector3d tau = -Vector3d(s.ft[side].torque.data());
+    status_.contact[side] = f.z() > balance_.contact_force;
+    status_.foot_force[side] = f.z();
+    if (f.z() <= 1.0) continue;
+    // Centre of pressure in the sole frame: τ_A = (p − A) × f with p − A = (p_x, p_y, −d).
+    const Vector3d cop((-tau.y() - d * f.x()) / f.z(), (tau.x() - d * f.y()) / f.z(), 0.0);
+    const Vector3d world = sole.p + sole.R * cop;
+    moment += f.z() * world.head<2>();
+    fz_total += f.z();
+    // Foot torque compliance (torque about the sole centre: τ_A + (0, 0, d) × f).
+    if (balance_.enabled && status_.contact[side]) {
+      const Eigen::Vector2d torque(tau.x() - d * f.y(), tau.y() + d * f.x());
+      foot_rotation_[side] += period_ * (torque / balance_.ankle_damping);
+    }
+  }
+  status_.zmp_valid = fz_total > balance_.contact_force;
+  if (status_.zmp_valid) status_.zmp_measured = moment / fz_total;
+}
+
+const humanoid::JointVector& WalkingController::update(const humanoid::SensorReadings& s, double t) {
+  status_.t = t;
+  const auto last = ref_x_.size() - gains_.G_p.size() - 1;
+  const auto k = std::min(static_cast<std::size_t>(std::max(0.0, std::round(t / period_))), last);
+  status_.zmp_ref = Eigen::Vector2d(ref_x_[k], ref_y_[k]);
+  preview_step(gains_, cart_[0], &ref_x_[k]);
+  preview_step(gains_, cart_[1], &ref_y_[k]);
+  status_.com_ref = Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0));
+
+  const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);
+  status_.step = feet.step;
+  status_.sole = feet.sole;
+
+  // Balance: foot torques (and the measured ZMP), then the pelvis attitude.
+  const Matrix3d R_imu = quat_to_matrix(s.imu.quat.data());
+  status_.imu_roll = roll_of(R_imu);
+  status_.imu_pitch = pitch_of(R_imu);
+  measure_zmp(s);
+  for (int side = 0; side < 2; ++side) {
+    foot_rotation_[side] -= period_ / balance_.ankle_return_time * foot_rotation_[side];
+    if (!balance_.enabled || feet.swinging[side]) foot_rotation_[side].setZero();
+    foot_rotation_[side] = foot_rotation_[side].cwiseMax(-balance_.ankle_limit).cwiseMin(balance_.ankle_limit);
+  }
+  status_.foot_rotation = foot_rotation_;
+  // Foot force control: the load each foot should carry follows the ZMP reference between the
+  // sole centres (all of it on the stance foot in single support); a foot carrying more than its
+  // share is raised, ż = (f − f_d) / D_z − z / T_z (a swing foot landing early gives way).
+  {
+    const Eigen::Vector2d left = feet.sole[0].p.head<2>(), right = feet.sole[1].p.head<2>();
+    const Eigen::Vector2d span = left - right;
+    const double share_left =
+        span.squaredNorm() > 1e-12 ? std::clamp((status_.zmp_ref - right).dot(span) / span.squaredNorm(), 0.0, 1.0) : 0.5;
+    const double load = std::max(0.0, status_.foot_force[0]) + std::max(0.0, status_.foot_force[1]);
+    for (int side = 0; side < 2; ++side) {
+      const double desired = (side == 0 ? share_left : 1.0 - share_left) * load;
+      double& z = foot_lift_[side];
+      z += period_ * ((std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping -
+                      z / balance_.foot_return_time);
+      if (!balance_.enabled) z = 0;
+      z = std::clamp(z, -balance_.foot_lift_limit, balance_.foot_lift_limit);
+    }
+    status_.foot_lift = foot_lift_;
+  }
+  double d_roll = 0, d_pitch = 0;
+  if (balance_.enabled) {
+    d_roll = std::clamp(-(balance_.imu_kp * status_.imu_roll + balance_.imu_kd * s.imu.gyro[0]), -balance_.imu_limit,
+                        balance_.imu_limit);
+    d_pitch = std::clamp(-(balance_.imu_kp * status_.imu_pitch + balance_.imu_kd * s.imu.gyro[1]),
+                         -balance_.imu_limit, balance_.imu_limit);
+  }
+  // ZMP feedback: the gear deflections move the real COM away from the plan by centimetres; shift
+  // the commanded COM until the measured ZMP follows the reference (PI, clamped, anti-windup).
+  Eigen::Vector2d com_shift = Eigen::Vector2d::Zero();
+  if (balance_.enabled && status_.zmp_valid) {
+    // The measured ZMP carries −(z/g) c̈ (it leads the COM with the opposite sign at high
+    // frequency): filter it twice (first order, balance.zmp_filter_time each) before use.
+    const double a = period_ / (balance_.zmp_filter_time + period_);
+    for (int stage = 0; stage < 2; ++stage)
+      zmp_filtered_[stage] += a * ((stage == 0 ? status_.zmp_measured : zmp_filtered_[0]) - zmp_filtered_[stage]);
+    const Eigen::Vector2d error = status_.zmp_ref - zmp_filtered_[1];
+    zmp_integral_ = (zmp_integral_ + period_ * balance_.zmp_ki * error)
+                        .cwiseMax(-balance_.zmp_limit)
+                        .cwiseMin(balance_.zmp_limit);
+    com_shift = (zmp_integral_ + balance_.zmp_kp * error).cwiseMax(-balance_.zmp_limit).cwiseMin(balance_.zmp_limit);
+  } else if (balance_.enabled) {
+    com_shift = zmp_integral_;
+  }
+  status_.com_shift = com_shift;
+  status_.roll_correction = d_roll;
+  status_.pitch_correction = d_pitch;
+
+  std::array<Pose, 2> soles = feet.sole;
+  // Sway damping: the whole body rocks on its compliant legs (a ~0.5 Hz mode, spec "Physics");
+  // rotating the stance soles' commands with the IMU rate leans the body against the motion.
+  const Eigen::Vector2d sway = balance_.enabled ? Eigen::Vector2d(balance_.ankle_gyro_gain * s.imu.gyro[0],
+                                                                  balance_.ankle_gyro_gain * s.imu.gyro[1])
+                                                : Eigen::Vector2d::Zero();
+  for (int side = 0; side < 2; ++side) {
+    const Eigen::Vector2d r =
+        (foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway))
+            .cwiseMax(-balance_.ankle_limit)
+            .cwiseMin(balance_.ankle_limit);
+    soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
+    soles[side].p.z() += foot_lift_[side];
+  }
+  // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
+  const Vector3d heading = feet.sole[0].R.col(0) + feet.sole[1].R.col(0);
+  const double yaw = std::atan2(heading.y(), heading.x());
+  solve_pose(status_.com_ref + com_shift, soles, rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll), 2);
+  status_.pelvis = pelvis_;
+  status_.desired = desired_;
+  return desired_;
+}
+
+}  // namespace flexgait::walking

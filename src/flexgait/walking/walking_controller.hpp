@@ -1,0 +1,101 @@
+#pragma once
+/// \file walking_controller.hpp
+/// The walking controller of the thesis's Fig. 2, without the compensators (spec humanoid.md,
+/// "The walking controller"): footsteps → ZMP reference → COM by preview control → balance
+/// controller → swing foot → analytic leg IK → joint commands.
+///
+/// It is plant-agnostic: `update` reads SensorReadings (encoders, F/T, IMU) and the time and
+/// returns motor position commands; it sees nothing of the simulator. Everything is allocated
+/// at construction (the ZMP reference of the whole plan, the preview gains); `update` allocates
+/// nothing.
+///
+/// Balance controller (ROBOTIS-style PD loops with clamps, gains in BalanceParams):
+///  - pelvis attitude: the IMU's roll/pitch and rates tilt the pelvis command the other way,
+///    Δφ = −sat(k_p φ + k_d ω);
+///  - foot torque compliance: each loaded foot's torque about its sole centre, from its F/T
+///    sensor, rotates its command, δ̇ = τ / D − δ / T (Kajita et al. 2010), clamped;
+///  - foot force control: each foot's vertical load against its share of the weight (from the
+///    ZMP reference between the feet) raises or lowers it (Kajita et al. 2010);
+///  - ZMP feedback: the commanded COM is shifted by a clamped PI on (reference − measured ZMP),
+///    so that the gear deflections' shift of the real COM is taken out.
+/// The measured ZMP combines both feet's centres of pressure from the F/T sensors.
+#include <array>
+#include <vector>
+
+#include "flexgait/humanoid/joints.hpp"
+#include "flexgait/humanoid/sensors.hpp"
+#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/walking/footstep_plan.hpp"
+#include "flexgait/walking/leg_kinematics.hpp"
+#include "flexgait/walking/preview_control.hpp"
+#include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/walk_params.hpp"
+
+namespace flexgait::walking {
+
+/// What the controller decided in its last update (for logs and evaluation).
+struct ControllerStatus {
+  double t = 0;                                       ///< time of the update [s]
+  int step = -1;                                      ///< current step (see FeetTarget::step)
+  Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();  ///< reference ZMP at t [m]
+  Eigen::Vector2d zmp_measured = Eigen::Vector2d::Zero();  ///< from the F/T sensors [m]
+  bool zmp_valid = false;                             ///< enough normal force to define it
+  Eigen::Vector2d com_ref = Eigen::Vector2d::Zero();  ///< planned COM at t + T [m]
+  Pose pelvis;                                        ///< commanded pelvis pose (with the balance correction)
+  double imu_roll = 0, imu_pitch = 0;                 ///< measured pelvis attitude [rad]
+  double roll_correction = 0, pitch_correction = 0;   ///< balance: pelvis counter-tilt [rad]
+  Eigen::Vector2d com_shift = Eigen::Vector2d::Zero(); ///< balance: COM shift of the ZMP feedback [m]
+  std::array<Pose, 2> sole;                           ///< planned sole poses (world)
+  std::array<bool, 2> contact{};                      ///< foot loaded above balance.contact_force
+  std::array<Eigen::Vector2d, 2> foot_rotation{};     ///< balance: foot roll, pitch offsets [rad]
+  std::array<double, 2> foot_force{};                 ///< vertical ground force on each foot (F/T) [N]
+  std::array<double, 2> foot_lift{};                  ///< balance: foot height offsets of the force control [m]
+  std::array<IkStatus, 2> ik{IkStatus::kOk, IkStatus::kOk};
+  humanoid::JointVector desired{};                    ///< joint angles from the IK (θ_d) [rad]
+};
+
+class WalkingController {
+ public:
+  /// \param robot the controller's belief of the robot (its own model)
+  /// \param period control period T [s]
+  WalkingController(const humanoid::RobotParams& robot, const WalkParams& walk, const BalanceParams& balance,
+                    double period);
+
+  /// The standing pose the walk starts from (joint angles) [rad].
+  const humanoid::JointVector& initial_pose() const { return initial_pose_; }
+  /// One control period: sensors at time t in, motor position commands out [rad].
+  const humanoid::JointVector& update(const humanoid::SensorReadings& sensors, double t);
+
+  const ControllerStatus& status() const { return status_; }
+  const WalkPlan& plan() const { return plan_; }
+  const PreviewGains& gains() const { return gains_; }
+  const RobotModel& model() const { return model_; }
+  double period() const { return period_; }
+
+ private:
+  /// Pelvis pose and joint angles that put the soles at `soles` and the COM's xy at `com`
+  /// (a fixed-point iteration on the pelvis position through the model's COM).
+  void solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
+                  int iterations);
+  void measure_zmp(const humanoid::SensorReadings& sensors);
+
+  humanoid::RobotParams robot_;
+  WalkParams walk_;
+  BalanceParams balance_;
+  double period_;
+  RobotModel model_;
+  RobotModelData data_;
+  WalkPlan plan_;
+  PreviewGains gains_;
+  std::vector<double> ref_x_, ref_y_;  ///< ZMP reference sampled at k T, padded by the horizon
+  std::array<CartTable, 2> cart_;
+  Pose pelvis_;
+  humanoid::JointVector desired_{}, initial_pose_{};
+  std::array<Eigen::Vector2d, 2> foot_rotation_{};
+  std::array<double, 2> foot_lift_{};
+  Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();  ///< ZMP feedback's integral [m]
+  std::array<Eigen::Vector2d, 2> zmp_filtered_{};           ///< the measured ZMP, low-passed [m]
+  ControllerStatus status_;
+};
+
+}  // namespace flexgait::walking

@@ -1,0 +1,124 @@
+// The controller's own model against the twin's MuJoCo model (two independent implementations of
+// the spec's robot): sole poses, whole-body COM, the legs' gravity torques; the Jacobian against
+// finite differences of the forward kinematics.
+#include "flexgait/walking/robot_model.hpp"
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <random>
+#include <string>
+
+#include "flexgait/humanoid/model_xml.hpp"
+
+namespace flexgait::walking {
+namespace {
+
+using humanoid::JointVector;
+using humanoid::kJointNames;
+using humanoid::kJoints;
+
+struct Twin {
+  mjModel* m;
+  mjData* d;
+  Twin() {
+    humanoid::PlantParams p;
+    p.k_joint.fill(1000.0);
+    m = humanoid::load_mjcf(humanoid::humanoid_mjcf(humanoid::RobotParams{}, p));
+    d = mj_makeData(m);
+  }
+  ~Twin() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  void set(const Pose& pelvis, const JointVector& q) {
+    mj_resetData(m, d);
+    for (int i = 0; i < 3; ++i) d->qpos[i] = pelvis.p(i);
+    const Eigen::Quaterniond quat(pelvis.R);
+    d->qpos[3] = quat.w(), d->qpos[4] = quat.x(), d->qpos[5] = quat.y(), d->qpos[6] = quat.z();
+    for (int j = 0; j < kJoints; ++j)
+      d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str())]] = q[j];
+    mj_forward(m, d);
+  }
+};
+
+JointVector random_pose(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> a(-0.5, 0.5);
+  JointVector q;
+  for (auto& v : q) v = a(rng);
+  return q;
+}
+
+Pose random_pelvis(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> a(-0.3, 0.3);
+  return {Vector3d(a(rng), a(rng), 0.8 + a(rng)), rpy_to_matrix(a(rng), a(rng), a(rng))};
+}
+
+TEST(RobotModel, AgreesWithTheTwin) {
+  const RobotModel model = make_robot_model(humanoid::RobotParams{});
+  RobotModelData data;
+  Twin twin;
+  EXPECT_NEAR(model.total_mass, twin.m->body_subtreemass[0], 1e-12);
+  std::mt19937_64 rng(3);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Pose pelvis = random_pelvis(rng);
+    const JointVector q = random_pose(rng);
+    forward_kinematics(model, data, pelvis, q);
+    twin.set(pelvis, q);
+    // Whole-body COM (the twin: subtree COM of the pelvis). Both exact up to rounding: 1e-12 m.
+    const Vector3d com = center_of_mass(model, data);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(com(i), twin.d->subtree_com[3 + i], 1e-12);
+    for (int side = 0; side < 2; ++side) {
+      // The sole centre: the F/T site (ankle) moved down the foot's z axis.
+      const int site = mj_name2id(twin.m, mjOBJ_SITE, side == 0 ? "l_ft" : "r_ft");
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(twin.d->site_xmat + 9 * site);
+      const Vector3d ankle(twin.d->site_xpos + 3 * site);
+      const Pose sole = sole_pose(model, data, side);
+      EXPECT_LT((sole.p - (ankle - R.col(2) * model.leg[side].ankle_to_sole)).norm(), 1e-12);
+      EXPECT_LT((sole.R - Matrix3d(R)).cwiseAbs().maxCoeff(), 1e-12);
+      // The leg's own gravity torque against MuJoCo's: with the foot free, the pelvis held and
+      // at rest, the bias force at each leg joint is the torque that holds the links below it.
+      const LegTorque g = leg_gravity_torque(model, data, side);
+      for (int i = 0; i < 6; ++i) {
+        const int j = humanoid::leg_first_joint(side) + i;
+        const int dof = twin.m->jnt_dofadr[mj_name2id(twin.m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str())];
+        EXPECT_NEAR(g(i), twin.d->qfrc_bias[dof], 1e-10) << kJointNames[j];
+      }
+    }
+  }
+}
+
+TEST(RobotModel, JacobianIsTheDerivativeOfTheSolePose) {
+  const RobotModel model = make_robot_model(humanoid::RobotParams{});
+  RobotModelData data;
+  std::mt19937_64 rng(5);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Pose pelvis = random_pelvis(rng);
+    JointVector q = random_pose(rng);
+    for (int side = 0; side < 2; ++side) {
+      forward_kinematics(model, data, pelvis, q);
+      const Pose sole = sole_pose(model, data, side);
+      const LegJacobian J = leg_jacobian(model, data, side, sole.p);
+      const double h = 1e-6;
+      for (int i = 0; i < 6; ++i) {
+        const int j = humanoid::leg_first_joint(side) + i;
+        JointVector qp = q, qm = q;
+        qp[j] += h;
+        qm[j] -= h;
+        forward_kinematics(model, data, pelvis, qp);
+        const Pose a = sole_pose(model, data, side);
+        forward_kinematics(model, data, pelvis, qm);
+        const Pose b = sole_pose(model, data, side);
+        const Vector3d v = (a.p - b.p) / (2 * h);
+        const Matrix3d dR = (a.R - b.R) / (2 * h) * sole.R.transpose();  // skew(ω)
+        const Vector3d w(dR(2, 1), dR(0, 2), dR(1, 0));
+        // Central differences: truncation ~h² ≈ 1e-12, rounding ~1e-16/h ≈ 1e-10.
+        EXPECT_LT((v - J.block<3, 1>(0, i)).norm(), 1e-8);
+        EXPECT_LT((w - J.block<3, 1>(3, i)).norm(), 1e-8);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace flexgait::walking
