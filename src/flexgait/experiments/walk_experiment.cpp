@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "flexgait/experiments/support_polygon.hpp"
+#include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/humanoid/plant.hpp"
 
 namespace flexgait::experiments {
@@ -65,11 +66,11 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const long ticks = std::lround(out.plan.duration / T);
   const long log_every = std::max(1L, std::lround(params.log_period / T));
   const double t_walk0 = out.plan.steps.empty() ? 0.0 : out.plan.steps.front().t_begin;
-  Accumulator zx, zy, zss, zft, roll, pitch, com;
+  Accumulator zx, zy, zss, zft, zbelief, roll, pitch, com;
   m.support_margin_min = INFINITY;
   std::size_t next_landing = 0;
   const double settle = 0.5 * params.walk.dsp_ratio * params.walk.step_time;  // after touchdown
-  const double length = params.controller_robot.sole_length, width = params.controller_robot.sole_width;
+  const double length = params.robot.sole_length, width = params.robot.sole_width;
   std::vector<walking::Pose> support;
   support.reserve(2);
 
@@ -95,16 +96,32 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     // Scores over the walk (from the first step's double support on).
     const Eigen::Vector2d zmp_true = Eigen::Vector2d(g.zmp[0], g.zmp[1]) - offset;
     const Eigen::Vector2d com_true = Eigen::Vector2d(g.com[0], g.com[1]) - offset;
+    // The true support polygon: the soles touching the floor, where they really are.
     support.clear();
-    const walking::FeetTarget feet = walking::feet_target(out.plan, params.walk.swing_height, t_now);
     for (int side = 0; side < 2; ++side)
-      if (!feet.swinging[side]) support.push_back(feet.sole[side]);
+      if (g.sole_contact[side])
+        support.push_back({Eigen::Vector3d(g.sole_pos[side][0] - offset.x(), g.sole_pos[side][1] - offset.y(), 0),
+                           walking::rot_z(g.sole_yaw[side])});
     const double margin = support_margin(support_polygon(support, length, width), zmp_true);
+    const walking::FeetTarget feet = walking::feet_target(out.plan, params.walk.swing_height, t_now);
     if (t_now >= t_walk0 && t_now <= out.plan.t_settle && !m.fell) {
       zx.add(zmp_true.x() - st.zmp_ref.x());
       zy.add(zmp_true.y() - st.zmp_ref.y());
       if (feet.swinging[0] || feet.swinging[1]) zss.add(zmp_true.y() - st.zmp_ref.y());
-      if (st.zmp_valid) zft.add((st.zmp_measured - zmp_true).norm());
+      if (st.zmp_valid) zbelief.add((st.zmp_measured - zmp_true).norm());
+      // The sensors' ZMP with the soles where they really are: sensor consistency.
+      double fz = 0;
+      Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+      for (int side = 0; side < 2; ++side) {
+        const Eigen::Matrix3d R = walking::rot_z(g.sole_yaw[side]);
+        const walking::FootContact c = walking::foot_contact(plant.sensors().ft[side], R, params.robot.ankle_to_sole,
+                                                             params.robot.m_foot);
+        if (c.normal_force <= 1.0) continue;
+        moment += c.normal_force * (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset +
+                                    R.topLeftCorner<2, 2>() * c.cop);
+        fz += c.normal_force;
+      }
+      if (fz > params.balance.contact_force) zft.add((moment / fz - zmp_true).norm());
       roll.add(st.imu_roll);
       pitch.add(st.imu_pitch);
       com.add((com_true - st.com_ref).norm());
@@ -165,6 +182,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.zmp_max_y = zy.max;
   m.zmp_ss_rms_y = zss.rms();
   m.zmp_ft_rms_error = zft.rms();
+  m.zmp_belief_rms_error = zbelief.rms();
   m.pelvis_roll_error_max = roll.max;
   m.pelvis_roll_error_rms = roll.rms();
   m.pelvis_pitch_error_max = pitch.max;

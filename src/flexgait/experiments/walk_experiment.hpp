@@ -45,7 +45,7 @@ struct WalkSample {
   double pelvis_z = 0;                    ///< true [m]
   double imu_roll = 0, imu_pitch = 0;     ///< [rad]
   double roll_correction = 0, pitch_correction = 0;  ///< balance controller [rad]
-  double support_margin = 0;              ///< true ZMP to the planned support polygon's edge [m]
+  double support_margin = 0;              ///< true ZMP to the edge of the true support polygon (soles on the floor) [m]
   std::array<std::array<double, 3>, 2> sole{};  ///< true sole centres [m]
 };
 
@@ -64,8 +64,9 @@ struct WalkMetrics {
   double zmp_rms_x = 0, zmp_rms_y = 0;  ///< true ZMP − reference over the walk [m]
   double zmp_max_x = 0, zmp_max_y = 0;
   double zmp_ss_rms_y = 0;              ///< the same in single support only [m]
-  double zmp_ft_rms_error = 0;          ///< F/T ZMP against the true one (sensor consistency) [m]
-  double support_margin_min = 0;        ///< smallest true-ZMP margin inside the support polygon [m]
+  double zmp_ft_rms_error = 0;          ///< F/T ZMP (soles where they are) against the contact forces' [m]
+  double zmp_belief_rms_error = 0;      ///< the controller's F/T ZMP (soles where planned) against the true [m]
+  double support_margin_min = 0;        ///< smallest margin of the true ZMP inside the true support polygon [m]
   double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;   ///< IMU against level [rad]
   double pelvis_pitch_error_max = 0, pelvis_pitch_error_rms = 0;
   double landing_error_max = 0, landing_error_mean = 0;          ///< [m]

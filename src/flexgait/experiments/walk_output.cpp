@@ -58,6 +58,7 @@ std::string walk_summary_json(const WalkResult& r) {
   j["zmp_max_y"] = m.zmp_max_y;
   j["zmp_single_support_rms_y"] = m.zmp_ss_rms_y;
   j["zmp_ft_rms_error"] = m.zmp_ft_rms_error;
+  j["zmp_controller_rms_error"] = m.zmp_belief_rms_error;
   j["support_margin_min"] = m.support_margin_min;
   j["pelvis_roll_error_max"] = m.pelvis_roll_error_max;
   j["pelvis_roll_error_rms"] = m.pelvis_roll_error_rms;

@@ -161,6 +161,7 @@ GroundTruth HumanoidPlant::truth() const {
     if (!floor) continue;
     const int other = con.geom1 == floor_geom_ ? con.geom2 : con.geom1;
     if (other != sole_geom_[0] && other != sole_geom_[1]) g.non_sole_contact = true;
+    for (int side = 0; side < 2; ++side) g.sole_contact[side] = g.sole_contact[side] || other == sole_geom_[side];
     mjtNum f[6];
     mj_contactForce(model_, data_, c, f);
     // Contact frame: first row of con.frame is the normal; the normal force is f[0].

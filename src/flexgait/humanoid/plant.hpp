@@ -29,6 +29,7 @@ struct GroundTruth {
   std::array<double, 2> zmp{};                ///< centre of pressure of the floor contacts (x, y) [m]
   std::array<std::array<double, 3>, 2> sole_pos{};  ///< left, right: sole centre under the ankle [m]
   std::array<double, 2> sole_yaw{};           ///< heading of each sole [rad]
+  std::array<bool, 2> sole_contact{};         ///< the sole touches the floor
   double normal_force = 0;                    ///< total floor normal force [N]
   bool non_sole_contact = false;              ///< a body other than a sole touches the floor
   int warnings = 0;                           ///< MuJoCo warnings raised so far

@@ -27,11 +27,12 @@ Schema balance_schema() {
   s.add(boolean_param("balance.enabled", "true", "balance controller on (IMU attitude and foot torque loops)"));
   s.add(real_param("balance.imu_kp", "0.3", "", "pelvis counter-tilt per radian of IMU tilt", 0, 5));
   s.add(real_param("balance.imu_kd", "0.0", "s", "pelvis counter-tilt per rad/s of gyro rate", 0, 1));
-  s.add(real_param("balance.imu_limit", "0.05", "rad", "clamp of the pelvis attitude correction", 0, 0.3));
+  s.add(real_param("balance.imu_limit", "0.1", "rad", "clamp of the pelvis attitude correction", 0, 0.3));
   s.add(real_param("balance.ankle_damping", "3000", "Nm s/rad", "foot torque compliance D (δ' = τ/D − δ/T)", 1, 1e7));
   s.add(real_param("balance.ankle_return_time", "0.2", "s", "return time T of the foot rotation", 0.001, 100));
   s.add(real_param("balance.ankle_limit", "0.05", "rad", "clamp of the foot rotation", 0, 0.3));
-  s.add(real_param("balance.ankle_gyro_gain", "0.1", "s", "sway damping: stance sole rotation per rad/s of IMU rate", 0, 2));
+  s.add(real_param("balance.ankle_gyro_gain", "0.05", "s", "sway damping: stance sole rotation per rad/s of IMU rate", 0, 2));
+  s.add(real_param("balance.gyro_filter_time", "0.05", "s", "low-pass time constant on the IMU rate of the sway damping", 0, 10));
   s.add(real_param("balance.contact_force", "50", "N", "a foot loaded above this is in contact", 0, 1000));
   s.add(real_param("balance.foot_force_damping", "3000", "N s/m", "foot force control D_z (z' = (f - f_d)/D_z - z/T_z)", 1, 1e7));
   s.add(real_param("balance.foot_return_time", "0.5", "s", "return time T_z of the foot height offset", 0.001, 100));
@@ -72,6 +73,7 @@ BalanceParams balance_from_config(const Config& c) {
   b.ankle_limit = c.real("balance.ankle_limit");
   b.contact_force = c.real("balance.contact_force");
   b.ankle_gyro_gain = c.real("balance.ankle_gyro_gain");
+  b.gyro_filter_time = c.real("balance.gyro_filter_time");
   b.foot_force_damping = c.real("balance.foot_force_damping");
   b.foot_return_time = c.real("balance.foot_return_time");
   b.foot_lift_limit = c.real("balance.foot_lift_limit");

@@ -27,11 +27,12 @@ struct BalanceParams {
   bool enabled = true;
   double imu_kp = 0.3;              ///< pelvis attitude: counter-tilt per radian of IMU tilt
   double imu_kd = 0.0;              ///< per rad/s of gyro rate [s]
-  double imu_limit = 0.05;          ///< clamp of the attitude correction [rad]
+  double imu_limit = 0.1;           ///< clamp of the attitude correction [rad]
   double ankle_damping = 3000.0;    ///< foot torque compliance D: δ̇ = τ/D − δ/T [Nm s/rad]
   double ankle_return_time = 0.2;   ///< T [s]
   double ankle_limit = 0.05;        ///< clamp of the foot rotation [rad]
-  double ankle_gyro_gain = 0.1;     ///< sway damping: stance sole rotation per rad/s of IMU rate [s]
+  double ankle_gyro_gain = 0.05;    ///< sway damping: stance sole rotation per rad/s of IMU rate [s]
+  double gyro_filter_time = 0.05;   ///< low-pass time constant on that rate [s]
   double contact_force = 50.0;      ///< a foot loaded above this is in contact [N]
   double foot_force_damping = 3000.0; ///< foot force control D_z: ż = (f − f_d)/D_z − z/T_z [N s/m]
   double foot_return_time = 0.5;    ///< T_z [s]

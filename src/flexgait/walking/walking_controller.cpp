@@ -1,5 +1,7 @@
 #include "flexgait/walking/walking_controller.hpp"
 
+#include "flexgait/walking/foot_wrench.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -60,25 +62,15 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
     const Pose& sole = status_.sole[side];
-    const double d = model_.leg[side].ankle_to_sole;
-    // Ground wrench on the foot at the ankle, foot frame: minus the sensor's (leg on foot) and
-    // minus the foot's weight.
-    const Vector3d g_foot = sole.R.transpose() * Vector3d(0, 0, -kGravity * m_foot);
-    const Vector3d f = -Vector3d(s.ft[side].force.data()) - g_foot;
-    const Vector3d tau = -Vector3d(s.ft[side].torque.data());
-    status_.contact[side] = f.z() > balance_.contact_force;
-    status_.foot_force[side] = f.z();
-    if (f.z() <= 1.0) continue;
-    // Centre of pressure in the sole frame: τ_A = (p − A) × f with p − A = (p_x, p_y, −d).
-    const Vector3d cop((-tau.y() - d * f.x()) / f.z(), (tau.x() - d * f.y()) / f.z(), 0.0);
-    const Vector3d world = sole.p + sole.R * cop;
-    moment += f.z() * world.head<2>();
-    fz_total += f.z();
-    // Foot torque compliance (torque about the sole centre: τ_A + (0, 0, d) × f).
-    if (balance_.enabled && status_.contact[side]) {
-      const Eigen::Vector2d torque(tau.x() - d * f.y(), tau.y() + d * f.x());
-      foot_rotation_[side] += period_ * (torque / balance_.ankle_damping);
-    }
+    const FootContact c = foot_contact(s.ft[side], sole.R, model_.leg[side].ankle_to_sole, m_foot);
+    status_.contact[side] = c.normal_force > balance_.contact_force;
+    status_.foot_force[side] = c.normal_force;
+    if (c.normal_force <= 1.0) continue;
+    const Vector3d world = sole.p + sole.R * Vector3d(c.cop.x(), c.cop.y(), 0);
+    moment += c.normal_force * world.head<2>();
+    fz_total += c.normal_force;
+    // Foot torque compliance: δ̇ = τ / D (the return term is applied in update).
+    if (balance_.enabled && status_.contact[side]) foot_rotation_[side] += period_ * (c.torque / balance_.ankle_damping);
   }
   status_.zmp_valid = fz_total > balance_.contact_force;
   if (status_.zmp_valid) status_.zmp_measured = moment / fz_total;
@@ -158,9 +150,12 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   std::array<Pose, 2> soles = feet.sole;
   // Sway damping: the whole body rocks on its compliant legs (a ~0.5 Hz mode, spec "Physics");
   // rotating the stance soles' commands with the IMU rate leans the body against the motion.
-  const Eigen::Vector2d sway = balance_.enabled ? Eigen::Vector2d(balance_.ankle_gyro_gain * s.imu.gyro[0],
-                                                                  balance_.ankle_gyro_gain * s.imu.gyro[1])
-                                                : Eigen::Vector2d::Zero();
+  // The rate is low-passed (balance.gyro_filter_time): unfiltered, the loop through the stiff
+  // servos chatters at high frequency in double support.
+  gyro_filtered_ += period_ / (balance_.gyro_filter_time + period_) *
+                    (Eigen::Vector2d(s.imu.gyro[0], s.imu.gyro[1]) - gyro_filtered_);
+  const Eigen::Vector2d sway =
+      balance_.enabled ? Eigen::Vector2d(balance_.ankle_gyro_gain * gyro_filtered_) : Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
     const Eigen::Vector2d r =
         (foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway))

@@ -47,7 +47,7 @@ struct ControllerStatus {
   Eigen::Vector2d com_shift = Eigen::Vector2d::Zero(); ///< balance: COM shift of the ZMP feedback [m]
   std::array<Pose, 2> sole;                           ///< planned sole poses (world)
   std::array<bool, 2> contact{};                      ///< foot loaded above balance.contact_force
-  std::array<Eigen::Vector2d, 2> foot_rotation{};     ///< balance: foot roll, pitch offsets [rad]
+  std::array<Eigen::Vector2d, 2> foot_rotation{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};///< balance: foot roll, pitch offsets [rad]
   std::array<double, 2> foot_force{};                 ///< vertical ground force on each foot (F/T) [N]
   std::array<double, 2> foot_lift{};                  ///< balance: foot height offsets of the force control [m]
   std::array<IkStatus, 2> ik{IkStatus::kOk, IkStatus::kOk};
@@ -91,10 +91,11 @@ class WalkingController {
   std::array<CartTable, 2> cart_;
   Pose pelvis_;
   humanoid::JointVector desired_{}, initial_pose_{};
-  std::array<Eigen::Vector2d, 2> foot_rotation_{};
+  std::array<Eigen::Vector2d, 2> foot_rotation_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   std::array<double, 2> foot_lift_{};
+  Eigen::Vector2d gyro_filtered_ = Eigen::Vector2d::Zero();  ///< IMU roll/pitch rate, low-passed [rad/s]
   Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();  ///< ZMP feedback's integral [m]
-  std::array<Eigen::Vector2d, 2> zmp_filtered_{};           ///< the measured ZMP, low-passed [m]
+  std::array<Eigen::Vector2d, 2> zmp_filtered_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}; ///< the measured ZMP, low-passed [m]
   ControllerStatus status_;
 };
 

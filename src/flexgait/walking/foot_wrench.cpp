@@ -1,0 +1,18 @@
+#include "flexgait/walking/foot_wrench.hpp"
+
+#include "flexgait/walking/robot_model.hpp"
+
+namespace flexgait::walking {
+
+FootContact foot_contact(const humanoid::ForceTorque& ft, const Eigen::Matrix3d& sole_R, double d, double foot_mass) {
+  const Eigen::Vector3d weight = sole_R.transpose() * Eigen::Vector3d(0, 0, -kGravity * foot_mass);
+  const Eigen::Vector3d f = -Eigen::Vector3d(ft.force.data()) - weight;
+  const Eigen::Vector3d tau = -Eigen::Vector3d(ft.torque.data());
+  FootContact c;
+  c.normal_force = f.z();
+  if (f.z() > 1e-9) c.cop = Eigen::Vector2d((-tau.y() - d * f.x()) / f.z(), (tau.x() - d * f.y()) / f.z());
+  c.torque = Eigen::Vector2d(tau.x() - d * f.y(), tau.y() + d * f.x());
+  return c;
+}
+
+}  // namespace flexgait::walking
