@@ -103,5 +103,18 @@ for key in k_fit r_squared max_error_uncompensated max_error_compensated; do
 done
 expect_usage_error bench-bad-k "plant.k_joint" humanoid bench --set plant.k_joint=0
 
+# Humanoid walk.
+"$exe" humanoid walk --config "$src/configs/walk-robotis.yaml" --set walk.steps=2 --out "$work/walk" --json \
+  --no-plot >"$work/walk.json" 2>"$work/err"
+check "humanoid walk exits 0: $(cat "$work/err")" test $? -eq 0
+for key in fell steps_completed zmp_rms_x zmp_rms_y pelvis_roll_error_max pelvis_pitch_error_max \
+           pelvis_roll_error_rms landing_error_max com_error_rms; do
+  check "walk summary has $key" grep -q "\"$key\"" "$work/walk.json"
+done
+check "walk did not fall" grep -q '"fell": false' "$work/walk.json"
+for f in log.csv footsteps.csv summary.json config.yaml; do check "walk writes $f" test -s "$work/walk/$f"; done
+expect_usage_error walk-bad-step-time "walk.step_time" humanoid walk --set walk.step_time=0
+expect_usage_error walk-typo "walk.steps" humanoid walk --set walk.stepz=3
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0
