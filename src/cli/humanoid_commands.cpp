@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +11,7 @@
 #include "flexgait/core/text.hpp"
 #include "flexgait/core/progress.hpp"
 #include "flexgait/experiments/walk_output.hpp"
+#include "flexgait/humanoid/renderer.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
 #include "options.hpp"
 
@@ -56,13 +59,36 @@ int bench(const RunOptions& run) {
   return 0;
 }
 
-int walk(const RunOptions& run) {
+struct RenderOptions {
+  bool enabled = false;  ///< --render
+  double fps = 25.0;     ///< --fps [1/s]
+  int width = 640, height = 480;
+};
+
+int walk(const RunOptions& run, const RenderOptions& render) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const RunDirectory dir(run.out);
   dir.write_config(config);
   ProgressBar bar(walking::plan_footsteps(params.walk).duration, "s simulated");
-  const experiments::WalkResult r = experiments::run_walk(params, [&](double t) { bar.show(t); });
+  // --render: PNG frames of the twin (OSMesa, offscreen) at --fps, then video.mp4 via ffmpeg.
+  std::unique_ptr<humanoid::Renderer> renderer;
+  int frame = 0;
+  const long every = std::max(1L, std::lround(1.0 / (render.fps * params.plant.control_period)));
+  long period = 0;
+  std::function<void(const humanoid::HumanoidPlant&)> observe;
+  if (render.enabled) {
+    std::filesystem::create_directories(dir.path() / "frames");
+    observe = [&](const humanoid::HumanoidPlant& plant) {
+      if (period++ % every != 0) return;
+      if (!renderer) renderer = std::make_unique<humanoid::Renderer>(plant.model(), render.width, render.height);
+      const auto& rgb = renderer->render(plant.data());
+      dir.write(fmt::format("frames/frame_{:05d}.png", frame++), humanoid::encode_png(rgb, render.width, render.height));
+    };
+  }
+  const experiments::WalkResult r = experiments::run_walk(params, [&](double t) { bar.show(t); }, observe);
+  if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
+    fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
   dir.write("log.csv", experiments::walk_log_csv(r));
   dir.write("footsteps.csv", experiments::walk_footsteps_csv(r));
   const std::string summary = experiments::walk_summary_json(r);
@@ -99,11 +125,18 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   b->callback([run, &action] { action = [run] { return bench(*run); }; });
 
   auto walk_run = std::make_shared<RunOptions>();
+  auto walk_render = std::make_shared<RenderOptions>();
   CLI::App* w = humanoid->add_subcommand(
       "walk", "Walk the twin with the ZMP preview controller (footsteps, preview control, balance, leg IK); "
               "exit 1 if it falls");
   add_run_options(*w, *walk_run, "runs/humanoid-walk");
-  w->callback([walk_run, &action] { action = [walk_run] { return walk(*walk_run); }; });
+  w->add_flag("--render", walk_render->enabled,
+              "write PNG frames of the twin to OUT/frames (offscreen, OSMesa) and OUT/video.mp4 if ffmpeg is present");
+  w->add_option("--fps", walk_render->fps, "frames per second of simulated time for --render (1/s)")
+      ->check(CLI::Range(1.0, 250.0));
+  w->callback([walk_run, walk_render, &action] {
+    action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); };
+  });
 }
 
 }  // namespace flexgait::cli

@@ -43,7 +43,8 @@ WalkRunParams walk_run_from_config(const Config& c) {
   return p;
 }
 
-WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress) {
+WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress,
+                    const std::function<void(const humanoid::HumanoidPlant&)>& observe) {
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = params.plant.control_period;
   walking::WalkingController controller(params.controller_robot, params.walk, params.balance, T);
@@ -78,6 +79,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const double t = k * T;
     const humanoid::JointVector& command = controller.update(plant.sensors(), t);
     plant.step(command);
+    if (observe) observe(plant);
     g = plant.truth();
     const walking::ControllerStatus& st = controller.status();
     const double t_now = g.t;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/humanoid/plant.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
 #include "flexgait/walking/walk_params.hpp"
 #include "flexgait/walking/walking_controller.hpp"
@@ -86,7 +87,9 @@ struct WalkResult {
   walking::WalkPlan plan;
 };
 
-/// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time.
-WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress = {});
+/// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time now and
+/// then; `observe(plant)` after every control period (for rendering: evaluation code only).
+WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress = {},
+                    const std::function<void(const humanoid::HumanoidPlant&)>& observe = {});
 
 }  // namespace flexgait::experiments
