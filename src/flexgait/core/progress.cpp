@@ -7,8 +7,8 @@
 
 namespace flexgait {
 
-ProgressBar::ProgressBar(double total, std::string unit)
-    : total_(total), unit_(std::move(unit)), tty_(isatty(STDERR_FILENO) != 0),
+ProgressBar::ProgressBar(double total, std::string unit, double already_done)
+    : total_(total), start_done_(already_done), unit_(std::move(unit)), tty_(isatty(STDERR_FILENO) != 0),
       start_(std::chrono::steady_clock::now()), last_(start_ - std::chrono::seconds(1)) {}
 
 void ProgressBar::show(double done) {
@@ -20,7 +20,8 @@ void ProgressBar::show(double done) {
   const double seconds = std::chrono::duration<double>(now - start_).count();
   const int width = 30;
   const int filled = total_ > 0 ? std::clamp(static_cast<int>(width * done / total_), 0, width) : width;
-  const double eta = done > 0 ? seconds / done * std::max(total_ - done, 0.0) : 0.0;
+  const double rate_done = done - start_done_;
+  const double eta = rate_done > 0 ? seconds / rate_done * std::max(total_ - done, 0.0) : 0.0;
   fmt::print(stderr, "\r[{}{}] {:.0f}/{:.0f} {}, {:.1f} s, ETA {:.0f} s ", std::string(filled, '#'),
              std::string(width - filled, '.'), done, total_, unit_, seconds, eta);
   if (end) {

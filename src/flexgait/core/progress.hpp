@@ -9,13 +9,15 @@ namespace flexgait {
 class ProgressBar {
  public:
   /// \param total work to do, in `unit`s (points, simulated seconds, ...)
-  ProgressBar(double total, std::string unit);
+  /// \param already_done work done before this run (a resumed sweep): not counted in the rate
+  ProgressBar(double total, std::string unit, double already_done = 0);
   /// Shows `done` of the total with the elapsed wall time and an estimate of the rest; redraws at
   /// most ten times a second except at the end.
   void show(double done);
 
  private:
   double total_;
+  double start_done_;
   std::string unit_;
   bool tty_;
   std::chrono::steady_clock::time_point start_, last_;

@@ -1,12 +1,9 @@
 #include "flexgait/core/sweep_runner.hpp"
 
-#include "flexgait/core/progress.hpp"
-
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <map>
@@ -14,6 +11,7 @@
 #include <stdexcept>
 
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/progress.hpp"
 
 namespace flexgait {
 namespace {
@@ -38,7 +36,6 @@ std::map<int, std::string> read_partial(const std::filesystem::path& p, int coun
   }
   return rows;
 }
-
 
 }  // namespace
 
@@ -76,7 +73,7 @@ SweepOutcome run_sweep(const SweepJob& job) {
 
   const auto t0 = std::chrono::steady_clock::now();
   std::mutex mutex;
-  ProgressBar progress(job.count, "points");
+  ProgressBar progress(job.count, "points", out.resumed);
   progress.show(out.resumed);
   const int threads = job.jobs > 0 ? job.jobs : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);

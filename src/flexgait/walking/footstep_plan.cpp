@@ -14,6 +14,12 @@ Eigen::Vector2d blend(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double
 
 Pose pose_of(const Footprint& f) { return {Vector3d(f.x, f.y, 0), rot_z(f.yaw)}; }
 
+// The step whose interval holds t, for t within the walk (steps are contiguous and equally long).
+std::size_t step_at(const WalkPlan& plan, double t) {
+  const double T = plan.steps.front().t_land - plan.steps.front().t_begin;
+  return std::min<std::size_t>(static_cast<std::size_t>((t - plan.steps.front().t_begin) / T), plan.steps.size() - 1);
+}
+
 }  // namespace
 
 double quintic_blend(double s) {
@@ -64,9 +70,7 @@ Eigen::Vector2d zmp_reference(const WalkPlan& plan, double t) {
     const double s = (t - last.t_land) / std::max(plan.t_settle - last.t_land, 1e-9);
     return blend(xy(last.stance), mid(plan.final), s);
   }
-  // The step whose interval holds t (steps are contiguous and equally long).
-  const double T = plan.steps.front().t_land - plan.steps.front().t_begin;
-  const auto i = std::min<std::size_t>(static_cast<std::size_t>((t - plan.steps.front().t_begin) / T), plan.steps.size() - 1);
+  const std::size_t i = step_at(plan, t);
   const Step& s = plan.steps[i];
   if (t >= s.t_lift) return xy(s.stance);
   const Eigen::Vector2d previous = i == 0 ? mid(plan.initial) : xy(plan.steps[i - 1].stance);
@@ -84,8 +88,7 @@ FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t) {
     out.step = static_cast<int>(plan.steps.size());
     return out;
   }
-  const double T = plan.steps.front().t_land - plan.steps.front().t_begin;
-  const auto i = std::min<std::size_t>(static_cast<std::size_t>((t - plan.steps.front().t_begin) / T), plan.steps.size() - 1);
+  const std::size_t i = step_at(plan, t);
   const Step& s = plan.steps[i];
   out.step = static_cast<int>(i);
   out.sole[1 - s.swing] = pose_of(s.stance);

@@ -7,6 +7,12 @@
 #include <stdexcept>
 
 namespace flexgait::walking {
+namespace {
+
+/// Each component clamped to [−limit, limit].
+Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
+
+}  // namespace
 
 using humanoid::leg_first_joint;
 
@@ -76,6 +82,41 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
   if (status_.zmp_valid) status_.zmp_measured = moment / fz_total;
 }
 
+void WalkingController::update_foot_lift(const FeetTarget& feet) {
+  // Foot force control: the load each foot should carry follows the ZMP reference between the
+  // sole centres (all of it on the stance foot in single support); a foot carrying more than its
+  // share is raised, ż = (f − f_d) / D_z − z / T_z (a swing foot landing early gives way).
+  const Eigen::Vector2d left = feet.sole[0].p.head<2>(), right = feet.sole[1].p.head<2>();
+  const Eigen::Vector2d span = left - right;
+  const double share_left =
+      span.squaredNorm() > 1e-12 ? std::clamp((status_.zmp_ref - right).dot(span) / span.squaredNorm(), 0.0, 1.0) : 0.5;
+  const double load = std::max(0.0, status_.foot_force[0]) + std::max(0.0, status_.foot_force[1]);
+  for (int side = 0; side < 2; ++side) {
+    const double desired = (side == 0 ? share_left : 1.0 - share_left) * load;
+    double& z = foot_lift_[side];
+    z += period_ * ((std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping -
+                    z / balance_.foot_return_time);
+    if (!balance_.enabled) z = 0;
+    z = std::clamp(z, -balance_.foot_lift_limit, balance_.foot_lift_limit);
+  }
+  status_.foot_lift = foot_lift_;
+}
+
+Eigen::Vector2d WalkingController::zmp_feedback() {
+  // ZMP feedback: the gear deflections move the real COM away from the plan by centimetres; shift
+  // the commanded COM until the measured ZMP follows the reference (PI, clamped, anti-windup).
+  if (!balance_.enabled) return Eigen::Vector2d::Zero();
+  if (!status_.zmp_valid) return zmp_integral_;
+  // The measured ZMP carries −(z/g) c̈ (it leads the COM with the opposite sign at high
+  // frequency): filter it twice (first order, balance.zmp_filter_time each) before use.
+  const double a = period_ / (balance_.zmp_filter_time + period_);
+  for (int stage = 0; stage < 2; ++stage)
+    zmp_filtered_[stage] += a * ((stage == 0 ? status_.zmp_measured : zmp_filtered_[0]) - zmp_filtered_[stage]);
+  const Eigen::Vector2d error = status_.zmp_ref - zmp_filtered_[1];
+  zmp_integral_ = clamp_abs(zmp_integral_ + period_ * balance_.zmp_ki * error, balance_.zmp_limit);
+  return clamp_abs(zmp_integral_ + balance_.zmp_kp * error, balance_.zmp_limit);
+}
+
 const humanoid::JointVector& WalkingController::update(const humanoid::SensorReadings& s, double t) {
   status_.t = t;
   const auto last = ref_x_.size() - gains_.G_p.size() - 1;
@@ -89,7 +130,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.step = feet.step;
   status_.sole = feet.sole;
 
-  // Balance: foot torques (and the measured ZMP), then the pelvis attitude.
+  // Balance: foot torques (and the measured ZMP), foot forces, pelvis attitude, ZMP feedback.
   const Matrix3d R_imu = quat_to_matrix(s.imu.quat.data());
   status_.imu_roll = roll_of(R_imu);
   status_.imu_pitch = pitch_of(R_imu);
@@ -97,28 +138,10 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   for (int side = 0; side < 2; ++side) {
     foot_rotation_[side] -= period_ / balance_.ankle_return_time * foot_rotation_[side];
     if (!balance_.enabled || feet.swinging[side]) foot_rotation_[side].setZero();
-    foot_rotation_[side] = foot_rotation_[side].cwiseMax(-balance_.ankle_limit).cwiseMin(balance_.ankle_limit);
+    foot_rotation_[side] = clamp_abs(foot_rotation_[side], balance_.ankle_limit);
   }
   status_.foot_rotation = foot_rotation_;
-  // Foot force control: the load each foot should carry follows the ZMP reference between the
-  // sole centres (all of it on the stance foot in single support); a foot carrying more than its
-  // share is raised, ż = (f − f_d) / D_z − z / T_z (a swing foot landing early gives way).
-  {
-    const Eigen::Vector2d left = feet.sole[0].p.head<2>(), right = feet.sole[1].p.head<2>();
-    const Eigen::Vector2d span = left - right;
-    const double share_left =
-        span.squaredNorm() > 1e-12 ? std::clamp((status_.zmp_ref - right).dot(span) / span.squaredNorm(), 0.0, 1.0) : 0.5;
-    const double load = std::max(0.0, status_.foot_force[0]) + std::max(0.0, status_.foot_force[1]);
-    for (int side = 0; side < 2; ++side) {
-      const double desired = (side == 0 ? share_left : 1.0 - share_left) * load;
-      double& z = foot_lift_[side];
-      z += period_ * ((std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping -
-                      z / balance_.foot_return_time);
-      if (!balance_.enabled) z = 0;
-      z = std::clamp(z, -balance_.foot_lift_limit, balance_.foot_lift_limit);
-    }
-    status_.foot_lift = foot_lift_;
-  }
+  update_foot_lift(feet);
   double d_roll = 0, d_pitch = 0;
   if (balance_.enabled) {
     d_roll = std::clamp(-(balance_.imu_kp * status_.imu_roll + balance_.imu_kd * s.imu.gyro[0]), -balance_.imu_limit,
@@ -126,26 +149,9 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     d_pitch = std::clamp(-(balance_.imu_kp * status_.imu_pitch + balance_.imu_kd * s.imu.gyro[1]),
                          -balance_.imu_limit, balance_.imu_limit);
   }
-  // ZMP feedback: the gear deflections move the real COM away from the plan by centimetres; shift
-  // the commanded COM until the measured ZMP follows the reference (PI, clamped, anti-windup).
-  Eigen::Vector2d com_shift = Eigen::Vector2d::Zero();
-  if (balance_.enabled && status_.zmp_valid) {
-    // The measured ZMP carries −(z/g) c̈ (it leads the COM with the opposite sign at high
-    // frequency): filter it twice (first order, balance.zmp_filter_time each) before use.
-    const double a = period_ / (balance_.zmp_filter_time + period_);
-    for (int stage = 0; stage < 2; ++stage)
-      zmp_filtered_[stage] += a * ((stage == 0 ? status_.zmp_measured : zmp_filtered_[0]) - zmp_filtered_[stage]);
-    const Eigen::Vector2d error = status_.zmp_ref - zmp_filtered_[1];
-    zmp_integral_ = (zmp_integral_ + period_ * balance_.zmp_ki * error)
-                        .cwiseMax(-balance_.zmp_limit)
-                        .cwiseMin(balance_.zmp_limit);
-    com_shift = (zmp_integral_ + balance_.zmp_kp * error).cwiseMax(-balance_.zmp_limit).cwiseMin(balance_.zmp_limit);
-  } else if (balance_.enabled) {
-    com_shift = zmp_integral_;
-  }
-  status_.com_shift = com_shift;
   status_.roll_correction = d_roll;
   status_.pitch_correction = d_pitch;
+  status_.com_shift = zmp_feedback();
 
   std::array<Pose, 2> soles = feet.sole;
   // Sway damping: the whole body rocks on its compliant legs (a ~0.5 Hz mode, spec "Physics");
@@ -158,16 +164,14 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
       balance_.enabled ? Eigen::Vector2d(balance_.ankle_gyro_gain * gyro_filtered_) : Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
     const Eigen::Vector2d r =
-        (foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway))
-            .cwiseMax(-balance_.ankle_limit)
-            .cwiseMin(balance_.ankle_limit);
+        clamp_abs(foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway), balance_.ankle_limit);
     soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
     soles[side].p.z() += foot_lift_[side];
   }
   // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
   const Vector3d heading = feet.sole[0].R.col(0) + feet.sole[1].R.col(0);
   const double yaw = std::atan2(heading.y(), heading.x());
-  solve_pose(status_.com_ref + com_shift, soles, rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll), 2);
+  solve_pose(status_.com_ref + status_.com_shift, soles, rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll), 2);
   status_.pelvis = pelvis_;
   status_.desired = desired_;
   return desired_;

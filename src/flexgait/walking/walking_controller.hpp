@@ -78,6 +78,10 @@ class WalkingController {
   void solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
                   int iterations);
   void measure_zmp(const humanoid::SensorReadings& sensors);
+  /// Foot force control: updates foot_lift_ from the feet's loads against their shares.
+  void update_foot_lift(const FeetTarget& feet);
+  /// ZMP feedback: advances its filter and integral, returns the COM shift [m].
+  Eigen::Vector2d zmp_feedback();
 
   humanoid::RobotParams robot_;
   WalkParams walk_;
