@@ -91,6 +91,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
   dir.write("log.csv", experiments::walk_log_csv(r));
   dir.write("footsteps.csv", experiments::walk_footsteps_csv(r));
+  dir.write("joints.csv", experiments::walk_joints_csv(r));
   const std::string summary = experiments::walk_summary_json(r);
   dir.write("summary.json", summary);
   dir.write("timing.json", experiments::walk_timing_json(r));

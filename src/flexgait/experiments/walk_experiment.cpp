@@ -28,6 +28,7 @@ struct Accumulator {  // root mean square and maximum of |value|
 Schema walk_run_schema() {
   Schema s = humanoid::robot_schema();
   s.merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
+  s.merge(compensation::compensation_schema());
   s.add(real_param("output.log_period", "0.02", "s", "period of the logged samples", 1e-4, 10));
   return s;
 }
@@ -39,6 +40,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
   p.controller_robot = p.robot;
   p.walk = walking::walk_from_config(c);
   p.balance = walking::balance_from_config(c);
+  p.control = compensation::compensation_from_config(c);
   p.log_period = c.real("output.log_period");
   return p;
 }
@@ -48,14 +50,18 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = params.plant.control_period;
   walking::WalkingController controller(params.controller_robot, params.walk, params.balance, T);
+  compensation::DeformationCompensator compensator(controller.model(), params.control);
   humanoid::HumanoidPlant plant(params.robot, params.plant);
   plant.reset(controller.initial_pose());
+  const walking::RobotModel& model = controller.model();
 
   WalkResult out;
   out.plan = controller.plan();
   WalkMetrics& m = out.metrics;
   m.steps_planned = static_cast<int>(out.plan.steps.size());
   m.riccati_residual = controller.gains().riccati_residual;
+  m.compensation = compensation::to_string(params.control.mode);
+  m.gravity_model = compensation::to_string(params.control.gravity);
 
   // Truth → plan frame: the offset between the initial feet.
   humanoid::GroundTruth g = plant.truth();
@@ -68,6 +74,9 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const long log_every = std::max(1L, std::lround(params.log_period / T));
   const double t_walk0 = out.plan.steps.empty() ? 0.0 : out.plan.steps.front().t_begin;
   Accumulator zx, zy, zss, zft, zbelief, roll, pitch, com;
+  Accumulator deflection, estimate_error, one_step_error, conventional_error, newton_vs_conventional, link_error;
+  Accumulator roll_kin_encoder, roll_kin_estimate;
+  long newton_calls = 0, newton_iterations = 0;
   m.support_margin_min = INFINITY;
   std::size_t next_landing = 0;
   const double settle = 0.5 * params.walk.dsp_ratio * params.walk.step_time;  // after touchdown
@@ -77,11 +86,57 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
 
   for (long k = 0; k < ticks; ++k) {
     const double t = k * T;
-    const humanoid::JointVector& command = controller.update(plant.sensors(), t);
+    const humanoid::SensorReadings& sensors = plant.sensors();
+    const humanoid::JointVector& desired = controller.update(sensors, t);
+    const walking::ControllerStatus& st = controller.status();
+    // The thesis's Fig. 2: input compensator → robot → encoders → output compensator.
+    const compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref};
+    const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
+    const Eigen::Matrix3d R_imu = walking::quat_to_matrix(sensors.imu.quat.data());
+    const compensation::OutputEstimate* estimate =
+        params.control.output() ? &compensator.output(sensors.encoder, R_imu, plan_now) : nullptr;
+    const humanoid::GroundTruth before = plant.truth();  // the state the sensors read
+    const humanoid::JointVector encoder = sensors.encoder;  // (the plant's sensors change on step)
+    const bool in_walk = before.t >= t_walk0 && before.t <= out.plan.t_settle;
+    if (estimate) {
+      ++newton_calls;
+      newton_iterations += estimate->iterations;
+      m.newton_iterations_max = std::max(m.newton_iterations_max, estimate->iterations);
+      m.newton_failures += !estimate->converged;
+    }
+    // Pelvis roll by kinematics from the stance sole, assumed flat at its true heading (eq. 1).
+    double roll_enc = 0, roll_est = 0;
+    const int stance = st.swinging[0] ? 1 : (st.swinging[1] ? 0 : -1);
+    if (stance >= 0) {
+      auto roll_through = [&](const humanoid::JointVector& q) {
+        walking::LegAngles a{};
+        for (int i = 0; i < humanoid::kLegJoints; ++i) a[i] = q[humanoid::leg_first_joint(stance) + i];
+        const walking::Pose local = walking::leg_forward_kinematics(model.leg[stance], a);
+        return walking::roll_of(walking::rot_z(before.sole_yaw[stance]) * local.R.transpose());
+      };
+      roll_enc = roll_through(sensors.encoder);
+      if (estimate) roll_est = roll_through(estimate->newton);
+    }
+    if (in_walk) {
+      for (int side = 0; side < 2; ++side)
+        for (int i = 0; i < humanoid::kLegJoints; ++i) {
+          const int j = humanoid::leg_first_joint(side) + i;
+          deflection.add(sensors.encoder[j] - before.link_angle[j]);
+          link_error.add(before.link_angle[j] - st.desired[j]);
+          if (!estimate) continue;
+          estimate_error.add(estimate->newton[j] - before.link_angle[j]);
+          one_step_error.add(estimate->one_step[j] - before.link_angle[j]);
+          conventional_error.add(estimate->conventional[j] - before.link_angle[j]);
+          newton_vs_conventional.add(estimate->newton[j] - estimate->conventional[j]);
+        }
+      if (stance >= 0) {
+        roll_kin_encoder.add(roll_enc - st.imu_roll);
+        if (estimate) roll_kin_estimate.add(roll_est - st.imu_roll);
+      }
+    }
     plant.step(command);
     if (observe) observe(plant);
     g = plant.truth();
-    const walking::ControllerStatus& st = controller.status();
     const double t_now = g.t;
 
     // Falls.
@@ -170,6 +225,18 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.support_margin = margin;
       for (int side = 0; side < 2; ++side)
         w.sole[side] = {g.sole_pos[side][0] - offset.x(), g.sole_pos[side][1] - offset.y(), g.sole_pos[side][2]};
+      w.desired = st.desired;
+      w.command = command;
+      w.encoder = encoder;
+      w.link = before.link_angle;
+      if (estimate) {
+        w.estimate = estimate->newton;
+        w.conventional = estimate->conventional;
+      }
+      w.torque_model = compensator.input_torque();
+      w.torque_true = before.gear_torque;
+      w.roll_kin_encoder = roll_enc;
+      w.roll_kin_estimate = roll_est;
       out.log.push_back(w);
     }
     if (progress && k % 250 == 0) progress(t_now);
@@ -193,6 +260,19 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     m.landing_error_max = std::max(m.landing_error_max, l.error);
     m.landing_error_mean += l.error / static_cast<double>(out.landings.size());
   }
+  m.deflection_rms = deflection.rms();
+  m.deflection_max = deflection.max;
+  m.estimate_error_rms = estimate_error.rms();
+  m.estimate_error_max = estimate_error.max;
+  m.one_step_error_rms = one_step_error.rms();
+  m.conventional_error_rms = conventional_error.rms();
+  m.conventional_error_max = conventional_error.max;
+  m.newton_conventional_max = newton_vs_conventional.max;
+  m.link_error_rms = link_error.rms();
+  m.link_error_max = link_error.max;
+  m.roll_kin_encoder_rms = roll_kin_encoder.rms();
+  m.roll_kin_estimate_rms = roll_kin_estimate.rms();
+  m.newton_iterations_mean = newton_calls > 0 ? static_cast<double>(newton_iterations) / newton_calls : 0.0;
   m.com_error_rms = com.rms();
   m.com_error_max = com.max;
   if (!std::isfinite(m.support_margin_min)) m.support_margin_min = 0;

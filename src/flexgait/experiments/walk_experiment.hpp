@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/humanoid/plant.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
@@ -26,12 +27,13 @@ struct WalkRunParams {
   humanoid::RobotParams controller_robot;  ///< the controller's belief of the robot
   walking::WalkParams walk;
   walking::BalanceParams balance;
+  compensation::CompensationParams control;  ///< the deformation compensators (control.*)
   double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                  ///< or tilts this far [rad]
 };
 
-/// Keys robot.*, plant.*, walk.*, balance.*, output.log_period.
+/// Keys robot.*, plant.*, walk.*, balance.*, control.*, output.log_period.
 Schema walk_run_schema();
 WalkRunParams walk_run_from_config(const Config& config);
 
@@ -48,6 +50,18 @@ struct WalkSample {
   double roll_correction = 0, pitch_correction = 0;  ///< balance controller [rad]
   double support_margin = 0;              ///< true ZMP to the edge of the true support polygon (soles on the floor) [m]
   std::array<std::array<double, 3>, 2> sole{};  ///< true sole centres [m]
+  // The deformation model (all joints; the estimates only when the output compensator runs):
+  humanoid::JointVector desired{};       ///< θ_d from the IK [rad]
+  humanoid::JointVector command{};       ///< θ_cmd sent to the servos [rad]
+  humanoid::JointVector encoder{};       ///< θ_enc [rad]
+  humanoid::JointVector link{};          ///< the twin's true link angles [rad]
+  humanoid::JointVector estimate{};      ///< θ̂ by Newton (eq. 11) [rad]
+  humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
+  humanoid::JointVector torque_model{};  ///< τ_g of the input compensator (desired pose) [Nm]
+  humanoid::JointVector torque_true{};   ///< the twin's gear torques [Nm]
+  /// Pelvis roll by kinematics from the stance sole (flat on the floor) through the encoders and
+  /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.
+  double roll_kin_encoder = 0, roll_kin_estimate = 0;
 };
 
 struct Landing {
@@ -58,6 +72,8 @@ struct Landing {
 };
 
 struct WalkMetrics {
+  std::string compensation = "off";  ///< control.compensation of the run
+  std::string gravity_model;         ///< control.gravity_model
   bool fell = false;
   std::string fall_reason;         ///< "" when it did not fall
   double fall_time = 0;            ///< [s]
@@ -78,6 +94,17 @@ struct WalkMetrics {
   double wall_time = 0;                 ///< [s]
   double real_time_factor = 0;
   double riccati_residual = 0;
+  // Deformation (leg joints, over the walk): deflection = θ_enc − θ_link (true).
+  double deflection_rms = 0, deflection_max = 0;             ///< [rad]
+  double estimate_error_rms = 0, estimate_error_max = 0;     ///< θ̂ (Newton) − θ_link [rad]
+  double one_step_error_rms = 0;                             ///< eq. 12 − θ_link [rad]
+  double conventional_error_rms = 0, conventional_error_max = 0;  ///< [rad]
+  double newton_conventional_max = 0;                        ///< max |θ̂ − conventional| [rad]
+  double link_error_rms = 0, link_error_max = 0;             ///< θ_link − θ_d: what input compensation removes [rad]
+  double roll_kin_encoder_rms = 0, roll_kin_estimate_rms = 0; ///< single support, against the IMU [rad]
+  int newton_iterations_max = 0;
+  double newton_iterations_mean = 0;
+  int newton_failures = 0;                                   ///< control periods not converged (fallback used)
 };
 
 struct WalkResult {

@@ -4,19 +4,40 @@
 
 #include "flexgait/core/text.hpp"
 
+#include <array>
+#include <string_view>
+
 namespace flexgait::experiments {
 
 std::string walk_log_csv(const WalkResult& r) {
   CsvWriter csv({"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
                  "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
-                 "roll_correction", "pitch_correction", "support_margin", "l_sole_x", "l_sole_y", "l_sole_z",
+                 "roll_correction", "pitch_correction", "support_margin", "roll_kin_encoder", "roll_kin_estimate", "l_sole_x", "l_sole_y", "l_sole_z",
                  "r_sole_x", "r_sole_y", "r_sole_z"});
   for (const auto& w : r.log) {
     csv.cell(w.t).cell(static_cast<long long>(w.step)).cell(w.zmp_ref_x).cell(w.zmp_ref_y).cell(w.zmp_ft_x);
     csv.cell(w.zmp_ft_y).cell(w.zmp_true_x).cell(w.zmp_true_y).cell(w.com_ref_x).cell(w.com_ref_y).cell(w.com_x);
     csv.cell(w.com_y).cell(w.com_z).cell(w.pelvis_z).cell(w.imu_roll).cell(w.imu_pitch).cell(w.roll_correction);
-    csv.cell(w.pitch_correction).cell(w.support_margin);
+    csv.cell(w.pitch_correction).cell(w.support_margin).cell(w.roll_kin_encoder).cell(w.roll_kin_estimate);
     for (const auto& s : w.sole) csv.cell(s[0]).cell(s[1]).cell(s[2]);
+    csv.end_row();
+  }
+  return csv.str();
+}
+
+std::string walk_joints_csv(const WalkResult& r) {
+  static constexpr std::array<std::string_view, 8> kFields = {"desired", "command", "encoder", "link",
+                                                              "estimate", "conventional", "torque_model", "torque_true"};
+  std::vector<std::string> header{"t"};
+  for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
+    for (const auto f : kFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
+  CsvWriter csv(header);
+  for (const auto& w : r.log) {
+    csv.cell(w.t);
+    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) {
+      csv.cell(w.desired[j]).cell(w.command[j]).cell(w.encoder[j]).cell(w.link[j]).cell(w.estimate[j]);
+      csv.cell(w.conventional[j]).cell(w.torque_model[j]).cell(w.torque_true[j]);
+    }
     csv.end_row();
   }
   return csv.str();
@@ -47,6 +68,8 @@ std::string walk_footsteps_csv(const WalkResult& r) {
 std::string walk_summary_json(const WalkResult& r) {
   const WalkMetrics& m = r.metrics;
   nlohmann::ordered_json j;
+  j["compensation"] = m.compensation;
+  j["gravity_model"] = m.gravity_model;
   j["fell"] = m.fell;
   j["fall_reason"] = m.fall_reason;
   j["fall_time"] = m.fall_time;
@@ -68,6 +91,24 @@ std::string walk_summary_json(const WalkResult& r) {
   j["landing_error_mean"] = m.landing_error_mean;
   j["com_error_rms"] = m.com_error_rms;
   j["com_error_max"] = m.com_error_max;
+  j["deflection_rms"] = m.deflection_rms;
+  j["deflection_max"] = m.deflection_max;
+  j["link_error_rms"] = m.link_error_rms;
+  j["link_error_max"] = m.link_error_max;
+  if (m.compensation == "output" || m.compensation == "both") {
+    j["estimate_error_rms"] = m.estimate_error_rms;
+    j["estimate_error_max"] = m.estimate_error_max;
+    j["estimate_error_share_of_deflection"] = m.deflection_rms > 0 ? m.estimate_error_rms / m.deflection_rms : 0.0;
+    j["one_step_error_rms"] = m.one_step_error_rms;
+    j["conventional_error_rms"] = m.conventional_error_rms;
+    j["conventional_error_max"] = m.conventional_error_max;
+    j["newton_conventional_max"] = m.newton_conventional_max;
+    j["newton_iterations_max"] = m.newton_iterations_max;
+    j["newton_iterations_mean"] = m.newton_iterations_mean;
+    j["newton_failures"] = m.newton_failures;
+    j["pelvis_roll_kinematic_estimate_rms"] = m.roll_kin_estimate_rms;
+  }
+  j["pelvis_roll_kinematic_encoder_rms"] = m.roll_kin_encoder_rms;
   j["ik_clamped"] = m.ik_clamped;
   j["mujoco_warnings"] = m.warnings;
   j["riccati_residual"] = m.riccati_residual;

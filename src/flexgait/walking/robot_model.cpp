@@ -46,6 +46,8 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
     m.leg[side] = leg_geometry(r, side);
   }
   for (const auto& b : m.bodies) m.total_mass += b.mass;
+  m.sole_length = r.sole_length;
+  m.sole_width = r.sole_width;
   return m;
 }
 

@@ -30,6 +30,7 @@ struct RobotModel {
   std::array<int, 2> foot{};           ///< foot body of each leg
   std::array<LegGeometry, 2> leg;      ///< per side
   double total_mass = 0;               ///< [kg]
+  double sole_length = 0, sole_width = 0;  ///< the sole rectangle [m]
 };
 
 RobotModel make_robot_model(const humanoid::RobotParams& robot);

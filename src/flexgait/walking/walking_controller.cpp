@@ -129,6 +129,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);
   status_.step = feet.step;
   status_.sole = feet.sole;
+  status_.swinging = feet.swinging;
 
   // Balance: foot torques (and the measured ZMP), foot forces, pelvis attitude, ZMP feedback.
   const Matrix3d R_imu = quat_to_matrix(s.imu.quat.data());

@@ -46,6 +46,7 @@ struct ControllerStatus {
   double roll_correction = 0, pitch_correction = 0;   ///< balance: pelvis counter-tilt [rad]
   Eigen::Vector2d com_shift = Eigen::Vector2d::Zero(); ///< balance: COM shift of the ZMP feedback [m]
   std::array<Pose, 2> sole;                           ///< planned sole poses (world)
+  std::array<bool, 2> swinging{};                     ///< which feet the plan swings now
   std::array<bool, 2> contact{};                      ///< foot loaded above balance.contact_force
   std::array<Eigen::Vector2d, 2> foot_rotation{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};///< balance: foot roll, pitch offsets [rad]
   std::array<double, 2> foot_force{};                 ///< vertical ground force on each foot (F/T) [N]

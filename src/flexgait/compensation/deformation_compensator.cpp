@@ -1,0 +1,131 @@
+#include "flexgait/compensation/deformation_compensator.hpp"
+
+namespace flexgait::compensation {
+namespace {
+
+using humanoid::kJoints;
+using humanoid::kLegJoints;
+using humanoid::leg_first_joint;
+
+/// Leg joints (left then right, kinematic order) ↔ the joint vector.
+LegVector legs_of(const humanoid::JointVector& v) {
+  LegVector out;
+  for (int side = 0; side < 2; ++side)
+    for (int i = 0; i < kLegJoints; ++i) out(side * kLegJoints + i) = v[leg_first_joint(side) + i];
+  return out;
+}
+void set_legs(humanoid::JointVector& v, const LegVector& legs) {
+  for (int side = 0; side < 2; ++side)
+    for (int i = 0; i < kLegJoints; ++i) v[leg_first_joint(side) + i] = legs(side * kLegJoints + i);
+}
+
+}  // namespace
+
+std::string_view to_string(CompensationMode mode) {
+  switch (mode) {
+    case CompensationMode::kOff: return "off";
+    case CompensationMode::kInput: return "input";
+    case CompensationMode::kOutput: return "output";
+    case CompensationMode::kBoth: return "both";
+  }
+  return "?";
+}
+
+std::string_view to_string(WeightSplit split) { return split == WeightSplit::kCom ? "com" : "zmp"; }
+
+Schema compensation_schema() {
+  Schema s;
+  s.add(choice_param("control.compensation", "both",
+                     "actuator deformation compensation: none, the input compensator (eqs. 8-9), the output "
+                     "compensator (eqs. 10-13) or both",
+                     {"off", "input", "output", "both"}));
+  s.add(choice_param("control.gravity_model", "full",
+                     "gravity torque: thesis = J^T F only (eq. 4), full = the legs' own weight too",
+                     {"thesis", "full"}));
+  s.add(choice_param("control.weight_split", "zmp",
+                     "split of the weight between the feet (eqs. 5-6) about: com = the pose's centre of mass (the "
+                     "thesis), zmp = the reference ZMP (continuous at lift-off in a dynamic gait)",
+                     {"com", "zmp"}));
+  s.add(real_param("control.k_joint", "1000", "Nm/rad", "the controller's belief of the gears' stiffness", 1, 1e7));
+  s.add(integer_param("control.newton_max_iterations", "10", "output compensator: Newton steps at most", 1, 100));
+  s.add(real_param("control.newton_tolerance", "1e-12", "rad", "output compensator: converged when |N(theta)| <= this",
+                   1e-15, 1e-3));
+  return s;
+}
+
+CompensationParams compensation_from_config(const Config& c) {
+  CompensationParams p;
+  const std::string& mode = c.choice("control.compensation");
+  p.mode = mode == "off"     ? CompensationMode::kOff
+           : mode == "input" ? CompensationMode::kInput
+           : mode == "output" ? CompensationMode::kOutput
+                              : CompensationMode::kBoth;
+  p.gravity = c.choice("control.gravity_model") == "thesis" ? GravityForm::kThesis : GravityForm::kFull;
+  p.split = c.choice("control.weight_split") == "com" ? WeightSplit::kCom : WeightSplit::kZmpReference;
+  p.k_joint.fill(c.real("control.k_joint"));
+  p.newton.max_iterations = static_cast<int>(c.integer("control.newton_max_iterations"));
+  p.newton.tolerance = c.real("control.newton_tolerance");
+  return p;
+}
+
+DeformationCompensator::DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params)
+    : model_(model), params_(params) {}
+
+const humanoid::JointVector& DeformationCompensator::torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
+                                                            const SupportPlan& support) {
+  // The pelvis position does not change a gravity torque; only its attitude does.
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), R}, q);
+  if (params_.split == WeightSplit::kCom) plan_loads_ = com_loads(model_, data_, support.swinging);
+  tau_ = gravity_torque(model_, data_, plan_loads_, params_.gravity);
+  return tau_;
+}
+
+void DeformationCompensator::split_by_plan(const SupportPlan& support) {
+  if (params_.split == WeightSplit::kZmpReference)
+    plan_loads_ = support_loads(support.zmp_ref, support.soles, support.swinging, model_.sole_length, model_.sole_width);
+}
+
+const humanoid::JointVector& DeformationCompensator::input(const humanoid::JointVector& desired,
+                                                           const walking::Matrix3d& pelvis_R,
+                                                           const SupportPlan& support) {
+  command_ = desired;
+  if (!params_.input()) {
+    input_torque_.fill(0.0);
+    return command_;
+  }
+  split_by_plan(support);
+  input_torque_ = torque(desired, pelvis_R, support);
+  for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / params_.k_joint[j];  // eq. 9
+  return command_;
+}
+
+const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector& encoder,
+                                                     const walking::Matrix3d& imu_R,
+                                                     const SupportPlan& support) {
+  split_by_plan(support);
+  q_ = encoder;
+  const double h = params_.fd_step;
+  auto leg_torque = [&](const LegVector& theta, LegVector& tau, Eigen::Matrix<double, kLegDofs, kLegDofs>& G) {
+    set_legs(q_, theta);
+    tau = legs_of(torque(q_, imu_R, support));
+    for (int j = 0; j < kLegDofs; ++j) {  // G = ∂τ_g/∂θ, forward differences
+      LegVector shifted = theta;
+      shifted(j) += h;
+      set_legs(q_, shifted);
+      G.col(j) = (legs_of(torque(q_, imu_R, support)) - tau) / h;
+    }
+  };
+  const LinkAngleEstimate<kLegDofs> e =
+      solve_link_angles<kLegDofs>(legs_of(encoder), legs_of(params_.k_joint), leg_torque, params_.newton);
+  estimate_.newton = estimate_.one_step = estimate_.conventional = encoder;  // the waist carries no τ_g
+  set_legs(estimate_.newton, e.newton);
+  set_legs(estimate_.one_step, e.one_step);
+  set_legs(estimate_.conventional, e.conventional);
+  estimate_.gravity_torque = torque(estimate_.newton, imu_R, support);
+  estimate_.iterations = e.iterations;
+  estimate_.residual = e.residual;
+  estimate_.converged = e.converged;
+  return estimate_;
+}
+
+}  // namespace flexgait::compensation

@@ -1,0 +1,107 @@
+#pragma once
+/// \file deformation_compensator.hpp
+/// The input and output compensators of the thesis's Fig. 2 (spec humanoid.md, "The actuator
+/// deformation model"), around the walking controller:
+///     θ_d → input compensator → θ_cmd → robot → θ_enc → output compensator → θ̂ (real joint angles)
+///  - input (eqs. 8-9): θ_cmd = θ_d + τ_g(θ_d) / k, τ_g in the desired pose (pelvis attitude as
+///    commanded);
+///  - output (eqs. 10-13): θ̂ solves θ_enc − τ_g(θ̂)/k − θ̂ = 0 by Newton's method, τ_g in the
+///    estimated pose with the pelvis attitude from the IMU (eq. 1: the robot is a floating base);
+///    G = ∂τ_g/∂θ by forward differences. The one-step form (12) and the conventional estimate are
+///    reported beside it.
+/// k is the controller's belief (control.k_joint), apart from the plant's true stiffness.
+/// Allocation-free after construction.
+#include <array>
+#include <string_view>
+
+#include "flexgait/compensation/gravity_torque.hpp"
+#include "flexgait/compensation/link_angle_newton.hpp"
+#include "flexgait/core/config.hpp"
+#include "flexgait/walking/robot_model.hpp"
+
+namespace flexgait::compensation {
+
+enum class CompensationMode { kOff, kInput, kOutput, kBoth };
+std::string_view to_string(CompensationMode mode);
+
+/// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
+/// thesis), or the controller's reference ZMP (where the ground force acts in a dynamic gait; it
+/// moves onto the stance sole by the end of double support, so the split is continuous at lift-off).
+enum class WeightSplit { kCom, kZmpReference };
+std::string_view to_string(WeightSplit split);
+
+/// What the walking controller plans at this instant.
+struct SupportPlan {
+  std::array<bool, 2> swinging{};                                          ///< which feet swing
+  std::array<walking::Pose, 2> soles;                                      ///< planned sole poses (world)
+  Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();                       ///< reference ZMP (world) [m]
+};
+
+struct CompensationParams {
+  CompensationMode mode = CompensationMode::kBoth;
+  GravityForm gravity = GravityForm::kFull;
+  WeightSplit split = WeightSplit::kZmpReference;
+  humanoid::JointVector k_joint = [] {  ///< the controller's belief of each gear's stiffness [Nm/rad]
+    humanoid::JointVector k;
+    k.fill(1000.0);
+    return k;
+  }();
+  NewtonSettings newton;
+  double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ [rad]
+
+  bool input() const { return mode == CompensationMode::kInput || mode == CompensationMode::kBoth; }
+  bool output() const { return mode == CompensationMode::kOutput || mode == CompensationMode::kBoth; }
+};
+
+/// Keys control.compensation, control.gravity_model, control.weight_split, control.k_joint,
+/// control.newton_*.
+Schema compensation_schema();
+CompensationParams compensation_from_config(const Config& config);
+
+inline constexpr int kLegDofs = 2 * humanoid::kLegJoints;  ///< the unknowns of the output compensator
+using LegVector = Eigen::Matrix<double, kLegDofs, 1>;       ///< left leg then right leg, kinematic order
+
+struct OutputEstimate {
+  humanoid::JointVector newton{};        ///< θ̂ by Newton (eq. 11; the fallback if not converged) [rad]
+  humanoid::JointVector one_step{};      ///< eq. 12 [rad]
+  humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
+  humanoid::JointVector gravity_torque{};///< τ_g(θ̂) [Nm]
+  int iterations = 0;
+  double residual = 0;                   ///< ||N(θ̂)||_inf [rad]
+  bool converged = false;
+};
+
+class DeformationCompensator {
+ public:
+  DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params);
+
+  /// Eqs. 8-9: motor commands for the desired joint angles and the commanded pelvis attitude
+  /// `pelvis_R` (world). With input compensation off: θ_d itself.
+  const humanoid::JointVector& input(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R,
+                                     const SupportPlan& support);
+  /// τ_g(θ_d) of the last `input` call [Nm].
+  const humanoid::JointVector& input_torque() const { return input_torque_; }
+
+  /// Eqs. 10-13: the real joint angles from the encoders, the IMU's attitude and the support.
+  const OutputEstimate& output(const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
+                               const SupportPlan& support);
+
+  /// τ_g at joint angles q, pelvis attitude R (world), with this compensator's split [Nm].
+  const humanoid::JointVector& torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
+                                      const SupportPlan& support);
+
+  const CompensationParams& params() const { return params_; }
+
+ private:
+  /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).
+  void split_by_plan(const SupportPlan& support);
+
+  walking::RobotModel model_;
+  CompensationParams params_;
+  walking::RobotModelData data_;
+  FootLoads plan_loads_;  ///< the split about the reference ZMP (kZmpReference), from the plan
+  humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};
+  OutputEstimate estimate_;
+};
+
+}  // namespace flexgait::compensation

@@ -1,0 +1,86 @@
+#pragma once
+/// \file link_angle_newton.hpp
+/// The output compensator's equation (spec humanoid.md, eqs. 10-13): the link angles θ that the
+/// encoders θ_enc imply through the deformation model,
+///     N(θ) = θ_enc − K⁻¹ τ_g(θ) − θ = 0,
+/// solved by Newton's method: N'(θ) = −(I + K⁻¹ G), G = ∂τ_g/∂θ, so each step solves
+///     (K + G) Δ = K N(θ),   θ ← θ + Δ.
+/// From θ = θ_enc the first step is the one-step form (12), θ_enc − (K + G)⁻¹ τ_g(θ_enc); the
+/// "conventional" estimate is θ_enc − K⁻¹ τ_g(θ_enc). Fixed size, no allocation (it runs in the
+/// control loop; the Poincaré machinery's general Newton in numerics/newton allocates).
+///
+/// Bounded: at most `max_iterations` steps; if the residual does not fall below `tolerance`, the
+/// iterate with the smallest residual among the Newton iterates and the conventional estimate is
+/// returned and `converged` is false.
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace flexgait::compensation {
+
+struct NewtonSettings {
+  int max_iterations = 10;
+  double tolerance = 1e-12;  ///< on ||N(θ)||_inf [rad]
+};
+
+template <int N>
+struct LinkAngleEstimate {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  Vector newton = Vector::Zero();        ///< Newton's solution (or the fallback) [rad]
+  Vector one_step = Vector::Zero();      ///< eq. 12 [rad]
+  Vector conventional = Vector::Zero();  ///< θ_enc − τ_g(θ_enc)/k [rad]
+  int iterations = 0;                    ///< Newton steps taken
+  double residual = 0;                   ///< ||N(newton)||_inf [rad]
+  bool converged = false;
+};
+
+/// `torque(θ, τ, G)` writes τ_g(θ) [Nm] and G = ∂τ_g/∂θ [Nm/rad]. `stiffness`: k per joint [Nm/rad].
+template <int N, class Torque>
+LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encoder,
+                                       const Eigen::Matrix<double, N, 1>& stiffness, Torque&& torque,
+                                       const NewtonSettings& settings = {}) {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  using Matrix = Eigen::Matrix<double, N, N>;
+  LinkAngleEstimate<N> out;
+  Vector tau, theta = encoder;
+  Matrix G;
+  torque(theta, tau, G);
+  const Vector compliance = stiffness.cwiseInverse();
+  out.conventional = encoder - compliance.cwiseProduct(tau);
+  Vector r = out.conventional - theta;  // N(θ_enc) = −K⁻¹ τ_g(θ_enc)
+  double residual = r.template lpNorm<Eigen::Infinity>();
+  Vector best = theta;
+  double best_residual = residual;
+  for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
+    Matrix A = G;
+    A.diagonal() += stiffness;
+    theta += A.partialPivLu().solve(stiffness.cwiseProduct(r));
+    if (it == 0) out.one_step = theta;
+    torque(theta, tau, G);
+    r = encoder - compliance.cwiseProduct(tau) - theta;
+    residual = r.template lpNorm<Eigen::Infinity>();
+    out.iterations = it + 1;
+    if (!std::isfinite(residual)) break;
+    if (residual < best_residual) {
+      best = theta;
+      best_residual = residual;
+    }
+  }
+  if (out.iterations == 0) out.one_step = theta;
+  out.converged = residual <= settings.tolerance;
+  if (out.converged) {
+    out.newton = theta;
+    out.residual = residual;
+    return out;
+  }
+  // Fallback: the best iterate, or the conventional estimate if that is better.
+  torque(out.conventional, tau, G);
+  const double conventional_residual =
+      (encoder - compliance.cwiseProduct(tau) - out.conventional).template lpNorm<Eigen::Infinity>();
+  const bool use_conventional = !(best_residual <= conventional_residual);
+  out.newton = use_conventional ? out.conventional : best;
+  out.residual = use_conventional ? conventional_residual : best_residual;
+  return out;
+}
+
+}  // namespace flexgait::compensation
