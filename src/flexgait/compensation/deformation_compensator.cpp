@@ -73,6 +73,12 @@ DeformationCompensator::DeformationCompensator(const walking::RobotModel& model,
 
 const humanoid::JointVector& DeformationCompensator::torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
                                                             const SupportPlan& support) {
+  split_by_plan(support);
+  return torque_at(q, R, support);
+}
+
+const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::JointVector& q,
+                                                               const walking::Matrix3d& R, const SupportPlan& support) {
   // The pelvis position does not change a gravity torque; only its attitude does.
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), R}, q);
   if (params_.split == WeightSplit::kCom) plan_loads_ = com_loads(model_, data_, support.swinging);
@@ -93,7 +99,6 @@ const humanoid::JointVector& DeformationCompensator::input(const humanoid::Joint
     input_torque_.fill(0.0);
     return command_;
   }
-  split_by_plan(support);
   input_torque_ = torque(desired, pelvis_R, support);
   for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / params_.k_joint[j];  // eq. 9
   return command_;
@@ -107,12 +112,12 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   const double h = params_.fd_step;
   auto leg_torque = [&](const LegVector& theta, LegVector& tau, Eigen::Matrix<double, kLegDofs, kLegDofs>& G) {
     set_legs(q_, theta);
-    tau = legs_of(torque(q_, imu_R, support));
+    tau = legs_of(torque_at(q_, imu_R, support));
     for (int j = 0; j < kLegDofs; ++j) {  // G = ∂τ_g/∂θ, forward differences
       LegVector shifted = theta;
       shifted(j) += h;
       set_legs(q_, shifted);
-      G.col(j) = (legs_of(torque(q_, imu_R, support)) - tau) / h;
+      G.col(j) = (legs_of(torque_at(q_, imu_R, support)) - tau) / h;
     }
   };
   const LinkAngleEstimate<kLegDofs> e =
@@ -121,7 +126,7 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   set_legs(estimate_.newton, e.newton);
   set_legs(estimate_.one_step, e.one_step);
   set_legs(estimate_.conventional, e.conventional);
-  estimate_.gravity_torque = torque(estimate_.newton, imu_R, support);
+  estimate_.gravity_torque = torque_at(estimate_.newton, imu_R, support);
   estimate_.iterations = e.iterations;
   estimate_.residual = e.residual;
   estimate_.converged = e.converged;

@@ -95,6 +95,9 @@ class DeformationCompensator {
  private:
   /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).
   void split_by_plan(const SupportPlan& support);
+  /// τ_g with the loads of the last split_by_plan (kZmpReference) or of this pose (kCom).
+  const humanoid::JointVector& torque_at(const humanoid::JointVector& q, const walking::Matrix3d& R,
+                                         const SupportPlan& support);
 
   walking::RobotModel model_;
   CompensationParams params_;
