@@ -110,18 +110,35 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   split_by_plan(support);
   q_ = encoder;
   const double h = params_.fd_step;
-  auto leg_torque = [&](const LegVector& theta, LegVector& tau, Eigen::Matrix<double, kLegDofs, kLegDofs>& G) {
+  using LegMatrix = Eigen::Matrix<double, kLegDofs, kLegDofs>;
+  auto leg_torque = [&](const LegVector& theta, LegVector& tau) {
     set_legs(q_, theta);
     tau = legs_of(torque_at(q_, imu_R, support));
-    for (int j = 0; j < kLegDofs; ++j) {  // G = ∂τ_g/∂θ, forward differences
+  };
+  // G = ∂τ_g/∂θ by forward differences. With the split about the reference ZMP the loads do not
+  // depend on θ, so each leg's torque depends on its own joints only: G is block diagonal and one
+  // evaluation perturbs joint i of both legs at once (6 evaluations, not 12). The COM split
+  // couples the legs through μ: all 12 columns.
+  const bool block_diagonal = params_.split == WeightSplit::kZmpReference;
+  auto leg_jacobian = [&](const LegVector& theta, const LegVector& tau, LegMatrix& G) {
+    G.setZero();
+    const int evaluations = block_diagonal ? kLegJoints : kLegDofs;
+    for (int j = 0; j < evaluations; ++j) {
       LegVector shifted = theta;
       shifted(j) += h;
+      if (block_diagonal) shifted(j + kLegJoints) += h;
       set_legs(q_, shifted);
-      G.col(j) = (legs_of(torque_at(q_, imu_R, support)) - tau) / h;
+      const LegVector difference = (legs_of(torque_at(q_, imu_R, support)) - tau) / h;
+      if (!block_diagonal) {
+        G.col(j) = difference;
+        continue;
+      }
+      G.block<kLegJoints, 1>(0, j) = difference.head<kLegJoints>();
+      G.block<kLegJoints, 1>(kLegJoints, j + kLegJoints) = difference.tail<kLegJoints>();
     }
   };
-  const LinkAngleEstimate<kLegDofs> e =
-      solve_link_angles<kLegDofs>(legs_of(encoder), legs_of(params_.k_joint), leg_torque, params_.newton);
+  const LinkAngleEstimate<kLegDofs> e = solve_link_angles<kLegDofs>(legs_of(encoder), legs_of(params_.k_joint),
+                                                                    leg_torque, leg_jacobian, params_.newton);
   estimate_.newton = estimate_.one_step = estimate_.conventional = encoder;  // the waist carries no τ_g
   set_legs(estimate_.newton, e.newton);
   set_legs(estimate_.one_step, e.one_step);

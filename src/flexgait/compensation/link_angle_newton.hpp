@@ -34,17 +34,18 @@ struct LinkAngleEstimate {
   bool converged = false;
 };
 
-/// `torque(θ, τ, G)` writes τ_g(θ) [Nm] and G = ∂τ_g/∂θ [Nm/rad]. `stiffness`: k per joint [Nm/rad].
-template <int N, class Torque>
+/// `torque(θ, τ)` writes τ_g(θ) [Nm]; `jacobian(θ, τ, G)` writes G = ∂τ_g/∂θ [Nm/rad] given
+/// τ = τ_g(θ) (it is only asked for where another step follows). `stiffness`: k per joint [Nm/rad].
+template <int N, class Torque, class Jacobian>
 LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encoder,
                                        const Eigen::Matrix<double, N, 1>& stiffness, Torque&& torque,
-                                       const NewtonSettings& settings = {}) {
+                                       Jacobian&& jacobian, const NewtonSettings& settings = {}) {
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
   LinkAngleEstimate<N> out;
   Vector tau, theta = encoder;
   Matrix G;
-  torque(theta, tau, G);
+  torque(theta, tau);
   const Vector compliance = stiffness.cwiseInverse();
   out.conventional = encoder - compliance.cwiseProduct(tau);
   Vector r = out.conventional - theta;  // N(θ_enc) = −K⁻¹ τ_g(θ_enc)
@@ -52,11 +53,12 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
   Vector best = theta;
   double best_residual = residual;
   for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
+    jacobian(theta, tau, G);
     Matrix A = G;
     A.diagonal() += stiffness;
     theta += A.partialPivLu().solve(stiffness.cwiseProduct(r));
     if (it == 0) out.one_step = theta;
-    torque(theta, tau, G);
+    torque(theta, tau);
     r = encoder - compliance.cwiseProduct(tau) - theta;
     residual = r.template lpNorm<Eigen::Infinity>();
     out.iterations = it + 1;
@@ -74,7 +76,7 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
     return out;
   }
   // Fallback: the best iterate, or the conventional estimate if that is better.
-  torque(out.conventional, tau, G);
+  torque(out.conventional, tau);
   const double conventional_residual =
       (encoder - compliance.cwiseProduct(tau) - out.conventional).template lpNorm<Eigen::Infinity>();
   const bool use_conventional = !(best_residual <= conventional_residual);
