@@ -10,6 +10,7 @@
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/core/progress.hpp"
+#include "flexgait/experiments/compensation_study.hpp"
 #include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/humanoid/renderer.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
@@ -59,6 +60,90 @@ int bench(const RunOptions& run) {
   return 0;
 }
 
+/// A walk's files under `dir`/`sub` (sub "" or "name/"); returns summary.json's text.
+std::string write_walk(const RunDirectory& dir, const std::string& sub, const experiments::WalkResult& r) {
+  if (!sub.empty()) std::filesystem::create_directories(dir.path() / sub);
+  dir.write(sub + "log.csv", experiments::walk_log_csv(r));
+  dir.write(sub + "footsteps.csv", experiments::walk_footsteps_csv(r));
+  dir.write(sub + "joints.csv", experiments::walk_joints_csv(r));
+  std::string summary = experiments::walk_summary_json(r);
+  dir.write(sub + "summary.json", summary);
+  dir.write(sub + "timing.json", experiments::walk_timing_json(r));
+  return summary;
+}
+
+/// Runs the study's walks one after the other (one progress bar over all of them) and writes each
+/// into its own subdirectory.
+std::vector<experiments::WalkResult> run_study(const RunDirectory& dir, const std::vector<experiments::StudyCase>& cases) {
+  double total = 0;
+  for (const auto& c : cases) total += walking::plan_footsteps(c.params.walk).duration;
+  ProgressBar bar(total, "s simulated");
+  std::vector<experiments::WalkResult> results;
+  double done = 0;
+  for (const auto& c : cases) {
+    results.push_back(experiments::run_walk(c.params, [&](double t) { bar.show(done + t); }));
+    done += walking::plan_footsteps(c.params.walk).duration;
+    write_walk(dir, c.name + "/", results.back());
+  }
+  return results;
+}
+
+/// `humanoid compensation`: thesis experiments 2-4 on one gait (off, both, both with the thesis form).
+int compensation_study(const RunOptions& run) {
+  const Config config = resolve(experiments::walk_run_schema(), run);
+  const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
+  const RunDirectory dir(run.out);
+  dir.write_config(config);
+  const auto cases = experiments::compensation_cases(params);
+  const auto results = run_study(dir, cases);
+  const std::string comparison = experiments::compensation_comparison_json(cases, results);
+  dir.write("comparison.json", comparison);
+  if (run.plot) run_plot_script("plot_compensation.py", {dir.path().string()});
+  const auto j = nlohmann::json::parse(comparison);
+  if (run.json) {
+    fmt::print("{}", comparison);
+  } else {
+    fmt::print("{:.1f} s/step, {} steps: peak pelvis roll error {:.4f} rad off, {:.4f} rad compensated ({:.0f} % less; "
+               "thesis form {:.4f})\n",
+               params.walk.step_time, params.walk.steps, j["pelvis_roll_error_max_off"].get<double>(),
+               j["pelvis_roll_error_max_on"].get<double>(), 100 * j["pelvis_roll_error_max_cut"].get<double>(),
+               j["pelvis_roll_error_max_thesis_form"].get<double>());
+    fmt::print("single-support ZMP rms (y) {:.4f} m off, {:.4f} m compensated; estimated joint angles: error {:.1f} % "
+               "of the deflection (rms)\n",
+               j["zmp_single_support_rms_y_off"].get<double>(), j["zmp_single_support_rms_y_on"].get<double>(),
+               100 * j["estimate_error_share_of_deflection"].get<double>());
+    fmt::print("results in {}\n", dir.path().string());
+  }
+  for (const auto& r : results)
+    if (r.metrics.fell) return 1;
+  return 0;
+}
+
+/// `humanoid mismatch`: the twin's stiffness scaled against the controller's belief.
+int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
+  const Config config = resolve(experiments::walk_run_schema(), run);
+  const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
+  const RunDirectory dir(run.out);
+  dir.write_config(config);
+  const auto cases = experiments::mismatch_cases(params, scales);
+  const auto results = run_study(dir, cases);
+  const std::string comparison = experiments::mismatch_comparison_json(cases, results);
+  dir.write("comparison.json", comparison);
+  if (run.plot) run_plot_script("plot_mismatch.py", {dir.path().string()});
+  if (run.json) {
+    fmt::print("{}", comparison);
+  } else {
+    const auto parsed = nlohmann::json::parse(comparison);
+    for (const auto& row : parsed["rows"])
+      fmt::print("true k {:6.0f} (belief {:4.0f}) Nm/rad: peak roll error {:.4f} rad off{}, {:.4f} rad compensated{}\n",
+                 row["k_joint_true"].get<double>(), row["k_joint_belief"].get<double>(),
+                 row["pelvis_roll_error_max_off"].get<double>(), row["fell_off"].get<bool>() ? " (fell)" : "",
+                 row["pelvis_roll_error_max_on"].get<double>(), row["fell_on"].get<bool>() ? " (fell)" : "");
+    fmt::print("results in {}\n", dir.path().string());
+  }
+  return 0;
+}
+
 struct RenderOptions {
   bool enabled = false;  ///< --render
   double fps = 25.0;     ///< --fps [1/s]
@@ -89,12 +174,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const experiments::WalkResult r = experiments::run_walk(params, [&](double t) { bar.show(t); }, observe);
   if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
-  dir.write("log.csv", experiments::walk_log_csv(r));
-  dir.write("footsteps.csv", experiments::walk_footsteps_csv(r));
-  dir.write("joints.csv", experiments::walk_joints_csv(r));
-  const std::string summary = experiments::walk_summary_json(r);
-  dir.write("summary.json", summary);
-  dir.write("timing.json", experiments::walk_timing_json(r));
+  const std::string summary = write_walk(dir, "", r);
   if (run.plot) run_plot_script("plot_walk.py", {dir.path().string()});
   const auto& m = r.metrics;
   if (run.json) {
@@ -137,6 +217,30 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
       ->check(CLI::Range(1.0, 250.0));
   w->callback([walk_run, walk_render, &action] {
     action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); };
+  });
+
+  auto study_run = std::make_shared<RunOptions>();
+  CLI::App* cs = humanoid->add_subcommand(
+      "compensation",
+      "Thesis experiments 2-4 on one gait (--config configs/walk-quasi-static.yaml or walk-dynamic.yaml): "
+      "compensation off, both compensators (full gravity torque) and both with the thesis form; pelvis error "
+      "(Fig. 13), ZMP (Fig. 14), estimated against true joint angles, Newton against conventional (Fig. 15); exit 1 if "
+      "a walk falls");
+  add_run_options(*cs, *study_run, "runs/humanoid-compensation");
+  cs->callback([study_run, &action] { action = [study_run] { return compensation_study(*study_run); }; });
+
+  auto mismatch_run = std::make_shared<RunOptions>();
+  auto scales = std::make_shared<std::vector<double>>(std::vector<double>{0.7, 1.0, 1.3});
+  CLI::App* ms = humanoid->add_subcommand(
+      "mismatch", "The twin's true gear stiffness scaled against the controller's belief (control.k_joint): "
+                  "compensation off and both at each scale");
+  add_run_options(*ms, *mismatch_run, "runs/humanoid-mismatch");
+  ms->add_option("--scales", *scales, "true stiffness / configured plant.k_joint, comma separated")
+      ->delimiter(',')
+      ->check(CLI::Range(0.05, 20.0))
+      ->capture_default_str();
+  ms->callback([mismatch_run, scales, &action] {
+    action = [mismatch_run, scales] { return mismatch_study(*mismatch_run, *scales); };
   });
 }
 

@@ -232,6 +232,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       if (estimate) {
         w.estimate = estimate->newton;
         w.conventional = estimate->conventional;
+        w.torque_estimate = estimate->gravity_torque;
       }
       w.torque_model = compensator.input_torque();
       w.torque_true = before.gear_torque;

@@ -58,6 +58,7 @@ struct WalkSample {
   humanoid::JointVector estimate{};      ///< θ̂ by Newton (eq. 11) [rad]
   humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
   humanoid::JointVector torque_model{};  ///< τ_g of the input compensator (desired pose) [Nm]
+  humanoid::JointVector torque_estimate{};  ///< τ_g of the output compensator (estimated pose) [Nm]
   humanoid::JointVector torque_true{};   ///< the twin's gear torques [Nm]
   /// Pelvis roll by kinematics from the stance sole (flat on the floor) through the encoders and
   /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.

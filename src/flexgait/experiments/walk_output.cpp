@@ -26,8 +26,8 @@ std::string walk_log_csv(const WalkResult& r) {
 }
 
 std::string walk_joints_csv(const WalkResult& r) {
-  static constexpr std::array<std::string_view, 8> kFields = {"desired", "command", "encoder", "link",
-                                                              "estimate", "conventional", "torque_model", "torque_true"};
+  static constexpr std::array<std::string_view, 9> kFields = {
+      "desired", "command", "encoder", "link", "estimate", "conventional", "torque_model", "torque_estimate", "torque_true"};
   std::vector<std::string> header{"t"};
   for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
     for (const auto f : kFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
@@ -36,7 +36,7 @@ std::string walk_joints_csv(const WalkResult& r) {
     csv.cell(w.t);
     for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) {
       csv.cell(w.desired[j]).cell(w.command[j]).cell(w.encoder[j]).cell(w.link[j]).cell(w.estimate[j]);
-      csv.cell(w.conventional[j]).cell(w.torque_model[j]).cell(w.torque_true[j]);
+      csv.cell(w.conventional[j]).cell(w.torque_model[j]).cell(w.torque_estimate[j]).cell(w.torque_true[j]);
     }
     csv.end_row();
   }

@@ -9,7 +9,8 @@
 namespace flexgait::experiments {
 
 std::string walk_log_csv(const WalkResult& result);
-/// Leg joints over the walk: desired, command, encoder, true link, estimates, model and true torque.
+/// Leg joints over the walk: desired, command, encoder, true link, estimates, τ_g of the input and
+/// the output compensator, and the twin's gear torque.
 std::string walk_joints_csv(const WalkResult& result);
 std::string walk_footsteps_csv(const WalkResult& result);
 /// The metrics as a JSON object (the names: fell, steps_completed, zmp_rms_x, ...).

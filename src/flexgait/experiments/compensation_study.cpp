@@ -1,0 +1,124 @@
+#include "flexgait/experiments/compensation_study.hpp"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "flexgait/experiments/walk_output.hpp"
+
+namespace flexgait::experiments {
+namespace {
+
+using compensation::CompensationMode;
+using compensation::GravityForm;
+
+WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form) {
+  WalkRunParams p = base;
+  p.control.mode = mode;
+  p.control.gravity = form;
+  return p;
+}
+
+const WalkResult& result_of(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results,
+                            const std::string& name) {
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    if (cases[i].name == name) return results.at(i);
+  throw std::invalid_argument("no case named " + name);
+}
+
+/// 1 − on/off: the share of an error that compensation removes.
+double cut(double off, double on) { return off > 0 ? 1.0 - on / off : 0.0; }
+
+}  // namespace
+
+std::vector<StudyCase> compensation_cases(const WalkRunParams& base) {
+  return {{"off", with(base, CompensationMode::kOff, base.control.gravity)},
+          {"both", with(base, CompensationMode::kBoth, GravityForm::kFull)},
+          {"both-thesis-form", with(base, CompensationMode::kBoth, GravityForm::kThesis)}};
+}
+
+std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales) {
+  std::vector<StudyCase> cases;
+  for (const double s : scales) {
+    for (const CompensationMode mode : {CompensationMode::kOff, CompensationMode::kBoth}) {
+      WalkRunParams p = with(base, mode, base.control.gravity);
+      for (auto& k : p.plant.k_joint) k *= s;
+      cases.push_back({fmt::format("k{:03.0f}-{}", 100 * s, compensation::to_string(mode)), p});
+    }
+  }
+  return cases;
+}
+
+std::string compensation_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results) {
+  const WalkMetrics& off = result_of(cases, results, "off").metrics;
+  const WalkMetrics& on = result_of(cases, results, "both").metrics;
+  const WalkMetrics& thesis = result_of(cases, results, "both-thesis-form").metrics;
+  nlohmann::ordered_json j;
+  j["step_time"] = cases.front().params.walk.step_time;
+  j["steps"] = cases.front().params.walk.steps;
+  j["k_joint_true"] = cases.front().params.plant.k_joint[humanoid::kLeftHipRoll];
+  j["k_joint_belief"] = cases.front().params.control.k_joint[humanoid::kLeftHipRoll];
+  j["weight_split"] = compensation::to_string(cases.front().params.control.split);
+  j["pelvis_roll_error_max_off"] = off.pelvis_roll_error_max;
+  j["pelvis_roll_error_max_on"] = on.pelvis_roll_error_max;
+  j["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, on.pelvis_roll_error_max);
+  j["pelvis_roll_error_max_thesis_form"] = thesis.pelvis_roll_error_max;
+  j["pelvis_pitch_error_max_off"] = off.pelvis_pitch_error_max;
+  j["pelvis_pitch_error_max_on"] = on.pelvis_pitch_error_max;
+  j["zmp_single_support_rms_y_off"] = off.zmp_ss_rms_y;
+  j["zmp_single_support_rms_y_on"] = on.zmp_ss_rms_y;
+  j["zmp_single_support_rms_y_cut"] = cut(off.zmp_ss_rms_y, on.zmp_ss_rms_y);
+  j["zmp_rms_x_off"] = off.zmp_rms_x;
+  j["zmp_rms_x_on"] = on.zmp_rms_x;
+  j["landing_error_mean_off"] = off.landing_error_mean;
+  j["landing_error_mean_on"] = on.landing_error_mean;
+  j["link_error_rms_off"] = off.link_error_rms;
+  j["link_error_rms_on"] = on.link_error_rms;
+  j["link_error_rms_thesis_form"] = thesis.link_error_rms;
+  j["deflection_rms"] = on.deflection_rms;
+  j["estimate_error_rms"] = on.estimate_error_rms;
+  j["estimate_error_share_of_deflection"] = on.deflection_rms > 0 ? on.estimate_error_rms / on.deflection_rms : 0.0;
+  j["one_step_error_rms"] = on.one_step_error_rms;
+  j["conventional_error_rms"] = on.conventional_error_rms;
+  j["newton_conventional_max"] = on.newton_conventional_max;
+  j["newton_iterations_max"] = on.newton_iterations_max;
+  j["newton_failures"] = on.newton_failures;
+  j["fell"] = {{"off", off.fell}, {"both", on.fell}, {"both-thesis-form", thesis.fell}};
+  nlohmann::ordered_json all;
+  for (std::size_t i = 0; i < cases.size(); ++i) all[cases[i].name] = nlohmann::ordered_json::parse(walk_summary_json(results[i]));
+  j["cases"] = all;
+  return j.dump(2) + "\n";
+}
+
+std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results) {
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i + 1 < cases.size(); i += 2) {
+    const WalkRunParams& p = cases[i].params;
+    const WalkMetrics& off = results[i].metrics;
+    const WalkMetrics& on = results[i + 1].metrics;
+    nlohmann::ordered_json r;
+    r["k_joint_true"] = p.plant.k_joint[humanoid::kLeftHipRoll];
+    r["k_joint_belief"] = p.control.k_joint[humanoid::kLeftHipRoll];
+    r["fell_off"] = off.fell;
+    r["fell_on"] = on.fell;
+    r["steps_off"] = off.steps_completed;
+    r["steps_on"] = on.steps_completed;
+    r["pelvis_roll_error_max_off"] = off.pelvis_roll_error_max;
+    r["pelvis_roll_error_max_on"] = on.pelvis_roll_error_max;
+    r["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, on.pelvis_roll_error_max);
+    r["zmp_single_support_rms_y_off"] = off.zmp_ss_rms_y;
+    r["zmp_single_support_rms_y_on"] = on.zmp_ss_rms_y;
+    r["link_error_rms_off"] = off.link_error_rms;
+    r["link_error_rms_on"] = on.link_error_rms;
+    rows.push_back(r);
+  }
+  nlohmann::ordered_json j;
+  j["step_time"] = cases.front().params.walk.step_time;
+  j["steps"] = cases.front().params.walk.steps;
+  j["balance_enabled"] = cases.front().params.balance.enabled;
+  j["rows"] = rows;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace flexgait::experiments

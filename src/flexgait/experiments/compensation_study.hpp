@@ -1,0 +1,34 @@
+#pragma once
+/// \file compensation_study.hpp
+/// The thesis's walking experiments 2-4 (spec humanoid.md) as sets of walks that differ in one
+/// thing, and their comparison:
+///  - compensation study: the same gait with compensation off, both compensators with the full
+///    gravity torque, and both with the thesis form (eq. 4 only) — pelvis error (Fig. 13), ZMP
+///    tracking (Fig. 14), estimated against true joint angles, Newton against the conventional
+///    estimate (Fig. 15);
+///  - stiffness mismatch: the twin's true stiffness scaled against the controller's belief
+///    (control.k_joint), compensation off and both, balance controller as configured.
+#include <string>
+#include <vector>
+
+#include "flexgait/experiments/walk_experiment.hpp"
+
+namespace flexgait::experiments {
+
+struct StudyCase {
+  std::string name;  ///< directory name of its run
+  WalkRunParams params;
+};
+
+/// off, both (full form), both (thesis form), from `base` (its other settings kept).
+std::vector<StudyCase> compensation_cases(const WalkRunParams& base);
+/// For each scale s: the twin's k_joint = s × its configured value, compensation off and both.
+std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales);
+
+/// comparison.json of a compensation study: each case's summary and the headline numbers (cut of
+/// the peak pelvis roll error, single-support ZMP tracking, the estimator's error share).
+std::string compensation_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results);
+/// comparison.json of a mismatch study: per scale, off against both.
+std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results);
+
+}  // namespace flexgait::experiments
