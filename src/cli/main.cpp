@@ -9,6 +9,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/version.hpp"
 #include "humanoid_commands.hpp"
+#include "reproduce_command.hpp"
 #include "rimless_commands.hpp"
 
 int main(int argc, char** argv) {
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);
   flexgait::cli::add_humanoid_commands(app, action);
+  flexgait::cli::add_reproduce_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

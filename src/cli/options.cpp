@@ -47,23 +47,36 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
     fmt::print(stderr, "warning: plotting script {} not found; no figures drawn\n", script);
     return false;
   }
-  std::vector<std::string> argv_s{"/usr/bin/python3", path.string()};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) {
+  std::vector<std::string> argv{"/usr/bin/python3", path.string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const int status = run_process(argv);
+  if (status < 0) {
     fmt::print(stderr, "warning: cannot start /usr/bin/python3; no figures drawn\n");
     return false;
   }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+  if (status != 0) {
     fmt::print(stderr, "warning: {} failed; figures may be missing\n", script);
     return false;
   }
   return true;
+}
+
+int run_process(const std::vector<std::string>& args) {
+  std::vector<std::string> copy = args;
+  std::vector<char*> argv;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::filesystem::path find_config(const std::string& name) {
+  for (const char* d : kConfigDirs)
+    if (std::filesystem::exists(std::filesystem::path(d) / name)) return std::filesystem::path(d) / name;
+  throw std::runtime_error("configuration " + name + " not found in the source tree or the installed share directory");
 }
 
 }  // namespace flexgait::cli

@@ -30,4 +30,11 @@ Config resolve(const Schema& schema, const RunOptions& options, const std::vecto
 /// false (after printing a warning) if the script is missing or fails. Plots are optional.
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args);
 
+/// Runs args[0] (a path) with these arguments, waits; returns its exit code, -1 if it could not
+/// start, 128 + signal if it was killed.
+int run_process(const std::vector<std::string>& args);
+
+/// A shipped configuration (configs/NAME) from the source tree or the installed share directory.
+std::filesystem::path find_config(const std::string& name);
+
 }  // namespace flexgait::cli
