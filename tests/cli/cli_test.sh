@@ -115,6 +115,32 @@ check "walk did not fall" grep -q '"fell": false' "$work/walk.json"
 for f in log.csv footsteps.csv summary.json config.yaml; do check "walk writes $f" test -s "$work/walk/$f"; done
 expect_usage_error walk-bad-step-time "walk.step_time" humanoid walk --set walk.step_time=0
 expect_usage_error walk-typo "walk.steps" humanoid walk --set walk.stepz=3
+for f in joints.csv timing.json; do check "walk writes $f" test -s "$work/walk/$f"; done
+for key in compensation estimate_error_rms newton_iterations_max newton_failures deflection_rms; do
+  check "walk summary has $key" grep -q "\"$key\"" "$work/walk.json"
+done
+check "walk compensates by default" grep -q '"compensation": "both"' "$work/walk.json"
+expect_usage_error walk-bad-compensation "control.compensation" humanoid walk --set control.compensation=sometimes
+expect_usage_error walk-bad-gravity-model "control.gravity_model" humanoid walk --set control.gravity_model=rigid
+expect_usage_error walk-bad-k-belief "control.k_joint" humanoid walk --set control.k_joint=0
+
+# Humanoid compensation study and stiffness mismatch (one short step each).
+"$exe" humanoid compensation --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --out "$work/comp" \
+  --json --no-plot >"$work/comp.json" 2>"$work/err"
+check "humanoid compensation exits 0: $(cat "$work/err")" test $? -eq 0
+for d in off both both-thesis-form; do check "compensation writes $d/summary.json" test -s "$work/comp/$d/summary.json"; done
+for key in pelvis_roll_error_max_off pelvis_roll_error_max_on pelvis_roll_error_max_cut estimate_error_share_of_deflection \
+           newton_conventional_max; do
+  check "comparison has $key" grep -q "\"$key\"" "$work/comp/comparison.json"
+done
+"$exe" humanoid mismatch --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --scales 0.9,1.1 \
+  --out "$work/mismatch" --no-plot >"$work/out" 2>"$work/err"
+check "humanoid mismatch exits 0: $(cat "$work/err")" test $? -eq 0
+check "mismatch has two rows" test "$(grep -c k_joint_true "$work/mismatch/comparison.json")" -eq 2
+for d in k090-off k090-both k110-off k110-both; do check "mismatch writes $d" test -s "$work/mismatch/$d/summary.json"; done
+expect_usage_error mismatch-bad-scale "scales" humanoid mismatch --scales 0
+"$exe" reproduce --help >"$work/help3" 2>&1
+check "reproduce --help mentions index.html" grep -q "index.html" "$work/help3"
 
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0
