@@ -10,6 +10,7 @@
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/core/progress.hpp"
+#include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
 #include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/humanoid/renderer.hpp"
@@ -24,28 +25,11 @@ int bench(const RunOptions& run) {
   const humanoid::BenchParams params = humanoid::bench_from_config(config);
   const humanoid::BenchResult r = humanoid::run_stiffness_bench(params);
 
-  CsvWriter csv({"compensated", "command", "encoder", "link", "gravity_torque", "error_link_minus_encoder",
-                 "error_link_minus_command"});
-  for (const auto* set : {&r.uncompensated, &r.compensated}) {
-    for (const auto& b : *set) {
-      csv.cell(set == &r.compensated ? "true" : "false").cell(b.command).cell(b.encoder).cell(b.link);
-      csv.cell(b.gravity_torque).cell(b.link - b.encoder).cell(b.link - b.command).end_row();
-    }
-  }
-  nlohmann::ordered_json j;
-  j["k_true"] = params.actuator.k;
-  j["k_fit"] = r.k_fit;
-  j["k_fit_error"] = (r.k_fit - params.actuator.k) / params.actuator.k;
-  j["r_squared"] = r.r_squared;
-  j["max_error_uncompensated"] = r.max_error_uncompensated;
-  j["max_error_compensated"] = r.max_error_compensated;
-  j["residual_compensated_min"] = r.min_residual_compensated;
-  j["residual_compensated_max"] = r.max_residual_compensated;
-  const std::string summary = j.dump(2) + "\n";
+  const std::string summary = experiments::bench_summary_json(params, r);
 
   const RunDirectory dir(run.out);
   dir.write_config(config);
-  dir.write("bench.csv", csv.str());
+  dir.write("bench.csv", experiments::bench_csv(r));
   dir.write("summary.json", summary);
   if (run.plot) run_plot_script("plot_bench.py", {dir.path().string()});
   if (run.json) {

@@ -1,5 +1,7 @@
 #include "flexgait/humanoid/stiffness_bench.hpp"
 
+#include "flexgait/compensation/link_angle_newton.hpp"
+
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
 
@@ -131,6 +133,23 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
     r.max_error_compensated = std::max(r.max_error_compensated, std::abs(e));
     r.min_residual_compensated = std::min(r.min_residual_compensated, e);
     r.max_residual_compensated = std::max(r.max_residual_compensated, e);
+  }
+  // The output compensator with the fitted stiffness: the gear carries τ_g(θ) = −m g l cos θ in
+  // the convention θ_enc = θ + τ_g/k (the load pulls the link ahead of the motor).
+  using V = Eigen::Matrix<double, 1, 1>;
+  auto torque = [&](const V& q, V& tau) { tau(0) = -weight_arm * std::cos(q(0)); };
+  auto jacobian = [&](const V& q, const V&, V& G) { G(0) = weight_arm * std::sin(q(0)); };
+  for (auto* set : {&r.uncompensated, &r.compensated}) {
+    for (auto& b : *set) {
+      const auto e = compensation::solve_link_angles<1>(V::Constant(b.encoder), V::Constant(r.k_fit), torque, jacobian);
+      b.estimate_newton = e.newton(0);
+      b.estimate_conventional = e.conventional(0);
+      b.newton_iterations = e.iterations;
+      r.max_error_newton = std::max(r.max_error_newton, std::abs(b.estimate_newton - b.link));
+      r.max_error_conventional = std::max(r.max_error_conventional, std::abs(b.estimate_conventional - b.link));
+      r.max_newton_conventional = std::max(r.max_newton_conventional, std::abs(b.estimate_newton - b.estimate_conventional));
+      r.max_newton_iterations = std::max(r.max_newton_iterations, e.iterations);
+    }
   }
   return r;
 }

@@ -38,6 +38,10 @@ struct BenchSample {
   double encoder = 0;        ///< θ_enc [rad]
   double link = 0;           ///< true link angle [rad]
   double gravity_torque = 0; ///< m g l cos θ_link [Nm]
+  /// The output compensator on the bench (eqs. 10-13, k = k_fit): the link angle from the encoder.
+  double estimate_newton = 0;        ///< Newton [rad]
+  double estimate_conventional = 0;  ///< θ_enc − τ_g(θ_enc)/k [rad]
+  int newton_iterations = 0;
 };
 
 struct BenchResult {
@@ -47,6 +51,9 @@ struct BenchResult {
   double max_error_uncompensated = 0;  ///< max |link − command| [rad]
   double max_error_compensated = 0;
   double min_residual_compensated = 0, max_residual_compensated = 0;  ///< signed range of link − command [rad]
+  double max_error_newton = 0, max_error_conventional = 0;  ///< max |estimate − link| over both sweeps [rad]
+  double max_newton_conventional = 0;                       ///< max |Newton − conventional| [rad]
+  int max_newton_iterations = 0;
 };
 
 BenchResult run_stiffness_bench(const BenchParams& params);

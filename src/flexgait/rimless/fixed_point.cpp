@@ -27,8 +27,6 @@ AnalysisOptions analysis_from_config(const Config& c) {
   return o;
 }
 
-namespace {
-
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt) {
   SimulationOptions o = sim;
   o.rtol = opt.rtol;
@@ -36,8 +34,6 @@ SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOption
   o.log = false;
   return o;
 }
-
-}  // namespace
 
 FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
                                        const SectionState& guess) {

@@ -21,6 +21,8 @@ struct AnalysisOptions {
 };
 Schema analysis_schema();
 AnalysisOptions analysis_from_config(const Config& config);
+/// The simulation options of a Poincaré-map evaluation: the analysis tolerances, no log.
+SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt);
 
 struct FixedPointReport {
   bool converged = false;

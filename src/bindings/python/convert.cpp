@@ -1,0 +1,93 @@
+#include "convert.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <charconv>
+#include <sstream>
+#include <vector>
+
+namespace flexgait::python {
+
+Config make_config(const Schema& schema, const py::object& overrides, const std::optional<std::string>& config_file) {
+  std::vector<std::string> sets;
+  if (!overrides.is_none()) {
+    if (!py::isinstance<py::dict>(overrides)) throw py::type_error("config must be a dict of key: value, or None");
+    for (const auto& [k, v] : overrides.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(k)) throw py::type_error("config keys must be str, e.g. 'rimless.mu_s'");
+      std::string text;
+      if (py::isinstance<py::bool_>(v)) text = v.cast<bool>() ? "true" : "false";
+      else if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) text = py::str(py::repr(v));
+      else if (py::isinstance<py::str>(v)) text = v.cast<std::string>();
+      else
+        throw py::value_error("config key " + k.cast<std::string>() + ": value must be a float, int, bool or str, not " +
+                              std::string(py::str(v.get_type().attr("__name__"))));
+      sets.push_back(k.cast<std::string>() + "=" + text);
+    }
+  }
+  std::optional<std::filesystem::path> file;
+  if (config_file) file = *config_file;
+  return resolve_config(schema, file, sets);
+}
+
+py::dict csv_columns(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::vector<std::string> names;
+  std::vector<std::vector<std::string>> cells;
+  auto split = [](const std::string& l) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (const char c : l) {
+      if (c == ',') {
+        out.push_back(cur);
+        cur.clear();
+      } else {
+        cur += c;
+      }
+    }
+    out.push_back(cur);
+    return out;
+  };
+  if (std::getline(in, line)) names = split(line);
+  cells.resize(names.size());
+  while (std::getline(in, line)) {
+    const auto row = split(line);
+    for (std::size_t i = 0; i < names.size(); ++i) cells[i].push_back(i < row.size() ? row[i] : "");
+  }
+  py::dict out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    std::vector<double> values(cells[i].size());
+    bool numeric = true;
+    for (std::size_t r = 0; r < cells[i].size() && numeric; ++r) {
+      const std::string& s = cells[i][r];
+      const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), values[r]);
+      numeric = ec == std::errc() && end == s.data() + s.size();
+    }
+    if (numeric) {
+      py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
+      std::copy(values.begin(), values.end(), a.mutable_data());
+      out[py::str(names[i])] = a;
+    } else {
+      out[py::str(names[i])] = py::cast(cells[i]);
+    }
+  }
+  return out;
+}
+
+py::object json_value(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+
+py::dict config_dict(const Config& config) {
+  py::dict out;
+  for (const auto& p : config.schema().params()) {
+    switch (p.type) {
+      case ParamType::Real: out[py::str(p.key)] = config.real(p.key); break;
+      case ParamType::Integer: out[py::str(p.key)] = config.integer(p.key); break;
+      case ParamType::Boolean: out[py::str(p.key)] = config.boolean(p.key); break;
+      case ParamType::Choice: out[py::str(p.key)] = config.choice(p.key); break;
+    }
+  }
+  return out;
+}
+
+}  // namespace flexgait::python

@@ -1,0 +1,88 @@
+// The `flexgait` Python module: the C++ core, not a re-write.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "flexgait/core/config.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/parameters.hpp"
+#include "flexgait/version.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+flexgait::Schema schema_named(const std::string& name) {
+  if (name == "rimless") {
+    flexgait::Schema s = flexgait::rimless::rimless_schema();
+    s.merge(flexgait::rimless::analysis_schema());
+    return s;
+  }
+  if (name == "walk") return flexgait::experiments::walk_run_schema();
+  if (name == "bench") return flexgait::humanoid::bench_schema();
+  throw py::value_error("schema: '" + name + "' is not one of rimless, walk, bench");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(flexgait, m) {
+  m.doc() =
+      "flexgait: legged locomotion with compliance, from Python.\n\n"
+      "Two studies on one C++20 core (the same code as the `flexgait` command line):\n"
+      "  flexgait.rimless  - the flexible-leg rimless wheel with stick-slip friction: simulate, poincare_map,\n"
+      "                      fixed_point, sweep.\n"
+      "  flexgait.humanoid - a THORMANG-class humanoid twin (MuJoCo) with elastic gears: bench (stiffness\n"
+      "                      identification), walk (ZMP preview control with the actuator deformation\n"
+      "                      compensators on or off).\n\n"
+      "Configuration: every function takes `config`, a dict {key: value} over the defaults (and over\n"
+      "`config_file`, a YAML file as written by the command line), validated as on the command line;\n"
+      "a bad key or value raises ValueError naming the key. flexgait.defaults('walk') lists the keys.\n\n"
+      "Results: dicts of numpy arrays (the columns of the CSV files the command line writes, to the last\n"
+      "digit) and of summaries (the command line's summary.json). SI units throughout.\n\n"
+      "Threads: the GIL is released while C++ computes, so Python threads can run sweeps side by side.\n\n"
+      "Example:\n"
+      "    import flexgait\n"
+      "    run = flexgait.rimless.simulate({'rimless.mu_s': 0.4, 'rimless.mu_k': 0.4})\n"
+      "    run['summary']['energy_balance_error'], run['log']['t']\n"
+      "    walk = flexgait.humanoid.walk({'walk.steps': 4}, compensation='off')\n"
+      "    walk['metrics']['pelvis_roll_error_max']\n";
+  m.attr("__version__") = flexgait::kVersion;
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const flexgait::ConfigError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+  m.def(
+      "defaults",
+      [](const std::string& name) {
+        return flexgait::python::config_dict(flexgait::python::make_config(schema_named(name), py::none(), std::nullopt));
+      },
+      py::arg("schema"),
+      "The default configuration of 'rimless' (rimless.*, initial.*, sim.*, analysis.*), 'walk' (robot.*, "
+      "plant.*, walk.*, balance.*, control.*, output.*) or 'bench' (bench.*, actuator) as a dict key -> value.");
+  m.def(
+      "describe",
+      [](const std::string& name) {
+        py::dict out;
+        for (const auto& p : schema_named(name).params()) {
+          py::dict d;
+          d["default"] = p.fallback;
+          d["unit"] = p.unit;
+          d["doc"] = p.doc;
+          d["allowed"] = p.allowed();
+          out[py::str(p.key)] = d;
+        }
+        return out;
+      },
+      py::arg("schema"),
+      "Every key of a schema ('rimless', 'walk', 'bench') with its default, unit, meaning and allowed values.");
+  flexgait::python::bind_rimless(m);
+  flexgait::python::bind_humanoid(m);
+}

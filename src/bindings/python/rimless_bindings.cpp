@@ -1,0 +1,176 @@
+// flexgait.rimless: the flexible-leg rimless wheel from Python.
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/output.hpp"
+#include "flexgait/rimless/poincare.hpp"
+#include "flexgait/rimless/rigid_wheel.hpp"
+#include "flexgait/rimless/sweep.hpp"
+
+namespace flexgait::python {
+namespace {
+
+using OptionalPath = std::optional<std::string>;
+
+Schema analysis_command_schema() {
+  Schema s = rimless::rimless_schema();
+  s.merge(rimless::analysis_schema());
+  return s;
+}
+
+struct Wheel {
+  Config config;
+  rimless::WheelParams wheel;
+  rimless::InitialState initial;
+  rimless::SimulationOptions sim;
+  rimless::Model model;
+};
+
+Wheel wheel_setup(const Schema& schema, const py::object& overrides, const OptionalPath& file) {
+  Wheel s{make_config(schema, overrides, file), {}, {}, {}, rimless::Model::Flexible};
+  s.wheel = rimless::wheel_from_config(s.config);
+  s.initial = rimless::initial_from_config(s.config);
+  rimless::validate(s.wheel, s.initial);
+  s.sim = rimless::simulation_from_config(s.config);
+  s.model = s.config.choice("sim.model") == "rigid" ? rimless::Model::Rigid : rimless::Model::Flexible;
+  return s;
+}
+
+rimless::Section section_of(const std::string& name) {
+  if (name == "touchdown") return rimless::Section::Touchdown;
+  if (name == "upright") return rimless::Section::Upright;
+  throw py::value_error("section: '" + name + "' is not one of touchdown, upright");
+}
+
+py::dict simulate(const py::object& config, const OptionalPath& config_file) {
+  const Wheel s = wheel_setup(rimless::rimless_schema(), config, config_file);
+  const std::string model = s.config.choice("sim.model");
+  std::string log, events, steps, summary;
+  {
+    py::gil_scoped_release release;
+    const rimless::SimulationResult r = s.model == rimless::Model::Rigid
+                                            ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
+                                            : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
+    log = rimless::log_csv(r);
+    events = rimless::events_csv(r);
+    steps = rimless::steps_csv(r);
+    summary = rimless::summary_json(r, model);
+  }
+  py::dict out;
+  out["log"] = csv_columns(log);
+  out["events"] = csv_columns(events);
+  out["steps"] = csv_columns(steps);
+  out["summary"] = json_value(summary);
+  out["config"] = config_dict(s.config);
+  return out;
+}
+
+py::dict fixed_point(const py::object& config, const OptionalPath& config_file, const std::string& section) {
+  const Wheel s = wheel_setup(analysis_command_schema(), config, config_file);
+  const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
+  const rimless::Section sec = section_of(section);
+  rimless::FixedPointReport rep;
+  {
+    py::gil_scoped_release release;
+    rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.model, sec, s.initial);
+  }
+  py::dict out = json_value(rimless::fixed_point_json(rep));
+  out["z"] = Eigen::VectorXd(rep.point.z);
+  out["jacobian"] = Eigen::MatrixXd(rep.jacobian);
+  return out;
+}
+
+py::dict poincare_map(const py::object& config, const OptionalPath& config_file, const std::string& section,
+                      const std::optional<Eigen::VectorXd>& z) {
+  const Wheel s = wheel_setup(analysis_command_schema(), config, config_file);
+  const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
+  rimless::SectionState point;
+  rimless::MapStep step;
+  std::optional<std::string> failure;
+  {
+    py::gil_scoped_release release;
+    const rimless::Section sec = section_of(section);
+    const rimless::SimulationOptions sim = rimless::map_options(s.sim, opt);
+    failure = rimless::settle_on_section(s.wheel, sim, s.model, sec, s.initial, opt.transient_steps, point);
+    if (!failure && z) {
+      if (z->size() != point.z.size()) failure = "z has " + std::to_string(z->size()) + " components, the section state " +
+                                                 std::to_string(point.z.size());
+      else point.z = *z;
+    }
+    if (!failure) {
+      rimless::PoincareMap map(s.wheel, sim, s.model, sec);
+      step = map.apply(point, false);
+      failure = step.failure;
+    }
+  }
+  if (failure && z && z->size() != point.z.size()) throw py::value_error(*failure);
+  py::dict out;
+  out["names"] = point.names();
+  out["z"] = Eigen::VectorXd(point.z);
+  out["failure"] = failure ? py::object(py::str(*failure)) : py::object(py::none());
+  if (!failure) {
+    out["next"] = Eigen::VectorXd(step.next.z);
+    out["gait"] = step.gait;
+    out["period"] = step.period;
+    out["distance"] = step.distance;
+    out["dissipated"] = step.dissipated;
+  }
+  return out;
+}
+
+py::dict sweep(const std::string& param, double start, double stop, int count, const py::object& config,
+               const OptionalPath& config_file, const std::string& section) {
+  const Wheel s = wheel_setup(analysis_command_schema(), config, config_file);
+  rimless::check_sweep_param(s.config.schema(), param);
+  if (count < 1) throw py::value_error("count: must be at least 1, got " + std::to_string(count));
+  const rimless::SweepSpec spec{param, start, stop, count, section_of(section)};
+  for (int i = 0; i < count; ++i) rimless::sweep_point_config(s.config, spec, i);  // every point valid first
+  std::string csv = "index," + rimless::sweep_header() + "\n";
+  {
+    py::gil_scoped_release release;
+    for (int i = 0; i < count; ++i) csv += std::to_string(i) + "," + rimless::sweep_row(s.config, spec, i) + "\n";
+  }
+  return csv_columns(csv);
+}
+
+}  // namespace
+
+void bind_rimless(py::module_& m) {
+  py::module_ r = m.def_submodule(
+      "rimless",
+      "The flexible-leg rimless wheel with stick-slip friction (spec rimless.md): event-driven hybrid simulation on "
+      "SUNDIALS CVODE, Poincare maps, Newton-Raphson fixed points, sweeps.\n\n"
+      "Every function takes `config`, a dict of configuration keys (e.g. {'rimless.mu_s': 0.4, 'sim.model': "
+      "'rigid'}) applied over the defaults and over `config_file` (YAML), validated as on the command line: an "
+      "unknown key or a bad value raises ValueError naming the key. The GIL is released while C++ runs.");
+  r.def("simulate", &simulate, py::arg("config") = py::none(), py::arg("config_file") = py::none(),
+        "Simulate the wheel (keys rimless.*, initial.*, sim.*; `sim.model` flexible or rigid).\n\n"
+        "Returns a dict: 'log', 'events', 'steps' (each a dict of numpy arrays, the columns of log.csv, events.csv, "
+        "steps.csv of `flexgait rimless simulate`), 'summary' (summary.json as a dict: energy ledger, gaits, "
+        "speed, ...) and 'config' (the resolved configuration).");
+  r.def("fixed_point", &fixed_point, py::arg("config") = py::none(), py::arg("config_file") = py::none(),
+        py::arg("section") = "touchdown",
+        "A periodic gait: settle on the Poincare section (`analysis.transient_steps`), then Newton-Raphson on "
+        "P(z) - z. Returns fixed_point.json as a dict (converged, iterations, residual, state, multipliers, "
+        "stable, gait, period, speed, ...) plus 'z' and 'jacobian' (dP/dz) as numpy arrays. `section`: "
+        "'touchdown' or 'upright'.");
+  r.def("poincare_map", &poincare_map, py::arg("config") = py::none(), py::arg("config_file") = py::none(),
+        py::arg("section") = "touchdown", py::arg("z") = py::none(),
+        "One application of the Poincare map. Settles on the section from the configured initial state; `z` "
+        "(numpy array, optional) replaces the section point's reduced state. Returns a dict: 'names' of z's "
+        "components, 'z', 'next' = P(z), 'gait', 'period' [s], 'distance' [m], 'dissipated' [J], 'failure' "
+        "(None or why the next crossing was not reached).");
+  r.def("sweep", &sweep, py::arg("param"), py::arg("start"), py::arg("stop"), py::arg("count"),
+        py::arg("config") = py::none(), py::arg("config_file") = py::none(), py::arg("section") = "touchdown",
+        "Sweep one real parameter (a configuration key, or 'rimless.mu' for mu_s = mu_k) over `count` values "
+        "from `start` to `stop`: gait, fixed point, multipliers, stability at each. Returns the columns of the "
+        "command line's sweep.csv as numpy arrays (text columns as lists). Runs in this thread with the GIL "
+        "released: Python threads can run sweeps side by side.");
+}
+
+}  // namespace flexgait::python
