@@ -2,6 +2,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <string>
+
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "flexgait/core/config.hpp"
@@ -54,7 +56,11 @@ PYBIND11_MODULE(flexgait, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const flexgait::ConfigError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // The command line's message names where a value came from ("--set: key ..."); here it
+      // came from the config dict.
+      std::string message = e.what();
+      if (message.rfind("--set: ", 0) == 0) message = "config: " + message.substr(7);
+      PyErr_SetString(PyExc_ValueError, message.c_str());
     } catch (const std::invalid_argument& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
@@ -71,7 +77,8 @@ PYBIND11_MODULE(flexgait, m) {
       "describe",
       [](const std::string& name) {
         py::dict out;
-        for (const auto& p : schema_named(name).params()) {
+        const flexgait::Schema schema = schema_named(name);
+        for (const auto& p : schema.params()) {
           py::dict d;
           d["default"] = p.fallback;
           d["unit"] = p.unit;

@@ -1,0 +1,158 @@
+"""The flexgait Python module against the command line and its own promises.
+
+Run by ctest (the README's test command) with /usr/bin/python3; the environment gives
+PYTHONPATH (the built module), FLEXGAIT_EXE (the command line) and FLEXGAIT_SOURCE (the tree).
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+
+import numpy as np
+
+import flexgait
+
+EXE = os.environ["FLEXGAIT_EXE"]
+SOURCE = os.environ["FLEXGAIT_SOURCE"]
+RIMLESS_YAML = os.path.join(SOURCE, "configs", "rimless.yaml")
+
+
+class SimulateAgainstTheCommandLine(unittest.TestCase):
+    def test_energy_balance_and_log_match_the_command_line_to_the_last_digit(self):
+        with tempfile.TemporaryDirectory() as out:
+            subprocess.run([EXE, "rimless", "simulate", "--config", RIMLESS_YAML, "--set", "sim.steps=8",
+                            "--out", out, "--no-plot"], check=True, stdout=subprocess.DEVNULL)
+            with open(os.path.join(out, "summary.json")) as f:
+                cli = json.load(f)
+            with open(os.path.join(out, "log.csv")) as f:
+                rows = list(csv.DictReader(f))
+        run = flexgait.rimless.simulate({"sim.steps": 8}, config_file=RIMLESS_YAML)
+        log, summary = run["log"], run["summary"]
+        self.assertIsInstance(log["t"], np.ndarray)
+        self.assertEqual(log["t"].dtype, np.float64)
+        # The summary is the command line's, bit for bit (== on floats, no tolerance).
+        self.assertEqual(summary, cli)
+        self.assertEqual(summary["energy_balance_error"], cli["energy_balance_error"])
+        # The arrays are the columns of log.csv, bit for bit, and the last row's energy ledger closes
+        # as summary.json says.
+        self.assertEqual(len(log["t"]), len(rows))
+        for name in ("t", "E_total", "W_damp", "W_fric", "balance"):
+            self.assertTrue(np.array_equal(log[name], np.array([float(r[name]) for r in rows])), name)
+        ledger = log["E_total"][-1] + log["W_damp"][-1] + log["W_fric"][-1]
+        self.assertEqual(log["balance"][-1], float(rows[-1]["balance"]))
+        self.assertLess(abs(ledger - cli["energy_initial"]) / cli["energy_initial"], 1e-8)
+
+    def test_fixed_point_maps_to_itself(self):
+        fp = flexgait.rimless.fixed_point({"rimless.mu_s": 0.6, "rimless.mu_k": 0.6})
+        self.assertTrue(fp["converged"])
+        self.assertEqual(fp["z"].shape, fp["jacobian"].shape[:1])
+        step = flexgait.rimless.poincare_map({"rimless.mu_s": 0.6, "rimless.mu_k": 0.6}, z=fp["z"])
+        self.assertIsNone(step["failure"])
+        self.assertLess(np.max(np.abs(step["next"] - fp["z"])), 1e-9)
+
+
+class BadInput(unittest.TestCase):
+    def test_unknown_key_raises_value_error_naming_it(self):
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.KK": 5})
+        self.assertIn("rimless.KK", str(e.exception))
+
+    def test_bad_value_raises_value_error_naming_the_key_and_domain(self):
+        with self.assertRaises(ValueError) as e:
+            flexgait.humanoid.walk({"control.compensation": "sometimes"})
+        self.assertIn("control.compensation", str(e.exception))
+        self.assertIn("off, input, output, both", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            flexgait.humanoid.walk(compensation="sometimes")
+        self.assertIn("control.compensation", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.sweep("rimless.nope", 0.1, 0.2, 2)
+        self.assertIn("rimless.nope", str(e.exception))
+
+    def test_wrong_types_raise(self):
+        with self.assertRaises(TypeError):
+            flexgait.rimless.simulate(["rimless.K", 5])
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K": [1, 2]})
+        self.assertIn("rimless.K", str(e.exception))
+
+
+class Humanoid(unittest.TestCase):
+    def test_walk_returns_arrays_and_metrics_with_and_without_compensation(self):
+        runs = {mode: flexgait.humanoid.walk({"walk.steps": 2, "walk.step_time": 3.0}, compensation=mode)
+                for mode in ("off", "both")}
+        for mode, run in runs.items():
+            self.assertFalse(run["metrics"]["fell"])
+            self.assertEqual(run["metrics"]["compensation"], mode)
+            self.assertEqual(len(run["log"]["t"]), len(run["joints"]["l_hip_roll_link"]))
+        self.assertLess(runs["both"]["metrics"]["pelvis_roll_error_max"],
+                        0.3 * runs["off"]["metrics"]["pelvis_roll_error_max"])
+
+    def test_bench_fits_the_stiffness(self):
+        b = flexgait.humanoid.bench({"bench.poses": 7})
+        self.assertLess(abs(b["summary"]["k_fit"] / b["summary"]["k_true"] - 1), 0.01)
+        self.assertEqual(len(b["samples"]["encoder"]), 14)
+
+
+class Threads(unittest.TestCase):
+    def test_the_gil_is_released_during_a_sweep(self):
+        # While a sweep runs in a worker thread, this thread keeps running Python.
+        window = {}
+
+        def work():
+            window["start"] = time.perf_counter()
+            flexgait.rimless.sweep("rimless.mu", 0.3, 0.6, 6)
+            window["end"] = time.perf_counter()
+
+        worker = threading.Thread(target=work)
+        ticks = []
+        worker.start()
+        while worker.is_alive():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+        worker.join()
+        inside = [t for t in ticks if window["start"] + 0.05 < t < window["end"] - 0.05]
+        self.assertGreater(window["end"] - window["start"], 0.2)
+        self.assertGreater(len(inside), 10)
+
+
+class Documentation(unittest.TestCase):
+    def test_every_function_has_a_docstring(self):
+        for module in (flexgait, flexgait.rimless, flexgait.humanoid):
+            self.assertTrue(module.__doc__)
+            for name in dir(module):
+                obj = getattr(module, name)
+                if callable(obj) and not name.startswith("_"):
+                    self.assertTrue(obj.__doc__ and len(obj.__doc__) > 60, f"{module.__name__}.{name}")
+
+    def test_defaults_and_describe_cover_the_schema(self):
+        d = flexgait.defaults("walk")
+        self.assertEqual(d["control.compensation"], "both")
+        self.assertEqual(d["plant.k_joint"], 1000.0)
+        self.assertEqual(set(flexgait.describe("walk")), set(d))
+
+
+class Examples(unittest.TestCase):
+    def run_example(self, script, png, *args):
+        with tempfile.TemporaryDirectory() as out:
+            subprocess.run([sys.executable, os.path.join(SOURCE, "examples", script), out, *args], check=True,
+                           stdout=subprocess.DEVNULL, env=dict(os.environ))
+            path = os.path.join(out, png)
+            self.assertTrue(os.path.getsize(path) > 10000)
+            with open(path, "rb") as f:
+                self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_rimless_gait_vs_friction(self):
+        self.run_example("rimless_gait_vs_friction.py", "rimless_gait_vs_friction.png", "8")
+
+    def test_pelvis_error_compensation(self):
+        self.run_example("pelvis_error_compensation.py", "pelvis_error_compensation.png", "1")
+
+
+if __name__ == "__main__":
+    unittest.main()
