@@ -7,28 +7,11 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include "../support/count_allocations.hpp"
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <random>
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-// Count every heap allocation of this test program (replacement operators on malloc/free; GCC's
-// mismatched-new-delete warning does not know that they are replacements).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#pragma GCC diagnostic pop
+using flexgait::testing::g_allocations;
 
 namespace flexgait::compensation {
 namespace {
