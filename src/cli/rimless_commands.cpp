@@ -12,6 +12,7 @@
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
 #include "flexgait/rimless/sweep.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "options.hpp"
 
@@ -31,15 +32,13 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
   if (cmd.count("--steps") > 0) extra.push_back(fmt::format("sim.steps={}", a.steps));
   if (cmd.count("--omega0") > 0) extra.push_back(fmt::format("initial.omega={}", a.omega0));
-  const Config config = resolve(rimless::rimless_schema(), a.run, extra);
-  const rimless::WheelParams wheel = rimless::wheel_from_config(config);
-  const rimless::InitialState initial = rimless::initial_from_config(config);
-  rimless::validate(wheel, initial);
-  const rimless::SimulationOptions sim = rimless::simulation_from_config(config);
+  const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_schema(), a.run, extra));
+  const Config& config = s.config;
   const std::string model = config.choice("sim.model");
 
-  const rimless::SimulationResult result =
-      model == "rigid" ? rimless::simulate_rigid(wheel, initial, sim) : rimless::simulate_flexible(wheel, initial, sim);
+  const rimless::SimulationResult result = s.model == rimless::Model::Rigid
+                                               ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
+                                               : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
 
   const RunDirectory dir(a.run.out);
   dir.write_config(config);
@@ -69,34 +68,16 @@ struct FixedPointArgs {
   std::string section = "touchdown";
 };
 
-struct WheelSetup {
-  Config config;
-  rimless::WheelParams wheel;
-  rimless::InitialState initial;
-  rimless::SimulationOptions sim;
-  rimless::Model model;
-};
+using rimless::WheelSetup;
 
 WheelSetup wheel_setup(const Schema& schema, const RunOptions& run, const std::vector<std::string>& extra) {
-  WheelSetup s{resolve(schema, run, extra), {}, {}, {}, rimless::Model::Flexible};
-  s.wheel = rimless::wheel_from_config(s.config);
-  s.initial = rimless::initial_from_config(s.config);
-  rimless::validate(s.wheel, s.initial);
-  s.sim = rimless::simulation_from_config(s.config);
-  s.model = s.config.choice("sim.model") == "rigid" ? rimless::Model::Rigid : rimless::Model::Flexible;
-  return s;
-}
-
-Schema analysis_command_schema() {
-  Schema s = rimless::rimless_schema();
-  s.merge(rimless::analysis_schema());
-  return s;
+  return rimless::wheel_setup(resolve(schema, run, extra));
 }
 
 int fixed_point(const FixedPointArgs& a) {
   std::vector<std::string> extra;
   if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
-  const WheelSetup s = wheel_setup(analysis_command_schema(), a.run, extra);
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
   const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
   const rimless::FixedPointReport rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.model, section, s.initial);
@@ -136,7 +117,7 @@ struct SweepArgs {
 int sweep(const SweepArgs& a) {
   std::vector<std::string> extra;
   if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
-  const WheelSetup s = wheel_setup(analysis_command_schema(), a.run, extra);
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
   rimless::check_sweep_param(s.config.schema(), a.param);
   rimless::SweepSpec spec{a.param, a.from, a.to, a.count,
                           a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown};
@@ -174,7 +155,7 @@ struct AnalysisArgs {
 };
 
 int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
-  const WheelSetup s = wheel_setup(analysis_command_schema(), a.run, {});
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, {});
   const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
   auto mus = [&](std::vector<double> fallback) { return a.mus.empty() ? fallback : a.mus; };
   auto range = [&](double lo, double hi, int n) {

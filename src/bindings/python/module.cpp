@@ -9,8 +9,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
-#include "flexgait/rimless/fixed_point.hpp"
-#include "flexgait/rimless/parameters.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/version.hpp"
 
 namespace py = pybind11;
@@ -18,11 +17,7 @@ namespace py = pybind11;
 namespace {
 
 flexgait::Schema schema_named(const std::string& name) {
-  if (name == "rimless") {
-    flexgait::Schema s = flexgait::rimless::rimless_schema();
-    s.merge(flexgait::rimless::analysis_schema());
-    return s;
-  }
+  if (name == "rimless") return flexgait::rimless::rimless_analysis_schema();
   if (name == "walk") return flexgait::experiments::walk_run_schema();
   if (name == "bench") return flexgait::humanoid::bench_schema();
   throw py::value_error("schema: '" + name + "' is not one of rimless, walk, bench");

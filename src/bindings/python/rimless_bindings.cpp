@@ -11,34 +11,17 @@
 #include "flexgait/rimless/poincare.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "flexgait/rimless/sweep.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
 
 namespace flexgait::python {
 namespace {
 
 using OptionalPath = std::optional<std::string>;
 
-Schema analysis_command_schema() {
-  Schema s = rimless::rimless_schema();
-  s.merge(rimless::analysis_schema());
-  return s;
-}
+using rimless::WheelSetup;
 
-struct Wheel {
-  Config config;
-  rimless::WheelParams wheel;
-  rimless::InitialState initial;
-  rimless::SimulationOptions sim;
-  rimless::Model model;
-};
-
-Wheel wheel_setup(const Schema& schema, const py::object& overrides, const OptionalPath& file) {
-  Wheel s{make_config(schema, overrides, file), {}, {}, {}, rimless::Model::Flexible};
-  s.wheel = rimless::wheel_from_config(s.config);
-  s.initial = rimless::initial_from_config(s.config);
-  rimless::validate(s.wheel, s.initial);
-  s.sim = rimless::simulation_from_config(s.config);
-  s.model = s.config.choice("sim.model") == "rigid" ? rimless::Model::Rigid : rimless::Model::Flexible;
-  return s;
+WheelSetup wheel_setup(const Schema& schema, const py::object& overrides, const OptionalPath& file) {
+  return rimless::wheel_setup(make_config(schema, overrides, file));
 }
 
 rimless::Section section_of(const std::string& name) {
@@ -48,7 +31,7 @@ rimless::Section section_of(const std::string& name) {
 }
 
 py::dict simulate(const py::object& config, const OptionalPath& config_file) {
-  const Wheel s = wheel_setup(rimless::rimless_schema(), config, config_file);
+  const WheelSetup s = wheel_setup(rimless::rimless_schema(), config, config_file);
   const std::string model = s.config.choice("sim.model");
   std::string log, events, steps, summary;
   {
@@ -71,7 +54,7 @@ py::dict simulate(const py::object& config, const OptionalPath& config_file) {
 }
 
 py::dict fixed_point(const py::object& config, const OptionalPath& config_file, const std::string& section) {
-  const Wheel s = wheel_setup(analysis_command_schema(), config, config_file);
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), config, config_file);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
   const rimless::Section sec = section_of(section);
   rimless::FixedPointReport rep;
@@ -87,7 +70,7 @@ py::dict fixed_point(const py::object& config, const OptionalPath& config_file, 
 
 py::dict poincare_map(const py::object& config, const OptionalPath& config_file, const std::string& section,
                       const std::optional<Eigen::VectorXd>& z) {
-  const Wheel s = wheel_setup(analysis_command_schema(), config, config_file);
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), config, config_file);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
   rimless::SectionState point;
   rimless::MapStep step;
@@ -125,7 +108,7 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
 
 py::dict sweep(const std::string& param, double start, double stop, int count, const py::object& config,
                const OptionalPath& config_file, const std::string& section) {
-  const Wheel s = wheel_setup(analysis_command_schema(), config, config_file);
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), config, config_file);
   rimless::check_sweep_param(s.config.schema(), param);
   if (count < 1) throw py::value_error("count: must be at least 1, got " + std::to_string(count));
   const rimless::SweepSpec spec{param, start, stop, count, section_of(section)};

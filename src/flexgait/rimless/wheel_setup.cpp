@@ -1,0 +1,25 @@
+#include "flexgait/rimless/wheel_setup.hpp"
+
+#include <utility>
+
+#include "flexgait/rimless/fixed_point.hpp"
+
+namespace flexgait::rimless {
+
+Schema rimless_analysis_schema() {
+  Schema s = rimless_schema();
+  s.merge(analysis_schema());
+  return s;
+}
+
+WheelSetup wheel_setup(Config config) {
+  WheelSetup s{std::move(config), {}, {}, {}, Model::Flexible};
+  s.wheel = wheel_from_config(s.config);
+  s.initial = initial_from_config(s.config);
+  validate(s.wheel, s.initial);
+  s.sim = simulation_from_config(s.config);
+  s.model = s.config.choice("sim.model") == "rigid" ? Model::Rigid : Model::Flexible;
+  return s;
+}
+
+}  // namespace flexgait::rimless
