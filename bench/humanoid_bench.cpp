@@ -11,7 +11,6 @@ using namespace flexgait::humanoid;
 
 PlantParams plant_params() {
   PlantParams p;
-  p.k_joint.fill(1000.0);
   return p;
 }
 

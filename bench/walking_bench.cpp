@@ -57,7 +57,6 @@ BENCHMARK(ControllerUpdateWithCompensators)->Arg(0)->Arg(1)->Unit(benchmark::kMi
 
 void ClosedLoopWalk(benchmark::State& state) {
   experiments::WalkRunParams p;
-  p.plant.k_joint.fill(1000.0);
   p.walk.steps = 10;
   p.walk.step_time = 1.0;
   double simulated = 0;

@@ -25,7 +25,7 @@ int bench(const RunOptions& run) {
   const humanoid::BenchParams params = humanoid::bench_from_config(config);
   const humanoid::BenchResult r = humanoid::run_stiffness_bench(params);
 
-  const std::string summary = experiments::bench_summary_json(params, r);
+  const std::string summary = experiments::bench_summary_json(r);
 
   const RunDirectory dir(run.out);
   dir.write_config(config);

@@ -11,6 +11,7 @@
 #include "humanoid_commands.hpp"
 #include "reproduce_command.hpp"
 #include "rimless_commands.hpp"
+#include "schema_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   flexgait::cli::add_rimless_commands(app, action);
   flexgait::cli::add_humanoid_commands(app, action);
   flexgait::cli::add_reproduce_command(app, action);
+  flexgait::cli::add_schema_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -36,7 +36,7 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   const Config& config = s.config;
   const std::string model = config.choice("sim.model");
 
-  const rimless::SimulationResult result = s.model == rimless::Model::Rigid
+  const rimless::SimulationResult result = s.sim.model == rimless::Model::Rigid
                                                ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
                                                : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
 
@@ -80,7 +80,7 @@ int fixed_point(const FixedPointArgs& a) {
   const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
   const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
-  const rimless::FixedPointReport rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.model, section, s.initial);
+  const rimless::FixedPointReport rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, section, s.initial);
   const std::string json = rimless::fixed_point_json(rep);
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);

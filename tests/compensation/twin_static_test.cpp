@@ -59,7 +59,6 @@ struct Hold {
 Hold hold(CompensationMode mode, GravityForm form) {
   humanoid::RobotParams robot;
   humanoid::PlantParams plant;
-  plant.k_joint.fill(1000.0);
   plant.servo_integral_time = 0.05;
   const walking::RobotModel model = walking::make_robot_model(robot);
   std::array<Pose, 2> soles;
@@ -107,7 +106,7 @@ TEST(TwinStatic, OutputCompensationReadsTheLinkAnglesFromTheEncoders) {
   for (const CompensationMode mode : {CompensationMode::kOff, CompensationMode::kBoth}) {
     const Hold h = hold(mode, GravityForm::kFull);
     EXPECT_GT(h.deflection, 0.02);
-    EXPECT_LT(h.estimate_error, 2 * kEncoderStep) << to_string(mode);  // the encoders' quantisation
+    EXPECT_LT(h.estimate_error, 2 * kEncoderStep) << name_of(mode);  // the encoders' quantisation
   }
 }
 

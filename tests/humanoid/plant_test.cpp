@@ -16,7 +16,7 @@ namespace {
 
 PlantParams default_plant(double k = 1000.0) {
   PlantParams p;
-  p.k_joint.fill(k);
+  p.k_joint = k;
   return p;
 }
 

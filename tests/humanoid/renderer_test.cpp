@@ -19,7 +19,6 @@ std::uint32_t be32(const std::string& s, std::size_t at) {
 
 TEST(Renderer, DrawsTheTwinIntoAPng) {
   PlantParams p;
-  p.k_joint.fill(1000.0);
   HumanoidPlant plant(RobotParams{}, p);
   plant.reset(standing_pose(RobotParams{}, 0.75));
   Renderer renderer(plant.model(), 320, 240);

@@ -98,7 +98,7 @@ TEST(Poincare, VariationalJacobianMatchesFiniteDifferences) {
       Eigen::MatrixXd reference;
       const auto failure = numerics::central_difference_jacobian(P, r.point.z, 3e-5 * r.point.scale(w), reference);
       ASSERT_FALSE(failure.has_value()) << *failure;
-      EXPECT_LE((r.jacobian - reference).lpNorm<Eigen::Infinity>(), 1e-6) << "mu = " << mu << ", " << section_name(section);
+      EXPECT_LE((r.jacobian - reference).lpNorm<Eigen::Infinity>(), 1e-6) << "mu = " << mu << ", " << name_of(section);
     }
   }
 }

@@ -23,7 +23,6 @@ struct Twin {
   mjData* d;
   Twin() {
     humanoid::PlantParams p;
-    p.k_joint.fill(1000.0);
     m = humanoid::load_mjcf(humanoid::humanoid_mjcf(humanoid::RobotParams{}, p));
     d = mj_makeData(m);
   }

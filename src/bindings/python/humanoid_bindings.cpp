@@ -22,7 +22,7 @@ py::dict bench(const py::object& config, const OptionalPath& config_file) {
     py::gil_scoped_release release;
     const humanoid::BenchResult r = humanoid::run_stiffness_bench(params);
     csv = experiments::bench_csv(r);
-    summary = experiments::bench_summary_json(params, r);
+    summary = experiments::bench_summary_json(r);
   }
   py::dict out;
   out["samples"] = csv_columns(csv);

@@ -36,7 +36,7 @@ py::dict simulate(const py::object& config, const OptionalPath& config_file) {
   std::string log, events, steps, summary;
   {
     py::gil_scoped_release release;
-    const rimless::SimulationResult r = s.model == rimless::Model::Rigid
+    const rimless::SimulationResult r = s.sim.model == rimless::Model::Rigid
                                             ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
                                             : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
     log = rimless::log_csv(r);
@@ -60,7 +60,7 @@ py::dict fixed_point(const py::object& config, const OptionalPath& config_file, 
   rimless::FixedPointReport rep;
   {
     py::gil_scoped_release release;
-    rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.model, sec, s.initial);
+    rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, sec, s.initial);
   }
   py::dict out = json_value(rimless::fixed_point_json(rep));
   out["z"] = Eigen::VectorXd(rep.point.z);
@@ -79,14 +79,14 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
     py::gil_scoped_release release;
     const rimless::Section sec = section_of(section);
     const rimless::SimulationOptions sim = rimless::map_options(s.sim, opt);
-    failure = rimless::settle_on_section(s.wheel, sim, s.model, sec, s.initial, opt.transient_steps, point);
+    failure = rimless::settle_on_section(s.wheel, sim, s.sim.model, sec, s.initial, opt.transient_steps, point);
     if (!failure && z) {
       if (z->size() != point.z.size()) failure = "z has " + std::to_string(z->size()) + " components, the section state " +
                                                  std::to_string(point.z.size());
       else point.z = *z;
     }
     if (!failure) {
-      rimless::PoincareMap map(s.wheel, sim, s.model, sec);
+      rimless::PoincareMap map(s.wheel, sim, s.sim.model, sec);
       step = map.apply(point, false);
       failure = step.failure;
     }

@@ -21,55 +21,8 @@ void set_legs(humanoid::JointVector& v, const LegVector& legs) {
 
 }  // namespace
 
-std::string_view to_string(CompensationMode mode) {
-  switch (mode) {
-    case CompensationMode::kOff: return "off";
-    case CompensationMode::kInput: return "input";
-    case CompensationMode::kOutput: return "output";
-    case CompensationMode::kBoth: return "both";
-  }
-  return "?";
-}
-
-std::string_view to_string(WeightSplit split) { return split == WeightSplit::kCom ? "com" : "zmp"; }
-
-Schema compensation_schema() {
-  Schema s;
-  s.add(choice_param("control.compensation", "both",
-                     "actuator deformation compensation: none, the input compensator (eqs. 8-9), the output "
-                     "compensator (eqs. 10-13) or both",
-                     {"off", "input", "output", "both"}));
-  s.add(choice_param("control.gravity_model", "full",
-                     "gravity torque: thesis = J^T F only (eq. 4), full = the legs' own weight too",
-                     {"thesis", "full"}));
-  s.add(choice_param("control.weight_split", "zmp",
-                     "split of the weight between the feet (eqs. 5-6) about: com = the pose's centre of mass (the "
-                     "thesis), zmp = the reference ZMP (continuous at lift-off in a dynamic gait)",
-                     {"com", "zmp"}));
-  s.add(real_param("control.k_joint", "1000", "Nm/rad", "the controller's belief of the gears' stiffness", 1, 1e7));
-  s.add(integer_param("control.newton_max_iterations", "10", "output compensator: Newton steps at most", 1, 100));
-  s.add(real_param("control.newton_tolerance", "1e-12", "rad", "output compensator: converged when |N(theta)| <= this",
-                   1e-15, 1e-3));
-  return s;
-}
-
-CompensationParams compensation_from_config(const Config& c) {
-  CompensationParams p;
-  const std::string& mode = c.choice("control.compensation");
-  p.mode = mode == "off"     ? CompensationMode::kOff
-           : mode == "input" ? CompensationMode::kInput
-           : mode == "output" ? CompensationMode::kOutput
-                              : CompensationMode::kBoth;
-  p.gravity = c.choice("control.gravity_model") == "thesis" ? GravityForm::kThesis : GravityForm::kFull;
-  p.split = c.choice("control.weight_split") == "com" ? WeightSplit::kCom : WeightSplit::kZmpReference;
-  p.k_joint.fill(c.real("control.k_joint"));
-  p.newton.max_iterations = static_cast<int>(c.integer("control.newton_max_iterations"));
-  p.newton.tolerance = c.real("control.newton_tolerance");
-  return p;
-}
-
 DeformationCompensator::DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params)
-    : model_(model), params_(params) {}
+    : model_(model), params_(params), stiffness_(params.stiffness()) {}
 
 const humanoid::JointVector& DeformationCompensator::torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
                                                             const SupportPlan& support) {
@@ -100,7 +53,7 @@ const humanoid::JointVector& DeformationCompensator::input(const humanoid::Joint
     return command_;
   }
   input_torque_ = torque(desired, pelvis_R, support);
-  for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / params_.k_joint[j];  // eq. 9
+  for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / stiffness_[j];  // eq. 9
   return command_;
 }
 
@@ -137,7 +90,7 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
       G.block<kLegJoints, 1>(kLegJoints, j + kLegJoints) = difference.tail<kLegJoints>();
     }
   };
-  const LinkAngleEstimate<kLegDofs> e = solve_link_angles<kLegDofs>(legs_of(encoder), legs_of(params_.k_joint),
+  const LinkAngleEstimate<kLegDofs> e = solve_link_angles<kLegDofs>(legs_of(encoder), legs_of(stiffness_),
                                                                     leg_torque, leg_jacobian, params_.newton);
   estimate_.newton = estimate_.one_step = estimate_.conventional = encoder;  // the waist carries no τ_g
   set_legs(estimate_.newton, e.newton);

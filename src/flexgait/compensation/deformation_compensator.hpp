@@ -17,18 +17,26 @@
 #include "flexgait/compensation/gravity_torque.hpp"
 #include "flexgait/compensation/link_angle_newton.hpp"
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::compensation {
 
 enum class CompensationMode { kOff, kInput, kOutput, kBoth };
-std::string_view to_string(CompensationMode mode);
+constexpr std::array<EnumName<CompensationMode>, 4> enum_names(CompensationMode) {
+  return {{{CompensationMode::kOff, "off"},
+           {CompensationMode::kInput, "input"},
+           {CompensationMode::kOutput, "output"},
+           {CompensationMode::kBoth, "both"}}};
+}
 
 /// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
 /// thesis), or the controller's reference ZMP (where the ground force acts in a dynamic gait; it
 /// moves onto the stance sole by the end of double support, so the split is continuous at lift-off).
 enum class WeightSplit { kCom, kZmpReference };
-std::string_view to_string(WeightSplit split);
+constexpr std::array<EnumName<WeightSplit>, 2> enum_names(WeightSplit) {
+  return {{{WeightSplit::kCom, "com"}, {WeightSplit::kZmpReference, "zmp"}}};
+}
 
 /// What the walking controller plans at this instant.
 struct SupportPlan {
@@ -41,13 +49,37 @@ struct CompensationParams {
   CompensationMode mode = CompensationMode::kBoth;
   GravityForm gravity = GravityForm::kFull;
   WeightSplit split = WeightSplit::kZmpReference;
-  humanoid::JointVector k_joint = [] {  ///< the controller's belief of each gear's stiffness [Nm/rad]
-    humanoid::JointVector k;
-    k.fill(1000.0);
-    return k;
+  double k_joint = 1000.0;  ///< the controller's belief of the gears' stiffness [Nm/rad], times k_scale per joint
+  humanoid::JointVector k_scale = [] {  ///< factor on k_joint for each joint (not a key)
+    humanoid::JointVector ones;
+    ones.fill(1.0);
+    return ones;
   }();
   NewtonSettings newton;
   double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ [rad]
+
+  /// The belief of each gear's stiffness, k_joint × k_scale [Nm/rad].
+  humanoid::JointVector stiffness() const {
+    humanoid::JointVector k;
+    for (int j = 0; j < humanoid::kJoints; ++j) k[j] = k_joint * k_scale[j];
+    return k;
+  }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("control.compensation", s.mode,
+      {.doc = "actuator deformation compensation: none, the input compensator (eqs. 8-9), the output "
+              "compensator (eqs. 10-13) or both"});
+    v("control.gravity_model", s.gravity, {.doc = "gravity torque: thesis = J^T F only (eq. 4), full = the legs' own weight too"});
+    v("control.weight_split", s.split,
+      {.doc = "split of the weight between the feet (eqs. 5-6) about: com = the pose's centre of mass (the "
+              "thesis), zmp = the reference ZMP (continuous at lift-off in a dynamic gait)"});
+    v("control.k_joint", s.k_joint, {.unit = "Nm/rad", .doc = "the controller's belief of the gears' stiffness", .bounds = closed(1, 1e7)});
+    v("control.newton_max_iterations", s.newton.max_iterations,
+      {.doc = "output compensator: Newton steps at most", .bounds = closed(1, 100)});
+    v("control.newton_tolerance", s.newton.tolerance,
+      {.unit = "rad", .doc = "output compensator: converged when |N(theta)| <= this", .bounds = closed(1e-15, 1e-3)});
+  }
 
   bool input() const { return mode == CompensationMode::kInput || mode == CompensationMode::kBoth; }
   bool output() const { return mode == CompensationMode::kOutput || mode == CompensationMode::kBoth; }
@@ -55,8 +87,10 @@ struct CompensationParams {
 
 /// Keys control.compensation, control.gravity_model, control.weight_split, control.k_joint,
 /// control.newton_*.
-Schema compensation_schema();
-CompensationParams compensation_from_config(const Config& config);
+inline Schema compensation_schema() { return schema_of<CompensationParams>(); }
+inline CompensationParams compensation_from_config(const Config& config) {
+  return record_from_config<CompensationParams>(config);
+}
 
 inline constexpr int kLegDofs = 2 * humanoid::kLegJoints;  ///< the unknowns of the output compensator
 using LegVector = Eigen::Matrix<double, kLegDofs, 1>;       ///< left leg then right leg, kinematic order
@@ -101,6 +135,7 @@ class DeformationCompensator {
 
   walking::RobotModel model_;
   CompensationParams params_;
+  humanoid::JointVector stiffness_;  ///< params_.stiffness(), computed once [Nm/rad]
   walking::RobotModelData data_;
   FootLoads plan_loads_;  ///< the split about the reference ZMP (kZmpReference), from the plan
   humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};

@@ -6,7 +6,6 @@ namespace flexgait::compensation {
 
 using walking::Vector3d;
 
-std::string_view to_string(GravityForm form) { return form == GravityForm::kThesis ? "thesis" : "full"; }
 
 double weight_split(const Eigen::Vector2d& point, const Eigen::Vector2d& left, const Eigen::Vector2d& right) {
   const Eigen::Vector2d span = left - right;

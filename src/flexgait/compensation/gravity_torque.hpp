@@ -23,13 +23,16 @@
 #include <array>
 #include <string_view>
 
+#include "flexgait/core/enum_names.hpp"
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::compensation {
 
 enum class GravityForm { kThesis, kFull };
-std::string_view to_string(GravityForm form);
+constexpr std::array<EnumName<GravityForm>, 2> enum_names(GravityForm) {
+  return {{{GravityForm::kThesis, "thesis"}, {GravityForm::kFull, "full"}}};
+}
 
 /// μ of eqs. 5-6: the share of the weight on the left foot, from a point's ground projection (the
 /// COM in the thesis) and the sole centres (world xy) [-], clamped to [0, 1]; 0.5 when the soles

@@ -11,26 +11,21 @@
 #include <stdexcept>
 
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/core/progress.hpp"
 
 namespace flexgait {
 namespace {
 
-// Finished rows of a partial file: complete lines "index,cells"; a torn last line is dropped.
+// Finished rows of a partial file: complete CSV records "index,cells"; a torn last record is dropped.
 std::map<int, std::string> read_partial(const std::filesystem::path& p, int count) {
   std::map<int, std::string> rows;
-  const std::string text = read_text_file(p);
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) break;  // no newline: torn by an interruption
-    const std::string line = text.substr(start, end - start);
-    start = end + 1;
-    const std::size_t comma = line.find(',');
+  for (const CsvRecord& record : parse_csv(read_text_file(p))) {
+    const std::size_t comma = record.text.find(',');
     if (comma == std::string::npos) continue;
     try {
-      const int i = std::stoi(line.substr(0, comma));
-      if (i >= 0 && i < count) rows[i] = line.substr(comma + 1);
+      const int i = std::stoi(record.text.substr(0, comma));
+      if (i >= 0 && i < count) rows[i] = record.text.substr(comma + 1);
     } catch (const std::exception&) {
     }
   }

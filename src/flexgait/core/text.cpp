@@ -8,11 +8,53 @@ namespace flexgait {
 
 std::string format_number(double v) { return fmt::format("{}", v); }
 
-std::string csv_safe(std::string_view text) {
-  std::string s(text);
-  for (char& ch : s)
-    if (ch == ',' || ch == '"' || ch == '\n' || ch == '\r') ch = ';';
-  return s;
+std::string csv_field(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string out = "\"";
+  for (const char ch : text) {
+    if (ch == '"') out += '"';
+    out += ch;
+  }
+  out += '"';
+  return out;
+}
+
+std::vector<CsvRecord> parse_csv(std::string_view text) {
+  std::vector<CsvRecord> records;
+  CsvRecord current;
+  std::string field;
+  bool quoted = false;       // inside a quoted field
+  std::size_t start = 0;     // where the current record's text starts
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (quoted) {
+      if (ch != '"') {
+        field += ch;
+      } else if (i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else {
+        quoted = false;
+      }
+    } else if (ch == '"') {
+      quoted = true;
+    } else if (ch == ',') {
+      current.fields.push_back(std::move(field));
+      field.clear();
+    } else if (ch == '\n' || (ch == '\r' && i + 1 < text.size() && text[i + 1] == '\n')) {
+      const std::size_t end = i;
+      if (ch == '\r') ++i;
+      current.fields.push_back(std::move(field));
+      field.clear();
+      current.text = std::string(text.substr(start, end - start));
+      records.push_back(std::move(current));
+      current = {};
+      start = i + 1;
+    } else {
+      field += ch;
+    }
+  }
+  return records;  // a record without its line end is torn: left out
 }
 
 CsvWriter::CsvWriter(const std::vector<std::string>& columns) : columns_(columns.size()) {
@@ -42,7 +84,7 @@ CsvWriter& CsvWriter::cell(long long v) {
 
 CsvWriter& CsvWriter::cell(std::string_view text) {
   separator();
-  text_ += text;
+  text_ += csv_field(text);
   return *this;
 }
 

@@ -10,10 +10,23 @@ namespace flexgait {
 /// Shortest decimal text that reads back to the identical double ("nan"/"inf" as such).
 std::string format_number(double v);
 
-/// The text with the characters that would break a CSV cell (, " newline) replaced by ';'.
-std::string csv_safe(std::string_view text);
+/// One CSV field as RFC 4180 writes it: the text itself, or, when it holds a comma, a double
+/// quote, a carriage return or a line feed, the text in double quotes with each quote doubled.
+std::string csv_field(std::string_view text);
 
-/// Builds a CSV document in memory, one row at a time; numbers use format_number.
+/// One CSV record: its fields, and the record's raw text (without its line end).
+struct CsvRecord {
+  std::vector<std::string> fields;
+  std::string text;
+};
+
+/// The records of RFC 4180 CSV text (LF or CRLF line ends; quoted fields may hold commas, quotes
+/// and line ends). A last record without its line end — a file torn by an interruption — is
+/// left out, so is one whose quotes are not closed.
+std::vector<CsvRecord> parse_csv(std::string_view text);
+
+/// Builds a CSV document in memory, one row at a time; numbers use format_number, text is
+/// quoted as RFC 4180 asks (csv_field).
 class CsvWriter {
  public:
   explicit CsvWriter(const std::vector<std::string>& columns);

@@ -1,7 +1,6 @@
 #include "flexgait/experiments/bench_output.hpp"
 
-#include <nlohmann/json.hpp>
-
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/text.hpp"
 
 namespace flexgait::experiments {
@@ -19,21 +18,6 @@ std::string bench_csv(const humanoid::BenchResult& r) {
   return csv.str();
 }
 
-std::string bench_summary_json(const humanoid::BenchParams& params, const humanoid::BenchResult& r) {
-  nlohmann::ordered_json j;
-  j["k_true"] = params.actuator.k;
-  j["k_fit"] = r.k_fit;
-  j["k_fit_error"] = (r.k_fit - params.actuator.k) / params.actuator.k;
-  j["r_squared"] = r.r_squared;
-  j["max_error_uncompensated"] = r.max_error_uncompensated;
-  j["max_error_compensated"] = r.max_error_compensated;
-  j["residual_compensated_min"] = r.min_residual_compensated;
-  j["residual_compensated_max"] = r.max_residual_compensated;
-  j["estimate_newton_error_max"] = r.max_error_newton;
-  j["estimate_conventional_error_max"] = r.max_error_conventional;
-  j["newton_conventional_max"] = r.max_newton_conventional;
-  j["newton_iterations_max"] = r.max_newton_iterations;
-  return j.dump(2) + "\n";
-}
+std::string bench_summary_json(const humanoid::BenchResult& r) { return record_json(r).dump(2) + "\n"; }
 
 }  // namespace flexgait::experiments

@@ -10,6 +10,6 @@ namespace flexgait::experiments {
 /// One row per pose of both sweeps: command, encoder, true link, gravity torque, errors, estimates.
 std::string bench_csv(const humanoid::BenchResult& result);
 /// k_fit against the true k, R², errors uncompensated and compensated, the output estimates' errors.
-std::string bench_summary_json(const humanoid::BenchParams& params, const humanoid::BenchResult& result);
+std::string bench_summary_json(const humanoid::BenchResult& result);
 
 }  // namespace flexgait::experiments

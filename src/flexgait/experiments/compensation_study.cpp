@@ -43,8 +43,8 @@ std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vect
   for (const double s : scales) {
     for (const CompensationMode mode : {CompensationMode::kOff, CompensationMode::kBoth}) {
       WalkRunParams p = with(base, mode, base.control.gravity);
-      for (auto& k : p.plant.k_joint) k *= s;
-      cases.push_back({fmt::format("k{:03.0f}-{}", 100 * s, compensation::to_string(mode)), p});
+      p.plant.k_joint *= s;
+      cases.push_back({fmt::format("k{:03.0f}-{}", 100 * s, name_of(mode)), p});
     }
   }
   return cases;
@@ -57,18 +57,18 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   nlohmann::ordered_json j;
   j["step_time"] = cases.front().params.walk.step_time;
   j["steps"] = cases.front().params.walk.steps;
-  j["k_joint_true"] = cases.front().params.plant.k_joint[humanoid::kLeftHipRoll];
-  j["k_joint_belief"] = cases.front().params.control.k_joint[humanoid::kLeftHipRoll];
-  j["weight_split"] = compensation::to_string(cases.front().params.control.split);
+  j["k_joint_true"] = cases.front().params.plant.gear_stiffness()[humanoid::kLeftHipRoll];
+  j["k_joint_belief"] = cases.front().params.control.stiffness()[humanoid::kLeftHipRoll];
+  j["weight_split"] = std::string(name_of(cases.front().params.control.split));
   j["pelvis_roll_error_max_off"] = off.pelvis_roll_error_max;
   j["pelvis_roll_error_max_on"] = on.pelvis_roll_error_max;
   j["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, on.pelvis_roll_error_max);
   j["pelvis_roll_error_max_thesis_form"] = thesis.pelvis_roll_error_max;
   j["pelvis_pitch_error_max_off"] = off.pelvis_pitch_error_max;
   j["pelvis_pitch_error_max_on"] = on.pelvis_pitch_error_max;
-  j["zmp_single_support_rms_y_off"] = off.zmp_ss_rms_y;
-  j["zmp_single_support_rms_y_on"] = on.zmp_ss_rms_y;
-  j["zmp_single_support_rms_y_cut"] = cut(off.zmp_ss_rms_y, on.zmp_ss_rms_y);
+  j["zmp_single_support_rms_y_off"] = off.zmp_single_support_rms_y;
+  j["zmp_single_support_rms_y_on"] = on.zmp_single_support_rms_y;
+  j["zmp_single_support_rms_y_cut"] = cut(off.zmp_single_support_rms_y, on.zmp_single_support_rms_y);
   j["zmp_rms_x_off"] = off.zmp_rms_x;
   j["zmp_rms_x_on"] = on.zmp_rms_x;
   j["landing_error_mean_off"] = off.landing_error_mean;
@@ -98,8 +98,8 @@ std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const 
     const WalkMetrics& off = results[i].metrics;
     const WalkMetrics& on = results[i + 1].metrics;
     nlohmann::ordered_json r;
-    r["k_joint_true"] = p.plant.k_joint[humanoid::kLeftHipRoll];
-    r["k_joint_belief"] = p.control.k_joint[humanoid::kLeftHipRoll];
+    r["k_joint_true"] = p.plant.gear_stiffness()[humanoid::kLeftHipRoll];
+    r["k_joint_belief"] = p.control.stiffness()[humanoid::kLeftHipRoll];
     r["fell_off"] = off.fell;
     r["fell_on"] = on.fell;
     r["steps_off"] = off.steps_completed;
@@ -107,8 +107,8 @@ std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const 
     r["pelvis_roll_error_max_off"] = off.pelvis_roll_error_max;
     r["pelvis_roll_error_max_on"] = on.pelvis_roll_error_max;
     r["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, on.pelvis_roll_error_max);
-    r["zmp_single_support_rms_y_off"] = off.zmp_ss_rms_y;
-    r["zmp_single_support_rms_y_on"] = on.zmp_ss_rms_y;
+    r["zmp_single_support_rms_y_off"] = off.zmp_single_support_rms_y;
+    r["zmp_single_support_rms_y_on"] = on.zmp_single_support_rms_y;
     r["link_error_rms_off"] = off.link_error_rms;
     r["link_error_rms_on"] = on.link_error_rms;
     rows.push_back(r);

@@ -25,23 +25,10 @@ struct Accumulator {  // root mean square and maximum of |value|
 
 }  // namespace
 
-Schema walk_run_schema() {
-  Schema s = humanoid::robot_schema();
-  s.merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
-  s.merge(compensation::compensation_schema());
-  s.add(real_param("output.log_period", "0.02", "s", "period of the logged samples", 1e-4, 10));
-  return s;
-}
-
 WalkRunParams walk_run_from_config(const Config& c) {
-  WalkRunParams p;
-  p.robot = humanoid::robot_from_config(c);
-  p.plant = humanoid::plant_from_config(c);
+  WalkRunParams p = record_from_config<WalkRunParams>(c);
+  p.plant = humanoid::plant_from_config(c);  // with its cross-key check
   p.controller_robot = p.robot;
-  p.walk = walking::walk_from_config(c);
-  p.balance = walking::balance_from_config(c);
-  p.control = compensation::compensation_from_config(c);
-  p.log_period = c.real("output.log_period");
   return p;
 }
 
@@ -60,8 +47,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   WalkMetrics& m = out.metrics;
   m.steps_planned = static_cast<int>(out.plan.steps.size());
   m.riccati_residual = controller.gains().riccati_residual;
-  m.compensation = compensation::to_string(params.control.mode);
-  m.gravity_model = compensation::to_string(params.control.gravity);
+  m.compensation = params.control.mode;
+  m.gravity_model = params.control.gravity;
 
   // Truth → plan frame: the offset between the initial feet.
   humanoid::GroundTruth g = plant.truth();
@@ -250,9 +237,9 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.zmp_rms_y = zy.rms();
   m.zmp_max_x = zx.max;
   m.zmp_max_y = zy.max;
-  m.zmp_ss_rms_y = zss.rms();
+  m.zmp_single_support_rms_y = zss.rms();
   m.zmp_ft_rms_error = zft.rms();
-  m.zmp_belief_rms_error = zbelief.rms();
+  m.zmp_controller_rms_error = zbelief.rms();
   m.pelvis_roll_error_max = roll.max;
   m.pelvis_roll_error_rms = roll.rms();
   m.pelvis_pitch_error_max = pitch.max;
@@ -271,13 +258,13 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.newton_conventional_max = newton_vs_conventional.max;
   m.link_error_rms = link_error.rms();
   m.link_error_max = link_error.max;
-  m.roll_kin_encoder_rms = roll_kin_encoder.rms();
-  m.roll_kin_estimate_rms = roll_kin_estimate.rms();
+  m.pelvis_roll_kinematic_encoder_rms = roll_kin_encoder.rms();
+  m.pelvis_roll_kinematic_estimate_rms = roll_kin_estimate.rms();
   m.newton_iterations_mean = newton_calls > 0 ? static_cast<double>(newton_iterations) / newton_calls : 0.0;
   m.com_error_rms = com.rms();
   m.com_error_max = com.max;
   if (!std::isfinite(m.support_margin_min)) m.support_margin_min = 0;
-  m.warnings = g.warnings;
+  m.mujoco_warnings = g.warnings;
   m.simulated_time = g.t;
   m.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   m.real_time_factor = m.wall_time > 0 ? m.simulated_time / m.wall_time : 0.0;

@@ -14,6 +14,7 @@
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/humanoid/plant.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
 #include "flexgait/walking/walk_params.hpp"
@@ -31,10 +32,22 @@ struct WalkRunParams {
   double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                  ///< or tilts this far [rad]
+
+  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, output.log_period (the controller's
+  /// belief of the robot and the fall thresholds are not keys).
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    humanoid::RobotParams::visit_fields(s.robot, v);
+    humanoid::PlantParams::visit_fields(s.plant, v);
+    walking::WalkParams::visit_fields(s.walk, v);
+    walking::BalanceParams::visit_fields(s.balance, v);
+    compensation::CompensationParams::visit_fields(s.control, v);
+    v("output.log_period", s.log_period, {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
+  }
 };
 
-/// Keys robot.*, plant.*, walk.*, balance.*, control.*, output.log_period.
-Schema walk_run_schema();
+inline Schema walk_run_schema() { return schema_of<WalkRunParams>(); }
+/// The run's parameters (the controller believes the twin's robot); throws ConfigError as plant_from_config.
 WalkRunParams walk_run_from_config(const Config& config);
 
 struct WalkSample {
@@ -72,28 +85,30 @@ struct Landing {
   double error = 0;  ///< horizontal distance [m]
 };
 
+/// The scores of a walk (`summary.json`, in this order; wall time and real-time factor go to
+/// `timing.json` only, so that summary.json is the same bytes on every run).
 struct WalkMetrics {
-  std::string compensation = "off";  ///< control.compensation of the run
-  std::string gravity_model;         ///< control.gravity_model
+  compensation::CompensationMode compensation = compensation::CompensationMode::kOff;  ///< control.compensation
+  compensation::GravityForm gravity_model = compensation::GravityForm::kFull;           ///< control.gravity_model
   bool fell = false;
   std::string fall_reason;         ///< "" when it did not fall
   double fall_time = 0;            ///< [s]
   int steps_planned = 0, steps_completed = 0;
   double zmp_rms_x = 0, zmp_rms_y = 0;  ///< true ZMP − reference over the walk [m]
   double zmp_max_x = 0, zmp_max_y = 0;
-  double zmp_ss_rms_y = 0;              ///< the same in single support only [m]
+  double zmp_single_support_rms_y = 0;  ///< the same in single support only [m]
   double zmp_ft_rms_error = 0;          ///< F/T ZMP (soles where they are) against the contact forces' [m]
-  double zmp_belief_rms_error = 0;      ///< the controller's F/T ZMP (soles where planned) against the true [m]
+  double zmp_controller_rms_error = 0;  ///< the controller's F/T ZMP (soles where planned) against the true [m]
   double support_margin_min = 0;        ///< smallest margin of the true ZMP inside the true support polygon [m]
   double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;   ///< IMU against level [rad]
   double pelvis_pitch_error_max = 0, pelvis_pitch_error_rms = 0;
   double landing_error_max = 0, landing_error_mean = 0;          ///< [m]
   double com_error_rms = 0, com_error_max = 0;                   ///< true COM − planned (xy) [m]
   int ik_clamped = 0;                   ///< control periods with a leg target out of reach
-  int warnings = 0;                     ///< MuJoCo warnings
+  int mujoco_warnings = 0;              ///< MuJoCo warnings
   double simulated_time = 0;            ///< [s]
-  double wall_time = 0;                 ///< [s]
-  double real_time_factor = 0;
+  double wall_time = 0;                 ///< [s] (timing.json)
+  double real_time_factor = 0;          ///< (timing.json)
   double riccati_residual = 0;
   // Deformation (leg joints, over the walk): deflection = θ_enc − θ_link (true).
   double deflection_rms = 0, deflection_max = 0;             ///< [rad]
@@ -102,10 +117,71 @@ struct WalkMetrics {
   double conventional_error_rms = 0, conventional_error_max = 0;  ///< [rad]
   double newton_conventional_max = 0;                        ///< max |θ̂ − conventional| [rad]
   double link_error_rms = 0, link_error_max = 0;             ///< θ_link − θ_d: what input compensation removes [rad]
-  double roll_kin_encoder_rms = 0, roll_kin_estimate_rms = 0; ///< single support, against the IMU [rad]
+  double pelvis_roll_kinematic_encoder_rms = 0, pelvis_roll_kinematic_estimate_rms = 0;  ///< single support, against the IMU [rad]
   int newton_iterations_max = 0;
   double newton_iterations_mean = 0;
   int newton_failures = 0;                                   ///< control periods not converged (fallback used)
+
+  /// The output compensator ran: its estimator's scores apply.
+  bool has_estimate() const {
+    return compensation == compensation::CompensationMode::kOutput || compensation == compensation::CompensationMode::kBoth;
+  }
+  /// rms estimator error over rms deflection (0 without deflection).
+  double estimate_error_share_of_deflection() const { return deflection_rms > 0 ? estimate_error_rms / deflection_rms : 0.0; }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("compensation", s.compensation, {.doc = "control.compensation of the run"});
+    v("gravity_model", s.gravity_model, {.doc = "control.gravity_model of the run"});
+    v("fell", s.fell, {.doc = "the robot fell (pelvis too low or tilted, a body other than a sole on the floor)"});
+    v("fall_reason", s.fall_reason, {.doc = "why it fell; empty when it did not"});
+    v("fall_time", s.fall_time, {.unit = "s", .doc = "when it fell"});
+    v("steps_planned", s.steps_planned, {.doc = "footsteps in the plan"});
+    v("steps_completed", s.steps_completed, {.doc = "footsteps landed"});
+    v("zmp_rms_x", s.zmp_rms_x, {.unit = "m", .doc = "rms of true ZMP − reference, x"});
+    v("zmp_rms_y", s.zmp_rms_y, {.unit = "m", .doc = "rms of true ZMP − reference, y"});
+    v("zmp_max_x", s.zmp_max_x, {.unit = "m", .doc = "max |true ZMP − reference|, x"});
+    v("zmp_max_y", s.zmp_max_y, {.unit = "m", .doc = "max |true ZMP − reference|, y"});
+    v("zmp_single_support_rms_y", s.zmp_single_support_rms_y, {.unit = "m", .doc = "rms of true ZMP − reference, y, single support"});
+    v("zmp_ft_rms_error", s.zmp_ft_rms_error, {.unit = "m", .doc = "F/T ZMP (soles where they are) against the contact forces'"});
+    v("zmp_controller_rms_error", s.zmp_controller_rms_error,
+      {.unit = "m", .doc = "the controller's F/T ZMP (soles where planned) against the true"});
+    v("support_margin_min", s.support_margin_min, {.unit = "m", .doc = "smallest margin of the true ZMP inside the true support polygon"});
+    v("pelvis_roll_error_max", s.pelvis_roll_error_max, {.unit = "rad", .doc = "max |IMU roll| (level commanded)"});
+    v("pelvis_roll_error_rms", s.pelvis_roll_error_rms, {.unit = "rad", .doc = "rms IMU roll"});
+    v("pelvis_pitch_error_max", s.pelvis_pitch_error_max, {.unit = "rad", .doc = "max |IMU pitch|"});
+    v("pelvis_pitch_error_rms", s.pelvis_pitch_error_rms, {.unit = "rad", .doc = "rms IMU pitch"});
+    v("landing_error_max", s.landing_error_max, {.unit = "m", .doc = "largest horizontal distance landed − planned"});
+    v("landing_error_mean", s.landing_error_mean, {.unit = "m", .doc = "mean horizontal distance landed − planned"});
+    v("com_error_rms", s.com_error_rms, {.unit = "m", .doc = "rms of true COM − planned (xy)"});
+    v("com_error_max", s.com_error_max, {.unit = "m", .doc = "max |true COM − planned| (xy)"});
+    v("deflection_rms", s.deflection_rms, {.unit = "rad", .doc = "rms gear deflection θ_enc − θ_link, leg joints"});
+    v("deflection_max", s.deflection_max, {.unit = "rad", .doc = "max gear deflection, leg joints"});
+    v("link_error_rms", s.link_error_rms, {.unit = "rad", .doc = "rms θ_link − θ_d (what input compensation removes)"});
+    v("link_error_max", s.link_error_max, {.unit = "rad", .doc = "max |θ_link − θ_d|"});
+    const bool estimate = s.has_estimate();
+    v("estimate_error_rms", s.estimate_error_rms, {.unit = "rad", .doc = "rms θ̂ (Newton, eq. 11) − θ_link", .present = estimate});
+    v("estimate_error_max", s.estimate_error_max, {.unit = "rad", .doc = "max |θ̂ − θ_link|", .present = estimate});
+    double share = s.estimate_error_share_of_deflection();
+    v("estimate_error_share_of_deflection", share,
+      {.doc = "estimate_error_rms / deflection_rms (derived)", .present = estimate});
+    v("one_step_error_rms", s.one_step_error_rms, {.unit = "rad", .doc = "rms of the one-step estimate (eq. 12) − θ_link", .present = estimate});
+    v("conventional_error_rms", s.conventional_error_rms,
+      {.unit = "rad", .doc = "rms of θ_enc − τ_g(θ_enc)/k − θ_link", .present = estimate});
+    v("conventional_error_max", s.conventional_error_max, {.unit = "rad", .doc = "max of the same", .present = estimate});
+    v("newton_conventional_max", s.newton_conventional_max, {.unit = "rad", .doc = "max |θ̂ − conventional|", .present = estimate});
+    v("newton_iterations_max", s.newton_iterations_max, {.doc = "Newton iterations, most in one period", .present = estimate});
+    v("newton_iterations_mean", s.newton_iterations_mean, {.doc = "Newton iterations per period, mean", .present = estimate});
+    v("newton_failures", s.newton_failures, {.doc = "control periods Newton did not converge (fallback used)", .present = estimate});
+    v("pelvis_roll_kinematic_estimate_rms", s.pelvis_roll_kinematic_estimate_rms,
+      {.unit = "rad", .doc = "pelvis roll by kinematics through θ̂ − IMU, single support, rms", .present = estimate});
+    v("pelvis_roll_kinematic_encoder_rms", s.pelvis_roll_kinematic_encoder_rms,
+      {.unit = "rad", .doc = "pelvis roll by kinematics through the encoders − IMU, single support, rms"});
+    v("ik_clamped", s.ik_clamped, {.doc = "control periods with a leg target out of reach"});
+    v("mujoco_warnings", s.mujoco_warnings, {.doc = "MuJoCo warnings during the walk"});
+    v("riccati_residual", s.riccati_residual, {.doc = "relative residual of the preview controller's DARE"});
+    v("simulated_time", s.simulated_time, {.unit = "s", .doc = "simulated time"});
+  }
 };
 
 struct WalkResult {

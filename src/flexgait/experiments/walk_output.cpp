@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/text.hpp"
 
 #include <array>
@@ -65,56 +66,7 @@ std::string walk_footsteps_csv(const WalkResult& r) {
   return csv.str();
 }
 
-std::string walk_summary_json(const WalkResult& r) {
-  const WalkMetrics& m = r.metrics;
-  nlohmann::ordered_json j;
-  j["compensation"] = m.compensation;
-  j["gravity_model"] = m.gravity_model;
-  j["fell"] = m.fell;
-  j["fall_reason"] = m.fall_reason;
-  j["fall_time"] = m.fall_time;
-  j["steps_planned"] = m.steps_planned;
-  j["steps_completed"] = m.steps_completed;
-  j["zmp_rms_x"] = m.zmp_rms_x;
-  j["zmp_rms_y"] = m.zmp_rms_y;
-  j["zmp_max_x"] = m.zmp_max_x;
-  j["zmp_max_y"] = m.zmp_max_y;
-  j["zmp_single_support_rms_y"] = m.zmp_ss_rms_y;
-  j["zmp_ft_rms_error"] = m.zmp_ft_rms_error;
-  j["zmp_controller_rms_error"] = m.zmp_belief_rms_error;
-  j["support_margin_min"] = m.support_margin_min;
-  j["pelvis_roll_error_max"] = m.pelvis_roll_error_max;
-  j["pelvis_roll_error_rms"] = m.pelvis_roll_error_rms;
-  j["pelvis_pitch_error_max"] = m.pelvis_pitch_error_max;
-  j["pelvis_pitch_error_rms"] = m.pelvis_pitch_error_rms;
-  j["landing_error_max"] = m.landing_error_max;
-  j["landing_error_mean"] = m.landing_error_mean;
-  j["com_error_rms"] = m.com_error_rms;
-  j["com_error_max"] = m.com_error_max;
-  j["deflection_rms"] = m.deflection_rms;
-  j["deflection_max"] = m.deflection_max;
-  j["link_error_rms"] = m.link_error_rms;
-  j["link_error_max"] = m.link_error_max;
-  if (m.compensation == "output" || m.compensation == "both") {
-    j["estimate_error_rms"] = m.estimate_error_rms;
-    j["estimate_error_max"] = m.estimate_error_max;
-    j["estimate_error_share_of_deflection"] = m.deflection_rms > 0 ? m.estimate_error_rms / m.deflection_rms : 0.0;
-    j["one_step_error_rms"] = m.one_step_error_rms;
-    j["conventional_error_rms"] = m.conventional_error_rms;
-    j["conventional_error_max"] = m.conventional_error_max;
-    j["newton_conventional_max"] = m.newton_conventional_max;
-    j["newton_iterations_max"] = m.newton_iterations_max;
-    j["newton_iterations_mean"] = m.newton_iterations_mean;
-    j["newton_failures"] = m.newton_failures;
-    j["pelvis_roll_kinematic_estimate_rms"] = m.roll_kin_estimate_rms;
-  }
-  j["pelvis_roll_kinematic_encoder_rms"] = m.roll_kin_encoder_rms;
-  j["ik_clamped"] = m.ik_clamped;
-  j["mujoco_warnings"] = m.warnings;
-  j["riccati_residual"] = m.riccati_residual;
-  j["simulated_time"] = m.simulated_time;
-  return j.dump(2) + "\n";
-}
+std::string walk_summary_json(const WalkResult& r) { return record_json(r.metrics).dump(2) + "\n"; }
 
 std::string walk_timing_json(const WalkResult& r) {
   nlohmann::ordered_json j;

@@ -16,6 +16,7 @@ std::string joint(const std::string& name, const char* axis, double k, double d,
 }
 
 std::string leg(const RobotParams& r, const PlantParams& p, int side) {
+  const JointVector k = p.gear_stiffness();
   const char* s = side == 0 ? "l" : "r";
   const double y = side == 0 ? r.hip_yaw_offset_y : -r.hip_yaw_offset_y;
   const int j0 = leg_first_joint(side);
@@ -52,17 +53,17 @@ std::string leg(const RobotParams& r, const PlantParams& p, int side) {
         </body>
       </body>)",
       fmt::arg("s", s), fmt::arg("y", y), fmt::arg("zy", -r.hip_yaw_offset_z),
-      fmt::arg("j_yaw", joint(std::string(s) + "_hip_yaw", "0 0 1", p.k_joint[j0 + 0], d)),
+      fmt::arg("j_yaw", joint(std::string(s) + "_hip_yaw", "0 0 1", k[j0 + 0], d)),
       fmt::arg("m_yaw", r.m_hip_yaw), fmt::arg("com_yaw", r.hip_yaw_com_z), fmt::arg("zr", -(r.hip_axes_depth - r.hip_yaw_offset_z)),
-      fmt::arg("j_roll", joint(std::string(s) + "_hip_roll", "1 0 0", p.k_joint[j0 + 1], d)),
+      fmt::arg("j_roll", joint(std::string(s) + "_hip_roll", "1 0 0", k[j0 + 1], d)),
       fmt::arg("m_roll", r.m_hip_roll),
-      fmt::arg("j_pitch", joint(std::string(s) + "_hip_pitch", "0 1 0", p.k_joint[j0 + 2], d)),
+      fmt::arg("j_pitch", joint(std::string(s) + "_hip_pitch", "0 1 0", k[j0 + 2], d)),
       fmt::arg("thigh_end", -r.thigh + 0.04), fmt::arg("m_thigh", r.m_thigh), fmt::arg("thigh", -r.thigh),
-      fmt::arg("j_knee", joint(std::string(s) + "_knee", "0 1 0", p.k_joint[j0 + 3], d)),
+      fmt::arg("j_knee", joint(std::string(s) + "_knee", "0 1 0", k[j0 + 3], d)),
       fmt::arg("shank_end", -r.shank + 0.04), fmt::arg("m_shank", r.m_shank), fmt::arg("shank", -r.shank),
-      fmt::arg("j_ap", joint(std::string(s) + "_ankle_pitch", "0 1 0", p.k_joint[j0 + 4], d)),
+      fmt::arg("j_ap", joint(std::string(s) + "_ankle_pitch", "0 1 0", k[j0 + 4], d)),
       fmt::arg("m_ap", r.m_ankle_pitch),
-      fmt::arg("j_ar", joint(std::string(s) + "_ankle_roll", "1 0 0", p.k_joint[j0 + 5], d)),
+      fmt::arg("j_ar", joint(std::string(s) + "_ankle_roll", "1 0 0", k[j0 + 5], d)),
       fmt::arg("m_ar", r.m_ankle_roll), fmt::arg("sole_z", -(r.ankle_to_sole - 0.5 * sole_h)),
       fmt::arg("half_l", 0.5 * r.sole_length), fmt::arg("half_w", 0.5 * r.sole_width), fmt::arg("half_h", 0.5 * sole_h),
       fmt::arg("m_foot", r.m_foot), fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant));
@@ -71,6 +72,7 @@ std::string leg(const RobotParams& r, const PlantParams& p, int side) {
 }  // namespace
 
 std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
+  const JointVector k = p.gear_stiffness();
   const double extra = r.total_mass - r.listed_mass();  // batteries and computers [kg]
   if (extra < -1e-9) throw std::invalid_argument("robot.total_mass is below the sum of the listed links");
   return fmt::format(R"(<mujoco model="flexgait_thormang_twin">
@@ -111,7 +113,7 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
 )",
                      fmt::arg("dt", p.physics_dt), fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant),
                      fmt::arg("m_pelvis", r.m_pelvis + 0.5 * extra), fmt::arg("m_chest", r.m_chest + 0.5 * extra),
-                     fmt::arg("j_waist", joint("waist_yaw", "0 0 1", p.k_joint[kWaistYaw], p.gear_damping)),
+                     fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[kWaistYaw], p.gear_damping)),
                      fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z),
                      fmt::arg("arm_y", r.arm_y), fmt::arg("arm_top", r.arm_com_z + 0.24),
                      fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),

@@ -51,7 +51,7 @@ HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
     joint_id_[j] = require(model_, mjOBJ_JOINT, std::string(kJointNames[j]));
     joints.push_back(joint_id_[j]);
     ActuatorParams a;
-    a.k = params_.k_joint[j];
+    a.k = params_.k_joint * params_.k_scale[j];
     a.d = params_.gear_damping;
     a.backlash = params_.backlash;
     a.torque_limit = params_.torque_limit;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/humanoid/joints.hpp"
 
 namespace flexgait::humanoid {
@@ -43,11 +44,26 @@ struct RobotParams {
     return 2 * (m_hip_yaw + m_hip_roll + m_thigh + m_shank + m_ankle_pitch + m_ankle_roll + m_foot) + m_pelvis +
            m_chest + 2 * m_arm + m_head;
   }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("robot.total_mass", s.total_mass,
+      {.unit = "kg", .doc = "total mass; the mass beyond the listed links goes to pelvis and chest", .bounds = closed(43.72, 500)});
+    v("robot.thigh", s.thigh, {.unit = "m", .doc = "hip pitch axis to knee", .bounds = left_open(0.05, 2)});
+    v("robot.shank", s.shank, {.unit = "m", .doc = "knee to ankle axes", .bounds = left_open(0.05, 2)});
+    v("robot.ankle_to_sole", s.ankle_to_sole, {.unit = "m", .doc = "ankle axes to the sole", .bounds = closed(0.01, 1)});
+    v("robot.sole_friction", s.sole_friction, {.doc = "sole-floor friction coefficient", .bounds = closed(0.05, 5)});
+  }
 };
 
 /// The elastic gear actuators, the sensors and the timing of the twin.
 struct PlantParams {
-  JointVector k_joint{};          ///< true gear stiffness per joint [Nm/rad] (plant.k_joint × plant.k_scale.*)
+  double k_joint = 1000.0;        ///< true gear stiffness [Nm/rad], times k_scale per joint
+  JointVector k_scale = [] {      ///< factor on k_joint for each joint
+    JointVector ones;
+    ones.fill(1.0);
+    return ones;
+  }();
   double gear_damping = 80.0;     ///< d [Nm s/rad], integrated implicitly by MuJoCo
   double backlash = 0.0;          ///< dead band, total width [rad]
   double torque_limit = 100.0;    ///< servo torque limit [Nm]
@@ -65,12 +81,47 @@ struct PlantParams {
   int noise_seed = 1;             ///< seed of the sensor noise
 
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
+  /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
+  JointVector gear_stiffness() const {
+    JointVector k;
+    for (int j = 0; j < kJoints; ++j) k[j] = k_joint * k_scale[j];
+    return k;
+  }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("plant.k_joint", s.k_joint, {.unit = "Nm/rad", .doc = "true gear stiffness of every joint", .bounds = positive()});
+    for (int j = 0; j < kJoints; ++j) {
+      const std::string key = "plant.k_scale." + std::string(kJointNames[j]);
+      v(key, s.k_scale[j], {.doc = "factor on plant.k_joint for this joint", .bounds = left_open(0, 100)});
+    }
+    v("plant.gear_damping", s.gear_damping, {.unit = "Nm s/rad", .doc = "gear damping (implicit in MuJoCo)", .bounds = closed(0, 10000)});
+    v("plant.backlash", s.backlash, {.unit = "rad", .doc = "backlash dead band, total width", .bounds = closed(0, 0.1)});
+    v("plant.torque_limit", s.torque_limit, {.unit = "Nm", .doc = "servo torque limit", .bounds = positive()});
+    v("plant.rotor_inertia", s.rotor_inertia, {.unit = "kg m^2", .doc = "reflected rotor inertia", .bounds = closed(1e-4, 100)});
+    v("plant.servo_bandwidth", s.servo_bandwidth, {.unit = "Hz", .doc = "motor-side position loop bandwidth", .bounds = closed(0.1, 1000)});
+    v("plant.servo_integral_time", s.servo_integral_time,
+      {.unit = "s", .doc = "integral time of the position loop (0: none, PD only)", .bounds = closed(0, 100)});
+    v("plant.encoder_steps", s.encoder_steps, {.doc = "encoder steps per output turn", .bounds = closed(1, 1e12)});
+    v("plant.physics_dt", s.physics_dt, {.unit = "s", .doc = "MuJoCo step", .bounds = closed(1e-5, 0.002)});
+    v("plant.contact_time_constant", s.contact_time_constant,
+      {.unit = "s", .doc = "sole-floor contact time constant (MuJoCo solref; softer contacts let the feet rock)",
+       .bounds = closed(1e-4, 0.1)});
+    v("plant.control_period", s.control_period,
+      {.unit = "s", .doc = "controller period (a multiple of the physics step)", .bounds = closed(1e-4, 0.008)});
+    v("plant.noise.ft_force", s.ft_force_noise, {.unit = "N", .doc = "F/T force noise std", .bounds = closed(0, 1000)});
+    v("plant.noise.ft_torque", s.ft_torque_noise, {.unit = "Nm", .doc = "F/T torque noise std", .bounds = closed(0, 1000)});
+    v("plant.noise.gyro", s.gyro_noise, {.unit = "rad/s", .doc = "gyro noise std", .bounds = closed(0, 100)});
+    v("plant.noise.accel", s.accel_noise, {.unit = "m/s^2", .doc = "accelerometer noise std", .bounds = closed(0, 1000)});
+    v("plant.noise.seed", s.noise_seed, {.doc = "seed of the sensor noise", .bounds = closed(0, 2147483647)});
+  }
 };
 
 /// Keys robot.* and plant.* (plant.k_scale.<joint> multiplies plant.k_joint for one joint).
-Schema robot_schema();
-Schema plant_schema();
-RobotParams robot_from_config(const Config& config);
+inline Schema robot_schema() { return schema_of<RobotParams>(); }
+inline Schema plant_schema() { return schema_of<PlantParams>(); }
+inline RobotParams robot_from_config(const Config& config) { return record_from_config<RobotParams>(config); }
+/// The plant's keys; throws ConfigError when plant.control_period is not a multiple of plant.physics_dt.
 PlantParams plant_from_config(const Config& config);
 
 }  // namespace flexgait::humanoid

@@ -43,35 +43,8 @@ struct Data {
 
 }  // namespace
 
-Schema bench_schema() {
-  Schema s;
-  s.add(real_param("plant.k_joint", "1000.0", "Nm/rad", "true gear stiffness of the bench actuator", 0,
-                   std::numeric_limits<double>::infinity(), false));
-  s.add(real_param("plant.gear_damping", "80.0", "Nm s/rad", "gear damping", 0, 10000));
-  s.add(real_param("plant.backlash", "0.0", "rad", "backlash dead band, total width", 0, 0.1));
-  s.add(real_param("plant.servo_integral_time", "0.05", "s",
-                   "integral time of the bench servo's position loop (0: PD only; the motor side then sags by tau/Kp)", 0, 100));
-  s.add(real_param("bench.arm_length", "0.3", "m", "hinge to load", 0.01, 5));
-  s.add(real_param("bench.load_mass", "13.6", "kg", "load at the arm's end (13.6 kg at 0.3 m: ±40 Nm)", 0.01, 1000));
-  s.add(real_param("bench.angle_min", "0.2", "rad", "first pose (from horizontal, positive down)", -3.2, 3.2));
-  s.add(real_param("bench.angle_max", "2.94", "rad", "last pose (past hanging straight down at pi/2)", -3.2, 3.2));
-  s.add(integer_param("bench.poses", "25", "poses in the sweep", 3, 10000));
-  s.add(real_param("bench.settle_time", "2.0", "s", "time at each pose before sampling", 0.1, 100));
-  return s;
-}
-
 BenchParams bench_from_config(const Config& c) {
-  BenchParams p;
-  p.actuator.k = c.real("plant.k_joint");
-  p.actuator.d = c.real("plant.gear_damping");
-  p.actuator.backlash = c.real("plant.backlash");
-  p.actuator.integral_time = c.real("plant.servo_integral_time");
-  p.arm_length = c.real("bench.arm_length");
-  p.load_mass = c.real("bench.load_mass");
-  p.angle_min = c.real("bench.angle_min");
-  p.angle_max = c.real("bench.angle_max");
-  p.poses = static_cast<int>(c.integer("bench.poses"));
-  p.settle_time = c.real("bench.settle_time");
+  BenchParams p = record_from_config<BenchParams>(c);
   if (p.angle_max <= p.angle_min)
     throw ConfigError("bench.angle_max", fmt::format("key 'bench.angle_max' = '{}': must exceed bench.angle_min = {} (rad)",
                                                      p.angle_max, p.angle_min));
@@ -106,6 +79,7 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
     return out;
   };
   BenchResult r;
+  r.k_true = p.actuator.k;
   r.uncompensated = sweep(0.0);
   // Least squares of error = link − encoder against τ_g: slope 1/k (the load drives θ positive).
   double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;

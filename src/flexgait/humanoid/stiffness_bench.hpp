@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/humanoid/elastic_actuator.hpp"
 
 namespace flexgait::humanoid {
@@ -29,8 +30,25 @@ struct BenchParams {
   int poses = 25;
   double settle_time = 2.0;      ///< time at each pose before sampling [s]
   double physics_dt = 0.001;     ///< [s]
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("plant.k_joint", s.actuator.k, {.unit = "Nm/rad", .doc = "true gear stiffness of the bench actuator", .bounds = positive()});
+    v("plant.gear_damping", s.actuator.d, {.unit = "Nm s/rad", .doc = "gear damping", .bounds = closed(0, 10000)});
+    v("plant.backlash", s.actuator.backlash, {.unit = "rad", .doc = "backlash dead band, total width", .bounds = closed(0, 0.1)});
+    v("plant.servo_integral_time", s.actuator.integral_time,
+      {.unit = "s", .doc = "integral time of the bench servo's position loop (0: PD only; the motor side then sags by tau/Kp)",
+       .bounds = closed(0, 100)});
+    v("bench.arm_length", s.arm_length, {.unit = "m", .doc = "hinge to load", .bounds = closed(0.01, 5)});
+    v("bench.load_mass", s.load_mass, {.unit = "kg", .doc = "load at the arm's end (13.6 kg at 0.3 m: ±40 Nm)", .bounds = closed(0.01, 1000)});
+    v("bench.angle_min", s.angle_min, {.unit = "rad", .doc = "first pose (from horizontal, positive down)", .bounds = closed(-3.2, 3.2)});
+    v("bench.angle_max", s.angle_max, {.unit = "rad", .doc = "last pose (past hanging straight down at pi/2)", .bounds = closed(-3.2, 3.2)});
+    v("bench.poses", s.poses, {.doc = "poses in the sweep", .bounds = closed(3, 10000)});
+    v("bench.settle_time", s.settle_time, {.unit = "s", .doc = "time at each pose before sampling", .bounds = closed(0.1, 100)});
+  }
 };
-Schema bench_schema();
+inline Schema bench_schema() { return schema_of<BenchParams>(); }
+/// The bench's keys; throws ConfigError when bench.angle_max does not exceed bench.angle_min.
 BenchParams bench_from_config(const Config& config);
 
 struct BenchSample {
@@ -44,8 +62,10 @@ struct BenchSample {
   int newton_iterations = 0;
 };
 
+/// The bench's sweeps and scores (`summary.json`, in the order of visit_fields).
 struct BenchResult {
   std::vector<BenchSample> uncompensated, compensated;
+  double k_true = 0;          ///< the actuator's stiffness, plant.k_joint [Nm/rad]
   double k_fit = 0;           ///< [Nm/rad], from error = τ_g / k
   double r_squared = 0;
   double max_error_uncompensated = 0;  ///< max |link − command| [rad]
@@ -54,6 +74,27 @@ struct BenchResult {
   double max_error_newton = 0, max_error_conventional = 0;  ///< max |estimate − link| over both sweeps [rad]
   double max_newton_conventional = 0;                       ///< max |Newton − conventional| [rad]
   int max_newton_iterations = 0;
+
+  /// (k_fit − k_true) / k_true.
+  double k_fit_error() const { return (k_fit - k_true) / k_true; }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("k_true", s.k_true, {.unit = "Nm/rad", .doc = "true stiffness of the bench actuator (plant.k_joint)"});
+    v("k_fit", s.k_fit, {.unit = "Nm/rad", .doc = "stiffness fitted to link − encoder against the gravity torque"});
+    double k_fit_error = s.k_fit_error();
+    v("k_fit_error", k_fit_error, {.doc = "(k_fit − k_true) / k_true (derived)"});
+    v("r_squared", s.r_squared, {.doc = "coefficient of determination of the fit"});
+    v("max_error_uncompensated", s.max_error_uncompensated, {.unit = "rad", .doc = "max |link − command| without compensation"});
+    v("max_error_compensated", s.max_error_compensated, {.unit = "rad", .doc = "max |link − command| with the input compensator"});
+    v("residual_compensated_min", s.min_residual_compensated, {.unit = "rad", .doc = "smallest signed link − command, compensated"});
+    v("residual_compensated_max", s.max_residual_compensated, {.unit = "rad", .doc = "largest signed link − command, compensated"});
+    v("estimate_newton_error_max", s.max_error_newton, {.unit = "rad", .doc = "max |Newton estimate − link| (eqs. 10-13)"});
+    v("estimate_conventional_error_max", s.max_error_conventional,
+      {.unit = "rad", .doc = "max |conventional estimate − link|"});
+    v("newton_conventional_max", s.max_newton_conventional, {.unit = "rad", .doc = "max |Newton − conventional|"});
+    v("newton_iterations_max", s.max_newton_iterations, {.doc = "Newton iterations at most, one pose"});
+  }
 };
 
 BenchResult run_stiffness_bench(const BenchParams& params);

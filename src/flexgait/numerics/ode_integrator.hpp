@@ -5,17 +5,22 @@
 ///
 /// Use: restart() at the start of every mode (after every reset map: CVodeReInit and
 /// CVodeRootInit with the mode's guard directions), then step() until it reports a guard.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "flexgait/core/enum_names.hpp"
 #include "flexgait/numerics/ode_system.hpp"
 
 namespace flexgait::numerics {
 
 enum class OdeMethod { Adams, Bdf };
+constexpr std::array<EnumName<OdeMethod>, 2> enum_names(OdeMethod) {
+  return {{{OdeMethod::Adams, "adams"}, {OdeMethod::Bdf, "bdf"}}};
+}
 
 struct OdeOptions {
   double rtol = 1e-10;      ///< relative tolerance

@@ -83,7 +83,7 @@ void refine_threshold(const Config& base, Section section, double tolerance, dou
       break;
     }
   }
-  csv.cell(lo).cell(hi).cell(csv_safe(a)).cell(csv_safe(b)).cell(0.5 * (lo + hi)).end_row();
+  csv.cell(lo).cell(hi).cell(a).cell(b).cell(0.5 * (lo + hi)).end_row();
 }
 
 }  // namespace
@@ -138,7 +138,7 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
     const std::string m = multipliers_text(r, largest);
     csv.cell(mu).cell(r.gait).cell(r.converged ? "true" : "false").cell(r.point.flight ? "flight" : mode_name(r.point.mode));
     csv.cell(state_text(r.point.z)).cell(largest).cell(m).cell(r.stable ? "true" : "false").cell(r.period);
-    csv.cell(r.speed).cell(r.dissipated).cell(csv_safe(r.failure)).end_row();
+    csv.cell(r.speed).cell(r.dissipated).cell(r.failure).end_row();
   }
   return csv.str();
 }
@@ -177,7 +177,7 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
           }
         }
         csv.cell(mu).cell(names[static_cast<std::size_t>(i)]).cell(static_cast<long long>(sign)).cell(eps);
-        csv.cell(returned ? "true" : "false").cell(static_cast<long long>(steps)).cell(csv_safe(failure)).end_row();
+        csv.cell(returned ? "true" : "false").cell(static_cast<long long>(steps)).cell(failure).end_row();
       }
     }
   }
@@ -203,7 +203,7 @@ std::string stagnation_row(const Config& base, double omega0, double beta_window
   }
   const LogSample& last = r.samples.back();
   return fmt::format("{},{},{},{},{}", format_number(omega0), format_number(slide), r.steps_completed,
-                     format_number(last.energy.kinetic + last.energy.spring), csv_safe(r.failure.value_or("")));
+                     format_number(last.energy.kinetic + last.energy.spring), csv_field(r.failure.value_or("")));
 }
 
 }  // namespace flexgait::rimless

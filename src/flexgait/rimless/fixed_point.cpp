@@ -6,27 +6,6 @@
 
 namespace flexgait::rimless {
 
-Schema analysis_schema() {
-  Schema s;
-  s.add(integer_param("analysis.transient_steps", "20",
-                      "steps simulated from the initial state before the Newton iteration starts", 0, 100000));
-  s.add(real_param("analysis.rtol", "1e-12", "", "CVODE relative tolerance of every Poincare-map evaluation", 1e-14, 1e-4));
-  s.add(real_param("analysis.atol", "1e-15", "", "CVODE absolute tolerance of every Poincare-map evaluation", 1e-17, 1e-4));
-  s.add(real_param("analysis.newton_tol", "1e-10", "", "Newton convergence: max-norm of P(z) - z", 1e-15, 1e-2));
-  s.add(integer_param("analysis.max_iterations", "30", "Newton iterations allowed", 1, 1000));
-  return s;
-}
-
-AnalysisOptions analysis_from_config(const Config& c) {
-  AnalysisOptions o;
-  o.transient_steps = static_cast<int>(c.integer("analysis.transient_steps"));
-  o.rtol = c.real("analysis.rtol");
-  o.atol = c.real("analysis.atol");
-  o.newton.tolerance = c.real("analysis.newton_tol");
-  o.newton.max_iterations = static_cast<int>(c.integer("analysis.max_iterations"));
-  return o;
-}
-
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt) {
   SimulationOptions o = sim;
   o.rtol = opt.rtol;
@@ -94,7 +73,7 @@ std::string fixed_point_json(const FixedPointReport& r) {
   j["iterations"] = r.iterations;
   j["residual"] = r.residual;
   j["model"] = r.point.model == Model::Rigid ? "rigid" : "flexible";
-  j["section"] = section_name(r.point.section);
+  j["section"] = std::string(name_of(r.point.section));
   j["mode"] = r.point.flight ? "flight" : mode_name(r.point.mode);
   j["state_names"] = r.point.names();
   j["state"] = std::vector<double>(r.point.z.data(), r.point.z.data() + r.point.z.size());

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/numerics/newton.hpp"
 #include "flexgait/rimless/poincare.hpp"
 
@@ -18,9 +19,19 @@ struct AnalysisOptions {
   double rtol = 1e-12;         ///< CVODE tolerance of every map evaluation
   double atol = 1e-15;
   numerics::NewtonOptions newton;  ///< tolerance 1e-10, 30 iterations
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("analysis.transient_steps", s.transient_steps,
+      {.doc = "steps simulated from the initial state before the Newton iteration starts", .bounds = closed(0, 100000)});
+    v("analysis.rtol", s.rtol, {.doc = "CVODE relative tolerance of every Poincare-map evaluation", .bounds = closed(1e-14, 1e-4)});
+    v("analysis.atol", s.atol, {.doc = "CVODE absolute tolerance of every Poincare-map evaluation", .bounds = closed(1e-17, 1e-4)});
+    v("analysis.newton_tol", s.newton.tolerance, {.doc = "Newton convergence: max-norm of P(z) - z", .bounds = closed(1e-15, 1e-2)});
+    v("analysis.max_iterations", s.newton.max_iterations, {.doc = "Newton iterations allowed", .bounds = closed(1, 1000)});
+  }
 };
-Schema analysis_schema();
-AnalysisOptions analysis_from_config(const Config& config);
+inline Schema analysis_schema() { return schema_of<AnalysisOptions>(); }
+inline AnalysisOptions analysis_from_config(const Config& config) { return record_from_config<AnalysisOptions>(config); }
 /// The simulation options of a Poincaré-map evaluation: the analysis tolerances, no log.
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt);
 

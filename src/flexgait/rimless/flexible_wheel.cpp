@@ -85,7 +85,7 @@ numerics::OdeOptions ode_options(const SimulationOptions& o) {
   numerics::OdeOptions ode;
   ode.rtol = o.rtol;
   ode.atol = o.atol;
-  ode.method = o.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf : numerics::OdeMethod::Adams;
+  ode.method = o.method;
   ode.sensitivities = o.sensitivities;
   return ode;
 }

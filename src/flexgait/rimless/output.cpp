@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/core/record_json.hpp"
+
 #include "flexgait/core/text.hpp"
 
 namespace flexgait::rimless {
@@ -37,7 +39,7 @@ std::string log_csv(const SimulationResult& r) {
 std::string events_csv(const SimulationResult& r) {
   CsvWriter csv({"t", "kind", "leg", "modes"});
   for (const auto& e : r.events) {
-    csv.cell(e.t).cell(e.kind).cell(static_cast<long long>(e.leg)).cell(csv_safe(e.modes)).end_row();
+    csv.cell(e.t).cell(e.kind).cell(static_cast<long long>(e.leg)).cell(e.modes).end_row();
   }
   return csv.str();
 }
@@ -57,24 +59,7 @@ std::string steps_csv(const SimulationResult& r) {
 std::string summary_json(const SimulationResult& r, const std::string& model) {
   nlohmann::ordered_json j;
   j["model"] = model;
-  j["steps"] = r.steps_completed;
-  nlohmann::ordered_json gaits = nlohmann::ordered_json::array();
-  for (const auto& s : r.steps)
-    if (s.complete) gaits.push_back(gait_label(s.single_support));
-  j["gaits"] = gaits;
-  j["mean_speed"] = r.mean_speed;
-  j["t_final"] = r.t_final;
-  j["energy_initial"] = r.energy_initial;
-  j["energy_final"] = r.energy_final;
-  j["work_damping"] = r.work_damping;
-  j["work_friction"] = r.work_friction;
-  j["energy_balance_error"] = r.energy_balance_error;
-  j["jams"] = r.jams;
-  j["ambiguous_mode_choices"] = r.ambiguous_choices;
-  j["events"] = r.events.size();
-  j["solver_steps"] = r.solver_steps;
-  j["rhs_evals"] = r.rhs_evals;
-  j["failure"] = r.failure ? nlohmann::ordered_json(*r.failure) : nlohmann::ordered_json(nullptr);
+  add_record_json(j, r);
   return j.dump(2) + "\n";
 }
 

@@ -2,58 +2,105 @@
 /// \file parameters.hpp
 /// Parameters of the flexible-leg rimless wheel (spec rimless.md, "The model") and of its
 /// simulation. All SI. Defaults: the spec's measured set, under which the four gait
-/// behaviours appear as μ varies in (0, 1.5).
+/// behaviours appear as μ varies in (0, 1.5). Each struct lists its configuration keys once
+/// (core/record.hpp).
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
+#include "flexgait/numerics/ode_integrator.hpp"
 
 namespace flexgait::rimless {
 
 /// The wheel. Immutable for a run.
 struct WheelParams {
-  double m = 1.0;      ///< total mass [kg], (0, inf)
-  double I = 0.3;      ///< moment of inertia about the hub [kg m^2], [0, inf); 0 = point mass
-  int legs = 10;       ///< number of spokes N, [3, 100]; α = π/N
-  double slope = 0.1;  ///< slope angle φ [rad], [0, π/4]
-  double L0 = 1.0;     ///< leg rest length [m], (0, inf)
-  double K = 1000.0;   ///< leg spring stiffness [N/m], (0, inf)
-  double C = 30.0;     ///< leg damper [N s/m], [0, inf)
-  double mu_s = 0.6;   ///< static friction coefficient, [0, inf)
-  double mu_k = 0.6;   ///< kinetic friction coefficient, [0, mu_s]
-  double g = 9.81;     ///< gravity [m/s^2], (0, inf)
+  double m = 1.0;      ///< total mass [kg]
+  double I = 0.3;      ///< moment of inertia about the hub [kg m^2]; 0 = point mass
+  int legs = 10;       ///< number of spokes N; α = π/N
+  double slope = 0.1;  ///< slope angle φ [rad]
+  double L0 = 1.0;     ///< leg rest length [m]
+  double K = 1000.0;   ///< leg spring stiffness [N/m]
+  double C = 30.0;     ///< leg damper [N s/m]
+  double mu_s = 0.6;   ///< static friction coefficient
+  double mu_k = 0.6;   ///< kinetic friction coefficient, <= mu_s
+  double g = 9.81;     ///< gravity [m/s^2]
 
   /// Half the angle between spokes, α = π/N [rad].
   double alpha() const { return std::numbers::pi / legs; }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("rimless.m", s.m, {.unit = "kg", .doc = "total mass", .bounds = positive()});
+    v("rimless.I", s.I, {.unit = "kg m^2", .doc = "moment of inertia about the hub (0: point mass)", .bounds = non_negative()});
+    v("rimless.legs", s.legs, {.doc = "number of legs N (alpha = pi/N)", .bounds = closed(3, 100)});
+    v("rimless.slope", s.slope, {.unit = "rad", .doc = "slope angle phi", .bounds = closed(0, std::numbers::pi / 4)});
+    v("rimless.L0", s.L0, {.unit = "m", .doc = "leg rest length", .bounds = positive()});
+    v("rimless.K", s.K, {.unit = "N/m", .doc = "leg spring stiffness", .bounds = positive()});
+    v("rimless.C", s.C, {.unit = "N s/m", .doc = "leg damping", .bounds = non_negative()});
+    v("rimless.mu_s", s.mu_s, {.doc = "static friction coefficient", .bounds = non_negative()});
+    v("rimless.mu_k", s.mu_k, {.doc = "kinetic friction coefficient (<= mu_s)", .bounds = non_negative()});
+    v("rimless.g", s.g, {.unit = "m/s^2", .doc = "gravitational acceleration", .bounds = positive()});
+  }
 };
 
 /// Where a simulation starts: single support on leg 0, foot at x-coordinate 0 (spec rimless.md).
 struct InitialState {
   double omega = 1.4;  ///< wheel angular velocity θ̇ [rad/s]
   double beta = 0.0;   ///< stance-leg angle from the slope normal [rad], |β| < α
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("initial.omega", s.omega, {.unit = "rad/s", .doc = "initial wheel angular velocity", .bounds = closed(-100, 100)});
+    v("initial.beta", s.beta,
+      {.unit = "rad", .doc = "initial stance-leg angle from the slope normal, |beta| < pi/N",
+       .bounds = open(-std::numbers::pi / 2, std::numbers::pi / 2)});
+  }
 };
 
-enum class OdeMethodChoice { Adams, Bdf };
+/// The wheel's model: flexible legs with stick-slip friction, or McGeer's rigid rimless wheel.
+enum class Model { Flexible, Rigid };
+constexpr std::array<EnumName<Model>, 2> enum_names(Model) {
+  return {{{Model::Flexible, "flexible"}, {Model::Rigid, "rigid"}}};
+}
 
 /// How the hybrid simulation runs.
 struct SimulationOptions {
-  int steps = 20;               ///< steps to simulate (touchdowns of new legs), [1, 1e6]
+  Model model = Model::Flexible;  ///< which model the run simulates
+  int steps = 20;               ///< steps to simulate (touchdowns of new legs)
   double max_time = 120.0;      ///< simulated-time limit [s]
   double max_step_time = 10.0;  ///< a step longer than this counts as stopped [s]
   double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
   double rtol = 1e-10;          ///< CVODE relative tolerance
   double atol = 1e-12;          ///< CVODE absolute tolerance
-  OdeMethodChoice method = OdeMethodChoice::Adams;
-  bool log = true;              ///< keep the sampled log (off for maps and sweeps)
-  bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp)
+  numerics::OdeMethod method = numerics::OdeMethod::Adams;
+  bool log = true;              ///< keep the sampled log (off for maps and sweeps; not a key)
+  bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp; not a key)
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("sim.model", s.model, {.doc = "flexible legs with stick-slip, or the rigid rimless wheel"});
+    v("sim.steps", s.steps, {.doc = "steps to simulate (touchdowns of new legs)", .bounds = closed(1, 1e6)});
+    v("sim.max_time", s.max_time, {.unit = "s", .doc = "simulated-time limit", .bounds = positive()});
+    v("sim.max_step_time", s.max_step_time,
+      {.unit = "s", .doc = "a step longer than this is reported as stopped", .bounds = positive()});
+    v("sim.sample_dt", s.sample_dt,
+      {.unit = "s", .doc = "log sampling interval (events are logged too)", .bounds = closed(1e-6, 10)});
+    v("solver.rtol", s.rtol, {.doc = "CVODE relative tolerance", .bounds = closed(1e-14, 1e-2)});
+    v("solver.atol", s.atol, {.doc = "CVODE absolute tolerance", .bounds = closed(1e-16, 1e-2)});
+    v("solver.method", s.method, {.doc = "CVODE linear multistep method"});
+  }
 };
 
 /// The configuration keys of the wheel, the initial state, and the simulation.
 Schema rimless_schema();
-WheelParams wheel_from_config(const Config& config);
-InitialState initial_from_config(const Config& config);
-SimulationOptions simulation_from_config(const Config& config);
+inline WheelParams wheel_from_config(const Config& config) { return record_from_config<WheelParams>(config); }
+inline InitialState initial_from_config(const Config& config) { return record_from_config<InitialState>(config); }
+inline SimulationOptions simulation_from_config(const Config& config) {
+  return record_from_config<SimulationOptions>(config);
+}
 
 /// Throws ConfigError (key named) if the parameters are inconsistent with each other,
 /// e.g. mu_k > mu_s or |initial.beta| >= α.

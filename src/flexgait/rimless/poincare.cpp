@@ -84,14 +84,14 @@ std::optional<std::string> reduce_crossing(const WheelParams& w, Section section
   const auto& y = hit.state;
   out.flight = hit.contacts.count == 0;
   if (hit.contacts.count > 1)
-    return fmt::format("{} feet on the ground at the {} section", hit.contacts.count, section_name(section));
+    return fmt::format("{} feet on the ground at the {} section", hit.contacts.count, name_of(section));
   if (section == Section::Upright && out.flight) return std::string("flight at the upright section");
   out.mode = out.flight ? FootMode::Stick : hit.contacts.mode[0];
   if (!out.flight) {
     const int stance = hit.contacts.leg[0];
     const int expected = section == Section::Touchdown ? (stance + w.legs - 1) % w.legs : stance;
     if (hit.leg != expected)
-      return fmt::format("leg {} crossed the {} section, leg {} expected", hit.leg, section_name(section), expected);
+      return fmt::format("leg {} crossed the {} section, leg {} expected", hit.leg, name_of(section), expected);
   }
   const bool stick = sticks(out);
   out.z.resize(stick ? 3 : 4);
@@ -146,7 +146,7 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
     return out;
   }
   if (hit.leg < 0) {
-    out.failure = fmt::format("the {} section was not reached", section_name(section_));
+    out.failure = fmt::format("the {} section was not reached", name_of(section_));
     return out;
   }
   if (auto e = reduce_crossing(w_, section_, hit, out.next)) {
@@ -211,7 +211,7 @@ std::optional<std::string> PoincareMap::jacobian(const SectionState& p, Eigen::M
   hit.leg = -1;
   const SimulationResult r = sens_sim_->run(spec, &hit);
   if (r.failure) return *r.failure;
-  if (hit.leg < 0 || hit.S.size() == 0) return fmt::format("the {} section was not reached", section_name(section_));
+  if (hit.leg < 0 || hit.S.size() == 0) return fmt::format("the {} section was not reached", name_of(section_));
   SectionState next;
   if (auto e = reduce_crossing(w_, section_, hit, next)) return e;
   if (next.flight != p.flight || next.mode != p.mode || next.z.size() != d)
@@ -269,7 +269,7 @@ std::optional<std::string> settle_on_section(const WheelParams& w, const Simulat
   SectionHit hit;
   const SimulationResult r2 = sim.run(next, &hit);
   if (r2.failure) return "reaching the section: " + *r2.failure;
-  if (hit.leg < 0) return fmt::format("the {} section was not reached", section_name(section));
+  if (hit.leg < 0) return fmt::format("the {} section was not reached", name_of(section));
   return reduce_crossing(w, section, hit, out);
 }
 

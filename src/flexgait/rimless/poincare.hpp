@@ -25,8 +25,6 @@
 
 namespace flexgait::rimless {
 
-enum class Model { Flexible, Rigid };
-
 struct SectionState {
   Model model = Model::Flexible;
   Section section = Section::Touchdown;

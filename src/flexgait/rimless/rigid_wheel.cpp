@@ -55,7 +55,7 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
   numerics::OdeOptions ode;
   ode.rtol = opt.rtol;
   ode.atol = opt.atol;
-  ode.method = opt.method == OdeMethodChoice::Bdf ? numerics::OdeMethod::Bdf : numerics::OdeMethod::Adams;
+  ode.method = opt.method;
   numerics::OdeIntegrator integ(pendulum, 2, ode);
   const double alpha = w.alpha();
   const double sphi = std::sin(w.slope), cphi = std::cos(w.slope);

@@ -3,10 +3,12 @@
 /// What a rimless-wheel simulation returns (both the flexible and the rigid model): a sampled
 /// log, the events, the steps with their gait labels, and the energy ledger.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "flexgait/core/enum_names.hpp"
 #include "flexgait/rimless/contact.hpp"
 #include "flexgait/rimless/energy.hpp"
 #include "flexgait/rimless/gait.hpp"
@@ -17,7 +19,9 @@ namespace flexgait::rimless {
 /// contact mode is chosen), or a leg passing upright, β = 0 upward (the paper's "vertical
 /// equilibrium surface").
 enum class Section { Touchdown, Upright };
-inline const char* section_name(Section s) { return s == Section::Touchdown ? "touchdown" : "upright"; }
+constexpr std::array<EnumName<Section>, 2> enum_names(Section) {
+  return {{{Section::Touchdown, "touchdown"}, {Section::Upright, "upright"}}};
+}
 
 struct ContactSample {
   int leg = -1;                       ///< -1: slot empty
@@ -67,6 +71,38 @@ struct SimulationResult {
   long long solver_steps = 0, rhs_evals = 0;
   std::vector<double> final_state;     ///< full state vector at t_final
   ContactSet final_contacts;
+
+  /// The gait label of every completed step.
+  std::vector<std::string> gaits() const {
+    std::vector<std::string> out;
+    for (const auto& s : steps)
+      if (s.complete) out.push_back(gait_label(s.single_support));
+    return out;
+  }
+
+  /// The fields of `summary.json` (after the model's name), in order.
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("steps", s.steps_completed, {.doc = "touchdowns of new legs"});
+    std::vector<std::string> gaits = s.gaits();
+    v("gaits", gaits, {.doc = "gait label of every completed step (stance-foot phases in single support)"});
+    v("mean_speed", s.mean_speed, {.unit = "m/s", .doc = "hub displacement along the slope over time, to the last touchdown"});
+    v("t_final", s.t_final, {.unit = "s", .doc = "simulated time"});
+    v("energy_initial", s.energy_initial, {.unit = "J", .doc = "mechanical energy at the start"});
+    v("energy_final", s.energy_final, {.unit = "J", .doc = "mechanical energy at the end"});
+    v("work_damping", s.work_damping, {.unit = "J", .doc = "energy dissipated by the leg dampers"});
+    v("work_friction", s.work_friction, {.unit = "J", .doc = "energy dissipated by friction and jam impulses"});
+    v("energy_balance_error", s.energy_balance_error,
+      {.doc = "|E_final + W_damp + W_fric − E_initial| over the energy that flowed"});
+    v("jams", s.jams, {.doc = "feet stopped by jam impulses"});
+    v("ambiguous_mode_choices", s.ambiguous_choices, {.doc = "events where more than one mode combination was consistent"});
+    std::int64_t events = static_cast<std::int64_t>(s.events.size());
+    v("events", events, {.doc = "hybrid events"});
+    std::int64_t solver_steps = s.solver_steps, rhs_evals = s.rhs_evals;
+    v("solver_steps", solver_steps, {.doc = "integrator steps"});
+    v("rhs_evals", rhs_evals, {.doc = "right-hand-side evaluations"});
+    v("failure", s.failure, {.doc = "why the run stopped early; null when it completed"});
+  }
 };
 
 /// "3:stick 4:slip+" for a contact set; "flight" if empty.

@@ -44,17 +44,16 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
   const InitialState initial = initial_from_config(c);
   SimulationOptions sim = simulation_from_config(c);
   const AnalysisOptions opt = analysis_from_config(c);
-  const Model model = c.choice("sim.model") == "rigid" ? Model::Rigid : Model::Flexible;
   sim.log = false;
   sim.steps = std::max(1, opt.transient_steps);
-  const SimulationResult r = model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
+  const SimulationResult r = sim.model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
   std::string transient_gait;
   for (const auto& s : r.steps)
     if (s.complete) transient_gait = gait_label(s.single_support);
 
   std::string row = fmt::format("{},{},{},{}", format_number(spec.value(i)), transient_gait, format_number(r.mean_speed),
-                                csv_safe(r.failure.value_or("")));
-  const FixedPointReport fp = find_fixed_point(w, sim, opt, model, spec.section, initial);
+                                csv_field(r.failure.value_or("")));
+  const FixedPointReport fp = find_fixed_point(w, sim, opt, sim.model, spec.section, initial);
   std::string state, mult;
   double max_mult = 0;
   for (Eigen::Index k = 0; k < fp.point.z.size(); ++k) state += (k ? ";" : "") + format_number(fp.point.z(k));
@@ -66,7 +65,7 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
   row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", fp.converged ? "true" : "false",
                      fp.point.flight ? "flight" : mode_name(fp.point.mode), state, mult, format_number(max_mult),
                      fp.stable ? "true" : "false", fp.gait, format_number(fp.period), format_number(fp.speed),
-                     format_number(fp.dissipated), format_number(fp.residual), fp.iterations, csv_safe(fp.failure));
+                     format_number(fp.dissipated), format_number(fp.residual), fp.iterations, csv_field(fp.failure));
   return row;
 }
 

@@ -13,12 +13,11 @@ Schema rimless_analysis_schema() {
 }
 
 WheelSetup wheel_setup(Config config) {
-  WheelSetup s{std::move(config), {}, {}, {}, Model::Flexible};
+  WheelSetup s{std::move(config), {}, {}, {}};
   s.wheel = wheel_from_config(s.config);
   s.initial = initial_from_config(s.config);
   validate(s.wheel, s.initial);
   s.sim = simulation_from_config(s.config);
-  s.model = s.config.choice("sim.model") == "rigid" ? Model::Rigid : Model::Flexible;
   return s;
 }
 

@@ -15,8 +15,7 @@ struct WheelSetup {
   Config config;
   WheelParams wheel;
   InitialState initial;
-  SimulationOptions sim;
-  Model model = Model::Flexible;  ///< sim.model
+  SimulationOptions sim;  ///< sim.* and solver.*, with the model (sim.model)
 };
 
 /// The wheel, its initial state (validated: throws ConfigError), the simulation options and the

@@ -2,8 +2,9 @@
 /// \file walk_params.hpp
 /// Parameters of the walking controller (spec humanoid.md, "The walking controller"): the
 /// footstep plan and the preview controller (keys walk.*), and the balance controller (balance.*).
-/// SI units; every key is documented in its schema.
+/// SI units; each struct lists its keys once (core/record.hpp).
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 
 namespace flexgait::walking {
 
@@ -21,6 +22,24 @@ struct WalkParams {
   double preview_time = 1.6;    ///< preview horizon [s]
   double preview_q = 1.0;       ///< weight of the ZMP error (integral form) [1/m^2]
   double preview_r = 1e-6;      ///< weight of the jerk increment [s^6/m^2]
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("walk.steps", s.steps, {.doc = "footsteps (the last closes the feet side by side)", .bounds = closed(0, 10000)});
+    v("walk.step_length", s.step_length,
+      {.unit = "m", .doc = "advance of each footprint over the previous", .bounds = closed(-0.3, 0.3)});
+    v("walk.step_width", s.step_width, {.unit = "m", .doc = "lateral distance between the feet", .bounds = closed(0.15, 0.4)});
+    v("walk.step_time", s.step_time, {.unit = "s", .doc = "one step: double then single support", .bounds = closed(0.3, 100)});
+    v("walk.dsp_ratio", s.dsp_ratio, {.doc = "double-support share of a step", .bounds = left_open(0.0, 0.9)});
+    v("walk.turn", s.turn, {.unit = "rad", .doc = "heading change per step (> 0: left)", .bounds = closed(-0.5, 0.5)});
+    v("walk.swing_height", s.swing_height, {.unit = "m", .doc = "swing foot apex above the floor", .bounds = closed(0.0, 0.2)});
+    v("walk.pelvis_height", s.pelvis_height, {.unit = "m", .doc = "pelvis origin above the floor", .bounds = closed(0.5, 0.79)});
+    v("walk.start_time", s.start_time, {.unit = "s", .doc = "standing before the first step", .bounds = closed(0.0, 100)});
+    v("walk.end_time", s.end_time, {.unit = "s", .doc = "standing after the last step", .bounds = closed(0.0, 100)});
+    v("walk.preview_time", s.preview_time, {.unit = "s", .doc = "preview horizon", .bounds = closed(0.1, 5)});
+    v("walk.preview_q", s.preview_q, {.unit = "1/m^2", .doc = "weight of the integrated ZMP error", .bounds = left_open(0, 1e6)});
+    v("walk.preview_r", s.preview_r, {.unit = "s^6/m^2", .doc = "weight of the jerk increment", .bounds = left_open(0, 1e6)});
+  }
 };
 
 struct BalanceParams {
@@ -41,11 +60,40 @@ struct BalanceParams {
   double zmp_ki = 0.3;              ///< integral gain of the ZMP feedback [1/s]
   double zmp_limit = 0.04;          ///< clamp of the COM shift [m]
   double zmp_filter_time = 0.02;    ///< time constant of each of two low-pass stages on the measured ZMP [s]
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("balance.enabled", s.enabled, {.doc = "balance controller on (IMU attitude and foot torque loops)"});
+    v("balance.imu_kp", s.imu_kp, {.doc = "pelvis counter-tilt per radian of IMU tilt", .bounds = closed(0, 5)});
+    v("balance.imu_kd", s.imu_kd, {.unit = "s", .doc = "pelvis counter-tilt per rad/s of gyro rate", .bounds = closed(0, 1)});
+    v("balance.imu_limit", s.imu_limit, {.unit = "rad", .doc = "clamp of the pelvis attitude correction", .bounds = closed(0, 0.3)});
+    v("balance.ankle_damping", s.ankle_damping,
+      {.unit = "Nm s/rad", .doc = "foot torque compliance D (δ' = τ/D − δ/T)", .bounds = closed(1, 1e7)});
+    v("balance.ankle_return_time", s.ankle_return_time,
+      {.unit = "s", .doc = "return time T of the foot rotation", .bounds = closed(0.001, 100)});
+    v("balance.ankle_limit", s.ankle_limit, {.unit = "rad", .doc = "clamp of the foot rotation", .bounds = closed(0, 0.3)});
+    v("balance.ankle_gyro_gain", s.ankle_gyro_gain,
+      {.unit = "s", .doc = "sway damping: stance sole rotation per rad/s of IMU rate", .bounds = closed(0, 2)});
+    v("balance.gyro_filter_time", s.gyro_filter_time,
+      {.unit = "s", .doc = "low-pass time constant on the IMU rate of the sway damping", .bounds = closed(0, 10)});
+    v("balance.contact_force", s.contact_force, {.unit = "N", .doc = "a foot loaded above this is in contact", .bounds = closed(0, 1000)});
+    v("balance.foot_force_damping", s.foot_force_damping,
+      {.unit = "N s/m", .doc = "foot force control D_z (z' = (f - f_d)/D_z - z/T_z)", .bounds = closed(1, 1e7)});
+    v("balance.foot_return_time", s.foot_return_time,
+      {.unit = "s", .doc = "return time T_z of the foot height offset", .bounds = closed(0.001, 100)});
+    v("balance.foot_lift_limit", s.foot_lift_limit, {.unit = "m", .doc = "clamp of the foot height offset", .bounds = closed(0, 0.1)});
+    v("balance.zmp_kp", s.zmp_kp,
+      {.doc = "ZMP feedback: COM shift per metre of ZMP error (reference − measured)", .bounds = closed(0, 5)});
+    v("balance.zmp_ki", s.zmp_ki, {.unit = "1/s", .doc = "ZMP feedback: integral gain", .bounds = closed(0, 100)});
+    v("balance.zmp_filter_time", s.zmp_filter_time,
+      {.unit = "s", .doc = "time constant of each of two low-pass stages on the measured ZMP", .bounds = closed(0, 10)});
+    v("balance.zmp_limit", s.zmp_limit, {.unit = "m", .doc = "clamp of the COM shift of the ZMP feedback", .bounds = closed(0, 0.2)});
+  }
 };
 
-Schema walk_schema();
-Schema balance_schema();
-WalkParams walk_from_config(const Config& config);
-BalanceParams balance_from_config(const Config& config);
+inline Schema walk_schema() { return schema_of<WalkParams>(); }
+inline Schema balance_schema() { return schema_of<BalanceParams>(); }
+inline WalkParams walk_from_config(const Config& config) { return record_from_config<WalkParams>(config); }
+inline BalanceParams balance_from_config(const Config& config) { return record_from_config<BalanceParams>(config); }
 
 }  // namespace flexgait::walking

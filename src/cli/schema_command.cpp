@@ -1,0 +1,78 @@
+#include "schema_command.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/record_json.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/rimless/simulation.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
+
+namespace flexgait::cli {
+namespace {
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::Real: return "real";
+    case ParamType::Integer: return "integer";
+    case ParamType::Boolean: return "boolean";
+    case ParamType::Choice: return "choice";
+  }
+  return "?";
+}
+
+nlohmann::ordered_json configuration_json(const Schema& schema) {
+  nlohmann::ordered_json keys = nlohmann::ordered_json::array();
+  for (const ParamSpec& p : schema.params()) {
+    nlohmann::ordered_json k;
+    k["key"] = p.key;
+    k["type"] = type_name(p.type);
+    k["default"] = p.fallback;
+    k["unit"] = p.unit;
+    k["doc"] = p.doc;
+    k["allowed"] = p.allowed();
+    keys.push_back(std::move(k));
+  }
+  return keys;
+}
+
+}  // namespace
+
+std::string schema_document() {
+  nlohmann::ordered_json doc;
+  doc["configurations"]["rimless"] = configuration_json(rimless::rimless_analysis_schema());
+  doc["configurations"]["humanoid-walk"] = configuration_json(experiments::walk_run_schema());
+  doc["configurations"]["humanoid-bench"] = configuration_json(humanoid::bench_schema());
+  nlohmann::ordered_json rimless_summary = record_schema_json<rimless::SimulationResult>();
+  rimless_summary["fields"].insert(rimless_summary["fields"].begin(),
+                                   nlohmann::ordered_json{{"key", "model"}, {"type", "choice"}, {"unit", ""},
+                                                          {"doc", "sim.model of the run"},
+                                                          {"choices", enum_name_list<rimless::Model>()}});
+  doc["results"]["rimless simulate: summary.json"] = std::move(rimless_summary);
+  doc["results"]["humanoid walk: summary.json"] = record_schema_json<experiments::WalkMetrics>();
+  doc["results"]["humanoid bench: summary.json"] = record_schema_json<humanoid::BenchResult>();
+  return doc.dump(2) + "\n";
+}
+
+void add_schema_command(CLI::App& app, std::function<int()>& action) {
+  auto out = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand(
+      "schema", "Every configuration key (type, default, unit, domain) and every summary field (type, unit), as JSON");
+  cmd->add_option("--out", *out, "write to this file (atomically) instead of standard output");
+  cmd->callback([&action, out] {
+    action = [out] {
+      const std::string text = schema_document();
+      if (out->empty())
+        fmt::print("{}", text);
+      else
+        write_file_atomic(*out, text);
+      return 0;
+    };
+  });
+}
+
+}  // namespace flexgait::cli

@@ -1,0 +1,203 @@
+#pragma once
+/// \file record.hpp
+/// One declaration per record (issue 13): a parameter or result struct lists its fields once —
+/// key, member, unit, domain, one line of documentation — in the manner of Drake's
+/// `Serialize(Archive*)`, and small generic visitors derive the rest: the configuration schema
+/// (`schema_of`), the reading of a resolved configuration (`record_from_config`), JSON
+/// (record_json.hpp) and the field list of `schema.json`.
+///
+/// A record R declares
+///
+///     template <class Self, class Visitor>
+///     static void visit_fields(Self& self, Visitor& visit) {
+///       visit("rimless.m", self.m, {.unit = "kg", .doc = "total mass", .bounds = positive()});
+///       ...
+///     }
+///
+/// Self is R or const R, so the one list serves readers and writers. The order of the calls is
+/// the order of the keys in every derived form. The default of a parameter is the struct's own
+/// default member initialiser: there is no second copy to drift.
+///
+/// Field types: double, int, std::int64_t, bool, an enum with a name table (enum_names.hpp) and,
+/// for results only, std::string, std::optional<std::string> (null when empty) and
+/// std::vector<std::string>.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/core/enum_names.hpp"
+
+namespace flexgait {
+
+/// The domain of a numeric field: from min to max, each end closed or open.
+struct Bounds {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_inclusive = true;
+  bool max_inclusive = true;
+};
+/// [a, b]
+constexpr Bounds closed(double a, double b) { return {a, b, true, true}; }
+/// (a, b]
+constexpr Bounds left_open(double a, double b) { return {a, b, false, true}; }
+/// [a, b)
+constexpr Bounds right_open(double a, double b) { return {a, b, true, false}; }
+/// (a, b)
+constexpr Bounds open(double a, double b) { return {a, b, false, false}; }
+/// [a, ∞)
+constexpr Bounds at_least(double a) { return {a, std::numeric_limits<double>::infinity(), true, true}; }
+/// (a, ∞)
+constexpr Bounds above(double a) { return {a, std::numeric_limits<double>::infinity(), false, true}; }
+/// (0, ∞)
+constexpr Bounds positive() { return above(0.0); }
+/// [0, ∞)
+constexpr Bounds non_negative() { return at_least(0.0); }
+
+/// What a record says about one of its fields.
+struct FieldInfo {
+  std::string_view unit{};  ///< SI unit; "" when dimensionless
+  std::string_view doc{};   ///< one line: what it is
+  Bounds bounds{};          ///< allowed values of a parameter
+  bool present = true;      ///< results: false when the field does not apply to this value (left out of JSON)
+};
+
+namespace detail {
+
+template <class T>
+inline constexpr bool kAlwaysFalse = false;
+
+/// The configuration parameter of one field.
+template <class T>
+ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info) {
+  ParamSpec p;
+  p.key = std::string(key);
+  p.unit = std::string(info.unit);
+  p.doc = std::string(info.doc);
+  p.min = info.bounds.min;
+  p.max = info.bounds.max;
+  p.min_inclusive = info.bounds.min_inclusive;
+  p.max_inclusive = info.bounds.max_inclusive;
+  if constexpr (std::is_same_v<T, bool>) {
+    p.type = ParamType::Boolean;
+    p.fallback = value ? "true" : "false";
+  } else if constexpr (NamedEnum<T>) {
+    p.type = ParamType::Choice;
+    p.fallback = std::string(name_of(value));
+    p.choices = enum_name_list<T>();
+  } else if constexpr (std::is_integral_v<T>) {
+    p.type = ParamType::Integer;
+    p.fallback = format_value(static_cast<std::int64_t>(value));
+  } else if constexpr (std::is_floating_point_v<T>) {
+    p.type = ParamType::Real;
+    p.fallback = format_value(static_cast<double>(value));
+  } else {
+    static_assert(kAlwaysFalse<T>, "a configuration field must be a number, a bool or a named enum");
+  }
+  return p;
+}
+
+struct SchemaBuilder {
+  Schema& schema;
+  template <class T>
+  void operator()(std::string_view key, const T& value, const FieldInfo& info) {
+    schema.add(param_spec(key, value, info));
+  }
+};
+
+struct ConfigReader {
+  const Config& config;
+  template <class T>
+  void operator()(std::string_view key, T& member, const FieldInfo&) const {
+    const std::string k(key);
+    if constexpr (std::is_same_v<T, bool>) {
+      member = config.boolean(k);
+    } else if constexpr (NamedEnum<T>) {
+      const auto value = enum_from_name<T>(config.choice(k));
+      if (!value) throw std::logic_error("configuration key " + k + " holds a name outside its enum");
+      member = *value;
+    } else if constexpr (std::is_integral_v<T>) {
+      member = static_cast<T>(config.integer(k));
+    } else if constexpr (std::is_floating_point_v<T>) {
+      member = config.real(k);
+    } else {
+      static_assert(kAlwaysFalse<T>, "a configuration field must be a number, a bool or a named enum");
+    }
+  }
+};
+
+}  // namespace detail
+
+/// The configuration keys of a parameter record, with the defaults of `defaults`.
+template <class R>
+Schema schema_of(const R& defaults = R{}) {
+  Schema s;
+  detail::SchemaBuilder builder{s};
+  R::visit_fields(defaults, builder);
+  return s;
+}
+
+/// Reads a record's fields from a resolved configuration whose schema includes schema_of<R>();
+/// fields the record does not list keep the values of `base`.
+template <class R>
+R record_from_config(const Config& config, R base = R{}) {
+  detail::ConfigReader reader{config};
+  R::visit_fields(base, reader);
+  return base;
+}
+
+/// One field of a record as `schema.json` describes it.
+struct FieldDescription {
+  std::string key;
+  std::string type;  ///< real, integer, boolean, choice, text
+  std::string unit;
+  std::string doc;
+  std::vector<std::string> choices;  ///< for choice
+};
+
+namespace detail {
+
+struct Describer {
+  std::vector<FieldDescription>& out;
+  template <class T>
+  void operator()(std::string_view key, const T&, const FieldInfo& info) {
+    FieldDescription d{std::string(key), "", std::string(info.unit), std::string(info.doc), {}};
+    if constexpr (std::is_same_v<T, bool>) {
+      d.type = "boolean";
+    } else if constexpr (NamedEnum<T>) {
+      d.type = "choice";
+      d.choices = enum_name_list<T>();
+    } else if constexpr (std::is_integral_v<T>) {
+      d.type = "integer";
+    } else if constexpr (std::is_floating_point_v<T>) {
+      d.type = "real";
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      d.type = "text";
+    } else if constexpr (std::is_same_v<T, std::optional<std::string>>) {
+      d.type = "text or null";
+    } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+      d.type = "list of text";
+    } else {
+      static_assert(kAlwaysFalse<T>, "unsupported record field type");
+    }
+    out.push_back(std::move(d));
+  }
+};
+
+}  // namespace detail
+
+/// Every field a record can hold (whether or not a given value holds it), in declaration order.
+template <class R>
+std::vector<FieldDescription> describe_record() {
+  std::vector<FieldDescription> out;
+  detail::Describer d{out};
+  const R r{};
+  R::visit_fields(r, d);
+  return out;
+}
+
+}  // namespace flexgait

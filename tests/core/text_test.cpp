@@ -1,0 +1,60 @@
+// CSV as RFC 4180 writes and reads it (core/text.hpp), and the shortest round-trip numbers.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "flexgait/core/text.hpp"
+
+namespace flexgait {
+namespace {
+
+TEST(Csv, FieldsAreQuotedOnlyWhenTheyMustBe) {
+  EXPECT_EQ(csv_field("stick"), "stick");
+  EXPECT_EQ(csv_field(""), "");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(csv_field("cr\r"), "\"cr\r\"");
+}
+
+TEST(Csv, WriterAndReaderRoundTrip) {
+  const std::vector<std::string> texts = {"plain", "a,b", "q\"uote", "line\nbreak", "", "crlf\r\nx", ",", "\"\""};
+  CsvWriter w({"i", "text", "x"});
+  for (std::size_t i = 0; i < texts.size(); ++i)
+    w.cell(static_cast<long long>(i)).cell(texts[i]).cell(0.1 * static_cast<double>(i)).end_row();
+  const auto records = parse_csv(w.str());
+  ASSERT_EQ(records.size(), texts.size() + 1);
+  EXPECT_EQ(records[0].fields, (std::vector<std::string>{"i", "text", "x"}));
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    ASSERT_EQ(records[i + 1].fields.size(), 3u);
+    EXPECT_EQ(records[i + 1].fields[1], texts[i]);
+    EXPECT_EQ(std::stod(records[i + 1].fields[2]), 0.1 * static_cast<double>(i));  // shortest round trip
+  }
+}
+
+TEST(Csv, ReaderTakesCrlfAndDropsATornLastRecord) {
+  const auto r = parse_csv("a,b\r\n1,\"x\ny\"\n2,\"torn");
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[1].fields, (std::vector<std::string>{"1", "x\ny"}));
+  EXPECT_EQ(r[1].text, "1,\"x\ny\"");
+  EXPECT_EQ(parse_csv("no line end").size(), 0u);
+  EXPECT_EQ(parse_csv("").size(), 0u);
+  EXPECT_EQ(parse_csv("\n")[0].fields, (std::vector<std::string>{""}));
+}
+
+TEST(Csv, WriterRejectsRowsOfTheWrongLength) {
+  CsvWriter w({"a", "b"});
+  w.cell(1.0);
+  EXPECT_THROW(w.end_row(), std::logic_error);
+  CsvWriter v({"a"});
+  v.cell(1.0);
+  EXPECT_THROW(v.cell(2.0), std::logic_error);
+}
+
+TEST(Numbers, ShortestTextReadsBackExactly) {
+  for (const double x : {0.1, 1.0 / 3.0, 1e-300, 6.02214076e23, -0.0, 123456789.125}) EXPECT_EQ(std::stod(format_number(x)), x);
+  EXPECT_EQ(format_number(std::numeric_limits<double>::quiet_NaN()), "nan");
+}
+
+}  // namespace
+}  // namespace flexgait
