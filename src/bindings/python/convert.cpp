@@ -4,8 +4,9 @@
 #include <pybind11/stl.h>
 
 #include <charconv>
-#include <sstream>
 #include <vector>
+
+#include "flexgait/core/text.hpp"
 
 namespace flexgait::python {
 
@@ -31,28 +32,13 @@ Config make_config(const Schema& schema, const py::object& overrides, const std:
 }
 
 py::dict csv_columns(const std::string& csv) {
-  std::istringstream in(csv);
-  std::string line;
+  const std::vector<CsvRecord> records = parse_csv(csv);  // RFC 4180, the writer's own reader
   std::vector<std::string> names;
   std::vector<std::vector<std::string>> cells;
-  auto split = [](const std::string& l) {
-    std::vector<std::string> out;
-    std::string cur;
-    for (const char c : l) {
-      if (c == ',') {
-        out.push_back(cur);
-        cur.clear();
-      } else {
-        cur += c;
-      }
-    }
-    out.push_back(cur);
-    return out;
-  };
-  if (std::getline(in, line)) names = split(line);
+  if (!records.empty()) names = records.front().fields;
   cells.resize(names.size());
-  while (std::getline(in, line)) {
-    const auto row = split(line);
+  for (std::size_t r = 1; r < records.size(); ++r) {
+    const auto& row = records[r].fields;
     for (std::size_t i = 0; i < names.size(); ++i) cells[i].push_back(i < row.size() ? row[i] : "");
   }
   py::dict out;
