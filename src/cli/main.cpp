@@ -42,12 +42,12 @@ int main(int argc, char** argv) {
   }
   try {
     return action ? action() : 2;
-  } catch (const flexgait::ConfigError& e) {
+  } catch (const flexgait::UsageError& e) {  // bad configuration or bad usage, ConfigError included
     fmt::print(stderr, "error: {}\n", e.what());
     return 2;
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+  } catch (const std::logic_error& e) {  // a broken contract inside flexgait
+    fmt::print(stderr, "error: internal error (a bug in flexgait, please report it): {}\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

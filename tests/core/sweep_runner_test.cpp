@@ -49,7 +49,7 @@ TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
   SweepJob other = job(base / "killed");
   other.resume = true;
   other.signature = "another sweep";
-  EXPECT_THROW(run_sweep(other), std::invalid_argument);
+  EXPECT_THROW(run_sweep(other), UsageError);
 }
 
 }  // namespace

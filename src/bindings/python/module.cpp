@@ -56,7 +56,7 @@ PYBIND11_MODULE(flexgait, m) {
       std::string message = e.what();
       if (message.rfind("--set: ", 0) == 0) message = "config: " + message.substr(7);
       PyErr_SetString(PyExc_ValueError, message.c_str());
-    } catch (const std::invalid_argument& e) {
+    } catch (const flexgait::UsageError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });

@@ -18,11 +18,20 @@
 
 namespace flexgait {
 
-/// Bad configuration or bad usage. Command-line programs print what() and exit with code 2.
-class ConfigError : public std::runtime_error {
+/// Bad usage: the user asked for something that cannot be done as asked (a bad option value, a
+/// directory that holds no sweep to resume, ...). The one error command-line programs map to
+/// exit code 2 (and the Python module to ValueError); every other exception is a runtime failure
+/// (exit 1), and std::logic_error / std::invalid_argument mean a bug in flexgait.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Bad configuration: a key, a value or a file. A UsageError that names the key.
+class ConfigError : public UsageError {
  public:
   ConfigError(std::string key, const std::string& message)
-      : std::runtime_error(message), key_(std::move(key)) {}
+      : UsageError(message), key_(std::move(key)) {}
   /// The offending dotted key ("" when the error concerns a whole file).
   const std::string& key() const noexcept { return key_; }
 

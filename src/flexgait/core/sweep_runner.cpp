@@ -38,9 +38,9 @@ void check_resumable(const SweepJob& job) {
   if (!job.resume) return;
   const auto signature = job.dir / (job.name + ".signature");
   if (!std::filesystem::exists(signature))
-    throw std::invalid_argument(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
+    throw UsageError(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
   if (read_text_file(signature) != job.signature)
-    throw std::invalid_argument(fmt::format("--resume: {} holds a different sweep (see {})", job.dir.string(),
+    throw UsageError(fmt::format("--resume: {} holds a different sweep (see {})", job.dir.string(),
                                             signature.string()));
 }
 

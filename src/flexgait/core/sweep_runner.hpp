@@ -7,6 +7,8 @@
 #include <functional>
 #include <string>
 
+#include "flexgait/core/config.hpp"
+
 namespace flexgait {
 
 struct SweepJob {
@@ -27,7 +29,7 @@ struct SweepOutcome {
   double seconds = 0;
 };
 
-/// Throws std::invalid_argument if `job.resume` is set but its directory holds no sweep with the
+/// Throws UsageError if `job.resume` is set but its directory holds no sweep with the
 /// same signature. Call it before writing anything.
 void check_resumable(const SweepJob& job);
 

@@ -25,7 +25,7 @@ JointVector standing_pose(const RobotParams& r, double pelvis_height) {
   const double leg = pelvis_height - r.hip_axes_depth - r.ankle_to_sole;  // hip axes to ankle axes
   const double reach = r.thigh + r.shank;
   if (leg <= 0.05 * reach || leg >= reach)
-    throw std::invalid_argument(fmt::format("pelvis height {} m is out of the legs' reach", pelvis_height));
+    throw ConfigError("walk.pelvis_height", fmt::format("key 'walk.pelvis_height' = '{}': out of the legs' reach (hip axes to ankle axes must be between 5 % and 100 % of thigh + shank)", pelvis_height));
   // Law of cosines with the hip-ankle line vertical.
   const double c_knee = (r.thigh * r.thigh + r.shank * r.shank - leg * leg) / (2 * r.thigh * r.shank);
   const double knee = std::numbers::pi - std::acos(c_knee);

@@ -1,5 +1,7 @@
 #include "flexgait/humanoid/renderer.hpp"
 
+#include "flexgait/core/config.hpp"
+
 #include <GL/osmesa.h>
 #include <fmt/format.h>
 #include <zlib.h>
@@ -22,7 +24,7 @@ struct Renderer::Gl {
 Renderer::Renderer(const mjModel* model, int width, int height)
     : gl_(std::make_unique<Gl>()), model_(model), width_(width), height_(height) {
   if (width > model->vis.global.offwidth || height > model->vis.global.offheight)
-    throw std::invalid_argument(fmt::format("render size {}x{} exceeds the model's offscreen buffer {}x{}", width,
+    throw UsageError(fmt::format("render size {}x{} exceeds the model's offscreen buffer {}x{}", width,
                                             height, model->vis.global.offwidth, model->vis.global.offheight));
   gl_->context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
   if (gl_->context == nullptr) throw std::runtime_error("OSMesa: cannot create an OpenGL context");
