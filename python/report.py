@@ -18,7 +18,6 @@ reproduce.json) is its row shown as "no result" instead.
 import argparse
 import csv
 import json
-import math
 import os
 import sys
 import tempfile
@@ -195,8 +194,11 @@ def check_references(references):
 
 
 def load_references(path):
-    with open(path, encoding="utf-8") as f:
-        references = yaml.safe_load(f)
+    try:
+        with open(path, encoding="utf-8") as f:
+            references = yaml.safe_load(f)
+    except (OSError, yaml.YAMLError) as e:
+        raise ReportError(f"{path}: cannot read: {e}") from None
     problems = check_references(references)
     if problems:
         raise ReportError(f"{path}:\n  " + "\n  ".join(problems))
@@ -207,11 +209,9 @@ def load_references(path):
 
 def format_number(value, spec):
     """Jinja2 filter fmt: Python's format(value, spec); none (an empty optional cell) is n/a."""
-    if value is None:
-        return "n/a"
-    if isinstance(value, float) and math.isnan(value) and not spec.endswith("e"):
-        return "nan"
-    return format(value, spec)
+    if isinstance(value, jinja2.Undefined):
+        str(value)  # a StrictUndefined raises UndefinedError, naming the undeclared value
+    return "n/a" if value is None else format(value, spec)
 
 
 def make_environment(template_dir):

@@ -165,6 +165,14 @@ class RenderTest(unittest.TestCase):
         self.assertEqual(rows["scalar"][1], "no result: the run exited with 1")
         self.assertIn("exit code 1", tree.page_text())
 
+    def test_template_using_an_undeclared_value_fails(self):
+        references = yaml.safe_load(yaml.safe_dump(REFERENCES))
+        references["rows"][0]["ours"] = "{{ k|fmt('.2f') }} (R² {{ r_squared|fmt('.3f') }})"
+        tree = RunTree(self.tmp.name, references=references)
+        result = tree.render()
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("row scalar (run-a): 'r_squared' is undefined", result.stderr)
+
     def test_yaml_boolean_value_name_is_rejected(self):
         references = yaml.safe_load(yaml.safe_dump(REFERENCES))
         references["rows"][0]["values"][True] = {"file": "summary.json", "key": "/k_fit"}
