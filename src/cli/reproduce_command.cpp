@@ -99,6 +99,7 @@ int reproduce(const ReproduceOptions& o) {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
   const std::vector<Step> plan = steps(o.quick);  // finds the configurations before writing anything
   const RunDirectory root(o.out);
+  std::filesystem::remove(root.path() / "index.html");  // a report of earlier runs would mislead
   std::vector<RunRecord> runs;
   int failures = 0;
   const auto t0 = std::chrono::steady_clock::now();
