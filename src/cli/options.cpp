@@ -32,24 +32,28 @@ Config resolve(const Schema& schema, const RunOptions& o, const std::vector<std:
   return resolve_config(schema, file, all);
 }
 
-bool run_plot_script(const std::string& script, const std::vector<std::string>& args) {
+std::optional<std::filesystem::path> find_python_script(const std::string& script) {
   std::vector<std::filesystem::path> dirs;
   if (const char* env = std::getenv("FLEXGAIT_PLOT_DIR")) dirs.emplace_back(env);
   for (const char* d : kPlotDirs) dirs.emplace_back(d);
-  std::filesystem::path path;
-  for (const auto& d : dirs) {
-    if (std::filesystem::exists(d / script)) {
-      path = d / script;
-      break;
-    }
-  }
-  if (path.empty()) {
+  for (const auto& d : dirs)
+    if (std::filesystem::exists(d / script)) return d / script;
+  return std::nullopt;
+}
+
+int run_python_script(const std::filesystem::path& script, const std::vector<std::string>& args) {
+  std::vector<std::string> argv{"/usr/bin/python3", script.string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return run_process(argv);
+}
+
+bool run_plot_script(const std::string& script, const std::vector<std::string>& args) {
+  const auto path = find_python_script(script);
+  if (!path) {
     fmt::print(stderr, "warning: plotting script {} not found; no figures drawn\n", script);
     return false;
   }
-  std::vector<std::string> argv{"/usr/bin/python3", path.string()};
-  argv.insert(argv.end(), args.begin(), args.end());
-  const int status = run_process(argv);
+  const int status = run_python_script(*path, args);
   if (status < 0) {
     fmt::print(stderr, "warning: cannot start /usr/bin/python3; no figures drawn\n");
     return false;

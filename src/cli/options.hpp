@@ -26,6 +26,13 @@ void add_run_options(CLI::App& app, RunOptions& options, const std::string& defa
 /// then --set (so an explicit --set wins).
 Config resolve(const Schema& schema, const RunOptions& options, const std::vector<std::string>& extra = {});
 
+/// A Python script of the CLI (python/NAME): from $FLEXGAIT_PLOT_DIR, the source tree or the
+/// installed share directory; nullopt if none has it.
+std::optional<std::filesystem::path> find_python_script(const std::string& script);
+
+/// Runs `/usr/bin/python3 <script> <args...>`, waits; returns its exit code as run_process does.
+int run_python_script(const std::filesystem::path& script, const std::vector<std::string>& args);
+
 /// Runs `/usr/bin/python3 <script> <args...>` from the plotting-script directory; returns
 /// false (after printing a warning) if the script is missing or fails. Plots are optional.
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args);

@@ -5,10 +5,11 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "flexgait/core/run_directory.hpp"
 #include "options.hpp"
-#include "report_html.hpp"
+#include "schema_command.hpp"
 
 namespace flexgait::cli {
 namespace {
@@ -21,6 +22,13 @@ struct ReproduceOptions {
 struct Step {
   std::string dir, title;
   std::vector<std::string> args;  ///< flexgait's arguments, without --out
+};
+
+/// One finished run, as reproduce.json lists it for the report.
+struct RunRecord {
+  std::string dir, title;
+  std::string command;  ///< the command that made it, as the report shows it
+  int exit_code = 0;
 };
 
 std::vector<Step> steps(bool quick) {
@@ -56,11 +64,44 @@ std::vector<Step> steps(bool quick) {
   return s;
 }
 
+/// The command line of a step as the report shows it: configuration files by their names only.
+std::string shown_command(const Step& step) {
+  std::string command = "flexgait";
+  for (const auto& a : step.args)
+    command += " " + (a.find('/') != std::string::npos ? std::filesystem::path(a).filename().string() : a);
+  return command;
+}
+
+/// reproduce.json: the variant and every run (directory, title, command, exit code).
+std::string manifest(const std::vector<RunRecord>& runs, bool quick) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& r : runs)
+    list.push_back({{"dir", r.dir}, {"title", r.title}, {"command", r.command}, {"exit_code", r.exit_code}});
+  return nlohmann::json{{"quick", quick}, {"runs", list}}.dump(2) + "\n";
+}
+
+/// Writes index.html with python/report.py from reproduce.json and the runs' own files; false
+/// (after saying why) if the script is missing or fails, e.g. on a value a run did not write.
+bool write_report(const RunDirectory& root) {
+  const auto script = find_python_script("report.py");
+  if (!script) {
+    fmt::print(stderr, "[reproduce] report.py not found; index.html not written\n");
+    return false;
+  }
+  const int status = run_python_script(*script, {root.path().string()});
+  if (status != 0) {
+    fmt::print(stderr, "[reproduce] report.py exited with {}; index.html not written\n", status);
+    return false;
+  }
+  return true;
+}
+
 int reproduce(const ReproduceOptions& o) {
   const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
   const std::vector<Step> plan = steps(o.quick);  // finds the configurations before writing anything
   const RunDirectory root(o.out);
-  std::vector<ReportSection> sections;
+  std::filesystem::remove(root.path() / "index.html");  // a report of earlier runs would mislead
+  std::vector<RunRecord> runs;
   int failures = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < plan.size(); ++i) {
@@ -75,15 +116,15 @@ int reproduce(const ReproduceOptions& o) {
       ++failures;
       fmt::print(stderr, "[reproduce] {} exited with {}\n", st.dir, code);
     }
-    std::string command = "flexgait";
-    for (const auto& a : st.args) command += " " + (a.find('/') != std::string::npos ? std::filesystem::path(a).filename().string() : a);
-    sections.push_back({st.dir, st.title, command, code});
+    runs.push_back({st.dir, st.title, shown_command(st), code});
   }
-  root.write("index.html", reproduction_report(root.path(), sections, o.quick));
+  root.write("reproduce.json", manifest(runs, o.quick));
+  root.write("schema.json", schema_document());  // what every summary field means, from the records
+  const bool report_written = write_report(root);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fmt::print("[reproduce] {} runs in {:.0f} s, {} failed; report: {}\n", plan.size(), seconds, failures,
-             (root.path() / "index.html").string());
-  return failures == 0 ? 0 : 1;
+             report_written ? (root.path() / "index.html").string() : "not written");
+  return failures == 0 && report_written ? 0 : 1;
 }
 
 }  // namespace
@@ -93,7 +134,8 @@ void add_reproduce_command(CLI::App& app, std::function<int()>& action) {
   CLI::App* r = app.add_subcommand(
       "reproduce", "Run every reproduction of both studies (rimless wheel analyses, stiffness bench, compensation "
                    "studies, stiffness mismatch, 1 s/step walk) and write OUT/index.html with the figures and our "
-                   "numbers beside the thesis's and the paper's; exit 1 if a run failed");
+                   "numbers beside the thesis's and the paper's (python/report.py over data/report/references.yaml); "
+                   "exit 1 if a run failed or the report could not be written");
   r->add_option("--out", o->out, "output directory")->capture_default_str();
   r->add_flag("--quick", o->quick, "shorter variant: 3 steps of the 24 s/step walk, coarser rimless sweeps");
   r->callback([o, &action] { action = [o] { return reproduce(*o); }; });

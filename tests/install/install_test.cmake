@@ -7,7 +7,9 @@ if(rc)
   message(FATAL_ERROR "cmake --install failed: ${rc}")
 endif()
 foreach(f include/flexgait/rimless/rigid_wheel.hpp include/flexgait/version.hpp bin/flexgait
-          lib/cmake/flexgait/flexgaitConfig.cmake share/flexgait/python/plot_rimless.py)
+          lib/cmake/flexgait/flexgaitConfig.cmake share/flexgait/python/plot_rimless.py
+          share/flexgait/python/report.py share/flexgait/data/report/references.yaml
+          share/flexgait/data/report/index.html.j2)
   if(NOT EXISTS "${WORK_DIR}/prefix/${f}")
     message(FATAL_ERROR "not installed: ${f}")
   endif()
