@@ -59,11 +59,7 @@ struct CompensationParams {
   double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ [rad]
 
   /// The belief of each gear's stiffness, k_joint × k_scale [Nm/rad].
-  humanoid::JointVector stiffness() const {
-    humanoid::JointVector k;
-    for (int j = 0; j < humanoid::kJoints; ++j) k[j] = k_joint * k_scale[j];
-    return k;
-  }
+  humanoid::JointVector stiffness() const { return humanoid::scaled(k_joint, k_scale); }
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {

@@ -27,4 +27,11 @@ inline constexpr int leg_first_joint(int side) { return side == 0 ? kLeftHipYaw 
 
 using JointVector = std::array<double, kJoints>;  ///< one value per actuated joint [rad, Nm, ...]
 
+/// k × scale[j] for every joint (a stiffness with a per-joint factor).
+inline JointVector scaled(double k, const JointVector& scale) {
+  JointVector out;
+  for (int j = 0; j < kJoints; ++j) out[j] = k * scale[j];
+  return out;
+}
+
 }  // namespace flexgait::humanoid

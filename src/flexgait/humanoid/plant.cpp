@@ -47,11 +47,12 @@ HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
   data_ = mj_makeData(model_);
   std::vector<int> joints;
   std::vector<ActuatorParams> act;
+  const JointVector stiffness = params_.gear_stiffness();
   for (int j = 0; j < kJoints; ++j) {
     joint_id_[j] = require(model_, mjOBJ_JOINT, std::string(kJointNames[j]));
     joints.push_back(joint_id_[j]);
     ActuatorParams a;
-    a.k = params_.k_joint * params_.k_scale[j];
+    a.k = stiffness[j];
     a.d = params_.gear_damping;
     a.backlash = params_.backlash;
     a.torque_limit = params_.torque_limit;

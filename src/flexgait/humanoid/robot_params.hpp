@@ -82,11 +82,7 @@ struct PlantParams {
 
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
   /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
-  JointVector gear_stiffness() const {
-    JointVector k;
-    for (int j = 0; j < kJoints; ++j) k[j] = k_joint * k_scale[j];
-    return k;
-  }
+  JointVector gear_stiffness() const { return scaled(k_joint, k_scale); }
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
