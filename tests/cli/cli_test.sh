@@ -92,8 +92,31 @@ for name in fixed-points energy; do
   "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
   check "analysis $name exits 0: $(cat "$work/err")" test $? -eq 0
 done
-"$exe" rimless analysis stagnation --count 4 --from 1.4 --to 1.6 --out "$work/an_stag" --no-plot >/dev/null 2>&1
-check "stagnation writes 4 points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 5
+# Stagnation: a small scan (4 grid points bracketing omega_c, offsets 1e-1 .. 1e-3 on both sides).
+stag=(rimless analysis stagnation --config "$src/configs/rimless-stagnation.yaml" --count 4 --from 0.5 --to 0.56
+      --set stagnation.offset_min=1e-3 --set stagnation.per_decade=1 --no-plot)
+"$exe" "${stag[@]}" --out "$work/an_stag" >/dev/null 2>"$work/err"
+check "analysis stagnation exits 0: $(cat "$work/err")" test $? -eq 0
+check "stagnation writes 4 grid points and 6 scan points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 11
+check "stagnation finds omega_c" grep -q '"omega_c": 0.53038867' "$work/an_stag/stagnation.json"
+"$exe" "${stag[@]}" --out "$work/an_stag2" >/dev/null 2>&1
+check "stagnation: same bytes twice" cmp -s "$work/an_stag/stagnation.csv" "$work/an_stag2/stagnation.csv"
+check "stagnation summary: same bytes twice" cmp -s "$work/an_stag/stagnation.json" "$work/an_stag2/stagnation.json"
+map=(rimless analysis stagnation-map --config "$src/configs/rimless-stagnation.yaml" --count 3 --from 0.4 --to 0.6
+     --set stagnation.offset_min=1e-2 --vary rimless.C=20 --vary rimless.K=2000,rimless.C=40 --no-plot)
+"$exe" "${map[@]}" --jobs 1 --out "$work/an_map1" >/dev/null 2>"$work/err"
+check "stagnation-map exits 0: $(cat "$work/err")" test $? -eq 0
+"$exe" "${map[@]}" --jobs 2 --out "$work/an_map2" >/dev/null 2>&1
+check "stagnation-map: same bytes with 1 and 2 jobs" cmp -s "$work/an_map1/stagnation_map.csv" "$work/an_map2/stagnation_map.csv"
+expect_usage_error stagnation-start-past-vertical initial.beta rimless analysis stagnation --set initial.beta=0
+expect_usage_error stagnation-window stagnation.window rimless analysis stagnation \
+  --config "$src/configs/rimless-stagnation.yaml" --set stagnation.window=-1
+expect_usage_error stagnation-offsets stagnation.offset_min rimless analysis stagnation \
+  --config "$src/configs/rimless-stagnation.yaml" --set stagnation.offset_min=0.5
+expect_usage_error stagnation-map-key rimless.Q rimless analysis stagnation-map \
+  --config "$src/configs/rimless-stagnation.yaml" --vary rimless.Q=3
+expect_usage_error stagnation-map-value rimless.I rimless analysis stagnation-map \
+  --config "$src/configs/rimless-stagnation.yaml" --vary rimless.I=-1
 
 # Humanoid stiffness bench.
 "$exe" humanoid bench --out "$work/bench" --json --no-plot >"$work/bench.json" 2>"$work/err"

@@ -184,26 +184,4 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
   return csv.str();
 }
 
-std::string stagnation_header() { return "omega0,slide_time_upright,steps,final_energy,failure"; }
-
-std::string stagnation_row(const Config& base, double omega0, double beta_window) {
-  Config c = base;
-  c.set("initial.omega", format_number(omega0), "stagnation sweep");
-  const Setup s = setup(c);
-  SimulationOptions o = s.sim;
-  o.log = true;
-  const SimulationResult r = simulate_flexible(s.w, s.initial, o);
-  // Sliding near upright during the first step, the one the initial energy decides.
-  const double t_first = !r.steps.empty() && r.steps.front().complete ? r.steps.front().t_end : r.t_final;
-  double slide = 0;
-  for (std::size_t i = 0; i + 1 < r.samples.size() && r.samples[i].t < t_first; ++i) {
-    const LogSample& a = r.samples[i];
-    if (a.contact[0].leg < 0 || a.contact[1].leg >= 0 || a.contact[0].mode == FootMode::Stick) continue;
-    if (std::abs(leg_angle(s.w, a.contact[0].leg, a.q[2])) < beta_window) slide += r.samples[i + 1].t - a.t;
-  }
-  const LogSample& last = r.samples.back();
-  return fmt::format("{},{},{},{},{}", format_number(omega0), format_number(slide), r.steps_completed,
-                     format_number(last.energy.kinetic + last.energy.spring), csv_field(r.failure.value_or("")));
-}
-
 }  // namespace flexgait::rimless

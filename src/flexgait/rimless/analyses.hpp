@@ -6,7 +6,7 @@
 ///   2. energy during single support, sticking against slipping;
 ///   3. a fixed point and its multipliers for each of the four behaviours;
 ///   4. robustness of the sliding gait: the largest perturbation of the fixed point that returns;
-///   5. the stagnation interval: time sliding near β = 0 and the final energy against ω0 (Fig. 12).
+///   5. the stagnation interval (paper Fig. 12) has its own file, stagnation.hpp.
 #include <string>
 #include <vector>
 
@@ -37,12 +37,5 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
 /// ε in `epsilons`, iterate the map up to `max_steps`; "returned" when within 1e-6·scale.
 /// CSV: mu, component, sign, epsilon, returned, steps, failure.
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps);
-
-/// Analysis 5, one ω0: CSV cells (no newline): omega0, slide_time_upright (time sliding in single
-/// support with |β| < beta_window during the first step, s), steps, final_energy (kinetic + spring
-/// at the end of the run, J), failure. Start before upright (initial.beta < 0) so that the initial
-/// energy decides whether and how slowly the wheel passes the vertical.
-std::string stagnation_header();
-std::string stagnation_row(const Config& base, double omega0, double beta_window);
 
 }  // namespace flexgait::rimless
