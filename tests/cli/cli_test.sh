@@ -40,6 +40,11 @@ expect_usage_error nan "rimless.mu_s" rimless simulate --set rimless.mu_s=nan
 expect_usage_error wrong-type "rimless.legs" rimless simulate --set rimless.legs=ten
 expect_usage_error cross-check "rimless.mu_k" rimless simulate --set rimless.mu_s=0.2 --set rimless.mu_k=0.3
 expect_usage_error beta-range "initial.beta" rimless simulate --set initial.beta=0.5
+expect_usage_error stribeck-velocity "rimless.stribeck_velocity" rimless simulate --set rimless.friction=stribeck --set rimless.stribeck_velocity=0
+expect_usage_error stribeck-exponent "rimless.stribeck_exponent" rimless simulate --set rimless.friction=stribeck --set rimless.stribeck_exponent=-1
+expect_usage_error stribeck-viscous "rimless.viscous" rimless simulate --set rimless.friction=stribeck --set rimless.viscous=-0.1
+expect_usage_error stribeck-key-with-coulomb "rimless.viscous" rimless simulate --set rimless.viscous=0.5
+expect_usage_error stribeck-velocity-with-coulomb "rimless.stribeck_velocity" rimless fixed-point --set rimless.stribeck_velocity=0.3
 expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such.yaml
 printf 'rimless:\n  K: 1000\n  mu: 0.5\n' >"$work/typo.yaml"
 expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
