@@ -465,7 +465,9 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
     if (touchdown_stop) {
       for (const auto& e : events) {
-        if (e.kind == EventKind::Touchdown && tracker.is_new_leg(e.leg) && !hit) {
+        const bool counts = tracker.is_new_leg(e.leg) ||
+                            (spec.section_includes_legs_behind && e.leg != tracker.stance_leg());
+        if (e.kind == EventKind::Touchdown && counts && !hit) {
           if (section != nullptr) *section = {t, m.y, before, e.leg, section_sensitivity()};
           record_event(t, "section", e.leg);
           hit = true;

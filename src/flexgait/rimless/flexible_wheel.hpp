@@ -39,6 +39,9 @@ struct RunSpec {
   /// passes that run's last stance leg, so that a bounce of it is not taken for a new step.
   int stance_leg = -1;
   std::optional<Section> stop_at;    ///< stop at the first crossing of this section instead
+  /// With stop_at = Touchdown: a leg behind the stance leg landing (the wheel fell back onto it)
+  /// is a crossing too (the first stage of the stagnation experiment ends on either neighbour).
+  bool section_includes_legs_behind = false;
 };
 
 /// The state where a run crossed its stop section.

@@ -90,6 +90,7 @@ Stage run_stage(const WheelParams& w, const InitialState& start, const Simulatio
   FlexibleWheelSimulator simulator(w, o);
   RunSpec spec = default_run(w, start);
   spec.stop_at = Section::Touchdown;  // the stage ends when another leg lands, before its mode is chosen
+  spec.section_includes_legs_behind = true;
   const SimulationResult r = simulator.run(spec);
 
   Stage s;
