@@ -219,11 +219,14 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
     const Config base = s.config;
     job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
     run_sweep(job);
-    // Thresholds from the sweep's gaits, refined by bisection.
-    std::vector<std::pair<double, std::string>> points;
-    for (int i = 0; i < n; ++i) points.emplace_back(spec.value(i), rimless::gait_at_friction(base, spec.value(i), section));
-    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, points, section, 1e-4));
-    files = {"sweep.csv", "thresholds.csv"};
+    // The periodic gait at each value (longer transients, then continuation from the neighbours'
+    // fixed points where the start finds none), and the thresholds between them by bisection.
+    std::vector<double> values;
+    for (int i = 0; i < n; ++i) values.push_back(spec.value(i));
+    const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, section);
+    dir.write("gaits.csv", rimless::friction_gaits_csv(gaits));
+    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, section, 1e-4));
+    files = {"sweep.csv", "gaits.csv", "thresholds.csv"};
   } else if (a.name == "energy") {
     dir.write("energy.csv", rimless::single_support_energy_csv(s.config, mus({0.6, 0.105})));
     files = {"energy.csv"};
