@@ -40,9 +40,9 @@ LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double
 }
 
 SlipLaw slip_law(const WheelParams& w, int s, double cdot) {
-  if (w.friction == Friction::Coulomb) return {w.mu_k, 0.0};
+  if (w.friction == Friction::Coulomb) return {w.mu_k};
   const double decay = std::exp(-std::pow(std::abs(cdot) / w.stribeck_velocity, w.stribeck_exponent));
-  return {w.mu_k + (w.mu_s - w.mu_k) * decay, w.viscous * s * cdot};
+  return {w.mu_k + (w.mu_s - w.mu_k) * decay + w.viscous * s * cdot};
 }
 
 double foot_height(const WheelParams& w, int k, std::span<const double> s) {

@@ -72,10 +72,11 @@ LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double
 double foot_height(const WheelParams& w, int k, std::span<const double> y);
 
 /// The friction law of a foot slipping with sign s at foot velocity ċ (parameters.hpp, Friction):
-/// T = -s (mu N + viscous).
+/// T = -s μ(ċ) N.
 struct SlipLaw {
-  double mu = 0;       ///< μ(ċ): μ_k (Coulomb), or μ_k + (μ_s - μ_k) exp(-(|ċ|/v_s)^δ) (Stribeck)
-  double viscous = 0;  ///< σ s ċ [N]: σ |ċ| on a slip arc (where s ċ >= 0), and smooth through ċ = 0
+  /// μ(ċ): μ_k (Coulomb), or μ_k + (μ_s - μ_k) exp(-(|ċ|/v_s)^δ) + σ s ċ (Stribeck; σ s ċ is
+  /// σ |ċ| on a slip arc, where s ċ >= 0, and smooth through ċ = 0)
+  double mu = 0;
 };
 SlipLaw slip_law(const WheelParams& w, int s, double cdot);
 

@@ -99,17 +99,17 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
       a.b[a.rows] = -g.Adot_qdot - 2.0 * wb * g.cdot - wb * wb * (g.c - contacts.anchor[i]);
       a.stick_index[a.rows++] = i;
     } else {
-      // Slip law T = -s (μ N + V), V = σ s ċ (SlipLaw; μ = μ_k, V = 0 for Coulomb), with the
-      // massless leg's axial balance T sin β + N cos β = f (spec rimless.md, "The model"):
-      //   N = (f - T sin β) / cos β  =>  T cos β = -s μ (f - T sin β) - s V cos β
-      //   =>  T (cos β - μ s sin β) = -s (μ f + V cos β)
-      //   =>  T = -s (μ f + V cos β) / D,   N = (f + s V sin β) / D,   D = cos β - μ s sin β.
-      // D keeps the spec's form with μ = μ(ċ); ċ is a function of (q, q̇), not of q̈, so T is
-      // explicit and D <= 0 remains the Painlevé jam. V = 0 gives the spec's T = -μ s f / D.
+      // Slip law T = -s μ N with μ = μ(ċ) (SlipLaw; μ = μ_k for Coulomb), and the massless
+      // leg's axial balance T sin β + N cos β = f (spec rimless.md, "The model"):
+      //   T = -s μ f / D,   N = f / D,   D = cos β - μ s sin β.
+      // ċ is a function of (q, q̇), not of q̈, so T is explicit and D <= 0 remains the Painlevé
+      // jam with the velocity-dependent coefficient. The viscous part is load-proportional (in
+      // μ): a friction force σ|ċ| that outlives N = 0 would leave a foot at zero load that can
+      // neither leave, slip on, nor be stopped (README, Stribeck friction).
       const SlipLaw law = slip_law(w, s, g.cdot);
       cf.D = slip_denominator(g, s, law.mu);
       if (!(cf.D > 0)) d.failure = "slip with a non-positive friction denominator (Painleve jam)";
-      cf.T = -s * (law.mu * g.f + law.viscous * g.cb) / cf.D;
+      cf.T = -s * law.mu * g.f / cf.D;
       for (int j = 0; j < 3; ++j) a.F[j] += g.A[j] * cf.T;
     }
   }

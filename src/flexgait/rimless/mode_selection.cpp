@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -95,9 +96,16 @@ bool apply_impulse(const WheelParams& w, const std::vector<int>& jam, std::span<
   if (!solve_constrained(w, rows, A, {0.0, 0.0, 0.0}, b, dv, P)) return false;
   for (int r = 0; r < rows; ++r) {
     // Tangential impulse P with no axial part: normal impulse = -P tan β must push, and
-    // |P| <= μ_s (normal impulse), i.e. the direction perpendicular to the leg is in the cone.
+    // |P| <= μ (normal impulse), i.e. the direction perpendicular to the leg is in the cone.
+    // While the foot is stopped its speed passes through every value in [0, |ċ|]: the cone is
+    // the widest the slip law gives there, max(μ_s, μ(ċ)) (μ(v) falls then rises with a viscous
+    // part, so the largest is at an end; Coulomb: μ_s). A jam found by its guard sits at
+    // D = cos β - μ s sin β = 0, i.e. on that cone's edge, to the root finder's accuracy: the
+    // test allows 1e-9 relative.
     const double normal = -P[r] * legs[r].tb;
-    if (normal < 0 || std::abs(P[r]) > w.mu_s * normal * (1 + 1e-12)) return false;
+    const int s = legs[r].cdot > 0 ? 1 : -1;
+    const double mu = std::max(w.mu_s, slip_law(w, s, legs[r].cdot).mu);
+    if (normal < 0 || std::abs(P[r]) > mu * normal * (1 + 1e-9)) return false;
   }
   const double before = kinetic_energy(w, y);
   y[S::xd] += dv[0];

@@ -38,7 +38,7 @@ struct WheelParams {
   Friction friction = Friction::Coulomb;  ///< the slip law
   double stribeck_velocity = 0.1;  ///< Stribeck velocity v_s [m/s], > 0 (Stribeck only)
   double stribeck_exponent = 2.0;  ///< Stribeck exponent δ, > 0 (Stribeck only)
-  double viscous = 0.0;            ///< viscous friction σ [N s/m], >= 0 (Stribeck only)
+  double viscous = 0.0;            ///< viscous rise σ of the slip friction coefficient [s/m], >= 0 (Stribeck only)
   double g = 9.81;     ///< gravity [m/s^2]
 
   /// Half the angle between spokes, α = π/N [rad].
@@ -62,7 +62,7 @@ struct WheelParams {
     v("rimless.stribeck_exponent", s.stribeck_exponent,
       {.doc = "Stribeck exponent delta (friction = stribeck only)", .bounds = positive()});
     v("rimless.viscous", s.viscous,
-      {.unit = "N s/m", .doc = "viscous friction sigma of a slipping foot (friction = stribeck only)",
+      {.unit = "s/m", .doc = "viscous rise sigma of a slipping foot's friction coefficient, mu(v) + sigma |v| (friction = stribeck only)",
        .bounds = non_negative()});
     v("rimless.g", s.g, {.unit = "m/s^2", .doc = "gravitational acceleration", .bounds = positive()});
   }
