@@ -179,6 +179,23 @@ TEST(ParameterSpace, GaitAgainstFrictionFindsTheFixedPointThatExists) {
   EXPECT_TRUE(continued.source.starts_with("continued")) << continued.source;
 }
 
+// A genuine Painlevé case is named as one: leg 11 lands moving on a wheel with μ_s = 4.4 while
+// leg 12 sticks; no impulse inside the cone stops both, and every mode without one slips with
+// D <= 0 or breaks a contact condition (Stribeck friction with a viscous rise, μ(v) > cot β).
+TEST(ParameterSpace, APainleveParadoxIsNamed) {
+  WheelParams w = params_of({4.448006436149931, 0.4832002941178817, 33.35890942087118, 2643.943475057392, 14,
+                             0.1104403197580766, 0});
+  w.mu_k = 3.247251534215311;
+  w.friction = Friction::Stribeck;
+  w.stribeck_velocity = 1.1418969380024793;
+  w.viscous = 0.6307593035212784;
+  w.stribeck_exponent = 3;
+  const SimulationResult r = simulate_flexible(w, InitialState{2.5427552639673783}, events_only(20));
+  ASSERT_TRUE(r.failure.has_value());
+  EXPECT_TRUE(r.failure->starts_with("Painleve paradox")) << *r.failure;
+  EXPECT_LE(r.energy_balance_error, 1e-8);
+}
+
 // The seeded random sample of the issue: μ 0.05–5 (log-uniform), I 0.02–1, C 5–60, K 300–1e4
 // (log-uniform), N 6–14, φ 0.03–0.2, ω0 1–3; m = L0 = 1; 20 steps each. The generator is
 // written out (splitmix64, 53-bit uniforms) so that the sample is the same on every platform.

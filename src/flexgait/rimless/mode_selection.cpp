@@ -142,6 +142,15 @@ double point_mass_thetad(const WheelParams& w, const ContactSet& after, std::spa
   return contact_dynamics(w, after, y).thetad;
 }
 
+// Whether a slipping foot of `trial` has a non-positive friction denominator at y.
+bool trial_jams(const WheelParams& w, const ContactSet& trial, std::span<const double> y) {
+  for (int j = 0; j < trial.count; ++j) {
+    const int s = slip_sign(trial.mode[j]);
+    if (s != 0 && !(slip_denominator(w, leg_kinematics(w, trial.leg[j], y), s) > 0)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void apply_reset(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
@@ -277,6 +286,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   std::array<int, kMaxContacts> pick{};
   std::vector<double> trial_state(y.begin(), y.end());
   double best_thetad = y[S::thetad];
+  bool jam_blocked = false;  // some combination failed only because a slipping foot has D <= 0
   int best_score = std::numeric_limits<int>::max();
   std::string tried;
   for (bool more = true; more;) {
@@ -309,6 +319,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     }
     const Dynamics d = contact_dynamics(w, trial, yc);
     const char* why = d.failure;
+    jam_blocked = jam_blocked || (why != nullptr && trial_jams(w, trial, yc));
     for (int i = 0; i < n && why == nullptr; ++i) {
       const Option o = feet[i].options[pick[i]];
       if (o == Option::Leave) {
@@ -358,6 +369,9 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
                     : single ? "I = 0: single-support slip has no consistent motion (the leg would snap to the "
                                "friction-cone edge, tan(beta) = -mu_k s)"
                              : "I = 0: no consistent contact mode in double support";
+    } else if (jam_blocked) {
+      out.failure = "Painleve paradox: every contact mode either slips with D <= 0 or breaks a contact condition, "
+                    "and no admissible impulse stops the jammed feet";
     } else {
       out.failure = "no consistent contact mode";
     }
