@@ -120,7 +120,7 @@ Stage run_stage(const WheelParams& w, const InitialState& start, const Simulatio
   s.energy_end = last.energy.total();
   s.kinetic_end = last.energy.kinetic;
   s.beta_end = leg_angle(w, stance, last.q[2]);
-  const bool landed = !r.events.empty() && r.events.back().kind == "section";
+  const bool landed = !r.events.empty() && r.events.back().kind == RunEvent::Section;
   if (landed) {
     const int leg = r.events.back().leg;
     s.end = leg == (stance + w.legs - 1) % w.legs ? StageEnd::NextLegLanded
