@@ -35,7 +35,7 @@ void FlexibleWheelStep(benchmark::State& state) {
   for (auto _ : state) {
     const SimulationResult r = sim.run(spec);
     steps += r.steps_completed;
-    events += static_cast<long long>(r.events.size());
+    events += r.event_count;
     rhs += r.rhs_evals;
     benchmark::DoNotOptimize(r.final_state.data());
   }

@@ -38,20 +38,22 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   const Config& config = s.config;
   const std::string model = config.choice("sim.model");
 
-  const rimless::SimulationResult result = s.sim.model == rimless::Model::Rigid
-                                               ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
-                                               : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
-
+  // log.csv, events.csv and steps.csv are written while the run goes: memory does not grow
+  // with the number of steps.
   const RunDirectory dir(a.run.out);
   dir.write_config(config);
-  rimless::write_run(dir, result, model);
+  rimless::RunFiles files(dir);
+  const rimless::SimulationResult result = s.sim.model == rimless::Model::Rigid
+                                               ? rimless::simulate_rigid(s.wheel, s.initial, s.sim, files)
+                                               : rimless::simulate_flexible(s.wheel, s.initial, s.sim, files);
+  files.finish();
+  dir.write("summary.json", rimless::summary_json(result, model));
   if (a.run.plot) run_plot_script("plot_rimless.py", {dir.path().string()});
   if (a.run.json) {
     fmt::print("{}", rimless::summary_json(result, model));
   } else {
     std::string gaits;
-    for (const auto& s : result.steps)
-      if (s.complete) gaits += (gaits.empty() ? "" : " ") + rimless::gait_label(s.single_support);
+    for (const std::string& g : result.gaits) gaits += (gaits.empty() ? "" : " ") + g;
     fmt::print("rimless {} wheel: {} steps in {:.3f} s, mean speed {:.4f} m/s\n", model, result.steps_completed,
                result.t_final, result.mean_speed);
     fmt::print("gaits: {}\n", gaits.empty() ? "-" : gaits);

@@ -50,6 +50,34 @@ TEST(AtomicFile, AppendIsDurableAndCumulative) {
   EXPECT_EQ(read_text_file(dir / "rows.csv"), "a\nb\n");
 }
 
+TEST(AtomicFileWriter, TargetAppearsWholeAtCommitOnly) {
+  const auto dir = fresh_dir("pieces");
+  write_file_atomic(dir / "log.csv", "old\n");
+  {
+    AtomicFileWriter file(dir / "log.csv");
+    file.append("a\n");
+    file.append("b\n");
+    // Until commit the target keeps its old content and the pieces are in the temporary file.
+    EXPECT_EQ(read_text_file(dir / "log.csv"), "old\n");
+    EXPECT_EQ(read_text_file(file.temporary_path()), "a\nb\n");
+    file.commit();
+    EXPECT_THROW(file.append("c\n"), std::logic_error);
+  }
+  EXPECT_EQ(read_text_file(dir / "log.csv"), "a\nb\n");
+  EXPECT_EQ(count_entries(dir), 1);
+}
+
+TEST(AtomicFileWriter, AbandonedWriteLeavesNothing) {
+  const auto dir = fresh_dir("abandon");
+  {
+    AtomicFileWriter file(dir / "log.csv");
+    file.append("half a row");
+    EXPECT_EQ(count_entries(dir), 1);  // the temporary file
+  }  // destroyed without commit: an exception unwound the run
+  EXPECT_FALSE(std::filesystem::exists(dir / "log.csv"));
+  EXPECT_EQ(count_entries(dir), 0);
+}
+
 TEST(RunDirectory, CreatesNestedDirectoryAndRejectsAFile) {
   const auto dir = fresh_dir("rundir");
   RunDirectory run(dir / "x" / "y");

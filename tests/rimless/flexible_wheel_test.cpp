@@ -87,12 +87,12 @@ TEST(FlexibleWheel, NoEventFiresAgainAtItsRestartPoint) {
   for (double mu : {0.105, 0.13, 0.2, 0.6, 5.0}) {
     const SimulationResult r = simulate_flexible(measured_wheel(mu), InitialState{}, run_options(20));
     ASSERT_FALSE(r.failure.has_value()) << *r.failure;
-    std::map<std::pair<int, std::string>, double> last;
+    std::map<std::pair<int, RunEvent>, double> last;
     for (const EventRecord& e : r.events) {
       const auto key = std::make_pair(e.leg, e.kind);
       const auto it = last.find(key);
       if (it != last.end()) {
-        EXPECT_GT(e.t - it->second, 1e-6) << e.kind << " of leg " << e.leg << " at " << e.t;
+        EXPECT_GT(e.t - it->second, 1e-6) << run_event_name(e.kind) << " of leg " << e.leg << " at " << e.t;
       }
       last[key] = e.t;
     }

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -33,33 +34,64 @@ void write_all(int fd, std::string_view content, const std::filesystem::path& pa
 }  // namespace
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
-  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
+  AtomicFileWriter file(path);
+  file.append(content);
+  file.commit();
+}
+
+AtomicFileWriter::AtomicFileWriter(std::filesystem::path path) : path_(std::move(path)) {
+  const std::filesystem::path dir = path_.has_parent_path() ? path_.parent_path() : ".";
   std::string leaf = ".";  // built step by step: GCC 12 warns falsely (-Wrestrict) on a + b + c
-  leaf += path.filename().string();
+  leaf += path_.filename().string();
   leaf += ".tmp-XXXXXX";
   const std::string pattern = (dir / leaf).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
-  const int fd = ::mkstemp(name.data());
-  if (fd < 0) fail("cannot create a temporary file for", path);
-  const std::filesystem::path tmp(name.data());
+  fd_ = ::mkstemp(name.data());
+  if (fd_ < 0) fail("cannot create a temporary file for", path_);
+  tmp_ = name.data();
+}
+
+AtomicFileWriter::~AtomicFileWriter() { discard(); }
+
+void AtomicFileWriter::discard() noexcept {
+  if (fd_ < 0) return;
+  ::close(fd_);
+  ::unlink(tmp_.c_str());
+  fd_ = -1;
+}
+
+void AtomicFileWriter::append(std::string_view content) {
+  if (fd_ < 0) throw std::logic_error("AtomicFileWriter: append after commit");
   try {
-    write_all(fd, content, tmp);
-    if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) fail("cannot flush", tmp);
-    if (::close(fd) != 0) {
-      ::unlink(tmp.c_str());
-      fail("cannot close", tmp);
-    }
+    write_all(fd_, content, tmp_);
   } catch (...) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
+    discard();
     throw;
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+}
+
+void AtomicFileWriter::commit() {
+  if (fd_ < 0) throw std::logic_error("AtomicFileWriter: commit twice");
+  if (::fchmod(fd_, 0644) != 0 || ::fsync(fd_) != 0) {
     const int err = errno;
-    ::unlink(tmp.c_str());
+    discard();
     errno = err;
-    fail("cannot rename into place", path);
+    fail("cannot flush", tmp_);
+  }
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(tmp_.c_str());
+    errno = err;
+    fail("cannot close", tmp_);
+  }
+  if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp_.c_str());
+    errno = err;
+    fail("cannot rename into place", path_);
   }
 }
 

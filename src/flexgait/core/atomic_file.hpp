@@ -12,6 +12,33 @@ namespace flexgait {
 /// neither a partial `path` nor a temporary file behind.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
+/// A file written in pieces that appears whole or not at all: the pieces go to a temporary file
+/// beside `path` (".NAME.tmp-XXXXXX"); commit() flushes it to disk and renames it over `path`.
+/// Destroyed without commit() (an exception, an early return), it removes the temporary file and
+/// `path` is untouched. A process killed mid-way leaves at most the temporary file, never a
+/// half-written `path`.
+class AtomicFileWriter {
+ public:
+  /// Creates the temporary file. Throws std::system_error if that fails.
+  explicit AtomicFileWriter(std::filesystem::path path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+  /// Appends `content` to the temporary file. Throws std::system_error on failure.
+  void append(std::string_view content);
+  /// Flushes, closes and renames the temporary file over the target (once). Throws
+  /// std::system_error on failure, leaving neither a partial target nor the temporary file.
+  void commit();
+  const std::filesystem::path& path() const { return path_; }
+  /// The temporary file's path (while not committed).
+  const std::filesystem::path& temporary_path() const { return tmp_; }
+
+ private:
+  void discard() noexcept;
+  std::filesystem::path path_, tmp_;
+  int fd_ = -1;
+};
+
 /// The whole content of a file ("" if it cannot be read).
 std::string read_text_file(const std::filesystem::path& path);
 

@@ -36,6 +36,9 @@ class CsvWriter {
   CsvWriter& cell(std::string_view text);
   void end_row();
   const std::string& str() const { return text_; }
+  /// Forgets the text built so far (the header too; call between rows): a document written in
+  /// pieces takes str() and then clear()s, keeping the buffer's memory for the next piece.
+  void clear() { text_.clear(); }
 
  private:
   void separator();

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <deque>
 #include <stdexcept>
 
 #include "flexgait/numerics/ode_integrator.hpp"
@@ -88,13 +88,6 @@ RunSpec default_run(const WheelParams& w, const InitialState& initial) {
   return spec;
 }
 
-std::string describe_contacts(const ContactSet& c) {
-  if (c.count == 0) return "flight";
-  std::string s;
-  for (int i = 0; i < c.count; ++i) s += fmt::format("{}{}:{}", i ? " " : "", c.leg[i], mode_name(c.mode[i]));
-  return s;
-}
-
 std::vector<double> initial_state(const WheelParams& w, const InitialState& init) {
   using S = StateIndex;
   std::vector<double> y(static_cast<std::size_t>(state_size(w)), 0.0);
@@ -147,6 +140,8 @@ struct FlexibleWheelSimulator::Impl {
   std::vector<int> directions;
   std::vector<double> y;       // scratch state
   std::vector<double> y_dense; // scratch for dense output
+  std::vector<double> y_minus; // scratch: the state before a reset
+  std::vector<GuardEvent> events;  // scratch: the events of one instant
 
   Impl(const WheelParams& wheel, const SimulationOptions& options)
       : w(wheel),
@@ -155,7 +150,10 @@ struct FlexibleWheelSimulator::Impl {
         integrator(flow, state_size(w), integrator_options(w, options)),
         directions(static_cast<std::size_t>(kGuardsPerLeg * w.legs), -1),
         y(static_cast<std::size_t>(state_size(w))),
-        y_dense(static_cast<std::size_t>(state_size(w))) {}
+        y_dense(static_cast<std::size_t>(state_size(w))),
+        y_minus(static_cast<std::size_t>(state_size(w))) {
+    events.reserve(static_cast<std::size_t>(kGuardsPerLeg * w.legs));
+  }
 
   // --- linearisation across events (variational.hpp) ---
   Eigen::VectorXd flow_at(const ContactSet& c, std::span<const double> s) const {
@@ -285,10 +283,22 @@ FlexibleWheelSimulator::FlexibleWheelSimulator(const WheelParams& wheel, const S
 FlexibleWheelSimulator::~FlexibleWheelSimulator() = default;
 
 SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* section) {
+  SimulationResult res;
+  RunCollector keep(res);
+  run_into(spec, section, keep, res);
+  return res;
+}
+
+SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, RunSink& sink, SectionHit* section) {
+  SimulationResult res;
+  run_into(spec, section, sink, res);
+  return res;
+}
+
+void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, RunSink& sink, SimulationResult& res) {
   using S = StateIndex;
   Impl& m = *impl_;
   const WheelParams& w = m.w;
-  SimulationResult res;
   const numerics::OdeStats stats0 = m.integrator.stats();  // the integrator may have run before
   if (static_cast<int>(spec.y0.size()) != state_size(w)) throw std::invalid_argument("RunSpec: wrong state size");
   std::copy(spec.y0.begin(), spec.y0.end(), m.y.begin());
@@ -297,12 +307,26 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
   const bool touchdown_stop = spec.stop_at == Section::Touchdown;
   double t = 0.0;
 
-  auto record_event = [&](double te, const std::string& kind, int leg) {
-    res.events.push_back({te, kind, leg, describe_contacts(m.flow.contacts())});
+  auto record_event = [&](double te, RunEvent kind, int leg) {
+    ++res.event_count;
+    sink.on_event({te, kind, leg, m.flow.contacts(), {}});
   };
   auto fail = [&](double te, const std::string& why, const std::string& detail) {
     res.failure = detail.empty() ? why : why + " (" + detail + ")";
-    res.events.push_back({te, "failure", -1, *res.failure});
+    ++res.event_count;
+    sink.on_event({te, RunEvent::Failure, -1, m.flow.contacts(), *res.failure});
+  };
+  bool logged_any = false;
+  double last_logged_t = 0;  // [s]
+  auto log_sample = [&](double ts, std::span<const double> ys) {
+    sink.on_sample(m.sample(ts, ys));
+    logged_any = true;
+    last_logged_t = ts;
+  };
+  StepTracker tracker;
+  auto release_steps = [&]() {
+    for (const StepRecord& st : tracker.final_steps()) sink.on_step(st);
+    tracker.drop_final_steps();
   };
 
   // Modes at t = 0: the pending events (a foot landing now) are handled like any event.
@@ -323,7 +347,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     if (dec.failure != nullptr) {
       fail(0.0, dec.failure, dec.detail);
       res.final_state = m.y;
-      return res;
+      return;
     }
     m.flow.set_contacts(dec.contacts);
     m.flow.start_clearing(spec.contacts, spec.pending);
@@ -333,7 +357,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
       if (auto e = m.reset_jacobian(spec.contacts, spec.pending, dec, y_before, sens)) {
         fail(0.0, "sensitivities", *e);
         res.final_state = m.y;
-        return res;
+        return;
       }
     }
   }
@@ -347,25 +371,26 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
   }
   m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
   if (upright_stop) m.directions.push_back(+1);
-  StepTracker tracker;
   const double e0 = mechanical_energy(w, m.flow.contacts(), m.y).total();
   const double ke0 = kinetic_energy(w, m.y);
   int stance = spec.stance_leg;  // else a foot landing at t = 0 is the stance foot of the first step
   for (const auto& e : spec.pending)
     if (stance < 0 && e.kind == EventKind::Touchdown && m.flow.contacts().find(e.leg) >= 0) stance = e.leg;
   tracker.start(0.0, m.y[S::x], e0, m.flow.contacts(), w.legs, stance);
-  record_event(0.0, "start", m.flow.contacts().count > 0 ? m.flow.contacts().leg[0] : -1);
-  if (m.opt.log) res.samples.push_back(m.sample(0.0, m.y));
+  sink.on_start(e0);
+  record_event(0.0, RunEvent::Start, m.flow.contacts().count > 0 ? m.flow.contacts().leg[0] : -1);
+  if (m.opt.log) log_sample(0.0, m.y);
   m.restart(0.0, m.y, sens);
-  res.restarts.push_back({0.0, m.y, m.flow.contacts()});
+  sink.on_restart(0.0, m.y, m.flow.contacts());
 
   double next_sample = m.opt.sample_dt;
   long sample_index = 1;
   double last_touchdown = 0.0;
   GuardEvent last_event{-1, EventKind::Touchdown};
   double last_event_time = -1.0;
-  std::deque<double> recent_events;  // times of the latest events (Zeno watch)
   constexpr std::size_t kZenoCount = 64;
+  std::array<double, kZenoCount> recent_events{};  // times of the latest events, a ring (Zeno watch)
+  std::size_t events_seen = 0;
   constexpr double kZenoWindow = 1e-9;  // s
   constexpr double kTranslationHold = 1.0;  // s a rigid translation must last to end the run
   double translating_since = -1.0;
@@ -384,7 +409,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     if (m.opt.log) {
       while (next_sample < t) {
         m.integrator.interpolate(next_sample, m.y_dense);
-        res.samples.push_back(m.sample(next_sample, m.y_dense));
+        log_sample(next_sample, m.y_dense);
         next_sample = m.opt.sample_dt * static_cast<double>(++sample_index);
       }
     }
@@ -427,7 +452,8 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     // A guard crossed: collect the events, choose the new modes, restart.
     translating_since = -1.0;
     const ContactSet before = m.flow.contacts();
-    std::vector<GuardEvent> events;
+    std::vector<GuardEvent>& events = m.events;
+    events.clear();
     const auto fired = m.integrator.guards_fired();
     Eigen::MatrixXd S_minus;
     Eigen::VectorXd f_minus;
@@ -451,7 +477,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
         break;
       }
       if (section != nullptr) *section = {t, m.y, before, k, section_sensitivity()};
-      record_event(t, "section", k);
+      record_event(t, RunEvent::Section, k);
       hit = true;
       break;
     }
@@ -462,14 +488,14 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
         events.push_back({k, guard_event(slot, i >= 0, i >= 0 ? before.mode[i] : FootMode::Stick)});
       }
     }
-    if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
+    if (m.opt.log) log_sample(t, m.y);
     if (touchdown_stop) {
       for (const auto& e : events) {
         const bool counts = tracker.is_new_leg(e.leg) ||
                             (spec.section_includes_legs_behind && e.leg != tracker.stance_leg());
         if (e.kind == EventKind::Touchdown && counts && !hit) {
           if (section != nullptr) *section = {t, m.y, before, e.leg, section_sensitivity()};
-          record_event(t, "section", e.leg);
+          record_event(t, RunEvent::Section, e.leg);
           hit = true;
         }
       }
@@ -491,20 +517,22 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
           stop = true;
         }
       }
-      recent_events.push_back(t);
-      if (recent_events.size() > kZenoCount) recent_events.pop_front();
+      recent_events[events_seen++ % kZenoCount] = t;
     }
-    if (recent_events.size() == kZenoCount && recent_events.back() - recent_events.front() < kZenoWindow) {
+    // The newest of the latest kZenoCount event times is the slot written last, the oldest the next.
+    if (events_seen >= kZenoCount &&
+        recent_events[(events_seen - 1) % kZenoCount] - recent_events[events_seen % kZenoCount] < kZenoWindow) {
       fail(t, "Zeno sequence: too many events in too short a time",
            fmt::format("{} events within {} s", kZenoCount, kZenoWindow));
       stop = true;
     }
     if (stop) break;
 
-    const std::vector<double> y_minus = m.y;
+    std::copy(m.y.begin(), m.y.end(), m.y_minus.begin());
+    const std::vector<double>& y_minus = m.y_minus;
     const ModeDecision dec = choose_modes(w, before, events, m.y);
     if (dec.failure != nullptr) {
-      for (const auto& e : events) record_event(t, event_name(e.kind), e.leg);
+      for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
       fail(t, dec.failure, dec.detail);
       break;
     }
@@ -520,8 +548,8 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
     m.flow.start_clearing(before, events);
     if (dec.consistent > 1) ++res.ambiguous_choices;
     res.jams += dec.jammed_feet;
-    if (dec.jammed_feet > 0) record_event(t, "jam", events.front().leg);
-    for (const auto& e : events) record_event(t, event_name(e.kind), e.leg);
+    if (dec.jammed_feet > 0) record_event(t, RunEvent::Jam, events.front().leg);
+    for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
     last_event = events.back();
     last_event_time = t;
 
@@ -535,21 +563,23 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
         new_step = true;
       }
     }
-    if (!new_step) tracker.observe(dec.contacts);
-    if (m.opt.log) res.samples.push_back(m.sample(t, m.y));
+    if (new_step) release_steps();
+    else tracker.observe(dec.contacts);
+    if (m.opt.log) log_sample(t, m.y);
     m.restart(t, m.y, sens);
-    res.restarts.push_back({t, m.y, dec.contacts});
+    sink.on_restart(t, m.y, dec.contacts);
   }
 
   res.t_final = t;
   res.final_state = m.y;
   res.final_contacts = m.flow.contacts();
-  if (m.opt.log && (res.samples.empty() || res.samples.back().t < t)) res.samples.push_back(m.sample(t, m.y));
-  res.steps = tracker.steps();
-  if (!res.steps.empty() && !res.steps.back().complete) {
-    res.steps.back().t_end = t;
-    res.steps.back().x_end = m.y[S::x];
-  }
+  if (m.opt.log && (!logged_any || last_logged_t < t)) log_sample(t, m.y);
+  tracker.finish(t, m.y[S::x]);
+  const StepRecord* last_complete = tracker.last_complete();
+  const double x_end = last_complete != nullptr ? last_complete->x_end : m.y[S::x];
+  res.gaits = tracker.gaits();
+  if (!tracker.steps().empty()) res.last_step = tracker.steps().back();
+  for (const StepRecord& st : tracker.steps()) sink.on_step(st);
   res.energy_initial = e0;
   res.energy_final = mechanical_energy(w, m.flow.contacts(), m.y).total();
   res.work_damping = m.y[S::w_damp];
@@ -558,19 +588,21 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* se
   res.energy_balance_error =
       std::abs(res.energy_final + res.work_damping + res.work_friction - res.energy_initial) / scale;
   const double t_end = res.steps_completed > 0 ? last_touchdown : t;
-  double x_end = m.y[S::x];
-  for (const auto& st : res.steps)
-    if (st.complete) x_end = st.x_end;
   res.mean_speed = t_end > 0 ? (x_end - spec.y0[S::x]) / t_end : 0.0;
   const numerics::OdeStats st = m.integrator.stats();
   res.solver_steps = st.steps - stats0.steps;
   res.rhs_evals = st.rhs_evals - stats0.rhs_evals;
-  return res;
 }
 
 SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options) {
   FlexibleWheelSimulator sim(w, options);
   return sim.run(default_run(w, initial));
+}
+
+SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options,
+                                   RunSink& sink) {
+  FlexibleWheelSimulator sim(w, options);
+  return sim.run(default_run(w, initial), sink);
 }
 
 }  // namespace flexgait::rimless

@@ -65,15 +65,23 @@ class FlexibleWheelSimulator {
   FlexibleWheelSimulator(const FlexibleWheelSimulator&) = delete;
   FlexibleWheelSimulator& operator=(const FlexibleWheelSimulator&) = delete;
 
-  /// Simulates as `spec` says. If it stops at a section, `section` holds the crossing.
+  /// Simulates as `spec` says. If it stops at a section, `section` holds the crossing. The
+  /// samples (with SimulationOptions::log), events and steps are kept in the result.
   SimulationResult run(const RunSpec& spec, SectionHit* section = nullptr);
+  /// The same, with the samples, events, steps and restarts handed to `sink` as they are made
+  /// instead (the result's samples, events and steps stay empty; its counts, gait labels and
+  /// energy ledger are filled): memory independent of the length of the run.
+  SimulationResult run(const RunSpec& spec, RunSink& sink, SectionHit* section = nullptr);
 
  private:
+  void run_into(const RunSpec& spec, SectionHit* section, RunSink& sink, SimulationResult& res);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-/// Convenience: initial_state() then FlexibleWheelSimulator::run().
+/// Convenience: initial_state() then FlexibleWheelSimulator::run() (in memory, or into `sink`).
 SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options);
+SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options,
+                                   RunSink& sink);
 
 }  // namespace flexgait::rimless

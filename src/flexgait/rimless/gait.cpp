@@ -29,6 +29,7 @@ std::string gait_label(const std::vector<Phase>& phases) {
 
 void StepTracker::start(double t, double x, double energy, const ContactSet& contacts, int legs, int stance_leg) {
   steps_.clear();
+  gaits_.clear();
   legs_ = legs;
   StepRecord r;
   r.index = 1;
@@ -66,6 +67,7 @@ void StepTracker::touchdown(double t, double x, double energy, int leg, const Co
   cur.t_end = t;
   cur.x_end = x;
   cur.complete = true;
+  gaits_.push_back(gait_label(cur.single_support));
   StepRecord next;
   next.index = cur.index + 1;
   next.stance_leg = leg;
@@ -74,6 +76,26 @@ void StepTracker::touchdown(double t, double x, double energy, int leg, const Co
   next.energy_start = energy;
   steps_.push_back(next);
   observe(contacts);
+}
+
+void StepTracker::finish(double t, double x) {
+  if (steps_.empty() || steps_.back().complete) return;
+  steps_.back().t_end = t;
+  steps_.back().x_end = x;
+}
+
+std::span<const StepRecord> StepTracker::final_steps() const {
+  return std::span<const StepRecord>(steps_).first(steps_.size() > 2 ? steps_.size() - 2 : 0);
+}
+
+void StepTracker::drop_final_steps() {
+  steps_.erase(steps_.begin(), steps_.begin() + static_cast<std::ptrdiff_t>(final_steps().size()));
+}
+
+const StepRecord* StepTracker::last_complete() const {
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it)
+    if (it->complete) return &*it;
+  return nullptr;
 }
 
 }  // namespace flexgait::rimless

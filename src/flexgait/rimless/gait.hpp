@@ -13,6 +13,7 @@
 ///
 /// These are the paper's four behaviours (and their combination). The full sequence of the
 /// stance foot over its whole contact, double support included, is kept as `contact_phases`.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct StepRecord {
   bool complete = false;              ///< ended by the next touchdown
 };
 
+/// Follows the steps of a run. It holds the last two steps only once the caller takes the final
+/// ones (final_steps(), drop_final_steps()), so a run of any length keeps O(1) step records; the
+/// gait labels of the completed steps are kept (gaits()).
 class StepTracker {
  public:
   /// Starts step 1 with `stance_leg` as stance foot (-1: the oldest foot on the ground) on a
@@ -45,16 +49,29 @@ class StepTracker {
   void observe(const ContactSet& contacts);
   /// Closes the current step at the touchdown of `leg` and opens the next.
   void touchdown(double t, double x, double energy, int leg, const ContactSet& contacts);
+  /// At the end of the run at hub position x [m]: the open step ends at time t [s].
+  void finish(double t, double x);
   int stance_leg() const { return steps_.empty() ? -1 : steps_.back().stance_leg; }
   /// Whether a touchdown of `leg` starts a new step: the leg lies ahead of the stance leg in the
   /// direction of walking (legs k-1, k-2, … of stance leg k, fewer than half the wheel ahead).
   /// The stance leg itself or a leg behind it landing again (the wheel rocked back, a foot
   /// bounced) is a re-landing within the current step, not a step.
   bool is_new_leg(int leg) const;
+  /// The steps held, oldest first (all of them after finish()).
   const std::vector<StepRecord>& steps() const { return steps_; }
+  /// The held steps whose records can no longer change: all but the last two (the previous
+  /// stance foot may still be on the ground and add to its contact phases).
+  std::span<const StepRecord> final_steps() const;
+  /// Forgets the final steps (after the caller has taken them).
+  void drop_final_steps();
+  /// The latest completed step, or nullptr.
+  const StepRecord* last_complete() const;
+  /// gait_label(single_support) of every completed step, in order.
+  const std::vector<std::string>& gaits() const { return gaits_; }
 
  private:
   std::vector<StepRecord> steps_;
+  std::vector<std::string> gaits_;
   int legs_ = 0;
 };
 

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <vector>
 
@@ -15,12 +17,32 @@ namespace {
 
 enum class Option : std::uint8_t { Stick, SlipForward, SlipBackward, Leave };
 
+// A list of options (each at most once: at most four), in order of preference; no allocation
+// at an event.
+class Options {
+ public:
+  Options() = default;
+  Options(std::initializer_list<Option> list) {
+    for (Option o : list) push_back(o);
+  }
+  void push_back(Option o) { list_[static_cast<std::size_t>(count_++)] = o; }
+  const Option* begin() const { return list_.data(); }
+  const Option* end() const { return list_.data() + count_; }
+  Option operator[](int i) const { return list_[static_cast<std::size_t>(i)]; }
+  int size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+
+ private:
+  std::array<Option, 4> list_{};
+  int count_ = 0;
+};
+
 struct Foot {
   int leg = 0;
   bool was_on_ground = false;
   FootMode previous = FootMode::Stick;
   double anchor = 0;
-  std::vector<Option> options;  // in order of preference
+  Options options;  // in order of preference
   const GuardEvent* event = nullptr;  // this foot's own event, if one fired
 };
 
@@ -55,7 +77,7 @@ const GuardEvent* event_of(std::span<const GuardEvent> events, int leg) {
   return nullptr;
 }
 
-void add_unique(std::vector<Option>& v, Option o) {
+void add_unique(Options& v, Option o) {
   for (Option x : v)
     if (x == o) return;
   v.push_back(o);
@@ -65,14 +87,14 @@ void add_unique(std::vector<Option>& v, Option o) {
 // With I = 0 the wheel's rotation carries no energy and θ̇ is not a state: it jumps to the value
 // the new mode fixes (ċ = 0 of a sticking foot, or the torque balance when all feet slip; the
 // I -> 0 limit of the fast rotation), so every option is left to the consistency test.
-std::vector<Option> velocity_options(double cdot, double tol, bool point_mass) {
+Options velocity_options(double cdot, double tol, bool point_mass) {
   if (point_mass) return {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave};
   if (cdot > tol) return {Option::SlipForward, Option::Leave};
   if (cdot < -tol) return {Option::SlipBackward, Option::Leave};
   return {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave};
 }
 
-bool allowed(const std::vector<Option>& v, Option o) {
+bool allowed(const Options& v, Option o) {
   for (Option x : v)
     if (x == o) return true;
   return false;
@@ -245,9 +267,9 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   // Each foot's options, in order of preference.
   for (auto& foot : feet) {
     const LegKinematics g = leg_kinematics(w, foot.leg, y);
-    const std::vector<Option> by_velocity = velocity_options(tested_cdot(foot, g), tol.velocity, w.I == 0);
+    const Options by_velocity = velocity_options(tested_cdot(foot, g), tol.velocity, w.I == 0);
     const GuardEvent* e = foot.event;
-    std::vector<Option> preferred;
+    Options preferred;
     if (foot.was_on_ground && (e == nullptr || e->kind == EventKind::SlipJam)) {
       preferred.push_back(option_of(foot.previous));
     }
@@ -288,7 +310,13 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   double best_thetad = y[S::thetad];
   bool jam_blocked = false;  // some combination failed only because a slipping foot has D <= 0
   int best_score = std::numeric_limits<int>::max();
-  std::string tried;
+  // The inconsistent combinations tried and why (the failure's report, made only on failure).
+  struct Tried {
+    std::array<int, kMaxContacts> pick;
+    const char* why;
+  };
+  std::array<Tried, 4 * 4 * 4> tried{};  // at most four options for each of at most three feet
+  std::size_t tried_count = 0;
   for (bool more = true; more;) {
     bool empty = false;
     for (int i = 0; i < n; ++i) empty = empty || feet[i].options.empty();
@@ -347,13 +375,12 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
         out.contacts = trial;
         best_thetad = d.thetad;
       }
-    } else if (tried.size() < 600) {
-      for (int i = 0; i < n; ++i) tried += fmt::format("{}{}={}", i ? "," : "", feet[i].leg, option_name(feet[i].options[pick[i]]));
-      tried += fmt::format(": {}; ", why);
+    } else {
+      tried[tried_count++] = {pick, why};
     }
     more = false;
     for (int i = n - 1; i >= 0; --i) {  // next combination (odometer, last foot fastest)
-      if (++pick[i] < static_cast<int>(feet[i].options.size())) {
+      if (++pick[i] < feet[i].options.size()) {
         more = true;
         break;
       }
@@ -375,7 +402,11 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     } else {
       out.failure = "no consistent contact mode";
     }
-    out.detail = tried;
+    for (std::size_t k = 0; k < tried_count && out.detail.size() < 600; ++k) {
+      for (int i = 0; i < n; ++i)
+        out.detail += fmt::format("{}{}={}", i ? "," : "", feet[i].leg, option_name(feet[i].options[tried[k].pick[i]]));
+      out.detail += fmt::format(": {}; ", tried[k].why);
+    }
     return out;
   }
 

@@ -4,55 +4,71 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/record_json.hpp"
-
 #include "flexgait/core/text.hpp"
 
 namespace flexgait::rimless {
+namespace {
 
-std::string log_csv(const SimulationResult& r) {
+std::vector<std::string> log_columns() {
   std::vector<std::string> cols{"t", "x", "y", "theta", "xd", "yd", "thetad"};
   for (int i = 1; i <= kMaxContacts; ++i)
     for (const char* c : {"leg", "phase", "N", "T", "c", "cdot"}) cols.push_back(fmt::format("{}{}", c, i));
   for (const char* c : {"E_kinetic", "E_gravity", "E_spring", "E_total", "W_damp", "W_fric", "balance"})
     cols.emplace_back(c);
-  CsvWriter csv(cols);
-  const double e0 = r.energy_initial;
-  for (const auto& s : r.samples) {
-    csv.cell(s.t);
-    for (double v : s.q) csv.cell(v);
-    for (const auto& c : s.contact) {
-      if (c.leg < 0) {
-        csv.cell(-1LL).cell("none").cell(0.0).cell(0.0).cell(0.0).cell(0.0);
-      } else {
-        csv.cell(static_cast<long long>(c.leg)).cell(mode_name(c.mode)).cell(c.N).cell(c.T).cell(c.c).cell(c.cdot);
-      }
+  return cols;
+}
+const std::vector<std::string> kEventColumns{"t", "kind", "leg", "modes"};
+const std::vector<std::string> kStepColumns{"step",  "stance_leg", "t_start",      "t_end", "duration",       "x_start",
+                                            "x_end", "speed",      "energy_start", "gait",  "contact_phases", "complete"};
+
+// One row of log.csv; e0 = the run's initial mechanical energy [J].
+void log_row(CsvWriter& csv, const LogSample& s, double e0) {
+  csv.cell(s.t);
+  for (double v : s.q) csv.cell(v);
+  for (const auto& c : s.contact) {
+    if (c.leg < 0) {
+      csv.cell(-1LL).cell("none").cell(0.0).cell(0.0).cell(0.0).cell(0.0);
+    } else {
+      csv.cell(static_cast<long long>(c.leg)).cell(mode_name(c.mode)).cell(c.N).cell(c.T).cell(c.c).cell(c.cdot);
     }
-    const double total = s.energy.total();
-    csv.cell(s.energy.kinetic).cell(s.energy.gravity).cell(s.energy.spring).cell(total);
-    csv.cell(s.w_damp).cell(s.w_fric).cell(total + s.w_damp + s.w_fric - e0);
-    csv.end_row();
   }
+  const double total = s.energy.total();
+  csv.cell(s.energy.kinetic).cell(s.energy.gravity).cell(s.energy.spring).cell(total);
+  csv.cell(s.w_damp).cell(s.w_fric).cell(total + s.w_damp + s.w_fric - e0);
+  csv.end_row();
+}
+
+void event_row(CsvWriter& csv, const EventRecord& e) {
+  csv.cell(e.t).cell(run_event_name(e.kind)).cell(static_cast<long long>(e.leg));
+  csv.cell(e.kind == RunEvent::Failure ? e.message : describe_contacts(e.contacts)).end_row();
+}
+
+void step_row(CsvWriter& csv, const StepRecord& s) {
+  const double dt = s.t_end - s.t_start;
+  csv.cell(static_cast<long long>(s.index)).cell(static_cast<long long>(s.stance_leg)).cell(s.t_start).cell(s.t_end);
+  csv.cell(dt).cell(s.x_start).cell(s.x_end).cell(dt > 0 ? (s.x_end - s.x_start) / dt : 0.0).cell(s.energy_start);
+  csv.cell(gait_label(s.single_support)).cell(gait_label(s.contact)).cell(s.complete ? "true" : "false").end_row();
+}
+
+}  // namespace
+
+std::string log_csv(const SimulationResult& r) {
+  CsvWriter csv(log_columns());
+  for (const auto& s : r.samples) log_row(csv, s, r.energy_initial);
   return csv.str();
 }
 
 std::string events_csv(const SimulationResult& r) {
-  CsvWriter csv({"t", "kind", "leg", "modes"});
-  for (const auto& e : r.events) {
-    csv.cell(e.t).cell(e.kind).cell(static_cast<long long>(e.leg)).cell(e.modes).end_row();
-  }
+  CsvWriter csv(kEventColumns);
+  for (const auto& e : r.events) event_row(csv, e);
   return csv.str();
 }
 
 std::string steps_csv(const SimulationResult& r) {
-  CsvWriter csv({"step", "stance_leg", "t_start", "t_end", "duration", "x_start", "x_end", "speed", "energy_start",
-                 "gait", "contact_phases", "complete"});
-  for (const auto& s : r.steps) {
-    const double dt = s.t_end - s.t_start;
-    csv.cell(static_cast<long long>(s.index)).cell(static_cast<long long>(s.stance_leg)).cell(s.t_start).cell(s.t_end);
-    csv.cell(dt).cell(s.x_start).cell(s.x_end).cell(dt > 0 ? (s.x_end - s.x_start) / dt : 0.0).cell(s.energy_start);
-    csv.cell(gait_label(s.single_support)).cell(gait_label(s.contact)).cell(s.complete ? "true" : "false").end_row();
-  }
+  CsvWriter csv(kStepColumns);
+  for (const auto& s : r.steps) step_row(csv, s);
   return csv.str();
 }
 
@@ -68,6 +84,53 @@ void write_run(const RunDirectory& dir, const SimulationResult& result, const st
   dir.write("events.csv", events_csv(result));
   dir.write("steps.csv", steps_csv(result));
   dir.write("summary.json", summary_json(result, model));
+}
+
+// A CSV file built a piece at a time: rows collect in `csv` and go to the temporary file when
+// they pass kPiece bytes.
+struct RunFiles::File {
+  static constexpr std::size_t kPiece = std::size_t{1} << 20;
+  File(const std::filesystem::path& path, const std::vector<std::string>& columns) : file(path), csv(columns) {}
+  void row_done() {
+    if (csv.str().size() >= kPiece) flush();
+  }
+  void flush() {
+    file.append(csv.str());
+    csv.clear();
+  }
+  AtomicFileWriter file;
+  CsvWriter csv;
+};
+
+RunFiles::RunFiles(const RunDirectory& dir)
+    : log_(std::make_unique<File>(dir.path() / "log.csv", log_columns())),
+      events_(std::make_unique<File>(dir.path() / "events.csv", kEventColumns)),
+      steps_(std::make_unique<File>(dir.path() / "steps.csv", kStepColumns)) {}
+
+RunFiles::~RunFiles() = default;
+
+void RunFiles::on_start(double energy_initial) { energy_initial_ = energy_initial; }
+
+void RunFiles::on_sample(const LogSample& sample) {
+  log_row(log_->csv, sample, energy_initial_);
+  log_->row_done();
+}
+
+void RunFiles::on_event(const EventRecord& event) {
+  event_row(events_->csv, event);
+  events_->row_done();
+}
+
+void RunFiles::on_step(const StepRecord& step) {
+  step_row(steps_->csv, step);
+  steps_->row_done();
+}
+
+void RunFiles::finish() {
+  for (File* f : {log_.get(), events_.get(), steps_.get()}) {
+    f->flush();
+    f->file.commit();
+  }
 }
 
 }  // namespace flexgait::rimless

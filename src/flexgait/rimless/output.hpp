@@ -1,6 +1,8 @@
 #pragma once
 /// \file output.hpp
-/// A rimless-wheel run as files: log.csv, events.csv, steps.csv and summary.json.
+/// A rimless-wheel run as files: log.csv, events.csv, steps.csv and summary.json — from a
+/// finished in-memory result, or written while the run goes (RunFiles) with the same bytes.
+#include <memory>
 #include <string>
 
 #include "flexgait/core/run_directory.hpp"
@@ -11,7 +13,7 @@ namespace flexgait::rimless {
 /// log.csv: t, state, per contact slot (leg, phase, N, T, c, cdot), energies, dissipated work,
 /// and the energy balance E + W_damp + W_fric - E(0).
 std::string log_csv(const SimulationResult& result);
-/// events.csv: t, kind, leg, modes after the event.
+/// events.csv: t, kind, leg, modes after the event (a failure's message instead).
 std::string events_csv(const SimulationResult& result);
 /// steps.csv: one row per step with its gait label and energy.
 std::string steps_csv(const SimulationResult& result);
@@ -20,5 +22,27 @@ std::string summary_json(const SimulationResult& result, const std::string& mode
 
 /// Writes the four files into `dir` (each atomically).
 void write_run(const RunDirectory& dir, const SimulationResult& result, const std::string& model);
+
+/// log.csv, events.csv and steps.csv of a run written while it goes (a RunSink): rows are made
+/// as the samples, events and steps come and go to disk in pieces of about 1 MB, so memory does
+/// not grow with the run. Each file is written under a temporary name and renamed into place by
+/// finish(); until then (an exception, an interruption) no file exists under its final name.
+/// The bytes are those of log_csv(), events_csv() and steps_csv() of the same run in memory.
+class RunFiles final : public RunSink {
+ public:
+  explicit RunFiles(const RunDirectory& dir);
+  ~RunFiles() override;
+  void on_start(double energy_initial) override;
+  void on_sample(const LogSample& sample) override;
+  void on_event(const EventRecord& event) override;
+  void on_step(const StepRecord& step) override;
+  /// Writes the rest and renames the three files into place (after the run).
+  void finish();
+
+ private:
+  struct File;
+  double energy_initial_ = 0;  // [J]
+  std::unique_ptr<File> log_, events_, steps_;
+};
 
 }  // namespace flexgait::rimless

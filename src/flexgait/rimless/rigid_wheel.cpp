@@ -33,6 +33,9 @@ class Pendulum final : public numerics::OdeSystem {
   double J_;
 };
 
+void simulate_rigid_into(const WheelParams& w, const InitialState& init, const SimulationOptions& opt,
+                         std::optional<Section> stop_at, RunSink& sink, SimulationResult& res);
+
 }  // namespace
 
 double RigidStepMap::next(double omega_plus) const { return r * std::sqrt(omega_plus * omega_plus + a); }
@@ -50,6 +53,23 @@ RigidStepMap rigid_step_map(const WheelParams& w) {
 
 SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, const SimulationOptions& opt,
                                 std::optional<Section> stop_at) {
+  SimulationResult res;
+  RunCollector keep(res);
+  simulate_rigid_into(w, init, opt, stop_at, keep, res);
+  return res;
+}
+
+SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, const SimulationOptions& opt,
+                                RunSink& sink, std::optional<Section> stop_at) {
+  SimulationResult res;
+  simulate_rigid_into(w, init, opt, stop_at, sink, res);
+  return res;
+}
+
+namespace {
+
+void simulate_rigid_into(const WheelParams& w, const InitialState& init, const SimulationOptions& opt,
+                         std::optional<Section> stop_at, RunSink& sink, SimulationResult& res) {
   Pendulum pendulum(w);
   const double J = pendulum.J();
   numerics::OdeOptions ode;
@@ -82,18 +102,24 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
     return out;
   };
 
-  SimulationResult res;
   ContactSet contacts;
   contacts.count = 1;
   contacts.leg[0] = 0;
-  auto modes = [&]() {
+  auto record_event = [&](double te, RunEvent kind, int leg) {
+    ++res.event_count;
     contacts.leg[0] = ((stance % w.legs) + w.legs) % w.legs;
-    return describe_contacts(contacts);
+    sink.on_event({te, kind, leg, contacts, kind == RunEvent::Failure ? *res.failure : std::string()});
   };
   const LogSample first = sample_at(0.0, y);
   res.energy_initial = first.energy.total();
-  if (opt.log) res.samples.push_back(first);
-  res.events.push_back({0.0, "start", 0, modes()});
+  sink.on_start(res.energy_initial);
+  double last_logged_t = 0;  // [s]
+  auto log_sample = [&](const LogSample& s) {
+    sink.on_sample(s);
+    last_logged_t = s.t;
+  };
+  if (opt.log) log_sample(first);
+  record_event(0.0, RunEvent::Start, 0);
   StepTracker tracker;
   tracker.start(0.0, first.q[0], res.energy_initial, contacts, w.legs);
 
@@ -109,7 +135,7 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
     if (opt.log) {
       while (next_sample < t) {
         integ.interpolate(next_sample, dense);
-        res.samples.push_back(sample_at(next_sample, dense));
+        log_sample(sample_at(next_sample, dense));
         next_sample = opt.sample_dt * static_cast<double>(++sample_index);
       }
     }
@@ -120,14 +146,14 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
       break;
     }
     if (status != numerics::StepStatus::Guard) continue;
-    if (opt.log) res.samples.push_back(sample_at(t, y));
+    if (opt.log) log_sample(sample_at(t, y));
     if (integ.guards_fired()[1] != 0) {
       res.failure = "rolled back: the wheel fell back onto the previous leg";
       break;
     }
     if (integ.guards_fired()[0] == 0) {  // only the upright guard crossed
       if (stop_at == Section::Upright && res.steps_completed > 0) {
-        res.events.push_back({t, "section", contacts.leg[0], modes()});
+        record_event(t, RunEvent::Section, contacts.leg[0]);
         break;
       }
       continue;
@@ -142,35 +168,40 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
     ++res.steps_completed;
     last_touchdown = t;
     const LogSample after = sample_at(t, y);
-    if (opt.log) res.samples.push_back(after);
-    res.events.push_back({t, "touchdown", contacts.leg[0] = ((stance % w.legs) + w.legs) % w.legs, modes()});
+    if (opt.log) log_sample(after);
+    record_event(t, RunEvent::Touchdown, ((stance % w.legs) + w.legs) % w.legs);
     tracker.touchdown(t, after.q[0], after.energy.total(), contacts.leg[0], contacts);
+    for (const StepRecord& st : tracker.final_steps()) sink.on_step(st);
+    tracker.drop_final_steps();
     if (stop_at == Section::Touchdown) {
-      res.events.push_back({t, "section", contacts.leg[0], modes()});
+      record_event(t, RunEvent::Section, contacts.leg[0]);
       break;
     }
     integ.restart(t, y, dirs);
   }
-  if (res.failure) res.events.push_back({t, "failure", -1, *res.failure});
+  if (res.failure) record_event(t, RunEvent::Failure, -1);
   const LogSample last = sample_at(t, y);
-  if (opt.log && (res.samples.empty() || res.samples.back().t < t)) res.samples.push_back(last);
+  if (opt.log && last_logged_t < t) log_sample(last);
   res.t_final = t;
   res.final_state = {last.q[0], last.q[1], last.q[2], last.q[3], last.q[4], last.q[5]};
   res.final_contacts = contacts;
-  res.steps = tracker.steps();
+  tracker.finish(t, last.q[0]);
+  res.gaits = tracker.gaits();
+  res.last_step = tracker.steps().back();
+  const StepRecord* last_complete = tracker.last_complete();
+  for (const StepRecord& st : tracker.steps()) sink.on_step(st);
   res.energy_final = last.energy.total();
   res.work_damping = w_impact;
   const double scale = first.energy.kinetic + w.m * w.g * w.L0 + w_impact;
   res.energy_balance_error = std::abs(res.energy_final + w_impact - res.energy_initial) / scale;
   const double t_end = res.steps_completed > 0 ? last_touchdown : t;
-  double x_end = last.q[0];
-  for (const auto& st : res.steps)
-    if (st.complete) x_end = st.x_end;
+  const double x_end = last_complete != nullptr ? last_complete->x_end : last.q[0];
   res.mean_speed = t_end > 0 ? (x_end - first.q[0]) / t_end : 0.0;
   const auto st = integ.stats();
   res.solver_steps = st.steps;
   res.rhs_evals = st.rhs_evals;
-  return res;
 }
+
+}  // namespace
 
 }  // namespace flexgait::rimless

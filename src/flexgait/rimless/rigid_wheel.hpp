@@ -36,5 +36,9 @@ RigidStepMap rigid_step_map(const WheelParams& w);
 /// after the impact (β = -α, ω⁺), Upright at the next β = 0 after an impact.
 SimulationResult simulate_rigid(const WheelParams& w, const InitialState& initial, const SimulationOptions& options,
                                 std::optional<Section> stop_at = std::nullopt);
+/// The same, with the samples, events and steps handed to `sink` as they are made (the result's
+/// vectors stay empty).
+SimulationResult simulate_rigid(const WheelParams& w, const InitialState& initial, const SimulationOptions& options,
+                                RunSink& sink, std::optional<Section> stop_at = std::nullopt);
 
 }  // namespace flexgait::rimless

@@ -76,6 +76,49 @@ double hermite_time_within(double t0, double g0, double gd0, double t1, double g
   return inside * h;
 }
 
+namespace {
+
+// A stage's record as the run makes it: the near-vertical times of consecutive samples (the
+// samples at sim.sample_dt and on both sides of every event: the stance foot's mode holds on
+// each interval of positive length between consecutive samples, an event's two samples share t),
+// the last sample and the last event. Two samples are kept, not the log.
+class StageLog final : public RunSink {
+ public:
+  StageLog(const WheelParams& w, const StagnationOptions& opt, int stance, Stage& stage)
+      : w_(w), opt_(opt), stance_(stance), s_(stage) {}
+  void on_sample(const LogSample& b) override {
+    if (samples_++ > 0) add(last_, b);
+    last_ = b;
+  }
+  void on_event(const EventRecord& e) override { last_event_ = e; }
+  bool has_samples() const { return samples_ > 0; }
+  const LogSample& last_sample() const { return last_; }
+  const EventRecord& last_event() const { return last_event_; }
+
+ private:
+  void add(const LogSample& a, const LogSample& b) {
+    if (!(b.t > a.t)) return;
+    const ContactSample* foot = nullptr;
+    for (const ContactSample& c : a.contact)
+      if (c.leg == stance_) foot = &c;
+    if (foot == nullptr) return;  // the stance foot is in the air
+    const bool slipping = foot->mode != FootMode::Stick;
+    const double ga = leg_angle(w_, stance_, a.q[2]) + w_.slope, gb = leg_angle(w_, stance_, b.q[2]) + w_.slope;
+    const double near = hermite_time_within(a.t, ga, a.q[5], b.t, gb, b.q[5], opt_.window);
+    (slipping ? s_.slide_near_vertical : s_.stick_near_vertical) += near;
+    if (slipping) s_.slide_total += b.t - a.t;
+  }
+  const WheelParams& w_;
+  const StagnationOptions& opt_;
+  int stance_;
+  Stage& s_;
+  long long samples_ = 0;
+  LogSample last_;
+  EventRecord last_event_;
+};
+
+}  // namespace
+
 Stage run_stage(const WheelParams& w, const InitialState& start, const SimulationOptions& sim,
                 const StagnationOptions& opt) {
   check_start(w.slope, start.beta);
@@ -91,38 +134,22 @@ Stage run_stage(const WheelParams& w, const InitialState& start, const Simulatio
   RunSpec spec = default_run(w, start);
   spec.stop_at = Section::Touchdown;  // the stage ends when another leg lands, before its mode is chosen
   spec.section_includes_legs_behind = true;
-  const SimulationResult r = simulator.run(spec);
-
   Stage s;
   s.omega0 = start.omega;
-  if (r.samples.empty()) {
+  StageLog log(w, opt, stance, s);
+  const SimulationResult r = simulator.run(spec, log);
+  if (!log.has_samples()) {
     s.failure = r.failure.value_or("no samples");
     return s;
   }
-  // The samples at sim.sample_dt and on both sides of every event: the stance foot's mode holds
-  // on each interval of positive length between consecutive samples (an event's two samples share t).
-  for (std::size_t i = 0; i + 1 < r.samples.size(); ++i) {
-    const LogSample& a = r.samples[i];
-    const LogSample& b = r.samples[i + 1];
-    if (!(b.t > a.t)) continue;
-    const ContactSample* foot = nullptr;
-    for (const ContactSample& c : a.contact)
-      if (c.leg == stance) foot = &c;
-    if (foot == nullptr) continue;  // the stance foot is in the air
-    const bool slipping = foot->mode != FootMode::Stick;
-    const double ga = leg_angle(w, stance, a.q[2]) + w.slope, gb = leg_angle(w, stance, b.q[2]) + w.slope;
-    const double near = hermite_time_within(a.t, ga, a.q[5], b.t, gb, b.q[5], opt.window);
-    (slipping ? s.slide_near_vertical : s.stick_near_vertical) += near;
-    if (slipping) s.slide_total += b.t - a.t;
-  }
-  const LogSample& last = r.samples.back();
+  const LogSample& last = log.last_sample();
   s.duration = r.t_final;
   s.energy_end = last.energy.total();
   s.kinetic_end = last.energy.kinetic;
   s.beta_end = leg_angle(w, stance, last.q[2]);
-  const bool landed = !r.events.empty() && r.events.back().kind == "section";
+  const bool landed = r.event_count > 0 && log.last_event().kind == RunEvent::Section;
   if (landed) {
-    const int leg = r.events.back().leg;
+    const int leg = log.last_event().leg;
     s.end = leg == (stance + w.legs - 1) % w.legs ? StageEnd::NextLegLanded
             : leg == stance + 1                   ? StageEnd::RolledBack
                                                   : StageEnd::Failed;
