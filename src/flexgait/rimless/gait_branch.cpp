@@ -127,7 +127,12 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
       ordered.emplace_back(sp.point, ev);
     }
   }
-  if (!out.branch.reached_end) ordered.back().second = "end: " + out.branch.stop_reason;
+  out.stop_reason = out.branch.reached_end
+                        ? fmt::format("reached {} = {}", spec.param, format_number(spec.to))
+                        : fmt::format("ended at {} = {} (q = (p - from)/(to - from) = {}): {}", spec.param,
+                                      format_number(cache->value(out.branch.points.back().p)),
+                                      format_number(out.branch.points.back().p), out.branch.stop_reason);
+  if (!out.branch.reached_end) ordered.back().second = "end: " + out.stop_reason;
   for (auto& [pt, ev] : ordered) {
     GaitBranchRow r;
     r.p = cache->value(pt.p);

@@ -44,6 +44,7 @@ struct GaitBranch {
   bool exact_jacobian = false;
   numerics::Branch branch;           ///< in q
   std::vector<GaitBranchRow> rows;   ///< points and special points in the order of arclength
+  std::string stop_reason;           ///< why the branch ended, in the key's unit
   std::string failure;               ///< nonempty when the start has no fixed point
 };
 
