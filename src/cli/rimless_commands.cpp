@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/core/run_directory.hpp"
@@ -14,6 +16,7 @@
 #include "flexgait/rimless/output.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 #include "flexgait/rimless/sweep.hpp"
+#include "flexgait/rimless/gait_branch.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "options.hpp"
@@ -284,6 +287,55 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   return 0;
 }
 
+
+// --- rimless continuation (issue 18) ---
+struct ContinuationArgs {
+  RunOptions run;
+  std::string model;
+  std::string section = "touchdown";
+  std::string param;
+  double from = 0, to = 0, step = 0;
+};
+
+int continuation(const ContinuationArgs& a) {
+  std::vector<std::string> extra;
+  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
+  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
+  rimless::GaitContinuationSpec spec{.param = a.param, .from = a.from, .to = a.to, .step = a.step};
+  spec.section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+  const auto t0 = std::chrono::steady_clock::now();
+  const rimless::GaitBranch b = rimless::continue_gait(s.config, spec);  // throws ConfigError on bad input
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!b.failure.empty()) {
+    fmt::print(stderr, "error: {}\n", b.failure);
+    return 2;
+  }
+  const RunDirectory dir(a.run.out);
+  dir.write_config(s.config);
+  dir.write("branch.csv", rimless::gait_branch_csv(b));
+  if (a.run.json) {
+    nlohmann::ordered_json j;
+    j["param"] = b.param;
+    j["points"] = b.branch.points.size();
+    j["reached_end"] = b.branch.reached_end;
+    j["stop_reason"] = b.stop_reason;
+    j["exact_jacobian"] = b.exact_jacobian;
+    j["seconds"] = seconds;
+    nlohmann::ordered_json ev = nlohmann::ordered_json::array();
+    for (const auto& r : b.rows)
+      if (!r.event.empty()) ev.push_back({{"parameter", r.p}, {"event", r.event}, {"gait", r.gait}});
+    j["events"] = ev;
+    fmt::print("{}\n", j.dump(2));
+    return 0;
+  }
+  fmt::print("continuation in {} from {} to {}: {} points in {:.2f} s ({} Jacobian), {}\n", b.param, a.from, a.to,
+             b.branch.points.size(), seconds, b.exact_jacobian ? "exact" : "finite-difference", b.stop_reason);
+  for (const auto& r : b.rows)
+    if (!r.event.empty()) fmt::print("  {} = {:.10g}: {} (gait {})\n", b.param, r.p, r.event, r.gait);
+  fmt::print("results in {}\n", (dir.path() / "branch.csv").string());
+  return 0;
+}
+// --- end rimless continuation ---
 }  // namespace
 
 void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
@@ -326,6 +378,23 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   swc->add_option("--section", sw->section, "Poincare section of the fixed points")
       ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
   swc->callback([sw, &action] { action = [sw] { return sweep(*sw); }; });
+
+  auto ct = std::make_shared<ContinuationArgs>();
+  CLI::App* ctc = rimless->add_subcommand("continuation", "Pseudo-arclength continuation of the gait's fixed point in "
+                                                         "one real key: branch.csv with multipliers, stability and "
+                                                         "located folds, period doublings, Neimark-Sacker points and "
+                                                         "gait changes");
+  add_run_options(*ctc, ct->run, "runs/rimless-continuation");
+  ctc->add_option("--param", ct->param, "real configuration key to continue in (e.g. rimless.slope), or rimless.mu "
+                                        "for mu_s = mu_k")->required();
+  ctc->add_option("--from", ct->from, "start value, where the first fixed point is found (in the key's unit)")->required();
+  ctc->add_option("--to", ct->to, "end value (in the key's unit)")->required();
+  ctc->add_option("--step", ct->step, "first arclength step, in the key's unit (default |to - from|/50; the step "
+                                      "adapts up to twice this)");
+  ctc->add_option("--model", ct->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
+  ctc->add_option("--section", ct->section, "Poincare section of the fixed points")
+      ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
+  ctc->callback([ct, &action] { action = [ct] { return continuation(*ct); }; });
 
   auto an = std::make_shared<AnalysisArgs>();
   CLI::App* anc = rimless->add_subcommand(

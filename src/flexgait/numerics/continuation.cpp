@@ -1,0 +1,501 @@
+#include "flexgait/numerics/continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "flexgait/numerics/newton.hpp"
+
+namespace flexgait::numerics {
+namespace {
+
+using Error = std::optional<std::string>;
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+/// F(x) = P(z, p) - z at x = (z, p).
+Error residual(const MapFamily& f, const Eigen::VectorXd& x, Eigen::VectorXd& F) {
+  const Eigen::Index n = x.size() - 1;
+  const Eigen::VectorXd z = x.head(n);
+  Eigen::VectorXd out(n);
+  if (auto e = f.map(z, x(n), out)) return e;
+  if (out.size() != n || !out.allFinite()) return std::string("the map returned a non-finite or mis-sized state");
+  F = out - z;
+  return std::nullopt;
+}
+
+/// J = [F_z F_p] (n x (n + 1)) at x.
+Error linearise(const MapFamily& f, const Eigen::VectorXd& x, const ContinuationOptions& opt, Eigen::MatrixXd& J) {
+  const Eigen::Index n = x.size() - 1;
+  const Eigen::VectorXd z = x.head(n);
+  const double p = x(n);
+  J.resize(n, n + 1);
+  Eigen::MatrixXd Pz;
+  if (f.state_jacobian) {
+    if (auto e = f.state_jacobian(z, p, Pz)) return "the map's Jacobian: " + *e;
+    if (Pz.rows() != n || Pz.cols() != n || !Pz.allFinite()) return std::string("the map's Jacobian is not finite");
+  } else {
+    Eigen::VectorXd h(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double scale = opt.state_scale.size() == n ? opt.state_scale(i) : 1.0;
+      h(i) = opt.fd_relative_step * std::max(std::abs(z(i)), scale);
+    }
+    const VectorMap at_p = [&](const Eigen::VectorXd& zz, Eigen::VectorXd& out) { return f.map(zz, p, out); };
+    if (auto e = central_difference_jacobian(at_p, z, h, Pz)) return e;
+  }
+  J.leftCols(n) = Pz - Eigen::MatrixXd::Identity(n, n);
+  const double hp = opt.fd_relative_step * std::max(std::abs(p), opt.parameter_scale);
+  Eigen::VectorXd plus(n), minus(n);
+  if (auto e = f.map(z, p + hp, plus)) return "parameter derivative: " + *e;
+  if (auto e = f.map(z, p - hp, minus)) return "parameter derivative: " + *e;
+  J.col(n) = (plus - minus) / ((p + hp) - (p - hp));
+  return std::nullopt;
+}
+
+/// The unit tangent (C3), oriented by t0 (t0 · t > 0).
+Error tangent(const Eigen::MatrixXd& J, const Eigen::VectorXd& t0, Eigen::VectorXd& t) {
+  const Eigen::Index n = J.rows();
+  Eigen::MatrixXd A(n + 1, n + 1);
+  A << J, t0.transpose();
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n + 1);
+  b(n) = 1;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
+  if (lu.isInvertible()) {
+    t = lu.solve(b);
+    if (t.allFinite() && t.norm() > 0) {
+      t.normalize();
+      return std::nullopt;
+    }
+  }
+  // A singular bordered matrix (on a branch point): the right singular vector of J closest to t0.
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+  t = svd.matrixV().col(n);
+  if (t.dot(t0) < 0) t = -t;
+  if (!t.allFinite()) return std::string("no tangent (the Jacobian is not finite)");
+  return std::nullopt;
+}
+
+/// A point of the branch with everything the step and the test functions need.
+struct Solved {
+  Eigen::VectorXd x, F, t;
+  Eigen::MatrixXd J;
+  int iterations = 0;
+};
+
+/// Corrector (C2) from the predictor x0 + ds t0; the tangent of the result is oriented by t0.
+Error correct(const MapFamily& f, const Eigen::VectorXd& x0, const Eigen::VectorXd& t0, double ds,
+              const ContinuationOptions& opt, Solved& out) {
+  const Eigen::Index n = x0.size() - 1;
+  Eigen::VectorXd x = x0 + ds * t0, F;
+  double previous = INFINITY;
+  for (int it = 0;; ++it) {
+    if (auto e = residual(f, x, F)) return e;
+    const double r = F.lpNorm<Eigen::Infinity>();
+    Eigen::MatrixXd J;
+    if (r <= opt.tolerance) {
+      if (auto e = linearise(f, x, opt, J)) return e;
+      out.x = x;
+      out.F = F;
+      out.J = J;
+      out.iterations = it;
+      return tangent(J, t0, out.t);
+    }
+    if (it >= opt.max_corrector_iterations)
+      return "corrector: no convergence in " + std::to_string(it) + " iterations (residual " + number(r) + ")";
+    if (it >= 2 && r > previous) return "corrector diverges (residual " + number(r) + ")";
+    previous = r;
+    if (auto e = linearise(f, x, opt, J)) return e;
+    Eigen::MatrixXd A(n + 1, n + 1);
+    A << J, t0.transpose();
+    Eigen::VectorXd rhs(n + 1);
+    rhs << -F, -(t0.dot(x - x0) - ds);
+    const Eigen::VectorXd dx = A.fullPivLu().solve(rhs);
+    if (!dx.allFinite()) return std::string("corrector: singular bordered matrix");
+    x += dx;
+  }
+}
+
+double fold_test(const Solved& s) { return s.t(s.t.size() - 1); }
+double branch_point_test(const Solved& s) {
+  const Eigen::Index n = s.J.rows();
+  Eigen::MatrixXd A(n + 1, n + 1);
+  A << s.J, s.t.transpose();
+  return A.determinant();
+}
+Eigen::MatrixXd state_jacobian(const Solved& s) {
+  const Eigen::Index n = s.J.rows();
+  return s.J.leftCols(n) + Eigen::MatrixXd::Identity(n, n);
+}
+double period_doubling_test(const Solved& s) {
+  const Eigen::Index n = s.J.rows();
+  return (state_jacobian(s) + Eigen::MatrixXd::Identity(n, n)).determinant();
+}
+double neimark_sacker_test(const std::vector<std::complex<double>>& m) {
+  std::complex<double> product = 1;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = i + 1; j < m.size(); ++j) product *= m[i] * m[j] - 1.0;
+  return product.real();  // real: the multipliers come in conjugate pairs
+}
+double neimark_sacker_test(const Solved& s) { return neimark_sacker_test(floquet_multipliers(state_jacobian(s))); }
+
+BranchPoint make_point(const MapFamily& f, const Solved& s, double arclength) {
+  const Eigen::Index n = s.x.size() - 1;
+  BranchPoint b;
+  b.z = s.x.head(n);
+  b.p = s.x(n);
+  b.arclength = arclength;
+  b.residual = s.F.lpNorm<Eigen::Infinity>();
+  b.corrector_iterations = s.iterations;
+  b.tangent = s.t;
+  b.jacobian = state_jacobian(s);
+  b.multipliers = floquet_multipliers(b.jacobian);
+  b.stable = std::all_of(b.multipliers.begin(), b.multipliers.end(), [](auto l) { return std::abs(l) < 1.0; });
+  if (f.label) b.label = f.label(b.z, b.p);
+  return b;
+}
+
+/// Unit null vector of the square matrix A (its smallest right singular vector).
+Eigen::VectorXd null_vector(const Eigen::MatrixXd& A) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  Eigen::VectorXd v = svd.matrixV().col(A.cols() - 1);
+  // A reproducible sign: the largest component positive.
+  Eigen::Index k = 0;
+  v.cwiseAbs().maxCoeff(&k);
+  return v(k) < 0 ? Eigen::VectorXd(-v) : v;
+}
+
+Eigen::VectorXd parameter_direction(Eigen::Index n) {
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(n + 1);
+  e(n) = 1;
+  return e;
+}
+
+struct Walker {
+  const MapFamily& f;
+  const ContinuationOptions& opt;
+  Branch& branch;
+
+  /// The root of ψ on the step from a (tangent ta) of length sb, by Illinois; ψa, ψb of opposite signs.
+  template <class Test>
+  Error locate(const Solved& a, double sb, double fa, double fb, const Test& psi, Solved& out, double& s_out) {
+    double sa = 0, s_prev = -1;
+    int side = 0;
+    for (int it = 0; it < 100; ++it) {
+      double s = (sa * fb - sb * fa) / (fb - fa);
+      if (!(s > sa && s < sb)) s = 0.5 * (sa + sb);
+      if (auto e = correct(f, a.x, a.t, s, opt, out)) return "locating: " + *e;
+      s_out = s;
+      const double fs = psi(out);
+      if (fs == 0 || std::abs(s - s_prev) <= opt.locate_tolerance || sb - sa <= opt.locate_tolerance)
+        return std::nullopt;
+      s_prev = s;
+      if ((fs > 0) == (fb > 0)) {
+        sb = s;
+        fb = fs;
+        if (side == 1) fa /= 2;
+        side = 1;
+      } else {
+        sa = s;
+        fa = fs;
+        if (side == -1) fb /= 2;
+        side = -1;
+      }
+    }
+    return std::nullopt;  // 100 Illinois steps: the last iterate
+  }
+
+  /// Bisection in s on the label between a (label la) and the step's end sb (label lb).
+  Error locate_label(const Solved& a, double sb, const std::string& la, Solved& out, double& s_out,
+                     std::string& after) {
+    double sa = 0;
+    after.clear();
+    Solved mid;
+    while (sb - sa > opt.label_tolerance) {
+      const double s = 0.5 * (sa + sb);
+      if (auto e = correct(f, a.x, a.t, s, opt, mid)) return "locating the label change: " + *e;
+      const Eigen::Index n = mid.x.size() - 1;
+      const std::string l = f.label(mid.x.head(n), mid.x(n));
+      if (l == la) {
+        sa = s;
+      } else {
+        sb = s;
+        after = l;
+        out = mid;
+      }
+    }
+    if (after.empty()) {  // the end of the step is the first point with the new label
+      if (auto e = correct(f, a.x, a.t, sb, opt, out)) return "locating the label change: " + *e;
+      const Eigen::Index n = out.x.size() - 1;
+      after = f.label(out.x.head(n), out.x(n));
+    }
+    s_out = sb;
+    return std::nullopt;
+  }
+
+  /// Special points on the step from a to b (length ds, b not yet on the branch), in order of s.
+  void detect(const Solved& a, const Solved& b, double ds) {
+    const std::size_t after = branch.points.size() - 1;
+    const double s0 = branch.points.back().arclength;
+    std::vector<std::pair<double, SpecialPoint>> found;
+    const auto check = [&](SpecialKind kind, auto psi) {
+      const double fa = psi(a), fb = psi(b);
+      if ((fa > 0) == (fb > 0)) return;
+      Solved at;
+      double s = 0;
+      SpecialPoint sp;
+      sp.kind = kind;
+      sp.after = after;
+      if (auto e = locate(a, ds, fa, fb, psi, at, s)) {
+        at = b;  // not located: reported at the step's end, the reason in the stop note
+        s = ds;
+        branch.stop_reason += (branch.stop_reason.empty() ? "" : "; ") + to_string(kind) + " not located: " + *e;
+      }
+      sp.test_value = psi(at);
+      sp.point = make_point(f, at, s0 + s);
+      const Eigen::Index n = sp.point.z.size();
+      const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+      if (kind == SpecialKind::Fold || kind == SpecialKind::BranchPoint)
+        sp.eigenvector = null_vector(sp.point.jacobian - I);
+      if (kind == SpecialKind::PeriodDoubling) sp.eigenvector = null_vector(sp.point.jacobian + I);
+      if (kind == SpecialKind::NeimarkSacker) {
+        // The pair with λᵢλⱼ closest to 1 must be complex: otherwise a neutral saddle.
+        const auto& m = sp.point.multipliers;
+        double best = INFINITY;
+        std::complex<double> critical;
+        for (std::size_t i = 0; i < m.size(); ++i)
+          for (std::size_t j = i + 1; j < m.size(); ++j)
+            if (std::abs(m[i] * m[j] - 1.0) < best) {
+              best = std::abs(m[i] * m[j] - 1.0);
+              critical = m[i];
+            }
+        if (std::abs(critical.imag()) <= 1e-9 * std::abs(critical)) return;
+        sp.angle = std::abs(std::arg(critical));
+      }
+      found.emplace_back(s, std::move(sp));
+    };
+    check(SpecialKind::Fold, [](const Solved& s) { return fold_test(s); });
+    check(SpecialKind::BranchPoint, [](const Solved& s) { return branch_point_test(s); });
+    check(SpecialKind::PeriodDoubling, [](const Solved& s) { return period_doubling_test(s); });
+    check(SpecialKind::NeimarkSacker, [](const Solved& s) { return neimark_sacker_test(s); });
+    if (f.label) {
+      const Eigen::Index n = a.x.size() - 1;
+      const std::string la = branch.points.back().label, lb = f.label(b.x.head(n), b.x(n));
+      if (la != lb) {
+        Solved at;
+        double s = ds;
+        SpecialPoint sp;
+        sp.kind = SpecialKind::LabelChange;
+        sp.after = after;
+        sp.label_before = la;
+        if (auto e = locate_label(a, ds, la, at, s, sp.label_after)) {
+          at = b;
+          sp.label_after = lb;
+          branch.stop_reason += (branch.stop_reason.empty() ? "" : "; ") + std::string("label change not located: ") + *e;
+        }
+        sp.point = make_point(f, at, s0 + s);
+        found.emplace_back(s, std::move(sp));
+      }
+    }
+    std::sort(found.begin(), found.end(), [](const auto& u, const auto& v) { return u.first < v.first; });
+    for (auto& item : found) branch.special.push_back(std::move(item.second));
+  }
+
+  /// Continues from `start` (on the branch already) within [lo, hi].
+  void run(Solved start, double lo, double hi, double p_end) {
+    const Eigen::Index n = start.x.size() - 1;
+    Solved a = std::move(start);
+    double ds = opt.initial_step;
+    const double cos_turn = std::cos(opt.max_turn);
+    while (static_cast<int>(branch.points.size()) < opt.max_points) {
+      Solved b;
+      std::string why;
+      for (;;) {
+        auto e = correct(f, a.x, a.t, ds, opt, b);
+        if (!e && b.t.dot(a.t) < cos_turn)
+          e = "the tangent turns by " + number(std::acos(std::clamp(b.t.dot(a.t), -1.0, 1.0))) + " rad";
+        if (!e) break;
+        why = *e;
+        ds /= 2;
+        if (ds < opt.min_step) {
+          branch.stop_reason = "no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why;
+          return;
+        }
+      }
+      // Leaving [lo, hi]: the end point is located on the bound (ψ = p - bound).
+      const double pb = b.x(n);
+      const bool out_low = pb < lo, out_high = pb > hi;
+      if (out_low || out_high) {
+        const double bound = out_low ? lo : hi;
+        const auto psi = [&](const Solved& s) { return s.x(n) - bound; };
+        Solved end;
+        double s = ds;
+        if (auto e = locate(a, ds, psi(a), psi(b), psi, end, s)) {
+          branch.stop_reason = "could not stop on p = " + number(bound) + ": " + *e;
+          return;
+        }
+        // On the bound exactly: Newton at p = bound from the located point (kept if that fails).
+        Solved exact;
+        Eigen::VectorXd on = end.x;
+        on(n) = bound;
+        if (!correct(f, on, parameter_direction(n), 0.0, opt, exact)) {
+          if (exact.t.dot(end.t) < 0) exact.t = -exact.t;
+          end = std::move(exact);
+        }
+        if (opt.detect) detect(a, end, s);
+        branch.points.push_back(make_point(f, end, branch.points.back().arclength + s));
+        branch.reached_end = bound == p_end;
+        branch.stop_reason = branch.reached_end ? "reached p = " + number(p_end)
+                                                : "turned back to p = " + number(bound) + " (left the parameter interval)";
+        return;
+      }
+      if (opt.detect) detect(a, b, ds);
+      branch.points.push_back(make_point(f, b, branch.points.back().arclength + ds));
+      if (b.iterations <= 3) ds = std::min(1.5 * ds, opt.max_step);
+      if (b.iterations >= 6) ds = std::max(0.5 * ds, opt.min_step);
+      a = std::move(b);
+    }
+    branch.stop_reason = "max_points (" + std::to_string(opt.max_points) + ") reached";
+  }
+};
+
+}  // namespace
+
+std::string to_string(SpecialKind kind) {
+  switch (kind) {
+    case SpecialKind::Fold: return "fold";
+    case SpecialKind::BranchPoint: return "branch point";
+    case SpecialKind::PeriodDoubling: return "period doubling";
+    case SpecialKind::NeimarkSacker: return "Neimark-Sacker";
+    case SpecialKind::LabelChange: return "label change";
+  }
+  return "?";
+}
+
+MapFamily iterate(const MapFamily& f, int k) {
+  MapFamily g;
+  g.period = f.period * k;
+  g.label = f.label;
+  g.map = [f, k](const Eigen::VectorXd& z, double p, Eigen::VectorXd& out) -> std::optional<std::string> {
+    Eigen::VectorXd current = z;
+    for (int i = 0; i < k; ++i) {
+      if (auto e = f.map(current, p, out)) return "iterate " + std::to_string(i + 1) + ": " + *e;
+      current = out;
+    }
+    return std::nullopt;
+  };
+  if (f.state_jacobian) {
+    g.state_jacobian = [f, k](const Eigen::VectorXd& z, double p, Eigen::MatrixXd& J) -> std::optional<std::string> {
+      Eigen::VectorXd current = z, next;
+      Eigen::MatrixXd Ji;
+      J = Eigen::MatrixXd::Identity(z.size(), z.size());
+      for (int i = 0; i < k; ++i) {
+        if (auto e = f.state_jacobian(current, p, Ji)) return "iterate " + std::to_string(i + 1) + ": " + *e;
+        J = Ji * J;
+        if (i + 1 < k) {
+          if (auto e = f.map(current, p, next)) return "iterate " + std::to_string(i + 1) + ": " + *e;
+          current = next;
+        }
+      }
+      return std::nullopt;
+    };
+  }
+  return g;
+}
+
+std::optional<std::string> fixed_point_at(const MapFamily& f, const Eigen::VectorXd& z0, double p,
+                                          const ContinuationOptions& opt, BranchPoint& out) {
+  const Eigen::Index n = z0.size();
+  Eigen::VectorXd x0(n + 1);
+  x0 << z0, p;
+  Solved s;
+  if (auto e = correct(f, x0, parameter_direction(n), 0.0, opt, s)) return e;
+  out = make_point(f, s, 0.0);
+  return std::nullopt;
+}
+
+Branch continue_fixed_points(const MapFamily& f, const Eigen::VectorXd& z0, double p0, double p_end,
+                             const ContinuationOptions& opt) {
+  Branch branch;
+  branch.period = f.period;
+  const Eigen::Index n = z0.size();
+  if (!(p_end != p0) || !std::isfinite(p0) || !std::isfinite(p_end)) {
+    branch.failure = "the parameter interval is empty (from " + number(p0) + " to " + number(p_end) + ")";
+    return branch;
+  }
+  Eigen::VectorXd x0(n + 1);
+  x0 << z0, p0;
+  // The start: Newton at p0; the tangent oriented towards p_end.
+  const Eigen::VectorXd towards = (p_end > p0 ? 1.0 : -1.0) * parameter_direction(n);
+  Solved start;
+  if (auto e = correct(f, x0, towards, 0.0, opt, start)) {
+    branch.failure = "no fixed point at p = " + number(p0) + " from the initial guess: " + *e;
+    return branch;
+  }
+  branch.points.push_back(make_point(f, start, 0.0));
+  Walker w{f, opt, branch};
+  w.run(std::move(start), std::min(p0, p_end), std::max(p0, p_end), p_end);
+  return branch;
+}
+
+Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, double p_end,
+                                 const ContinuationOptions& opt, int side) {
+  const MapFamily g = iterate(f, 2);
+  Branch branch;
+  branch.period = g.period;
+  if (pd.kind != SpecialKind::PeriodDoubling || pd.eigenvector.size() != pd.point.z.size()) {
+    branch.failure = "branch switching needs a period doubling with its eigenvector";
+    return branch;
+  }
+  if (!(p_end != pd.point.p)) {
+    branch.failure = "the parameter interval is empty (p_end is the period doubling's parameter)";
+    return branch;
+  }
+  const Eigen::Index n = pd.point.z.size();
+  Eigen::VectorXd x_pd(n + 1), t_switch = Eigen::VectorXd::Zero(n + 1);
+  x_pd << pd.point.z, pd.point.p;
+  t_switch.head(n) = (side >= 0 ? 1.0 : -1.0) * pd.eigenvector.normalized();
+  // The period-doubling point itself, a fixed point of P² (the branch's root).
+  Solved root;
+  if (auto e = correct(g, x_pd, t_switch, 0.0, opt, root)) {
+    branch.failure = "the period-doubling point is not a fixed point of P²: " + *e;
+    return branch;
+  }
+  Solved first;
+  double ds = opt.initial_step;
+  std::string why;
+  for (;;) {
+    auto e = correct(g, x_pd, t_switch, ds, opt, first);
+    if (!e) {
+      // Off the period-1 branch: P(z) ≠ z by more than the corrector's tolerance.
+      Eigen::VectorXd F;
+      if (auto e1 = residual(f, first.x, F)) e = "the period-1 map: " + *e1;
+      else if (F.lpNorm<Eigen::Infinity>() <= 100 * opt.tolerance) e = std::string("landed on the period-1 branch");
+    }
+    if (!e) break;
+    why = *e;
+    ds /= 2;
+    if (ds < opt.min_step) {
+      branch.failure = "no period-2 point next to the period doubling at p = " + number(pd.point.p) + ": " + why;
+      return branch;
+    }
+  }
+  root.t = t_switch;
+  branch.points.push_back(make_point(g, root, 0.0));
+  branch.points.push_back(make_point(g, first, ds));
+  const double p0 = pd.point.p;
+  if ((first.x(n) - p0) * (p_end - p0) < 0) {
+    branch.stop_reason = "the period-2 branch lies on the other side of the period doubling (p = " +
+                         number(first.x(n)) + "), away from p_end";
+    return branch;
+  }
+  Walker w{g, opt, branch};
+  w.run(std::move(first), std::min(p0, p_end), std::max(p0, p_end), p_end);
+  return branch;
+}
+
+}  // namespace flexgait::numerics

@@ -1,0 +1,134 @@
+#pragma once
+/// \file continuation.hpp
+/// Pseudo-arclength continuation of fixed points of a parametrised map z ↦ P(z, p) (Keller 1977;
+/// Kuznetsov, "Elements of Applied Bifurcation Theory", 3rd ed., §10.2 and §10.3), with the
+/// codimension-one bifurcations of maps detected and located on the branch.
+///
+/// The branch is the solution curve x(s) = (z(s), p(s)) ∈ R^{n+1} of
+///   F(z, p) = P(z, p) - z = 0,                                                           (C1)
+/// parametrised by (pseudo-)arclength s. One step from a point x₀ with unit tangent t₀:
+///   predictor   x = x₀ + Δs t₀,
+///   corrector   Newton on  F(x) = 0,  t₀ · (x - x₀) - Δs = 0                              (C2)
+///               with the bordered matrix [F_z F_p; t₀ᵀ] (nonsingular at regular points and folds),
+///   tangent     [F_z F_p; t₀ᵀ] t₁ = (0, …, 0, 1)ᵀ,  t₁ ← t₁/|t₁|,                          (C3)
+/// so that t₀ · t₁ > 0: the direction of travel is kept through folds. Step rules: a corrector
+/// that converges in ≤ 3 iterations grows Δs by 1.5 (up to max_step), one that needs ≥ 6 halves
+/// it for the next step; a corrector that fails (no convergence, map failure, or a tangent that
+/// turns by more than max_turn) is retried with Δs/2 down to min_step, where the branch ends.
+///
+/// Test functions on the branch (Kuznetsov §10.2.2), each evaluated at every point; a sign change
+/// between two points is located by the Illinois (modified regula falsi) method in s along the
+/// step (C2) to `locate_tolerance`:
+///   fold (a multiplier through +1)         ψ_LP = t_p, the tangent's parameter component;
+///   branch point (two branches cross)      ψ_BP = det [F_z F_p; tᵀ];
+///   period doubling (through −1)           ψ_PD = det (P_z + I);
+///   Neimark–Sacker (λ, λ̄ through |λ| = 1)  ψ_NS = Π_{i<j} (λᵢ λⱼ − 1),
+/// the last also vanishing when two real multipliers have λᵢ λⱼ = 1 (a neutral saddle, which is
+/// no bifurcation and is not reported). An optional label of each point (e.g. a gait's contact
+/// sequence) is watched too: where it changes, the change is located by bisection in s.
+///
+/// Jacobians: F_z by central differences (newton.hpp) unless an exact ∂P/∂z is supplied; F_p always
+/// by central differences. Period-k orbits are fixed points of P^k (iterate()); at a period doubling
+/// the period-2 branch is switched to along the critical eigenvector (switch_at_period_doubling()).
+#include <Eigen/Dense>
+
+#include <complex>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace flexgait::numerics {
+
+/// P: writes P(z, p) into `out` (dim z), or returns why it cannot be evaluated there.
+using ParametrisedMap =
+    std::function<std::optional<std::string>(const Eigen::VectorXd& z, double p, Eigen::VectorXd& out)>;
+/// ∂P/∂z at (z, p) into J (n x n), or why not.
+using ParametrisedJacobian =
+    std::function<std::optional<std::string>(const Eigen::VectorXd& z, double p, Eigen::MatrixXd& J)>;
+/// A discrete label of the point (z, p), e.g. a gait's contact sequence.
+using PointLabel = std::function<std::string(const Eigen::VectorXd& z, double p)>;
+
+/// The family of maps to continue, as plain callbacks.
+struct MapFamily {
+  ParametrisedMap map;
+  ParametrisedJacobian state_jacobian;  ///< exact ∂P/∂z; empty: central differences
+  PointLabel label;                     ///< empty: no labels watched
+  int period = 1;                       ///< this map is the period-th iterate of the underlying map
+};
+
+/// P^k with ∂P^k/∂z by the chain rule, ∂P(z_{k-1}) ⋯ ∂P(z_0), when `family` has an exact ∂P/∂z.
+MapFamily iterate(const MapFamily& family, int k);
+
+struct ContinuationOptions {
+  double initial_step = 1e-2;   ///< Δs of the first step (units of |(z, p)|)
+  double min_step = 1e-9;       ///< the branch ends when a step this small fails
+  double max_step = 0.1;
+  int max_points = 1000;        ///< points on the branch, the start included
+  double tolerance = 1e-11;     ///< a point is accepted when ||F||_inf <= tolerance (state units)
+  int max_corrector_iterations = 10;
+  double max_turn = 0.3;        ///< largest angle between consecutive tangents [rad]
+  /// Central-difference step h = this · max(|z_i|, state_scale_i) (and max(|p|, parameter_scale)).
+  /// 1e-6 suits maps evaluated to round-off; a map integrated to rtol 1e-12 wants ~3e-5 (newton.hpp).
+  double fd_relative_step = 1e-6;
+  Eigen::VectorXd state_scale;  ///< typical |z_i| (empty: ones)
+  double parameter_scale = 1;   ///< typical |p|
+  double locate_tolerance = 1e-10;  ///< special points located to this in s (so in p)
+  double label_tolerance = 1e-8;    ///< label changes located to this in s
+  bool detect = true;           ///< detect and locate special points
+};
+
+enum class SpecialKind { Fold, BranchPoint, PeriodDoubling, NeimarkSacker, LabelChange };
+/// "fold", "branch point", "period doubling", "Neimark-Sacker", "label change".
+std::string to_string(SpecialKind kind);
+
+struct BranchPoint {
+  double p = 0;
+  Eigen::VectorXd z;                            ///< (dim n)
+  double arclength = 0;                         ///< s from the branch's start
+  double residual = 0;                          ///< ||P(z, p) - z||_inf
+  int corrector_iterations = 0;
+  Eigen::VectorXd tangent;                      ///< unit (dz/ds, dp/ds) (dim n + 1)
+  Eigen::MatrixXd jacobian;                     ///< ∂P/∂z (n x n)
+  std::vector<std::complex<double>> multipliers;  ///< eigenvalues of ∂P/∂z, largest modulus first
+  bool stable = false;                          ///< every multiplier strictly inside the unit circle
+  std::string label;
+};
+
+struct SpecialPoint {
+  SpecialKind kind = SpecialKind::Fold;
+  BranchPoint point;            ///< the located point
+  std::size_t after = 0;        ///< index of the branch point before it
+  Eigen::VectorXd eigenvector;  ///< fold: null vector of P_z − I; period doubling: of P_z + I (unit)
+  double angle = 0;             ///< Neimark–Sacker: argument of the critical multiplier in (0, π) [rad]
+  double test_value = 0;        ///< the test function at the located point
+  std::string label_before, label_after;  ///< label change only
+};
+
+struct Branch {
+  int period = 1;
+  std::vector<BranchPoint> points;
+  std::vector<SpecialPoint> special;  ///< in the order met
+  bool reached_end = false;           ///< the branch reached p = p_end
+  std::string stop_reason;            ///< why it ended (also when reached_end)
+  std::string failure;                ///< nonempty when not even the start converged
+};
+
+/// Newton on F(z, p) = 0 at fixed p from z0 (the corrector (C2) with t₀ = e_p, Δs = 0): a fixed
+/// point of `family` (a period-k orbit when family = iterate(P, k)). Returns the point or why not.
+std::optional<std::string> fixed_point_at(const MapFamily& family, const Eigen::VectorXd& z0, double p,
+                                          const ContinuationOptions& options, BranchPoint& out);
+
+/// The branch through the fixed point near (z0, p0), continued towards p_end until it reaches
+/// p_end, leaves [min(p0, p_end), max(p0, p_end)] (it turned back), has max_points, or a step
+/// below min_step fails.
+Branch continue_fixed_points(const MapFamily& family, const Eigen::VectorXd& z0, double p0, double p_end,
+                             const ContinuationOptions& options);
+
+/// The period-2 branch born at the period doubling `pd` of `family`'s branch: the corrector on
+/// P² from the PD point along its critical eigenvector v (tangent (v, 0), sign `side` = ±1: the
+/// two points of the orbit), then continued towards p_end as a branch of iterate(family, 2).
+Branch switch_at_period_doubling(const MapFamily& family, const SpecialPoint& pd, double p_end,
+                                 const ContinuationOptions& options, int side = 1);
+
+}  // namespace flexgait::numerics

@@ -1,0 +1,61 @@
+// Continuation of the wheel's gait (issue 18): the rigid wheel's branch over the slope against its
+// closed form, and bad input refused before anything runs.
+#include "flexgait/rimless/gait_branch.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "flexgait/rimless/rigid_wheel.hpp"
+#include "flexgait/rimless/sweep.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+// The rigid wheel's touchdown map ω⁺ ↦ r sqrt(ω⁺² + a) (rigid_wheel.hpp) has the fixed point
+// ω* = r sqrt(a/(1 - r²)) and multiplier r² at every slope. Each map evaluation integrates the
+// stance to rtol 1e-12 and the corrector stops at ||F|| <= 1e-10, so ω* (about 1 rad/s, with
+// 1/(1 - r²) ~ 2 amplifying the residual) is within 1e-9; the Jacobian is analytic.
+TEST(GaitBranch, RigidWheelOverTheSlopeIsTheClosedForm) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.I=0.01"});
+  GaitContinuationSpec spec;
+  spec.param = "rimless.slope";
+  spec.from = 0.05;
+  spec.to = 0.15;
+  spec.step = 0.01;
+  const GaitBranch b = continue_gait(base, spec);
+  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  EXPECT_TRUE(b.branch.reached_end) << b.branch.stop_reason;
+  EXPECT_TRUE(b.exact_jacobian);
+  ASSERT_GE(b.rows.size(), 6u);
+  EXPECT_DOUBLE_EQ(b.rows.front().p, 0.05);
+  EXPECT_NEAR(b.rows.back().p, 0.15, 1e-12);
+  for (const GaitBranchRow& r : b.rows) {
+    const WheelParams w = wheel_from_config(sweep_point_config(base, SweepSpec{"rimless.slope", r.p, r.p, 1}, 0));
+    const RigidStepMap exact = rigid_step_map(w);
+    EXPECT_NEAR(r.point.z(0), exact.fixed_point(), 1e-9) << "slope " << r.p;
+    ASSERT_EQ(r.point.multipliers.size(), 1u);
+    EXPECT_NEAR(r.point.multipliers[0].real(), exact.r * exact.r, 1e-9) << "slope " << r.p;
+    EXPECT_TRUE(r.point.stable);
+    EXPECT_LE(r.point.residual, 1e-10);
+  }
+  EXPECT_TRUE(b.branch.special.empty());
+  const std::string csv = gait_branch_csv(b);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event");
+}
+
+TEST(GaitBranch, RefusesBadInput) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
+  GaitContinuationSpec spec{.param = "rimless.nothing", .from = 0.05, .to = 0.1};
+  EXPECT_THROW(continue_gait(base, spec), ConfigError);
+  spec.param = "rimless.slope";
+  spec.to = spec.from;
+  EXPECT_THROW(continue_gait(base, spec), ConfigError);
+  spec.to = 2.0;  // beyond the slope's bound π/4
+  EXPECT_THROW(continue_gait(base, spec), ConfigError);
+}
+
+}  // namespace
+}  // namespace flexgait::rimless
