@@ -122,7 +122,8 @@ TEST(Record, ChoicesComeFromTheEnumTable) {
 TEST(Record, WalkRunSchemaIsTheUnionOfItsParts) {
   Schema parts = humanoid::robot_schema();
   parts.merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
-  parts.merge(compensation::compensation_schema());
+  parts.merge(compensation::compensation_schema()).merge(schema_of<walking::EstimatorParams>());
+  parts.merge(schema_of<walking::HealthParams>());
   const Schema run = experiments::walk_run_schema();
   ASSERT_EQ(run.params().size(), parts.params().size() + 1);  // + output.log_period
   for (std::size_t i = 0; i < parts.params().size(); ++i) EXPECT_EQ(run.params()[i].key, parts.params()[i].key);

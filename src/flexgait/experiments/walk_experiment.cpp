@@ -36,7 +36,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
                     const std::function<void(const humanoid::HumanoidPlant&)>& observe) {
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = params.plant.control_period;
-  walking::WalkingController controller(params.controller_robot, params.walk, params.balance, T);
+  walking::WalkingController controller(params.controller_robot, params.walk, params.balance, T, params.estimator,
+                                        params.health);
   compensation::DeformationCompensator compensator(controller.model(), params.control);
   humanoid::HumanoidPlant plant(params.robot, params.plant);
   plant.reset(controller.initial_pose());
@@ -62,7 +63,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const double t_walk0 = out.plan.steps.empty() ? 0.0 : out.plan.steps.front().t_begin;
   Accumulator zx, zy, zss, zft, zbelief, roll, pitch, com;
   Accumulator deflection, estimate_error, one_step_error, conventional_error, newton_vs_conventional, link_error;
-  Accumulator roll_kin_encoder, roll_kin_estimate;
+  Accumulator roll_kin_encoder, roll_kin_estimate, attitude_error;
+  unsigned flags_since_log = 0;
   long newton_calls = 0, newton_iterations = 0;
   m.support_margin_min = INFINITY;
   std::size_t next_landing = 0;
@@ -73,16 +75,19 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
 
   for (long k = 0; k < ticks; ++k) {
     const double t = k * T;
-    const humanoid::SensorReadings& sensors = plant.sensors();
-    const humanoid::JointVector& desired = controller.update(sensors, t);
+    const humanoid::JointVector& desired = controller.update(plant.sensors(), t);
     const walking::ControllerStatus& st = controller.status();
+    // The readings as the controller used them (bad values held by its health check).
+    const humanoid::SensorReadings& sensors = controller.sensors();
+    flags_since_log |= st.sensor_flags;
     // The thesis's Fig. 2: input compensator → robot → encoders → output compensator.
     const compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref};
     const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
-    const Eigen::Matrix3d R_imu = walking::quat_to_matrix(sensors.imu.quat.data());
     const compensation::OutputEstimate* estimate =
-        params.control.output() ? &compensator.output(sensors.encoder, R_imu, plan_now) : nullptr;
+        params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;
     const humanoid::GroundTruth before = plant.truth();  // the state the sensors read
+    const Eigen::Matrix3d R_before = walking::quat_to_matrix(before.pelvis_quat.data());
+    const double roll_true = walking::roll_of(R_before), pitch_true = walking::pitch_of(R_before);
     const humanoid::JointVector encoder = sensors.encoder;  // (the plant's sensors change on step)
     const bool in_walk = before.t >= t_walk0 && before.t <= out.plan.t_settle;
     if (estimate) {
@@ -116,6 +121,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
           conventional_error.add(estimate->conventional[j] - before.link_angle[j]);
           newton_vs_conventional.add(estimate->newton[j] - estimate->conventional[j]);
         }
+      attitude_error.add(std::hypot(st.imu_roll - roll_true, st.imu_pitch - pitch_true));
       if (stance >= 0) {
         roll_kin_encoder.add(roll_enc - st.imu_roll);
         if (estimate) roll_kin_estimate.add(roll_est - st.imu_roll);
@@ -165,15 +171,18 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
                                     R.topLeftCorner<2, 2>() * c.cop);
         fz += c.normal_force;
       }
-      if (fz > params.balance.contact_force) zft.add((moment / fz - zmp_true).norm());
-      roll.add(st.imu_roll);
-      pitch.add(st.imu_pitch);
+      const unsigned ft_bits = (1U << humanoid::kFtLeft) | (1U << humanoid::kFtRight);
+      if (fz > params.balance.contact_force && (st.sensor_flags & ft_bits) == 0) zft.add((moment / fz - zmp_true).norm());
+      roll.add(roll_true);
+      pitch.add(pitch_true);
       com.add((com_true - st.com_ref).norm());
       m.support_margin_min = std::min(m.support_margin_min, margin);
       for (int side = 0; side < 2; ++side) m.ik_clamped += st.ik[side] != walking::IkStatus::kOk;
     }
     // Landings, once the foot has settled.
-    while (next_landing < out.plan.steps.size() && t_now >= out.plan.steps[next_landing].t_land + settle && !m.fell) {
+    // (steps a safe stop dropped are never landed)
+    while (next_landing < controller.plan().steps.size() && t_now >= out.plan.steps[next_landing].t_land + settle &&
+           !m.fell) {
       const walking::Step& s = out.plan.steps[next_landing];
       Landing l;
       l.step = static_cast<int>(next_landing);
@@ -207,6 +216,11 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.pelvis_z = g.pelvis_pos[2];
       w.imu_roll = st.imu_roll;
       w.imu_pitch = st.imu_pitch;
+      w.roll_true = roll_true;
+      w.pitch_true = pitch_true;
+      w.sensor_faults = flags_since_log;
+      w.safe_stop = st.safe_stop;
+      flags_since_log = 0;
       w.roll_correction = st.roll_correction;
       w.pitch_correction = st.pitch_correction;
       w.support_margin = margin;
@@ -261,6 +275,23 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.pelvis_roll_kinematic_encoder_rms = roll_kin_encoder.rms();
   m.pelvis_roll_kinematic_estimate_rms = roll_kin_estimate.rms();
   m.newton_iterations_mean = newton_calls > 0 ? static_cast<double>(newton_iterations) / newton_calls : 0.0;
+  m.attitude_error_rms = attitude_error.rms();
+  m.attitude_error_max = attitude_error.max;
+  const walking::SensorHealth& health = controller.health();
+  for (int i = 0; i < humanoid::kSensors; ++i) {
+    if (health.episodes(i) == 0) continue;
+    m.sensor_fault_episodes += health.episodes(i);
+    m.sensor_fault_time += health.bad_time(i);
+    m.sensor_faults.push_back(fmt::format("{}: {} x, {:.3f} s", humanoid::kSensorNames[i], health.episodes(i), health.bad_time(i)));
+  }
+  const walking::SafeStop& stop = controller.safe_stop();
+  m.safe_stop = stop.active;
+  if (stop.active) {
+    m.safe_stop_time = stop.t;
+    m.safe_stop_reason = fmt::format("sensor {} {} for longer than health.hold_time = {} s; walk cut to {} of {} steps",
+                                     humanoid::kSensorNames[stop.sensor], name_of(stop.fault), params.health.hold_time,
+                                     stop.steps_kept, out.plan.steps.size());
+  }
   m.com_error_rms = com.rms();
   m.com_error_max = com.max;
   if (!std::isfinite(m.support_margin_min)) m.support_margin_min = 0;

@@ -29,11 +29,13 @@ struct WalkRunParams {
   walking::WalkParams walk;
   walking::BalanceParams balance;
   compensation::CompensationParams control;  ///< the deformation compensators (control.*)
+  walking::EstimatorParams estimator;      ///< the controller's attitude estimator (estimator.*)
+  walking::HealthParams health;            ///< the controller's sensor health checks (health.*)
   double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                  ///< or tilts this far [rad]
 
-  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, output.log_period (the controller's
+  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, output.log_period (the controller's
   /// belief of the robot and the fall thresholds are not keys).
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -42,6 +44,8 @@ struct WalkRunParams {
     walking::WalkParams::visit_fields(s.walk, v);
     walking::BalanceParams::visit_fields(s.balance, v);
     compensation::CompensationParams::visit_fields(s.control, v);
+    walking::EstimatorParams::visit_fields(s.estimator, v);
+    walking::HealthParams::visit_fields(s.health, v);
     v("output.log_period", s.log_period, {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
   }
 };
@@ -59,7 +63,10 @@ struct WalkSample {
   double com_ref_x = 0, com_ref_y = 0;    ///< planned [m]
   double com_x = 0, com_y = 0, com_z = 0; ///< true [m]
   double pelvis_z = 0;                    ///< true [m]
-  double imu_roll = 0, imu_pitch = 0;     ///< [rad]
+  double imu_roll = 0, imu_pitch = 0;     ///< the controller's estimate [rad]
+  double roll_true = 0, pitch_true = 0;   ///< the twin's pelvis attitude [rad]
+  unsigned sensor_faults = 0;             ///< bit i: sensor i (humanoid::SensorId) bad in a period since the last sample
+  bool safe_stop = false;                 ///< the controller is stopping the walk for a failed sensor
   double roll_correction = 0, pitch_correction = 0;  ///< balance controller [rad]
   double support_margin = 0;              ///< true ZMP to the edge of the true support polygon (soles on the floor) [m]
   std::array<std::array<double, 3>, 2> sole{};  ///< true sole centres [m]
@@ -100,7 +107,7 @@ struct WalkMetrics {
   double zmp_ft_rms_error = 0;          ///< F/T ZMP (soles where they are) against the contact forces' [m]
   double zmp_controller_rms_error = 0;  ///< the controller's F/T ZMP (soles where planned) against the true [m]
   double support_margin_min = 0;        ///< smallest margin of the true ZMP inside the true support polygon [m]
-  double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;   ///< IMU against level [rad]
+  double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;   ///< true pelvis attitude against level [rad]
   double pelvis_pitch_error_max = 0, pelvis_pitch_error_rms = 0;
   double landing_error_max = 0, landing_error_mean = 0;          ///< [m]
   double com_error_rms = 0, com_error_max = 0;                   ///< true COM − planned (xy) [m]
@@ -121,6 +128,14 @@ struct WalkMetrics {
   int newton_iterations_max = 0;
   double newton_iterations_mean = 0;
   int newton_failures = 0;                                   ///< control periods not converged (fallback used)
+  // Sensors (issue 17, item 13).
+  double attitude_error_rms = 0, attitude_error_max = 0;     ///< controller's roll/pitch − true (norm of both) [rad]
+  int sensor_fault_episodes = 0;                             ///< times a sensor turned bad (all sensors)
+  double sensor_fault_time = 0;                              ///< total time sensors were bad (summed over sensors) [s]
+  std::vector<std::string> sensor_faults;                    ///< "<sensor>: <episodes> x, <time> s" for each flagged sensor
+  bool safe_stop = false;                                    ///< the controller stopped the walk for a failed sensor
+  std::string safe_stop_reason;                              ///< "" without a safe stop
+  double safe_stop_time = 0;                                 ///< [s]
 
   /// The output compensator ran: its estimator's scores apply.
   bool has_estimate() const {
@@ -147,10 +162,13 @@ struct WalkMetrics {
     v("zmp_controller_rms_error", s.zmp_controller_rms_error,
       {.unit = "m", .doc = "the controller's F/T ZMP (soles where planned) against the true"});
     v("support_margin_min", s.support_margin_min, {.unit = "m", .doc = "smallest margin of the true ZMP inside the true support polygon"});
-    v("pelvis_roll_error_max", s.pelvis_roll_error_max, {.unit = "rad", .doc = "max |IMU roll| (level commanded)"});
-    v("pelvis_roll_error_rms", s.pelvis_roll_error_rms, {.unit = "rad", .doc = "rms IMU roll"});
-    v("pelvis_pitch_error_max", s.pelvis_pitch_error_max, {.unit = "rad", .doc = "max |IMU pitch|"});
-    v("pelvis_pitch_error_rms", s.pelvis_pitch_error_rms, {.unit = "rad", .doc = "rms IMU pitch"});
+    v("pelvis_roll_error_max", s.pelvis_roll_error_max, {.unit = "rad", .doc = "max |true pelvis roll| (level commanded)"});
+    v("pelvis_roll_error_rms", s.pelvis_roll_error_rms, {.unit = "rad", .doc = "rms true pelvis roll"});
+    v("pelvis_pitch_error_max", s.pelvis_pitch_error_max, {.unit = "rad", .doc = "max |true pelvis pitch|"});
+    v("pelvis_pitch_error_rms", s.pelvis_pitch_error_rms, {.unit = "rad", .doc = "rms true pelvis pitch"});
+    v("attitude_error_rms", s.attitude_error_rms,
+      {.unit = "rad", .doc = "rms of the controller's pelvis roll/pitch estimate − true (norm of both)"});
+    v("attitude_error_max", s.attitude_error_max, {.unit = "rad", .doc = "max of the same"});
     v("landing_error_max", s.landing_error_max, {.unit = "m", .doc = "largest horizontal distance landed − planned"});
     v("landing_error_mean", s.landing_error_mean, {.unit = "m", .doc = "mean horizontal distance landed − planned"});
     v("com_error_rms", s.com_error_rms, {.unit = "m", .doc = "rms of true COM − planned (xy)"});
@@ -177,6 +195,12 @@ struct WalkMetrics {
       {.unit = "rad", .doc = "pelvis roll by kinematics through θ̂ − IMU, single support, rms", .present = estimate});
     v("pelvis_roll_kinematic_encoder_rms", s.pelvis_roll_kinematic_encoder_rms,
       {.unit = "rad", .doc = "pelvis roll by kinematics through the encoders − IMU, single support, rms"});
+    v("sensor_fault_episodes", s.sensor_fault_episodes, {.doc = "times a sensor reading turned bad (NaN, stale or stuck)"});
+    v("sensor_fault_time", s.sensor_fault_time, {.unit = "s", .doc = "time sensors were bad, summed over sensors"});
+    v("sensor_faults", s.sensor_faults, {.doc = "each flagged sensor: episodes and time bad"});
+    v("safe_stop", s.safe_stop, {.doc = "the controller stopped the walk because a sensor stayed bad"});
+    v("safe_stop_reason", s.safe_stop_reason, {.doc = "which sensor failed, how, when; empty without a safe stop"});
+    v("safe_stop_time", s.safe_stop_time, {.unit = "s", .doc = "when the safe stop began"});
     v("ik_clamped", s.ik_clamped, {.doc = "control periods with a leg target out of reach"});
     v("mujoco_warnings", s.mujoco_warnings, {.doc = "MuJoCo warnings during the walk"});
     v("riccati_residual", s.riccati_residual, {.doc = "relative residual of the preview controller's DARE"});

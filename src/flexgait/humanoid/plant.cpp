@@ -84,6 +84,15 @@ double HumanoidPlant::total_mass() const { return model_->body_subtreemass[0]; }
 
 void HumanoidPlant::reset(const JointVector& pose) {
   mj_resetData(model_, data_);
+  gyro_drift_ = {};
+  accel_drift_ = {};
+  const auto& f = params_.faults.sensor;
+  const double T = params_.control_period;
+  ft_fault_ = {FaultChannel<6>(f[kFtLeft], T), FaultChannel<6>(f[kFtRight], T)};
+  gyro_fault_ = FaultChannel<3>(f[kGyro], T);
+  accel_fault_ = FaultChannel<3>(f[kAccel], T);
+  ahrs_fault_ = FaultChannel<4>(f[kAhrs], T);
+  encoder_fault_ = FaultChannel<1>(f[kEncoder], T);
   for (int j = 0; j < kJoints; ++j) data_->qpos[model_->jnt_qposadr[joint_id_[j]]] = pose[j];
   // Level pelvis, then lower it until the lower sole rests on the floor.
   data_->qpos[0] = data_->qpos[1] = 0.0;
@@ -116,8 +125,10 @@ void HumanoidPlant::step(const JointVector& command) {
 
 void HumanoidPlant::read_sensors() {
   SensorReadings& s = sensors_;
-  s.t = data_->time;
+  const double now = data_->time;
+  s.t = now;
   for (int j = 0; j < kJoints; ++j) s.encoder[j] = encoder_reading(drives_->params()[j], drives_->states()[j].theta_m);
+  s.encoder_stamp.fill(now);
   std::normal_distribution<double> unit(0.0, 1.0);
   auto noisy = [&](double v, double std) { return std > 0 ? v + std * unit(rng_) : v; };
   for (int side = 0; side < 2; ++side) {
@@ -127,12 +138,59 @@ void HumanoidPlant::read_sensors() {
       s.ft[side].force[i] = noisy(f[i], params_.ft_force_noise);
       s.ft[side].torque[i] = noisy(t[i], params_.ft_torque_noise);
     }
+    s.ft[side].stamp = now;
   }
   for (int i = 0; i < 4; ++i) s.imu.quat[i] = data_->sensordata[quat_adr_ + i];
   for (int i = 0; i < 3; ++i) {
     s.imu.gyro[i] = noisy(data_->sensordata[gyro_adr_ + i], params_.gyro_noise);
     s.imu.accel[i] = noisy(data_->sensordata[acc_adr_ + i], params_.accel_noise);
   }
+  s.imu.quat_stamp = s.imu.gyro_stamp = s.imu.accel_stamp = now;
+  // The IMU's bias and drift (b += σ_w √T n per period) and the AHRS output's error: draws only
+  // for the terms switched on, so that the readings of earlier configurations stay the same.
+  const ImuModel& imu = params_.imu;
+  const double sqrt_T = std::sqrt(params_.control_period);
+  for (int i = 0; i < 3; ++i) {
+    gyro_drift_[i] = noisy(gyro_drift_[i], imu.gyro_bias_walk * sqrt_T);
+    accel_drift_[i] = noisy(accel_drift_[i], imu.accel_bias_walk * sqrt_T);
+    s.imu.gyro[i] += imu.gyro_bias + gyro_drift_[i];
+    s.imu.accel[i] += imu.accel_bias + accel_drift_[i];
+  }
+  if (imu.ahrs_noise > 0) {
+    // q ← q ⊗ [1, δ/2] (normalised), δ ~ N(0, σ²) about each body axis.
+    const std::array<double, 3> d = {noisy(0, imu.ahrs_noise), noisy(0, imu.ahrs_noise), noisy(0, imu.ahrs_noise)};
+    const auto q = s.imu.quat;
+    const std::array<double, 4> e = {1.0, 0.5 * d[0], 0.5 * d[1], 0.5 * d[2]};
+    std::array<double, 4> r = {q[0] * e[0] - q[1] * e[1] - q[2] * e[2] - q[3] * e[3],
+                               q[0] * e[1] + q[1] * e[0] + q[2] * e[3] - q[3] * e[2],
+                               q[0] * e[2] - q[1] * e[3] + q[2] * e[0] + q[3] * e[1],
+                               q[0] * e[3] + q[1] * e[2] - q[2] * e[1] + q[3] * e[0]};
+    const double n = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+    for (int i = 0; i < 4; ++i) s.imu.quat[i] = r[i] / n;
+  }
+  if (params_.encoder_noise > 0)
+    for (int j = 0; j < kJoints; ++j) s.encoder[j] = noisy(s.encoder[j], params_.encoder_noise);
+
+  // The fault schedule.
+  for (int side = 0; side < 2; ++side) {
+    std::array<double, 6> v{};
+    for (int i = 0; i < 3; ++i) {
+      v[i] = s.ft[side].force[i];
+      v[3 + i] = s.ft[side].torque[i];
+    }
+    ft_fault_[side].apply(now, v, s.ft[side].stamp);
+    for (int i = 0; i < 3; ++i) {
+      s.ft[side].force[i] = v[i];
+      s.ft[side].torque[i] = v[3 + i];
+    }
+  }
+  gyro_fault_.apply(now, s.imu.gyro, s.imu.gyro_stamp);
+  accel_fault_.apply(now, s.imu.accel, s.imu.accel_stamp);
+  ahrs_fault_.apply(now, s.imu.quat, s.imu.quat_stamp);
+  const int j = params_.faults.encoder_joint;
+  std::array<double, 1> e = {s.encoder[j]};
+  encoder_fault_.apply(now, e, s.encoder_stamp[j]);
+  s.encoder[j] = e[0];
 }
 
 GroundTruth HumanoidPlant::truth() const {

@@ -4,6 +4,11 @@
 /// control period over a finer physics step. Ground truth (link angles, pelvis pose, COM, true
 /// ZMP from the contact forces) is on a separate path, for evaluation code only: a controller is
 /// handed SensorReadings and nothing else.
+///
+/// Sensor model: encoders quantised (plus optional noise), F/T and IMU with white noise, the IMU
+/// with bias and bias drift and an AHRS orientation output with its own error (ImuModel), and a
+/// fault schedule per sensor (SensorFaults: dropout, stuck, NaN, latency). All noise comes from
+/// one generator seeded by plant.noise.seed: the same configuration gives the same readings.
 #include <mujoco/mujoco.h>
 
 #include <array>
@@ -13,6 +18,7 @@
 #include "flexgait/humanoid/elastic_actuator.hpp"
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/humanoid/sensor_faults.hpp"
 #include "flexgait/humanoid/sensors.hpp"
 
 namespace flexgait::humanoid {
@@ -72,6 +78,11 @@ class HumanoidPlant {
   int quat_adr_ = 0, gyro_adr_ = 0, acc_adr_ = 0;
   SensorReadings sensors_;
   std::mt19937_64 rng_;
+  std::array<double, 3> gyro_drift_{}, accel_drift_{};  ///< bias random walks [rad/s], [m/s^2]
+  std::array<FaultChannel<6>, 2> ft_fault_;             ///< left, right: force then torque
+  FaultChannel<3> gyro_fault_, accel_fault_;
+  FaultChannel<4> ahrs_fault_;
+  FaultChannel<1> encoder_fault_;
 };
 
 /// Standing pose: feet under the hips, pelvis at `pelvis_height` above the floor, knee bent so

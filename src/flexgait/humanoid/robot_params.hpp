@@ -8,6 +8,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/humanoid/joints.hpp"
+#include "flexgait/humanoid/sensor_faults.hpp"
 
 namespace flexgait::humanoid {
 
@@ -78,7 +79,10 @@ struct PlantParams {
   double ft_torque_noise = 0.0;   ///< std of F/T torque noise [Nm]
   double gyro_noise = 0.0;        ///< std [rad/s]
   double accel_noise = 0.0;       ///< std [m/s^2]
+  double encoder_noise = 0.0;     ///< std of the encoder reading's noise, beyond quantisation [rad]
   int noise_seed = 1;             ///< seed of the sensor noise
+  ImuModel imu;                   ///< IMU bias, bias drift, AHRS error (plant.imu.*)
+  SensorFaults faults;            ///< the sensors' fault schedule (plant.faults.*)
 
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
   /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
@@ -109,7 +113,11 @@ struct PlantParams {
     v("plant.noise.ft_torque", s.ft_torque_noise, {.unit = "Nm", .doc = "F/T torque noise std", .bounds = closed(0, 1000)});
     v("plant.noise.gyro", s.gyro_noise, {.unit = "rad/s", .doc = "gyro noise std", .bounds = closed(0, 100)});
     v("plant.noise.accel", s.accel_noise, {.unit = "m/s^2", .doc = "accelerometer noise std", .bounds = closed(0, 1000)});
+    v("plant.noise.encoder", s.encoder_noise,
+      {.unit = "rad", .doc = "encoder noise std (beyond quantisation)", .bounds = closed(0, 1)});
     v("plant.noise.seed", s.noise_seed, {.doc = "seed of the sensor noise", .bounds = closed(0, 2147483647)});
+    ImuModel::visit_fields(s.imu, v);
+    SensorFaults::visit_fields(s.faults, v);
   }
 };
 
@@ -117,7 +125,8 @@ struct PlantParams {
 inline Schema robot_schema() { return schema_of<RobotParams>(); }
 inline Schema plant_schema() { return schema_of<PlantParams>(); }
 inline RobotParams robot_from_config(const Config& config) { return record_from_config<RobotParams>(config); }
-/// The plant's keys; throws ConfigError when plant.control_period is not a multiple of plant.physics_dt.
+/// The plant's keys; throws ConfigError when plant.control_period is not a multiple of plant.physics_dt,
+/// or a latency fault has no delay (plant.faults.<sensor>.delay).
 PlantParams plant_from_config(const Config& config);
 
 }  // namespace flexgait::humanoid

@@ -17,8 +17,16 @@ Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwi
 using humanoid::leg_first_joint;
 
 WalkingController::WalkingController(const humanoid::RobotParams& robot, const WalkParams& walk,
-                                     const BalanceParams& balance, double period)
-    : robot_(robot), walk_(walk), balance_(balance), period_(period), model_(make_robot_model(robot)) {
+                                     const BalanceParams& balance, double period, const EstimatorParams& estimator,
+                                     const HealthParams& health)
+    : robot_(robot),
+      walk_(walk),
+      balance_(balance),
+      period_(period),
+      model_(make_robot_model(robot)),
+      estimator_params_(estimator),
+      estimator_(estimator),
+      health_(health, period) {
   if (!(period > 0)) throw std::invalid_argument("WalkingController: the period must be positive");
   plan_ = plan_footsteps(walk_);
   // The initial standing pose: COM over the middle of the feet, pelvis level at its height.
@@ -76,7 +84,8 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
     moment += c.normal_force * world.head<2>();
     fz_total += c.normal_force;
     // Foot torque compliance: δ̇ = τ / D (the return term is applied in update).
-    if (balance_.enabled && status_.contact[side]) foot_rotation_[side] += period_ * (c.torque / balance_.ankle_damping);
+    if (balance_.enabled && ft_live_ && status_.contact[side])
+      foot_rotation_[side] += period_ * (c.torque / balance_.ankle_damping);
   }
   status_.zmp_valid = fz_total > balance_.contact_force;
   if (status_.zmp_valid) status_.zmp_measured = moment / fz_total;
@@ -94,8 +103,9 @@ void WalkingController::update_foot_lift(const FeetTarget& feet) {
   for (int side = 0; side < 2; ++side) {
     const double desired = (side == 0 ? share_left : 1.0 - share_left) * load;
     double& z = foot_lift_[side];
-    z += period_ * ((std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping -
-                    z / balance_.foot_return_time);
+    // With an F/T reading held, only the return term acts.
+    const double force_term = ft_live_ ? (std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping : 0.0;
+    z += period_ * (force_term - z / balance_.foot_return_time);
     if (!balance_.enabled) z = 0;
     z = std::clamp(z, -balance_.foot_lift_limit, balance_.foot_lift_limit);
   }
@@ -106,7 +116,8 @@ Eigen::Vector2d WalkingController::zmp_feedback() {
   // ZMP feedback: the gear deflections move the real COM away from the plan by centimetres; shift
   // the commanded COM until the measured ZMP follows the reference (PI, clamped, anti-windup).
   if (!balance_.enabled) return Eigen::Vector2d::Zero();
-  if (!status_.zmp_valid) return zmp_integral_;
+  if (ft_failed_) zmp_integral_ *= 1.0 - period_ / (health_.params().fade_time + period_);  // fades out
+  if (!status_.zmp_valid || !ft_live_) return zmp_integral_;  // held
   // The measured ZMP carries −(z/g) c̈ (it leads the COM with the opposite sign at high
   // frequency): filter it twice (first order, balance.zmp_filter_time each) before use.
   const double a = period_ / (balance_.zmp_filter_time + period_);
@@ -117,10 +128,98 @@ Eigen::Vector2d WalkingController::zmp_feedback() {
   return clamp_abs(zmp_integral_ + balance_.zmp_kp * error, balance_.zmp_limit);
 }
 
-const humanoid::JointVector& WalkingController::update(const humanoid::SensorReadings& s, double t) {
+void WalkingController::check_sensors(const humanoid::SensorReadings& raw, double t, std::size_t k) {
+  using namespace humanoid;
+  health_.check(raw, t);
+  const SensorReadings& s = health_.clean();
+  const bool mahony = estimator_params_.source == AttitudeSource::kMahony;
+  // The sensors this controller uses; the first of them to fail stops the walk.
+  const std::array<bool, kSensors> used = {true, true, true, mahony, !mahony, true};
+  for (int i = 0; i < kSensors; ++i) {
+    if (!used[i] || !health_.failed(i)) continue;
+    ft_failed_ = ft_failed_ || i == kFtLeft || i == kFtRight;
+    imu_failed_ = imu_failed_ || i == kGyro || i == kAccel || i == kAhrs;
+    if (!safe_stop_.active && health_.params().safe_stop) {
+      safe_stop_.sensor = i;
+      safe_stop_.fault = health_.fault(i);
+      begin_safe_stop(t, k);
+    }
+  }
+  status_.sensor_flags = health_.flags();
+  status_.safe_stop = safe_stop_.active;
+  ft_live_ = !health_.bad(kFtLeft) && !health_.bad(kFtRight);
+  gyro_live_ = !health_.bad(kGyro);
+  const double fade = 1.0 - period_ / (health_.params().fade_time + period_);
+  if (ft_failed_) ft_fade_ *= fade;
+  if (imu_failed_) imu_fade_ *= fade;
+
+  // The attitude: the Mahony filter holds while the gyro is bad and runs on the gyro alone while
+  // the accelerometer is; the AHRS output is held by the health check.
+  if (mahony) {
+    if (gyro_live_) {
+      const Vector3d gyro(s.imu.gyro[0], s.imu.gyro[1], s.imu.gyro[2]);
+      const Vector3d accel(s.imu.accel[0], s.imu.accel[1], s.imu.accel[2]);
+      const Vector3d planned(cart_[0].x(2), cart_[1].x(2), 0.0);  // the COM's acceleration now
+      estimator_.update(gyro, health_.bad(kAccel) ? nullptr : &accel, planned, period_);
+    }
+    attitude_ = estimator_.attitude();
+  } else {
+    bool finite = true;
+    for (double q : s.imu.quat) finite = finite && std::isfinite(q);
+    if (finite) attitude_ = quat_to_matrix(s.imu.quat.data());  // else: never a good one yet, keep
+  }
+}
+
+void WalkingController::begin_safe_stop(double t, std::size_t k) {
+  safe_stop_.active = true;
+  safe_stop_.t = t;
+  const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);
+  const auto n = static_cast<int>(plan_.steps.size());
+  // Where the ZMP reference starts blending to the middle of the feet, and from which value.
+  std::size_t keep = plan_.steps.size();
+  double t_blend = t;
+  Eigen::Vector2d from(ref_x_[k], ref_y_[k]);
+  if (feet.step >= n) {  // the walk has ended: nothing to cut
+    safe_stop_.steps_kept = n;
+    return;
+  }
+  if (feet.step < 0) {
+    keep = 0;
+  } else if (t + period_ >= plan_.steps[feet.step].t_lift) {  // swinging: finish this step
+    const Step& st = plan_.steps[feet.step];
+    keep = static_cast<std::size_t>(feet.step) + 1;
+    t_blend = st.t_land;
+    from = Eigen::Vector2d(st.stance.x, st.stance.y);
+  } else {  // double support: the step is not taken
+    keep = static_cast<std::size_t>(feet.step);
+  }
+  plan_.steps.resize(keep);  // shrinks: no allocation
+  if (keep > 0) {
+    const Step& last = plan_.steps.back();
+    plan_.final[last.swing] = last.to;
+    plan_.final[1 - last.swing] = last.stance;
+  } else {
+    plan_.final = plan_.initial;
+  }
+  const double blend_time = std::max(walk_.dsp_ratio * walk_.step_time, 0.2 * walk_.step_time);
+  plan_.t_settle = std::max(t_blend, t) + blend_time;
+  safe_stop_.steps_kept = static_cast<int>(keep);
+  const Eigen::Vector2d mid(0.5 * (plan_.final[0].x + plan_.final[1].x), 0.5 * (plan_.final[0].y + plan_.final[1].y));
+  for (std::size_t i = k; i < ref_x_.size(); ++i) {
+    const double ti = static_cast<double>(i) * period_;
+    if (ti < t_blend) continue;  // over the stance foot until the swing foot lands, as planned
+    const Eigen::Vector2d p = from + quintic_blend((ti - t_blend) / blend_time) * (mid - from);
+    ref_x_[i] = p.x();
+    ref_y_[i] = p.y();
+  }
+}
+
+const humanoid::JointVector& WalkingController::update(const humanoid::SensorReadings& raw, double t) {
   status_.t = t;
   const auto last = ref_x_.size() - gains_.G_p.size() - 1;
   const auto k = std::min(static_cast<std::size_t>(std::max(0.0, std::round(t / period_))), last);
+  check_sensors(raw, t, k);
+  const humanoid::SensorReadings& s = health_.clean();
   status_.zmp_ref = Eigen::Vector2d(ref_x_[k], ref_y_[k]);
   preview_step(gains_, cart_[0], &ref_x_[k]);
   preview_step(gains_, cart_[1], &ref_y_[k]);
@@ -132,9 +231,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.swinging = feet.swinging;
 
   // Balance: foot torques (and the measured ZMP), foot forces, pelvis attitude, ZMP feedback.
-  const Matrix3d R_imu = quat_to_matrix(s.imu.quat.data());
-  status_.imu_roll = roll_of(R_imu);
-  status_.imu_pitch = pitch_of(R_imu);
+  status_.imu_roll = roll_of(attitude_);
+  status_.imu_pitch = pitch_of(attitude_);
   measure_zmp(s);
   for (int side = 0; side < 2; ++side) {
     foot_rotation_[side] -= period_ / balance_.ankle_return_time * foot_rotation_[side];
@@ -150,6 +248,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     d_pitch = std::clamp(-(balance_.imu_kp * status_.imu_pitch + balance_.imu_kd * s.imu.gyro[1]),
                          -balance_.imu_limit, balance_.imu_limit);
   }
+  d_roll *= imu_fade_;
+  d_pitch *= imu_fade_;
   status_.roll_correction = d_roll;
   status_.pitch_correction = d_pitch;
   status_.com_shift = zmp_feedback();
@@ -159,10 +259,11 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   // rotating the stance soles' commands with the IMU rate leans the body against the motion.
   // The rate is low-passed (balance.gyro_filter_time): unfiltered, the loop through the stiff
   // servos chatters at high frequency in double support.
-  gyro_filtered_ += period_ / (balance_.gyro_filter_time + period_) *
-                    (Eigen::Vector2d(s.imu.gyro[0], s.imu.gyro[1]) - gyro_filtered_);
+  if (gyro_live_)  // held while the gyro is bad
+    gyro_filtered_ += period_ / (balance_.gyro_filter_time + period_) *
+                      (Eigen::Vector2d(s.imu.gyro[0], s.imu.gyro[1]) - gyro_filtered_);
   const Eigen::Vector2d sway =
-      balance_.enabled ? Eigen::Vector2d(balance_.ankle_gyro_gain * gyro_filtered_) : Eigen::Vector2d::Zero();
+      balance_.enabled ? Eigen::Vector2d(imu_fade_ * balance_.ankle_gyro_gain * gyro_filtered_) : Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
     const Eigen::Vector2d r =
         clamp_abs(foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway), balance_.ankle_limit);

@@ -19,16 +19,30 @@
 ///  - ZMP feedback: the commanded COM is shifted by a clamped PI on (reference − measured ZMP),
 ///    so that the gear deflections' shift of the real COM is taken out.
 /// The measured ZMP combines both feet's centres of pressure from the F/T sensors.
+///
+/// Sensors (issue 17, item 13): every reading passes SensorHealth first (NaN, stale, stuck →
+/// the last good value is held, for at most health.hold_time). The pelvis attitude comes from
+/// the AttitudeEstimator (Mahony filter on gyro and accelerometer, with the planned COM
+/// acceleration taken out), or from the IMU's AHRS output (estimator.source = ahrs). While a
+/// sensor is held, the loops it feeds stop integrating (F/T: foot torque, foot force and ZMP
+/// feedback; gyro: the attitude estimate and the sway damping hold). A sensor the controller
+/// uses that stays bad beyond the hold time has failed: its loops fade out (health.fade_time) and
+/// the walk stops safely (health.safe_stop) — the plan is cut at the next double support: a
+/// swinging foot completes its step, a step not yet lifted is dropped, the ZMP reference blends
+/// to the middle of the feet where they stand over one double-support time, and the robot stands
+/// there until the planned end of the walk.
 #include <array>
 #include <vector>
 
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/humanoid/sensors.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/walking/attitude_estimator.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
 #include "flexgait/walking/preview_control.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/sensor_health.hpp"
 #include "flexgait/walking/walk_params.hpp"
 
 namespace flexgait::walking {
@@ -42,7 +56,7 @@ struct ControllerStatus {
   bool zmp_valid = false;                             ///< enough normal force to define it
   Eigen::Vector2d com_ref = Eigen::Vector2d::Zero();  ///< planned COM at t + T [m]
   Pose pelvis;                                        ///< commanded pelvis pose (with the balance correction)
-  double imu_roll = 0, imu_pitch = 0;                 ///< measured pelvis attitude [rad]
+  double imu_roll = 0, imu_pitch = 0;                 ///< estimated pelvis attitude [rad]
   double roll_correction = 0, pitch_correction = 0;   ///< balance: pelvis counter-tilt [rad]
   Eigen::Vector2d com_shift = Eigen::Vector2d::Zero(); ///< balance: COM shift of the ZMP feedback [m]
   std::array<Pose, 2> sole;                           ///< planned sole poses (world)
@@ -53,6 +67,17 @@ struct ControllerStatus {
   std::array<double, 2> foot_lift{};                  ///< balance: foot height offsets of the force control [m]
   std::array<IkStatus, 2> ik{IkStatus::kOk, IkStatus::kOk};
   humanoid::JointVector desired{};                    ///< joint angles from the IK (θ_d) [rad]
+  unsigned sensor_flags = 0;                          ///< bit i: sensor i (humanoid::SensorId) bad this period
+  bool safe_stop = false;                             ///< the walk is being stopped for a failed sensor
+};
+
+/// Why and when the controller stopped the walk.
+struct SafeStop {
+  bool active = false;
+  int sensor = -1;                            ///< humanoid::SensorId that failed
+  SignalFault fault = SignalFault::kOk;       ///< its fault when it failed
+  double t = 0;                               ///< [s]
+  int steps_kept = 0;                         ///< steps of the plan still taken
 };
 
 class WalkingController {
@@ -60,7 +85,7 @@ class WalkingController {
   /// \param robot the controller's belief of the robot (its own model)
   /// \param period control period T [s]
   WalkingController(const humanoid::RobotParams& robot, const WalkParams& walk, const BalanceParams& balance,
-                    double period);
+                    double period, const EstimatorParams& estimator = {}, const HealthParams& health = {});
 
   /// The standing pose the walk starts from (joint angles) [rad].
   const humanoid::JointVector& initial_pose() const { return initial_pose_; }
@@ -68,7 +93,14 @@ class WalkingController {
   const humanoid::JointVector& update(const humanoid::SensorReadings& sensors, double t);
 
   const ControllerStatus& status() const { return status_; }
+  /// The plan being walked (cut short by a safe stop).
   const WalkPlan& plan() const { return plan_; }
+  /// The readings of the last update as the controller used them (bad values held).
+  const humanoid::SensorReadings& sensors() const { return health_.clean(); }
+  const SensorHealth& health() const { return health_; }
+  /// The pelvis attitude the controller used in the last update (pelvis to world).
+  const Matrix3d& attitude() const { return attitude_; }
+  const SafeStop& safe_stop() const { return safe_stop_; }
   const PreviewGains& gains() const { return gains_; }
   const RobotModel& model() const { return model_; }
   double period() const { return period_; }
@@ -83,6 +115,10 @@ class WalkingController {
   void update_foot_lift(const FeetTarget& feet);
   /// ZMP feedback: advances its filter and integral, returns the COM shift [m].
   Eigen::Vector2d zmp_feedback();
+  /// Health of the readings, escalation to a safe stop and the attitude estimate.
+  void check_sensors(const humanoid::SensorReadings& sensors, double t, std::size_t k);
+  /// Cuts the plan at the next double support and rewrites the ZMP reference from sample k on.
+  void begin_safe_stop(double t, std::size_t k);
 
   humanoid::RobotParams robot_;
   WalkParams walk_;
@@ -101,6 +137,15 @@ class WalkingController {
   Eigen::Vector2d gyro_filtered_ = Eigen::Vector2d::Zero();  ///< IMU roll/pitch rate, low-passed [rad/s]
   Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();  ///< ZMP feedback's integral [m]
   std::array<Eigen::Vector2d, 2> zmp_filtered_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}; ///< the measured ZMP, low-passed [m]
+  EstimatorParams estimator_params_;
+  AttitudeEstimator estimator_;
+  SensorHealth health_;
+  Matrix3d attitude_ = Matrix3d::Identity();
+  bool ft_live_ = true;     ///< both F/T sensors good this period
+  bool gyro_live_ = true;   ///< the gyro good this period
+  double ft_fade_ = 1, imu_fade_ = 1;  ///< 1, fading to 0 after a failure of the F/T or IMU
+  bool ft_failed_ = false, imu_failed_ = false;
+  SafeStop safe_stop_;
   ControllerStatus status_;
 };
 

@@ -1,0 +1,51 @@
+#include "flexgait/walking/attitude_estimator.hpp"
+
+#include <cmath>
+
+namespace flexgait::walking {
+
+void AttitudeEstimator::reset() {
+  R_.setIdentity();
+  bias_.setZero();
+  initialised_ = false;
+  time_ = 0;
+}
+
+void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, const Vector3d& planned_accel, double T) {
+  const double g = params_.gravity;
+  // Prediction: R̂⁻ = R̂ exp([ω_y − b̂]× T) (exact for a constant rate over the period).
+  auto turn = [this](const Vector3d& w, double dt) {
+    const double angle = w.norm() * dt;
+    if (angle > 0) R_ = R_ * Eigen::AngleAxisd(angle, w.normalized()).toRotationMatrix();
+  };
+  if (initialised_) turn(gyro - bias_, T);
+  if (accel != nullptr) {
+    // Specific force a = Rᵀ (p̈ + g e_z): without the pelvis's own acceleration it points up.
+    Vector3d v = *accel;
+    if (params_.accel_compensation && initialised_) v -= R_.transpose() * planned_accel;
+    const double n = v.norm();
+    if (n > 0.5 * g && n < 1.5 * g) {
+      v /= n;
+      if (!initialised_) {
+        // Tilt from gravity alone: up = Rᵀ e_z = (−sin p, sin r cos p, cos r cos p) for R = Rz Ry Rx.
+        const double roll = std::atan2(v.y(), v.z());
+        const double pitch = std::atan2(-v.x(), std::hypot(v.y(), v.z()));
+        R_ = rpy_to_matrix(roll, pitch, 0.0);
+        initialised_ = true;
+        return;
+      }
+      // Correction against the predicted attitude: (32c), then (32a)'s k_P term and (32b);
+      // while aligning, a higher gain and no bias integration.
+      const bool aligning = time_ + 0.5 * T < params_.align_time;  // (half a period: round-off of Σ T)
+      const Vector3d omega_mes = v.cross(R_.transpose() * Vector3d::UnitZ());
+      turn((aligning ? params_.align_kp : params_.kp) * omega_mes, T);
+      if (!aligning) bias_ -= T * params_.ki * omega_mes;
+    }
+  }
+  if (!initialised_) return;  // no attitude before the first usable accelerometer reading
+  time_ += T;
+  // Keep R̂ a rotation (round-off): re-orthonormalise through the quaternion.
+  R_ = Eigen::Quaterniond(R_).normalized().toRotationMatrix();
+}
+
+}  // namespace flexgait::walking

@@ -1,0 +1,91 @@
+#pragma once
+/// \file attitude_estimator.hpp
+/// The pelvis attitude from the IMU's gyro and accelerometer: Mahony's explicit complementary
+/// filter with gyro bias estimation (R. Mahony, T. Hamel, J.-M. Pflimlin, "Nonlinear
+/// complementary filters on the special orthogonal group", IEEE TAC 53(5), 2008, eqs. (32a–c)):
+///
+///     v      = (a − R̂ᵀ a_m) / |a − R̂ᵀ a_m|     measured "up" in the pelvis frame (accelerometer a,
+///                                               a_m the planned pelvis acceleration, world)
+///     v̂      = R̂ᵀ e_z                           estimated "up"
+///     ω_mes  = v × v̂                            (32c, one vector direction)
+///     dR̂/dt  = R̂ [ω_y − b̂ + k_P ω_mes]×         (32a, ω_y the gyro)
+///     db̂/dt  = −k_I ω_mes                        (32b)
+///
+/// integrated once per control period T with the exact exponential of the body rate. Yaw is not
+/// observable from gravity: it is the gyro's integral (the controller does not use it).
+///
+/// Small-error dynamics (roll or pitch error θ = θ̂ − θ, bias error b̃ = b − b̂):
+/// θ̇ = b̃ − k_P θ, b̃̇ = −k_I θ, so θ̈ + k_P θ̇ + k_I θ = 0 — poles s = (−k_P ± √(k_P² − 4 k_I))/2.
+/// A constant gyro bias is rejected (steady-state error 0; transient peak about b/k_P); a
+/// horizontal acceleration the plan does not predict tilts the estimate by a/g through the
+/// low-pass k_P/(s + k_P). The twin's pelvis rocks on its compliant legs with accelerations of
+/// ~1 m/s² near 0.5–1 Hz that the plan does not hold, so the defaults trust the gyro: k_P = 0.1
+/// rad/s (a/g attenuated ~30× at 0.5 Hz) and k_I = 0.002 rad/s² (poles −0.028 and −0.072 rad/s:
+/// the bias is learnt over about a minute).
+///
+/// Start and alignment: the filter starts from the first accelerometer reading (tilt from
+/// gravity, yaw 0). The twin is dropped onto its soles at the start and rocks while it settles,
+/// so that first reading can be off by 0.1 rad; for align_time the filter corrects with the
+/// higher gain align_kp (time constant 1/align_kp) and does not learn the bias, then switches to
+/// k_P and k_I. The robot should stand for align_time (walk.start_time is longer by default).
+/// Readings whose magnitude is outside [0.5 g, 1.5 g] after compensation are not used (impacts).
+/// Allocation-free; no simulator types.
+#include "flexgait/core/record.hpp"
+#include "flexgait/walking/rotation.hpp"
+
+namespace flexgait::walking {
+
+/// Which attitude the controller uses (estimator.source).
+enum class AttitudeSource { kMahony, kAhrs };
+constexpr std::array<EnumName<AttitudeSource>, 2> enum_names(AttitudeSource) {
+  return {{{AttitudeSource::kMahony, "mahony"}, {AttitudeSource::kAhrs, "ahrs"}}};
+}
+
+struct EstimatorParams {
+  AttitudeSource source = AttitudeSource::kMahony;  ///< Mahony filter, or the IMU's AHRS output
+  double kp = 0.1;                  ///< k_P: accelerometer correction gain [rad/s]
+  double ki = 0.002;                ///< k_I: gyro bias integral gain [rad/s^2]
+  double align_time = 1.0;          ///< alignment after the start: gain align_kp, no bias integration [s]
+  double align_kp = 5.0;            ///< k_P while aligning [rad/s]
+  bool accel_compensation = true;   ///< subtract the planned COM acceleration from the accelerometer
+  double gravity = 9.81;            ///< [m/s^2]
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("estimator.source", s.source,
+      {.doc = "pelvis attitude: mahony (filter on gyro and accelerometer) or ahrs (the IMU's orientation output)"});
+    v("estimator.kp", s.kp, {.unit = "rad/s", .doc = "Mahony filter: accelerometer correction gain k_P", .bounds = closed(0, 100)});
+    v("estimator.ki", s.ki, {.unit = "rad/s^2", .doc = "Mahony filter: gyro bias integral gain k_I", .bounds = closed(0, 100)});
+    v("estimator.align_time", s.align_time,
+      {.unit = "s", .doc = "Mahony filter: alignment time after the start (gain estimator.align_kp, no bias integration)",
+       .bounds = closed(0, 100)});
+    v("estimator.align_kp", s.align_kp, {.unit = "rad/s", .doc = "Mahony filter: k_P while aligning", .bounds = closed(0, 100)});
+    v("estimator.accel_compensation", s.accel_compensation,
+      {.doc = "Mahony filter: subtract the planned COM acceleration from the accelerometer"});
+  }
+};
+
+class AttitudeEstimator {
+ public:
+  explicit AttitudeEstimator(const EstimatorParams& params) : params_(params) {}
+
+  /// One period T [s]: gyro ω_y [rad/s] (pelvis frame); accelerometer a [m/s^2] (pelvis frame)
+  /// or nullptr when it is unavailable (then gyro integration only); a_m the planned pelvis
+  /// acceleration (world) [m/s^2]. The result is in attitude(), bias().
+  void update(const Vector3d& gyro, const Vector3d* accel, const Vector3d& planned_accel, double T);
+  /// Starts again (the next reading initialises the attitude).
+  void reset();
+
+  const Matrix3d& attitude() const { return R_; }  ///< R̂: pelvis to world
+  const Vector3d& bias() const { return bias_; }   ///< b̂ [rad/s]
+  bool initialised() const { return initialised_; }
+
+ private:
+  EstimatorParams params_;
+  Matrix3d R_ = Matrix3d::Identity();
+  Vector3d bias_ = Vector3d::Zero();
+  bool initialised_ = false;
+  double time_ = 0;  ///< since the initialisation [s]
+};
+
+}  // namespace flexgait::walking

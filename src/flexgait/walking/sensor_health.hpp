@@ -1,0 +1,105 @@
+#pragma once
+/// \file sensor_health.hpp
+/// Sensor health (issue 17, item 13): every reading is checked each control period before the
+/// controller uses it. A reading is bad when
+///  - nan:   a value is not finite;
+///  - stale: its time stamp is older than health.max_age (a dropped or late sample);
+///  - stuck: a live signal repeated the same bits for health.stuck_samples periods (noise and
+///           motion make a working gyro, accelerometer, AHRS or F/T sensor change every sample;
+///           quantised encoders legitimately repeat and are not checked for this).
+/// A bad value is replaced by the signal's last good one (held); a signal bad for longer than
+/// health.hold_time has failed (latched), which the controller escalates to a safe stop.
+/// Pure and allocation-free: readings and time in, cleaned readings and flags out.
+#include <array>
+#include <cstdint>
+
+#include "flexgait/core/record.hpp"
+#include "flexgait/humanoid/sensor_faults.hpp"
+#include "flexgait/humanoid/sensors.hpp"
+
+namespace flexgait::walking {
+
+struct HealthParams {
+  double max_age = 0.01;    ///< a reading older than this is stale [s]
+  double hold_time = 0.3;   ///< longest a last good value stands in for a bad reading [s]
+  int stuck_samples = 10;   ///< identical consecutive readings that make a live sensor stuck (0: not checked)
+  double fade_time = 0.5;   ///< after a failure, the loops fed by that sensor fade out with this time constant [s]
+  bool safe_stop = true;    ///< a failed sensor ends the walk (safe stop); off: hold and fade only
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("health.max_age", s.max_age, {.unit = "s", .doc = "a sensor reading older than this is stale", .bounds = closed(0, 10)});
+    v("health.hold_time", s.hold_time,
+      {.unit = "s", .doc = "longest the last good value stands in for a bad reading; then the sensor has failed",
+       .bounds = closed(0, 1000)});
+    v("health.stuck_samples", s.stuck_samples,
+      {.doc = "identical consecutive readings that make a gyro, accelerometer, AHRS or F/T sensor stuck (0: not checked)",
+       .bounds = closed(0, 100000)});
+    v("health.fade_time", s.fade_time,
+      {.unit = "s", .doc = "after a failure the balance loops fed by that sensor fade out with this time constant",
+       .bounds = left_open(0, 100)});
+    v("health.safe_stop", s.safe_stop, {.doc = "a failed sensor ends the walk at the next double support (safe stop)"});
+  }
+};
+
+enum class SignalFault : std::uint8_t { kOk, kNan, kStale, kStuck };
+constexpr std::array<EnumName<SignalFault>, 4> enum_names(SignalFault) {
+  return {{{SignalFault::kOk, "ok"}, {SignalFault::kNan, "nan"}, {SignalFault::kStale, "stale"}, {SignalFault::kStuck, "stuck"}}};
+}
+
+/// One signal of up to kMaxValues values.
+class SignalMonitor {
+ public:
+  static constexpr int kMaxValues = 6;
+  /// Checks the reading `values` (n values, measured at `stamp`) at time t [s], period T [s], and
+  /// overwrites `values` with the last good ones when it is bad. Returns the reading's fault.
+  SignalFault check(const HealthParams& p, double t, double T, double stamp, double* values, int n, bool detect_stuck);
+
+  SignalFault fault() const { return fault_; }      ///< of the last check
+  bool bad() const { return fault_ != SignalFault::kOk; }
+  bool failed() const { return failed_; }            ///< bad for longer than hold_time once (latched)
+  int episodes() const { return episodes_; }         ///< times it turned bad
+  double bad_time() const { return bad_time_; }      ///< total time bad [s]
+
+ private:
+  std::array<double, kMaxValues> good_{}, previous_{};
+  bool has_good_ = false, has_previous_ = false;
+  int repeats_ = 0;            ///< consecutive readings equal to the one before
+  double bad_since_ = 0;       ///< [s]
+  SignalFault fault_ = SignalFault::kOk;
+  bool failed_ = false;
+  int episodes_ = 0;
+  double bad_time_ = 0;
+};
+
+/// The health of all the robot's sensors (humanoid::SensorId order; the encoders are one sensor
+/// of kJoints signals).
+class SensorHealth {
+ public:
+  SensorHealth(const HealthParams& params, double period) : params_(params), period_(period) {}
+
+  /// Checks every reading of `s` at time t [s]; clean() then holds them with bad values replaced.
+  void check(const humanoid::SensorReadings& s, double t);
+  const humanoid::SensorReadings& clean() const { return clean_; }
+
+  bool bad(int sensor) const;                ///< this period
+  bool failed(int sensor) const;             ///< once bad beyond hold_time (latched)
+  SignalFault fault(int sensor) const;       ///< this period (the first bad signal's, encoders)
+  int episodes(int sensor) const;            ///< times it turned bad (encoders: over all joints)
+  double bad_time(int sensor) const;         ///< total time bad [s] (encoders: any joint)
+  /// Bit i set when sensor i is bad this period.
+  unsigned flags() const;
+  const HealthParams& params() const { return params_; }
+
+ private:
+  HealthParams params_;
+  double period_;
+  std::array<SignalMonitor, humanoid::kSensors - 1> monitor_{};  ///< all but the encoders
+  std::array<SignalMonitor, humanoid::kJoints> encoder_{};
+  int encoder_episodes_ = 0;
+  double encoder_bad_time_ = 0;
+  bool encoder_bad_ = false;
+  humanoid::SensorReadings clean_;
+};
+
+}  // namespace flexgait::walking

@@ -1,0 +1,165 @@
+// The sensor health check on synthetic readings: each fault kind (NaN, stale, stuck) is detected
+// and flagged, the last good value is held, a fault longer than the hold time is a latched
+// failure, a short one is not; encoders repeat legitimately; checking allocates nothing.
+#include "flexgait/walking/sensor_health.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "../support/count_allocations.hpp"
+
+using flexgait::testing::g_allocations;
+
+namespace flexgait::walking {
+namespace {
+
+constexpr double kT = 0.004;
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+/// Live readings at period k: every value moves (as noise and motion make them), fresh stamps.
+humanoid::SensorReadings live(int k) {
+  humanoid::SensorReadings s;
+  const double t = k * kT, w = 1e-3 * std::sin(0.1 * k);
+  s.t = t;
+  for (int j = 0; j < humanoid::kJoints; ++j) s.encoder[j] = 0.1 * j;  // quantised: constant at rest
+  s.encoder_stamp.fill(t);
+  for (auto& ft : s.ft) {
+    ft.force = {w, -w, -250 + w};
+    ft.torque = {w, 2 * w, -w};
+    ft.stamp = t;
+  }
+  s.imu.gyro = {w, -w, 0.5 * w};
+  s.imu.accel = {w, w, 9.81 + w};
+  s.imu.quat = {1, w, 0, 0};
+  s.imu.gyro_stamp = s.imu.accel_stamp = s.imu.quat_stamp = t;
+  return s;
+}
+
+struct Runner {
+  SensorHealth health{HealthParams{}, kT};
+  unsigned seen = 0;  ///< flags over the run
+  /// Checks live readings for k in [from, to), `fault` altering them.
+  template <class Fault>
+  void go(int from, int to, Fault fault) {
+    for (int k = from; k < to; ++k) {
+      humanoid::SensorReadings s = live(k);
+      fault(s, k);
+      health.check(s, k * kT);
+      seen |= health.flags();
+    }
+  }
+};
+
+TEST(SensorHealth, HealthyReadingsAreNeverFlagged) {
+  Runner r;
+  r.go(0, 5000, [](humanoid::SensorReadings&, int) {});
+  EXPECT_EQ(r.seen, 0U);
+  for (int i = 0; i < humanoid::kSensors; ++i) {
+    EXPECT_EQ(r.health.episodes(i), 0);
+    EXPECT_FALSE(r.health.failed(i));
+  }
+}
+
+TEST(SensorHealth, NanIsFlaggedAndTheLastGoodValueHeld) {
+  Runner r;
+  r.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  const double last_good = live(99).encoder[humanoid::kLeftKnee];
+  // NaN on one encoder for 0.05 s (12 periods): flagged at once, held, not a failure.
+  r.go(100, 112, [&](humanoid::SensorReadings& s, int) {
+    s.encoder[humanoid::kLeftKnee] = kNan;
+    EXPECT_EQ(r.health.clean().encoder[humanoid::kLeftKnee], r.health.clean().encoder[humanoid::kLeftKnee]);
+  });
+  EXPECT_TRUE(r.health.bad(humanoid::kEncoder));
+  EXPECT_EQ(r.health.fault(humanoid::kEncoder), SignalFault::kNan);
+  EXPECT_EQ(r.health.clean().encoder[humanoid::kLeftKnee], last_good);
+  r.go(112, 200, [](humanoid::SensorReadings&, int) {});
+  EXPECT_FALSE(r.health.bad(humanoid::kEncoder));
+  EXPECT_FALSE(r.health.failed(humanoid::kEncoder));
+  EXPECT_EQ(r.health.episodes(humanoid::kEncoder), 1);
+  EXPECT_NEAR(r.health.bad_time(humanoid::kEncoder), 12 * kT, 1e-12);
+}
+
+TEST(SensorHealth, ADropoutIsStaleOnceOlderThanMaxAge) {
+  // A dropped F/T sensor repeats its last sample and stamp: stale once the stamp is older than
+  // max_age (0.01 s: the third period), held at the last good value, clear when samples return.
+  Runner r;
+  r.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  const humanoid::SensorReadings frozen = live(99);
+  int first_flag = -1;
+  r.go(100, 150, [&](humanoid::SensorReadings& s, int k) {  // 0.2 s
+    s.ft[0] = frozen.ft[0];
+    if (first_flag < 0 && r.health.bad(humanoid::kFtLeft)) first_flag = k;
+  });
+  EXPECT_EQ(first_flag, 103);  // flag read after the check of k = 102: age 0.012 s > 0.01 s
+  EXPECT_EQ(r.health.fault(humanoid::kFtLeft), SignalFault::kStale);
+  EXPECT_EQ(r.health.clean().ft[0].force, frozen.ft[0].force);
+  EXPECT_FALSE(r.health.bad(humanoid::kFtRight));
+  r.go(150, 200, [](humanoid::SensorReadings&, int) {});
+  EXPECT_FALSE(r.health.bad(humanoid::kFtLeft));
+  EXPECT_FALSE(r.health.failed(humanoid::kFtLeft));  // 0.19 s bad < hold_time 0.3 s
+  EXPECT_EQ(r.health.episodes(humanoid::kFtLeft), 1);
+}
+
+TEST(SensorHealth, AStuckGyroIsFlaggedAfterStuckSamples) {
+  // Frozen values with fresh stamps: stuck when stuck_samples (10) readings are identical.
+  Runner r;
+  r.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  const auto frozen = live(99).imu.gyro;
+  int first_flag = -1;
+  r.go(100, 125, [&](humanoid::SensorReadings& s, int k) {  // 0.1 s
+    s.imu.gyro = frozen;
+    if (first_flag < 0 && r.health.bad(humanoid::kGyro)) first_flag = k;
+  });
+  // Readings 99..108 are the same ten: flagged at the check of k = 108.
+  EXPECT_EQ(first_flag, 109);
+  EXPECT_EQ(r.health.fault(humanoid::kGyro), SignalFault::kStuck);
+  r.go(125, 150, [](humanoid::SensorReadings&, int) {});
+  EXPECT_FALSE(r.health.bad(humanoid::kGyro));
+  EXPECT_FALSE(r.health.failed(humanoid::kGyro));
+}
+
+TEST(SensorHealth, LatencyBeyondMaxAgeIsStale) {
+  Runner r;
+  r.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  r.go(100, 150, [](humanoid::SensorReadings& s, int k) { s.imu.accel_stamp = (k - 5) * kT; });  // 0.02 s late
+  EXPECT_EQ(r.health.fault(humanoid::kAccel), SignalFault::kStale);
+  r.go(150, 200, [](humanoid::SensorReadings& s, int k) { s.imu.accel_stamp = (k - 2) * kT; });  // 0.008 s: tolerated
+  EXPECT_FALSE(r.health.bad(humanoid::kAccel));
+}
+
+TEST(SensorHealth, BadBeyondTheHoldTimeIsALatchedFailure) {
+  Runner r;
+  r.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  const humanoid::SensorReadings frozen = live(99);
+  r.go(100, 100 + 74, [&](humanoid::SensorReadings& s, int) { s.ft[1] = frozen.ft[1]; });
+  EXPECT_FALSE(r.health.failed(humanoid::kFtRight));  // bad from k = 103: 0.28 s so far
+  r.go(174, 200, [&](humanoid::SensorReadings& s, int) { s.ft[1] = frozen.ft[1]; });
+  EXPECT_TRUE(r.health.failed(humanoid::kFtRight));
+  r.go(200, 300, [](humanoid::SensorReadings&, int) {});
+  EXPECT_FALSE(r.health.bad(humanoid::kFtRight));
+  EXPECT_TRUE(r.health.failed(humanoid::kFtRight));  // latched
+}
+
+TEST(SensorHealth, EncodersMayRepeat) {
+  // Quantised encoders read the same step for long at rest: never "stuck".
+  Runner r;
+  r.go(0, 1000, [](humanoid::SensorReadings&, int) {});
+  EXPECT_FALSE(r.health.bad(humanoid::kEncoder));
+}
+
+TEST(SensorHealth, CheckAllocatesNothing) {
+  SensorHealth h{HealthParams{}, kT};
+  humanoid::SensorReadings s = live(0);
+  const long before = g_allocations.load();
+  for (int k = 0; k < 1000; ++k) {
+    s.t = k * kT;
+    s.ft[0].force[0] = k % 7 == 0 ? kNan : 1.0 * k;
+    h.check(s, k * kT);
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+}  // namespace
+}  // namespace flexgait::walking
