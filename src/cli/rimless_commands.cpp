@@ -85,20 +85,21 @@ int fixed_point(const FixedPointArgs& a) {
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);
   dir.write("fixed_point.json", json);
-  if (a.run.json) {
-    fmt::print("{}", json);
-    return 0;
+  if (a.run.json) fmt::print("{}", json);
+  if (!rep.converged) {  // a named failure: exit 1, the report (state and multipliers null) kept
+    fmt::print(stderr, "error: no fixed point ({} wheel, {} section): {}; report in {}\n", s.config.choice("sim.model"),
+               a.section, one_line(rep.failure, 1000), (dir.path() / "fixed_point.json").string());
+    return 1;
   }
-  fmt::print("{} wheel, {} section: {}\n", s.config.choice("sim.model"), a.section,
-             rep.converged ? fmt::format("fixed point after {} Newton iterations, residual {:.2e}", rep.iterations,
-                                         rep.residual)
-                           : "no fixed point: " + rep.failure);
+  if (a.run.json) return 0;
+  fmt::print("{} wheel, {} section: fixed point after {} Newton iterations, residual {:.2e}\n",
+             s.config.choice("sim.model"), a.section, rep.iterations, rep.residual);
   const auto names = rep.point.names();
-  for (std::size_t i = 0; i < names.size(); ++i) fmt::print("  {:8s} = {:.12g}\n", names[i], rep.point.z(static_cast<Eigen::Index>(i)));
+  for (Eigen::Index i = 0; i < rep.point.z.size(); ++i)
+    fmt::print("  {:8s} = {:.12g}\n", names.at(static_cast<std::size_t>(i)), rep.point.z(i));
   for (const auto& m : rep.multipliers) fmt::print("  multiplier {:.6g}{:+.6g}i  |{:.6g}|\n", m.real(), m.imag(), std::abs(m));
-  if (rep.converged)
-    fmt::print("  {} gait '{}', period {:.6f} s, speed {:.6f} m/s, dissipated {:.6f} J per cycle\n",
-               rep.stable ? "stable" : "unstable", rep.gait, rep.period, rep.speed, rep.dissipated);
+  fmt::print("  {} gait '{}', period {:.6f} s, speed {:.6f} m/s, dissipated {:.6f} J per cycle\n",
+             rep.stable ? "stable" : "unstable", rep.gait, rep.period, rep.speed, rep.dissipated);
   fmt::print("results in {}\n", dir.path().string());
   return 0;
 }

@@ -72,6 +72,25 @@ done
 check "fixed point converged" grep -q '"converged": true' "$work/fp.json"
 "$exe" rimless fixed-point --model rigid --section upright --out "$work/fpr" --json --no-plot >"$work/fpr.json" 2>&1
 check "rigid fixed point converged" grep -q '"converged": true' "$work/fpr.json"
+# A failed search is a named failure (exit 1, one line on stderr), its report without numbers of no
+# meaning: no starting point for Newton (issue 17.1), a Jacobian column that failed (issue 21.6).
+"$exe" rimless fixed-point --set rimless.legs=3 --set rimless.slope=0 --set rimless.mu_s=1e-6 --set rimless.mu_k=1e-6 \
+  --set rimless.K=1e9 --set analysis.transient_steps=100000 --out "$work/fp_none" --json --no-plot \
+  >"$work/fp_none.json" 2>"$work/err"
+check "fixed point without a start exits 1 (got $?)" test $? -eq 1
+check "fixed point without a start: one line naming the failure: $(cat "$work/err")" \
+  sh -c "test \$(wc -l <'$work/err') -eq 1 && grep -q 'no fixed point.*no initial guess' '$work/err'"
+check "fixed point without a start: state null" grep -q '"state": null' "$work/fp_none/fixed_point.json"
+"$exe" rimless fixed-point --set rimless.mu_s=0.1559 --set rimless.mu_k=0.1559 --set initial.omega=1.5 \
+  --set analysis.transient_steps=60 --out "$work/fp_fd" --json --no-plot >"$work/fp_fd.json" 2>"$work/err"
+code=$?
+if grep -q '"converged": false' "$work/fp_fd.json"; then
+  check "failed fixed point exits 1 (got $code)" test "$code" -eq 1
+  check "failed fixed point: multipliers null" grep -q '"multipliers": null' "$work/fp_fd.json"
+  check "failed fixed point: no number of uninitialised memory" sh -c "! grep -Eq 'e[+-][0-9]{3}' '$work/fp_fd.json'"
+else
+  check "converged fixed point exits 0 (got $code)" test "$code" -eq 0
+fi
 expect_usage_error sweep-bad-param "rimless.nope" rimless sweep --param rimless.nope --from 0 --to 1 --count 3
 expect_usage_error sweep-bad-value "rimless.K" rimless sweep --param rimless.K --from -1 --to 1 --count 3
 "$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --jobs 2 --out "$work/sweep_full" --no-plot >/dev/null 2>&1
