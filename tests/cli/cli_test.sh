@@ -19,10 +19,11 @@ expect_usage_error() {
   local name=$1 needle=$2
   shift 2
   local out="$work/never-$name"
-  "$exe" "$@" --out "$out" --no-plot >"$work/stdout" 2>"$work/stderr"
+  timeout 120 "$exe" "$@" --out "$out" --no-plot >"$work/stdout" 2>"$work/stderr"
   local code=$?
   check "$name: exit code 2 (got $code)" test "$code" -eq 2
-  check "$name: message names '$needle': $(cat "$work/stderr")" grep -qF -- "$needle" "$work/stderr"
+  check "$name: message names '$needle': $(head -c 2000 "$work/stderr")" grep -qF -- "$needle" "$work/stderr"
+  check "$name: one line on stderr" test "$(wc -l <"$work/stderr")" -eq 1
   check "$name: nothing written" test ! -e "$out"
 }
 
@@ -44,6 +45,27 @@ expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such
 printf 'rimless:\n  K: 1000\n  mu: 0.5\n' >"$work/typo.yaml"
 expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
 expect_usage_error bad-model "--model" rimless simulate --model soft
+# YAML read with limits (issue 17.2): each refusal names the file and the line.
+printf 'a: &a\n  b: *a\n' >"$work/recursive.yaml"
+expect_usage_error recursive-alias "recursive.yaml:2: a recursive alias" rimless simulate --config "$work/recursive.yaml"
+{ echo 'l0: &l0 {a: 1, b: 1}'; for i in $(seq 1 30); do echo "l$i: &l$i {a: *l$((i - 1)), b: *l$((i - 1))}"; done; } \
+  >"$work/bomb.yaml"
+expect_usage_error alias-bomb "aliases expand to more than" rimless simulate --config "$work/bomb.yaml"
+printf 'rimless:\n  K: 1000\n  K: 2000\n' >"$work/dup.yaml"
+expect_usage_error duplicate-key "dup.yaml:3: key 'K' given twice" rimless simulate --config "$work/dup.yaml"
+printf 'rimless:\n  K: 1000\n---\nrimless:\n  K: 2000\n' >"$work/docs.yaml"
+expect_usage_error extra-document "docs.yaml:3: a second YAML document" rimless simulate --config "$work/docs.yaml"
+printf '? [rimless, K]\n: 1\n' >"$work/complex.yaml"
+expect_usage_error complex-key "complex.yaml:1: a key must be a plain name" rimless simulate --config "$work/complex.yaml"
+mkfifo "$work/fifo.yaml"
+expect_usage_error fifo-config "fifo.yaml: is not a regular file" rimless simulate --config "$work/fifo.yaml"
+head -c 2000000 /dev/zero | tr '\0' '#' >"$work/huge.yaml"
+expect_usage_error huge-config "huge.yaml: larger than" rimless simulate --config "$work/huge.yaml"
+# One line whatever the value holds (issue 17.8): control characters escaped, long values cut.
+expect_usage_error newline-in-value 'rimless.K' rimless simulate --set "rimless.K=1$(printf '\n')2x"
+expect_usage_error long-value '(100000 bytes)' rimless simulate --set "rimless.K=$(head -c 100000 /dev/zero | tr '\0' 5)"
+expect_usage_error unknown-command "unknown command 'fly'" fly
+expect_usage_error unknown-subcommand "unknown command 'fly'" rimless fly
 expect_usage_error no-subcommand "flexgait rimless --help" rimless
 "$exe" rimless simulate --steps 3 --omega0 1.4 --out "$work/run1" --no-plot --json >"$work/summary.out" 2>"$work/err"
 check "simulate exits 0: $(cat "$work/err")" test $? -eq 0

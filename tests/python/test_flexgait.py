@@ -68,6 +68,40 @@ class SimulateAgainstTheCommandLine(unittest.TestCase):
             self.assertIsNone(fp[key], key)
 
 
+class BadConfigFile(unittest.TestCase):
+    """Issue 17.2 and 11: a configuration file read with limits; every refusal a ValueError naming the file."""
+
+    def refused(self, text, needle):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "c.yaml")
+            with open(path, "w") as f:
+                f.write(text)
+            with self.assertRaises(ValueError) as e:
+                flexgait.rimless.simulate(config_file=path)
+        self.assertIn(needle, str(e.exception))
+
+    def test_recursive_alias(self):  # overflowed the stack
+        self.refused("a: &a\n  b: *a\n", "c.yaml:2: a recursive alias")
+
+    def test_duplicate_keys_and_extra_documents(self):
+        self.refused("rimless:\n  K: 1\n  K: 2\n", "c.yaml:3: key 'K' given twice")
+        self.refused("rimless:\n  K: 1\n---\nx: 1\n", "c.yaml:3: a second YAML document")
+
+    def test_complex_key_is_a_value_error(self):  # was RuntimeError
+        self.refused("? [a, b]\n: 1\n", "c.yaml:1: a key must be a plain name")
+
+    def test_directory_and_fifo(self):
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaises(ValueError) as e:  # was RuntimeError
+                flexgait.rimless.simulate(config_file=d)
+            self.assertIn("is a directory", str(e.exception))
+            fifo = os.path.join(d, "fifo.yaml")
+            os.mkfifo(fifo)
+            with self.assertRaises(ValueError) as e:  # blocked forever
+                flexgait.rimless.simulate(config_file=fifo)
+            self.assertIn("not a regular file", str(e.exception))
+
+
 class BadInput(unittest.TestCase):
     def test_unknown_key_raises_value_error_naming_it(self):
         with self.assertRaises(ValueError) as e:
