@@ -66,6 +66,38 @@ expect_usage_error newline-in-value 'rimless.K' rimless simulate --set "rimless.
 expect_usage_error long-value '(100000 bytes)' rimless simulate --set "rimless.K=$(head -c 100000 /dev/zero | tr '\0' 5)"
 expect_usage_error unknown-command "unknown command 'fly'" fly
 expect_usage_error unknown-subcommand "unknown command 'fly'" rimless fly
+# Every option checked as --set is, named as given, before anything is written (issue 17.6, 17.8, 17.9).
+expect_usage_error steps-empty "--steps: key 'sim.steps' = ''" rimless simulate --steps ''
+expect_usage_error steps-negative "--steps: key 'sim.steps' = '-1'" rimless simulate --steps -1
+expect_usage_error omega0-nan "--omega0: key 'initial.omega' = 'nan'" rimless simulate --omega0 nan
+expect_usage_error cross-check-names-set "--set: key 'rimless.mu_k'" rimless simulate --set rimless.mu_s=0.2 --set rimless.mu_k=0.3
+printf 'rimless:\n  mu_s: 0.2\n  mu_k: 0.3\n' >"$work/mu.yaml"
+expect_usage_error cross-check-names-file "mu.yaml:3: key 'rimless.mu_k'" rimless simulate --config "$work/mu.yaml"
+expect_usage_error energy-negative-mu "--mu: key 'rimless.mu_s' = '-1'" rimless analysis energy --mu -1
+expect_usage_error energy-empty-mu "--mu: key 'rimless.mu_s' = ''" rimless analysis energy --mu ''
+expect_usage_error energy-empty-mu-field "--mu: key 'rimless.mu_s' = ''" rimless analysis energy --mu 0.6,,0.2
+expect_usage_error energy-nan-mu "--mu: key 'rimless.mu_s' = 'nan'" rimless analysis energy --mu nan
+expect_usage_error friction-bad-from "--from: key 'rimless.mu_s' = '-1'" rimless analysis gait-vs-friction --from -1
+expect_usage_error friction-inf-to "--to: 'inf' is not a finite number" rimless analysis gait-vs-friction --to inf
+expect_usage_error stagnation-bad-to "--to: key 'initial.omega'" rimless analysis stagnation --to -500 --count 3
+expect_usage_error energy-resume "--resume: not used by analysis energy" rimless analysis energy --resume
+expect_usage_error energy-count "--count: not used by analysis energy" rimless analysis energy --count 3
+expect_usage_error robustness-from "--from: not used by analysis robustness" rimless analysis robustness --from 0.1
+expect_usage_error stagnation-mu "--mu: not used by analysis stagnation" rimless analysis stagnation --mu 0.3
+expect_usage_error sweep-inf-to "--to: 'inf' is not a finite number" rimless sweep --param rimless.mu --from 0.2 --to inf --count 3
+expect_usage_error sweep-bad-from "--from: key 'rimless.mu_s' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
+expect_usage_error walk-total-mass "key 'robot.total_mass' = '43.72': out of range" humanoid walk --set robot.total_mass=43.72
+expect_usage_error mismatch-nan-scale "--scales: 'nan' is not a finite number" humanoid mismatch --scales nan
+expect_usage_error mismatch-empty-scale "--scales: '' is not a finite number" humanoid mismatch --scales 0.9,,1.1
+expect_usage_error walk-nan-fps "--fps: 'nan' is not a finite number" humanoid walk --render --fps nan
+echo "not a directory" >"$work/afile"
+for cmd in "rimless simulate" "rimless fixed-point" "humanoid bench"; do
+  # shellcheck disable=SC2086
+  timeout 60 "$exe" $cmd --out "$work/afile" --no-plot >/dev/null 2>"$work/err"
+  code=$?
+  check "$cmd: a file as --out is exit 2 before computing (got $code)" test "$code" -eq 2
+  check "$cmd: names --out: $(cat "$work/err")" grep -q -- "--out: cannot make the run directory" "$work/err"
+done
 expect_usage_error no-subcommand "flexgait rimless --help" rimless
 "$exe" rimless simulate --steps 3 --omega0 1.4 --out "$work/run1" --no-plot --json >"$work/summary.out" 2>"$work/err"
 check "simulate exits 0: $(cat "$work/err")" test $? -eq 0

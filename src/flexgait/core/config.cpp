@@ -162,6 +162,15 @@ const ParamSpec* Schema::find(const std::string& key) const {
   return nullptr;
 }
 
+void check_with_origin(const Config& config, const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const ConfigError& e) {
+    if (e.key().empty() || config.schema().find(e.key()) == nullptr) throw;
+    throw ConfigError(e.key(), config.origin(e.key()) + ": " + e.what());
+  }
+}
+
 ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin) {
   switch (spec.type) {
     case ParamType::Real: {
@@ -257,7 +266,7 @@ std::string Config::to_yaml() const {
 }
 
 Config resolve_config(const Schema& schema, const std::optional<std::filesystem::path>& file,
-                      const std::vector<std::string>& overrides) {
+                      const std::vector<std::string>& overrides, const std::vector<ConfigEntry>& options) {
   Config cfg;
   cfg.schema_ = schema;
   for (const auto& spec : schema.params()) {
@@ -267,6 +276,7 @@ Config resolve_config(const Schema& schema, const std::optional<std::filesystem:
   if (file) {
     for (const ConfigEntry& e : read_config_file(*file)) cfg.set(e.key, e.text, e.origin);
   }
+  for (const ConfigEntry& e : options) cfg.set(e.key, e.text, e.origin);
   for (const auto& item : overrides) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0)

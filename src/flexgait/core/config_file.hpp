@@ -10,18 +10,13 @@
 #include <string_view>
 #include <vector>
 
+#include "flexgait/core/config.hpp"
+
 namespace flexgait {
 
 inline constexpr std::size_t kMaxConfigBytes = 1 << 20;  ///< a configuration file's size limit [bytes]
 inline constexpr int kMaxConfigDepth = 32;                ///< mappings nested deeper are refused
 inline constexpr std::size_t kMaxConfigNodes = 10000;     ///< nodes visited, aliases expanded
-
-/// One value of a configuration file: its dotted key, its text and where it stands ("FILE:LINE").
-struct ConfigEntry {
-  std::string key;
-  std::string text;
-  std::string origin;
-};
 
 /// The entries of YAML text `text` (named `name` in messages), in file order. An empty document
 /// gives none. Throws ConfigError on a syntax error, more than one document, a top level that is
