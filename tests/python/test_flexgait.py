@@ -127,6 +127,28 @@ class BadInput(unittest.TestCase):
             flexgait.rimless.simulate({"rimless.K": [1, 2]})
         self.assertIn("rimless.K", str(e.exception))
 
+    def test_numpy_scalars_are_numbers(self):  # issue 17.11: numpy.int64 was rejected
+        run = flexgait.rimless.simulate({"sim.steps": np.int64(2), "rimless.mu_s": np.float32(0.5),
+                                         "rimless.mu_k": np.float64(0.5)})
+        self.assertEqual(run["config"]["sim.steps"], 2)
+        self.assertEqual(run["config"]["rimless.mu_s"], float(np.float32(0.5)))
+
+    def test_a_key_holding_an_equals_sign_is_a_key(self):  # was split at '=' and misread
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K=5": 1000})
+        self.assertIn("unknown key 'rimless.K=5'", str(e.exception))
+
+    def test_none_and_nan_are_refused_naming_where(self):  # [None, 1, 2] became NaN, blamed "I = 0"
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.poincare_map(z=[None, 1.0, 2.0])
+        self.assertIn("z:", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K": float("nan")})
+        self.assertIn("rimless.K", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K": None})
+        self.assertIn("rimless.K", str(e.exception))
+
 
 class Humanoid(unittest.TestCase):
     def test_walk_returns_arrays_and_metrics_with_and_without_compensation(self):

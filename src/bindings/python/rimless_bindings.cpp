@@ -73,6 +73,8 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
                       const std::optional<Eigen::VectorXd>& z) {
   const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), config, config_file);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
+  if (z && !z->allFinite())  // None in a list arrives as NaN
+    throw py::value_error("z: every component must be a finite number (None, NaN and inf are not)");
   rimless::SectionState point;
   rimless::MapStep step;
   std::optional<std::string> failure;
