@@ -81,16 +81,76 @@ def robustness(run_dir):
 
 
 def stagnation(run_dir):
+    """Paper Fig. 12: the time the stance foot slides near the true vertical and the mechanical energy
+    at the end of the stage against omega0; and the near-vertical time against |omega0 - omega_c|."""
+    import json
     data = rows(run_dir, "stagnation.csv")
+    with open(os.path.join(run_dir, "stagnation.json")) as f:
+        summary = json.load(f)
+    fig, axes = plt.subplots(3, 1, figsize=(9, 12), constrained_layout=True)
     w = [float(r["omega0"]) for r in data]
-    fig, axes = plt.subplots(2, 1, figsize=(9, 8), sharex=True, constrained_layout=True)
-    axes[0].plot(w, [float(r["slide_time_upright"]) for r in data], "o-", ms=3)
-    axes[0].set_ylabel("sliding time near upright [s]")
-    axes[1].plot(w, [float(r["final_energy"]) for r in data], "o-", ms=3)
-    axes[1].set_ylabel("final kinetic + spring energy [J]")
-    axes[1].set_xlabel("initial angular velocity omega0 [rad/s]")
-    axes[0].set_title("Stagnation interval (paper Fig. 12)")
+    axes[0].plot(w, [float(r["slide_near_vertical"]) for r in data], "o-", ms=3,
+                 label=f"sliding within {summary['window']} rad of the vertical")
+    axes[0].plot(w, [float(r["slide_total"]) for r in data], ".-", ms=2, lw=0.8, label="sliding, whole stage")
+    axes[0].set_ylabel("sliding time [s]")
+    for end, colour in (("next_leg_landed", "tab:green"), ("rolled_back", "tab:red"), ("stagnated", "tab:purple"),
+                        ("came_to_rest", "tab:gray"), ("time_limit", "tab:orange"), ("failed", "k")):
+        sel = [r for r in data if r["end"] == end]
+        if sel:
+            axes[1].plot([float(r["omega0"]) for r in sel], [float(r["energy_end"]) for r in sel], "o", ms=3,
+                         color=colour, label=end.replace("_", " "))
+    axes[1].set_ylabel("mechanical energy at the end of the stage [J]")
+    for ax in axes[:2]:
+        ax.set_xlabel("initial angular velocity omega0 [rad/s]")
+        ax.legend()
+    title = "Stagnation interval (paper Fig. 12)"
+    if summary["critical_found"]:
+        wc = summary["omega_c"]
+        title += f": omega_c = {wc:.9f} rad/s, {summary['kind']}"
+        for ax in axes[:2]:
+            ax.axvline(wc, color="k", lw=0.6, ls=":")
+        for side, sign, colour in (("above", 1, "tab:green"), ("below", -1, "tab:red")):
+            sel = [r for r in data if r["part"] == "scan" and (float(r["offset"]) > 0) == (sign > 0)]
+            d = [abs(float(r["offset"])) for r in sel]
+            near = [float(r["slide_near_vertical"]) + float(r["stick_near_vertical"]) for r in sel]
+            axes[2].semilogx(d, near, "o-", ms=3, color=colour,
+                             label=f"omega0 {'>' if sign > 0 else '<'} omega_c: "
+                                   f"{summary['growth_' + side]:.3f} s per decade")
+        axes[2].axhline(summary["threshold"], color="k", lw=0.6, ls="--",
+                        label=f"interval threshold {summary['threshold']:.3f} s: omega0 in "
+                              f"[{summary['interval_low']:.7f}, {summary['interval_high']:.7f}]")
+        axes[2].invert_xaxis()
+        axes[2].set_xlabel("|omega0 - omega_c| [rad/s]")
+        axes[2].set_ylabel("time near the vertical [s]")
+        axes[2].set_title(f"per decade, pendulum estimates: {summary['estimate_sliding']:.3f} s about the hub "
+                          f"(sliding), {summary['estimate_sticking']:.3f} s about the foot (sticking)")
+        axes[2].legend()
+    else:
+        axes[2].set_axis_off()
+    axes[0].set_title(title)
     save_atomic(fig, run_dir, "stagnation.png")
+
+
+def stagnation_map(run_dir):
+    """How the stagnation's growth per decade and the interval's width move with mu - tan(phi), I, C, K."""
+    data = [r for r in rows(run_dir, "stagnation_map.csv") if r["critical_found"] == "true"]
+    fig, axes = plt.subplots(2, 1, figsize=(10, 9), constrained_layout=True)
+    y = list(range(len(data)))
+    labels = [f"{r['variation']} (mu - tan phi = {float(r['mu_minus_tan_slope']):+.4f})" for r in data]
+    for key, marker, label in (("growth_slide", "o", "sliding part"), ("growth_stick", "s", "sticking part"),
+                               ("estimate_sliding", "|", "estimate: about the hub"),
+                               ("estimate_sticking", "x", "estimate: about the foot")):
+        axes[0].plot([float(r[key]) for r in data], y, marker, ms=7, ls="none", label=label)
+    axes[0].set_xlabel("time near the vertical per decade of |omega0 - omega_c| [s]")
+    axes[0].legend()
+    axes[1].semilogx([float(r["interval_width"]) / float(r["omega_c"]) for r in data], y, "o", ls="none")
+    axes[1].set_xlabel("stagnation interval width / omega_c")
+    for ax in axes:
+        ax.set_yticks(y)
+        ax.set_yticklabels(labels)
+        ax.grid(True, lw=0.3)
+    axes[0].set_title("Stagnation map: one parameter changed at a time")
+    save_atomic(fig, run_dir, "stagnation-map.png")
 
 
 if __name__ == "__main__":
@@ -98,4 +158,4 @@ if __name__ == "__main__":
         sys.stderr.write(__doc__)
         sys.exit(2)
     {"gait-vs-friction": gait_vs_friction, "energy": energy, "fixed-points": fixed_points,
-     "robustness": robustness, "stagnation": stagnation}[sys.argv[1]](sys.argv[2])
+     "robustness": robustness, "stagnation": stagnation, "stagnation-map": stagnation_map}[sys.argv[1]](sys.argv[2])

@@ -47,10 +47,12 @@ std::vector<Step> steps(bool quick) {
   std::vector<std::string> robust{"rimless", "analysis", "robustness", "--config", rimless};
   if (quick) robust.insert(robust.end(), {"--mu", "0.105,0.6"});
   s.push_back({"rimless-robustness", "Rimless wheel: robustness of the gaits to perturbations", robust});
-  std::vector<std::string> stagnation{"rimless", "analysis", "stagnation", "--config", rimless};
-  if (quick) stagnation.insert(stagnation.end(), {"--count", "30"});
-  s.push_back({"rimless-stagnation", "Rimless wheel: stagnation against initial angular velocity (paper Fig. 12)",
-               stagnation});
+  // The stagnation interval lives where the first single support slides: mu just above tan(phi).
+  const std::string stagnation = find_config("rimless-stagnation.yaml").string();
+  s.push_back({"rimless-stagnation", "Rimless wheel: stagnation interval, sliding time near the vertical (paper Fig. 12)",
+               {"rimless", "analysis", "stagnation", "--config", stagnation}});
+  s.push_back({"rimless-stagnation-map", "Rimless wheel: stagnation interval against mu - tan(phi), I, C and K",
+               {"rimless", "analysis", "stagnation-map", "--config", stagnation}});
   s.push_back({"humanoid-bench", "Humanoid: stiffness bench (thesis Fig. 12)", {"humanoid", "bench"}});
   std::vector<std::string> quasi{"humanoid", "compensation", "--config", walk("walk-quasi-static.yaml")};
   if (quick) quasi.insert(quasi.end(), {"--set", "walk.steps=3"});

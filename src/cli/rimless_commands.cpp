@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/core/text.hpp"
@@ -11,6 +12,7 @@
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
+#include "flexgait/rimless/stagnation.hpp"
 #include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
@@ -148,37 +150,68 @@ struct AnalysisArgs {
   int jobs = 0;
   bool resume = false;
   std::string section = "touchdown";
+  std::vector<std::string> vary;
 };
+
+/// The stagnation map's default variations of the base configuration (configs/rimless-stagnation.yaml):
+/// the friction margin mu - tan(phi), the inertia, the damping and the stiffness, one at a time,
+/// and small inertia at mu = 0.25, where the foot sticks near the vertical.
+std::vector<std::string> default_stagnation_map() {
+  return {"",
+          "rimless.mu=0.1",
+          "rimless.mu=0.11",
+          "rimless.mu=0.12",
+          "rimless.mu=0.15",
+          "rimless.I=0.1",
+          "rimless.I=1",
+          "rimless.C=10",
+          "rimless.C=100",
+          "rimless.K=300",
+          "rimless.K=10000",
+          "rimless.I=0.02,rimless.mu=0.25"};
+}
 
 int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   // Every option checked before anything is written; an option this analysis ignores is refused.
-  const bool ranged = a.name == "gait-vs-friction" || a.name == "stagnation";
   const std::string which = "analysis " + a.name;
-  if (ranged) reject_unused(cmd, {"--mu"}, which + " (only energy, fixed-points and robustness take --mu)");
-  else reject_unused(cmd, {"--from", "--to", "--count", "--jobs", "--resume"}, which + " (only gait-vs-friction and "
-                                                                                      "stagnation sweep a range)");
+  const bool friction_sweep = a.name == "gait-vs-friction";
+  const bool stagnation_run = a.name == "stagnation" || a.name == "stagnation-map";
+  if (!friction_sweep && !stagnation_run)
+    reject_unused(cmd, {"--from", "--to", "--count"}, which + " (only gait-vs-friction and the stagnation analyses "
+                                                              "take a range)");
+  if (!friction_sweep && a.name != "stagnation-map")
+    reject_unused(cmd, {"--jobs", "--resume"}, which + " (only gait-vs-friction and stagnation-map are resumable sweeps)");
+  if (a.name != "energy" && a.name != "fixed-points" && a.name != "robustness")
+    reject_unused(cmd, {"--mu"}, which + " (only energy, fixed-points and robustness take --mu)");
   if (a.name != "gait-vs-friction" && a.name != "fixed-points")
     reject_unused(cmd, {"--section"}, which + " (only gait-vs-friction and fixed-points seek fixed points on a section)");
-  const WheelSetup s = wheel_setup(a.run, cmd, "");
+  if (a.name != "stagnation-map") reject_unused(cmd, {"--vary"}, which + " (only stagnation-map takes --vary)");
+  std::vector<ConfigEntry> extra;
+  if (stagnation_run) {  // --from/--to/--count: the coarse grid of omega0 (of each map point too)
+    add_option_value(extra, cmd, "--from", "stagnation.omega_from", format_number(a.from));
+    add_option_value(extra, cmd, "--to", "stagnation.omega_to", format_number(a.to));
+    add_option_value(extra, cmd, "--count", "stagnation.count", std::to_string(a.count));
+  }
+  const WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run, extra));
+  const rimless::StagnationOptions stagnation =
+      stagnation_run ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
+  const std::vector<std::string> variations = a.vary.empty() ? default_stagnation_map() : a.vary;
+  if (a.name == "stagnation-map")
+    for (const auto& v : variations) rimless::stagnation_map_config(s.config, v);  // every point valid first
   const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
   std::vector<double> given_mus;
   if (cmd.count("--mu") > 0)
     for (const auto& text : split_list(a.mus))
       given_mus.push_back(rimless::config_at(s.config, "rimless.mu", text, "--mu").real("rimless.mu_s"));
   auto mus = [&](std::vector<double> fallback) { return given_mus.empty() ? fallback : given_mus; };
-  rimless::SweepSpec range;  // gait-vs-friction: mu; stagnation: omega0
-  if (ranged) {
-    const bool friction = a.name == "gait-vs-friction";
-    range = {friction ? "rimless.mu" : "initial.omega", cmd.count("--from") ? a.from : (friction ? 0.1 : 0.05),
-             cmd.count("--to") ? a.to : (friction ? 1.5 : 2.0), cmd.count("--count") ? a.count : (friction ? 100 : 80),
-             section};
-    rimless::check_sweep(s.config, range);
-  }
+  const rimless::SweepSpec range{"rimless.mu", cmd.count("--from") ? a.from : 0.1, cmd.count("--to") ? a.to : 1.5,
+                                 cmd.count("--count") ? a.count : 100, section};  // gait-vs-friction
+  if (friction_sweep) rimless::check_sweep(s.config, range);
   // A resumed sweep must match the one in --out: check before anything is written.
-  if (a.resume && (a.name == "gait-vs-friction" || a.name == "stagnation")) {
+  if (a.resume && (a.name == "gait-vs-friction" || a.name == "stagnation-map")) {
     SweepJob probe;
     probe.dir = a.run.out;
-    probe.name = a.name == "stagnation" ? "stagnation" : "sweep";
+    probe.name = a.name == "stagnation-map" ? "stagnation_map" : "sweep";
     probe.resume = true;
     probe.signature = "?";
     if (!std::filesystem::exists(probe.dir / (probe.name + ".signature"))) check_resumable(probe);
@@ -200,11 +233,14 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
     const Config base = s.config;
     job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
     run_sweep(job);
-    // Thresholds from the sweep's gaits, refined by bisection.
-    std::vector<std::pair<double, std::string>> points;
-    for (int i = 0; i < n; ++i) points.emplace_back(spec.value(i), rimless::gait_at_friction(base, spec.value(i), section));
-    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, points, section, 1e-4));
-    files = {"sweep.csv", "thresholds.csv"};
+    // The periodic gait at each value (longer transients, then continuation from the neighbours'
+    // fixed points where the start finds none), and the thresholds between them by bisection.
+    std::vector<double> values;
+    for (int i = 0; i < n; ++i) values.push_back(spec.value(i));
+    const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, section);
+    dir.write("gaits.csv", rimless::friction_gaits_csv(gaits));
+    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, section, 1e-4));
+    files = {"sweep.csv", "gaits.csv", "thresholds.csv"};
   } else if (a.name == "energy") {
     dir.write("energy.csv", rimless::single_support_energy_csv(s.config, mus({0.6, 0.105})));
     files = {"energy.csv"};
@@ -221,26 +257,39 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
     }
     dir.write("robustness.csv", text);
     files = {"robustness.csv"};
-  } else {  // stagnation
-    const double lo = range.from, hi = range.to;
-    const int n = range.count;
+  } else if (a.name == "stagnation") {
+    const rimless::StagnationScan scan = rimless::scan_stagnation(s.wheel, s.initial, s.sim, stagnation);
+    dir.write("stagnation.csv", rimless::stagnation_csv(scan));
+    dir.write("stagnation.json", record_json(scan.summary).dump(2) + "\n");
+    files = {"stagnation.csv", "stagnation.json"};
+    const rimless::StagnationSummary& r = scan.summary;
+    if (r.critical_found) {
+      fmt::print("critical omega0 = {:.12f} rad/s (bracket {:.3e} wide after {} bisection stages){}\n", r.omega_c,
+                 r.omega_c_high - r.omega_c_low, r.bisection_steps, r.bisection_note.empty() ? "" : "; " + r.bisection_note);
+      fmt::print("{} stagnation: {:.3f} s near the vertical per decade of |omega0 - omega_c| above, {:.3f} s below "
+                 "(pendulum estimates: {:.3f} s sliding, {:.3f} s sticking)\n", r.kind, r.growth_above, r.growth_below,
+                 r.estimate_sliding, r.estimate_sticking);
+      fmt::print("stagnation interval (near-vertical time > {:.3f} s): omega0 in [{:.10f}, {:.10f}] rad/s\n", r.threshold,
+                 r.interval_low, r.interval_high);
+    } else {
+      fmt::print("no critical omega0 in [{}, {}]: the stage's end does not flip from rolled_back to next_leg_landed\n",
+                 stagnation.omega_from, stagnation.omega_to);
+    }
+  } else {  // stagnation-map
     SweepJob job;
     job.dir = dir.path();
-    job.name = "stagnation";
-    job.header = rimless::stagnation_header();
-    job.count = n;
+    job.name = "stagnation_map";
+    job.header = rimless::stagnation_map_header();
+    job.count = static_cast<int>(variations.size());
     job.jobs = a.jobs;
     job.resume = a.resume;
-    job.signature = fmt::format("stagnation {} {} {}\n{}", lo, hi, n, s.config.to_yaml());
+    std::string list;
+    for (const auto& v : variations) list += v + ";";
+    job.signature = fmt::format("stagnation-map {}\n{}", list, s.config.to_yaml());
     const Config base = s.config;
-    const double window = 0.05;
-    const double l = lo, h = hi;
-    const int cnt = n;
-    job.row = [base, l, h, cnt, window](int i) {
-      return rimless::stagnation_row(base, cnt == 1 ? l : l + (h - l) * i / (cnt - 1), window);
-    };
+    job.row = [base, variations](int i) { return rimless::stagnation_map_row(base, variations[static_cast<std::size_t>(i)]); };
     run_sweep(job);
-    files = {"stagnation.csv"};
+    files = {"stagnation_map.csv"};
   }
   if (a.run.plot) run_plot_script("plot_analysis.py", {a.name, dir.path().string()});
   for (const auto& f : files) fmt::print("wrote {}\n", (dir.path() / f).string());
@@ -294,23 +343,30 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   CLI::App* anc = rimless->add_subcommand(
       "analysis", "The paper's analyses, each a CSV and a PNG: gait-vs-friction (behaviours and thresholds), energy "
                   "(single support, stick against slip), fixed-points (the four behaviours), robustness (of the "
-                  "sliding gait), stagnation (paper Fig. 12)");
+                  "sliding gait), stagnation (paper Fig. 12: the critical omega0, the time sliding near the true "
+                  "vertical against |omega0 - omega_c|, the stagnation interval), stagnation-map (how the interval "
+                  "moves with mu - tan(phi), I, C, K)");
   add_run_options(*anc, an->run, "runs/rimless-analysis");
   anc->add_option("name", an->name, "which analysis")
       ->required()
-      ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation"}));
+      ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation", "stagnation-map"}));
   anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k), comma separated, for energy, fixed-points, "
                                    "robustness")
       ->type_name("MU,...");
-  anc->add_option("--from", an->from, "first value: mu (gait-vs-friction, default 0.1) or omega0 in rad/s (stagnation, default 0.05)")
+  anc->add_option("--from", an->from, "first value: mu (gait-vs-friction, default 0.1) or omega0 in rad/s of the "
+                                     "stagnation grid (sets stagnation.omega_from)")
       ->check(finite_number());
-  anc->add_option("--to", an->to, "last value: mu (default 1.5) or omega0 in rad/s (default 2.0)")->check(finite_number());
-  anc->add_option("--count", an->count, "number of values (default 100 for gait-vs-friction, 80 for stagnation)")
+  anc->add_option("--to", an->to, "last value: mu (default 1.5) or omega0 in rad/s (sets stagnation.omega_to)")
+      ->check(finite_number());
+  anc->add_option("--count", an->count, "number of values (default 100 for gait-vs-friction; sets stagnation.count)")
       ->check(CLI::Range(1, 1000000));
   anc->add_option("--jobs", an->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   anc->add_flag("--resume", an->resume, "keep the finished points of an interrupted run in --out");
   anc->add_option("--section", an->section, "Poincare section of the fixed points")
       ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
+  anc->add_option("--vary", an->vary, "stagnation-map: one map point, KEY=VALUE[,KEY=VALUE...] set on the "
+                                     "configuration (rimless.mu sets mu_s and mu_k); repeat for more points; default: "
+                                     "the base and mu, I, C, K one at a time, and I = 0.02 with mu = 0.25");
   anc->callback([an, anc, &action] { action = [an, anc] { return analysis(*an, *anc); }; });
 }
 

@@ -10,6 +10,7 @@
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
 #include "flexgait/rimless/simulation.hpp"
+#include "flexgait/rimless/stagnation.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 
 namespace flexgait::cli {
@@ -53,6 +54,7 @@ std::string schema_document() {
                                                           {"doc", "sim.model of the run"},
                                                           {"choices", enum_name_list<rimless::Model>()}});
   doc["results"]["rimless simulate: summary.json"] = std::move(rimless_summary);
+  doc["results"]["rimless analysis stagnation: stagnation.json"] = record_schema_json<rimless::StagnationSummary>();
   doc["results"]["humanoid walk: summary.json"] = record_schema_json<experiments::WalkMetrics>();
   doc["results"]["humanoid bench: summary.json"] = record_schema_json<humanoid::BenchResult>();
   return doc.dump(2) + "\n";

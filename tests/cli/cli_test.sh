@@ -41,6 +41,11 @@ expect_usage_error nan "rimless.mu_s" rimless simulate --set rimless.mu_s=nan
 expect_usage_error wrong-type "rimless.legs" rimless simulate --set rimless.legs=ten
 expect_usage_error cross-check "rimless.mu_k" rimless simulate --set rimless.mu_s=0.2 --set rimless.mu_k=0.3
 expect_usage_error beta-range "initial.beta" rimless simulate --set initial.beta=0.5
+expect_usage_error stribeck-velocity "rimless.stribeck_velocity" rimless simulate --set rimless.friction=stribeck --set rimless.stribeck_velocity=0
+expect_usage_error stribeck-exponent "rimless.stribeck_exponent" rimless simulate --set rimless.friction=stribeck --set rimless.stribeck_exponent=-1
+expect_usage_error stribeck-viscous "rimless.viscous" rimless simulate --set rimless.friction=stribeck --set rimless.viscous=-0.1
+expect_usage_error stribeck-key-with-coulomb "rimless.viscous" rimless simulate --set rimless.viscous=0.5
+expect_usage_error stribeck-velocity-with-coulomb "rimless.stribeck_velocity" rimless fixed-point --set rimless.stribeck_velocity=0.3
 expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such.yaml
 printf 'rimless:\n  K: 1000\n  mu: 0.5\n' >"$work/typo.yaml"
 expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
@@ -79,7 +84,7 @@ expect_usage_error energy-empty-mu-field "--mu: key 'rimless.mu_s' = ''" rimless
 expect_usage_error energy-nan-mu "--mu: key 'rimless.mu_s' = 'nan'" rimless analysis energy --mu nan
 expect_usage_error friction-bad-from "--from: key 'rimless.mu_s' = '-1'" rimless analysis gait-vs-friction --from -1
 expect_usage_error friction-inf-to "--to: 'inf' is not a finite number" rimless analysis gait-vs-friction --to inf
-expect_usage_error stagnation-bad-to "--to: key 'initial.omega'" rimless analysis stagnation --to -500 --count 3
+expect_usage_error stagnation-bad-to "--to: key 'stagnation.omega_to'" rimless analysis stagnation --to -500 --count 3
 expect_usage_error energy-resume "--resume: not used by analysis energy" rimless analysis energy --resume
 expect_usage_error energy-count "--count: not used by analysis energy" rimless analysis energy --count 3
 expect_usage_error robustness-from "--from: not used by analysis robustness" rimless analysis robustness --from 0.1
@@ -128,9 +133,7 @@ check "fixed point converged" grep -q '"converged": true' "$work/fp.json"
 check "rigid fixed point converged" grep -q '"converged": true' "$work/fpr.json"
 # A failed search is a named failure (exit 1, one line on stderr), its report without numbers of no
 # meaning: no starting point for Newton (issue 17.1), a Jacobian column that failed (issue 21.6).
-"$exe" rimless fixed-point --set rimless.legs=3 --set rimless.slope=0 --set rimless.mu_s=1e-6 --set rimless.mu_k=1e-6 \
-  --set rimless.K=1e9 --set analysis.transient_steps=100000 --out "$work/fp_none" --json --no-plot \
-  >"$work/fp_none.json" 2>"$work/err"
+"$exe" rimless fixed-point --set initial.omega=-1 --out "$work/fp_none" --json --no-plot >"$work/fp_none.json" 2>"$work/err"
 check "fixed point without a start exits 1 (got $?)" test $? -eq 1
 check "fixed point without a start: one line naming the failure: $(cat "$work/err")" \
   sh -c "test \$(wc -l <'$work/err') -eq 1 && grep -q 'no fixed point.*no initial guess' '$work/err'"
@@ -165,8 +168,31 @@ for name in fixed-points energy; do
   "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
   check "analysis $name exits 0: $(cat "$work/err")" test $? -eq 0
 done
-"$exe" rimless analysis stagnation --count 4 --from 1.4 --to 1.6 --out "$work/an_stag" --no-plot >/dev/null 2>&1
-check "stagnation writes 4 points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 5
+# Stagnation: a small scan (4 grid points bracketing omega_c, offsets 1e-1 .. 1e-3 on both sides).
+stag=(rimless analysis stagnation --config "$src/configs/rimless-stagnation.yaml" --count 4 --from 0.5 --to 0.56
+      --set stagnation.offset_min=1e-3 --set stagnation.per_decade=1 --no-plot)
+"$exe" "${stag[@]}" --out "$work/an_stag" >/dev/null 2>"$work/err"
+check "analysis stagnation exits 0: $(cat "$work/err")" test $? -eq 0
+check "stagnation writes 4 grid points and 6 scan points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 11
+check "stagnation finds omega_c" grep -q '"omega_c": 0.53038867' "$work/an_stag/stagnation.json"
+"$exe" "${stag[@]}" --out "$work/an_stag2" >/dev/null 2>&1
+check "stagnation: same bytes twice" cmp -s "$work/an_stag/stagnation.csv" "$work/an_stag2/stagnation.csv"
+check "stagnation summary: same bytes twice" cmp -s "$work/an_stag/stagnation.json" "$work/an_stag2/stagnation.json"
+map=(rimless analysis stagnation-map --config "$src/configs/rimless-stagnation.yaml" --count 3 --from 0.4 --to 0.6
+     --set stagnation.offset_min=1e-2 --vary rimless.C=20 --vary rimless.K=2000,rimless.C=40 --no-plot)
+"$exe" "${map[@]}" --jobs 1 --out "$work/an_map1" >/dev/null 2>"$work/err"
+check "stagnation-map exits 0: $(cat "$work/err")" test $? -eq 0
+"$exe" "${map[@]}" --jobs 2 --out "$work/an_map2" >/dev/null 2>&1
+check "stagnation-map: same bytes with 1 and 2 jobs" cmp -s "$work/an_map1/stagnation_map.csv" "$work/an_map2/stagnation_map.csv"
+expect_usage_error stagnation-start-past-vertical initial.beta rimless analysis stagnation --set initial.beta=0
+expect_usage_error stagnation-window stagnation.window rimless analysis stagnation \
+  --config "$src/configs/rimless-stagnation.yaml" --set stagnation.window=-1
+expect_usage_error stagnation-offsets stagnation.offset_min rimless analysis stagnation \
+  --config "$src/configs/rimless-stagnation.yaml" --set stagnation.offset_min=0.5
+expect_usage_error stagnation-map-key rimless.Q rimless analysis stagnation-map \
+  --config "$src/configs/rimless-stagnation.yaml" --vary rimless.Q=3
+expect_usage_error stagnation-map-value rimless.I rimless analysis stagnation-map \
+  --config "$src/configs/rimless-stagnation.yaml" --vary rimless.I=-1
 
 # Humanoid stiffness bench.
 "$exe" humanoid bench --out "$work/bench" --json --no-plot >"$work/bench.json" 2>"$work/err"

@@ -31,6 +31,7 @@ COMMANDS = {
     ("rimless", "analysis", "energy"): ["--mu", "--from", "--count", "--resume", "--section"],
     ("rimless", "analysis", "gait-vs-friction"): ["--mu", "--from", "--to", "--count", "--jobs", "--resume", "--section"],
     ("rimless", "analysis", "stagnation"): ["--from", "--to", "--count", "--jobs", "--resume"],
+    ("rimless", "analysis", "stagnation-map"): ["--from", "--to", "--count", "--jobs", "--resume", "--vary"],
     ("rimless", "analysis", "robustness"): ["--mu", "--resume"],
     ("humanoid", "bench"): [],
     ("humanoid", "walk"): ["--render", "--fps"],

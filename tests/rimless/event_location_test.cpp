@@ -25,12 +25,11 @@ class Segment final : public numerics::OdeSystem {
 };
 
 // First downward crossing of any guard after t0, by bisection on the dense output [s].
-double bisect_next_event(const WheelParams& w, const Restart& start, double t_limit) {
+double bisect_next_event(const WheelParams& w, const SimulationOptions& options, const Restart& start, double t_limit) {
   Segment seg(w, start.contacts);
-  numerics::OdeOptions opt;
-  opt.rtol = 1e-10;
-  opt.atol = 1e-12;
-  numerics::OdeIntegrator integ(seg, state_size(w), opt);
+  // The same integrator settings as the run (its error weights included): only the location of
+  // the root differs.
+  numerics::OdeIntegrator integ(seg, state_size(w), integrator_options(w, options));
   integ.restart(start.t, start.state, std::vector<int>{});
   const std::size_t n = static_cast<std::size_t>(guard_count(w));
   std::vector<double> g0(n), g1(n), gm(n), y(start.state.size());
@@ -68,7 +67,7 @@ TEST(EventLocation, AgreesWithBisectionOnDenseOutput) {
     ASSERT_GE(r.restarts.size(), 8u);
     for (std::size_t i = 0; i + 1 < r.restarts.size(); ++i) {
       const double t_event = r.restarts[i + 1].t;
-      const double t_bisect = bisect_next_event(w, r.restarts[i], t_event + 0.5);
+      const double t_bisect = bisect_next_event(w, o, r.restarts[i], t_event + 0.5);
       // CVODE's root and the bisection agree to 1e-9 s (the bound).
       EXPECT_NEAR(t_bisect, t_event, 1e-9) << "mu = " << mu << ", segment " << i;
     }

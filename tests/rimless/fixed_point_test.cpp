@@ -31,10 +31,11 @@ void expect_named_failure(const FixedPointReport& r) {
   EXPECT_EQ(j["failure"].get<std::string>(), r.failure);
 }
 
-// Issue 17.1: the transient never reaches the section, so Newton gets no starting point.
+// Issue 17.1: the transient never reaches the section, so Newton gets no starting point (the wheel
+// started backwards rolls back; the issue's own reproducer, K = 1e9, now runs into the stiff-solver
+// limit of issue 17.3 before it fails).
 TEST(FixedPoint, NoStartingPointIsANamedFailure) {
-  const FixedPointReport r = search({"rimless.legs=3", "rimless.slope=0", "rimless.mu_s=1e-6", "rimless.mu_k=1e-6",
-                                     "rimless.K=1e9", "analysis.transient_steps=100000"});
+  const FixedPointReport r = search({"initial.omega=-1"});
   expect_named_failure(r);
   EXPECT_EQ(r.point.z.size(), 0);
   EXPECT_NE(r.failure.find("no initial guess"), std::string::npos) << r.failure;

@@ -39,7 +39,8 @@ TEST_P(FlexibleWheelInvariants, EnergyBalanceFrictionConeAndNoDrift) {
     // μ < tan φ: the wheel slides away ever faster (spec rimless.md); with little inertia and
     // μ just above tan φ it slides on two feet without turning and stalls.
     ASSERT_TRUE(r.failure.has_value());
-    EXPECT_NE(r.failure->find("stopped"), std::string::npos) << *r.failure;
+    const bool named = r.failure->starts_with("stopped") || r.failure->starts_with("slid away");
+    EXPECT_TRUE(named) << *r.failure;
   }
   EXPECT_LE(r.energy_balance_error, 1e-8);
   const double scale = r.energy_initial + r.work_damping + r.work_friction;  // >= m g L0 here

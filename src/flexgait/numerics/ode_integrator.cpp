@@ -8,6 +8,7 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -84,6 +85,19 @@ struct OdeIntegrator::Impl {
     self->system->guards(t, ys, std::span<double>(g, static_cast<std::size_t>(self->n_guards)));
     return 0;
   }
+  // CVODE's error weights with OdeOptions::error_scale (CVodeWFtolerances).
+  static int error_weights(N_Vector y, N_Vector ewt, void* data) {
+    const Impl& m = *static_cast<const Impl*>(data);
+    const double* yv = N_VGetArrayPointer(y);
+    double* w = N_VGetArrayPointer(ewt);
+    for (int i = 0; i < m.n; ++i) {
+      const double scale = m.options.error_scale[static_cast<std::size_t>(i)];
+      const double tol = m.options.rtol * (scale > 0 ? scale : std::abs(yv[i])) + m.options.atol;
+      if (!(tol > 0)) return -1;
+      w[i] = 1.0 / tol;
+    }
+    return 0;
+  }
   static void on_error(int, const char* module, const char* function, char* msg, void* data) {
     static_cast<Impl*>(data)->last_error = std::string(module) + "." + function + ": " + msg;
   }
@@ -121,7 +135,12 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options
   m.check(CVodeSetErrHandlerFn(m.cvode, &Impl::on_error, &m), "SetErrHandlerFn");
   m.check(CVodeInit(m.cvode, &Impl::rhs, 0.0, m.y), "Init");
   m.check(CVodeSetUserData(m.cvode, &m), "SetUserData");
-  m.check(CVodeSStolerances(m.cvode, options.rtol, options.atol), "SStolerances");
+  if (options.error_scale.empty()) {
+    m.check(CVodeSStolerances(m.cvode, options.rtol, options.atol), "SStolerances");
+  } else {
+    if (static_cast<int>(options.error_scale.size()) != n) throw std::invalid_argument("OdeOptions::error_scale: size");
+    m.check(CVodeWFtolerances(m.cvode, &Impl::error_weights), "WFtolerances");
+  }
   m.check(CVodeSetMaxNumSteps(m.cvode, static_cast<long>(options.max_steps)), "SetMaxNumSteps");
   if (options.max_step > 0) m.check(CVodeSetMaxStep(m.cvode, options.max_step), "SetMaxStep");
   if (options.max_order > 0) m.check(CVodeSetMaxOrd(m.cvode, options.max_order), "SetMaxOrd");

@@ -33,6 +33,12 @@ struct OdeOptions {
   /// one column per state, staggered corrector, outside the error test). ∂f/∂y·s comes from
   /// centered directional differences of f.
   bool sensitivities = false;
+  /// Per component (empty: none), the size the relative tolerance refers to: where > 0, the
+  /// error weight of component i is 1 / (rtol · error_scale[i] + atol) instead of
+  /// 1 / (rtol · |y_i| + atol). For quadratures that only grow (dissipated work): measured
+  /// against their own size their error allowance would grow with the run, and so would the
+  /// error of every balance they enter.
+  std::vector<double> error_scale;
 };
 
 struct OdeStats {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
@@ -48,53 +49,134 @@ std::string state_text(const Eigen::VectorXd& z) {
 
 }  // namespace
 
-std::string gait_at_friction(const Config& base, double mu, Section section) {
+namespace {
+
+FrictionGait gait_of(double mu, const FixedPointReport& r, std::string source) {
+  FrictionGait g;
+  g.mu = mu;
+  g.converged = true;
+  g.stable = r.stable;
+  for (const auto& m : r.multipliers) g.max_multiplier = std::max(g.max_multiplier, std::abs(m));
+  g.gait = r.stable ? r.gait : r.gait + " (unstable)";
+  g.source = std::move(source);
+  g.point = r.point;
+  return g;
+}
+
+// Natural-parameter continuation: Newton at μ_k = μ_0 + (μ - μ_0) k / n, k = 1..n, each from the
+// previous fixed point.
+std::optional<FrictionGait> continued(const Config& base, double mu, const FrictionGait& from) {
+  for (int n : {1, 4, 16}) {
+    SectionState p = from.point;
+    FixedPointReport r;
+    for (int k = 1; k <= n; ++k) {
+      const Setup s = setup(with_mu(base, from.mu + (mu - from.mu) * k / n));
+      r = find_fixed_point_from(s.w, s.sim, s.opt, p);
+      if (!r.converged) break;
+      p = r.point;
+    }
+    if (r.converged) return gait_of(mu, r, fmt::format("continued from mu = {}", format_number(from.mu)));
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+FrictionGait friction_gait(const Config& base, double mu, Section section,
+                           const std::vector<const FrictionGait*>& neighbours) {
   const Setup s = setup(with_mu(base, mu));
-  const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, section, s.initial);
-  if (r.converged) return r.gait;
+  std::string transient_failure;
+  for (int factor : {1, 3, 9}) {
+    AnalysisOptions o = s.opt;
+    o.transient_steps = std::max(1, s.opt.transient_steps) * factor;
+    const FixedPointReport r = find_fixed_point(s.w, s.sim, o, Model::Flexible, section, s.initial);
+    if (r.converged)
+      return gait_of(mu, r, factor == 1 ? "start" : fmt::format("start, {} transient steps", o.transient_steps));
+    if (r.failure.starts_with("no initial guess")) break;  // the start does not walk: a longer transient won't help
+  }
+  for (const FrictionGait* n : neighbours)
+    if (n != nullptr && n->converged)
+      if (auto g = continued(base, mu, *n)) return *g;
+  FrictionGait g;
+  g.mu = mu;
+  g.source = "start";
   SimulationOptions o = s.sim;
   o.log = false;
   o.steps = std::max(1, s.opt.transient_steps);
   const SimulationResult t = simulate_flexible(s.w, s.initial, o);
-  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it)
-    if (it->complete) return gait_label(it->single_support) + " (no fixed point)";
-  return "none";
+  g.gait = "none";
+  for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) {
+    if (it->complete) {
+      g.gait = gait_label(it->single_support) + " (no fixed point)";
+      break;
+    }
+  }
+  return g;
+}
+
+std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<double>& mus, Section section) {
+  std::vector<FrictionGait> out;
+  for (double mu : mus) out.push_back(friction_gait(base, mu, section));
+  // Second pass, in order: a point with no fixed point is continued from its nearest converged
+  // neighbours (nearer first; the left one on a tie).
+  const int n = static_cast<int>(out.size());
+  for (int i = 0; i < n; ++i) {
+    if (out[static_cast<std::size_t>(i)].converged) continue;
+    std::vector<const FrictionGait*> near;
+    for (int d = 1; d < n && near.size() < 2; ++d) {
+      for (int j : {i - d, i + d})
+        if (j >= 0 && j < n && out[static_cast<std::size_t>(j)].converged) near.push_back(&out[static_cast<std::size_t>(j)]);
+    }
+    for (const FrictionGait* nb : near) {
+      if (auto g = continued(base, out[static_cast<std::size_t>(i)].mu, *nb)) {
+        out[static_cast<std::size_t>(i)] = *g;
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+std::string friction_gaits_csv(const std::vector<FrictionGait>& gaits) {
+  CsvWriter csv({"mu", "gait", "converged", "stable", "max_multiplier", "source"});
+  for (const FrictionGait& g : gaits)
+    csv.cell(g.mu).cell(g.gait).cell(g.converged ? "true" : "false").cell(g.stable ? "true" : "false")
+        .cell(g.max_multiplier).cell(g.source).end_row();
+  return csv.str();
 }
 
 namespace {
 
-// Thresholds between lo (gait a) and hi (gait b) by bisection; a third gait found in between
-// splits the bracket and both halves are refined (behaviour windows narrower than the sweep's
-// spacing are found this way).
-void refine_threshold(const Config& base, Section section, double tolerance, double lo, const std::string& a,
-                      double hi, const std::string& b, int depth, CsvWriter& csv) {
-  while (hi - lo > tolerance) {
-    const double mid = 0.5 * (lo + hi);
-    const std::string g = gait_at_friction(base, mid, section);
-    if (g == a) {
-      lo = mid;
-    } else if (g == b) {
-      hi = mid;
+// Thresholds between lo (gait a) and hi (gait b) by bisection, each midpoint continued from the
+// bracket's ends; a third gait found in between splits the bracket and both halves are refined
+// (behaviour windows narrower than the sweep's spacing are found this way).
+void refine_threshold(const Config& base, Section section, double tolerance, FrictionGait lo, FrictionGait hi,
+                      int depth, CsvWriter& csv) {
+  while (hi.mu - lo.mu > tolerance) {
+    FrictionGait mid = friction_gait(base, 0.5 * (lo.mu + hi.mu), section, {&lo, &hi});
+    if (mid.gait == lo.gait) {
+      lo = std::move(mid);
+    } else if (mid.gait == hi.gait) {
+      hi = std::move(mid);
     } else if (depth > 0) {
-      refine_threshold(base, section, tolerance, lo, a, mid, g, depth - 1, csv);
-      refine_threshold(base, section, tolerance, mid, g, hi, b, depth - 1, csv);
+      refine_threshold(base, section, tolerance, lo, mid, depth - 1, csv);
+      refine_threshold(base, section, tolerance, mid, hi, depth - 1, csv);
       return;
     } else {
       break;
     }
   }
-  csv.cell(lo).cell(hi).cell(a).cell(b).cell(0.5 * (lo + hi)).end_row();
+  csv.cell(lo.mu).cell(hi.mu).cell(lo.gait).cell(hi.gait).cell(0.5 * (lo.mu + hi.mu)).end_row();
 }
 
 }  // namespace
 
-std::string friction_thresholds_csv(const Config& base, const std::vector<std::pair<double, std::string>>& points,
-                                    Section section, double tolerance) {
+std::string friction_thresholds_csv(const Config& base, const std::vector<FrictionGait>& gaits, Section section,
+                                    double tolerance) {
   CsvWriter csv({"mu_low", "mu_high", "gait_below", "gait_above", "threshold"});
-  for (std::size_t i = 0; i + 1 < points.size(); ++i) {
-    if (points[i].second == points[i + 1].second) continue;
-    refine_threshold(base, section, tolerance, points[i].first, points[i].second, points[i + 1].first,
-                     points[i + 1].second, 4, csv);
+  for (std::size_t i = 0; i + 1 < gaits.size(); ++i) {
+    if (gaits[i].gait == gaits[i + 1].gait) continue;
+    refine_threshold(base, section, tolerance, gaits[i], gaits[i + 1], 4, csv);
   }
   return csv.str();
 }
@@ -182,28 +264,6 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
     }
   }
   return csv.str();
-}
-
-std::string stagnation_header() { return "omega0,slide_time_upright,steps,final_energy,failure"; }
-
-std::string stagnation_row(const Config& base, double omega0, double beta_window) {
-  Config c = base;
-  c.set("initial.omega", format_number(omega0), "stagnation sweep");
-  const Setup s = setup(c);
-  SimulationOptions o = s.sim;
-  o.log = true;
-  const SimulationResult r = simulate_flexible(s.w, s.initial, o);
-  // Sliding near upright during the first step, the one the initial energy decides.
-  const double t_first = !r.steps.empty() && r.steps.front().complete ? r.steps.front().t_end : r.t_final;
-  double slide = 0;
-  for (std::size_t i = 0; i + 1 < r.samples.size() && r.samples[i].t < t_first; ++i) {
-    const LogSample& a = r.samples[i];
-    if (a.contact[0].leg < 0 || a.contact[1].leg >= 0 || a.contact[0].mode == FootMode::Stick) continue;
-    if (std::abs(leg_angle(s.w, a.contact[0].leg, a.q[2])) < beta_window) slide += r.samples[i + 1].t - a.t;
-  }
-  const LogSample& last = r.samples.back();
-  return fmt::format("{},{},{},{},{}", format_number(omega0), format_number(slide), r.steps_completed,
-                     format_number(last.energy.kinetic + last.energy.spring), csv_field(r.failure.value_or("")));
 }
 
 }  // namespace flexgait::rimless

@@ -6,7 +6,7 @@
 ///   2. energy during single support, sticking against slipping;
 ///   3. a fixed point and its multipliers for each of the four behaviours;
 ///   4. robustness of the sliding gait: the largest perturbation of the fixed point that returns;
-///   5. the stagnation interval: time sliding near β = 0 and the final energy against ω0 (Fig. 12).
+///   5. the stagnation interval (paper Fig. 12) has its own file, stagnation.hpp.
 #include <string>
 #include <vector>
 
@@ -15,14 +15,37 @@
 
 namespace flexgait::rimless {
 
-/// The gait at μ = μ_s = μ_k: the fixed point's label, or the transient's when there is none.
-std::string gait_at_friction(const Config& base, double mu, Section section);
+/// The periodic gait at μ = μ_s = μ_k, found as robustly as the map allows.
+struct FrictionGait {
+  double mu = 0;
+  bool converged = false;      ///< a fixed point was found
+  bool stable = false;         ///< ... with every multiplier inside the unit circle
+  double max_multiplier = 0;   ///< its largest |multiplier|
+  std::string gait;            ///< the fixed point's label ("(unstable)" appended when unstable), else the
+                               ///< transient's with " (no fixed point)", else "none"
+  std::string source;          ///< how it was found: "start", "start, N transient steps", "continued from mu = …"
+  SectionState point;          ///< the fixed point (when converged)
+};
 
-/// Thresholds between behaviours from a μ sweep's rows (value, gait), each refined by bisection
-/// to `tolerance`; a behaviour met inside a bracket splits it. CSV: mu_low, mu_high (the final
-/// bracket), gait_below, gait_above, threshold.
-std::string friction_thresholds_csv(const Config& base, const std::vector<std::pair<double, std::string>>& points,
-                                    Section section, double tolerance);
+/// The gait at μ: Newton from the configured start after analysis.transient_steps, then after
+/// 3 and 9 times as many while the transient's mode is still changing (Newton keeps the section's
+/// mode); failing that, natural-parameter continuation from the first converged neighbour in
+/// `neighbours` (in 1, 4 or 16 equal steps of μ). "(no fixed point)" only when all of these fail.
+FrictionGait friction_gait(const Config& base, double mu, Section section,
+                           const std::vector<const FrictionGait*>& neighbours = {});
+
+/// friction_gait at every μ of `mus` (ascending), then once more, continued from the nearest
+/// converged neighbour, at every point that found no fixed point.
+std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<double>& mus, Section section);
+
+/// CSV: mu, gait, converged, stable, max_multiplier, source.
+std::string friction_gaits_csv(const std::vector<FrictionGait>& gaits);
+
+/// Thresholds between behaviours along `gaits`, each refined by bisection to `tolerance` (the
+/// midpoints continued from the bracket's fixed points); a behaviour met inside a bracket splits
+/// it. CSV: mu_low, mu_high (the final bracket), gait_below, gait_above, threshold.
+std::string friction_thresholds_csv(const Config& base, const std::vector<FrictionGait>& gaits, Section section,
+                                    double tolerance);
 
 /// Analysis 2: one periodic step on the fixed point at each μ, logged. CSV: mu, gait, phase
 /// (stick/slip of the stance foot), t (since the step's start), beta (stance leg), E_kinetic,
@@ -37,12 +60,5 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
 /// ε in `epsilons`, iterate the map up to `max_steps`; "returned" when within 1e-6·scale.
 /// CSV: mu, component, sign, epsilon, returned, steps, failure.
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps);
-
-/// Analysis 5, one ω0: CSV cells (no newline): omega0, slide_time_upright (time sliding in single
-/// support with |β| < beta_window during the first step, s), steps, final_energy (kinetic + spring
-/// at the end of the run, J), failure. Start before upright (initial.beta < 0) so that the initial
-/// energy decides whether and how slowly the wheel passes the vertical.
-std::string stagnation_header();
-std::string stagnation_row(const Config& base, double omega0, double beta_window);
 
 }  // namespace flexgait::rimless

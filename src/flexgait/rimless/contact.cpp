@@ -39,6 +39,12 @@ LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double
   return g;
 }
 
+SlipLaw slip_law(const WheelParams& w, int s, double cdot) {
+  if (w.friction == Friction::Coulomb) return {w.mu_k, 0.0};
+  const double decay = std::exp(-std::pow(std::abs(cdot) / w.stribeck_velocity, w.stribeck_exponent));
+  return {w.mu_k + (w.mu_s - w.mu_k) * decay, w.viscous * s * cdot};
+}
+
 double foot_height(const WheelParams& w, int k, std::span<const double> s) {
   // cos is 2π-periodic: no need to wrap the angle (a hot path: every free leg, every step).
   const double cb = std::cos(s[StateIndex::theta] + 2.0 * w.alpha() * k);

@@ -71,9 +71,19 @@ LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double
 /// Height of free leg k's foot above the slope: y - (L0 - δ_k) cos β_k [m] (touchdown guard).
 double foot_height(const WheelParams& w, int k, std::span<const double> y);
 
-/// Slip friction denominator D = cos β - μ_k s sin β; D <= 0 is a Painlevé jam.
+/// The friction law of a foot slipping with sign s at foot velocity ċ (parameters.hpp, Friction):
+/// T = -s (mu N + viscous).
+struct SlipLaw {
+  double mu = 0;       ///< μ(ċ): μ_k (Coulomb), or μ_k + (μ_s - μ_k) exp(-(|ċ|/v_s)^δ) (Stribeck)
+  double viscous = 0;  ///< σ s ċ [N]: σ |ċ| on a slip arc (where s ċ >= 0), and smooth through ċ = 0
+};
+SlipLaw slip_law(const WheelParams& w, int s, double cdot);
+
+/// Slip friction denominator D = cos β - μ s sin β for the coefficient μ; D <= 0 is a Painlevé jam.
+inline double slip_denominator(const LegKinematics& leg, int s, double mu) { return leg.cb - mu * s * leg.sb; }
+/// D with the slip law's coefficient at the leg's own foot velocity, μ(ċ).
 inline double slip_denominator(const WheelParams& w, const LegKinematics& leg, int s) {
-  return leg.cb - w.mu_k * s * leg.sb;
+  return slip_denominator(leg, s, slip_law(w, s, leg.cdot).mu);
 }
 
 }  // namespace flexgait::rimless

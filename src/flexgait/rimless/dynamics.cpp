@@ -99,9 +99,17 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
       a.b[a.rows] = -g.Adot_qdot - 2.0 * wb * g.cdot - wb * wb * (g.c - contacts.anchor[i]);
       a.stick_index[a.rows++] = i;
     } else {
-      cf.D = slip_denominator(w, g, s);
+      // Slip law T = -s (μ N + V), V = σ s ċ (SlipLaw; μ = μ_k, V = 0 for Coulomb), with the
+      // massless leg's axial balance T sin β + N cos β = f (spec rimless.md, "The model"):
+      //   N = (f - T sin β) / cos β  =>  T cos β = -s μ (f - T sin β) - s V cos β
+      //   =>  T (cos β - μ s sin β) = -s (μ f + V cos β)
+      //   =>  T = -s (μ f + V cos β) / D,   N = (f + s V sin β) / D,   D = cos β - μ s sin β.
+      // D keeps the spec's form with μ = μ(ċ); ċ is a function of (q, q̇), not of q̈, so T is
+      // explicit and D <= 0 remains the Painlevé jam. V = 0 gives the spec's T = -μ s f / D.
+      const SlipLaw law = slip_law(w, s, g.cdot);
+      cf.D = slip_denominator(g, s, law.mu);
       if (!(cf.D > 0)) d.failure = "slip with a non-positive friction denominator (Painleve jam)";
-      cf.T = -w.mu_k * s * g.f / cf.D;
+      cf.T = -s * (law.mu * g.f + law.viscous * g.cb) / cf.D;
       for (int j = 0; j < 3; ++j) a.F[j] += g.A[j] * cf.T;
     }
   }

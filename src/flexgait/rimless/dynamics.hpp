@@ -5,8 +5,10 @@
 ///
 ///   diag(m, m, I) q̈ = m g (sin φ, -cos φ, 0) + Σ_k [ f_k ∂L_k/∂q + A_kᵀ T_k ]
 ///   stick:  A_k q̈ = -Ȧ_k q̇ - 2ω_b ċ_k - ω_b² (c_k - anchor_k)      (T_k is the multiplier)
-///   slip:   T_k = -μ_k s_k f_k / (cos β_k - μ_k s_k sin β_k)
+///   slip:   T_k = -s_k (μ f_k + V_k cos β_k) / (cos β_k - μ s_k sin β_k)
 ///   N_k = (f_k - T_k sin β_k) / cos β_k
+/// with the slip law T = -s (μ N + V) (contact.hpp, SlipLaw): μ = μ_k, V = 0 for Coulomb
+/// friction; μ = μ(ċ_k), V = σ |ċ_k| for Stribeck friction (derivation in dynamics.cpp).
 ///
 /// ω_b (kStickStabilization) is a Baumgarte term that holds a sticking foot on its anchor
 /// against integration drift; it vanishes on the exact solution.
@@ -30,7 +32,7 @@ struct ContactForce {
   double f = 0;  ///< axial leg force [N]
   double T = 0;  ///< tangential ground force on the foot, +x [N]
   double N = 0;  ///< normal ground force [N]
-  double D = 1;  ///< slip denominator cos β - μ_k s sin β (1 for stick)
+  double D = 1;  ///< slip denominator cos β - μ(ċ) s sin β (1 for stick)
 };
 
 struct Dynamics {

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "flexgait/numerics/ode_integrator.hpp"
 #include "flexgait/rimless/mode_selection.hpp"
 #include "flexgait/rimless/parameters.hpp"
 #include "flexgait/rimless/simulation.hpp"
@@ -23,13 +24,24 @@ namespace flexgait::rimless {
 /// rolling about the foot at θ̇ = initial.omega (ċ = 0, δ̇ = 0).
 std::vector<double> initial_state(const WheelParams& w, const InitialState& initial);
 
+/// The integrator's options of a run: SimulationOptions' tolerances and method, and the error
+/// weights of the velocities (held to rtol times 1 % of sqrt(g L0), for the energy ledger).
+numerics::OdeOptions integrator_options(const WheelParams& w, const SimulationOptions& options);
+
 /// Where and how a run starts and stops.
 struct RunSpec {
   std::vector<double> y0;            ///< full state (dim state_size(w))
   ContactSet contacts;               ///< feet on the ground at t = 0, before `pending`
   std::vector<GuardEvent> pending;   ///< events handled at t = 0 (e.g. a touchdown at the section)
   int steps = 0;                     ///< stop after this many touchdowns of new legs (0: options.steps)
+  /// The stance leg of the step under way at t = 0, which decides which legs are new (-1: the
+  /// leg landing at t = 0, else the oldest foot on the ground). A run that continues another
+  /// passes that run's last stance leg, so that a bounce of it is not taken for a new step.
+  int stance_leg = -1;
   std::optional<Section> stop_at;    ///< stop at the first crossing of this section instead
+  /// With stop_at = Touchdown: a leg behind the stance leg landing (the wheel fell back onto it)
+  /// is a crossing too (the first stage of the stagnation experiment ends on either neighbour).
+  bool section_includes_legs_behind = false;
 };
 
 /// The state where a run crossed its stop section.

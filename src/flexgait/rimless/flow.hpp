@@ -6,7 +6,7 @@
 /// Guards, four per leg k at indices 4k..4k+3 (all fire on downward crossings):
 ///   free leg:  h_k = y - (L0 - δ_k) cos β_k                       touchdown
 ///   stick:     N_k; μ_s - |T_k|/N_k; cos β_k                      lift-off; stick→slip; fall
-///   slip s:    N_k; s ċ_k; cos β_k; cos β_k - μ_k s sin β_k       lift-off; slip→stick; fall; jam
+///   slip s:    N_k; s ċ_k; cos β_k; cos β_k - μ(ċ_k) s sin β_k    lift-off; slip→stick; fall; jam
 /// Unused slots hold +1.
 #include <span>
 

@@ -27,8 +27,9 @@ std::string gait_label(const std::vector<Phase>& phases) {
   return s;
 }
 
-void StepTracker::start(double t, double x, double energy, const ContactSet& contacts, int stance_leg) {
+void StepTracker::start(double t, double x, double energy, const ContactSet& contacts, int legs, int stance_leg) {
   steps_.clear();
+  legs_ = legs;
   StepRecord r;
   r.index = 1;
   r.stance_leg = stance_leg >= 0 ? stance_leg : contacts.count > 0 ? contacts.leg[0] : -1;
@@ -50,6 +51,14 @@ void StepTracker::observe(const ContactSet& contacts) {
     const int i = contacts.find(r.stance_leg);
     if (i >= 0) append(r.contact, phase_of(contacts.mode[i]));
   }
+}
+
+bool StepTracker::is_new_leg(int leg) const {
+  const int stance = stance_leg();
+  if (stance < 0) return true;  // the first landing after a start in flight
+  // Walking forward θ grows and leg k-1 (β_{k-1} = β_k - 2α) is the next to land.
+  const int ahead = ((stance - leg) % legs_ + legs_) % legs_;
+  return ahead >= 1 && 2 * ahead < legs_;
 }
 
 void StepTracker::touchdown(double t, double x, double energy, int leg, const ContactSet& contacts) {

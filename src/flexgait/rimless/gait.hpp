@@ -38,17 +38,24 @@ struct StepRecord {
 
 class StepTracker {
  public:
-  /// Starts step 1 with `stance_leg` as stance foot (-1: the oldest foot on the ground).
-  void start(double t, double x, double energy, const ContactSet& contacts, int stance_leg = -1);
+  /// Starts step 1 with `stance_leg` as stance foot (-1: the oldest foot on the ground) on a
+  /// wheel of `legs` legs.
+  void start(double t, double x, double energy, const ContactSet& contacts, int legs, int stance_leg = -1);
   /// Records the modes in force after an event.
   void observe(const ContactSet& contacts);
   /// Closes the current step at the touchdown of `leg` and opens the next.
   void touchdown(double t, double x, double energy, int leg, const ContactSet& contacts);
   int stance_leg() const { return steps_.empty() ? -1 : steps_.back().stance_leg; }
+  /// Whether a touchdown of `leg` starts a new step: the leg lies ahead of the stance leg in the
+  /// direction of walking (legs k-1, k-2, … of stance leg k, fewer than half the wheel ahead).
+  /// The stance leg itself or a leg behind it landing again (the wheel rocked back, a foot
+  /// bounced) is a re-landing within the current step, not a step.
+  bool is_new_leg(int leg) const;
   const std::vector<StepRecord>& steps() const { return steps_; }
 
  private:
   std::vector<StepRecord> steps_;
+  int legs_ = 0;
 };
 
 }  // namespace flexgait::rimless

@@ -20,7 +20,25 @@ struct Foot {
   FootMode previous = FootMode::Stick;
   double anchor = 0;
   std::vector<Option> options;  // in order of preference
+  const GuardEvent* event = nullptr;  // this foot's own event, if one fired
 };
+
+// The foot velocity ċ that the tests may read. A foot whose slip→stick guard (s ċ = 0) fired is
+// at rest by the event's definition: what ċ shows there is the root location's error,
+// |c̈| × (time tolerance), which with stiff slip exceeds any fixed velocity tolerance and would
+// send the foot into reverse slip, only to come to rest again at its own restart point.
+double tested_cdot(const Foot& foot, const LegKinematics& g) {
+  return foot.event != nullptr && foot.event->kind == EventKind::SlipToStick ? 0.0 : g.cdot;
+}
+
+// Whether the slip direction of this foot is decided by its event alone: at stick→slip the
+// incipient slip opposes the sticking force, s = -sign(T_stick) (spec rimless.md); its
+// acceleration there is 0 for μ_k = μ_s (the forces are continuous) and its sign is noise.
+// Not so for I = 0, where θ̇ jumps with the mode and the test must still see whether the slip
+// has a motion at all.
+bool direction_decided(const WheelParams& w, const Foot& foot) {
+  return w.I > 0 && foot.event != nullptr && foot.event->kind == EventKind::StickToSlip;
+}
 
 Option option_of(FootMode m) {
   return m == FootMode::Stick ? Option::Stick : m == FootMode::SlipForward ? Option::SlipForward : Option::SlipBackward;
@@ -161,9 +179,10 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   // The feet on the ground: the current ones, then the ones landing now.
   std::vector<Foot> feet;
   for (int i = 0; i < current.count; ++i)
-    feet.push_back({current.leg[i], true, current.mode[i], current.anchor[i], {}});
+    feet.push_back({current.leg[i], true, current.mode[i], current.anchor[i], {}, event_of(events, current.leg[i])});
   for (const auto& e : events)
-    if (e.kind == EventKind::Touchdown && current.find(e.leg) < 0) feet.push_back({e.leg, false, FootMode::Stick, 0, {}});
+    if (e.kind == EventKind::Touchdown && current.find(e.leg) < 0)
+      feet.push_back({e.leg, false, FootMode::Stick, 0, {}, &e});
   if (static_cast<int>(feet.size()) > kMaxContacts) {
     out.failure = "more feet on the ground than supported";
     out.detail = fmt::format("{} feet; at most {}", feet.size(), kMaxContacts);
@@ -175,8 +194,8 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   std::vector<int> jam;
   for (const auto& foot : feet) {
     const LegKinematics g = leg_kinematics(w, foot.leg, y);
-    const GuardEvent* e = event_of(events, foot.leg);
-    const bool moving = std::abs(g.cdot) > tol.velocity;
+    const GuardEvent* e = foot.event;
+    const bool moving = std::abs(tested_cdot(foot, g)) > tol.velocity;
     const int s = g.cdot > 0 ? 1 : -1;
     const bool jammed = (e != nullptr && e->kind == EventKind::SlipJam) ||
                         (moving && g.f > tol.force && slip_denominator(w, g, s) <= 0);
@@ -209,8 +228,8 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   // Each foot's options, in order of preference.
   for (auto& foot : feet) {
     const LegKinematics g = leg_kinematics(w, foot.leg, y);
-    const std::vector<Option> by_velocity = velocity_options(g.cdot, tol.velocity, w.I == 0);
-    const GuardEvent* e = event_of(events, foot.leg);
+    const std::vector<Option> by_velocity = velocity_options(tested_cdot(foot, g), tol.velocity, w.I == 0);
+    const GuardEvent* e = foot.event;
     std::vector<Option> preferred;
     if (foot.was_on_ground && (e == nullptr || e->kind == EventKind::SlipJam)) {
       preferred.push_back(option_of(foot.previous));
@@ -223,18 +242,24 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       const double T = i >= 0 ? d.force[i].T : 0.0;
       preferred = {T > 0 ? Option::SlipBackward : Option::SlipForward, Option::Leave};
     } else if (e != nullptr && e->kind == EventKind::SlipToStick) {
+      // At rest now (ċ = 0): stick, reverse, leave, or — last — slip on the same way from rest,
+      // which the acceleration test admits only if another foot's new mode turns c̈ around (two
+      // feet coming to rest together: the one that sticks may tip the wheel over the other).
       const int s = slip_sign(foot.previous);
-      preferred = {Option::Stick, s > 0 ? Option::SlipBackward : Option::SlipForward, Option::Leave};
+      preferred = {Option::Stick, s > 0 ? Option::SlipBackward : Option::SlipForward, Option::Leave,
+                   option_of(foot.previous)};
     } else if (e != nullptr && e->kind == EventKind::LiftOff) {
       preferred = {Option::Leave, Option::Stick, Option::SlipForward, Option::SlipBackward};
     } else {
       for (Option o : {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave}) add_unique(preferred, o);
     }
-    const bool must_change = e != nullptr && e->kind != EventKind::Touchdown && e->kind != EventKind::SlipJam;
+    const bool must_change = e != nullptr && e->kind != EventKind::Touchdown && e->kind != EventKind::SlipJam &&
+                             e->kind != EventKind::SlipToStick;
     for (Option o : preferred) {
       if (!allowed(by_velocity, o)) continue;
       if (must_change && foot.was_on_ground && o == option_of(foot.previous)) continue;
-      if (!foot.was_on_ground && o == Option::Leave) continue;  // it just landed with f > 0
+      // A landing foot may leave at once when its leg does not press (f <= 0: grazing, or a jam
+      // impulse turned the leg's motion around); the consistency test checks f.
       foot.options.push_back(o);
     }
   }
@@ -285,12 +310,13 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       const int j = trial.find(feet[i].leg);
       const ContactForce& cf = d.force[j];
       const LegKinematics& g = d.leg[j];
+      const double cdot = tested_cdot(feet[i], g);
       if (cf.N < -tol.force) why = "negative normal force";
       else if (o == Option::Stick && std::abs(cf.T) > w.mu_s * cf.N + tol.force) why = "stick outside the friction cone";
-      else if (o == Option::Stick && std::abs(g.cdot) > tol.velocity) why = "a sticking foot would move";
-      else if (o != Option::Stick && std::abs(g.cdot) > tol.velocity) {
-        if (slip_sign(mode_of(o)) * g.cdot < 0) why = "friction would not oppose the slip";
-      } else if (o != Option::Stick) {
+      else if (o == Option::Stick && std::abs(cdot) > tol.velocity) why = "a sticking foot would move";
+      else if (o != Option::Stick && std::abs(cdot) > tol.velocity) {
+        if (slip_sign(mode_of(o)) * cdot < 0) why = "friction would not oppose the slip";
+      } else if (o != Option::Stick && !direction_decided(w, feet[i])) {
         const double cddot = g.A[0] * d.qdd[0] + g.A[1] * d.qdd[1] + g.A[2] * d.qdd[2] + g.Adot_qdot;
         if (slip_sign(mode_of(o)) * cddot < -tol.acceleration) why = "friction would not oppose the slip";
       }

@@ -6,7 +6,7 @@
 /// Each foot on the ground may stick, slip forward, slip backward, or leave. A combination is
 /// consistent when, with the forces it implies:
 ///   stick: ċ = 0, N >= 0, |T| <= μ_s N;
-///   slip s: N >= 0, D = cos β - μ_k s sin β > 0, and friction opposes the motion
+///   slip s: N >= 0, D = cos β - μ(ċ) s sin β > 0 (μ_k, or Stribeck's μ(ċ), μ(0) = μ_s), and friction opposes the motion
 ///           (s = sign ċ, or s·c̈ >= 0 when the foot starts from rest);
 ///   leave: the leg force with the foot held down is f <= 0 (the foot moves off the ground).
 /// Every combination is enumerated; the foot whose guard fired may not keep its mode. Of the

@@ -15,6 +15,15 @@
 
 namespace flexgait::rimless {
 
+/// The friction law of a slipping foot (spec rimless.md, "slip"; issue 21 part 3). Coulomb:
+/// T = -s μ_k N. Stribeck: T = -s (μ(v) N + σ |v|) with v = ċ, s = sign v and
+/// μ(v) = μ_k + (μ_s - μ_k) exp(-(|v|/v_s)^δ), so μ(0) = μ_s. A sticking foot obeys |T| <= μ_s N
+/// under both laws.
+enum class Friction { Coulomb, Stribeck };
+constexpr std::array<EnumName<Friction>, 2> enum_names(Friction) {
+  return {{{Friction::Coulomb, "coulomb"}, {Friction::Stribeck, "stribeck"}}};
+}
+
 /// The wheel. Immutable for a run.
 struct WheelParams {
   double m = 1.0;      ///< total mass [kg]
@@ -26,6 +35,10 @@ struct WheelParams {
   double C = 30.0;     ///< leg damper [N s/m]
   double mu_s = 0.6;   ///< static friction coefficient
   double mu_k = 0.6;   ///< kinetic friction coefficient, <= mu_s
+  Friction friction = Friction::Coulomb;  ///< the slip law
+  double stribeck_velocity = 0.1;  ///< Stribeck velocity v_s [m/s], > 0 (Stribeck only)
+  double stribeck_exponent = 2.0;  ///< Stribeck exponent δ, > 0 (Stribeck only)
+  double viscous = 0.0;            ///< viscous friction σ [N s/m], >= 0 (Stribeck only)
   double g = 9.81;     ///< gravity [m/s^2]
 
   /// Half the angle between spokes, α = π/N [rad].
@@ -42,6 +55,15 @@ struct WheelParams {
     v("rimless.C", s.C, {.unit = "N s/m", .doc = "leg damping", .bounds = non_negative()});
     v("rimless.mu_s", s.mu_s, {.doc = "static friction coefficient", .bounds = non_negative()});
     v("rimless.mu_k", s.mu_k, {.doc = "kinetic friction coefficient (<= mu_s)", .bounds = non_negative()});
+    v("rimless.friction", s.friction,
+      {.doc = "slip friction law: coulomb (mu_k) or stribeck (mu_k + (mu_s - mu_k) exp(-(|v|/v_s)^delta), plus sigma |v|)"});
+    v("rimless.stribeck_velocity", s.stribeck_velocity,
+      {.unit = "m/s", .doc = "Stribeck velocity v_s (friction = stribeck only)", .bounds = positive()});
+    v("rimless.stribeck_exponent", s.stribeck_exponent,
+      {.doc = "Stribeck exponent delta (friction = stribeck only)", .bounds = positive()});
+    v("rimless.viscous", s.viscous,
+      {.unit = "N s/m", .doc = "viscous friction sigma of a slipping foot (friction = stribeck only)",
+       .bounds = non_negative()});
     v("rimless.g", s.g, {.unit = "m/s^2", .doc = "gravitational acceleration", .bounds = positive()});
   }
 };
@@ -103,7 +125,9 @@ inline SimulationOptions simulation_from_config(const Config& config) {
 }
 
 /// Throws ConfigError (key named) if the parameters are inconsistent with each other,
-/// e.g. mu_k > mu_s or |initial.beta| >= α.
+/// e.g. mu_k > mu_s, |initial.beta| >= α, or a Stribeck key away from its default with
+/// friction = coulomb (a value equal to the default is what a resolved configuration writes
+/// back, so it is accepted).
 void validate(const WheelParams& wheel, const InitialState& initial);
 
 }  // namespace flexgait::rimless

@@ -264,6 +264,7 @@ std::optional<std::string> settle_on_section(const WheelParams& w, const Simulat
   RunSpec next;
   next.y0 = r.final_state;
   next.contacts = r.final_contacts;
+  next.stance_leg = r.steps.empty() ? -1 : r.steps.back().stance_leg;
   next.stop_at = section;
   next.steps = 3;
   SectionHit hit;

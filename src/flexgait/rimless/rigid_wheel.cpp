@@ -95,7 +95,7 @@ SimulationResult simulate_rigid(const WheelParams& w, const InitialState& init, 
   if (opt.log) res.samples.push_back(first);
   res.events.push_back({0.0, "start", 0, modes()});
   StepTracker tracker;
-  tracker.start(0.0, first.q[0], res.energy_initial, contacts);
+  tracker.start(0.0, first.q[0], res.energy_initial, contacts, w.legs);
 
   const std::array<int, 3> dirs{+1, -1, +1};
   integ.restart(0.0, y, dirs);

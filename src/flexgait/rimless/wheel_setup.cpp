@@ -3,12 +3,13 @@
 #include <utility>
 
 #include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/stagnation.hpp"
 
 namespace flexgait::rimless {
 
 Schema rimless_analysis_schema() {
   Schema s = rimless_schema();
-  s.merge(analysis_schema());
+  s.merge(analysis_schema()).merge(stagnation_schema());
   return s;
 }
 

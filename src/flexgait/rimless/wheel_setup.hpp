@@ -8,7 +8,7 @@
 
 namespace flexgait::rimless {
 
-/// Keys of the analysis commands: rimless.*, initial.*, sim.* and analysis.*.
+/// Keys of the analysis commands: rimless.*, initial.*, sim.*, analysis.* and stagnation.*.
 Schema rimless_analysis_schema();
 
 struct WheelSetup {
