@@ -23,12 +23,11 @@ namespace {
 int bench(const RunOptions& run) {
   const Config config = resolve(humanoid::bench_schema(), run);
   const humanoid::BenchParams params = humanoid::bench_from_config(config);
+  const RunDirectory dir(run.out);  // --out before the computation
+  dir.write_config(config);
   const humanoid::BenchResult r = humanoid::run_stiffness_bench(params);
 
   const std::string summary = experiments::bench_summary_json(r);
-
-  const RunDirectory dir(run.out);
-  dir.write_config(config);
   dir.write("bench.csv", experiments::bench_csv(r));
   dir.write("summary.json", summary);
   if (run.plot) run_plot_script("plot_bench.py", {dir.path().string()});
@@ -198,7 +197,7 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   w->add_flag("--render", walk_render->enabled,
               "write PNG frames of the twin to OUT/frames (offscreen, OSMesa) and OUT/video.mp4 if ffmpeg is present");
   w->add_option("--fps", walk_render->fps, "frames per second of simulated time for --render (1/s)")
-      ->check(CLI::Range(1.0, 250.0));
+      ->check(finite_number() & CLI::Range(1.0, 250.0));
   w->callback([walk_run, walk_render, &action] {
     action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); };
   });
@@ -214,17 +213,20 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   cs->callback([study_run, &action] { action = [study_run] { return compensation_study(*study_run); }; });
 
   auto mismatch_run = std::make_shared<RunOptions>();
-  auto scales = std::make_shared<std::vector<double>>(std::vector<double>{0.7, 1.0, 1.3});
+  auto scales = std::make_shared<std::string>("0.7,1.0,1.3");
   CLI::App* ms = humanoid->add_subcommand(
       "mismatch", "The twin's true gear stiffness scaled against the controller's belief (control.k_joint): "
                   "compensation off and both at each scale");
   add_run_options(*ms, *mismatch_run, "runs/humanoid-mismatch");
   ms->add_option("--scales", *scales, "true stiffness / configured plant.k_joint, comma separated")
-      ->delimiter(',')
-      ->check(CLI::Range(0.05, 20.0))
+      ->check(number_list(0.05, 20.0))
       ->capture_default_str();
   ms->callback([mismatch_run, scales, &action] {
-    action = [mismatch_run, scales] { return mismatch_study(*mismatch_run, *scales); };
+    action = [mismatch_run, scales] {
+      std::vector<double> values;
+      for (const auto& text : split_list(*scales)) values.push_back(std::stod(text));  // checked by number_list
+      return mismatch_study(*mismatch_run, values);
+    };
   });
 }
 

@@ -1,5 +1,6 @@
 // flexgait: the command-line program. Exit codes: 0 success, 1 runtime failure, 2 bad usage
-// or bad configuration (one line on stderr naming the key, the value and what is allowed).
+// or bad configuration (one line on stderr naming the key, the value and what is allowed). Every
+// message is one line: control characters escaped, long text cut (core one_line).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -7,11 +8,36 @@
 #include <system_error>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/version.hpp"
 #include "humanoid_commands.hpp"
 #include "reproduce_command.hpp"
 #include "rimless_commands.hpp"
 #include "schema_command.hpp"
+
+namespace {
+
+// A word where a subcommand belongs that names none of them ("" if there is none): CLI11 says only
+// "A subcommand is required".
+std::string unknown_command(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* cur = &app;
+  for (int i = 1; i < argc; ++i) {
+    const std::string word = argv[i];
+    const auto subs = cur->get_subcommands([](const CLI::App*) { return true; });
+    if (word.empty() || word[0] == '-' || subs.empty()) return "";
+    const CLI::App* next = nullptr;
+    std::string names;
+    for (const CLI::App* s : subs) {
+      if (s->check_name(word)) next = s;
+      names += (names.empty() ? "" : ", ") + s->get_name();
+    }
+    if (next == nullptr) return fmt::format("unknown command '{}'; the commands are {}", flexgait::one_line(word), names);
+    cur = next;
+  }
+  return "";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
@@ -37,19 +63,22 @@ int main(int argc, char** argv) {
       cur = cur->get_subcommands().front();
       path += " " + cur->get_name();
     }
-    fmt::print(stderr, "error: {}; see '{} --help'\n", e.what(), path);
+    const std::string unknown = unknown_command(app, argc, argv);
+    fmt::print(stderr, "error: {}; see '{} --help'\n", unknown.empty() ? flexgait::one_line(e.what(), 1000) : unknown,
+               path);
     return 2;
   }
   try {
     return action ? action() : 2;
   } catch (const flexgait::UsageError& e) {  // bad configuration or bad usage, ConfigError included
-    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
     return 2;
   } catch (const std::logic_error& e) {  // a broken contract inside flexgait
-    fmt::print(stderr, "error: internal error (a bug in flexgait, please report it): {}\n", e.what());
+    fmt::print(stderr, "error: internal error (a bug in flexgait, please report it): {}\n",
+               flexgait::one_line(e.what(), 1000));
     return 1;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
     return 1;
   }
 }

@@ -5,6 +5,12 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "flexgait/core/text.hpp"
+
 #include "paths.hpp"
 
 extern char** environ;
@@ -24,12 +30,60 @@ void add_run_options(CLI::App& app, RunOptions& o, const std::string& default_ou
   app.add_flag("!--no-plot", o.plot, "do not draw the PNG figures");
 }
 
-Config resolve(const Schema& schema, const RunOptions& o, const std::vector<std::string>& extra) {
-  std::vector<std::string> all = extra;
-  all.insert(all.end(), o.overrides.begin(), o.overrides.end());
+Config resolve(const Schema& schema, const RunOptions& o, const std::vector<ConfigEntry>& extra) {
   std::optional<std::filesystem::path> file;
   if (!o.config_file.empty()) file = o.config_file;
-  return resolve_config(schema, file, all);
+  return resolve_config(schema, file, o.overrides, extra);
+}
+
+void add_option_value(std::vector<ConfigEntry>& out, const CLI::App& cmd, const std::string& option,
+                      const std::string& key, const std::string& text) {
+  if (cmd.get_option_no_throw(option) != nullptr && cmd.count(option) > 0) out.push_back({key, text, option});
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out(1);
+  for (const char ch : text) {
+    if (ch == ',') out.emplace_back();
+    else out.back() += ch;
+  }
+  return out;
+}
+
+namespace {
+
+// Why `text` is not a finite number in [lo, hi], or "" if it is one.
+std::string number_problem(const std::string& text, double lo, double hi) {
+  const char* first = text.data() + (text.rfind('+', 0) == 0 ? 1 : 0);
+  const char* last = text.data() + text.size();
+  double v = 0;
+  const auto [end, ec] = std::from_chars(first, last, v);
+  if (first == last || ec != std::errc() || end != last || !std::isfinite(v))
+    return fmt::format("'{}' is not a finite number", one_line(text));
+  if (v < lo || v > hi) return fmt::format("'{}' is not in [{}, {}]", one_line(text), lo, hi);
+  return "";
+}
+
+}  // namespace
+
+CLI::Validator finite_number() {
+  const double inf = std::numeric_limits<double>::infinity();
+  return CLI::Validator([inf](std::string& text) { return number_problem(text, -inf, inf); }, "NUMBER");
+}
+
+CLI::Validator number_list(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) {
+        for (const auto& item : split_list(text))
+          if (auto problem = number_problem(item, lo, hi); !problem.empty()) return problem;
+        return std::string();
+      },
+      fmt::format("NUMBER,... in [{}, {}]", lo, hi));
+}
+
+void reject_unused(const CLI::App& cmd, const std::vector<std::string>& options, const std::string& what) {
+  for (const auto& option : options)
+    if (cmd.count(option) > 0) throw UsageError(fmt::format("{}: not used by {}", option, what));
 }
 
 std::optional<std::filesystem::path> find_python_script(const std::string& script) {

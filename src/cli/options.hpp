@@ -22,9 +22,27 @@ struct RunOptions {
 /// Adds --config, --set, --out, --json and --no-plot to a subcommand.
 void add_run_options(CLI::App& app, RunOptions& options, const std::string& default_out);
 
-/// Resolves the configuration: defaults, then --config, then extra (flag-derived) overrides,
+/// Resolves the configuration: defaults, then --config, then the values of options that set a key
+/// (`options`: key, text as given, origin "--steps"; checked as --set is, errors naming the option),
 /// then --set (so an explicit --set wins).
-Config resolve(const Schema& schema, const RunOptions& options, const std::vector<std::string>& extra = {});
+Config resolve(const Schema& schema, const RunOptions& options, const std::vector<ConfigEntry>& extra = {});
+
+/// An option's value as a ConfigEntry for resolve(), or none when the option was not given.
+void add_option_value(std::vector<ConfigEntry>& out, const CLI::App& cmd, const std::string& option,
+                      const std::string& key, const std::string& text);
+
+/// CLI11 check of a number option: rejects empty text, junk, NaN and infinities, naming the option.
+CLI::Validator finite_number();
+
+/// The fields of a comma-separated list as given, empty ones kept (CLI11's delimiter drops them,
+/// so list options are read as one string and split here).
+std::vector<std::string> split_list(const std::string& text);
+
+/// CLI11 check of a comma-separated list of finite numbers in [lo, hi].
+CLI::Validator number_list(double lo, double hi);
+
+/// Throws UsageError if one of `options` was given to `cmd`: "--from: not used by <what>".
+void reject_unused(const CLI::App& cmd, const std::vector<std::string>& options, const std::string& what);
 
 /// A Python script of the CLI (python/NAME): from $FLEXGAIT_PLOT_DIR, the source tree or the
 /// installed share directory; nullopt if none has it.

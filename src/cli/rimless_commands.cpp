@@ -26,25 +26,22 @@ namespace {
 
 struct SimulateArgs {
   RunOptions run;
-  std::string model;
-  int steps = 0;
-  double omega0 = 0;
-  bool has_omega0 = false;
+  std::string model, steps, omega0;  ///< as given: checked as --set checks sim.model, sim.steps, initial.omega
 };
 
 int simulate(const SimulateArgs& a, const CLI::App& cmd) {
-  std::vector<std::string> extra;
-  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
-  if (cmd.count("--steps") > 0) extra.push_back(fmt::format("sim.steps={}", a.steps));
-  if (cmd.count("--omega0") > 0) extra.push_back(fmt::format("initial.omega={}", a.omega0));
+  std::vector<ConfigEntry> extra;
+  add_option_value(extra, cmd, "--model", "sim.model", a.model);
+  add_option_value(extra, cmd, "--steps", "sim.steps", a.steps);
+  add_option_value(extra, cmd, "--omega0", "initial.omega", a.omega0);
   const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_schema(), a.run, extra));
   const Config& config = s.config;
   const std::string model = config.choice("sim.model");
+  const RunDirectory dir(a.run.out);  // --out before the computation
+  dir.write_config(config);
 
   // log.csv, events.csv and steps.csv are written while the run goes: memory does not grow
   // with the number of steps.
-  const RunDirectory dir(a.run.out);
-  dir.write_config(config);
   rimless::RunFiles files(dir);
   const rimless::SimulationResult result = s.sim.model == rimless::Model::Rigid
                                                ? rimless::simulate_rigid(s.wheel, s.initial, s.sim, files)
@@ -77,35 +74,37 @@ struct FixedPointArgs {
 
 using rimless::WheelSetup;
 
-WheelSetup wheel_setup(const Schema& schema, const RunOptions& run, const std::vector<std::string>& extra) {
-  return rimless::wheel_setup(resolve(schema, run, extra));
+/// The analysis configuration with --model (if given) as sim.model.
+WheelSetup wheel_setup(const RunOptions& run, const CLI::App& cmd, const std::string& model) {
+  std::vector<ConfigEntry> extra;
+  add_option_value(extra, cmd, "--model", "sim.model", model);
+  return rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), run, extra));
 }
 
-int fixed_point(const FixedPointArgs& a) {
-  std::vector<std::string> extra;
-  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
-  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
+int fixed_point(const FixedPointArgs& a, const CLI::App& cmd) {
+  const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
   const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+  const RunDirectory dir(a.run.out);  // --out before the computation
+  dir.write_config(s.config);
   const rimless::FixedPointReport rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, section, s.initial);
   const std::string json = rimless::fixed_point_json(rep);
-  const RunDirectory dir(a.run.out);
-  dir.write_config(s.config);
   dir.write("fixed_point.json", json);
-  if (a.run.json) {
-    fmt::print("{}", json);
-    return 0;
+  if (a.run.json) fmt::print("{}", json);
+  if (!rep.converged) {  // a named failure: exit 1, the report (state and multipliers null) kept
+    fmt::print(stderr, "error: no fixed point ({} wheel, {} section): {}; report in {}\n", s.config.choice("sim.model"),
+               a.section, one_line(rep.failure, 1000), (dir.path() / "fixed_point.json").string());
+    return 1;
   }
-  fmt::print("{} wheel, {} section: {}\n", s.config.choice("sim.model"), a.section,
-             rep.converged ? fmt::format("fixed point after {} Newton iterations, residual {:.2e}", rep.iterations,
-                                         rep.residual)
-                           : "no fixed point: " + rep.failure);
+  if (a.run.json) return 0;
+  fmt::print("{} wheel, {} section: fixed point after {} Newton iterations, residual {:.2e}\n",
+             s.config.choice("sim.model"), a.section, rep.iterations, rep.residual);
   const auto names = rep.point.names();
-  for (std::size_t i = 0; i < names.size(); ++i) fmt::print("  {:8s} = {:.12g}\n", names[i], rep.point.z(static_cast<Eigen::Index>(i)));
+  for (Eigen::Index i = 0; i < rep.point.z.size(); ++i)
+    fmt::print("  {:8s} = {:.12g}\n", names.at(static_cast<std::size_t>(i)), rep.point.z(i));
   for (const auto& m : rep.multipliers) fmt::print("  multiplier {:.6g}{:+.6g}i  |{:.6g}|\n", m.real(), m.imag(), std::abs(m));
-  if (rep.converged)
-    fmt::print("  {} gait '{}', period {:.6f} s, speed {:.6f} m/s, dissipated {:.6f} J per cycle\n",
-               rep.stable ? "stable" : "unstable", rep.gait, rep.period, rep.speed, rep.dissipated);
+  fmt::print("  {} gait '{}', period {:.6f} s, speed {:.6f} m/s, dissipated {:.6f} J per cycle\n",
+             rep.stable ? "stable" : "unstable", rep.gait, rep.period, rep.speed, rep.dissipated);
   fmt::print("results in {}\n", dir.path().string());
   return 0;
 }
@@ -121,14 +120,12 @@ struct SweepArgs {
   bool resume = false;
 };
 
-int sweep(const SweepArgs& a) {
-  std::vector<std::string> extra;
-  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
-  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
+int sweep(const SweepArgs& a, const CLI::App& cmd) {
+  const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   rimless::check_sweep_param(s.config.schema(), a.param);
   rimless::SweepSpec spec{a.param, a.from, a.to, a.count,
                           a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown};
-  for (int i = 0; i < spec.count; ++i) rimless::sweep_point_config(s.config, spec, i);  // every point valid first
+  rimless::check_sweep(s.config, spec);  // its ends and every point valid first
   SweepJob job;
   job.dir = a.run.out;
   job.header = rimless::sweep_header();
@@ -153,7 +150,7 @@ int sweep(const SweepArgs& a) {
 struct AnalysisArgs {
   RunOptions run;
   std::string name;
-  std::vector<double> mus;
+  std::string mus;  ///< as given: each checked as --set checks rimless.mu_s and mu_k
   double from = 0, to = 0;
   int count = 0;
   int jobs = 0;
@@ -181,24 +178,41 @@ std::vector<std::string> default_stagnation_map() {
 }
 
 int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
-  std::vector<std::string> extra;
-  if (a.name == "stagnation") {  // --from/--to/--count: the coarse grid of omega0
-    if (cmd.count("--from") > 0) extra.push_back(fmt::format("stagnation.omega_from={}", a.from));
-    if (cmd.count("--to") > 0) extra.push_back(fmt::format("stagnation.omega_to={}", a.to));
-    if (cmd.count("--count") > 0) extra.push_back(fmt::format("stagnation.count={}", a.count));
-  }
-  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
+  // Every option checked before anything is written; an option this analysis ignores is refused.
+  const std::string which = "analysis " + a.name;
+  const bool friction_sweep = a.name == "gait-vs-friction";
   const bool stagnation_run = a.name == "stagnation" || a.name == "stagnation-map";
+  if (!friction_sweep && !stagnation_run)
+    reject_unused(cmd, {"--from", "--to", "--count"}, which + " (only gait-vs-friction and the stagnation analyses "
+                                                              "take a range)");
+  if (!friction_sweep && a.name != "stagnation-map")
+    reject_unused(cmd, {"--jobs", "--resume"}, which + " (only gait-vs-friction and stagnation-map are resumable sweeps)");
+  if (a.name != "energy" && a.name != "fixed-points" && a.name != "robustness")
+    reject_unused(cmd, {"--mu"}, which + " (only energy, fixed-points and robustness take --mu)");
+  if (a.name != "gait-vs-friction" && a.name != "fixed-points")
+    reject_unused(cmd, {"--section"}, which + " (only gait-vs-friction and fixed-points seek fixed points on a section)");
+  if (a.name != "stagnation-map") reject_unused(cmd, {"--vary"}, which + " (only stagnation-map takes --vary)");
+  std::vector<ConfigEntry> extra;
+  if (stagnation_run) {  // --from/--to/--count: the coarse grid of omega0 (of each map point too)
+    add_option_value(extra, cmd, "--from", "stagnation.omega_from", format_number(a.from));
+    add_option_value(extra, cmd, "--to", "stagnation.omega_to", format_number(a.to));
+    add_option_value(extra, cmd, "--count", "stagnation.count", std::to_string(a.count));
+  }
+  const WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run, extra));
   const rimless::StagnationOptions stagnation =
       stagnation_run ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
   const std::vector<std::string> variations = a.vary.empty() ? default_stagnation_map() : a.vary;
   if (a.name == "stagnation-map")
     for (const auto& v : variations) rimless::stagnation_map_config(s.config, v);  // every point valid first
   const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
-  auto mus = [&](std::vector<double> fallback) { return a.mus.empty() ? fallback : a.mus; };
-  auto range = [&](double lo, double hi, int n) {
-    return std::make_tuple(cmd.count("--from") ? a.from : lo, cmd.count("--to") ? a.to : hi, cmd.count("--count") ? a.count : n);
-  };
+  std::vector<double> given_mus;
+  if (cmd.count("--mu") > 0)
+    for (const auto& text : split_list(a.mus))
+      given_mus.push_back(rimless::config_at(s.config, "rimless.mu", text, "--mu").real("rimless.mu_s"));
+  auto mus = [&](std::vector<double> fallback) { return given_mus.empty() ? fallback : given_mus; };
+  const rimless::SweepSpec range{"rimless.mu", cmd.count("--from") ? a.from : 0.1, cmd.count("--to") ? a.to : 1.5,
+                                 cmd.count("--count") ? a.count : 100, section};  // gait-vs-friction
+  if (friction_sweep) rimless::check_sweep(s.config, range);
   // A resumed sweep must match the one in --out: check before anything is written.
   if (a.resume && (a.name == "gait-vs-friction" || a.name == "stagnation-map")) {
     SweepJob probe;
@@ -212,8 +226,9 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   dir.write_config(s.config);
   std::vector<std::string> files;
   if (a.name == "gait-vs-friction") {
-    const auto [lo, hi, n] = range(0.1, 1.5, 100);
-    rimless::SweepSpec spec{"rimless.mu", lo, hi, n, section};
+    const double lo = range.from, hi = range.to;
+    const int n = range.count;
+    const rimless::SweepSpec spec = range;
     SweepJob job;
     job.dir = dir.path();
     job.header = rimless::sweep_header();
@@ -297,10 +312,8 @@ struct ContinuationArgs {
   double from = 0, to = 0, step = 0;
 };
 
-int continuation(const ContinuationArgs& a) {
-  std::vector<std::string> extra;
-  if (!a.model.empty()) extra.push_back("sim.model=" + a.model);
-  const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), a.run, extra);
+int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
+  const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   rimless::GaitContinuationSpec spec{.param = a.param, .from = a.from, .to = a.to, .step = a.step};
   spec.section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
   const auto t0 = std::chrono::steady_clock::now();
@@ -347,8 +360,8 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   add_run_options(*sim, args->run, "runs/rimless-simulate");
   sim->add_option("--model", args->model, "flexible (spring-damper legs, stick-slip) or rigid (McGeer's wheel); sets sim.model")
       ->check(CLI::IsMember({"flexible", "rigid"}));
-  sim->add_option("--steps", args->steps, "number of steps (touchdowns of new legs); sets sim.steps");
-  sim->add_option("--omega0", args->omega0, "initial angular velocity (rad/s); sets initial.omega");
+  sim->add_option("--steps", args->steps, "number of steps (touchdowns of new legs); sets sim.steps")->type_name("INT");
+  sim->add_option("--omega0", args->omega0, "initial angular velocity (rad/s); sets initial.omega")->type_name("FLOAT");
   sim->callback([args, sim, &action] { action = [args, sim] { return simulate(*args, *sim); }; });
 
   auto fp_args = std::make_shared<FixedPointArgs>();
@@ -360,7 +373,7 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   fp->add_option("--section", fp_args->section, "Poincare section: touchdown of a new leg, or stance leg upright")
       ->check(CLI::IsMember({"touchdown", "upright"}))
       ->capture_default_str();
-  fp->callback([fp_args, &action] { action = [fp_args] { return fixed_point(*fp_args); }; });
+  fp->callback([fp_args, fp, &action] { action = [fp_args, fp] { return fixed_point(*fp_args, *fp); }; });
 
   auto sw = std::make_shared<SweepArgs>();
   CLI::App* swc = rimless->add_subcommand("sweep", "Sweep one parameter: gait, fixed point, multipliers, stability, "
@@ -368,8 +381,8 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   add_run_options(*swc, sw->run, "runs/rimless-sweep");
   swc->add_option("--param", sw->param, "configuration key to vary (e.g. rimless.slope, initial.omega), or "
                                         "rimless.mu for mu_s = mu_k")->required();
-  swc->add_option("--from", sw->from, "first value (in the key's unit)")->required();
-  swc->add_option("--to", sw->to, "last value (in the key's unit)")->required();
+  swc->add_option("--from", sw->from, "first value (in the key's unit)")->required()->check(finite_number());
+  swc->add_option("--to", sw->to, "last value (in the key's unit)")->required()->check(finite_number());
   swc->add_option("--count", sw->count, "number of values, evenly spaced, ends included")
       ->required()->check(CLI::Range(1, 1000000));
   swc->add_option("--jobs", sw->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
@@ -377,7 +390,7 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   swc->add_option("--model", sw->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
   swc->add_option("--section", sw->section, "Poincare section of the fixed points")
       ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
-  swc->callback([sw, &action] { action = [sw] { return sweep(*sw); }; });
+  swc->callback([sw, swc, &action] { action = [sw, swc] { return sweep(*sw, *swc); }; });
 
   auto ct = std::make_shared<ContinuationArgs>();
   CLI::App* ctc = rimless->add_subcommand("continuation", "Pseudo-arclength continuation of the gait's fixed point in "
@@ -394,7 +407,7 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   ctc->add_option("--model", ct->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
   ctc->add_option("--section", ct->section, "Poincare section of the fixed points")
       ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
-  ctc->callback([ct, &action] { action = [ct] { return continuation(*ct); }; });
+  ctc->callback([ct, ctc, &action] { action = [ct, ctc] { return continuation(*ct, *ctc); }; });
 
   auto an = std::make_shared<AnalysisArgs>();
   CLI::App* anc = rimless->add_subcommand(
@@ -407,11 +420,14 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   anc->add_option("name", an->name, "which analysis")
       ->required()
       ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation", "stagnation-map"}));
-  anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k) for energy, fixed-points, robustness")
-      ->delimiter(',');
+  anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k), comma separated, for energy, fixed-points, "
+                                   "robustness")
+      ->type_name("MU,...");
   anc->add_option("--from", an->from, "first value: mu (gait-vs-friction, default 0.1) or omega0 in rad/s of the "
-                                     "stagnation grid (sets stagnation.omega_from)");
-  anc->add_option("--to", an->to, "last value: mu (default 1.5) or omega0 in rad/s (sets stagnation.omega_to)");
+                                     "stagnation grid (sets stagnation.omega_from)")
+      ->check(finite_number());
+  anc->add_option("--to", an->to, "last value: mu (default 1.5) or omega0 in rad/s (sets stagnation.omega_to)")
+      ->check(finite_number());
   anc->add_option("--count", an->count, "number of values (default 100 for gait-vs-friction; sets stagnation.count)")
       ->check(CLI::Range(1, 1000000));
   anc->add_option("--jobs", an->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));

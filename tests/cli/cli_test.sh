@@ -19,10 +19,11 @@ expect_usage_error() {
   local name=$1 needle=$2
   shift 2
   local out="$work/never-$name"
-  "$exe" "$@" --out "$out" --no-plot >"$work/stdout" 2>"$work/stderr"
+  timeout 120 "$exe" "$@" --out "$out" --no-plot >"$work/stdout" 2>"$work/stderr"
   local code=$?
   check "$name: exit code 2 (got $code)" test "$code" -eq 2
-  check "$name: message names '$needle': $(cat "$work/stderr")" grep -qF -- "$needle" "$work/stderr"
+  check "$name: message names '$needle': $(head -c 2000 "$work/stderr")" grep -qF -- "$needle" "$work/stderr"
+  check "$name: one line on stderr" test "$(wc -l <"$work/stderr")" -eq 1
   check "$name: nothing written" test ! -e "$out"
 }
 
@@ -49,6 +50,59 @@ expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such
 printf 'rimless:\n  K: 1000\n  mu: 0.5\n' >"$work/typo.yaml"
 expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
 expect_usage_error bad-model "--model" rimless simulate --model soft
+# YAML read with limits (issue 17.2): each refusal names the file and the line.
+printf 'a: &a\n  b: *a\n' >"$work/recursive.yaml"
+expect_usage_error recursive-alias "recursive.yaml:2: a recursive alias" rimless simulate --config "$work/recursive.yaml"
+{ echo 'l0: &l0 {a: 1, b: 1}'; for i in $(seq 1 30); do echo "l$i: &l$i {a: *l$((i - 1)), b: *l$((i - 1))}"; done; } \
+  >"$work/bomb.yaml"
+expect_usage_error alias-bomb "aliases expand to more than" rimless simulate --config "$work/bomb.yaml"
+printf 'rimless:\n  K: 1000\n  K: 2000\n' >"$work/dup.yaml"
+expect_usage_error duplicate-key "dup.yaml:3: key 'K' given twice" rimless simulate --config "$work/dup.yaml"
+printf 'rimless:\n  K: 1000\n---\nrimless:\n  K: 2000\n' >"$work/docs.yaml"
+expect_usage_error extra-document "docs.yaml:3: a second YAML document" rimless simulate --config "$work/docs.yaml"
+printf '? [rimless, K]\n: 1\n' >"$work/complex.yaml"
+expect_usage_error complex-key "complex.yaml:1: a key must be a plain name" rimless simulate --config "$work/complex.yaml"
+mkfifo "$work/fifo.yaml"
+expect_usage_error fifo-config "fifo.yaml: is not a regular file" rimless simulate --config "$work/fifo.yaml"
+head -c 2000000 /dev/zero | tr '\0' '#' >"$work/huge.yaml"
+expect_usage_error huge-config "huge.yaml: larger than" rimless simulate --config "$work/huge.yaml"
+# One line whatever the value holds (issue 17.8): control characters escaped, long values cut.
+expect_usage_error newline-in-value 'rimless.K' rimless simulate --set "rimless.K=1$(printf '\n')2x"
+expect_usage_error long-value '(100000 bytes)' rimless simulate --set "rimless.K=$(head -c 100000 /dev/zero | tr '\0' 5)"
+expect_usage_error unknown-command "unknown command 'fly'" fly
+expect_usage_error unknown-subcommand "unknown command 'fly'" rimless fly
+# Every option checked as --set is, named as given, before anything is written (issue 17.6, 17.8, 17.9).
+expect_usage_error steps-empty "--steps: key 'sim.steps' = ''" rimless simulate --steps ''
+expect_usage_error steps-negative "--steps: key 'sim.steps' = '-1'" rimless simulate --steps -1
+expect_usage_error omega0-nan "--omega0: key 'initial.omega' = 'nan'" rimless simulate --omega0 nan
+expect_usage_error cross-check-names-set "--set: key 'rimless.mu_k'" rimless simulate --set rimless.mu_s=0.2 --set rimless.mu_k=0.3
+printf 'rimless:\n  mu_s: 0.2\n  mu_k: 0.3\n' >"$work/mu.yaml"
+expect_usage_error cross-check-names-file "mu.yaml:3: key 'rimless.mu_k'" rimless simulate --config "$work/mu.yaml"
+expect_usage_error energy-negative-mu "--mu: key 'rimless.mu_s' = '-1'" rimless analysis energy --mu -1
+expect_usage_error energy-empty-mu "--mu: key 'rimless.mu_s' = ''" rimless analysis energy --mu ''
+expect_usage_error energy-empty-mu-field "--mu: key 'rimless.mu_s' = ''" rimless analysis energy --mu 0.6,,0.2
+expect_usage_error energy-nan-mu "--mu: key 'rimless.mu_s' = 'nan'" rimless analysis energy --mu nan
+expect_usage_error friction-bad-from "--from: key 'rimless.mu_s' = '-1'" rimless analysis gait-vs-friction --from -1
+expect_usage_error friction-inf-to "--to: 'inf' is not a finite number" rimless analysis gait-vs-friction --to inf
+expect_usage_error stagnation-bad-to "--to: key 'stagnation.omega_to'" rimless analysis stagnation --to -500 --count 3
+expect_usage_error energy-resume "--resume: not used by analysis energy" rimless analysis energy --resume
+expect_usage_error energy-count "--count: not used by analysis energy" rimless analysis energy --count 3
+expect_usage_error robustness-from "--from: not used by analysis robustness" rimless analysis robustness --from 0.1
+expect_usage_error stagnation-mu "--mu: not used by analysis stagnation" rimless analysis stagnation --mu 0.3
+expect_usage_error sweep-inf-to "--to: 'inf' is not a finite number" rimless sweep --param rimless.mu --from 0.2 --to inf --count 3
+expect_usage_error sweep-bad-from "--from: key 'rimless.mu_s' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
+expect_usage_error walk-total-mass "key 'robot.total_mass' = '43.72': out of range" humanoid walk --set robot.total_mass=43.72
+expect_usage_error mismatch-nan-scale "--scales: 'nan' is not a finite number" humanoid mismatch --scales nan
+expect_usage_error mismatch-empty-scale "--scales: '' is not a finite number" humanoid mismatch --scales 0.9,,1.1
+expect_usage_error walk-nan-fps "--fps: 'nan' is not a finite number" humanoid walk --render --fps nan
+echo "not a directory" >"$work/afile"
+for cmd in "rimless simulate" "rimless fixed-point" "humanoid bench"; do
+  # shellcheck disable=SC2086
+  timeout 60 "$exe" $cmd --out "$work/afile" --no-plot >/dev/null 2>"$work/err"
+  code=$?
+  check "$cmd: a file as --out is exit 2 before computing (got $code)" test "$code" -eq 2
+  check "$cmd: names --out: $(cat "$work/err")" grep -q -- "--out: cannot make the run directory" "$work/err"
+done
 expect_usage_error no-subcommand "flexgait rimless --help" rimless
 "$exe" rimless simulate --steps 3 --omega0 1.4 --out "$work/run1" --no-plot --json >"$work/summary.out" 2>"$work/err"
 check "simulate exits 0: $(cat "$work/err")" test $? -eq 0
@@ -77,6 +131,23 @@ done
 check "fixed point converged" grep -q '"converged": true' "$work/fp.json"
 "$exe" rimless fixed-point --model rigid --section upright --out "$work/fpr" --json --no-plot >"$work/fpr.json" 2>&1
 check "rigid fixed point converged" grep -q '"converged": true' "$work/fpr.json"
+# A failed search is a named failure (exit 1, one line on stderr), its report without numbers of no
+# meaning: no starting point for Newton (issue 17.1), a Jacobian column that failed (issue 21.6).
+"$exe" rimless fixed-point --set initial.omega=-1 --out "$work/fp_none" --json --no-plot >"$work/fp_none.json" 2>"$work/err"
+check "fixed point without a start exits 1 (got $?)" test $? -eq 1
+check "fixed point without a start: one line naming the failure: $(cat "$work/err")" \
+  sh -c "test \$(wc -l <'$work/err') -eq 1 && grep -q 'no fixed point.*no initial guess' '$work/err'"
+check "fixed point without a start: state null" grep -q '"state": null' "$work/fp_none/fixed_point.json"
+"$exe" rimless fixed-point --set rimless.mu_s=0.1559 --set rimless.mu_k=0.1559 --set initial.omega=1.5 \
+  --set analysis.transient_steps=60 --out "$work/fp_fd" --json --no-plot >"$work/fp_fd.json" 2>"$work/err"
+code=$?
+if grep -q '"converged": false' "$work/fp_fd.json"; then
+  check "failed fixed point exits 1 (got $code)" test "$code" -eq 1
+  check "failed fixed point: multipliers null" grep -q '"multipliers": null' "$work/fp_fd.json"
+  check "failed fixed point: no number of uninitialised memory" sh -c "! grep -Eq 'e[+-][0-9]{3}' '$work/fp_fd.json'"
+else
+  check "converged fixed point exits 0 (got $code)" test "$code" -eq 0
+fi
 expect_usage_error sweep-bad-param "rimless.nope" rimless sweep --param rimless.nope --from 0 --to 1 --count 3
 expect_usage_error sweep-bad-value "rimless.K" rimless sweep --param rimless.K --from -1 --to 1 --count 3
 "$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --jobs 2 --out "$work/sweep_full" --no-plot >/dev/null 2>&1

@@ -52,5 +52,27 @@ TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
   EXPECT_THROW(run_sweep(other), UsageError);
 }
 
+// Issue 17.10: --resume trusted any line of the partial file; a garbage row reached the final CSV.
+TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
+  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_garbage_test";
+  std::filesystem::remove_all(base);
+  const SweepOutcome whole = run_sweep(job(base / "whole"));
+  SweepJob again = job(base / "whole");
+  again.resume = true;
+  // Valid rows for 0 and 1, then lines that are not finished points of this sweep.
+  write_file_atomic(base / "whole" / "sweep.partial.csv",
+                    "0,0,0\n1,1,1\n2,garbage\n3x,3,9\n-4,4,16\n+5,5,25\n40,40,1600\n1,1,2\n6,6,36,extra\n"
+                    "\"7\",7,49\n,8,64\n999999999999,9,81\n");
+  const SweepOutcome resumed = run_sweep(again);
+  EXPECT_EQ(resumed.resumed, 2);
+  EXPECT_EQ(resumed.computed, 38);
+  EXPECT_EQ(read_text_file(base / "whole" / "sweep.csv"), [&] {
+    std::string text = "index,value,square\n";
+    for (int i = 0; i < 40; ++i) text += std::to_string(i) + "," + std::to_string(i) + "," + std::to_string(i * i) + "\n";
+    return text;
+  }());
+  (void)whole;
+}
+
 }  // namespace
 }  // namespace flexgait

@@ -56,5 +56,19 @@ TEST(Numbers, ShortestTextReadsBackExactly) {
   EXPECT_EQ(format_number(std::numeric_limits<double>::quiet_NaN()), "nan");
 }
 
+// Issue 17.8: a value echoed in an error stays on one line, whole bytes of UTF-8, and short.
+TEST(OneLine, EscapesControlCharactersAndCutsLongText) {
+  EXPECT_EQ(one_line("plain value"), "plain value");
+  EXPECT_EQ(one_line("two\nlines\r\t"), "two\\nlines\\r\\t");
+  EXPECT_EQ(one_line(std::string("nul\0byte", 8)), "nul\\0byte");
+  EXPECT_EQ(one_line("bell\a del\x7f"), "bell\\x07 del\\x7f");
+  const std::string long_text(100000, 'x');
+  const std::string cut = one_line(long_text);
+  EXPECT_LT(cut.size(), 160u);
+  EXPECT_NE(cut.find("(100000 bytes)"), std::string::npos) << cut;
+  EXPECT_EQ(one_line("\xc3\xa9\xc3\xa9", 3), "\xc3\xa9... (4 bytes)");  // never half a character
+  EXPECT_EQ(one_line("abc", 3), "abc");
+}
+
 }  // namespace
 }  // namespace flexgait

@@ -56,6 +56,50 @@ class SimulateAgainstTheCommandLine(unittest.TestCase):
         self.assertLess(np.max(np.abs(step["next"] - fp["z"])), 1e-9)
 
 
+    def test_failed_fixed_point_is_named_and_has_no_numbers(self):
+        # Issue 17.1 (no starting point for Newton: the wheel rolls back; such a call segfaulted):
+        # converged False, the failure named, None where a fixed point's numbers would be.
+        fp = flexgait.rimless.fixed_point({"initial.omega": -1})
+        self.assertFalse(fp["converged"])
+        self.assertIn("no initial guess", fp["failure"])
+        for key in ("z", "jacobian", "state", "multipliers", "gait", "period"):
+            self.assertIsNone(fp[key], key)
+
+
+class BadConfigFile(unittest.TestCase):
+    """Issue 17.2 and 11: a configuration file read with limits; every refusal a ValueError naming the file."""
+
+    def refused(self, text, needle):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "c.yaml")
+            with open(path, "w") as f:
+                f.write(text)
+            with self.assertRaises(ValueError) as e:
+                flexgait.rimless.simulate(config_file=path)
+        self.assertIn(needle, str(e.exception))
+
+    def test_recursive_alias(self):  # overflowed the stack
+        self.refused("a: &a\n  b: *a\n", "c.yaml:2: a recursive alias")
+
+    def test_duplicate_keys_and_extra_documents(self):
+        self.refused("rimless:\n  K: 1\n  K: 2\n", "c.yaml:3: key 'K' given twice")
+        self.refused("rimless:\n  K: 1\n---\nx: 1\n", "c.yaml:3: a second YAML document")
+
+    def test_complex_key_is_a_value_error(self):  # was RuntimeError
+        self.refused("? [a, b]\n: 1\n", "c.yaml:1: a key must be a plain name")
+
+    def test_directory_and_fifo(self):
+        with tempfile.TemporaryDirectory() as d:
+            with self.assertRaises(ValueError) as e:  # was RuntimeError
+                flexgait.rimless.simulate(config_file=d)
+            self.assertIn("is a directory", str(e.exception))
+            fifo = os.path.join(d, "fifo.yaml")
+            os.mkfifo(fifo)
+            with self.assertRaises(ValueError) as e:  # blocked forever
+                flexgait.rimless.simulate(config_file=fifo)
+            self.assertIn("not a regular file", str(e.exception))
+
+
 class BadInput(unittest.TestCase):
     def test_unknown_key_raises_value_error_naming_it(self):
         with self.assertRaises(ValueError) as e:
@@ -79,6 +123,28 @@ class BadInput(unittest.TestCase):
             flexgait.rimless.simulate(["rimless.K", 5])
         with self.assertRaises(ValueError) as e:
             flexgait.rimless.simulate({"rimless.K": [1, 2]})
+        self.assertIn("rimless.K", str(e.exception))
+
+    def test_numpy_scalars_are_numbers(self):  # issue 17.11: numpy.int64 was rejected
+        run = flexgait.rimless.simulate({"sim.steps": np.int64(2), "rimless.mu_s": np.float32(0.5),
+                                         "rimless.mu_k": np.float64(0.5)})
+        self.assertEqual(run["config"]["sim.steps"], 2)
+        self.assertEqual(run["config"]["rimless.mu_s"], float(np.float32(0.5)))
+
+    def test_a_key_holding_an_equals_sign_is_a_key(self):  # was split at '=' and misread
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K=5": 1000})
+        self.assertIn("unknown key 'rimless.K=5'", str(e.exception))
+
+    def test_none_and_nan_are_refused_naming_where(self):  # [None, 1, 2] became NaN, blamed "I = 0"
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.poincare_map(z=[None, 1.0, 2.0])
+        self.assertIn("z:", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K": float("nan")})
+        self.assertIn("rimless.K", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"rimless.K": None})
         self.assertIn("rimless.K", str(e.exception))
 
 

@@ -63,8 +63,9 @@ py::dict fixed_point(const py::object& config, const OptionalPath& config_file, 
     rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, sec, s.initial);
   }
   py::dict out = json_value(rimless::fixed_point_json(rep));
-  out["z"] = Eigen::VectorXd(rep.point.z);
-  out["jacobian"] = Eigen::MatrixXd(rep.jacobian);
+  // A failed search (converged False, failure saying why) has no fixed point and no Jacobian.
+  out["z"] = rep.converged ? py::cast(Eigen::VectorXd(rep.point.z)) : py::none();
+  out["jacobian"] = rep.converged ? py::cast(Eigen::MatrixXd(rep.jacobian)) : py::none();
   return out;
 }
 
@@ -72,6 +73,8 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
                       const std::optional<Eigen::VectorXd>& z) {
   const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), config, config_file);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
+  if (z && !z->allFinite())  // None in a list arrives as NaN
+    throw py::value_error("z: every component must be a finite number (None, NaN and inf are not)");
   rimless::SectionState point;
   rimless::MapStep step;
   std::optional<std::string> failure;
@@ -140,7 +143,8 @@ void bind_rimless(py::module_& m) {
         py::arg("section") = "touchdown",
         "A periodic gait: settle on the Poincare section (`analysis.transient_steps`), then Newton-Raphson on "
         "P(z) - z. Returns fixed_point.json as a dict (converged, iterations, residual, state, multipliers, "
-        "stable, gait, period, speed, ...) plus 'z' and 'jacobian' (dP/dz) as numpy arrays. `section`: "
+        "stable, gait, period, speed, ...) plus 'z' and 'jacobian' (dP/dz) as numpy arrays. A failed search returns "
+        "converged False, 'failure' saying why, and None for z, jacobian, state and multipliers. `section`: "
         "'touchdown' or 'upright'.");
   r.def("poincare_map", &poincare_map, py::arg("config") = py::none(), py::arg("config_file") = py::none(),
         py::arg("section") = "touchdown", py::arg("z") = py::none(),

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <algorithm>
-#include <fstream>
 #include <sstream>
+
+#include "flexgait/core/config_file.hpp"
+#include "flexgait/core/text.hpp"
 
 namespace flexgait {
 namespace {
@@ -16,7 +18,7 @@ std::string bound_text(double v) { return fmt::format("{}", v); }
 
 std::string error_text(const std::string& origin, const std::string& key, const std::string& value,
                        const std::string& problem, const ParamSpec* spec) {
-  std::string msg = fmt::format("{}: key '{}' = '{}': {}", origin, key, value, problem);
+  std::string msg = fmt::format("{}: key '{}' = '{}': {}", origin, one_line(key), one_line(value), problem);
   if (spec != nullptr) {
     msg += fmt::format("; allowed: {}", spec->allowed());
     if (!spec->unit.empty()) msg += fmt::format(" ({})", spec->unit);
@@ -46,26 +48,6 @@ void check_range(const ParamSpec& spec, double v, const std::string& text, const
   if (!low_ok || !high_ok) throw ConfigError(spec.key, error_text(origin, spec.key, text, "out of range", &spec));
 }
 
-// Flattens a YAML mapping into dotted keys; records the line of each scalar.
-void flatten(const YAML::Node& node, const std::string& prefix, const std::string& file,
-             std::vector<std::tuple<std::string, std::string, std::string>>& out) {
-  for (const auto& item : node) {
-    const std::string name = item.first.as<std::string>();
-    const std::string key = prefix.empty() ? name : prefix + "." + name;
-    const YAML::Node& value = item.second;
-    const std::string origin = fmt::format("{}:{}", file, value.Mark().line + 1);
-    if (value.IsMap()) {
-      flatten(value, key, file, out);
-    } else if (value.IsScalar()) {
-      out.emplace_back(key, value.Scalar(), origin);
-    } else if (value.IsNull()) {
-      throw ConfigError(key, fmt::format("{}: key '{}' has no value", origin, key));
-    } else {
-      throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, key));
-    }
-  }
-}
-
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -83,6 +65,7 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 // " (did you mean 'rimless.K'?)" for a near miss, else "".
 std::string suggestion(const Schema& schema, const std::string& key) {
+  if (key.size() > 100) return "";  // no key is that long; spare the quadratic distance
   std::string best;
   std::size_t best_d = 4;
   for (const auto& p : schema.params()) {
@@ -179,6 +162,15 @@ const ParamSpec* Schema::find(const std::string& key) const {
   return nullptr;
 }
 
+void check_with_origin(const Config& config, const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const ConfigError& e) {
+    if (e.key().empty() || config.schema().find(e.key()) == nullptr) throw;
+    throw ConfigError(e.key(), config.origin(e.key()) + ": " + e.what());
+  }
+}
+
 ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin) {
   switch (spec.type) {
     case ParamType::Real: {
@@ -240,7 +232,8 @@ const std::string& Config::origin(const std::string& key) const { return origins
 void Config::set(const std::string& key, const std::string& text, const std::string& origin) {
   const ParamSpec* spec = schema_.find(key);
   if (spec == nullptr)
-    throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}'){}", origin, key, text, suggestion(schema_, key)));
+    throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}'){}", origin, one_line(key), one_line(text),
+                                       suggestion(schema_, key)));
   values_[key] = parse_value(*spec, text, origin);
   origins_[key] = origin;
 }
@@ -273,7 +266,7 @@ std::string Config::to_yaml() const {
 }
 
 Config resolve_config(const Schema& schema, const std::optional<std::filesystem::path>& file,
-                      const std::vector<std::string>& overrides) {
+                      const std::vector<std::string>& overrides, const std::vector<ConfigEntry>& options) {
   Config cfg;
   cfg.schema_ = schema;
   for (const auto& spec : schema.params()) {
@@ -281,26 +274,13 @@ Config resolve_config(const Schema& schema, const std::optional<std::filesystem:
     cfg.origins_[spec.key] = "default";
   }
   if (file) {
-    const std::string name = file->string();
-    std::ifstream in(*file);
-    if (!in) throw ConfigError("", fmt::format("{}: cannot read configuration file", name));
-    YAML::Node root;
-    try {
-      root = YAML::Load(in);
-    } catch (const YAML::Exception& e) {
-      throw ConfigError("", fmt::format("{}:{}: YAML syntax error: {}", name, e.mark.line + 1, e.msg));
-    }
-    if (!root.IsNull()) {
-      if (!root.IsMap()) throw ConfigError("", fmt::format("{}: the top level must be a mapping of keys", name));
-      std::vector<std::tuple<std::string, std::string, std::string>> entries;
-      flatten(root, "", name, entries);
-      for (const auto& [key, text, origin] : entries) cfg.set(key, text, origin);
-    }
+    for (const ConfigEntry& e : read_config_file(*file)) cfg.set(e.key, e.text, e.origin);
   }
+  for (const ConfigEntry& e : options) cfg.set(e.key, e.text, e.origin);
   for (const auto& item : overrides) {
     const auto eq = item.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw ConfigError("", fmt::format("--set: '{}' is not of the form key=value", item));
+      throw ConfigError("", fmt::format("--set: '{}' is not of the form key=value", one_line(item)));
     cfg.set(item.substr(0, eq), item.substr(eq + 1), "--set");
   }
   return cfg;

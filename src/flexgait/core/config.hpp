@@ -8,6 +8,7 @@
 /// line, or `--set`), the key, the offending value and what is allowed.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -81,6 +82,13 @@ class Schema {
 
 using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
 
+/// One value with its dotted key, its text and where it comes from ("FILE:LINE", "--steps").
+struct ConfigEntry {
+  std::string key;
+  std::string text;
+  std::string origin;
+};
+
 /// A resolved configuration: every key of its schema has a validated value.
 class Config {
  public:
@@ -98,12 +106,16 @@ class Config {
 
  private:
   friend Config resolve_config(const Schema&, const std::optional<std::filesystem::path>&,
-                               const std::vector<std::string>&);
+                               const std::vector<std::string>&, const std::vector<ConfigEntry>&);
   const ConfigValue& value(const std::string& key, ParamType expected) const;
   Schema schema_;
   std::map<std::string, ConfigValue> values_;
   std::map<std::string, std::string> origins_;
 };
+
+/// Runs a cross-field check of `config`: a ConfigError it throws naming a key of `config` is
+/// rethrown with that key's origin in front ("--set: ", "FILE:LINE: ", "default: ").
+void check_with_origin(const Config& config, const std::function<void()>& check);
 
 /// Parses `text` as the value of `spec`; throws ConfigError naming origin, key and domain.
 ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin);
@@ -111,8 +123,9 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
 /// Formats a value as YAML scalar text that parses back to the identical value.
 std::string format_value(const ConfigValue& value);
 
-/// Resolves defaults, then the YAML file (if any), then `key=value` overrides in order.
+/// Resolves defaults, then the YAML file (if any), then `options` (values of command-line options
+/// such as --steps, each under its own origin), then `key=value` overrides (--set) in order.
 Config resolve_config(const Schema& schema, const std::optional<std::filesystem::path>& file,
-                      const std::vector<std::string>& overrides);
+                      const std::vector<std::string>& overrides, const std::vector<ConfigEntry>& options = {});
 
 }  // namespace flexgait

@@ -1,16 +1,21 @@
 #include "flexgait/core/run_directory.hpp"
 
+#include <fmt/format.h>
+
 #include <system_error>
 
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/version.hpp"
 
 namespace flexgait {
 
 RunDirectory::RunDirectory(std::filesystem::path path) : path_(std::move(path)) {
-  std::filesystem::create_directories(path_);
-  if (!std::filesystem::is_directory(path_))
-    throw std::system_error(std::make_error_code(std::errc::not_a_directory), path_.string());
+  std::error_code ec;
+  std::filesystem::create_directories(path_, ec);
+  if (!ec && !std::filesystem::is_directory(path_)) ec = std::make_error_code(std::errc::not_a_directory);
+  if (ec)
+    throw UsageError(fmt::format("--out: cannot make the run directory {}: {}", one_line(path_.string(), 1000), ec.message()));
 }
 
 void RunDirectory::write(const std::string& name, std::string_view content) const {

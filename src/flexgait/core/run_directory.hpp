@@ -11,8 +11,8 @@ namespace flexgait {
 
 class RunDirectory {
  public:
-  /// Creates `path` (and its parents). Throws std::system_error if that fails or if `path`
-  /// exists and is not a directory.
+  /// Creates `path` (and its parents). Throws UsageError naming --out if that fails or if `path`
+  /// exists and is not a directory. Commands make it after every check and before computing.
   explicit RunDirectory(std::filesystem::path path);
   const std::filesystem::path& path() const { return path_; }
   /// Writes `name` inside the run directory atomically.

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <charconv>
 #include <chrono>
 #include <map>
 #include <mutex>
@@ -17,17 +18,22 @@
 namespace flexgait {
 namespace {
 
-// Finished rows of a partial file: complete CSV records "index,cells"; a torn last record is dropped.
-std::map<int, std::string> read_partial(const std::filesystem::path& p, int count) {
+// Finished rows of a partial file: complete CSV records "index,cells" with an index in [0, count)
+// written in full (digits only) and as many fields as the header has columns. Anything else (a torn
+// last record, a line that is not the sweep's) is left out, to be computed again; *rejected counts it.
+std::map<int, std::string> read_partial(const std::filesystem::path& p, const SweepJob& job, int* rejected) {
+  const std::size_t columns = parse_csv(job.header + "\n").front().fields.size() + 1;
   std::map<int, std::string> rows;
+  *rejected = 0;
   for (const CsvRecord& record : parse_csv(read_text_file(p))) {
-    const std::size_t comma = record.text.find(',');
-    if (comma == std::string::npos) continue;
-    try {
-      const int i = std::stoi(record.text.substr(0, comma));
-      if (i >= 0 && i < count) rows[i] = record.text.substr(comma + 1);
-    } catch (const std::exception&) {
-    }
+    const std::string& index = record.fields.front();
+    int i = -1;
+    const auto [end, ec] = std::from_chars(index.data(), index.data() + index.size(), i);
+    const bool valid = record.fields.size() == columns && !index.empty() && index.front() != '-' &&
+                       ec == std::errc() && end == index.data() + index.size() && i < job.count &&
+                       record.text.rfind(index + ",", 0) == 0 && rows.count(i) == 0;
+    if (valid) rows[i] = record.text.substr(index.size() + 1);
+    else ++*rejected;
   }
   return rows;
 }
@@ -51,7 +57,13 @@ SweepOutcome run_sweep(const SweepJob& job) {
   const auto signature = job.dir / (job.name + ".signature");
   const auto final_csv = job.dir / (job.name + ".csv");
   std::map<int, std::string> rows;
-  if (job.resume) rows = read_partial(partial, job.count);
+  if (job.resume) {
+    int rejected = 0;
+    rows = read_partial(partial, job, &rejected);
+    if (rejected > 0)
+      fmt::print(stderr, "note: --resume: {} line(s) of {} are not finished points of this sweep; computed again\n",
+                 rejected, partial.string());
+  }
   if (!job.resume) std::filesystem::remove(partial);
   write_file_atomic(signature, job.signature);
   // Rewrite the partial file with only complete rows, so a torn line does not linger.

@@ -2,11 +2,33 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace flexgait {
 
 std::string format_number(double v) { return fmt::format("{}", v); }
+
+std::string one_line(std::string_view text, std::size_t max_bytes) {
+  std::size_t keep = std::min(text.size(), max_bytes);
+  while (keep > 0 && keep < text.size() && (static_cast<unsigned char>(text[keep]) & 0xC0) == 0x80) --keep;
+  std::string out;
+  out.reserve(keep + 16);
+  for (const char ch : text.substr(0, keep)) {
+    const auto byte = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      case '\0': out += "\\0"; break;
+      default:
+        if (byte < 0x20 || byte == 0x7f) out += fmt::format("\\x{:02x}", byte);
+        else out += ch;
+    }
+  }
+  if (keep < text.size()) out += fmt::format("... ({} bytes)", text.size());
+  return out;
+}
 
 std::string csv_field(std::string_view text) {
   if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);

@@ -1,5 +1,5 @@
 #pragma once
-/// \file text.hpp  Deterministic number formatting and CSV building.
+/// \file text.hpp  Deterministic number formatting, CSV building, one-line message text.
 #include <initializer_list>
 #include <string>
 #include <string_view>
@@ -9,6 +9,11 @@ namespace flexgait {
 
 /// Shortest decimal text that reads back to the identical double ("nan"/"inf" as such).
 std::string format_number(double v);
+
+/// `text` made fit for a one-line message: control characters escaped (\n, \r, \t, \\0, others as
+/// \xHH, DEL too) and, past `max_bytes`, cut (at a UTF-8 character boundary) with
+/// "... (N bytes)" appended. Every error message that echoes a user's value goes through it.
+std::string one_line(std::string_view text, std::size_t max_bytes = 120);
 
 /// One CSV field as RFC 4180 writes it: the text itself, or, when it holds a comma, a double
 /// quote, a carriage return or a line feed, the text in double quotes with each quote doubled.

@@ -27,7 +27,7 @@ struct Accumulator {  // root mean square and maximum of |value|
 
 WalkRunParams walk_run_from_config(const Config& c) {
   WalkRunParams p = record_from_config<WalkRunParams>(c);
-  p.plant = humanoid::plant_from_config(c);  // with its cross-key check
+  check_with_origin(c, [&] { p.plant = humanoid::plant_from_config(c); });  // with its cross-key check
   p.controller_robot = p.robot;
   return p;
 }

@@ -40,6 +40,8 @@ struct RobotParams {
   double arm_com_z = 0.04;        ///< arm centre above the waist joint [m]
   double head_z = 0.42;           ///< head centre above the waist joint [m]
 
+  /// listed_mass() of the default links, the least total mass (robot.total_mass's lower bound) [kg].
+  static constexpr double kListedMass = 43.724;
   /// Mass of the listed links (both legs, pelvis, chest, arms, head) [kg].
   double listed_mass() const {
     return 2 * (m_hip_yaw + m_hip_roll + m_thigh + m_shank + m_ankle_pitch + m_ankle_roll + m_foot) + m_pelvis +
@@ -49,7 +51,7 @@ struct RobotParams {
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("robot.total_mass", s.total_mass,
-      {.unit = "kg", .doc = "total mass; the mass beyond the listed links goes to pelvis and chest", .bounds = closed(43.72, 500)});
+      {.unit = "kg", .doc = "total mass; the mass beyond the listed links goes to pelvis and chest", .bounds = closed(kListedMass, 500)});
     v("robot.thigh", s.thigh, {.unit = "m", .doc = "hip pitch axis to knee", .bounds = left_open(0.05, 2)});
     v("robot.shank", s.shank, {.unit = "m", .doc = "knee to ankle axes", .bounds = left_open(0.05, 2)});
     v("robot.ankle_to_sole", s.ankle_to_sole, {.unit = "m", .doc = "ankle axes to the sole", .bounds = closed(0.01, 1)});

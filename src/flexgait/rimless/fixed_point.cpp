@@ -27,24 +27,23 @@ FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOpt
   rep.residual = nr.residual;
   rep.history = nr.history;
   rep.point.z = nr.z;
+  // A failed search has no Jacobian to speak of (Newton's may stop half-filled when a difference
+  // step fails): multipliers, stability and the cycle's figures belong to a fixed point only.
+  if (!nr.converged) return rep;
   rep.jacobian_fd = nr.jacobian;
   rep.jacobian = nr.jacobian;
-  if (nr.converged) {
-    Eigen::MatrixXd exact;
-    if (auto why = map.jacobian(rep.point, exact)) {
-      rep.jacobian_note = *why;
-    } else {
-      rep.jacobian = exact;
-      rep.jacobian_exact = true;
-      rep.jacobian_difference = (exact - nr.jacobian).lpNorm<Eigen::Infinity>();
-    }
+  Eigen::MatrixXd exact;
+  if (auto why = map.jacobian(rep.point, exact)) {
+    rep.jacobian_note = *why;
+  } else {
+    rep.jacobian = exact;
+    rep.jacobian_exact = true;
+    rep.jacobian_difference = (exact - nr.jacobian).lpNorm<Eigen::Infinity>();
   }
-  if (rep.jacobian.size() > 0) {
-    rep.multipliers = numerics::floquet_multipliers(rep.jacobian);
-    rep.multipliers_fd = numerics::floquet_multipliers(rep.jacobian_fd);
-    rep.stable = nr.converged;
-    for (const auto& m : rep.multipliers) rep.stable = rep.stable && std::abs(m) < 1.0;
-  }
+  rep.multipliers = numerics::floquet_multipliers(rep.jacobian);
+  rep.multipliers_fd = numerics::floquet_multipliers(rep.jacobian_fd);
+  rep.stable = true;
+  for (const auto& m : rep.multipliers) rep.stable = rep.stable && std::abs(m) < 1.0;
   const MapStep step = map.apply(rep.point);
   if (!step.failure) {
     rep.gait = step.gait;
@@ -76,21 +75,26 @@ std::string fixed_point_json(const FixedPointReport& r) {
   j["section"] = std::string(name_of(r.point.section));
   j["mode"] = r.point.flight ? "flight" : mode_name(r.point.mode);
   j["state_names"] = r.point.names();
-  j["state"] = std::vector<double>(r.point.z.data(), r.point.z.data() + r.point.z.size());
-  nlohmann::ordered_json mult = nlohmann::ordered_json::array();
-  for (const auto& m : r.multipliers) mult.push_back({m.real(), m.imag()});
-  j["multipliers"] = mult;
-  nlohmann::ordered_json mult_fd = nlohmann::ordered_json::array();
-  for (const auto& m : r.multipliers_fd) mult_fd.push_back({m.real(), m.imag()});
-  j["multipliers_fd"] = mult_fd;
+  const std::vector<double> z(r.point.z.data(), r.point.z.data() + r.point.z.size());
+  // Figures of a fixed point: null when the search failed (never numbers of no meaning).
+  auto if_converged = [&](auto value) { return r.converged ? nlohmann::ordered_json(value) : nlohmann::ordered_json(); };
+  auto pairs = [](const std::vector<std::complex<double>>& ms) {
+    nlohmann::ordered_json a = nlohmann::ordered_json::array();
+    for (const auto& m : ms) a.push_back({m.real(), m.imag()});
+    return a;
+  };
+  j["state"] = if_converged(z);
+  if (!r.converged && !z.empty()) j["last_iterate"] = z;
+  j["multipliers"] = if_converged(pairs(r.multipliers));
+  j["multipliers_fd"] = if_converged(pairs(r.multipliers_fd));
   j["jacobian_exact"] = r.jacobian_exact;
   j["jacobian_difference"] = r.jacobian_difference;
   if (!r.jacobian_note.empty()) j["jacobian_note"] = r.jacobian_note;
   j["stable"] = r.stable;
-  j["gait"] = r.gait;
-  j["period"] = r.period;
-  j["speed"] = r.speed;
-  j["dissipated_per_cycle"] = r.dissipated;
+  j["gait"] = if_converged(r.gait);
+  j["period"] = if_converged(r.period);
+  j["speed"] = if_converged(r.speed);
+  j["dissipated_per_cycle"] = if_converged(r.dissipated);
   nlohmann::ordered_json hist = nlohmann::ordered_json::array();
   for (const auto& h : r.history)
     hist.push_back({{"iteration", h.iteration}, {"residual", h.residual}, {"step", h.step_norm}, {"damping", h.damping}});

@@ -35,13 +35,17 @@ inline AnalysisOptions analysis_from_config(const Config& config) { return recor
 /// The simulation options of a Poincaré-map evaluation: the analysis tolerances, no log.
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt);
 
+/// The outcome of a fixed-point search. Every member has a defined value in every outcome: when
+/// the search failed (`converged` false, `failure` says why) the Jacobians and multipliers are
+/// empty and gait, period, speed and dissipated keep their zero defaults; `point` holds the last
+/// Newton iterate, or an empty z when the transient never reached the section.
 struct FixedPointReport {
   bool converged = false;
   std::string failure;                 ///< empty when converged
   int iterations = 0;
-  double residual = 0;                 ///< ||P(z) - z||_inf
+  double residual = 0;                 ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)
   std::vector<numerics::NewtonIteration> history;
-  SectionState point;                  ///< the fixed point (or the last iterate)
+  SectionState point;                  ///< the fixed point (or the last iterate; z empty: none)
   Eigen::MatrixXd jacobian;            ///< ∂P/∂z: variational (exact) when available, else central differences
   bool jacobian_exact = false;         ///< from forward sensitivities and saltation matrices
   Eigen::MatrixXd jacobian_fd;         ///< ∂P/∂z by central differences (Newton's)
@@ -65,7 +69,9 @@ FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOpt
                                        const SectionState& guess);
 
 /// The report as JSON (keys: converged, iterations, residual, state, state_names, mode, multipliers
-/// as [re, im] pairs, stable, gait, period, speed, dissipated_per_cycle, history, failure).
+/// as [re, im] pairs, stable, gait, period, speed, dissipated_per_cycle, history, failure). A failed
+/// search has null state, multipliers, gait, period, speed and dissipated_per_cycle, and its last
+/// Newton iterate (if any) under last_iterate.
 std::string fixed_point_json(const FixedPointReport& report);
 
 }  // namespace flexgait::rimless

@@ -19,18 +19,26 @@ void check_sweep_param(const Schema& schema, const std::string& param) {
     throw ConfigError(param, fmt::format("--param: key '{}' is not a real number; allowed: a real-valued key", param));
 }
 
-Config sweep_point_config(const Config& base, const SweepSpec& spec, int i) {
+Config config_at(const Config& base, const std::string& param, const std::string& value, const std::string& origin) {
   Config c = base;
-  const std::string v = format_number(spec.value(i));
-  const std::string origin = fmt::format("sweep point {}", i);
-  if (spec.param == "rimless.mu") {
-    c.set("rimless.mu_s", v, origin);
-    c.set("rimless.mu_k", v, origin);
+  if (param == "rimless.mu") {
+    c.set("rimless.mu_s", value, origin);
+    c.set("rimless.mu_k", value, origin);
   } else {
-    c.set(spec.param, v, origin);
+    c.set(param, value, origin);
   }
-  validate(wheel_from_config(c), initial_from_config(c));
+  check_with_origin(c, [&] { validate(wheel_from_config(c), initial_from_config(c)); });
   return c;
+}
+
+Config sweep_point_config(const Config& base, const SweepSpec& spec, int i) {
+  return config_at(base, spec.param, format_number(spec.value(i)), fmt::format("sweep point {}", i));
+}
+
+void check_sweep(const Config& base, const SweepSpec& spec) {
+  config_at(base, spec.param, format_number(spec.from), "--from");
+  config_at(base, spec.param, format_number(spec.to), "--to");
+  for (int i = 0; i < spec.count; ++i) sweep_point_config(base, spec, i);
 }
 
 std::string sweep_header() {

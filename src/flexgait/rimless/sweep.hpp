@@ -22,8 +22,16 @@ struct SweepSpec {
 /// Throws ConfigError if the key is unknown or not a real number.
 void check_sweep_param(const Schema& schema, const std::string& param);
 
+/// The configuration with `param` (rimless.mu: mu_s and mu_k) set to the text `value`, checked as
+/// a --set of it is (domain, then the wheel's cross-field checks); a ConfigError names `origin`.
+Config config_at(const Config& base, const std::string& param, const std::string& value, const std::string& origin);
+
 /// The configuration of point i (validated).
 Config sweep_point_config(const Config& base, const SweepSpec& spec, int i);
+
+/// Checks a whole sweep before anything is written: its ends (errors name --from and --to), then
+/// every point.
+void check_sweep(const Config& base, const SweepSpec& spec);
 
 /// CSV header and cells of one point (no index). Thread-safe.
 std::string sweep_header();

@@ -17,7 +17,7 @@ WheelSetup wheel_setup(Config config) {
   WheelSetup s{std::move(config), {}, {}, {}};
   s.wheel = wheel_from_config(s.config);
   s.initial = initial_from_config(s.config);
-  validate(s.wheel, s.initial);
+  check_with_origin(s.config, [&] { validate(s.wheel, s.initial); });
   s.sim = simulation_from_config(s.config);
   return s;
 }
