@@ -194,6 +194,18 @@ expect_usage_error stagnation-map-key rimless.Q rimless analysis stagnation-map 
 expect_usage_error stagnation-map-value rimless.I rimless analysis stagnation-map \
   --config "$src/configs/rimless-stagnation.yaml" --vary rimless.I=-1
 
+# Continuation of the gait (issue 18): the rigid wheel over the slope, same bytes twice; bad input.
+cont=(rimless continuation --model rigid --param rimless.slope --from 0.05 --to 0.15 --no-plot)
+"$exe" "${cont[@]}" --out "$work/cont1" >/dev/null 2>"$work/err"
+check "continuation exits 0: $(cat "$work/err")" test $? -eq 0
+check "continuation: branch.csv columns" test "$(head -1 "$work/cont1/branch.csv")" = \
+  "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event"
+check "continuation reaches the end" grep -q "^0.15," "$work/cont1/branch.csv"
+"$exe" "${cont[@]}" --out "$work/cont2" >/dev/null 2>&1
+check "continuation: same bytes twice" cmp -s "$work/cont1/branch.csv" "$work/cont2/branch.csv"
+expect_usage_error continuation-key rimless.nothing rimless continuation --param rimless.nothing --from 0.05 --to 0.1
+expect_usage_error continuation-empty-interval "--to" rimless continuation --param rimless.slope --from 0.1 --to 0.1
+
 # Humanoid stiffness bench.
 "$exe" humanoid bench --out "$work/bench" --json --no-plot >"$work/bench.json" 2>"$work/err"
 check "humanoid bench exits 0: $(cat "$work/err")" test $? -eq 0
