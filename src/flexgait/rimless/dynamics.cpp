@@ -87,6 +87,7 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
   a.F = {w.m * w.g * std::sin(w.slope), -w.m * w.g * std::cos(w.slope), 0.0};
   constexpr double wb = kStickStabilization;
   d.failure = nullptr;
+  d.jammed = false;
   for (int i = 0; i < contacts.count; ++i) {
     const LegKinematics& g = d.leg[i] = leg_kinematics(w, contacts.leg[i], q);
     ContactForce& cf = d.force[i];
@@ -108,7 +109,10 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
       // neither leave, slip on, nor be stopped (README, Stribeck friction).
       const SlipLaw law = slip_law(w, s, g.cdot);
       cf.D = slip_denominator(g, s, law.mu);
-      if (!(cf.D > 0)) d.failure = "slip with a non-positive friction denominator (Painleve jam)";
+      if (!(cf.D > 0)) {
+        d.failure = "slip with a non-positive friction denominator (Painleve jam)";
+        d.jammed = true;
+      }
       cf.T = -s * law.mu * g.f / cf.D;
       for (int j = 0; j < 3; ++j) a.F[j] += g.A[j] * cf.T;
     }

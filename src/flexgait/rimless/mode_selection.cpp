@@ -164,15 +164,6 @@ double point_mass_thetad(const WheelParams& w, const ContactSet& after, std::spa
   return contact_dynamics(w, after, y).thetad;
 }
 
-// Whether a slipping foot of `trial` has a non-positive friction denominator at y.
-bool trial_jams(const WheelParams& w, const ContactSet& trial, std::span<const double> y) {
-  for (int j = 0; j < trial.count; ++j) {
-    const int s = slip_sign(trial.mode[j]);
-    if (s != 0 && !(slip_denominator(w, leg_kinematics(w, trial.leg[j], y), s) > 0)) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 void apply_reset(const WheelParams& w, const ContactSet& current, std::span<const GuardEvent> events,
@@ -347,7 +338,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     }
     const Dynamics d = contact_dynamics(w, trial, yc);
     const char* why = d.failure;
-    jam_blocked = jam_blocked || (why != nullptr && trial_jams(w, trial, yc));
+    jam_blocked = jam_blocked || d.jammed;
     for (int i = 0; i < n && why == nullptr; ++i) {
       const Option o = feet[i].options[pick[i]];
       if (o == Option::Leave) {
