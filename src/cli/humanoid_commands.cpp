@@ -34,13 +34,15 @@ int bench(const RunOptions& run) {
   if (run.json) {
     fmt::print("{}", summary);
   } else {
-    fmt::print("stiffness bench: k_fit = {:.2f} Nm/rad (true {:.2f}), R² = {:.5f}\n", r.k_fit, params.actuator.k,
+    fmt::print("stiffness bench: k_fit = {:.6g} Nm/rad (true {:.6g}), R² = {:.5f}\n", r.k_fit, params.actuator.k,
                r.r_squared);
     fmt::print("max |link − command|: {:.5f} rad uncompensated, {:.5f} rad compensated\n", r.max_error_uncompensated,
                r.max_error_compensated);
     fmt::print("results in {}\n", dir.path().string());
   }
-  return 0;
+  if (r.failure.empty()) return 0;
+  fmt::print(stderr, "error: the stiffness bench failed: {}\n", one_line(r.failure, 1000));
+  return 1;
 }
 
 /// A walk's files under `dir`/`sub` (sub "" or "name/"); returns summary.json's text.
@@ -98,7 +100,7 @@ int compensation_study(const RunOptions& run) {
     fmt::print("results in {}\n", dir.path().string());
   }
   for (const auto& r : results)
-    if (r.metrics.fell) return 1;
+    if (r.metrics.fell || !r.metrics.failure.empty()) return 1;
   return 0;
 }
 
@@ -124,6 +126,8 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
                  row["pelvis_roll_error_max_on"].get<double>(), row["fell_on"].get<bool>() ? " (fell)" : "");
     fmt::print("results in {}\n", dir.path().string());
   }
+  for (const auto& r : results)  // a fall is a result here; a failed simulation is not
+    if (!r.metrics.failure.empty()) return 1;
   return 0;
 }
 
@@ -163,9 +167,15 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   if (run.json) {
     fmt::print("{}", summary);
   } else {
-    if (m.fell)
+    if (!m.failure.empty())
+      fmt::print("FAILED at t = {:.2f} s after {} of {} steps: {}\n", m.failure_time, m.steps_completed, m.steps_planned,
+                 one_line(m.failure, 1000));
+    else if (m.fell)
       fmt::print("FELL at t = {:.2f} s ({}) after {} of {} steps\n", m.fall_time, m.fall_reason, m.steps_completed,
                  m.steps_planned);
+    else if (m.safe_stop)
+      fmt::print("STOPPED SAFELY at t = {:.2f} s after {} of {} steps: {}\n", m.safe_stop_time, m.steps_completed,
+                 m.steps_planned, m.safe_stop_reason);
     else
       fmt::print("walked {} of {} steps in {:.1f} s (real-time factor {:.1f})\n", m.steps_completed, m.steps_planned,
                  m.simulated_time, m.real_time_factor);
@@ -173,7 +183,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
                m.zmp_rms_x, m.zmp_rms_y, m.pelvis_roll_error_max, m.pelvis_pitch_error_max);
     fmt::print("results in {}\n", dir.path().string());
   }
-  return m.fell ? 1 : 0;
+  return m.completed() ? 0 : 1;  // a fall, a failure, a safe stop or a missing step: not a completed walk
 }
 
 }  // namespace

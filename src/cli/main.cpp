@@ -9,6 +9,7 @@
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
+#include "flexgait/humanoid/mujoco_messages.hpp"
 #include "flexgait/version.hpp"
 #include "humanoid_commands.hpp"
 #include "reproduce_command.hpp"
@@ -40,6 +41,7 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  flexgait::humanoid::route_mujoco_messages_to_stderr();  // no MUJOCO_LOG.TXT, nothing on stdout
   CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
   app.set_version_flag("--version", std::string("flexgait ") + flexgait::kVersion);
   app.require_subcommand(1);

@@ -60,10 +60,14 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
     fmt::print("energy: initial {:.6f} J, final {:.6f} J, damping {:.6f} J, friction {:.6f} J, balance error {:.2e}\n",
                result.energy_initial, result.energy_final, result.work_damping, result.work_friction,
                result.energy_balance_error);
-    if (result.failure) fmt::print("stopped early: {}\n", *result.failure);
     fmt::print("results in {}\n", dir.path().string());
   }
-  return 0;
+  // The run did not do what was asked (its steps): the wheel stopped, rolled back or slid away,
+  // or the solver failed. The files are written; the reason is in summary.json's failure too.
+  if (!result.failure) return 0;
+  fmt::print(stderr, "error: stopped after {} of {} steps: {}\n", result.steps_completed, s.sim.steps,
+             one_line(*result.failure, 1000));
+  return 1;
 }
 
 struct FixedPointArgs {

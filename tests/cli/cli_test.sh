@@ -253,5 +253,24 @@ expect_usage_error mismatch-bad-scale "scales" humanoid mismatch --scales 0
 "$exe" reproduce --help >"$work/help3" 2>&1
 check "reproduce --help mentions index.html" grep -q "index.html" "$work/help3"
 
+# Outcomes decide the exit code (issue 17, items 4, 5, 7, 12): an early stop or a failed
+# simulation is exit 1 with the reason; MuJoCo's messages go to stderr (stdout stays JSON) and
+# no MUJOCO_LOG.TXT appears; an infeasible start names its keys (exit 2).
+expect_usage_error many-legs-sag "rimless.legs = 50" rimless simulate --set rimless.legs=50
+expect_usage_error soft-legs "rimless.K = 1e-06" rimless simulate --set rimless.K=1e-6
+(cd "$work" && timeout 120 "$exe" rimless simulate --set rimless.legs=3 --no-plot --out "$work/legs3" >/dev/null 2>"$work/err")
+check "a wheel that stops early exits 1 (got $?)" test $? -eq 1
+check "the early stop is named on stderr" grep -q "error: stopped after" "$work/err"
+(cd "$work" && timeout 120 "$exe" humanoid walk --set walk.steps=2 --set plant.k_joint=1e308 --json --no-plot \
+  --out "$work/unstable" >"$work/unstable.json" 2>"$work/err")
+check "an unstable walk exits 1 (got $?)" test $? -eq 1
+check "its stdout is JSON naming the failure" python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['failure'].startswith('MuJoCo:'), d" "$work/unstable.json"
+check "MuJoCo's warnings on stderr" grep -q "warning: MuJoCo:" "$work/err"
+(cd "$work" && timeout 120 "$exe" humanoid bench --set plant.k_joint=1e308 --no-plot --out "$work/bench-unstable" \
+  >/dev/null 2>"$work/err")
+check "an unstable bench exits 1 (got $?)" test $? -eq 1
+check "the bench failure is named" grep -q "error: the stiffness bench failed" "$work/err"
+check "no MUJOCO_LOG.TXT" test ! -e "$work/MUJOCO_LOG.TXT"
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

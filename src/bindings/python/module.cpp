@@ -8,6 +8,7 @@
 #include "convert.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/humanoid/mujoco_messages.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/version.hpp"
@@ -47,6 +48,9 @@ PYBIND11_MODULE(flexgait, m) {
       "    walk = flexgait.humanoid.walk({'walk.steps': 4}, compensation='off')\n"
       "    walk['metrics']['pelvis_roll_error_max']\n";
   m.attr("__version__") = flexgait::kVersion;
+  // MuJoCo's messages to stderr, not to stdout and MUJOCO_LOG.TXT; hooks another module (MuJoCo's
+  // own Python bindings) has set are left alone.
+  if (mju_user_warning == nullptr && mju_user_error == nullptr) flexgait::humanoid::route_mujoco_messages_to_stderr();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -32,7 +32,7 @@ std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& s
 }
 
 double support_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
-  if (polygon.size() < 3) return -std::numeric_limits<double>::infinity();
+  if (polygon.size() < 3) return std::numeric_limits<double>::quiet_NaN();  // no support, no margin
   double margin = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector2d a = polygon[i], b = polygon[(i + 1) % polygon.size()];

@@ -13,7 +13,8 @@ namespace flexgait::experiments {
 /// Convex hull (counter-clockwise) of the corners of the given sole rectangles.
 std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& soles, double length, double width);
 
-/// Signed distance from p to the boundary of the convex polygon (ccw): positive inside [m].
+/// Signed distance from p to the boundary of the convex polygon (ccw): positive inside [m]; NaN
+/// when the polygon has fewer than three corners (no sole on the floor: the margin is undefined).
 double support_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p);
 
 }  // namespace flexgait::experiments

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
+#include "flexgait/humanoid/mujoco_messages.hpp"
 #include "flexgait/humanoid/plant.hpp"
 
 namespace flexgait::experiments {
@@ -22,6 +24,14 @@ struct Accumulator {  // root mean square and maximum of |value|
   }
   double rms() const { return n > 0 ? std::sqrt(sum2 / n) : 0.0; }
 };
+
+bool finite_truth(const humanoid::GroundTruth& g) {
+  auto finite = [](const auto& values) {
+    return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
+  };
+  return finite(g.link_angle) && finite(g.link_velocity) && finite(g.motor_angle) && finite(g.pelvis_pos) &&
+         finite(g.pelvis_quat) && finite(g.com);
+}
 
 }  // namespace
 
@@ -131,6 +141,15 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     if (observe) observe(plant);
     g = plant.truth();
     const double t_now = g.t;
+
+    // The simulation's own failures end the walk: MuJoCo's warnings (it has already reset an
+    // unstable state or dropped contacts), or a state that is no longer finite.
+    if (g.warnings > 0) m.failure = "MuJoCo: " + humanoid::mujoco_warnings_text(plant.data());
+    else if (!finite_truth(g)) m.failure = "the simulation diverged: a non-finite state";
+    if (!m.failure.empty()) {
+      m.failure_time = t_now;
+      break;
+    }
 
     // Falls.
     const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());

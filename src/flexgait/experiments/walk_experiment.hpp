@@ -100,6 +100,10 @@ struct WalkMetrics {
   bool fell = false;
   std::string fall_reason;         ///< "" when it did not fall
   double fall_time = 0;            ///< [s]
+  /// Why the simulation itself failed ("" when it did not): a MuJoCo warning (an unstable or
+  /// overfull simulation) or a non-finite state. The walk ends there; its scores cover what ran.
+  std::string failure;
+  double failure_time = 0;         ///< [s]
   int steps_planned = 0, steps_completed = 0;
   double zmp_rms_x = 0, zmp_rms_y = 0;  ///< true ZMP − reference over the walk [m]
   double zmp_max_x = 0, zmp_max_y = 0;
@@ -137,6 +141,8 @@ struct WalkMetrics {
   std::string safe_stop_reason;                              ///< "" without a safe stop
   double safe_stop_time = 0;                                 ///< [s]
 
+  /// The walk ran to its planned end: every step landed, no fall, no safe stop, no failure.
+  bool completed() const { return !fell && failure.empty() && !safe_stop && steps_completed == steps_planned; }
   /// The output compensator ran: its estimator's scores apply.
   bool has_estimate() const {
     return compensation == compensation::CompensationMode::kOutput || compensation == compensation::CompensationMode::kBoth;
@@ -151,6 +157,9 @@ struct WalkMetrics {
     v("fell", s.fell, {.doc = "the robot fell (pelvis too low or tilted, a body other than a sole on the floor)"});
     v("fall_reason", s.fall_reason, {.doc = "why it fell; empty when it did not"});
     v("fall_time", s.fall_time, {.unit = "s", .doc = "when it fell"});
+    v("failure", s.failure,
+      {.doc = "why the simulation failed (a MuJoCo warning or a non-finite state); empty when it did not"});
+    v("failure_time", s.failure_time, {.unit = "s", .doc = "when the simulation failed"});
     v("steps_planned", s.steps_planned, {.doc = "footsteps in the plan"});
     v("steps_completed", s.steps_completed, {.doc = "footsteps landed"});
     v("zmp_rms_x", s.zmp_rms_x, {.unit = "m", .doc = "rms of true ZMP − reference, x"});

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/humanoid/mujoco_messages.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -231,7 +232,7 @@ GroundTruth HumanoidPlant::truth() const {
   }
   g.normal_force = fz;
   if (fz > 1e-9) g.zmp = {mx / fz, my / fz};
-  for (int i = 0; i < mjNWARNING; ++i) g.warnings += data_->warning[i].number;
+  g.warnings = mujoco_warning_count(data_);
   return g;
 }
 

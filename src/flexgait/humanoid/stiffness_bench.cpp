@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/humanoid/mujoco_messages.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -54,6 +55,7 @@ BenchParams bench_from_config(const Config& c) {
 BenchResult run_stiffness_bench(const BenchParams& p) {
   Model model{load_mjcf(bench_mjcf(p))};
   const double weight_arm = p.load_mass * 9.81 * p.arm_length;  // m g l [Nm]
+  std::string failure;  // the first sweep's failure ends the bench
   auto sweep = [&](double k_comp) {
     Data data{mj_makeData(model.m)};
     mjModel* m = model.m;
@@ -68,7 +70,11 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
       const double desired = p.angle_min + (p.angle_max - p.angle_min) * i / (p.poses - 1);
       // Input compensator (eq. 9) with the bench's gravity model: the arm sags by τ_g / k.
       const double command = k_comp > 0 ? desired - weight_arm * std::cos(desired) / k_comp : desired;
-      for (int s = 0; s < settle; ++s) drive.step(m, d, &command);
+      for (int s = 0; s < settle && mujoco_warning_count(d) == 0; ++s) drive.step(m, d, &command);
+      if (mujoco_warning_count(d) > 0) failure = fmt::format("pose {}: MuJoCo: {}", i, mujoco_warnings_text(d));
+      else if (!std::isfinite(d->qpos[0]) || !std::isfinite(drive.states()[0].theta_m))
+        failure = fmt::format("pose {}: the simulation diverged: a non-finite state", i);
+      if (!failure.empty()) break;
       BenchSample b;
       b.command = desired;
       b.encoder = encoder_reading(p.actuator, drive.states()[0].theta_m);
@@ -81,6 +87,10 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
   BenchResult r;
   r.k_true = p.actuator.k;
   r.uncompensated = sweep(0.0);
+  if (!failure.empty()) {
+    r.failure = "uncompensated sweep, " + failure;
+    return r;
+  }
   // Least squares of error = link − encoder against τ_g: slope 1/k (the load drives θ positive).
   double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
   const double n = static_cast<double>(r.uncompensated.size());
@@ -98,7 +108,16 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
   }
   r.k_fit = 1.0 / slope;
   r.r_squared = 1.0 - ss_res / ss_tot;
+  if (!std::isfinite(r.k_fit) || r.k_fit <= 0) {
+    r.failure = fmt::format("no finite positive stiffness fits the sweep (k_fit = {})", r.k_fit);
+    r.k_fit = 0;
+    return r;
+  }
   r.compensated = sweep(r.k_fit);
+  if (!failure.empty()) {
+    r.failure = "compensated sweep, " + failure;
+    return r;
+  }
   r.min_residual_compensated = INFINITY;
   r.max_residual_compensated = -INFINITY;
   for (const auto& b : r.uncompensated) r.max_error_uncompensated = std::max(r.max_error_uncompensated, std::abs(b.link - b.command));

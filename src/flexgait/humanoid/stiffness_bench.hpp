@@ -74,6 +74,9 @@ struct BenchResult {
   double max_error_newton = 0, max_error_conventional = 0;  ///< max |estimate − link| over both sweeps [rad]
   double max_newton_conventional = 0;                       ///< max |Newton − conventional| [rad]
   int max_newton_iterations = 0;
+  /// Why the bench failed ("" when it did not): a MuJoCo warning or a non-finite state in a
+  /// sweep, or no finite fit. The scores after the failed part are left at zero.
+  std::string failure;
 
   /// (k_fit − k_true) / k_true.
   double k_fit_error() const { return (k_fit - k_true) / k_true; }
@@ -94,6 +97,7 @@ struct BenchResult {
       {.unit = "rad", .doc = "max |conventional estimate − link|"});
     v("newton_conventional_max", s.max_newton_conventional, {.unit = "rad", .doc = "max |Newton − conventional|"});
     v("newton_iterations_max", s.max_newton_iterations, {.doc = "Newton iterations at most, one pose"});
+    v("failure", s.failure, {.doc = "why the bench failed (a MuJoCo warning, a non-finite state or fit); empty when it did not"});
   }
 };
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "flexgait/core/config.hpp"
 #include "flexgait/numerics/ode_integrator.hpp"
 #include "flexgait/rimless/dynamics.hpp"
 #include "flexgait/rimless/flow.hpp"
@@ -100,6 +101,27 @@ std::vector<double> initial_state(const WheelParams& w, const InitialState& init
   y[S::yd] = -L * init.omega * std::sin(init.beta);
   y[S::thetad] = init.omega;
   return y;
+}
+
+void check_initial_state(const WheelParams& w, const InitialState& init) {
+  const double delta = w.m * w.g * std::cos(w.slope) / w.K;  // as initial_state()
+  if (!(delta < w.L0))
+    throw ConfigError("rimless.K", fmt::format("rimless.K = {} with rimless.m = {}, rimless.g = {}, rimless.slope = {}: "
+                                               "the stance leg's static compression m g cos(slope) / K = {:.6g} m is not "
+                                               "below rimless.L0 = {} m (a stiffer leg or a lighter wheel is needed)",
+                                               w.K, w.m, w.g, w.slope, delta, w.L0));
+  const std::vector<double> y = initial_state(w, init);
+  for (int k = 1; k < w.legs; ++k) {
+    const double h = foot_height(w, k, y);
+    if (h >= -1e-12 * w.L0) continue;  // the run's own test at t = 0
+    throw ConfigError(
+        "rimless.legs",
+        fmt::format("rimless.legs = {} with initial.beta = {}, rimless.K = {}, rimless.m = {}, rimless.g = {}, "
+                    "rimless.L0 = {}: foot {} starts {:.3g} m below the ground (the stance leg's static compression "
+                    "{:.3g} m exceeds the clearance of the neighbouring feet, L0 (1 - cos(2 pi / legs)) = {:.3g} m at "
+                    "beta = 0); fewer legs, a stiffer rimless.K or a smaller |initial.beta| is needed",
+                    w.legs, init.beta, w.K, w.m, w.g, w.L0, k, -h, delta, w.L0 * (1 - std::cos(2 * w.alpha()))));
+  }
 }
 
 namespace {

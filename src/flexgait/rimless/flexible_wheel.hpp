@@ -23,6 +23,10 @@ namespace flexgait::rimless {
 /// β = initial.beta, foot at c = 0, leg compressed statically by m g cos φ / K, and the wheel
 /// rolling about the foot at θ̇ = initial.omega (ċ = 0, δ̇ = 0).
 std::vector<double> initial_state(const WheelParams& w, const InitialState& initial);
+/// Throws ConfigError naming the keys involved when initial_state() is not a valid start: the
+/// stance leg's static compression m g cos φ / K is not below L0, or another foot starts below
+/// the ground (a wheel of many legs sags more than the clearance of its neighbouring feet).
+void check_initial_state(const WheelParams& w, const InitialState& initial);
 
 /// The integrator's options of a run: SimulationOptions' tolerances and method, and the error
 /// weights of the velocities (held to rtol times 1 % of sqrt(g L0), for the energy ledger).

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 
 namespace flexgait::rimless {
@@ -19,6 +20,21 @@ WheelSetup wheel_setup(Config config) {
   s.initial = initial_from_config(s.config);
   check_with_origin(s.config, [&] { validate(s.wheel, s.initial); });
   s.sim = simulation_from_config(s.config);
+  if (s.sim.model == Model::Flexible)
+    check_with_origin(s.config, [&] {
+      try {
+        check_initial_state(s.wheel, s.initial);
+      } catch (const ConfigError& e) {  // blame the first of the keys involved that the user set
+        std::string key = e.key();
+        for (const char* k : {"rimless.legs", "rimless.K", "rimless.m", "rimless.g", "rimless.L0", "rimless.slope",
+                              "initial.beta"})
+          if (s.config.origin(k) != "default") {
+            key = k;
+            break;
+          }
+        throw ConfigError(key, e.what());
+      }
+    });
   return s;
 }
 
