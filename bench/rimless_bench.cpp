@@ -22,13 +22,15 @@ WheelParams wheel(double mu) {
   return w;
 }
 
-// Steps of the flexible wheel (no log), timed per step; events per second as a counter.
-void FlexibleWheelStep(benchmark::State& state) {
+// Steps of the flexible wheel (no log) with the given integrator, timed per step; events per
+// second and right-hand-side evaluations per step as counters.
+void time_flexible_steps(benchmark::State& state, flexgait::numerics::OdeMethod method) {
   const WheelParams w = wheel(static_cast<double>(state.range(0)) / 1000.0);
   SimulationOptions o;
   o.steps = 20;
   o.log = false;
   o.rtol = 1e-10;
+  o.method = method;
   FlexibleWheelSimulator sim(w, o);
   const RunSpec spec = default_run(w, InitialState{});
   long long steps = 0, events = 0, rhs = 0;
@@ -45,7 +47,12 @@ void FlexibleWheelStep(benchmark::State& state) {
   state.counters["us/step"] = benchmark::Counter(static_cast<double>(steps),
                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+void FlexibleWheelStep(benchmark::State& state) { time_flexible_steps(state, flexgait::numerics::OdeMethod::Adams); }
 BENCHMARK(FlexibleWheelStep)->Arg(600)->Arg(130)->Arg(5000)->Unit(benchmark::kMicrosecond);
+void FlexibleWheelStepDop853(benchmark::State& state) {
+  time_flexible_steps(state, flexgait::numerics::OdeMethod::Dop853);
+}
+BENCHMARK(FlexibleWheelStepDop853)->Arg(600)->Arg(130)->Arg(5000)->Unit(benchmark::kMicrosecond);
 
 void RigidWheelStep(benchmark::State& state) {
   WheelParams w = wheel(0.6);
