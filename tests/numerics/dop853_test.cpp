@@ -13,7 +13,9 @@ namespace {
 // y' = -2 a² t y², y(0) = 1: y = 1 / (1 + a² t²), a = 4. Nonlinear and non-autonomous, so the
 // nonlinear order conditions count (a linear test problem checks only the stability polynomial).
 constexpr double kA2 = 16.0;
-double exact(double t) { return 1.0 / (1.0 + kA2 * t * t); }
+double exact(double t) {
+  return 1.0 / (1.0 + kA2 * t * t);
+}
 bool flow(double t, std::span<const double> y, std::span<double> yd) {
   yd[0] = -2.0 * kA2 * t * y[0] * y[0];
   return true;

@@ -17,7 +17,7 @@ constexpr double kSafety = 0.9;         // dop853.f: SAFE
 constexpr double kMinShrink = 1.0 / 3;  // dop853.f: FAC1, the smallest h_new/h
 constexpr double kMaxGrowth = 6.0;      // dop853.f: FAC2, the largest h_new/h
 constexpr double kUround = std::numeric_limits<double>::epsilon();
-constexpr int kMaxRhsFailures = 40;     // consecutive domain failures of f before giving up
+constexpr int kMaxRhsFailures = 40;  // consecutive domain failures of f before giving up
 
 }  // namespace
 
@@ -194,7 +194,8 @@ void Dop853::step(double t_max) {
 void Dop853::prepare_dense() const {
   for (int i = kStages + 1; i < kDenseStages; ++i) {
     combine(y_old_, i, h_, dense_tmp_);
-    if (!eval(t_old_ + kC[static_cast<std::size_t>(i)] * h_, dense_tmp_, k_.data() + static_cast<std::size_t>(i) * dim_))
+    if (!eval(t_old_ + kC[static_cast<std::size_t>(i)] * h_, dense_tmp_,
+              k_.data() + static_cast<std::size_t>(i) * dim_))
       throw std::runtime_error("DOP853: the right-hand side fails in the dense output");
   }
   const double* k0 = stage(0);

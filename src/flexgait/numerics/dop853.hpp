@@ -17,10 +17,10 @@
 namespace flexgait::numerics {
 
 struct Dop853Options {
-  double rtol = 1e-10;      ///< relative tolerance
-  double atol = 1e-12;      ///< absolute tolerance (state units)
-  double max_step = 0.0;    ///< largest step [s]; 0: no limit
-  int controlled = 0;       ///< leading components in the error test; 0: all
+  double rtol = 1e-10;    ///< relative tolerance
+  double atol = 1e-12;    ///< absolute tolerance (state units)
+  double max_step = 0.0;  ///< largest step [s]; 0: no limit
+  int controlled = 0;     ///< leading components in the error test; 0: all
   /// Per controlled component (empty: none): where > 0 the size rtol refers to, instead of
   /// max(|y_i|) over the step (OdeOptions::error_scale).
   std::vector<double> error_scale;
@@ -52,9 +52,9 @@ class Dop853 {
   /// t in [previous_time(), time()]. The first call after a step costs three evaluations of f.
   void dense(double t, std::span<double> y) const;
 
-  std::int64_t steps() const { return steps_; }         ///< accepted steps
-  std::int64_t rhs_evals() const { return rhs_evals_; } ///< evaluations of f
-  double step_size() const { return h_next_; }          ///< the step the controller proposes next
+  std::int64_t steps() const { return steps_; }          ///< accepted steps
+  std::int64_t rhs_evals() const { return rhs_evals_; }  ///< evaluations of f
+  double step_size() const { return h_next_; }           ///< the step the controller proposes next
 
  private:
   double* stage(int i) { return k_.data() + static_cast<std::size_t>(i) * dim_; }
@@ -75,11 +75,11 @@ class Dop853 {
   double h_next_ = 0;  // proposed next step
   enum class NextStage0 { Valid, FromLastStage, Evaluate };  // where the next step's f(t, y) comes from
   NextStage0 next_k0_ = NextStage0::Evaluate;
-  bool rejected_ = false;   // the last attempt was rejected (no growth on the next accept)
+  bool rejected_ = false;                          // the last attempt was rejected (no growth on the next accept)
   std::vector<double> y_, y_old_, y_new_, y_tmp_;  // dim each; y_new_: the last step's end (untruncated)
-  mutable std::vector<double> dense_tmp_;        // dim
-  mutable std::vector<double> k_;      // 16 stages × dim (stages 13..15 for dense output)
-  mutable std::vector<double> cont_;   // dense-output coefficients r4..r8 (5 × dim)
+  mutable std::vector<double> dense_tmp_;          // dim
+  mutable std::vector<double> k_;                  // 16 stages × dim (stages 13..15 for dense output)
+  mutable std::vector<double> cont_;               // dense-output coefficients r4..r8 (5 × dim)
   mutable bool dense_ready_ = false;
   std::int64_t steps_ = 0;
   mutable std::int64_t rhs_evals_ = 0;

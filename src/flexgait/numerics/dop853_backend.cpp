@@ -45,9 +45,11 @@ class Dop853Backend final : public OdeBackend {
                std::span<const double> S) override {
     std::copy(y.begin(), y.end(), y_start_.begin());
     if (sensitivities_) {
-      if (!S.empty()) std::copy(S.begin(), S.end(), y_start_.begin() + static_cast<std::ptrdiff_t>(n_));
-      else std::copy(stepper_.state().begin() + static_cast<std::ptrdiff_t>(n_), stepper_.state().end(),
-                     y_start_.begin() + static_cast<std::ptrdiff_t>(n_));
+      if (!S.empty())
+        std::copy(S.begin(), S.end(), y_start_.begin() + static_cast<std::ptrdiff_t>(n_));
+      else
+        std::copy(stepper_.state().begin() + static_cast<std::ptrdiff_t>(n_), stepper_.state().end(),
+                  y_start_.begin() + static_cast<std::ptrdiff_t>(n_));
     }
     stepper_.start(t, y_start_);
     g_.resize(directions.size());

@@ -95,8 +95,10 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   }
   // Every guard that has crossed by the first root fires; watching restarts there.
   std::vector<double>& g = scratch_;
-  if (first < t1) g_at(first, g);
-  else std::copy(g1.begin(), g1.end(), g.begin());
+  if (first < t1)
+    g_at(first, g);
+  else
+    std::copy(g1.begin(), g1.end(), g.begin());
   for (std::size_t i = 0; i < n; ++i) {
     const bool fired = active_[i] != 0 && crosses(directions_[i], g_lo_[i], g[i]);
     fired_[i] = fired || static_cast<int>(i) == first_guard ? (g_lo_[i] > 0 ? -1 : 1) : 0;

@@ -35,13 +35,13 @@ class GuardCrossings {
   /// Watching (re)starts at t with the guards' values g: those exactly 0 are inactive.
   void rearm(double t, std::span<const double> g);
 
-  double t_ = 0.0;                 // where watching (re)started: the last step's end or crossing [s]
-  std::vector<int> directions_;    // per guard: +1, -1, 0
-  std::vector<double> g_lo_;       // per guard: its value where its bracket starts
-  std::vector<double> t_lo_;       // per guard: where its bracket starts (t_, or later if it was 0 there)
-  std::vector<char> active_;       // per guard: 0 while it has stayed exactly 0 since t_
-  std::vector<int> fired_;         // per guard: the last crossing's direction, or 0
-  std::vector<double> scratch_;    // guard values at one time
+  double t_ = 0.0;               // where watching (re)started: the last step's end or crossing [s]
+  std::vector<int> directions_;  // per guard: +1, -1, 0
+  std::vector<double> g_lo_;     // per guard: its value where its bracket starts
+  std::vector<double> t_lo_;     // per guard: where its bracket starts (t_, or later if it was 0 there)
+  std::vector<char> active_;     // per guard: 0 while it has stayed exactly 0 since t_
+  std::vector<int> fired_;       // per guard: the last crossing's direction, or 0
+  std::vector<double> scratch_;  // guard values at one time
 };
 
 }  // namespace flexgait::numerics

@@ -33,11 +33,23 @@ void OdeIntegrator::sensitivities(std::span<double> S) const {
   backend_->sensitivities(S);
 }
 
-StepStatus OdeIntegrator::step(double t_stop) { return backend_->step(t_stop); }
-double OdeIntegrator::time() const { return backend_->time(); }
-std::span<const double> OdeIntegrator::state() const { return backend_->state(); }
-void OdeIntegrator::interpolate(double t, std::span<double> y) const { backend_->interpolate(t, y); }
-std::span<const int> OdeIntegrator::guards_fired() const { return backend_->guards_fired(); }
-OdeStats OdeIntegrator::stats() const { return backend_->stats(); }
+StepStatus OdeIntegrator::step(double t_stop) {
+  return backend_->step(t_stop);
+}
+double OdeIntegrator::time() const {
+  return backend_->time();
+}
+std::span<const double> OdeIntegrator::state() const {
+  return backend_->state();
+}
+void OdeIntegrator::interpolate(double t, std::span<double> y) const {
+  backend_->interpolate(t, y);
+}
+std::span<const int> OdeIntegrator::guards_fired() const {
+  return backend_->guards_fired();
+}
+OdeStats OdeIntegrator::stats() const {
+  return backend_->stats();
+}
 
 }  // namespace flexgait::numerics
