@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
+#include <string>
 
 #include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/rimless/dynamics.hpp"
@@ -22,13 +23,15 @@ WheelParams wheel(double mu) {
   return w;
 }
 
-// Steps of the flexible wheel (no log), timed per step; events per second as a counter.
-void FlexibleWheelStep(benchmark::State& state) {
+// Steps of the flexible wheel (no log) with the given integrator, timed per step; events per
+// second and right-hand-side evaluations per step as counters.
+void time_flexible_steps(benchmark::State& state, flexgait::numerics::OdeMethod method) {
   const WheelParams w = wheel(static_cast<double>(state.range(0)) / 1000.0);
   SimulationOptions o;
   o.steps = 20;
   o.log = false;
   o.rtol = 1e-10;
+  o.method = method;
   FlexibleWheelSimulator sim(w, o);
   const RunSpec spec = default_run(w, InitialState{});
   long long steps = 0, events = 0, rhs = 0;
@@ -45,7 +48,12 @@ void FlexibleWheelStep(benchmark::State& state) {
   state.counters["us/step"] = benchmark::Counter(static_cast<double>(steps),
                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+void FlexibleWheelStep(benchmark::State& state) { time_flexible_steps(state, flexgait::numerics::OdeMethod::Adams); }
 BENCHMARK(FlexibleWheelStep)->Arg(600)->Arg(130)->Arg(5000)->Unit(benchmark::kMicrosecond);
+void FlexibleWheelStepDop853(benchmark::State& state) {
+  time_flexible_steps(state, flexgait::numerics::OdeMethod::Dop853);
+}
+BENCHMARK(FlexibleWheelStepDop853)->Arg(600)->Arg(130)->Arg(5000)->Unit(benchmark::kMicrosecond);
 
 void RigidWheelStep(benchmark::State& state) {
   WheelParams w = wheel(0.6);
@@ -83,8 +91,10 @@ struct MapAtFixedPoint {
   PoincareMap map;
   SectionState point;
 };
-MapAtFixedPoint map_at_fixed_point(const WheelParams& w) {
-  const SimulationOptions sim;
+MapAtFixedPoint map_at_fixed_point(const WheelParams& w,
+                                   flexgait::numerics::OdeMethod method = flexgait::numerics::OdeMethod::Adams) {
+  SimulationOptions sim;
+  sim.method = method;
   const AnalysisOptions opt;
   const FixedPointReport fp = find_fixed_point(w, sim, opt, Model::Flexible, Section::Touchdown, InitialState{});
   SimulationOptions map_opt = sim;
@@ -93,34 +103,42 @@ MapAtFixedPoint map_at_fixed_point(const WheelParams& w) {
   return {PoincareMap(w, map_opt, Model::Flexible, Section::Touchdown), fp.point};
 }
 
-// Poincaré-map evaluations (touchdown section, rtol 1e-12 as in the analyses) at the fixed point.
+// Poincaré-map evaluations (touchdown section, rtol 1e-12 as in the analyses) at the fixed point,
+// with the integrator given as the second argument (OdeMethod's index: 0 adams, 2 dop853).
 void PoincareMapEvaluation(benchmark::State& state) {
-  auto [map, point] = map_at_fixed_point(wheel(static_cast<double>(state.range(0)) / 1000.0));
+  auto [map, point] = map_at_fixed_point(wheel(static_cast<double>(state.range(0)) / 1000.0),
+                                         static_cast<flexgait::numerics::OdeMethod>(state.range(1)));
   for (auto _ : state) {
     const MapStep s = map.apply(point);
     benchmark::DoNotOptimize(s.next.z.data());
   }
   state.counters["maps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(PoincareMapEvaluation)->Arg(600)->Arg(105)->Unit(benchmark::kMillisecond);
+BENCHMARK(PoincareMapEvaluation)
+    ->Args({600, 0})
+    ->Args({105, 0})
+    ->Args({600, 2})
+    ->Args({105, 2})
+    ->Unit(benchmark::kMillisecond);
 
-// The variational (exact) Jacobian of the map at the fixed point.
+// The variational (exact) Jacobian of the map at the fixed point (argument: the integrator).
 void PoincareMapJacobian(benchmark::State& state) {
-  auto [map, point] = map_at_fixed_point(wheel(0.6));
+  auto [map, point] = map_at_fixed_point(wheel(0.6), static_cast<flexgait::numerics::OdeMethod>(state.range(0)));
   Eigen::MatrixXd J;
   for (auto _ : state) {
     benchmark::DoNotOptimize(map.jacobian(point, J));
   }
 }
-BENCHMARK(PoincareMapJacobian)->Unit(benchmark::kMillisecond);
+BENCHMARK(PoincareMapJacobian)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
 
-// A 200-point μ sweep on all cores (the figure of merit), one iteration.
-void FrictionSweep200(benchmark::State& state) {
+// A 200-point μ sweep on all cores (the figure of merit), one iteration; the argument
+// is solver.method.
+void FrictionSweep200(benchmark::State& state, const char* method) {
   const flexgait::Schema schema = [] {
     flexgait::Schema s = rimless_schema();
     return s.merge(analysis_schema());
   }();
-  const flexgait::Config base = flexgait::resolve_config(schema, std::nullopt, {});
+  const flexgait::Config base = flexgait::resolve_config(schema, std::nullopt, {std::string("solver.method=") + method});
   const SweepSpec spec{"rimless.mu", 0.1, 1.5, 200, Section::Touchdown};
   const auto dir = std::filesystem::temp_directory_path() / "flexgait_bench_sweep";
   for (auto _ : state) {
@@ -134,7 +152,8 @@ void FrictionSweep200(benchmark::State& state) {
     benchmark::DoNotOptimize(flexgait::run_sweep(job));
   }
 }
-BENCHMARK(FrictionSweep200)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK_CAPTURE(FrictionSweep200, adams, "adams")->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK_CAPTURE(FrictionSweep200, dop853, "dop853")->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
 
 }  // namespace
 

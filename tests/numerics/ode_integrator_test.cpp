@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -49,7 +50,7 @@ std::vector<double> crossings(OdeMethod method, int direction, double t_end) {
 }
 
 TEST(OdeIntegrator, LocatesCrossingsToAnalyticTimes) {
-  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Bdf}) {
+  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Bdf, OdeMethod::Dop853}) {
     const auto down = crossings(method, -1, 13.0);
     ASSERT_EQ(down.size(), 2u);
     // rtol 1e-12 over two periods: the crossing times agree to 1e-9 s.
@@ -61,9 +62,48 @@ TEST(OdeIntegrator, LocatesCrossingsToAnalyticTimes) {
   }
 }
 
+// DOP853 locates the crossings on its dense output to ~1e-12 s (rtol 1e-12, two periods; the
+// bracketing tolerance is 100 u |t| ≈ 3e-13 s).
+TEST(OdeIntegrator, Dop853LocatesCrossingsTo1e12) {
+  const auto both = crossings(OdeMethod::Dop853, 0, 13.0);
+  ASSERT_EQ(both.size(), 4u);
+  const double pi = std::numbers::pi;
+  const std::array<double, 4> expected{pi / 3, 5 * pi / 3, pi / 3 + 2 * pi, 5 * pi / 3 + 2 * pi};
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(both[k], expected[k], 2e-12) << k;
+}
+
+// Two guards crossing in one step: the earlier fires alone, the later at its own time.
+TEST(OdeIntegrator, EarliestOfTwoGuardsFiresFirst) {
+  class TwoGuards final : public OdeSystem {
+   public:
+    bool rhs(double, std::span<const double>, std::span<double> yd) override {
+      yd[0] = 1.0;
+      return true;
+    }
+    void guards(double, std::span<const double> y, std::span<double> g) override {
+      g[0] = y[0] - 0.30;
+      g[1] = y[0] - 0.31;
+    }
+  } sys;
+  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
+    OdeIntegrator integ(sys, 1, tight(method));
+    integ.restart(0.0, std::vector<double>{0.0}, std::vector<int>{+1, +1});
+    std::vector<std::pair<double, int>> hits;
+    while (integ.step(1.0) != StepStatus::StopTime)
+      if (integ.time() < 1.0 && integ.guards_fired()[0] + integ.guards_fired()[1] == 1)
+        hits.emplace_back(integ.time(), integ.guards_fired()[0] == 1 ? 0 : 1);
+    ASSERT_EQ(hits.size(), 2u);
+    EXPECT_NEAR(hits[0].first, 0.30, 1e-12);
+    EXPECT_EQ(hits[0].second, 0);
+    EXPECT_NEAR(hits[1].first, 0.31, 1e-12);
+    EXPECT_EQ(hits[1].second, 1);
+  }
+}
+
 TEST(OdeIntegrator, GuardAtZeroOnRestartDoesNotFireThere) {
+  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
   Oscillator osc;
-  OdeIntegrator integ(osc, 2, tight());
+  OdeIntegrator integ(osc, 2, tight(method));
   // Start exactly on the guard (y0 = 0.5, moving down): CVODE must not report t = 0.
   const std::vector<double> y0{0.5, -std::sqrt(0.75)};
   const std::vector<int> dirs{0};
@@ -73,11 +113,13 @@ TEST(OdeIntegrator, GuardAtZeroOnRestartDoesNotFireThere) {
     if (integ.step(10.0) == StepStatus::Guard) first = integ.time();
   }
   EXPECT_NEAR(first, 4 * std::numbers::pi / 3, 1e-9);  // the next crossing, upward
+  }
 }
 
 TEST(OdeIntegrator, DenseOutputMatchesTheSolution) {
+  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
   Oscillator osc;
-  OdeIntegrator integ(osc, 2, tight());
+  OdeIntegrator integ(osc, 2, tight(method));
   const std::vector<double> y0{1.0, 0.0};
   integ.restart(0.0, y0, std::vector<int>{});
   std::vector<double> y(2);
@@ -90,12 +132,14 @@ TEST(OdeIntegrator, DenseOutputMatchesTheSolution) {
     t_prev = integ.time();
   }
   EXPECT_GT(integ.stats().steps, 10);
+  }
 }
 
 // Forward sensitivities of the oscillator: ∂y(t)/∂y(0) is the rotation by -t.
 TEST(OdeIntegrator, SensitivitiesOfTheOscillatorAreARotation) {
+  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
   Oscillator osc;
-  OdeIntegrator integ(osc, 2, tight(OdeMethod::Adams, true));
+  OdeIntegrator integ(osc, 2, tight(method, true));
   const std::vector<double> y0{0.3, -0.7};
   const std::vector<double> S0{1.0, 0.0, 0.0, 1.0};  // column-major identity
   integ.restart(0.0, y0, std::vector<int>{}, S0);
@@ -109,6 +153,7 @@ TEST(OdeIntegrator, SensitivitiesOfTheOscillatorAreARotation) {
   EXPECT_NEAR(S[1], -s, 1e-9);
   EXPECT_NEAR(S[2], s, 1e-9);
   EXPECT_NEAR(S[3], c, 1e-9);
+  }
 }
 
 }  // namespace

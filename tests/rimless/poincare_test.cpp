@@ -103,6 +103,28 @@ TEST(Poincare, VariationalJacobianMatchesFiniteDifferences) {
   }
 }
 
+// DOP853 and CVODE Adams, two independent integrators, find the same fixed point of every
+// behaviour to 1e-8 (Newton's tolerance 1e-10 plus each map's integration error at rtol 1e-12),
+// the same multipliers to 1e-7, and variational Jacobians (DOP853: the variational equations on
+// its own steps) that agree to 1e-6, the bound Adams's meets against central differences above.
+TEST(Poincare, Dop853FixedPointsAndJacobiansAgreeWithAdams) {
+  for (double mu : {0.105, 0.13, 0.2, 0.6, 5.0}) {
+    const WheelParams w = testing::measured_wheel(mu);
+    SimulationOptions sim = testing::run_options(1);
+    const auto adams = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, {});
+    sim.method = numerics::OdeMethod::Dop853;
+    const auto dop = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, {});
+    ASSERT_TRUE(adams.converged && dop.converged) << adams.failure << dop.failure;
+    ASSERT_TRUE(dop.jacobian_exact) << dop.jacobian_note;
+    EXPECT_EQ(adams.gait, dop.gait);
+    EXPECT_LE((adams.point.z - dop.point.z).lpNorm<Eigen::Infinity>(), 1e-8) << "mu = " << mu;
+    ASSERT_EQ(adams.multipliers.size(), dop.multipliers.size());
+    for (std::size_t k = 0; k < adams.multipliers.size(); ++k)
+      EXPECT_LE(std::abs(adams.multipliers[k] - dop.multipliers[k]), 1e-7) << "mu = " << mu << ", k = " << k;
+    EXPECT_LE((adams.jacobian - dop.jacobian).lpNorm<Eigen::Infinity>(), 1e-6) << "mu = " << mu;
+  }
+}
+
 // The multipliers are a property of the orbit, not of the section: both sections agree.
 TEST(Poincare, MultipliersDoNotDependOnTheSection) {
   for (double mu : {0.13, 0.6}) {

@@ -1,262 +1,55 @@
 #include "flexgait/numerics/ode_integrator.hpp"
 
-#include <cvodes/cvodes.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.h>
-#include <sunlinsol/sunlinsol_dense.h>
-#include <sunmatrix/sunmatrix_dense.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
-
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
-#include <string>
+
+#include "flexgait/numerics/ode_backend.hpp"
 
 namespace flexgait::numerics {
 
-struct OdeIntegrator::Impl {
-  OdeSystem* system = nullptr;
-  int n = 0;
-  OdeOptions options;
-  SUNContext ctx = nullptr;
-  void* cvode = nullptr;
-  N_Vector y = nullptr;
-  N_Vector* yS = nullptr;  // sensitivity columns (n of them) when enabled
-  N_Vector work = nullptr; // scratch for the sensitivity right-hand side
-  N_Vector work2 = nullptr;
-  SUNNonlinearSolver sens_solver = nullptr;
-  SUNMatrix jac = nullptr;
-  SUNLinearSolver linear_solver = nullptr;
-  SUNNonlinearSolver nonlinear_solver = nullptr;
-  int n_guards = -1;
-  std::vector<int> directions;
-  std::vector<int> fired;
-  double t = 0.0;
-  std::int64_t restarts = 0;
-  OdeStats finished;  // counts of the segments before the current one (CVodeReInit zeroes CVODE's)
-  std::string last_error;
-
-  OdeStats segment_stats() const {
-    OdeStats s;
-    long v = 0;
-    CVodeGetNumSteps(cvode, &v);
-    s.steps = v;
-    CVodeGetNumRhsEvals(cvode, &v);
-    s.rhs_evals = v;
-    CVodeGetNumGEvals(cvode, &v);
-    s.guard_evals = v;
-    return s;
-  }
-
-  static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
-    auto* self = static_cast<Impl*>(data);
-    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
-    const std::span<double> yd(N_VGetArrayPointer(ydot), static_cast<std::size_t>(self->n));
-    return self->system->rhs(t, ys, yd) ? 0 : 1;  // 1: recoverable, CVODE retries a smaller step
-  }
-  static int linearization_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
-    auto* self = static_cast<Impl*>(data);
-    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
-    const std::span<double> yd(N_VGetArrayPointer(ydot), static_cast<std::size_t>(self->n));
-    return self->system->linearization_rhs(t, ys, yd) ? 0 : 1;
-  }
-  // ∂f/∂y · s by a centered directional difference; step scaled to y and s.
-  static int sens_rhs(int, sunrealtype t, N_Vector y, N_Vector ydot, int, N_Vector s, N_Vector sdot, void* data,
-                      N_Vector, N_Vector) {
-    auto* self = static_cast<Impl*>(data);
-    const double snorm = N_VMaxNorm(s);
-    if (snorm == 0.0) {
-      N_VConst(0.0, sdot);
-      return 0;
-    }
-    const double ynorm = N_VMaxNorm(y);
-    const double delta = 6e-6 * std::max(ynorm, 1.0) / snorm;  // ≈ ε^(1/3) relative
-    N_VLinearSum(1.0, y, delta, s, self->work);
-    if (linearization_rhs(t, self->work, sdot, data) != 0) return 1;
-    N_VLinearSum(1.0, y, -delta, s, self->work);
-    if (linearization_rhs(t, self->work, self->work2, data) != 0) return 1;
-    N_VLinearSum(0.5 / delta, sdot, -0.5 / delta, self->work2, sdot);
-    (void)ydot;
-    return 0;
-  }
-  static int guards(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
-    auto* self = static_cast<Impl*>(data);
-    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
-    self->system->guards(t, ys, std::span<double>(g, static_cast<std::size_t>(self->n_guards)));
-    return 0;
-  }
-  // CVODE's error weights with OdeOptions::error_scale (CVodeWFtolerances).
-  static int error_weights(N_Vector y, N_Vector ewt, void* data) {
-    const Impl& m = *static_cast<const Impl*>(data);
-    const double* yv = N_VGetArrayPointer(y);
-    double* w = N_VGetArrayPointer(ewt);
-    for (int i = 0; i < m.n; ++i) {
-      const double scale = m.options.error_scale[static_cast<std::size_t>(i)];
-      const double tol = m.options.rtol * (scale > 0 ? scale : std::abs(yv[i])) + m.options.atol;
-      if (!(tol > 0)) return -1;
-      w[i] = 1.0 / tol;
-    }
-    return 0;
-  }
-  static void on_error(int, const char* module, const char* function, char* msg, void* data) {
-    static_cast<Impl*>(data)->last_error = std::string(module) + "." + function + ": " + msg;
-  }
-  void check(int flag, const char* what) const {
-    if (flag < 0) {
-      throw std::runtime_error(std::string("CVODE ") + what + " failed (flag " + std::to_string(flag) + ")" +
-                               (last_error.empty() ? "" : ": " + last_error));
-    }
-  }
-  ~Impl() {
-    if (cvode != nullptr) CVodeFree(&cvode);
-    if (nonlinear_solver != nullptr) SUNNonlinSolFree(nonlinear_solver);
-    if (sens_solver != nullptr) SUNNonlinSolFree(sens_solver);
-    if (yS != nullptr) N_VDestroyVectorArray(yS, n);
-    if (work != nullptr) N_VDestroy(work);
-    if (work2 != nullptr) N_VDestroy(work2);
-    if (linear_solver != nullptr) SUNLinSolFree(linear_solver);
-    if (jac != nullptr) SUNMatDestroy(jac);
-    if (y != nullptr) N_VDestroy(y);
-    if (ctx != nullptr) SUNContext_Free(&ctx);
-  }
-};
-
-OdeIntegrator::OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options) : impl_(std::make_unique<Impl>()) {
-  Impl& m = *impl_;
-  m.system = &system;
-  m.n = n;
-  m.options = options;
-  if (SUNContext_Create(nullptr, &m.ctx) != 0) throw std::runtime_error("SUNContext_Create failed");
-  m.y = N_VNew_Serial(n, m.ctx);
-  N_VConst(0.0, m.y);
-  N_VEnableFusedOps_Serial(m.y, SUNTRUE);  // fewer calls per Nordsieck update (~10 % here)
-  m.cvode = CVodeCreate(options.method == OdeMethod::Adams ? CV_ADAMS : CV_BDF, m.ctx);
-  if (m.cvode == nullptr || m.y == nullptr) throw std::runtime_error("CVodeCreate failed");
-  m.check(CVodeSetErrHandlerFn(m.cvode, &Impl::on_error, &m), "SetErrHandlerFn");
-  m.check(CVodeInit(m.cvode, &Impl::rhs, 0.0, m.y), "Init");
-  m.check(CVodeSetUserData(m.cvode, &m), "SetUserData");
-  if (options.error_scale.empty()) {
-    m.check(CVodeSStolerances(m.cvode, options.rtol, options.atol), "SStolerances");
-  } else {
-    if (static_cast<int>(options.error_scale.size()) != n) throw std::invalid_argument("OdeOptions::error_scale: size");
-    m.check(CVodeWFtolerances(m.cvode, &Impl::error_weights), "WFtolerances");
-  }
-  m.check(CVodeSetMaxNumSteps(m.cvode, static_cast<long>(options.max_steps)), "SetMaxNumSteps");
-  if (options.max_step > 0) m.check(CVodeSetMaxStep(m.cvode, options.max_step), "SetMaxStep");
-  if (options.max_order > 0) m.check(CVodeSetMaxOrd(m.cvode, options.max_order), "SetMaxOrd");
-  if (options.method == OdeMethod::Adams) {
-    m.nonlinear_solver = SUNNonlinSol_FixedPoint(m.y, 0, m.ctx);
-    m.check(CVodeSetNonlinearSolver(m.cvode, m.nonlinear_solver), "SetNonlinearSolver");
-  } else {
-    m.jac = SUNDenseMatrix(n, n, m.ctx);
-    m.linear_solver = SUNLinSol_Dense(m.y, m.jac, m.ctx);
-    m.check(CVodeSetLinearSolver(m.cvode, m.linear_solver, m.jac), "SetLinearSolver");
-  }
-  m.check(CVodeSetNoInactiveRootWarn(m.cvode), "SetNoInactiveRootWarn");
-  if (options.sensitivities) {
-    m.yS = N_VCloneVectorArray(n, m.y);
-    m.work = N_VClone(m.y);
-    m.work2 = N_VClone(m.y);
-    for (int i = 0; i < n; ++i) {
-      N_VConst(0.0, m.yS[i]);
-      N_VGetArrayPointer(m.yS[i])[i] = 1.0;
-    }
-    m.check(CVodeSensInit1(m.cvode, n, CV_STAGGERED, &Impl::sens_rhs, m.yS), "SensInit1");
-    m.check(CVodeSensEEtolerances(m.cvode), "SensEEtolerances");
-    // Sensitivities stay out of the error test (CVODES's default): the steps that resolve the
-    // state resolve its linearisation; with them in, the map Jacobian cost 26x more for no accuracy.
-    m.check(CVodeSetSensErrCon(m.cvode, SUNFALSE), "SetSensErrCon");
-    if (options.method == OdeMethod::Adams) {
-      m.sens_solver = SUNNonlinSol_FixedPointSens(n, m.y, 0, m.ctx);
-      m.check(CVodeSetNonlinearSolverSensStg(m.cvode, m.sens_solver), "SetNonlinearSolverSensStg");
-    }
-  }
-}
+OdeIntegrator::OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options)
+    : backend_(options.method == OdeMethod::Dop853 ? make_dop853_backend(system, n, options)
+                                                   : make_cvode_backend(system, n, options)),
+      n_(n),
+      sensitivities_(options.sensitivities) {}
 
 OdeIntegrator::~OdeIntegrator() = default;
 
+void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const int> directions) {
+  if (static_cast<int>(y.size()) != n_) throw std::invalid_argument("OdeIntegrator::restart: wrong state size");
+  backend_->restart(t, y, directions, {});
+}
+
 void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const int> directions,
                             std::span<const double> S) {
-  Impl& m = *impl_;
-  if (m.yS == nullptr) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
-  if (S.size() != static_cast<std::size_t>(m.n) * static_cast<std::size_t>(m.n))
+  if (!sensitivities_) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
+  if (static_cast<int>(y.size()) != n_) throw std::invalid_argument("OdeIntegrator::restart: wrong state size");
+  if (S.size() != static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_))
     throw std::invalid_argument("OdeIntegrator::restart: sensitivities must be n x n");
-  restart(t, y, directions);
-  for (int j = 0; j < m.n; ++j)
-    std::copy(S.begin() + j * m.n, S.begin() + (j + 1) * m.n, N_VGetArrayPointer(m.yS[j]));
-  m.check(CVodeSensReInit(m.cvode, CV_STAGGERED, m.yS), "SensReInit");
+  backend_->restart(t, y, directions, S);
 }
 
 void OdeIntegrator::sensitivities(std::span<double> S) const {
-  Impl& m = *impl_;
-  if (m.yS == nullptr) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
-  sunrealtype t = 0;
-  m.check(CVodeGetSens(m.cvode, &t, m.yS), "GetSens");
-  for (int j = 0; j < m.n; ++j) {
-    const double* col = N_VGetArrayPointer(m.yS[j]);
-    std::copy(col, col + m.n, S.begin() + j * m.n);
-  }
-}
-
-void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const int> directions) {
-  Impl& m = *impl_;
-  if (static_cast<int>(y.size()) != m.n) throw std::invalid_argument("OdeIntegrator::restart: wrong state size");
-  std::copy(y.begin(), y.end(), N_VGetArrayPointer(m.y));
-  m.t = t;
-  const OdeStats seg = m.segment_stats();
-  m.finished.steps += seg.steps;
-  m.finished.rhs_evals += seg.rhs_evals;
-  m.finished.guard_evals += seg.guard_evals;
-  m.check(CVodeReInit(m.cvode, t, m.y), "ReInit");
-  const int n_guards = static_cast<int>(directions.size());
-  if (n_guards != m.n_guards) {
-    m.check(CVodeRootInit(m.cvode, n_guards, n_guards > 0 ? &Impl::guards : nullptr), "RootInit");
-    m.n_guards = n_guards;
-    m.fired.assign(directions.size(), 0);
-  }
-  m.directions.assign(directions.begin(), directions.end());
-  if (n_guards > 0) m.check(CVodeSetRootDirection(m.cvode, m.directions.data()), "SetRootDirection");
-  ++m.restarts;
+  if (!sensitivities_) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
+  backend_->sensitivities(S);
 }
 
 StepStatus OdeIntegrator::step(double t_stop) {
-  Impl& m = *impl_;
-  m.check(CVodeSetStopTime(m.cvode, t_stop), "SetStopTime");
-  m.last_error.clear();
-  sunrealtype t_reached = m.t;
-  const int flag = CVode(m.cvode, t_stop, m.y, &t_reached, CV_ONE_STEP);
-  m.check(flag, "step");
-  m.t = t_reached;
-  if (flag == CV_ROOT_RETURN) {
-    m.check(CVodeGetRootInfo(m.cvode, m.fired.data()), "GetRootInfo");
-    return StepStatus::Guard;
-  }
-  return flag == CV_TSTOP_RETURN ? StepStatus::StopTime : StepStatus::Step;
+  return backend_->step(t_stop);
 }
-
-double OdeIntegrator::time() const { return impl_->t; }
-
+double OdeIntegrator::time() const {
+  return backend_->time();
+}
 std::span<const double> OdeIntegrator::state() const {
-  return {N_VGetArrayPointer(impl_->y), static_cast<std::size_t>(impl_->n)};
+  return backend_->state();
 }
-
 void OdeIntegrator::interpolate(double t, std::span<double> y) const {
-  Impl& m = *impl_;
-  N_Vector out = N_VMake_Serial(m.n, y.data(), m.ctx);
-  const int flag = CVodeGetDky(m.cvode, t, 0, out);
-  N_VDestroy(out);
-  m.check(flag, "GetDky");
+  backend_->interpolate(t, y);
 }
-
-std::span<const int> OdeIntegrator::guards_fired() const { return impl_->fired; }
-
+std::span<const int> OdeIntegrator::guards_fired() const {
+  return backend_->guards_fired();
+}
 OdeStats OdeIntegrator::stats() const {
-  OdeStats s = impl_->segment_stats();
-  s.steps += impl_->finished.steps;
-  s.rhs_evals += impl_->finished.rhs_evals;
-  s.guard_evals += impl_->finished.guard_evals;
-  s.restarts = impl_->restarts;
-  return s;
+  return backend_->stats();
 }
 
 }  // namespace flexgait::numerics

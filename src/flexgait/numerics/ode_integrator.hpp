@@ -1,10 +1,11 @@
 #pragma once
 /// \file ode_integrator.hpp
-/// Event-locating integrator for hybrid systems, on SUNDIALS CVODE (variable-order Adams or
-/// BDF) with root finding on the dense output. SUNDIALS stays behind this interface.
+/// Event-locating integrator for hybrid systems: SUNDIALS CVODE (variable-order Adams or BDF,
+/// cvode_backend.cpp) or DOP853 (Dormand–Prince 8(5,3), dop853_backend.cpp), each with root
+/// finding on its dense output. SUNDIALS stays behind this interface.
 ///
-/// Use: restart() at the start of every mode (after every reset map: CVodeReInit and
-/// CVodeRootInit with the mode's guard directions), then step() until it reports a guard.
+/// Use: restart() at the start of every mode (after every reset map, with the mode's guard
+/// directions), then step() until it reports a guard.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -17,9 +18,11 @@
 
 namespace flexgait::numerics {
 
-enum class OdeMethod { Adams, Bdf };
-constexpr std::array<EnumName<OdeMethod>, 2> enum_names(OdeMethod) {
-  return {{{OdeMethod::Adams, "adams"}, {OdeMethod::Bdf, "bdf"}}};
+/// Adams, Bdf: CVODE's variable-order linear multistep methods (orders 1–12 and 1–5). Dop853: the
+/// explicit Runge–Kutta pair of order 8 (dop853.hpp), restarted cheaply after every event.
+enum class OdeMethod { Adams, Bdf, Dop853 };
+constexpr std::array<EnumName<OdeMethod>, 3> enum_names(OdeMethod) {
+  return {{{OdeMethod::Adams, "adams"}, {OdeMethod::Bdf, "bdf"}, {OdeMethod::Dop853, "dop853"}}};
 }
 
 struct OdeOptions {
@@ -28,10 +31,11 @@ struct OdeOptions {
   double max_step = 0.0;    ///< largest internal step [s]; 0: no limit
   OdeMethod method = OdeMethod::Adams;
   std::int64_t max_steps = 1'000'000;  ///< internal steps allowed per step() call
-  int max_order = 0;        ///< largest method order; 0: CVODE's default (12 Adams, 5 BDF)
-  /// Integrate the variational equation Ṡ = (∂f/∂y) S as well (CVODES forward sensitivities,
-  /// one column per state, staggered corrector, outside the error test). ∂f/∂y·s comes from
-  /// centered directional differences of f.
+  int max_order = 0;        ///< largest method order (CVODE only); 0: CVODE's default (12 Adams, 5 BDF)
+  /// Integrate the variational equation Ṡ = (∂f/∂y) S as well, one column per state, outside the
+  /// error test (CVODES forward sensitivities with the staggered corrector; DOP853: the same
+  /// Runge–Kutta steps on the augmented state). ∂f/∂y·s comes from centered directional
+  /// differences of OdeSystem::linearization_rhs.
   bool sensitivities = false;
   /// Per component (empty: none), the size the relative tolerance refers to: where > 0, the
   /// error weight of component i is 1 / (rtol · error_scale[i] + atol) instead of
@@ -54,6 +58,8 @@ enum class StepStatus {
   StopTime, ///< reached the stop time
 };
 
+class OdeBackend;
+
 class OdeIntegrator {
  public:
   /// \param system the flow and guards (must outlive the integrator) \param n state dimension
@@ -72,21 +78,23 @@ class OdeIntegrator {
   /// Sensitivities ∂y(time())/∂y_ref, column-major n×n (after a step; at the guard crossing
   /// after StepStatus::Guard).
   void sensitivities(std::span<double> S) const;
-  /// Takes one internal step, never past t_stop. Throws std::runtime_error with CVODE's
-  /// message if the solver fails.
+  /// Takes one internal step, never past t_stop. After a guard crossing the step ends at the
+  /// crossing. Throws std::runtime_error with the solver's message if it fails.
   StepStatus step(double t_stop);
   double time() const;
   /// State at time() (dim n).
   std::span<const double> state() const;
-  /// Dense-output interpolant over the last step: writes y(t) for t in [time()-h, time()].
+  /// Dense-output interpolant over the last step: writes y(t) for t in [time()-h, time()]
+  /// (CVODE: its last internal step, which may reach past a guard crossing).
   void interpolate(double t, std::span<double> y) const;
   /// Per guard, after StepStatus::Guard: +1 crossed upward, -1 downward, 0 not crossed.
   std::span<const int> guards_fired() const;
   OdeStats stats() const;
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<OdeBackend> backend_;
+  int n_;               // state dimension
+  bool sensitivities_;  // OdeOptions::sensitivities
 };
 
 }  // namespace flexgait::numerics

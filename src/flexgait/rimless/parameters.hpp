@@ -95,8 +95,8 @@ struct SimulationOptions {
   double max_time = 120.0;      ///< simulated-time limit [s]
   double max_step_time = 10.0;  ///< a step longer than this counts as stopped [s]
   double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
-  double rtol = 1e-10;          ///< CVODE relative tolerance
-  double atol = 1e-12;          ///< CVODE absolute tolerance
+  double rtol = 1e-10;          ///< the integrator's relative tolerance
+  double atol = 1e-12;          ///< the integrator's absolute tolerance
   numerics::OdeMethod method = numerics::OdeMethod::Adams;
   bool log = true;              ///< keep the sampled log (off for maps and sweeps; not a key)
   bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp; not a key)
@@ -110,9 +110,10 @@ struct SimulationOptions {
       {.unit = "s", .doc = "a step longer than this is reported as stopped", .bounds = positive()});
     v("sim.sample_dt", s.sample_dt,
       {.unit = "s", .doc = "log sampling interval (events are logged too)", .bounds = closed(1e-6, 10)});
-    v("solver.rtol", s.rtol, {.doc = "CVODE relative tolerance", .bounds = closed(1e-14, 1e-2)});
-    v("solver.atol", s.atol, {.doc = "CVODE absolute tolerance", .bounds = closed(1e-16, 1e-2)});
-    v("solver.method", s.method, {.doc = "CVODE linear multistep method"});
+    v("solver.rtol", s.rtol, {.doc = "the integrator's relative tolerance", .bounds = closed(1e-14, 1e-2)});
+    v("solver.atol", s.atol, {.doc = "the integrator's absolute tolerance", .bounds = closed(1e-16, 1e-2)});
+    v("solver.method", s.method,
+      {.doc = "integrator: CVODE's Adams or BDF multistep method, or the explicit Runge-Kutta DOP853"});
   }
 };
 

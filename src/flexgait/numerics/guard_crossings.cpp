@@ -1,0 +1,110 @@
+#include "flexgait/numerics/guard_crossings.hpp"
+
+#include <boost/math/tools/toms748_solve.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+
+namespace flexgait::numerics {
+namespace {
+
+constexpr double kUround = std::numeric_limits<double>::epsilon();
+
+// A crossing of a guard from g_lo to g that its direction lets through (CVODE: rootdir·g_lo <= 0).
+bool crosses(int direction, double g_lo, double g) {
+  return direction * g_lo <= 0 && (g == 0.0 || (g_lo < 0) != (g < 0));
+}
+
+}  // namespace
+
+void GuardCrossings::start(double t, std::span<const int> directions, std::span<const double> g) {
+  if (g.size() != directions.size()) throw std::invalid_argument("GuardCrossings::start: sizes differ");
+  directions_.assign(directions.begin(), directions.end());
+  g_lo_.resize(g.size());
+  t_lo_.resize(g.size());
+  active_.resize(g.size());
+  scratch_.resize(g.size());
+  fired_.assign(g.size(), 0);
+  rearm(t, g);
+}
+
+void GuardCrossings::rearm(double t, std::span<const double> g) {
+  t_ = t;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    g_lo_[i] = g[i];
+    t_lo_[i] = t;
+    active_[i] = g[i] != 0.0;
+  }
+}
+
+std::optional<double> GuardCrossings::check(double t1, std::span<const double> g1, const Values& g_at) {
+  const std::size_t n = directions_.size();
+  const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(t1 - t_));
+  // Guards that were 0 where watching started: activated where they have moved away from 0.
+  if (std::find(active_.begin(), active_.end(), 0) != active_.end()) {
+    const double t_plus = t_ + std::max(tol, 0.1 * (t1 - t_));
+    if (t_plus < t1) {
+      g_at(t_plus, scratch_);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (active_[i] == 0 && scratch_[i] != 0.0) {
+          active_[i] = 1;
+          g_lo_[i] = scratch_[i];
+          t_lo_[i] = t_plus;
+        }
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (active_[i] == 0 && g1[i] != 0.0) {  // moved away only by the step's end: no crossing yet
+        active_[i] = 1;
+        g_lo_[i] = g1[i];
+        t_lo_[i] = t1;
+      }
+    }
+  }
+  // The earliest root among the guards that crossed.
+  double first = t1;
+  int first_guard = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (active_[i] == 0 || t_lo_[i] >= t1 || !crosses(directions_[i], g_lo_[i], g1[i])) continue;
+    double root = t1;
+    if (g1[i] != 0.0) {
+      auto g_i = [&](double t) {
+        g_at(t, scratch_);
+        return scratch_[i];
+      };
+      auto close_enough = [tol](double a, double b) { return b - a <= tol; };
+      std::uintmax_t iterations = 100;
+      root = boost::math::tools::toms748_solve(g_i, t_lo_[i], t1, g_lo_[i], g1[i], close_enough, iterations).second;
+    }
+    if (first_guard < 0 || root < first) {
+      first = root;
+      first_guard = static_cast<int>(i);
+    }
+  }
+  if (first_guard < 0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (active_[i] == 0) continue;
+      g_lo_[i] = g1[i];
+      t_lo_[i] = t1;
+    }
+    t_ = t1;
+    return std::nullopt;
+  }
+  // Every guard that has crossed by the first root fires; watching restarts there.
+  std::vector<double>& g = scratch_;
+  if (first < t1)
+    g_at(first, g);
+  else
+    std::copy(g1.begin(), g1.end(), g.begin());
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool fired = active_[i] != 0 && crosses(directions_[i], g_lo_[i], g[i]);
+    fired_[i] = fired || static_cast<int>(i) == first_guard ? (g_lo_[i] > 0 ? -1 : 1) : 0;
+  }
+  rearm(first, g);
+  return first;
+}
+
+}  // namespace flexgait::numerics
