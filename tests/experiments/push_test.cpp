@@ -60,8 +60,9 @@ TEST(Push, ImpulseEqualsForceTimesDurationInTheMomentum) {
   }
 }
 
-WalkRunParams standing(double push_impulse) {
+WalkRunParams standing(double push_impulse, walking::BalanceMode mode = walking::BalanceMode::kPd) {
   WalkRunParams p;
+  p.balance.mode = mode;
   p.walk.steps = 0;
   p.walk.end_time = 3.5;  // 5 s in all: a fall has begun well before the end
   p.push = Push{2.0, PushBody::kPelvis, {push_impulse / 0.1, 0, 0}, 0.1};
@@ -89,6 +90,14 @@ TEST(Push, BelowHalfTheBoundRecoveredTwiceTheBoundNot) {
     logged += during;
   }
   EXPECT_GE(logged, 4);
+}
+
+TEST(Push, DcmStabiliserBelowHalfTheBoundRecoveredTwiceTheBoundNot) {
+  const double bound = run_walk(standing(1.0, walking::BalanceMode::kDcm)).metrics.capture_point_bound;
+  ASSERT_GT(bound, 10.0);
+  const WalkMetrics half = run_walk(standing(0.45 * bound, walking::BalanceMode::kDcm)).metrics;
+  EXPECT_FALSE(half.fell) << half.fall_reason << " at " << half.fall_time;
+  EXPECT_TRUE(run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics.fell);
 }
 
 TEST(Push, SameConfigurationSameBytes) {
