@@ -78,6 +78,7 @@ struct BalanceParams {
   /// walks it (measured; 0.005 falls at step 2).
   double cop_admittance = 0.002;
   double com_velocity_filter_time = 0.01;  ///< low-pass on the estimated COM velocity [s]
+  double com_bias_time = 2.0;       ///< time constant pulling the COM estimate's mean onto the measured ZMP's [s]; 0: off
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -115,6 +116,9 @@ struct BalanceParams {
       {.unit = "rad/(N m s)", .doc = "DCM stabiliser: foot rotation rate per Nm of sole torque error", .bounds = closed(0, 1)});
     v("balance.com_velocity_filter_time", s.com_velocity_filter_time,
       {.unit = "s", .doc = "DCM stabiliser: low-pass time constant on the estimated COM velocity", .bounds = closed(0, 1)});
+    v("balance.com_bias_time", s.com_bias_time,
+      {.unit = "s", .doc = "DCM stabiliser: time constant pulling the COM estimate's mean onto the measured ZMP's (0: off)",
+       .bounds = closed(0, 100)});
   }
 };
 

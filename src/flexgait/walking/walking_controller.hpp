@@ -24,7 +24,9 @@
 /// stabiliser (the sway damping stays: without it the twin's lateral rocking grows and it falls
 /// before the first step) (dcm_stabiliser.hpp, eq. D2): the COM is estimated by kinematics —
 /// encoders, the estimated pelvis roll and pitch, the plan's heading, anchored at the loaded soles'
-/// planned places (weighted by their F/T loads) — its velocity by a filtered difference; the ZMP
+/// planned places (weighted by their F/T loads), its mean pulled onto the measured ZMP's with
+/// balance.com_bias_time (the COM's and the ZMP's means agree over any stretch the robot ends as
+/// it began; the encoders miss the gear deflections' centimetres) — its velocity by a filtered difference; the ZMP
 /// command from ξ = c + ċ/ω against the plan's ξ_ref is distributed to the feet (load shares
 /// along the line between the soles, the remainder as a centre of pressure under each loaded
 /// sole, clamped to the sole) and each loaded foot's rotation follows its torque error about the
@@ -158,6 +160,7 @@ class WalkingController {
   DcmStabiliser dcm_;
   RobotModelData estimate_data_;               ///< the COM estimate's kinematics
   Eigen::Vector2d com_velocity_ = Eigen::Vector2d::Zero();  ///< estimated, low-passed [m/s]
+  Eigen::Vector2d com_bias_ = Eigen::Vector2d::Zero();      ///< correction of the kinematic COM [m]
   bool com_estimated_ = false;
   Eigen::Vector2d gyro_filtered_ = Eigen::Vector2d::Zero();  ///< IMU roll/pitch rate, low-passed [rad/s]
   Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();  ///< ZMP feedback's integral [m]
