@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "flexgait/experiments/push_recovery.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/humanoid/plant.hpp"
@@ -98,6 +99,22 @@ TEST(Push, DcmStabiliserBelowHalfTheBoundRecoveredTwiceTheBoundNot) {
   const WalkMetrics half = run_walk(standing(0.45 * bound, walking::BalanceMode::kDcm)).metrics;
   EXPECT_FALSE(half.fell) << half.fall_reason << " at " << half.fall_time;
   EXPECT_TRUE(run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics.fell);
+}
+
+TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
+  WalkRunParams p = standing(0.0);
+  const double tolerance = 4.0;
+  const PushRecovery r = largest_recoverable_push(p, Eigen::Vector2d(1, 0), 64.0, tolerance);
+  EXPECT_GT(r.fell, r.recovered);
+  EXPECT_LE(r.fell - r.recovered, tolerance);
+  EXPECT_EQ(r.runs, 1 + 4);  // the upper end, then 64 → 4 N s in four halvings
+  // Both ends are what they say (the pd twin recovers half the bound, test above).
+  p.push.force = {r.recovered / p.push.duration, 0, 0};
+  EXPECT_FALSE(run_walk(p).metrics.fell);
+  p.push.force = {r.fell / p.push.duration, 0, 0};
+  EXPECT_TRUE(run_walk(p).metrics.fell);
+  EXPECT_GT(r.recovered, 0.5 * r.bound);
+  EXPECT_THROW(largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0), std::invalid_argument);  // 1 N s is recovered
 }
 
 TEST(Push, SameConfigurationSameBytes) {
