@@ -146,7 +146,8 @@ void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const Fee
     anchor += w * (feet.sole[side].p - sole_pose(model_, estimate_data_, side).p);
     weight += w;
   }
-  const Eigen::Vector2d kinematic = (center_of_mass(model_, estimate_data_) + anchor / weight).head<2>();
+  if (weight > 0) anchor /= weight;  // (a plan never swings both feet)
+  const Eigen::Vector2d kinematic = (center_of_mass(model_, estimate_data_) + anchor).head<2>();
   if (balance_.com_bias_time > 0 && status_.zmp_valid && ft_live_)
     com_bias_ += period_ / (balance_.com_bias_time + period_) * (status_.zmp_measured - kinematic - com_bias_);
   const Eigen::Vector2d com = kinematic + com_bias_;
