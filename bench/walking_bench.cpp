@@ -4,6 +4,8 @@
 // per step.
 #include <benchmark/benchmark.h>
 
+#include <string>
+
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/walking/walking_controller.hpp"
@@ -14,9 +16,13 @@ using namespace flexgait;
 
 // update() over a whole 10-step plan with plausible standing sensor readings (the cost does not
 // depend on the readings' values).
+// Argument: walking::BalanceMode (0 pd, 1 dcm).
 void ControllerUpdate(benchmark::State& state) {
   walking::WalkParams w;
-  walking::WalkingController c(humanoid::RobotParams{}, w, walking::BalanceParams{}, 0.004);
+  walking::BalanceParams balance;
+  balance.mode = static_cast<walking::BalanceMode>(state.range(0));
+  walking::WalkingController c(humanoid::RobotParams{}, w, balance, 0.004);
+  state.SetLabel(std::string("balance.mode = ") + std::string(name_of(balance.mode)));
   humanoid::SensorReadings s;
   for (auto& ft : s.ft) ft.force = {0, 0, -250.0};
   const long ticks = static_cast<long>(c.plan().duration / 0.004);
@@ -26,7 +32,7 @@ void ControllerUpdate(benchmark::State& state) {
     if (++k == ticks) k = 0;
   }
 }
-BENCHMARK(ControllerUpdate)->Unit(benchmark::kMicrosecond);
+BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The thesis's Fig. 2 loop in one control period: update, input compensator (eqs. 8-9), output
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.

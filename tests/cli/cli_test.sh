@@ -234,6 +234,9 @@ check "walk compensates by default" grep -q '"compensation": "both"' "$work/walk
 expect_usage_error walk-bad-compensation "control.compensation" humanoid walk --set control.compensation=sometimes
 expect_usage_error walk-bad-gravity-model "control.gravity_model" humanoid walk --set control.gravity_model=rigid
 expect_usage_error walk-bad-k-belief "control.k_joint" humanoid walk --set control.k_joint=0
+expect_usage_error walk-push-unknown-body "key 'disturbance.push.body' = 'arm'" humanoid walk --set disturbance.push.body=arm
+expect_usage_error walk-push-in-the-past "key 'disturbance.push.time' = '-1'" humanoid walk --set disturbance.push.time=-1
+expect_usage_error walk-push-negative-duration "key 'disturbance.push.duration' = '-0.1'" humanoid walk --set disturbance.push.duration=-0.1
 
 # Humanoid compensation study and stiffness mismatch (one short step each).
 "$exe" humanoid compensation --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --out "$work/comp" \

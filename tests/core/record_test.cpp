@@ -123,7 +123,7 @@ TEST(Record, WalkRunSchemaIsTheUnionOfItsParts) {
   Schema parts = humanoid::robot_schema();
   parts.merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
   parts.merge(compensation::compensation_schema()).merge(schema_of<walking::EstimatorParams>());
-  parts.merge(schema_of<walking::HealthParams>());
+  parts.merge(schema_of<walking::HealthParams>()).merge(schema_of<humanoid::Push>());
   const Schema run = experiments::walk_run_schema();
   ASSERT_EQ(run.params().size(), parts.params().size() + 1);  // + output.log_period
   for (std::size_t i = 0; i < parts.params().size(); ++i) EXPECT_EQ(run.params()[i].key, parts.params()[i].key);
@@ -138,6 +138,7 @@ TEST(Record, JsonLeavesOutFieldsThatDoNotApply) {
   EXPECT_FALSE(off.contains("estimate_error_rms"));
   EXPECT_EQ(off["compensation"], "input");
   m.compensation = compensation::CompensationMode::kBoth;
+  m.pushed = true;  // push_impulse and capture_point_bound apply
   const auto on = record_json(m);
   EXPECT_DOUBLE_EQ(on["estimate_error_share_of_deflection"].get<double>(), 0.05);
   // Every field the description lists appears when it applies, under the same key, in order.

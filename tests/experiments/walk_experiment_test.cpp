@@ -67,6 +67,15 @@ TEST(WalkExperiment, CompensationCutsThePelvisRollErrorAndEstimatesTheLinks) {
   EXPECT_LT(on.estimate_error_rms, 0.25 * on.deflection_rms);
 }
 
+TEST(WalkExperiment, DcmStabiliserWalksFourSteps) {
+  WalkRunParams p = four_steps(1.0);
+  p.balance.mode = walking::BalanceMode::kDcm;
+  const WalkMetrics m = run_walk(p).metrics;
+  EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time << " s";
+  EXPECT_EQ(m.steps_completed, 4);
+  EXPECT_EQ(m.mujoco_warnings, 0);
+}
+
 TEST(WalkExperiment, SameConfigurationSameBytes) {
   WalkRunParams p = four_steps(1.0);
   p.walk.steps = 2;

@@ -41,5 +41,26 @@ TEST(Renderer, DrawsTheTwinIntoAPng) {
   EXPECT_NE(renderer.render(plant.data()), standing);
 }
 
+TEST(Renderer, DrawsAnArrowForAPush) {
+  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  const JointVector pose = standing_pose(RobotParams{}, 0.75);
+  plant.reset(pose);
+  plant.set_push(Push{0.0, PushBody::kChest, {0, 200, 0}, 0.1});  // sideways: across the side view
+  plant.step(pose);
+  Renderer renderer(plant.model(), 320, 240);
+  const std::vector<unsigned char> pushed = renderer.render(plant.data());
+  plant.reset(pose);
+  plant.set_push(Push{});
+  plant.step(pose);
+  const std::vector<unsigned char> still = renderer.render(plant.data());
+  // The orange arrow: pixels with much more red than blue appear only with the push.
+  const auto orange = [](const std::vector<unsigned char>& rgb) {
+    long n = 0;
+    for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) n += rgb[i] > 150 && rgb[i + 2] < 80;
+    return n;
+  };
+  EXPECT_GT(orange(pushed), 50 + orange(still));
+}
+
 }  // namespace
 }  // namespace flexgait::humanoid

@@ -38,12 +38,16 @@ HealthParams constant_readings() {
 TEST(WalkingController, UpdateAllocatesNothing) {
   WalkParams w;
   w.steps = 4;
-  WalkingController c(humanoid::RobotParams{}, w, BalanceParams{}, 0.004, EstimatorParams{}, constant_readings());
   humanoid::SensorReadings s = standing_sensors(250.0);
-  const long before = g_allocations.load();
-  for (int k = 0; k < static_cast<int>(c.plan().duration / 0.004); ++k) c.update(at(s, k * 0.004), k * 0.004);
-  EXPECT_EQ(g_allocations.load() - before, 0);
-  EXPECT_FALSE(c.safe_stop().active);
+  for (const BalanceMode mode : {BalanceMode::kPd, BalanceMode::kDcm}) {
+    BalanceParams balance;
+    balance.mode = mode;
+    WalkingController c(humanoid::RobotParams{}, w, balance, 0.004, EstimatorParams{}, constant_readings());
+    const long before = g_allocations.load();
+    for (int k = 0; k < static_cast<int>(c.plan().duration / 0.004); ++k) c.update(at(s, k * 0.004), k * 0.004);
+    EXPECT_EQ(g_allocations.load() - before, 0) << name_of(mode);
+    EXPECT_FALSE(c.safe_stop().active);
+  }
   // A safe stop (the right F/T sensor stops sending at 3 s) allocates nothing either.
   WalkingController d(humanoid::RobotParams{}, w, BalanceParams{}, 0.004, EstimatorParams{}, constant_readings());
   const long before_stop = g_allocations.load();

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "flexgait/experiments/capture_point_bound.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/humanoid/mujoco_messages.hpp"
@@ -51,6 +52,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   compensation::DeformationCompensator compensator(controller.model(), params.control);
   humanoid::HumanoidPlant plant(params.robot, params.plant);
   plant.reset(controller.initial_pose());
+  plant.set_push(params.push);
   const walking::RobotModel& model = controller.model();
 
   WalkResult out;
@@ -60,6 +62,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.riccati_residual = controller.gains().riccati_residual;
   m.compensation = params.control.mode;
   m.gravity_model = params.control.gravity;
+  m.pushed = params.push.active();
+  bool bound_taken = false;
 
   // Truth → plan frame: the offset between the initial feet.
   humanoid::GroundTruth g = plant.truth();
@@ -100,6 +104,20 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const double roll_true = walking::roll_of(R_before), pitch_true = walking::pitch_of(R_before);
     const humanoid::JointVector encoder = sensors.encoder;  // (the plant's sensors change on step)
     const bool in_walk = before.t >= t_walk0 && before.t <= out.plan.t_settle;
+    if (m.pushed && !bound_taken && before.t + 0.5 * params.plant.physics_dt >= params.push.time) {
+      // The capture-point bound of the push's direction, where the robot stands as it begins.
+      bound_taken = true;
+      const Eigen::Vector2d direction(params.push.force[0], params.push.force[1]);
+      std::vector<walking::Pose> soles;
+      for (int side = 0; side < 2; ++side)
+        if (before.sole_contact[side])
+          soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0), walking::rot_z(before.sole_yaw[side])});
+      if (direction.norm() > 0)
+        m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2], -plant.model()->opt.gravity[2],
+                                                    support_polygon(soles, length, width),
+                                                    Eigen::Vector2d(before.com[0], before.com[1]), direction)
+                                    .impulse;
+    }
     if (estimate) {
       ++newton_calls;
       newton_iterations += estimate->iterations;
@@ -258,6 +276,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.torque_true = before.gear_torque;
       w.roll_kin_encoder = roll_enc;
       w.roll_kin_estimate = roll_est;
+      w.push_force = g.push_force;
       out.log.push_back(w);
     }
     if (progress && k % 250 == 0) progress(t_now);
@@ -315,6 +334,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.com_error_max = com.max;
   if (!std::isfinite(m.support_margin_min)) m.support_margin_min = 0;
   m.mujoco_warnings = g.warnings;
+  m.push_impulse = std::hypot(g.push_impulse[0], g.push_impulse[1], g.push_impulse[2]);
   m.simulated_time = g.t;
   m.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   m.real_time_factor = m.wall_time > 0 ? m.simulated_time / m.wall_time : 0.0;

@@ -31,11 +31,12 @@ struct WalkRunParams {
   compensation::CompensationParams control;  ///< the deformation compensators (control.*)
   walking::EstimatorParams estimator;      ///< the controller's attitude estimator (estimator.*)
   walking::HealthParams health;            ///< the controller's sensor health checks (health.*)
+  humanoid::Push push;                     ///< a push on the twin (disturbance.push.*; none by default)
   double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                  ///< or tilts this far [rad]
 
-  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, output.log_period (the controller's
+  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*, output.log_period (the controller's
   /// belief of the robot and the fall thresholds are not keys).
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -46,6 +47,7 @@ struct WalkRunParams {
     compensation::CompensationParams::visit_fields(s.control, v);
     walking::EstimatorParams::visit_fields(s.estimator, v);
     walking::HealthParams::visit_fields(s.health, v);
+    humanoid::Push::visit_fields(s.push, v);
     v("output.log_period", s.log_period, {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
   }
 };
@@ -83,6 +85,7 @@ struct WalkSample {
   /// Pelvis roll by kinematics from the stance sole (flat on the floor) through the encoders and
   /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.
   double roll_kin_encoder = 0, roll_kin_estimate = 0;
+  std::array<double, 3> push_force{};     ///< push force applied in the last physics step (world) [N]
 };
 
 struct Landing {
@@ -140,6 +143,9 @@ struct WalkMetrics {
   bool safe_stop = false;                                    ///< the controller stopped the walk for a failed sensor
   std::string safe_stop_reason;                              ///< "" without a safe stop
   double safe_stop_time = 0;                                 ///< [s]
+  bool pushed = false;                                       ///< a push was configured (disturbance.push.*)
+  double push_impulse = 0;                                   ///< |applied push impulse| [N s]
+  double capture_point_bound = 0;                            ///< the bound for the push's direction at its start [N s]
 
   /// The walk ran to its planned end: every step landed, no fall, no safe stop, no failure.
   bool completed() const { return !fell && failure.empty() && !safe_stop && steps_completed == steps_planned; }
@@ -210,6 +216,10 @@ struct WalkMetrics {
     v("safe_stop", s.safe_stop, {.doc = "the controller stopped the walk because a sensor stayed bad"});
     v("safe_stop_reason", s.safe_stop_reason, {.doc = "which sensor failed, how, when; empty without a safe stop"});
     v("safe_stop_time", s.safe_stop_time, {.unit = "s", .doc = "when the safe stop began"});
+    v("push_impulse", s.push_impulse, {.unit = "N s", .doc = "magnitude of the push impulse applied", .present = s.pushed});
+    v("capture_point_bound", s.capture_point_bound,
+      {.unit = "N s", .doc = "largest impulse an ankle strategy absorbs in the push's direction at its start (m ω0 d)",
+       .present = s.pushed});
     v("ik_clamped", s.ik_clamped, {.doc = "control periods with a leg target out of reach"});
     v("mujoco_warnings", s.mujoco_warnings, {.doc = "MuJoCo warnings during the walk"});
     v("riccati_residual", s.riccati_residual, {.doc = "relative residual of the preview controller's DARE"});

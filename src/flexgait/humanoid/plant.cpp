@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "flexgait/humanoid/model_xml.hpp"
 #include "flexgait/humanoid/mujoco_messages.hpp"
@@ -65,6 +66,7 @@ HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
   }
   drives_ = std::make_unique<ElasticDrives>(model_, joints, act);
   floor_geom_ = require(model_, mjOBJ_GEOM, "floor");
+  push_body_ = {require(model_, mjOBJ_BODY, "pelvis"), require(model_, mjOBJ_BODY, "chest")};
   sole_geom_ = {require(model_, mjOBJ_GEOM, "l_sole"), require(model_, mjOBJ_GEOM, "r_sole")};
   ft_site_ = {require(model_, mjOBJ_SITE, "l_ft"), require(model_, mjOBJ_SITE, "r_ft")};
   ft_sensor_adr_ = {sensor_adr(model_, "l_ft_force"), sensor_adr(model_, "l_ft_torque"),
@@ -85,6 +87,7 @@ double HumanoidPlant::total_mass() const { return model_->body_subtreemass[0]; }
 
 void HumanoidPlant::reset(const JointVector& pose) {
   mj_resetData(model_, data_);
+  push_force_ = push_impulse_ = floor_impulse_ = {};
   gyro_drift_ = {};
   accel_drift_ = {};
   const auto& f = params_.faults.sensor;
@@ -120,8 +123,30 @@ void HumanoidPlant::reset(const JointVector& pose) {
 
 void HumanoidPlant::step(const JointVector& command) {
   const int n = params_.substeps();
-  for (int k = 0; k < n; ++k) drives_->step(model_, data_, command.data());
+  for (int k = 0; k < n; ++k) {
+    apply_push();
+    drives_->step(model_, data_, command.data());
+    // The constraint force on the free joint's translation: the floor contacts' total (the other
+    // constraints, joint limits, act within the robot and have no part there).
+    for (int i = 0; i < 3; ++i) floor_impulse_[i] += model_->opt.timestep * data_->qfrc_constraint[i];
+  }
   read_sensors();
+}
+
+void HumanoidPlant::set_push(const Push& push) { push_ = push; }
+
+void HumanoidPlant::apply_push() {
+  const double dt = model_->opt.timestep;
+  const long n = std::lround(data_->time / dt);
+  const bool on = push_.active() && n >= std::lround(push_.time / dt) && n < std::lround((push_.time + push_.duration) / dt);
+  const int body = push_body_[static_cast<int>(push_.body)];
+  for (const int b : push_body_)
+    for (int i = 0; i < 6; ++i) data_->xfrc_applied[6 * b + i] = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    push_force_[i] = on ? push_.force[i] : 0.0;
+    data_->xfrc_applied[6 * body + i] = push_force_[i];  // force at the body's COM, world frame
+    push_impulse_[i] += push_force_[i] * dt;
+  }
 }
 
 void HumanoidPlant::read_sensors() {
@@ -233,6 +258,13 @@ GroundTruth HumanoidPlant::truth() const {
   g.normal_force = fz;
   if (fz > 1e-9) g.zmp = {mx / fz, my / fz};
   g.warnings = mujoco_warning_count(data_);
+  g.push_force = push_force_;
+  g.push_impulse = push_impulse_;
+  g.floor_impulse = floor_impulse_;
+  // The free joint's translational rows of M q̇: ∂T/∂v_root = Σ m_i v_i, the total linear momentum.
+  std::vector<mjtNum> Mv(static_cast<std::size_t>(model_->nv));
+  mj_mulM(model_, data_, Mv.data(), data_->qvel);
+  for (int i = 0; i < 3; ++i) g.linear_momentum[i] = Mv[static_cast<std::size_t>(i)];
   return g;
 }
 

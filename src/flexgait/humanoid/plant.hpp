@@ -15,6 +15,7 @@
 #include <memory>
 #include <random>
 
+#include "flexgait/humanoid/disturbance.hpp"
 #include "flexgait/humanoid/elastic_actuator.hpp"
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
@@ -39,6 +40,10 @@ struct GroundTruth {
   double normal_force = 0;                    ///< total floor normal force [N]
   bool non_sole_contact = false;              ///< a body other than a sole touches the floor
   int warnings = 0;                           ///< MuJoCo warnings raised so far
+  std::array<double, 3> push_force{};         ///< push force of the last physics step (world) [N]
+  std::array<double, 3> push_impulse{};       ///< push impulse applied so far (world) [N s]
+  std::array<double, 3> floor_impulse{};      ///< impulse of the floor's contact forces so far (world) [N s]
+  std::array<double, 3> linear_momentum{};    ///< total linear momentum of the robot (world) [kg m/s]
 };
 
 class HumanoidPlant {
@@ -52,6 +57,8 @@ class HumanoidPlant {
   void reset(const JointVector& pose);
   /// Advances one control period with these motor-side position commands [rad].
   void step(const JointVector& command);
+  /// The push to apply from now on (replaces any earlier one; disturbance.hpp for its timing).
+  void set_push(const Push& push);
   const SensorReadings& sensors() const { return sensors_; }
   GroundTruth truth() const;
   double time() const;
@@ -64,6 +71,8 @@ class HumanoidPlant {
 
  private:
   void read_sensors();
+  /// Sets xfrc_applied for the physics step starting now.
+  void apply_push();
 
   RobotParams robot_;
   PlantParams params_;
@@ -72,6 +81,9 @@ class HumanoidPlant {
   std::unique_ptr<ElasticDrives> drives_;
   std::array<int, kJoints> joint_id_{};
   int floor_geom_ = -1;
+  std::array<int, 2> push_body_{};  ///< body ids of PushBody: pelvis, chest
+  Push push_;
+  std::array<double, 3> push_force_{}, push_impulse_{}, floor_impulse_{};
   std::array<int, 2> sole_geom_{};
   std::array<int, 2> ft_site_{};
   std::array<int, 4> ft_sensor_adr_{};  // l force, l torque, r force, r torque

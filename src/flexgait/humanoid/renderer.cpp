@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -53,6 +54,26 @@ Renderer::~Renderer() {
   OSMesaDestroyContext(gl_->context);
 }
 
+void Renderer::add_force_arrows(const mjData* data) {
+  // A push (xfrc_applied, disturbance.hpp): an orange arrow ending at the body's centre of mass,
+  // pointing along the force, kArrowScale long per newton (at most kArrowMax).
+  constexpr double kArrowScale = 0.003, kArrowMax = 0.8, kWidth = 0.03;  // [m/N], [m], [m]
+  mjvScene& scene = gl_->scene;
+  for (int b = 1; b < model_->nbody && scene.ngeom < scene.maxgeom; ++b) {
+    const mjtNum* f = data->xfrc_applied + 6 * b;
+    const double norm = std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+    if (!(norm > 0)) continue;
+    const double length = std::min(kArrowScale * norm, kArrowMax);
+    const mjtNum* to = data->xipos + 3 * b;
+    mjtNum from[3];
+    for (int i = 0; i < 3; ++i) from[i] = to[i] - length * f[i] / norm;
+    mjvGeom* g = scene.geoms + scene.ngeom++;
+    const float rgba[4] = {1.0F, 0.5F, 0.0F, 1.0F};
+    mjv_initGeom(g, mjGEOM_ARROW, nullptr, nullptr, nullptr, rgba);
+    mjv_makeConnector(g, mjGEOM_ARROW, kWidth, from[0], from[1], from[2], to[0], to[1], to[2]);
+  }
+}
+
 const std::vector<unsigned char>& Renderer::render(const mjData* data) {
   OSMesaMakeCurrent(gl_->context, gl_->buffer.data(), GL_UNSIGNED_BYTE, width_, height_);
   // Follow the pelvis (the free joint's position) at a fixed height.
@@ -60,6 +81,7 @@ const std::vector<unsigned char>& Renderer::render(const mjData* data) {
   gl_->camera.lookat[1] = data->qpos[1];
   gl_->camera.lookat[2] = 0.6;
   mjv_updateScene(model_, const_cast<mjData*>(data), &gl_->option, nullptr, &gl_->camera, mjCAT_ALL, &gl_->scene);
+  add_force_arrows(data);
   const mjrRect viewport = {0, 0, width_, height_};
   mjr_render(viewport, &gl_->scene, &gl_->render);
   mjr_readPixels(flipped_.data(), nullptr, viewport, &gl_->render);

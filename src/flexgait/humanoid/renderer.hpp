@@ -21,13 +21,14 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  /// Draws the state `data` of the model seen from the side, looking at the pelvis; returns RGB
-  /// rows top to bottom (width × height × 3 bytes).
+  /// Draws the state `data` of the model seen from the side, looking at the pelvis, with an arrow
+  /// for each body's applied force (a push); returns RGB rows top to bottom (width × height × 3 bytes).
   const std::vector<unsigned char>& render(const mjData* data);
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
+  void add_force_arrows(const mjData* data);
   struct Gl;
   std::unique_ptr<Gl> gl_;
   const mjModel* model_;

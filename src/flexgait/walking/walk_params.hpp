@@ -3,6 +3,8 @@
 /// Parameters of the walking controller (spec humanoid.md, "The walking controller"): the
 /// footstep plan and the preview controller (keys walk.*), and the balance controller (balance.*).
 /// SI units; each struct lists its keys once (core/record.hpp).
+#include <array>
+
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
 
@@ -42,8 +44,15 @@ struct WalkParams {
   }
 };
 
+/// The balance layer: ROBOTIS-style PD loops with clamps, or the DCM stabiliser (dcm_stabiliser.hpp).
+enum class BalanceMode { kPd, kDcm };
+constexpr std::array<EnumName<BalanceMode>, 2> enum_names(BalanceMode) {
+  return {{{BalanceMode::kPd, "pd"}, {BalanceMode::kDcm, "dcm"}}};
+}
+
 struct BalanceParams {
   bool enabled = true;
+  BalanceMode mode = BalanceMode::kPd;
   double imu_kp = 0.3;              ///< pelvis attitude: counter-tilt per radian of IMU tilt
   double imu_kd = 0.0;              ///< per rad/s of gyro rate [s]
   double imu_limit = 0.1;           ///< clamp of the attitude correction [rad]
@@ -60,10 +69,21 @@ struct BalanceParams {
   double zmp_ki = 0.3;              ///< integral gain of the ZMP feedback [1/s]
   double zmp_limit = 0.04;          ///< clamp of the COM shift [m]
   double zmp_filter_time = 0.02;    ///< time constant of each of two low-pass stages on the measured ZMP [s]
+  // The DCM stabiliser (mode dcm; Caron et al. 2019's HRP-4 gains).
+  double dcm_kp = 5.0;              ///< DCM proportional gain k_p [1/s]
+  double dcm_ki = 10.0;             ///< DCM integral gain k_i [1/s^2]
+  double dcm_integral_limit = 0.05; ///< clamp of the DCM error's integral [m s]
+  /// Foot rotation rate per Nm of torque error about the sole [rad/(N m s)]. Caron et al.'s 0.01
+  /// rocks this twin (stiff servos, 4 ms period) over within 2.6 s of a 10-step walk; 0.002
+  /// walks it (measured; 0.005 falls at step 2).
+  double cop_admittance = 0.002;
+  double com_velocity_filter_time = 0.01;  ///< low-pass on the estimated COM velocity [s]
+  double com_bias_time = 2.0;       ///< time constant pulling the COM estimate's mean onto the measured ZMP's [s]; 0: off
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("balance.enabled", s.enabled, {.doc = "balance controller on (IMU attitude and foot torque loops)"});
+    v("balance.mode", s.mode, {.doc = "pd: PD loops with clamps; dcm: DCM tracked by a CoP command (Englsberger 2015, Caron 2019)"});
     v("balance.imu_kp", s.imu_kp, {.doc = "pelvis counter-tilt per radian of IMU tilt", .bounds = closed(0, 5)});
     v("balance.imu_kd", s.imu_kd, {.unit = "s", .doc = "pelvis counter-tilt per rad/s of gyro rate", .bounds = closed(0, 1)});
     v("balance.imu_limit", s.imu_limit, {.unit = "rad", .doc = "clamp of the pelvis attitude correction", .bounds = closed(0, 0.3)});
@@ -88,6 +108,17 @@ struct BalanceParams {
     v("balance.zmp_filter_time", s.zmp_filter_time,
       {.unit = "s", .doc = "time constant of each of two low-pass stages on the measured ZMP", .bounds = closed(0, 10)});
     v("balance.zmp_limit", s.zmp_limit, {.unit = "m", .doc = "clamp of the COM shift of the ZMP feedback", .bounds = closed(0, 0.2)});
+    v("balance.dcm_kp", s.dcm_kp, {.unit = "1/s", .doc = "DCM stabiliser: proportional gain", .bounds = closed(0, 100)});
+    v("balance.dcm_ki", s.dcm_ki, {.unit = "1/s^2", .doc = "DCM stabiliser: integral gain", .bounds = closed(0, 1000)});
+    v("balance.dcm_integral_limit", s.dcm_integral_limit,
+      {.unit = "m s", .doc = "DCM stabiliser: clamp of the error's integral", .bounds = closed(0, 1)});
+    v("balance.cop_admittance", s.cop_admittance,
+      {.unit = "rad/(N m s)", .doc = "DCM stabiliser: foot rotation rate per Nm of sole torque error", .bounds = closed(0, 1)});
+    v("balance.com_velocity_filter_time", s.com_velocity_filter_time,
+      {.unit = "s", .doc = "DCM stabiliser: low-pass time constant on the estimated COM velocity", .bounds = closed(0, 1)});
+    v("balance.com_bias_time", s.com_bias_time,
+      {.unit = "s", .doc = "DCM stabiliser: time constant pulling the COM estimate's mean onto the measured ZMP's (0: off)",
+       .bounds = closed(0, 100)});
   }
 };
 

@@ -12,6 +12,12 @@ namespace {
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
 
+/// Where p projects on the segment right → left, as the left foot's share in [0, 1] (½ for coincident feet).
+double left_share(const Eigen::Vector2d& left, const Eigen::Vector2d& right, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d span = left - right;
+  return span.squaredNorm() > 1e-12 ? std::clamp((p - right).dot(span) / span.squaredNorm(), 0.0, 1.0) : 0.5;
+}
+
 }  // namespace
 
 using humanoid::leg_first_joint;
@@ -24,6 +30,7 @@ WalkingController::WalkingController(const humanoid::RobotParams& robot, const W
       balance_(balance),
       period_(period),
       model_(make_robot_model(robot)),
+      dcm_(DcmGains{balance.dcm_kp, balance.dcm_ki, balance.dcm_integral_limit}),
       estimator_params_(estimator),
       estimator_(estimator),
       health_(health, period) {
@@ -77,6 +84,7 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
   for (int side = 0; side < 2; ++side) {
     const Pose& sole = status_.sole[side];
     const FootContact c = foot_contact(s.ft[side], sole.R, model_.leg[side].ankle_to_sole, m_foot);
+    foot_contact_[side] = c;
     status_.contact[side] = c.normal_force > balance_.contact_force;
     status_.foot_force[side] = c.normal_force;
     if (c.normal_force <= 1.0) continue;
@@ -84,21 +92,18 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
     moment += c.normal_force * world.head<2>();
     fz_total += c.normal_force;
     // Foot torque compliance: δ̇ = τ / D (the return term is applied in update).
-    if (balance_.enabled && ft_live_ && status_.contact[side])
+    if (balance_.enabled && balance_.mode == BalanceMode::kPd && ft_live_ && status_.contact[side])
       foot_rotation_[side] += period_ * (c.torque / balance_.ankle_damping);
   }
   status_.zmp_valid = fz_total > balance_.contact_force;
   if (status_.zmp_valid) status_.zmp_measured = moment / fz_total;
 }
 
-void WalkingController::update_foot_lift(const FeetTarget& feet) {
+void WalkingController::update_foot_lift(const FeetTarget& feet, const Eigen::Vector2d& zmp) {
   // Foot force control: the load each foot should carry follows the ZMP reference between the
   // sole centres (all of it on the stance foot in single support); a foot carrying more than its
   // share is raised, ż = (f − f_d) / D_z − z / T_z (a swing foot landing early gives way).
-  const Eigen::Vector2d left = feet.sole[0].p.head<2>(), right = feet.sole[1].p.head<2>();
-  const Eigen::Vector2d span = left - right;
-  const double share_left =
-      span.squaredNorm() > 1e-12 ? std::clamp((status_.zmp_ref - right).dot(span) / span.squaredNorm(), 0.0, 1.0) : 0.5;
+  const double share_left = left_share(feet.sole[0].p.head<2>(), feet.sole[1].p.head<2>(), zmp);
   const double load = std::max(0.0, status_.foot_force[0]) + std::max(0.0, status_.foot_force[1]);
   for (int side = 0; side < 2; ++side) {
     const double desired = (side == 0 ? share_left : 1.0 - share_left) * load;
@@ -115,7 +120,7 @@ void WalkingController::update_foot_lift(const FeetTarget& feet) {
 Eigen::Vector2d WalkingController::zmp_feedback() {
   // ZMP feedback: the gear deflections move the real COM away from the plan by centimetres; shift
   // the commanded COM until the measured ZMP follows the reference (PI, clamped, anti-windup).
-  if (!balance_.enabled) return Eigen::Vector2d::Zero();
+  if (!balance_.enabled || balance_.mode != BalanceMode::kPd) return Eigen::Vector2d::Zero();
   if (ft_failed_) zmp_integral_ *= 1.0 - period_ / (health_.params().fade_time + period_);  // fades out
   if (!status_.zmp_valid || !ft_live_) return zmp_integral_;  // held
   // The measured ZMP carries −(z/g) c̈ (it leads the COM with the opposite sign at high
@@ -126,6 +131,52 @@ Eigen::Vector2d WalkingController::zmp_feedback() {
   const Eigen::Vector2d error = status_.zmp_ref - zmp_filtered_[1];
   zmp_integral_ = clamp_abs(zmp_integral_ + period_ * balance_.zmp_ki * error, balance_.zmp_limit);
   return clamp_abs(zmp_integral_ + balance_.zmp_kp * error, balance_.zmp_limit);
+}
+
+void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const FeetTarget& feet, double yaw) {
+  // The COM by kinematics: the encoders' pose under the estimated pelvis attitude, placed so that
+  // the loaded soles sit where the plan put them (their offsets weighted by the F/T loads).
+  const Pose pelvis{Vector3d::Zero(), rot_z(yaw) * rot_y(status_.imu_pitch) * rot_x(status_.imu_roll)};
+  forward_kinematics(model_, estimate_data_, pelvis, s.encoder);
+  Vector3d anchor = Vector3d::Zero();
+  double weight = 0;
+  for (int side = 0; side < 2; ++side) {
+    if (feet.swinging[side]) continue;
+    const double w = std::max(foot_contact_[side].normal_force, 1.0);
+    anchor += w * (feet.sole[side].p - sole_pose(model_, estimate_data_, side).p);
+    weight += w;
+  }
+  if (weight > 0) anchor /= weight;  // (a plan never swings both feet)
+  const Eigen::Vector2d kinematic = (center_of_mass(model_, estimate_data_) + anchor).head<2>();
+  if (balance_.com_bias_time > 0 && status_.zmp_valid && ft_live_)
+    com_bias_ += period_ / (balance_.com_bias_time + period_) * (status_.zmp_measured - kinematic - com_bias_);
+  const Eigen::Vector2d com = kinematic + com_bias_;
+  if (com_estimated_) {
+    const double a = period_ / (balance_.com_velocity_filter_time + period_);
+    com_velocity_ += a * ((com - status_.com_estimate) / period_ - com_velocity_);
+  }
+  com_estimated_ = true;
+  status_.com_estimate = com;
+  const double omega = std::sqrt(kGravity / gains_.com_height);
+  status_.dcm = dcm_of(com, com_velocity_, omega);
+  status_.dcm_ref = dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)), Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
+  const Eigen::Vector2d p = dcm_.zmp_command(status_.dcm, status_.dcm_ref, status_.zmp_ref, omega, period_, !ft_live_);
+  status_.zmp_command = p;
+  // Distribution: the load shares follow p along the line between the soles (update_foot_lift);
+  // what is off that line goes under each loaded sole as its centre of pressure.
+  const Eigen::Vector2d left = feet.sole[0].p.head<2>(), right = feet.sole[1].p.head<2>();
+  Eigen::Vector2d base = feet.swinging[0] ? right : left;
+  if (!feet.swinging[0] && !feet.swinging[1]) base = right + left_share(left, right, p) * (left - right);
+  const double half_l = 0.5 * model_.sole_length, half_w = 0.5 * model_.sole_width;
+  for (int side = 0; side < 2; ++side) {
+    if (feet.swinging[side] || !status_.contact[side] || !ft_live_) continue;
+    const Matrix3d& R = feet.sole[side].R;
+    const Vector3d off = R.transpose() * Vector3d(p.x() - base.x(), p.y() - base.y(), 0);
+    const Eigen::Vector2d cop(std::clamp(off.x(), -half_l, half_l), std::clamp(off.y(), -half_w, half_w));
+    const double fz = foot_contact_[side].normal_force;
+    const Eigen::Vector2d torque_wanted(cop.y() * fz, -cop.x() * fz);  // ground torque about the sole centre
+    foot_rotation_[side] += period_ * balance_.cop_admittance * ft_fade_ * (foot_contact_[side].torque - torque_wanted);
+  }
 }
 
 void WalkingController::check_sensors(const humanoid::SensorReadings& raw, double t, std::size_t k) {
@@ -234,13 +285,18 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.imu_roll = roll_of(attitude_);
   status_.imu_pitch = pitch_of(attitude_);
   measure_zmp(s);
+  // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
+  const Vector3d heading = feet.sole[0].R.col(0) + feet.sole[1].R.col(0);
+  const double yaw = std::atan2(heading.y(), heading.x());
+  const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
+  if (dcm) dcm_balance(s, feet, yaw);
   for (int side = 0; side < 2; ++side) {
-    foot_rotation_[side] -= period_ / balance_.ankle_return_time * foot_rotation_[side];
+    if (!dcm) foot_rotation_[side] -= period_ / balance_.ankle_return_time * foot_rotation_[side];
     if (!balance_.enabled || feet.swinging[side]) foot_rotation_[side].setZero();
     foot_rotation_[side] = clamp_abs(foot_rotation_[side], balance_.ankle_limit);
   }
   status_.foot_rotation = foot_rotation_;
-  update_foot_lift(feet);
+  update_foot_lift(feet, dcm ? status_.zmp_command : status_.zmp_ref);
   double d_roll = 0, d_pitch = 0;
   if (balance_.enabled) {
     d_roll = std::clamp(-(balance_.imu_kp * status_.imu_roll + balance_.imu_kd * s.imu.gyro[0]), -balance_.imu_limit,
@@ -270,9 +326,6 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
     soles[side].p.z() += foot_lift_[side];
   }
-  // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
-  const Vector3d heading = feet.sole[0].R.col(0) + feet.sole[1].R.col(0);
-  const double yaw = std::atan2(heading.y(), heading.x());
   solve_pose(status_.com_ref + status_.com_shift, soles, rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll), 2);
   status_.pelvis = pelvis_;
   status_.desired = desired_;

@@ -20,6 +20,18 @@
 ///    so that the gear deflections' shift of the real COM is taken out.
 /// The measured ZMP combines both feet's centres of pressure from the F/T sensors.
 ///
+/// balance.mode = dcm replaces the foot torque compliance and the ZMP feedback by the DCM
+/// stabiliser (the sway damping stays: without it the twin's lateral rocking grows and it falls
+/// before the first step) (dcm_stabiliser.hpp, eq. D2): the COM is estimated by kinematics —
+/// encoders, the estimated pelvis roll and pitch, the plan's heading, anchored at the loaded soles'
+/// planned places (weighted by their F/T loads), its mean pulled onto the measured ZMP's with
+/// balance.com_bias_time (the COM's and the ZMP's means agree over any stretch the robot ends as
+/// it began; the encoders miss the gear deflections' centimetres) — its velocity by a filtered difference; the ZMP
+/// command from ξ = c + ċ/ω against the plan's ξ_ref is distributed to the feet (load shares
+/// along the line between the soles, the remainder as a centre of pressure under each loaded
+/// sole, clamped to the sole) and each loaded foot's rotation follows its torque error about the
+/// sole centre with the CoP admittance A (Caron et al. 2019): δ̇ = A (τ − τ_d), clamped.
+///
 /// Sensors (issue 17, item 13): every reading passes SensorHealth first (NaN, stale, stuck →
 /// the last good value is held, for at most health.hold_time). The pelvis attitude comes from
 /// the AttitudeEstimator (Mahony filter on gyro and accelerometer, with the planned COM
@@ -38,6 +50,8 @@
 #include "flexgait/humanoid/sensors.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
 #include "flexgait/walking/attitude_estimator.hpp"
+#include "flexgait/walking/dcm_stabiliser.hpp"
+#include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
 #include "flexgait/walking/preview_control.hpp"
@@ -69,6 +83,11 @@ struct ControllerStatus {
   humanoid::JointVector desired{};                    ///< joint angles from the IK (θ_d) [rad]
   unsigned sensor_flags = 0;                          ///< bit i: sensor i (humanoid::SensorId) bad this period
   bool safe_stop = false;                             ///< the walk is being stopped for a failed sensor
+  // balance.mode = dcm:
+  Eigen::Vector2d com_estimate = Eigen::Vector2d::Zero();  ///< COM by kinematics [m]
+  Eigen::Vector2d dcm = Eigen::Vector2d::Zero();           ///< ξ of the estimate [m]
+  Eigen::Vector2d dcm_ref = Eigen::Vector2d::Zero();       ///< ξ of the plan [m]
+  Eigen::Vector2d zmp_command = Eigen::Vector2d::Zero();   ///< the stabiliser's ZMP command (eq. D2) [m]
 };
 
 /// Why and when the controller stopped the walk.
@@ -112,7 +131,10 @@ class WalkingController {
                   int iterations);
   void measure_zmp(const humanoid::SensorReadings& sensors);
   /// Foot force control: updates foot_lift_ from the feet's loads against their shares.
-  void update_foot_lift(const FeetTarget& feet);
+  /// (the loads' shares follow `zmp` between the soles)
+  void update_foot_lift(const FeetTarget& feet, const Eigen::Vector2d& zmp);
+  /// The DCM stabiliser: COM estimate, ZMP command, foot rotations toward its centres of pressure.
+  void dcm_balance(const humanoid::SensorReadings& sensors, const FeetTarget& feet, double yaw);
   /// ZMP feedback: advances its filter and integral, returns the COM shift [m].
   Eigen::Vector2d zmp_feedback();
   /// Health of the readings, escalation to a safe stop and the attitude estimate.
@@ -134,6 +156,12 @@ class WalkingController {
   humanoid::JointVector desired_{}, initial_pose_{};
   std::array<Eigen::Vector2d, 2> foot_rotation_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   std::array<double, 2> foot_lift_{};
+  std::array<FootContact, 2> foot_contact_{};  ///< each foot's ground wrench from its F/T sensor
+  DcmStabiliser dcm_;
+  RobotModelData estimate_data_;               ///< the COM estimate's kinematics
+  Eigen::Vector2d com_velocity_ = Eigen::Vector2d::Zero();  ///< estimated, low-passed [m/s]
+  Eigen::Vector2d com_bias_ = Eigen::Vector2d::Zero();      ///< correction of the kinematic COM [m]
+  bool com_estimated_ = false;
   Eigen::Vector2d gyro_filtered_ = Eigen::Vector2d::Zero();  ///< IMU roll/pitch rate, low-passed [rad/s]
   Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();  ///< ZMP feedback's integral [m]
   std::array<Eigen::Vector2d, 2> zmp_filtered_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}; ///< the measured ZMP, low-passed [m]

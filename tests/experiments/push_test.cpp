@@ -1,0 +1,131 @@
+// Pushes on the twin (issue 19): the applied impulse shows in the robot's momentum; a push below
+// half the capture-point bound is recovered and one at twice the bound is not (standing, pd
+// balance); a push is logged; same configuration, same bytes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "flexgait/experiments/push_recovery.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/experiments/walk_output.hpp"
+#include "flexgait/humanoid/plant.hpp"
+
+namespace flexgait::experiments {
+namespace {
+
+using humanoid::Push;
+using humanoid::PushBody;
+
+/// The momentum balance of a standing twin pushed over [t0, t0 + duration]: the change of its
+/// linear momentum, less the floor's and gravity's impulses over the window (what a force plate
+/// and motion capture would measure), which leaves the push's impulse.
+Eigen::Vector3d impulse_from_momentum(const Push& push) {
+  humanoid::HumanoidPlant plant(humanoid::RobotParams{}, humanoid::PlantParams{});
+  const humanoid::JointVector pose = humanoid::standing_pose(humanoid::RobotParams{}, 0.75);
+  plant.reset(pose);
+  plant.set_push(push);
+  const double T = plant.params().control_period;
+  const auto run_to = [&](double t) {
+    while (plant.time() < t - 0.5 * T) plant.step(pose);
+    return plant.truth();
+  };
+  const humanoid::GroundTruth a = run_to(push.time), b = run_to(push.time + push.duration);
+  // The plant's own account: exactly F × duration (whole physics steps).
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(b.push_impulse[i], push.force[i] * push.duration, 1e-9 * std::abs(push.force[i]) + 1e-12);
+  EXPECT_FALSE(b.non_sole_contact);
+  EXPECT_TRUE(a.sole_contact[0] && a.sole_contact[1] && b.sole_contact[0] && b.sole_contact[1]);  // no contact change
+  const double g = -plant.model()->opt.gravity[2];
+  Eigen::Vector3d out;
+  for (int i = 0; i < 3; ++i) out(i) = (b.linear_momentum[i] - a.linear_momentum[i]) - (b.floor_impulse[i] - a.floor_impulse[i]);
+  out.z() += plant.total_mass() * g * (b.t - a.t);
+  return out;
+}
+
+TEST(Push, ImpulseEqualsForceTimesDurationInTheMomentum) {
+  // Momentum change − floor impulse − gravity impulse against F Δt. The floor's reaction to the
+  // push is large (it takes 20 % of a pelvis push within 20 ms), so it is measured, not assumed
+  // away. The residual comes from the momentum being read as M(q) q̇ with the mass matrix of the
+  // step's start (MuJoCo's Euler step): measured below 1e-6 of F Δt; 1 % is the issue's bound.
+  int i = 0;
+  for (const auto& [body, force, duration] :
+       {std::tuple{PushBody::kPelvis, std::array<double, 3>{200, 0, 0}, 0.02},
+        std::tuple{PushBody::kChest, std::array<double, 3>{0, -150, 0}, 0.1},
+        std::tuple{PushBody::kChest, std::array<double, 3>{120, 90, -50}, 0.05}}) {
+    const Push push{1.0, body, force, duration};
+    const Eigen::Vector3d measured = impulse_from_momentum(push);
+    const Eigen::Vector3d expected(force[0] * duration, force[1] * duration, force[2] * duration);
+    RecordProperty("relative_error_" + std::to_string(i++), std::to_string((measured - expected).norm() / push.impulse()));
+    EXPECT_LT((measured - expected).norm(), 0.01 * push.impulse())
+        << "measured " << measured.transpose() << " against " << expected.transpose();
+  }
+}
+
+WalkRunParams standing(double push_impulse, walking::BalanceMode mode = walking::BalanceMode::kPd) {
+  WalkRunParams p;
+  p.balance.mode = mode;
+  p.walk.steps = 0;
+  p.walk.end_time = 3.5;  // 5 s in all: a fall has begun well before the end
+  p.push = Push{2.0, PushBody::kPelvis, {push_impulse / 0.1, 0, 0}, 0.1};
+  return p;
+}
+
+TEST(Push, BelowHalfTheBoundRecoveredTwiceTheBoundNot) {
+  const WalkResult probe = run_walk(standing(1.0));
+  const double bound = probe.metrics.capture_point_bound;
+  // Sagittal: COM about 0.8 m high (ω0 ≈ 3.5 1/s), 0.11 m to the toes, 57 kg: about 22 N s.
+  ASSERT_GT(bound, 15.0);
+  ASSERT_LT(bound, 30.0);
+  const WalkResult half = run_walk(standing(0.45 * bound));
+  EXPECT_FALSE(half.metrics.fell) << half.metrics.fall_reason << " at " << half.metrics.fall_time;
+  EXPECT_NEAR(half.metrics.push_impulse, 0.45 * bound, 1e-9 * bound);
+  const WalkResult twice = run_walk(standing(2.0 * bound));
+  EXPECT_TRUE(twice.metrics.fell);
+  EXPECT_GT(twice.metrics.fall_time, 2.0);
+  // The push is in the log while it acts, and only then (a sample at t holds the force of the
+  // physics step ending at t: on for t in (2.0, 2.1]).
+  int logged = 0;
+  for (const WalkSample& w : half.log) {
+    const bool during = w.t > 2.0 + 1e-9 && w.t < 2.1 + 1e-9;
+    EXPECT_DOUBLE_EQ(w.push_force[0], during ? 0.45 * bound / 0.1 : 0.0) << "t = " << w.t;
+    logged += during;
+  }
+  EXPECT_GE(logged, 4);
+}
+
+TEST(Push, DcmStabiliserBelowHalfTheBoundRecoveredTwiceTheBoundNot) {
+  const double bound = run_walk(standing(1.0, walking::BalanceMode::kDcm)).metrics.capture_point_bound;
+  ASSERT_GT(bound, 10.0);
+  const WalkMetrics half = run_walk(standing(0.45 * bound, walking::BalanceMode::kDcm)).metrics;
+  EXPECT_FALSE(half.fell) << half.fall_reason << " at " << half.fall_time;
+  EXPECT_TRUE(run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics.fell);
+}
+
+TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
+  WalkRunParams p = standing(0.0);
+  const double tolerance = 4.0;
+  const PushRecovery r = largest_recoverable_push(p, Eigen::Vector2d(1, 0), 64.0, tolerance);
+  EXPECT_GT(r.fell, r.recovered);
+  EXPECT_LE(r.fell - r.recovered, tolerance);
+  EXPECT_EQ(r.runs, 1 + 4);  // the upper end, then 64 → 4 N s in four halvings
+  // Both ends are what they say (the pd twin recovers half the bound, test above).
+  p.push.force = {r.recovered / p.push.duration, 0, 0};
+  EXPECT_FALSE(run_walk(p).metrics.fell);
+  p.push.force = {r.fell / p.push.duration, 0, 0};
+  EXPECT_TRUE(run_walk(p).metrics.fell);
+  EXPECT_GT(r.recovered, 0.5 * r.bound);
+  EXPECT_THROW(largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0), std::invalid_argument);  // 1 N s is recovered
+}
+
+TEST(Push, SameConfigurationSameBytes) {
+  WalkRunParams p = standing(10.0);
+  p.walk.end_time = 1.0;
+  const WalkResult a = run_walk(p), b = run_walk(p);
+  EXPECT_EQ(walk_log_csv(a), walk_log_csv(b));
+  EXPECT_EQ(walk_summary_json(a), walk_summary_json(b));
+  EXPECT_NE(walk_summary_json(a).find("\"push_impulse\""), std::string::npos);
+  EXPECT_EQ(walk_summary_json(run_walk(WalkRunParams{})).find("\"push_impulse\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace flexgait::experiments
