@@ -274,6 +274,10 @@ check "MuJoCo's warnings on stderr" grep -q "warning: MuJoCo:" "$work/err"
 check "an unstable bench exits 1 (got $?)" test $? -eq 1
 check "the bench failure is named" grep -q "error: the stiffness bench failed" "$work/err"
 check "no MUJOCO_LOG.TXT" test ! -e "$work/MUJOCO_LOG.TXT"
+timeout 60 "$exe" rimless simulate --set rimless.K=1e9 --set sim.max_wall_time=1 --no-plot --out "$work/stiff" \
+  >/dev/null 2>"$work/err"
+check "a stiff run that makes no progress ends at sim.max_wall_time, exit 1 (got $?)" test $? -eq 1
+check "it names the limit and suggests bdf" grep -q "sim.max_wall_time reached.*solver.method=bdf" "$work/err"
 
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

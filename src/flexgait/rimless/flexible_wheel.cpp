@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -417,8 +418,19 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
   constexpr double kTranslationHold = 1.0;  // s a rigid translation must last to end the run
   double translating_since = -1.0;
 
+  const auto wall0 = std::chrono::steady_clock::now();
+  long long solver_calls = 0;
   bool hit = false;
   while (!hit && res.steps_completed < steps_wanted) {
+    if (++solver_calls % 256 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() > m.opt.max_wall_time) {
+      // sqrt(K/m): the leg's natural frequency, what makes the flow stiff for adams and dop853.
+      fail(t, "wall-time limit sim.max_wall_time reached",
+           fmt::format("{} s at t = {} s after {} steps; leg frequency sqrt(K/m) = {:.3g} rad/s{}", m.opt.max_wall_time, t,
+                       res.steps_completed, std::sqrt(w.K / w.m),
+                       m.opt.method == numerics::OdeMethod::Bdf ? "" : ": a stiff flow runs faster with solver.method=bdf"));
+      break;
+    }
     const double t_stop = std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time);
     numerics::StepStatus status;
     try {

@@ -94,6 +94,10 @@ struct SimulationOptions {
   int steps = 20;               ///< steps to simulate (touchdowns of new legs)
   double max_time = 120.0;      ///< simulated-time limit [s]
   double max_step_time = 10.0;  ///< a step longer than this counts as stopped [s]
+  /// Wall-clock limit of one run [s]: a run that makes no progress (a stiff flow on an explicit
+  /// or Adams method) ends with a named failure instead of running for hours. Machine-dependent
+  /// by nature: a run it ends is not reproducible bytes; one it does not end is unaffected.
+  double max_wall_time = 300.0;
   double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
   double rtol = 1e-10;          ///< the integrator's relative tolerance
   double atol = 1e-12;          ///< the integrator's absolute tolerance
@@ -106,6 +110,9 @@ struct SimulationOptions {
     v("sim.model", s.model, {.doc = "flexible legs with stick-slip, or the rigid rimless wheel"});
     v("sim.steps", s.steps, {.doc = "steps to simulate (touchdowns of new legs)", .bounds = closed(1, 1e6)});
     v("sim.max_time", s.max_time, {.unit = "s", .doc = "simulated-time limit", .bounds = positive()});
+    v("sim.max_wall_time", s.max_wall_time,
+      {.unit = "s", .doc = "wall-clock limit of one run (ends a run that makes no progress, e.g. a stiff flow)",
+       .bounds = positive()});
     v("sim.max_step_time", s.max_step_time,
       {.unit = "s", .doc = "a step longer than this is reported as stopped", .bounds = positive()});
     v("sim.sample_dt", s.sample_dt,
