@@ -61,6 +61,8 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
       "campaign", "Run an experiment at every point of a grid of configuration keys (Cartesian product of the --grid "
                   "axes): campaign.csv with one row per point, on all cores or over MPI ranks (mpirun), resumable");
   add_run_options(*cmd, a->run, "runs/campaign");
+  cmd->get_option("--out")->description("directory for campaign.csv, config.yaml, campaign.png (and the partial file)");
+  cmd->get_option("--json")->description("print the outcome (points, computed, resumed, seconds, csv) as JSON on stdout");
   cmd->add_option("experiment", a->experiment, "the experiment: " + names)->required();
   cmd->add_option("--grid", a->grid, "one axis: KEY=A:B:N (N values from A to B, ends included) or KEY=v1,v2,... "
                                      "(numbers or names, e.g. control.compensation=off,both); repeatable")
