@@ -19,7 +19,7 @@ from flexgait_plotting import read_rows, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-MAX_PANELS = 16  # keep a figure readable: the first numeric and categorical metrics that vary
+MAX_PANELS = 16  # keep a figure readable: the first categorical, then numeric metrics that vary
 
 
 def axis_keys(run_dir):
@@ -63,7 +63,7 @@ def ordered(values):
 
 def figure(rows, axes, metrics, run_dir, name, title):
     numeric, categorical = split_metrics(rows, metrics)
-    panels = (numeric + categorical)[:MAX_PANELS]
+    panels = (categorical + numeric)[:MAX_PANELS]  # the discrete maps (fell, gait, ...) first
     if not panels:
         return
     cols = min(3, len(panels))

@@ -5,7 +5,7 @@
 
 #include "flexgait/core/config.hpp"
 
-#if FLEXGAIT_HAVE_MPI
+#ifdef FLEXGAIT_HAVE_MPI
 #include <mpi.h>
 
 #include <chrono>
@@ -23,7 +23,7 @@ int env_int(const char* name) {
   return v == nullptr ? 0 : std::atoi(v);
 }
 
-#if FLEXGAIT_HAVE_MPI
+#ifdef FLEXGAIT_HAVE_MPI
 
 // Messages (tag = the worker thread's number): worker -> 0: "INDEX\nCELLS" (INDEX -1: no result,
 // the first request); 0 -> worker: one int, the next point or -1 (stop).
@@ -127,7 +127,7 @@ bool launched_as_mpi_ranks() { return env_int("OMPI_COMM_WORLD_SIZE") > 1 || env
 
 std::unique_ptr<PointDistributor> mpi_distributor_if_launched() {
   if (!launched_as_mpi_ranks()) return nullptr;
-#if FLEXGAIT_HAVE_MPI
+#ifdef FLEXGAIT_HAVE_MPI
   return std::make_unique<MpiDistributor>();
 #else
   throw UsageError("started as several MPI ranks, but this flexgait was built without MPI (install libopenmpi-dev and "

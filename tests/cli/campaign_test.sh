@@ -63,6 +63,9 @@ expect_usage_error bad-range "ends of the range of rimless.K" rimless-simulate -
 expect_usage_error empty-value "empty value of rimless.K" rimless-simulate --grid rimless.K=1,,2
 expect_usage_error twice "rimless.K' given twice" rimless-simulate --grid rimless.K=1 --grid rimless.K=2
 expect_usage_error bad-set "rimless.KK" rimless-simulate --grid rimless.K=1 --set rimless.KK=2
+if [ -n "${FLEXGAIT_BUILT_WITHOUT_MPI:-}" ]; then  # as if started by mpirun -np 2
+  OMPI_COMM_WORLD_SIZE=2 expect_usage_error mpi-without-mpi "built without MPI" rimless-simulate --grid rimless.K=1000
+fi
 
 # Threads: the same bytes with 1 and 2; every point a row; failures as rows with their reason.
 campaign "${rimless_grid[@]}" --out "$work/r1" --jobs 1
@@ -76,6 +79,10 @@ check "rimless: a point without a gait is a row with its reason" grep -q "^0,0.3
 "$exe" rimless fixed-point --config "$work/r1/config.yaml" --out "$work/fp" --no-plot >/dev/null
 check "config.yaml loads back as --config" test $? -eq 0
 check "config.yaml names the axes" grep -q "^#   --grid rimless.mu=0.3:0.9:4" "$work/r1/config.yaml"
+if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then  # the figure (python/plot_campaign.py)
+  timeout 300 "$exe" campaign "${rimless_grid[@]}" --out "$work/rp" >/dev/null 2>&1
+  check "2-D grid: campaign.png drawn" test -s "$work/rp/campaign.png"
+fi
 campaign "${walk_grid[@]}" --out "$work/w1" --jobs 1
 campaign "${walk_grid[@]}" --out "$work/w2" --jobs 2
 check "walk --jobs 2: same bytes" cmp -s "$work/w1/campaign.csv" "$work/w2/campaign.csv"
