@@ -11,6 +11,7 @@
 #include "flexgait/core/text.hpp"
 #include "flexgait/humanoid/mujoco_messages.hpp"
 #include "flexgait/version.hpp"
+#include "campaign_command.hpp"
 #include "humanoid_commands.hpp"
 #include "reproduce_command.hpp"
 #include "rimless_commands.hpp"
@@ -48,6 +49,7 @@ int main(int argc, char** argv) {
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);
   flexgait::cli::add_humanoid_commands(app, action);
+  flexgait::cli::add_campaign_command(app, action);
   flexgait::cli::add_reproduce_command(app, action);
   flexgait::cli::add_schema_command(app, action);
   try {

@@ -5,8 +5,6 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-#include <cmath>
 #include <limits>
 
 #include "flexgait/core/text.hpp"
@@ -41,25 +39,15 @@ void add_option_value(std::vector<ConfigEntry>& out, const CLI::App& cmd, const 
   if (cmd.get_option_no_throw(option) != nullptr && cmd.count(option) > 0) out.push_back({key, text, option});
 }
 
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out(1);
-  for (const char ch : text) {
-    if (ch == ',') out.emplace_back();
-    else out.back() += ch;
-  }
-  return out;
-}
+std::vector<std::string> split_list(const std::string& text) { return split_text(text, ','); }
 
 namespace {
 
 // Why `text` is not a finite number in [lo, hi], or "" if it is one.
 std::string number_problem(const std::string& text, double lo, double hi) {
-  const char* first = text.data() + (text.rfind('+', 0) == 0 ? 1 : 0);
-  const char* last = text.data() + text.size();
-  double v = 0;
-  const auto [end, ec] = std::from_chars(first, last, v);
-  if (first == last || ec != std::errc() || end != last || !std::isfinite(v))
-    return fmt::format("'{}' is not a finite number", one_line(text));
+  const std::optional<double> number = parse_finite_number(text);
+  if (!number) return fmt::format("'{}' is not a finite number", one_line(text));
+  const double v = *number;
   if (v < lo || v > hi) return fmt::format("'{}' is not in [{}, {}]", one_line(text), lo, hi);
   return "";
 }

@@ -5,15 +5,7 @@
 set -u
 exe=$1
 src=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-check() {  # check NAME CONDITION...
-  local name=$1
-  shift
-  if "$@"; then passed=$((passed + 1)); else failed=$((failed + 1)); echo "FAIL: $name"; fi
-}
+source "$(dirname "$0")/harness.sh"
 # expect_usage_error NAME NEEDLE ARGS...: exit code 2, stderr names NEEDLE, no run directory.
 expect_usage_error() {
   local name=$1 needle=$2

@@ -74,5 +74,55 @@ TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
   (void)whole;
 }
 
+// A distributor standing in for MPI: as coordinator it computes the points in reverse order (the
+// order rows arrive from workers is arbitrary); as a worker it only records that it ran.
+class ReverseDistributor final : public PointDistributor {
+ public:
+  explicit ReverseDistributor(bool coordinator) : coordinator_(coordinator) {}
+  bool coordinator() const override { return coordinator_; }
+  void run(const std::vector<int>& todo, int, const PointFunction& point, const PointDone& done) override {
+    ++runs;
+    handed = todo.size();
+    for (auto it = todo.rbegin(); it != todo.rend(); ++it) done(*it, point(*it));
+  }
+  int runs = 0;
+  std::size_t handed = 0;
+
+ private:
+  bool coordinator_;
+};
+
+TEST(SweepRunner, AnyDistributorGivesTheSameFile) {
+  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_distributor_test";
+  std::filesystem::remove_all(base);
+  run_sweep(job(base / "threads"));
+  SweepJob reversed = job(base / "reversed");
+  ReverseDistributor coordinator(true);
+  reversed.distributor = &coordinator;
+  run_sweep(reversed);
+  EXPECT_EQ(read_text_file(base / "threads" / "sweep.csv"), read_text_file(base / "reversed" / "sweep.csv"));
+  std::filesystem::remove_all(base);
+}
+
+TEST(SweepRunner, AWorkerWritesNothingAndAFailedResumeReleasesTheWorkers) {
+  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_worker_test";
+  std::filesystem::remove_all(base);
+  SweepJob worker_job = job(base / "worker");
+  ReverseDistributor worker(false);
+  worker_job.distributor = &worker;
+  run_sweep(worker_job);
+  EXPECT_EQ(worker.runs, 1);
+  EXPECT_FALSE(std::filesystem::exists(base / "worker"));
+
+  SweepJob resume = job(base / "none");
+  resume.resume = true;
+  ReverseDistributor coordinator(true);
+  resume.distributor = &coordinator;
+  EXPECT_THROW(run_sweep(resume), UsageError);
+  EXPECT_EQ(coordinator.runs, 1);  // called once with nothing to do: the workers are told to stop
+  EXPECT_EQ(coordinator.handed, 0u);
+  EXPECT_FALSE(std::filesystem::exists(base / "none"));
+}
+
 }  // namespace
 }  // namespace flexgait

@@ -10,7 +10,9 @@ class ProgressBar {
  public:
   /// \param total work to do, in `unit`s (points, simulated seconds, ...)
   /// \param already_done work done before this run (a resumed sweep): not counted in the rate
-  ProgressBar(double total, std::string unit, double already_done = 0);
+  /// \param tenths_when_not_tty without a terminal, one line per 10 % (sweeps and campaigns);
+  ///        otherwise nothing is shown off a terminal
+  ProgressBar(double total, std::string unit, double already_done = 0, bool tenths_when_not_tty = false);
   /// Shows `done` of the total with the elapsed wall time and an estimate of the rest; redraws at
   /// most ten times a second except at the end.
   void show(double done);
@@ -20,6 +22,8 @@ class ProgressBar {
   double start_done_;
   std::string unit_;
   bool tty_;
+  bool tenths_;
+  int tenths_shown_ = -1;  ///< without a terminal: the last tenth reported
   std::chrono::steady_clock::time_point start_, last_;
   bool finished_ = false;
 };

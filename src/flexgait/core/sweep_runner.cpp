@@ -1,14 +1,14 @@
 #include "flexgait/core/sweep_runner.hpp"
 
 #include <fmt/format.h>
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <charconv>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
 #include <map>
 #include <mutex>
+#include <thread>
 #include <stdexcept>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -38,6 +38,64 @@ std::map<int, std::string> read_partial(const std::filesystem::path& p, const Sw
   return rows;
 }
 
+// Appends finished rows to the partial file from a thread of its own: each wake-up writes every
+// row that has come since the last one and flushes them to disk together (fsync). The points'
+// threads never wait for the disk: a flush costs 1-100 ms on a busy disk, more than a cheap point.
+class DurableAppender {
+ public:
+  explicit DurableAppender(std::filesystem::path path) : path_(std::move(path)) {}
+  ~DurableAppender() { stop(); }
+  DurableAppender(const DurableAppender&) = delete;
+  DurableAppender& operator=(const DurableAppender&) = delete;
+
+  void add(const std::string& line) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      pending_ += line;
+    }
+    wake_.notify_one();
+  }
+  /// Writes what is pending, stops the thread; rethrows a write's failure.
+  void finish() {
+    stop();
+    if (failure_) std::rethrow_exception(failure_);
+  }
+
+ private:
+  void stop() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+    }
+    wake_.notify_one();
+    if (thread_.joinable()) thread_.join();
+  }
+  void loop() {
+    for (;;) {
+      std::string batch;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return stopping_ || !pending_.empty(); });
+        if (pending_.empty()) return;  // stopping, nothing left
+        batch.swap(pending_);
+      }
+      try {
+        if (!failure_) append_file_durable(path_, batch);
+      } catch (...) {
+        failure_ = std::current_exception();
+      }
+    }
+  }
+
+  std::filesystem::path path_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::string pending_;
+  bool stopping_ = false;
+  std::exception_ptr failure_;  // written by the thread only, read after it is joined
+  std::thread thread_{[this] { loop(); }};  // last: starts once the members above exist
+};
+
 }  // namespace
 
 void check_resumable(const SweepJob& job) {
@@ -50,13 +108,22 @@ void check_resumable(const SweepJob& job) {
                                             signature.string()));
 }
 
-SweepOutcome run_sweep(const SweepJob& job) {
-  check_resumable(job);
-  std::filesystem::create_directories(job.dir);
+namespace {
+
+SweepOutcome run_coordinator(const SweepJob& job, PointDistributor& distributor) {
+  std::map<int, std::string> rows;
+  std::vector<int> todo;
+  try {
+    check_resumable(job);
+    std::filesystem::create_directories(job.dir);
+    if (job.prepare) job.prepare();
+  } catch (...) {
+    distributor.run({}, 0, job.row, {});  // release the workers, then report
+    throw;
+  }
   const auto partial = job.dir / (job.name + ".partial.csv");
   const auto signature = job.dir / (job.name + ".signature");
   const auto final_csv = job.dir / (job.name + ".csv");
-  std::map<int, std::string> rows;
   if (job.resume) {
     int rejected = 0;
     rows = read_partial(partial, job, &rejected);
@@ -74,37 +141,40 @@ SweepOutcome run_sweep(const SweepJob& job) {
   }
   SweepOutcome out;
   out.resumed = static_cast<int>(rows.size());
-  std::vector<int> todo;
   for (int i = 0; i < job.count; ++i)
     if (!rows.count(i)) todo.push_back(i);
 
   const auto t0 = std::chrono::steady_clock::now();
-  std::mutex mutex;
-  ProgressBar progress(job.count, "points", out.resumed);
+  ProgressBar progress(job.count, "points", out.resumed, true);
   progress.show(out.resumed);
-  const int threads = job.jobs > 0 ? job.jobs : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, todo.size(), 1),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-          for (std::size_t k = range.begin(); k != range.end(); ++k) {
-            const int i = todo[k];
-            const std::string cells = job.row(i);
-            const std::lock_guard<std::mutex> lock(mutex);
-            append_file_durable(partial, fmt::format("{},{}\n", i, cells));
-            rows[i] = cells;
-            ++out.computed;
-            progress.show(out.resumed + out.computed);
-          }
-        },
-        tbb::simple_partitioner());
+  DurableAppender appender(partial);
+  distributor.run(todo, job.jobs, job.row, [&](int i, const std::string& cells) {
+    appender.add(fmt::format("{},{}\n", i, cells));
+    rows[i] = cells;
+    ++out.computed;
+    progress.show(out.resumed + out.computed);
   });
+  appender.finish();
   std::string text = "index," + job.header + "\n";
   for (const auto& [i, cells] : rows) text += fmt::format("{},{}\n", i, cells);
   write_file_atomic(final_csv, text);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+}  // namespace
+
+SweepOutcome run_sweep(const SweepJob& job) {
+  ThreadDistributor threads;
+  PointDistributor& distributor = job.distributor != nullptr ? *job.distributor : threads;
+  if (!distributor.coordinator()) {  // an MPI worker: compute what rank 0 hands out, write nothing
+    const auto t0 = std::chrono::steady_clock::now();
+    distributor.run({}, job.jobs, job.row, {});
+    SweepOutcome out;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+  }
+  return run_coordinator(job, distributor);
 }
 
 }  // namespace flexgait

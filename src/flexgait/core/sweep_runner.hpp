@@ -1,13 +1,16 @@
 #pragma once
 /// \file sweep_runner.hpp
-/// Runs independent sweep points on all cores (oneTBB), appends each finished point to a
-/// durable partial file at once (an interrupted sweep loses nothing), resumes from it, shows a
-/// progress bar on a terminal, and writes the final CSV sorted by point index.
+/// Runs independent sweep points on all cores (oneTBB) or over the ranks of an MPI job (a
+/// PointDistributor), appends each finished point to a durable partial file at once (an
+/// interrupted sweep loses nothing), resumes from it, shows a progress bar on a terminal, and
+/// writes the final CSV sorted by point index: the same bytes whatever the threads, ranks and
+/// resumes. `rimless sweep`, the rimless analysis sweeps and `flexgait campaign` run on it.
 #include <filesystem>
 #include <functional>
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/point_distributor.hpp"
 
 namespace flexgait {
 
@@ -16,11 +19,17 @@ struct SweepJob {
   std::string name = "sweep";     ///< files: NAME.csv (final), NAME.partial.csv, NAME.signature
   std::string header;             ///< CSV header, without "index" (added first)
   int count = 0;                  ///< points 0 .. count-1
-  int jobs = 0;                   ///< worker threads; 0: all cores
+  int jobs = 0;                   ///< worker threads (per process); 0: all cores
   bool resume = false;            ///< keep the finished points of an earlier run with the same signature
   std::string signature;          ///< what defines the sweep (parameters, configuration); checked on resume
   /// Computes point i; returns its CSV cells (no index, no newline). Must be thread-safe.
-  std::function<std::string(int)> row;
+  PointFunction row;
+  /// Called once the sweep is known to run (after check_resumable, the directory made), before
+  /// the points: writes what goes beside the CSV (a campaign's config.yaml). May be empty.
+  std::function<void()> prepare;
+  /// Who computes the points; nullptr: the threads of this process (ThreadDistributor). In an MPI
+  /// worker process (not the coordinator) run_sweep computes what it is handed and touches no file.
+  PointDistributor* distributor = nullptr;
 };
 
 struct SweepOutcome {
@@ -34,6 +43,8 @@ struct SweepOutcome {
 void check_resumable(const SweepJob& job);
 
 /// Runs the job (after check_resumable). Without resume an earlier sweep in the directory is replaced.
+/// If the coordinator fails before the points start (e.g. check_resumable throws), the workers of
+/// `job.distributor` are released before the exception propagates.
 SweepOutcome run_sweep(const SweepJob& job);
 
 }  // namespace flexgait

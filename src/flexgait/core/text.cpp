@@ -3,9 +3,29 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <stdexcept>
 
 namespace flexgait {
+
+std::optional<double> parse_finite_number(std::string_view text) {
+  const char* first = text.data() + (text.substr(0, 1) == "+" ? 1 : 0);
+  const char* last = text.data() + text.size();
+  double v = 0;
+  const auto [end, ec] = std::from_chars(first, last, v);
+  if (first == last || ec != std::errc() || end != last || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::vector<std::string> split_text(std::string_view text, char separator) {
+  std::vector<std::string> out(1);
+  for (const char ch : text) {
+    if (ch == separator) out.emplace_back();
+    else out.back() += ch;
+  }
+  return out;
+}
 
 std::string format_number(double v) { return fmt::format("{}", v); }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// \file text.hpp  Deterministic number formatting, CSV building, one-line message text.
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -9,6 +10,13 @@ namespace flexgait {
 
 /// Shortest decimal text that reads back to the identical double ("nan"/"inf" as such).
 std::string format_number(double v);
+
+/// The finite number `text` spells in full (an optional leading '+'); nullopt for empty text, junk,
+/// NaN and infinities.
+std::optional<double> parse_finite_number(std::string_view text);
+
+/// The fields of `text` between `separator`s, empty ones kept ("a,,b" -> a, "", b; "" -> "").
+std::vector<std::string> split_text(std::string_view text, char separator);
 
 /// `text` made fit for a one-line message: control characters escaped (\n, \r, \t, \\0, others as
 /// \xHH, DEL too) and, past `max_bytes`, cut (at a UTF-8 character boundary) with

@@ -1,0 +1,80 @@
+#include "campaign_command.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "flexgait/campaign/campaign.hpp"
+#include "mpi_distributor.hpp"
+#include "options.hpp"
+
+namespace flexgait::cli {
+namespace {
+
+struct CampaignArgs {
+  RunOptions run;
+  std::string experiment;
+  std::vector<std::string> grid;
+  int jobs = 0;
+  bool resume = false;
+  bool keep_runs = false;
+};
+
+int run_campaign_command(const CampaignArgs& a) {
+  // Everything checked, in every rank alike, before MPI starts and before anything is written.
+  campaign::Experiment experiment = campaign::find_experiment(a.experiment);
+  std::vector<campaign::GridAxis> axes;
+  for (const auto& text : a.grid) axes.push_back(campaign::parse_grid_axis(text));
+  const Config base = resolve(experiment.schema, a.run);
+  const campaign::Campaign c(std::move(experiment), base, campaign::Grid(std::move(axes)));
+  const std::unique_ptr<PointDistributor> mpi = mpi_distributor_if_launched();
+  const SweepOutcome out = campaign::run_campaign(
+      c, {a.run.out, a.jobs > 0 ? a.jobs : (mpi ? 1 : 0), a.resume, a.keep_runs, mpi.get()});
+  if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
+  const auto csv = std::filesystem::path(a.run.out) / "campaign.csv";
+  if (a.run.plot) run_plot_script("plot_campaign.py", {a.run.out});
+  if (a.run.json) {
+    nlohmann::ordered_json j;
+    j["experiment"] = c.experiment().name;
+    j["points"] = c.size();
+    j["computed"] = out.computed;
+    j["resumed"] = out.resumed;
+    j["seconds"] = out.seconds;
+    j["csv"] = csv.string();
+    fmt::print("{}\n", j.dump(2));
+  } else {
+    fmt::print("campaign of {}, {} points: {} computed, {} resumed, {:.2f} s\n", c.experiment().name, c.size(),
+               out.computed, out.resumed, out.seconds);
+    fmt::print("results in {}\n", csv.string());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_campaign_command(CLI::App& app, std::function<int()>& action) {
+  auto a = std::make_shared<CampaignArgs>();
+  std::string names;
+  for (const auto& n : campaign::experiment_names()) names += (names.empty() ? "" : ", ") + n;
+  CLI::App* cmd = app.add_subcommand(
+      "campaign", "Run an experiment at every point of a grid of configuration keys (Cartesian product of the --grid "
+                  "axes): campaign.csv with one row per point, on all cores or over MPI ranks (mpirun), resumable");
+  add_run_options(*cmd, a->run, "runs/campaign");
+  cmd->get_option("--out")->description("directory for campaign.csv, config.yaml, campaign.png (and the partial file)");
+  cmd->get_option("--json")->description("print the outcome (points, computed, resumed, seconds, csv) as JSON on stdout");
+  cmd->add_option("experiment", a->experiment, "the experiment: " + names)->required();
+  cmd->add_option("--grid", a->grid, "one axis: KEY=A:B:N (N values from A to B, ends included) or KEY=v1,v2,... "
+                                     "(numbers or names, e.g. control.compensation=off,both); repeatable")
+      ->required()
+      ->type_name("KEY=VALUES")
+      ->allow_extra_args(false);
+  cmd->add_option("--jobs", a->jobs, "worker threads per process (0: all cores; under mpirun 0 means 1 per rank)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_flag("--resume", a->resume, "keep the finished points of an interrupted campaign of the same grid in --out");
+  cmd->add_flag("--keep-runs", a->keep_runs, "also write each point's run files to OUT/runs/NNNNNN");
+  cmd->callback([a, &action] { action = [a] { return run_campaign_command(*a); }; });
+}
+
+}  // namespace flexgait::cli

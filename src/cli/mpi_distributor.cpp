@@ -1,0 +1,138 @@
+#include "mpi_distributor.hpp"
+
+#include <cstdlib>
+#include <string>
+
+#include "flexgait/core/config.hpp"
+
+#ifdef FLEXGAIT_HAVE_MPI
+#include <mpi.h>
+
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+#endif
+
+namespace flexgait::cli {
+namespace {
+
+int env_int(const char* name) {
+  const char* v = std::getenv(name);
+  return v == nullptr ? 0 : std::atoi(v);
+}
+
+#ifdef FLEXGAIT_HAVE_MPI
+
+// Messages (tag = the worker thread's number): worker -> 0: "INDEX\nCELLS" (INDEX -1: no result,
+// the first request); 0 -> worker: one int, the next point or -1 (stop).
+class MpiDistributor final : public PointDistributor {
+ public:
+  MpiDistributor() {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_MULTIPLE, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    multiple_ = provided >= MPI_THREAD_MULTIPLE;
+  }
+  ~MpiDistributor() override { MPI_Finalize(); }
+  MpiDistributor(const MpiDistributor&) = delete;
+  MpiDistributor& operator=(const MpiDistributor&) = delete;
+
+  bool coordinator() const override { return rank_ == 0; }
+
+  void run(const std::vector<int>& todo, int threads, const PointFunction& point, const PointDone& done) override {
+    const int local = threads > 0 ? threads : 1;
+    const int per_worker = multiple_ ? local : 1;
+    if (rank_ != 0) {
+      std::vector<std::thread> pool;
+      for (int t = 1; t < per_worker; ++t) pool.emplace_back([&, t] { work(t, point); });
+      work(0, point);
+      for (auto& th : pool) th.join();
+      return;
+    }
+    coordinate(todo, local, (size_ - 1) * per_worker, point, done);
+  }
+
+ private:
+  static void work(int tag, const PointFunction& point) {
+    std::string message = "-1\n";
+    for (;;) {
+      MPI_Send(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, tag, MPI_COMM_WORLD);
+      int i = -1;
+      MPI_Recv(&i, 1, MPI_INT, 0, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      if (i < 0) return;
+      message = std::to_string(i) + "\n" + point(i);
+    }
+  }
+
+  // Rank 0: `local` threads compute here while this thread answers the workers' `requesters`
+  // threads; all take the next point from one queue.
+  static void coordinate(const std::vector<int>& todo, int local, int requesters, const PointFunction& point,
+                         const PointDone& done) {
+    std::mutex queue_mutex, done_mutex;
+    std::size_t next = 0;
+    auto take = [&] {
+      const std::lock_guard<std::mutex> lock(queue_mutex);
+      return next < todo.size() ? todo[next++] : -1;
+    };
+    auto finish = [&](int i, const std::string& cells) {
+      const std::lock_guard<std::mutex> lock(done_mutex);
+      done(i, cells);
+    };
+    std::exception_ptr failure;
+    std::vector<std::thread> pool;
+    for (int t = 0; t < local; ++t)
+      pool.emplace_back([&] {
+        try {
+          for (int i = take(); i >= 0; i = take()) finish(i, point(i));
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(done_mutex);
+          if (!failure) failure = std::current_exception();
+        }
+      });
+    while (requesters > 0) {
+      int arrived = 0;
+      MPI_Status status;
+      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+      if (arrived == 0) {  // idle: poll again soon without taking a core from the points
+        std::this_thread::sleep_for(std::chrono::microseconds(100));
+        continue;
+      }
+      int bytes = 0;
+      MPI_Get_count(&status, MPI_CHAR, &bytes);
+      std::string message(static_cast<std::size_t>(bytes), '\0');
+      MPI_Recv(message.data(), bytes, MPI_CHAR, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      const auto newline = message.find('\n');
+      const int i = std::stoi(message.substr(0, newline));
+      if (i >= 0) finish(i, message.substr(newline + 1));
+      const int reply = take();
+      MPI_Send(&reply, 1, MPI_INT, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD);
+      if (reply < 0) --requesters;
+    }
+    for (auto& th : pool) th.join();
+    if (failure) std::rethrow_exception(failure);
+  }
+
+  int rank_ = 0, size_ = 1;
+  bool multiple_ = false;
+};
+
+#endif
+
+}  // namespace
+
+bool launched_as_mpi_ranks() { return env_int("OMPI_COMM_WORLD_SIZE") > 1 || env_int("PMI_SIZE") > 1; }
+
+std::unique_ptr<PointDistributor> mpi_distributor_if_launched() {
+  if (!launched_as_mpi_ranks()) return nullptr;
+#ifdef FLEXGAIT_HAVE_MPI
+  return std::make_unique<MpiDistributor>();
+#else
+  throw UsageError("started as several MPI ranks, but this flexgait was built without MPI (install libopenmpi-dev and "
+                   "rebuild, or run without mpirun: the threads of one machine, --jobs)");
+#endif
+}
+
+}  // namespace flexgait::cli

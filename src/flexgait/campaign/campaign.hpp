@@ -1,0 +1,69 @@
+#pragma once
+/// \file campaign.hpp
+/// A campaign: one experiment (experiment_table.hpp) run at every point of a grid (grid.hpp),
+/// each point the base configuration plus the point's keys. Every point is checked before
+/// anything runs; the points run on the sweep runner (core/sweep_runner.hpp: threads or MPI
+/// ranks, a durable partial file, resume by signature), and DIR gets
+///   campaign.csv  index, the axis values, the summary's metrics flattened (same names as the
+///                 experiment's summary), `error` (why a point could not run; empty otherwise);
+///                 one row per point, sorted by index, the same bytes whatever the threads,
+///                 ranks and resumes;
+///   config.yaml   the base configuration (loadable with --config), the axes in its header;
+///   runs/NNNNNN/  each point's run files (keep_runs only).
+/// Cells: numbers as format_number, booleans true/false, null empty, lists joined by ';' (pairs
+/// such as a multiplier's re, im by ':'), text quoted as CSV needs.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "flexgait/campaign/experiment_table.hpp"
+#include "flexgait/campaign/grid.hpp"
+#include "flexgait/core/config.hpp"
+#include "flexgait/core/sweep_runner.hpp"
+
+namespace flexgait::campaign {
+
+class Campaign {
+ public:
+  /// Checks the base configuration and every point: each axis value alone (a ConfigError whose
+  /// message starts "--grid KEY: ..."), then each point's whole configuration ("--grid point I
+  /// (KEY=V, ...): ..."). Nothing runs and nothing is written here.
+  Campaign(Experiment experiment, Config base, Grid grid);
+
+  const Experiment& experiment() const { return experiment_; }
+  const Grid& grid() const { return grid_; }
+  int size() const { return grid_.size(); }
+  /// The checked configuration of point i.
+  Config point_config(int i) const;
+  /// campaign.csv's header without "index": the axis keys, the metrics, error.
+  std::string header() const;
+  /// Point i's cells (no index): never throws for a failing run; its message goes to `error`.
+  /// `run_dir` not empty: the point's run files go there.
+  std::string row(int i, const std::filesystem::path& run_dir = {}) const;
+  /// What a resumed campaign must match: program version, experiment, axes, base configuration.
+  std::string signature() const;
+  /// config.yaml: the axes as comments, then the base configuration.
+  std::string config_yaml() const;
+
+ private:
+  Experiment experiment_;
+  Config base_;
+  Grid grid_;
+};
+
+/// The summary's keys `metrics` of a JSON object's text as CSV cells (see the file comment).
+std::string summary_cells(const std::string& summary_json, const std::vector<std::string>& metrics);
+
+struct CampaignRun {
+  std::filesystem::path dir;
+  int jobs = 0;          ///< threads per process; 0: all cores
+  bool resume = false;
+  bool keep_runs = false;
+  PointDistributor* distributor = nullptr;  ///< nullptr: the threads of this process
+};
+
+/// Runs the campaign into run.dir (on the coordinator; an MPI worker computes the points it is
+/// handed and writes nothing). --resume of a different campaign: UsageError before anything is written.
+SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run);
+
+}  // namespace flexgait::campaign

@@ -1,0 +1,157 @@
+#include "flexgait/campaign/experiment_table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <optional>
+#include <nlohmann/json.hpp>
+
+#include "flexgait/core/record.hpp"
+#include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/text.hpp"
+#include "flexgait/experiments/bench_output.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/experiments/walk_output.hpp"
+#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/output.hpp"
+#include "flexgait/rimless/rigid_wheel.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
+
+namespace flexgait::campaign {
+namespace {
+
+void set_key(Config& config, const std::string& key, const std::string& value, const std::string& origin) {
+  config.set(key, value, origin);
+}
+
+/// rimless.mu: the one friction coefficient of a sweep (mu_s = mu_k), as `rimless sweep` has it.
+void set_rimless_key(Config& config, const std::string& key, const std::string& value, const std::string& origin) {
+  if (key != "rimless.mu") return config.set(key, value, origin);
+  config.set("rimless.mu_s", value, origin);
+  config.set("rimless.mu_k", value, origin);
+}
+
+template <class R>
+std::vector<std::string> record_keys() {
+  std::vector<std::string> keys;
+  for (const auto& f : describe_record<R>()) keys.push_back(f.key);
+  return keys;
+}
+
+/// The keys of a JSON object's text, in order, less `skip`.
+std::vector<std::string> json_keys(const std::string& text, const std::vector<std::string>& skip) {
+  std::vector<std::string> keys;
+  const auto json = nlohmann::ordered_json::parse(text);  // alive while items() is walked
+  for (const auto& item : json.items())
+    if (std::find(skip.begin(), skip.end(), item.key()) == skip.end()) keys.push_back(item.key());
+  return keys;
+}
+
+/// The run directory of a kept point, with its configuration (empty path: none).
+std::optional<RunDirectory> kept_run(const Config& config, const std::filesystem::path& run_dir) {
+  if (run_dir.empty()) return std::nullopt;
+  RunDirectory dir(run_dir);
+  dir.write_config(config);
+  return dir;
+}
+
+Experiment rimless_simulate() {
+  Experiment e{"rimless-simulate", "summary.json", rimless::rimless_schema(), set_rimless_key, {}, {}, {}};
+  e.check = [](const Config& c) { rimless::wheel_setup(c); };
+  e.metrics = record_keys<rimless::SimulationResult>();
+  e.metrics.insert(e.metrics.begin(), "model");
+  e.run = [](const Config& c, const std::filesystem::path& run_dir) {
+    rimless::WheelSetup s = rimless::wheel_setup(c);
+    const auto dir = kept_run(c, run_dir);
+    s.sim.log = dir.has_value();  // the time series only for a kept run
+    const rimless::SimulationResult r = s.sim.model == rimless::Model::Rigid
+                                            ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
+                                            : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
+    const std::string model = c.choice("sim.model");
+    if (dir) rimless::write_run(*dir, r, model);
+    return rimless::summary_json(r, model);
+  };
+  return e;
+}
+
+/// fixed_point.json of `rimless fixed-point` (touchdown section) less its Newton history, with
+/// max_multiplier, the largest |multiplier| (null without a fixed point), for the maps.
+std::string fixed_point_summary(const rimless::FixedPointReport& r) {
+  auto j = nlohmann::ordered_json::parse(rimless::fixed_point_json(r));
+  j.erase("history");
+  double largest = 0;
+  for (const auto& m : r.multipliers) largest = std::max(largest, std::abs(m));
+  j["max_multiplier"] = r.converged ? nlohmann::ordered_json(largest) : nlohmann::ordered_json();
+  return j.dump(2) + "\n";
+}
+
+Experiment rimless_fixed_point() {
+  Experiment e{"rimless-fixed-point", "fixed_point.json", rimless::rimless_analysis_schema(), set_rimless_key, {}, {}, {}};
+  e.check = [](const Config& c) { rimless::wheel_setup(c); };
+  // Keys that appear only in some reports (last_iterate, jacobian_note) are not columns.
+  e.metrics = json_keys(fixed_point_summary(rimless::FixedPointReport{}), {});
+  e.run = [](const Config& c, const std::filesystem::path& run_dir) {
+    const rimless::WheelSetup s = rimless::wheel_setup(c);
+    const rimless::FixedPointReport r = rimless::find_fixed_point(
+        s.wheel, s.sim, rimless::analysis_from_config(c), s.sim.model, rimless::Section::Touchdown, s.initial);
+    std::string summary = fixed_point_summary(r);
+    if (const auto dir = kept_run(c, run_dir)) dir->write("fixed_point.json", rimless::fixed_point_json(r));
+    return summary;
+  };
+  return e;
+}
+
+Experiment humanoid_walk() {
+  Experiment e{"humanoid-walk", "summary.json", experiments::walk_run_schema(), set_key, {}, {}, {}};
+  e.check = [](const Config& c) { experiments::walk_run_from_config(c); };
+  e.metrics = record_keys<experiments::WalkMetrics>();
+  e.run = [](const Config& c, const std::filesystem::path& run_dir) {
+    const experiments::WalkResult r = experiments::run_walk(experiments::walk_run_from_config(c));
+    std::string summary = experiments::walk_summary_json(r);
+    if (const auto dir = kept_run(c, run_dir)) {
+      dir->write("log.csv", experiments::walk_log_csv(r));
+      dir->write("footsteps.csv", experiments::walk_footsteps_csv(r));
+      dir->write("summary.json", summary);
+    }
+    return summary;
+  };
+  return e;
+}
+
+Experiment humanoid_bench() {
+  Experiment e{"humanoid-bench", "summary.json", humanoid::bench_schema(), set_key, {}, {}, {}};
+  e.check = [](const Config& c) { humanoid::bench_from_config(c); };
+  e.metrics = record_keys<humanoid::BenchResult>();
+  e.run = [](const Config& c, const std::filesystem::path& run_dir) {
+    const humanoid::BenchResult r = humanoid::run_stiffness_bench(humanoid::bench_from_config(c));
+    std::string summary = experiments::bench_summary_json(r);
+    if (const auto dir = kept_run(c, run_dir)) {
+      dir->write("bench.csv", experiments::bench_csv(r));
+      dir->write("summary.json", summary);
+    }
+    return summary;
+  };
+  return e;
+}
+
+std::vector<Experiment> table() { return {rimless_simulate(), rimless_fixed_point(), humanoid_walk(), humanoid_bench()}; }
+
+}  // namespace
+
+std::vector<std::string> experiment_names() {
+  std::vector<std::string> names;
+  for (const Experiment& e : table()) names.push_back(e.name);
+  return names;
+}
+
+Experiment find_experiment(const std::string& name) {
+  for (Experiment& e : table())
+    if (e.name == name) return std::move(e);
+  std::string names;
+  for (const auto& n : experiment_names()) names += (names.empty() ? "" : ", ") + n;
+  throw UsageError(fmt::format("campaign: unknown experiment '{}'; allowed: {}", one_line(name), names));
+}
+
+}  // namespace flexgait::campaign

@@ -1,0 +1,38 @@
+#pragma once
+/// \file experiment_table.hpp
+/// The experiments a campaign can run: each yields one summary per configuration. An entry maps
+/// a name to its configuration schema, the checks a complete configuration must pass, the
+/// summary's keys (the columns of campaign.csv, the same names as the experiment's own
+/// summary.json) and the run of one point. Adding an experiment to campaigns is one entry here.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+
+namespace flexgait::campaign {
+
+struct Experiment {
+  std::string name;     ///< as on the command line: rimless-simulate, humanoid-walk, ...
+  std::string summary;  ///< the file its command writes the summary to, e.g. "summary.json"
+  Schema schema;        ///< the keys it accepts (--config, --set, --grid)
+  /// Sets key = value in `config` under `origin`, validated (ConfigError otherwise). Aliases such
+  /// as rimless.mu (sets rimless.mu_s and rimless.mu_k) are resolved here.
+  std::function<void(Config& config, const std::string& key, const std::string& value, const std::string& origin)> set;
+  /// The cross-key checks of a complete configuration (throws ConfigError with the key's origin).
+  std::function<void(const Config& config)> check;
+  /// The summary's keys, in the summary's order (the metric columns).
+  std::vector<std::string> metrics;
+  /// Runs one point: returns the summary as JSON text (an object). If `run_dir` is not empty, the
+  /// run's files go there too (config.yaml and the summary at least). Thread-safe.
+  std::function<std::string(const Config& config, const std::filesystem::path& run_dir)> run;
+};
+
+/// The names of the experiments, in table order.
+std::vector<std::string> experiment_names();
+
+/// The experiment called `name`; throws UsageError listing the names if there is none.
+Experiment find_experiment(const std::string& name);
+
+}  // namespace flexgait::campaign

@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# flexgait campaign: bad grids (exit 2, one line naming the key, nothing written); a 2-D rimless
+# grid and a small humanoid grid give the same campaign.csv bytes with 1 and 2 threads (and, with
+# MODE=mpi, under mpirun -np 3); a point that fails is a row with its reason; kill -9 then --resume
+# gives the same bytes, a torn last line included; --resume of a different grid is refused.
+# Usage: campaign_test.sh FLEXGAIT_EXE [mpi MPIRUN]
+set -u
+exe=$1
+mode=${2:-threads}
+mpirun=${3:-mpirun}
+source "$(dirname "$0")/harness.sh"
+campaign() { timeout 300 "$exe" campaign "$@" --no-plot >"$work/stdout" 2>"$work/stderr"; }
+# As root, OpenMPI's mpirun needs --allow-run-as-root (test harness only); 3 ranks on 2 cores: --oversubscribe.
+mpi_campaign() {
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$exe" campaign "$@" --no-plot \
+    >"$work/stdout" 2>"$work/stderr"
+}
+# A 2-D rimless grid (rigid wheel: fast) with points that find no gait (slope too small: the wheel rolls back).
+rimless_grid=(rimless-fixed-point --set sim.model=rigid --grid rimless.mu=0.3:0.9:4 --grid rimless.slope=0.02:0.1:3)
+# A small walking envelope: 2 steps, step length x compensation (0.3 m without compensation falls).
+walk_grid=(humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.3 --grid control.compensation=off,both)
+
+if [ "$mode" = mpi ]; then
+  campaign "${rimless_grid[@]}" --out "$work/r1" --jobs 1
+  mpi_campaign "${rimless_grid[@]}" --out "$work/rm"
+  check "mpirun -np 3 rimless: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+  check "mpirun -np 3 rimless: same bytes as 1 thread" cmp -s "$work/r1/campaign.csv" "$work/rm/campaign.csv"
+  mpi_campaign "${rimless_grid[@]}" --out "$work/rm2" --jobs 2
+  check "mpirun -np 3 --jobs 2 rimless: same bytes as 1 thread" cmp -s "$work/r1/campaign.csv" "$work/rm2/campaign.csv"
+  campaign "${walk_grid[@]}" --out "$work/w1" --jobs 1
+  mpi_campaign "${walk_grid[@]}" --out "$work/wm"
+  check "mpirun -np 3 walk: same bytes as 1 thread" cmp -s "$work/w1/campaign.csv" "$work/wm/campaign.csv"
+  mpi_campaign "${rimless_grid[@]}" --out "$work/never" --grid rimless.KK=1
+  check "mpirun: a bad key exits 2" grep -q "rimless.KK" "$work/stderr"
+  check "mpirun: a bad key writes nothing" test ! -e "$work/never"
+  mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
+  check "mpirun: resume of a different grid refused (workers released)" grep -q "different sweep" "$work/stderr"
+  echo "campaign mpi: $passed passed, $failed failed"
+  [ "$failed" -eq 0 ]
+  exit
+fi
+
+# expect_usage_error NAME NEEDLE ARGS...: exit code 2, stderr one line naming NEEDLE, nothing written.
+expect_usage_error() {
+  local name=$1 needle=$2
+  shift 2
+  local out="$work/never-$name"
+  campaign "$@" --out "$out"
+  local code=$?
+  check "$name: exit code 2 (got $code)" test "$code" -eq 2
+  check "$name: message names '$needle': $(head -c 1000 "$work/stderr")" grep -qF -- "$needle" "$work/stderr"
+  check "$name: one line on stderr" test "$(wc -l <"$work/stderr")" -eq 1
+  check "$name: nothing written" test ! -e "$out"
+}
+expect_usage_error unknown-experiment "rimless-fixed-point" nope --grid rimless.K=1
+expect_usage_error unknown-key "rimless.KK" rimless-simulate --grid rimless.K=1000 --grid rimless.KK=1,2
+expect_usage_error out-of-domain "rimless.K" rimless-simulate --grid rimless.K=1000,-1
+expect_usage_error bad-choice "control.compensation" humanoid-walk --grid control.compensation=off,sometimes
+expect_usage_error cross-check "--grid point 1" rimless-simulate --grid rimless.mu_k=0.3,0.9
+expect_usage_error no-equals "--grid 'rimless.K'" rimless-simulate --grid rimless.K
+expect_usage_error bad-count "count of rimless.K" rimless-simulate --grid rimless.K=1:2:0.5
+expect_usage_error bad-range "ends of the range of rimless.K" rimless-simulate --grid rimless.K=a:2:3
+expect_usage_error empty-value "empty value of rimless.K" rimless-simulate --grid rimless.K=1,,2
+expect_usage_error twice "rimless.K' given twice" rimless-simulate --grid rimless.K=1 --grid rimless.K=2
+expect_usage_error bad-set "rimless.KK" rimless-simulate --grid rimless.K=1 --set rimless.KK=2
+if [ -n "${FLEXGAIT_BUILT_WITHOUT_MPI:-}" ]; then  # as if started by mpirun -np 2
+  OMPI_COMM_WORLD_SIZE=2 expect_usage_error mpi-without-mpi "built without MPI" rimless-simulate --grid rimless.K=1000
+fi
+
+# Threads: the same bytes with 1 and 2; every point a row; failures as rows with their reason.
+campaign "${rimless_grid[@]}" --out "$work/r1" --jobs 1
+check "rimless --jobs 1: exit 0" test $? -eq 0
+campaign "${rimless_grid[@]}" --out "$work/r2" --jobs 2
+check "rimless --jobs 2: same bytes" cmp -s "$work/r1/campaign.csv" "$work/r2/campaign.csv"
+check "rimless: a row per point (12) and the header" test "$(wc -l <"$work/r1/campaign.csv")" -eq 13
+check "rimless: header is index, axes, then fixed_point.json's keys" \
+  grep -q "^index,rimless.mu,rimless.slope,converged,iterations,residual," "$work/r1/campaign.csv"
+check "rimless: a point without a gait is a row with its reason" grep -q "^0,0.3,0.02,false,.*rolled back" "$work/r1/campaign.csv"
+"$exe" rimless fixed-point --config "$work/r1/config.yaml" --out "$work/fp" --no-plot >/dev/null
+check "config.yaml loads back as --config" test $? -eq 0
+check "config.yaml names the axes" grep -q "^#   --grid rimless.mu=0.3:0.9:4" "$work/r1/config.yaml"
+if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then  # the figure (python/plot_campaign.py)
+  timeout 300 "$exe" campaign "${rimless_grid[@]}" --out "$work/rp" >/dev/null 2>&1
+  check "2-D grid: campaign.png drawn" test -s "$work/rp/campaign.png"
+fi
+campaign "${walk_grid[@]}" --out "$work/w1" --jobs 1
+campaign "${walk_grid[@]}" --out "$work/w2" --jobs 2
+check "walk --jobs 2: same bytes" cmp -s "$work/w1/campaign.csv" "$work/w2/campaign.csv"
+check "walk: a fall is a row with its reason" grep -q "^2,0.3,off,off,full,true,pelvis" "$work/w1/campaign.csv"
+check "walk: with compensation it walks" grep -q "^3,0.3,both,both,full,false,," "$work/w1/campaign.csv"
+campaign humanoid-bench --grid plant.k_joint=500,1000 --out "$work/b1" --keep-runs
+check "bench campaign with --keep-runs: a run directory per point" test -f "$work/b1/runs/000001/summary.json"
+
+# kill -9 in the middle, then --resume: the same bytes; a torn last line is computed again.
+long_grid=(humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.2,0.3 --grid control.compensation=off,both)
+campaign "${long_grid[@]}" --out "$work/k0" --jobs 1
+"$exe" campaign "${long_grid[@]}" --out "$work/k1" --jobs 1 --no-plot >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 6000); do  # until a point or two is done (at most a minute: sanitizer builds are slow)
+  [ "$(cat "$work/k1/campaign.partial.csv" 2>/dev/null | wc -l)" -ge 2 ] && break
+  sleep 0.01
+done
+kill -9 "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+check "killed before the end: no campaign.csv yet" test ! -e "$work/k1/campaign.csv"
+printf '5,0.3,bo' >>"$work/k1/campaign.partial.csv"  # a torn last line
+campaign "${long_grid[@]}" --out "$work/k1" --jobs 2 --resume
+check "resume: exit 0" test $? -eq 0
+check "resume: some points kept ($(head -n 1 "$work/stdout"))" grep -q " [1-9][0-9]* resumed" "$work/stdout"
+check "resume after kill -9: same bytes" cmp -s "$work/k0/campaign.csv" "$work/k1/campaign.csv"
+cp "$work/k1/campaign.csv" "$work/k1.csv"
+campaign humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.2 --grid control.compensation=off,both \
+  --out "$work/k1" --resume
+check "resume of different axes: exit 2" test $? -eq 2
+check "resume of different axes: says so" grep -q "different sweep" "$work/stderr"
+check "resume of different axes: the campaign left as it was" cmp -s "$work/k0/campaign.csv" "$work/k1/campaign.csv"
+campaign "${long_grid[@]}" --set walk.swing_height=0.041 --out "$work/k1" --resume
+check "resume of a different base configuration: exit 2" test $? -eq 2
+campaign "${long_grid[@]}" --out "$work/nothing" --resume
+check "resume where there is no campaign: exit 2" test $? -eq 2
+
+echo "campaign: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
