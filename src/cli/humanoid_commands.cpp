@@ -45,18 +45,6 @@ int bench(const RunOptions& run) {
   return 1;
 }
 
-/// A walk's files under `dir`/`sub` (sub "" or "name/"); returns summary.json's text.
-std::string write_walk(const RunDirectory& dir, const std::string& sub, const experiments::WalkResult& r) {
-  if (!sub.empty()) std::filesystem::create_directories(dir.path() / sub);
-  dir.write(sub + "log.csv", experiments::walk_log_csv(r));
-  dir.write(sub + "footsteps.csv", experiments::walk_footsteps_csv(r));
-  dir.write(sub + "joints.csv", experiments::walk_joints_csv(r));
-  std::string summary = experiments::walk_summary_json(r);
-  dir.write(sub + "summary.json", summary);
-  dir.write(sub + "timing.json", experiments::walk_timing_json(r));
-  return summary;
-}
-
 /// Runs the study's walks one after the other (one progress bar over all of them) and writes each
 /// into its own subdirectory.
 std::vector<experiments::WalkResult> run_study(const RunDirectory& dir, const std::vector<experiments::StudyCase>& cases) {
@@ -68,7 +56,7 @@ std::vector<experiments::WalkResult> run_study(const RunDirectory& dir, const st
   for (const auto& c : cases) {
     results.push_back(experiments::run_walk(c.params, [&](double t) { bar.show(done + t); }));
     done += walking::plan_footsteps(c.params.walk).duration;
-    write_walk(dir, c.name + "/", results.back());
+    experiments::write_walk(dir, c.name + "/", results.back());
   }
   return results;
 }
@@ -161,7 +149,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const experiments::WalkResult r = experiments::run_walk(params, [&](double t) { bar.show(t); }, observe);
   if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
-  const std::string summary = write_walk(dir, "", r);
+  const std::string summary = experiments::write_walk(dir, "", r);
   if (run.plot) run_plot_script("plot_walk.py", {dir.path().string()});
   const auto& m = r.metrics;
   if (run.json) {

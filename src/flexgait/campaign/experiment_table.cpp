@@ -109,13 +109,8 @@ Experiment humanoid_walk() {
   e.metrics = record_keys<experiments::WalkMetrics>();
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::WalkResult r = experiments::run_walk(experiments::walk_run_from_config(c));
-    std::string summary = experiments::walk_summary_json(r);
-    if (const auto dir = kept_run(c, run_dir)) {
-      dir->write("log.csv", experiments::walk_log_csv(r));
-      dir->write("footsteps.csv", experiments::walk_footsteps_csv(r));
-      dir->write("summary.json", summary);
-    }
-    return summary;
+    if (const auto dir = kept_run(c, run_dir)) return experiments::write_walk(*dir, "", r);
+    return experiments::walk_summary_json(r);
   };
   return e;
 }

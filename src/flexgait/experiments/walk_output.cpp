@@ -6,6 +6,7 @@
 #include "flexgait/core/text.hpp"
 
 #include <array>
+#include <filesystem>
 #include <string_view>
 
 namespace flexgait::experiments {
@@ -78,6 +79,17 @@ std::string walk_timing_json(const WalkResult& r) {
   j["wall_time"] = r.metrics.wall_time;
   j["real_time_factor"] = r.metrics.real_time_factor;
   return j.dump(2) + "\n";
+}
+
+std::string write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& r) {
+  if (!sub.empty()) std::filesystem::create_directories(dir.path() / sub);
+  dir.write(sub + "log.csv", walk_log_csv(r));
+  dir.write(sub + "footsteps.csv", walk_footsteps_csv(r));
+  dir.write(sub + "joints.csv", walk_joints_csv(r));
+  std::string summary = walk_summary_json(r);
+  dir.write(sub + "summary.json", summary);
+  dir.write(sub + "timing.json", walk_timing_json(r));
+  return summary;
 }
 
 }  // namespace flexgait::experiments

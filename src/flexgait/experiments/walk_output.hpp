@@ -4,6 +4,7 @@
 /// footprints) and summary.json (the metrics), as text.
 #include <string>
 
+#include "flexgait/core/run_directory.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 
 namespace flexgait::experiments {
@@ -18,5 +19,8 @@ std::string walk_footsteps_csv(const WalkResult& result);
 std::string walk_summary_json(const WalkResult& result);
 /// Wall-clock time and real-time factor (timing.json; differs run to run).
 std::string walk_timing_json(const WalkResult& result);
+/// Writes the walk's files (log.csv, footsteps.csv, joints.csv, summary.json, timing.json) under
+/// `dir`/`sub` (sub "" or "name/"); returns summary.json's text.
+std::string write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& result);
 
 }  // namespace flexgait::experiments
