@@ -211,7 +211,11 @@ struct SplitMix64 {
   double log_uniform(double a, double b) { return std::exp(uniform(std::log(a), std::log(b))); }
 };
 
-TEST(ParameterSpace, RandomWheelsWalkOrStopForANamedPhysicalReason) {
+// With both integrators: DOP853's first step after a restart is long, and set 197 (a foot that
+// starts to slip and reverses within that step) once ended as a "missed event" with it.
+class RandomWheels : public ::testing::TestWithParam<numerics::OdeMethod> {};
+
+TEST_P(RandomWheels, WalkOrStopForANamedPhysicalReason) {
   SplitMix64 rng{20261123};
   int walked = 0;
   for (int i = 0; i < 200; ++i) {
@@ -226,7 +230,9 @@ TEST(ParameterSpace, RandomWheelsWalkOrStopForANamedPhysicalReason) {
     const WheelParams w = params_of(s);
     SCOPED_TRACE(::testing::Message() << "set " << i << ": mu " << s.mu << " I " << s.I << " C " << s.C << " K " << s.K
                                       << " N " << s.legs << " slope " << s.slope << " omega0 " << s.omega0);
-    const SimulationResult r = simulate_flexible(w, InitialState{s.omega0}, events_only(20));
+    SimulationOptions o = events_only(20);
+    o.method = GetParam();
+    const SimulationResult r = simulate_flexible(w, InitialState{s.omega0}, o);
     if (r.failure) {
       expect_physical_stop(w, r);
     } else {
@@ -239,6 +245,10 @@ TEST(ParameterSpace, RandomWheelsWalkOrStopForANamedPhysicalReason) {
   RecordProperty("walked", walked);
   EXPECT_GT(walked, 120);  // about 80 % of the sample walks (157 of 200 with this seed when written)
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, RandomWheels,
+                         ::testing::Values(numerics::OdeMethod::Adams, numerics::OdeMethod::Dop853),
+                         [](const auto& info) { return std::string(name_of(info.param)); });
 
 }  // namespace
 }  // namespace flexgait::rimless

@@ -33,10 +33,29 @@ void GuardCrossings::start(double t, std::span<const int> directions, std::span<
 
 void GuardCrossings::rearm(double t, std::span<const double> g) {
   t_ = t;
+  first_step_ = true;
   for (std::size_t i = 0; i < g.size(); ++i) {
     g_lo_[i] = g[i];
     t_lo_[i] = t;
     active_[i] = g[i] != 0.0;
+  }
+}
+
+void GuardCrossings::probe_unarmed(double t1, std::span<const double> g1, const Values& g_at) {
+  const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(t1 - t_));
+  for (std::size_t i = 0; i < directions_.size(); ++i) {
+    const int d = directions_[i];
+    if (active_[i] == 0 || d == 0 || !(d * g_lo_[i] > 0) || !(d * g1[i] > 0)) continue;
+    for (int k = 1; k <= kProbeLevels; ++k) {
+      const double s = t_ + std::ldexp(t1 - t_, -k);
+      if (s - t_ <= tol) break;
+      g_at(s, scratch_);
+      if (d * scratch_[i] < 0) {  // on the side before the crossing: the bracket starts here
+        g_lo_[i] = scratch_[i];
+        t_lo_[i] = s;
+        break;
+      }
+    }
   }
 }
 
@@ -64,6 +83,8 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
       }
     }
   }
+  if (first_step_) probe_unarmed(t1, g1, g_at);
+  first_step_ = false;
   // The earliest root among the guards that crossed.
   double first = t1;
   int first_guard = -1;

@@ -9,6 +9,12 @@
 /// - the crossing time is the earliest guard root, located by TOMS 748 (Alefeld, Potra & Shi 1995;
 ///   Boost.Math's toms748_solve) on the interpolant to CVODE's tolerance 100·u·(|t| + |h|), on
 ///   the side where the guard has crossed; every guard that has crossed by then fires.
+/// One rule beyond CVODE's, for integrators whose first step after a restart is long (DOP853): a
+/// guard that starts at 0 or on its crossed side and ends the first step on its crossed side may
+/// have been on the other side in between (a foot that starts to slip and reverses within the
+/// step). It is probed on the interpolant at t + h 2^-k, k = 1…kProbeLevels; where it is found on
+/// the other side, its bracket starts there. (CVODE's first steps after a restart are short
+/// enough that its step ends see such a hump.)
 #include <functional>
 #include <optional>
 #include <span>
@@ -34,6 +40,11 @@ class GuardCrossings {
  private:
   /// Watching (re)starts at t with the guards' values g: those exactly 0 are inactive.
   void rearm(double t, std::span<const double> g);
+  /// The probe of the first step after (re)arming, for guards not armed at either end (above).
+  void probe_unarmed(double t1, std::span<const double> g1, const Values& g_at);
+
+  static constexpr int kProbeLevels = 12;  // probes down to h / 4096
+  bool first_step_ = false;      // the next check() is the first step after (re)arming
 
   double t_ = 0.0;               // where watching (re)started: the last step's end or crossing [s]
   std::vector<int> directions_;  // per guard: +1, -1, 0
