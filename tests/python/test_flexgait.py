@@ -172,7 +172,7 @@ class Threads(unittest.TestCase):
 
         def work():
             window["start"] = time.perf_counter()
-            flexgait.rimless.sweep("rimless.mu", 0.3, 0.6, 6)
+            flexgait.rimless.sweep("rimless.mu", 0.3, 0.6, 24)  # long enough (> 0.2 s) with dop853
             window["end"] = time.perf_counter()
 
         worker = threading.Thread(target=work)

@@ -36,7 +36,7 @@ class Dop853 {
   Dop853(Rhs f, int dim, Dop853Options options);
 
   /// Starts a new smooth segment at (t, y) (dim): f(t, y) and the initial step of dop853.f's
-  /// hinit (one more evaluation of f).
+  /// hinit (one more evaluation of f), at most the last accepted step of an earlier segment.
   void start(double t, std::span<const double> y);
   /// Takes one accepted step, ending at t_max if it would pass it (within 1 % of the step).
   /// Throws std::runtime_error if the step size underflows or f keeps failing.
@@ -73,6 +73,7 @@ class Dop853 {
   double t_ = 0, t_old_ = 0;
   double h_ = 0;       // length of the last step's polynomial (before any truncation)
   double h_next_ = 0;  // proposed next step
+  double h_last_ = 0;  // the last accepted step, kept across restarts (bounds the next start's step)
   enum class NextStage0 { Valid, FromLastStage, Evaluate };  // where the next step's f(t, y) comes from
   NextStage0 next_k0_ = NextStage0::Evaluate;
   bool rejected_ = false;                          // the last attempt was rejected (no growth on the next accept)

@@ -5,6 +5,38 @@
 
 namespace flexgait::rimless {
 
+namespace {
+
+// The Schur complement system (A M⁻¹ Aᵀ) λ = b − A M⁻¹ F of R stick rows, by Eigen's LDLT of
+// fixed size R (the hot path of every right-hand side: no dynamic sizes). False when the rows
+// are dependent (D not positive, or its smallest entry below 1e-13 of its largest).
+template <int R>
+bool solve_schur(const std::array<std::array<double, 3>, kMaxContacts>& A, const std::array<double, 3>& minv,
+                 const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
+                 std::array<double, kMaxContacts>& lambda) {
+  Eigen::Matrix<double, R, R> S;
+  Eigen::Matrix<double, R, 1> r;
+  for (int i = 0; i < R; ++i) {
+    double AMF = 0;
+    for (int j = 0; j < 3; ++j) AMF += A[i][j] * minv[j] * F[j];
+    r(i) = b[i] - AMF;
+    for (int k = 0; k < R; ++k) {
+      double s = 0;
+      for (int j = 0; j < 3; ++j) s += A[i][j] * minv[j] * A[k][j];
+      S(i, k) = s;
+    }
+  }
+  const Eigen::LDLT<Eigen::Matrix<double, R, R>> ldlt(S);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
+  const double dmax = ldlt.vectorD().maxCoeff(), dmin = ldlt.vectorD().minCoeff();
+  if (!(dmin > 1e-13 * dmax)) return false;
+  const Eigen::Matrix<double, R, 1> lam = ldlt.solve(r);
+  for (int i = 0; i < R; ++i) lambda[static_cast<std::size_t>(i)] = lam(i);
+  return true;
+}
+
+}  // namespace
+
 bool solve_constrained(const WheelParams& w, int rows, const std::array<std::array<double, 3>, kMaxContacts>& A,
                        const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
                        std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda) {
@@ -16,29 +48,17 @@ bool solve_constrained(const WheelParams& w, int rows, const std::array<std::arr
       for (int j = 0; j < 3; ++j) a[j] = F[j] * minv[j];
       return true;
     }
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxContacts, kMaxContacts> S(rows, rows);
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxContacts, 1> r(rows);
-    for (int i = 0; i < rows; ++i) {
-      double AMF = 0;
-      for (int j = 0; j < 3; ++j) AMF += A[i][j] * minv[j] * F[j];
-      r(i) = b[i] - AMF;
-      for (int k = 0; k < rows; ++k) {
-        double s = 0;
-        for (int j = 0; j < 3; ++j) s += A[i][j] * minv[j] * A[k][j];
-        S(i, k) = s;
-      }
-    }
-    Eigen::LDLT<decltype(S)> ldlt(S);
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return false;
-    const double dmax = ldlt.vectorD().maxCoeff(), dmin = ldlt.vectorD().minCoeff();
-    if (!(dmin > 1e-13 * dmax)) return false;
-    const auto lam = ldlt.solve(r).eval();
+    std::array<double, kMaxContacts> lam{};
+    const bool solved = rows == 1   ? solve_schur<1>(A, minv, F, b, lam)
+                        : rows == 2 ? solve_schur<2>(A, minv, F, b, lam)
+                                    : solve_schur<3>(A, minv, F, b, lam);
+    if (!solved) return false;
     for (int j = 0; j < 3; ++j) {
       double s = F[j];
-      for (int i = 0; i < rows; ++i) s += A[i][j] * lam(i);
+      for (int i = 0; i < rows; ++i) s += A[i][j] * lam[i];
       a[j] = s * minv[j];
     }
-    for (int i = 0; i < rows; ++i) lambda[i] = lam(i);
+    for (int i = 0; i < rows; ++i) lambda[i] = lam[i];
     return true;
   }
   // I = 0: the θ row is a torque balance; solve the full KKT system and reject a singular one.
