@@ -7,10 +7,10 @@
 #include <functional>
 #include <system_error>
 
+#include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/humanoid/mujoco_messages.hpp"
-#include "flexgait/version.hpp"
 #include "campaign_command.hpp"
 #include "humanoid_commands.hpp"
 #include "reproduce_command.hpp"
@@ -44,7 +44,7 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
   flexgait::humanoid::route_mujoco_messages_to_stderr();  // no MUJOCO_LOG.TXT, nothing on stdout
   CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
-  app.set_version_flag("--version", std::string("flexgait ") + flexgait::kVersion);
+  app.set_version_flag("--version", "flexgait " + flexgait::campaign::program_build());
   app.require_subcommand(1);
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);

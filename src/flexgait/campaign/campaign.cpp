@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/text.hpp"
-#include "flexgait/version.hpp"
 
 namespace flexgait::campaign {
 namespace {
@@ -99,7 +99,7 @@ std::string Campaign::row(int i, const std::filesystem::path& run_dir) const {
 }
 
 std::string Campaign::signature() const {
-  std::string out = fmt::format("flexgait {}\ncampaign {}\n", kVersion, experiment_.name);
+  std::string out = fmt::format("flexgait {}\ncampaign {}\n", program_build(), experiment_.name);
   for (const GridAxis& axis : grid_.axes()) {
     out += "grid " + axis.key + "=";
     for (std::size_t k = 0; k < axis.values.size(); ++k) out += (k ? "," : "") + axis.values[k];
@@ -110,7 +110,7 @@ std::string Campaign::signature() const {
 
 std::string Campaign::config_yaml() const {
   std::string out = fmt::format("# campaign of {} (flexgait {}): the base configuration below, and the grid\n",
-                                experiment_.name, kVersion);
+                                experiment_.name, program_build());
   for (const GridAxis& axis : grid_.axes())
     out += fmt::format("#   --grid {}  ({} values)\n", one_line(axis.given, 1000), axis.values.size());
   return out + base_.to_yaml();

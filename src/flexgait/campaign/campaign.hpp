@@ -40,7 +40,8 @@ class Campaign {
   /// Point i's cells (no index): never throws for a failing run; its message goes to `error`.
   /// `run_dir` not empty: the point's run files go there.
   std::string row(int i, const std::filesystem::path& run_dir = {}) const;
-  /// What a resumed campaign must match: program version, experiment, axes, base configuration.
+  /// What a resumed campaign must match: the program's build (program_build.hpp: version and git
+  /// describe), experiment, axes, base configuration.
   std::string signature() const;
   /// config.yaml: the axes as comments, then the base configuration.
   std::string config_yaml() const;
