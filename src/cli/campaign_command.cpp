@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/campaign/campaign.hpp"
@@ -35,15 +36,32 @@ void check_plot_metrics(const campaign::Experiment& experiment, const std::vecto
     }
 }
 
-int run_campaign_command(const CampaignArgs& a) {
-  // Everything checked, in every rank alike, before MPI starts and before anything is written.
+/// The campaign of the arguments, every point checked; nothing is written.
+campaign::Campaign checked_campaign(const CampaignArgs& a) {
   campaign::Experiment experiment = campaign::find_experiment(a.experiment);
   check_plot_metrics(experiment, a.plot_metrics);
   std::vector<campaign::GridAxis> axes;
   for (const auto& text : a.grid) axes.push_back(campaign::parse_grid_axis(text));
   const Config base = resolve(experiment.schema, a.run);
-  const campaign::Campaign c(std::move(experiment), base, campaign::Grid(std::move(axes)));
-  const std::unique_ptr<PointDistributor> mpi = mpi_distributor_if_launched();
+  return campaign::Campaign(std::move(experiment), base, campaign::Grid(std::move(axes)));
+}
+
+int run_campaign_command(const CampaignArgs& a) {
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  // Everything checked in every rank before anything is written. Under MPI the ranks agree on
+  // the outcome: all go on, or all exit 2 and rank 0 alone says why (a node may fail alone, e.g.
+  // on a --config it cannot read: rank 0 names that rank).
+  std::optional<campaign::Campaign> checked;
+  std::string error;
+  try {
+    checked.emplace(checked_campaign(a));
+  } catch (const UsageError& e) {
+    if (!mpi) throw;
+    error = e.what();
+  }
+  if (mpi) error = mpi->first_error(error);
+  if (!error.empty()) throw UsageError(error);
+  const campaign::Campaign& c = *checked;
   const SweepOutcome out = campaign::run_campaign(
       c, {a.run.out, a.jobs > 0 ? a.jobs : (mpi ? 1 : 0), a.resume, a.keep_runs, mpi.get()});
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports

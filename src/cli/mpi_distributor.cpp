@@ -27,7 +27,7 @@ int env_int(const char* name) {
 
 // Messages (tag = the worker thread's number): worker -> 0: "INDEX\nCELLS" (INDEX -1: no result,
 // the first request); 0 -> worker: one int, the next point or -1 (stop).
-class MpiDistributor final : public PointDistributor {
+class MpiDistributor final : public MpiRanks {
  public:
   MpiDistributor() {
     int provided = 0;
@@ -41,6 +41,25 @@ class MpiDistributor final : public PointDistributor {
   MpiDistributor& operator=(const MpiDistributor&) = delete;
 
   bool coordinator() const override { return rank_ == 0; }
+
+  std::string first_error(const std::string& mine) override {
+    const int own = mine.empty() ? size_ : rank_;
+    int first = size_;
+    MPI_Allreduce(&own, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first == size_) return "";
+    if (rank_ != 0) {
+      if (rank_ == first) MPI_Send(mine.data(), static_cast<int>(mine.size()), MPI_CHAR, 0, kErrorTag, MPI_COMM_WORLD);
+      return mine.empty() ? "rank " + std::to_string(first) + " failed (reported by rank 0)" : mine;
+    }
+    if (first == 0) return mine;
+    MPI_Status status;
+    MPI_Probe(first, kErrorTag, MPI_COMM_WORLD, &status);
+    int bytes = 0;
+    MPI_Get_count(&status, MPI_CHAR, &bytes);
+    std::string message(static_cast<std::size_t>(bytes), '\0');
+    MPI_Recv(message.data(), bytes, MPI_CHAR, first, kErrorTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    return "rank " + std::to_string(first) + ": " + message;
+  }
 
   void run(const std::vector<int>& todo, int threads, const PointFunction& point, const PointDone& done) override {
     const int local = threads > 0 ? threads : 1;
@@ -115,6 +134,7 @@ class MpiDistributor final : public PointDistributor {
     if (failure) std::rethrow_exception(failure);
   }
 
+  static constexpr int kErrorTag = 32767;  // MPI_TAG_UB is at least this; worker threads use 0 .. 1023
   int rank_ = 0, size_ = 1;
   bool multiple_ = false;
 };
@@ -125,7 +145,11 @@ class MpiDistributor final : public PointDistributor {
 
 bool launched_as_mpi_ranks() { return env_int("OMPI_COMM_WORLD_SIZE") > 1 || env_int("PMI_SIZE") > 1; }
 
-std::unique_ptr<PointDistributor> mpi_distributor_if_launched() {
+bool secondary_mpi_rank() {
+  return launched_as_mpi_ranks() && (env_int("OMPI_COMM_WORLD_RANK") > 0 || env_int("PMI_RANK") > 0);
+}
+
+std::unique_ptr<MpiRanks> mpi_distributor_if_launched() {
   if (!launched_as_mpi_ranks()) return nullptr;
 #ifdef FLEXGAIT_HAVE_MPI
   return std::make_unique<MpiDistributor>();

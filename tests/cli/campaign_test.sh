@@ -32,8 +32,19 @@ if [ "$mode" = mpi ]; then
   mpi_campaign "${walk_grid[@]}" --out "$work/wm"
   check "mpirun -np 3 walk: same bytes as 1 thread" cmp -s "$work/w1/campaign.csv" "$work/wm/campaign.csv"
   mpi_campaign "${rimless_grid[@]}" --out "$work/never" --grid rimless.KK=1
-  check "mpirun: a bad key exits 2" grep -q "rimless.KK" "$work/stderr"
+  check "mpirun: a bad key exits 2 (got $?)" test $? -eq 2
+  check "mpirun: a bad key is said once, by rank 0" test "$(grep -c "rimless.KK" "$work/stderr")" -eq 1
   check "mpirun: a bad key writes nothing" test ! -e "$work/never"
+  mpi_campaign "${rimless_grid[@]}" --out "$work/never" --jobs -3
+  check "mpirun: a bad option exits 2 (got $?)" test $? -eq 2
+  check "mpirun: a bad option is said once" test "$(grep -c "^error: --jobs" "$work/stderr")" -eq 1
+  # Ranks 1 and 2 alone fail (as a node that cannot read --config would): all exit 2, rank 0 names rank 1.
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 1 "$exe" campaign "${rimless_grid[@]}" --no-plot \
+    --out "$work/never" : -np 2 "$exe" campaign "${rimless_grid[@]}" --no-plot --out "$work/never" --set rimless.KK=3 \
+    >"$work/stdout" 2>"$work/stderr"
+  check "mpirun: an error of other ranks only exits 2 (got $?)" test $? -eq 2
+  check "mpirun: rank 0 says it once, naming the rank" test "$(grep -c "^error: rank 1: --set: .*rimless.KK" "$work/stderr")" -eq 1
+  check "mpirun: an error of other ranks only writes nothing" test ! -e "$work/never"
   mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
   check "mpirun: resume of a different grid refused (workers released)" grep -q "different sweep" "$work/stderr"
   echo "campaign mpi: $passed passed, $failed failed"
