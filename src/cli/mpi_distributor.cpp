@@ -8,6 +8,7 @@
 #ifdef FLEXGAIT_HAVE_MPI
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <mutex>
@@ -111,14 +112,21 @@ class MpiDistributor final : public MpiRanks {
           if (!failure) failure = std::current_exception();
         }
       });
+    // Idle, this thread sleeps between polls (a blocking MPI receive would spin on the core that
+    // rank 0's own point threads share), the sleep doubling from 20 us to 1 ms while nothing
+    // comes: at most ~1000 wake-ups a second, and a worker waits ~0.5 ms on average for its next
+    // point (0.3 % of a 0.2 s point), shorter when requests come one after another.
+    auto idle = std::chrono::microseconds(20);
     while (requesters > 0) {
       int arrived = 0;
       MPI_Status status;
       MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
-      if (arrived == 0) {  // idle: poll again soon without taking a core from the points
-        std::this_thread::sleep_for(std::chrono::microseconds(100));
+      if (arrived == 0) {
+        std::this_thread::sleep_for(idle);
+        idle = std::min(2 * idle, std::chrono::microseconds(1000));
         continue;
       }
+      idle = std::chrono::microseconds(20);
       int bytes = 0;
       MPI_Get_count(&status, MPI_CHAR, &bytes);
       std::string message(static_cast<std::size_t>(bytes), '\0');

@@ -81,6 +81,8 @@ Config Campaign::point_config(int i) const {
   return c;
 }
 
+double Campaign::cost(int i) const { return experiment_.cost ? experiment_.cost(point_config(i)) : 1.0; }
+
 std::string Campaign::header() const {
   std::string out;
   for (const GridAxis& axis : grid_.axes()) out += csv_field(axis.key) + ",";
@@ -126,6 +128,7 @@ SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run) {
   job.resume = run.resume;
   job.signature = campaign.signature();
   job.distributor = run.distributor;
+  job.cost = [&campaign](int i) { return campaign.cost(i); };
   job.prepare = [&] { write_file_atomic(run.dir / "config.yaml", campaign.config_yaml()); };
   const std::filesystem::path runs = run.keep_runs ? run.dir / "runs" : std::filesystem::path();
   job.row = [&campaign, runs](int i) {

@@ -35,6 +35,8 @@ class Campaign {
   int size() const { return grid_.size(); }
   /// The checked configuration of point i.
   Config point_config(int i) const;
+  /// The estimated cost of point i (Experiment::cost; 1 without one): points run most expensive first.
+  double cost(int i) const;
   /// campaign.csv's header without "index": the axis keys, the metrics, error.
   std::string header() const;
   /// Point i's cells (no index): never throws for a failing run; its message goes to `error`.

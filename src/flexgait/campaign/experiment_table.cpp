@@ -110,6 +110,8 @@ Experiment humanoid_walk() {
   Experiment e{"humanoid-walk", "summary.json", experiments::walk_run_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { experiments::walk_run_from_config(c); };
   e.metrics = record_keys<experiments::WalkMetrics>();
+  // The walk's planned duration: a point costs about its simulated time (a fall ends it sooner).
+  e.cost = [](const Config& c) { return static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"); };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::WalkResult r = experiments::run_walk(experiments::walk_run_from_config(c));
     if (const auto dir = kept_run(c, run_dir)) return experiments::write_walk(*dir, "", r);
