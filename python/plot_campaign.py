@@ -6,9 +6,16 @@ metric, and a discrete map per categorical one (gait, fell, converged, ...), the
 vertical. Extra axes (3-D and more) are split into one figure per combination of their values:
 campaign_<key>=<value>...png. Metrics that do not vary are left out.
 
-Usage: plot_campaign.py RUN_DIR   (reads RUN_DIR/campaign.csv and the axis keys from its header
-before the first metric, i.e. the columns of RUN_DIR/config.yaml's "--grid" lines)
+With --metrics M1,M2,... only those metrics are drawn, in that order (even if they do not vary),
+and a third axis becomes the rows of the one figure campaign.png (one row per value, a shared
+colour scale and category colours per metric, the value written in each cell of a small map), so
+its values compare at a glance: e.g. the walking envelope's `fell` and `pelvis_roll_error_max`
+with control.compensation off against both. Axes beyond the third still split the figure.
+
+Usage: plot_campaign.py RUN_DIR [--metrics M1,M2,...]   (reads RUN_DIR/campaign.csv and the axis
+keys from RUN_DIR/config.yaml's "--grid" lines)
 """
+import argparse
 import itertools
 import math
 import os
@@ -20,6 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 MAX_PANELS = 16  # keep a figure readable: the first categorical, then numeric metrics that vary
+MAX_ANNOTATED_CELLS = 120  # write each cell's value into maps up to this size (--metrics)
 
 
 def axis_keys(run_dir):
@@ -40,16 +48,17 @@ def number(text):
     return v if math.isfinite(v) else None
 
 
-def split_metrics(rows, metrics):
+def is_numeric(values):
+    return all(number(v) is not None or v == "" for v in values) and any(v != "" for v in values)
+
+
+def split_metrics(rows, metrics, keep_constant=False):
     numeric, categorical = [], []
     for m in metrics:
         values = [r[m] for r in rows]
-        if len(set(values)) <= 1 or any(";" in v for v in values):
+        if (len(set(values)) <= 1 and not keep_constant) or any(";" in v for v in values):
             continue
-        if all(number(v) is not None or v == "" for v in values) and any(v != "" for v in values):
-            numeric.append(m)
-        else:
-            categorical.append(m)
+        (numeric if is_numeric(values) else categorical).append(m)
     return numeric, categorical
 
 
@@ -61,9 +70,63 @@ def ordered(values):
     return seen
 
 
-def figure(rows, axes, metrics, run_dir, name, title):
-    numeric, categorical = split_metrics(rows, metrics)
-    panels = (categorical + numeric)[:MAX_PANELS]  # the discrete maps (fell, gait, ...) first
+def panel(fig, ax, rows, axes, m, numeric, scale, annotate=False):
+    """One metric of `rows` over `axes` (1 or 2 of them). `scale`: (vmin, vmax) of a numeric
+    metric, or the category labels of a categorical one (shared across a figure's rows)."""
+    xs = ordered(r[axes[0]] for r in rows)
+    ys = ordered(r[axes[1]] for r in rows) if len(axes) > 1 else None
+    ax.set_title(m, fontsize=9)
+    if numeric:
+        if ys is None:
+            pts = [(number(r[axes[0]]), number(r[m])) for r in rows]
+            if all(p[0] is not None for p in pts):
+                ax.plot([p[0] for p in pts], [np.nan if p[1] is None else p[1] for p in pts], "o-")
+            else:
+                ax.plot(range(len(pts)), [np.nan if p[1] is None else p[1] for p in pts], "o-")
+                ax.set_xticks(range(len(pts)), xs)
+            ax.set_xlabel(axes[0])
+            return
+        z = np.full((len(ys), len(xs)), np.nan)
+        for r in rows:
+            v = number(r[m])
+            z[ys.index(r[axes[1]]), xs.index(r[axes[0]])] = np.nan if v is None else v
+        vmin, vmax = scale if scale else (None, None)
+        im = ax.imshow(z, origin="lower", aspect="auto", interpolation="nearest", vmin=vmin, vmax=vmax)
+        fig.colorbar(im, ax=ax)
+        if annotate:  # dark text on the bright end of viridis, light on the dark end
+            lo, hi = im.get_clim()
+            for (yi, xi), v in np.ndenumerate(z):
+                if not np.isnan(v):
+                    bright = hi > lo and (v - lo) / (hi - lo) > 0.6
+                    ax.text(xi, yi, f"{v:.3g}", ha="center", va="center", fontsize=6, color="k" if bright else "w")
+    else:
+        labels = scale if scale else ordered(r[m] or "-" for r in rows)
+        if ys is None:
+            ax.scatter(range(len(rows)), [labels.index(r[m] or "-") for r in rows])
+            ax.set_yticks(range(len(labels)), labels, fontsize=7)
+            ax.set_xticks(range(len(xs)), xs, rotation=45, fontsize=7)
+            ax.set_xlabel(axes[0])
+            return
+        z = np.full((len(ys), len(xs)), np.nan)
+        for r in rows:
+            z[ys.index(r[axes[1]]), xs.index(r[axes[0]])] = labels.index(r[m] or "-")
+        cmap = plt.get_cmap("tab10", len(labels))
+        im = ax.imshow(z, origin="lower", aspect="auto", interpolation="nearest", cmap=cmap,
+                       vmin=-0.5, vmax=len(labels) - 0.5)
+        bar = fig.colorbar(im, ax=ax, ticks=range(len(labels)))
+        bar.ax.set_yticklabels([lab[:24] for lab in labels], fontsize=7)
+    ax.set_xticks(range(len(xs)), xs, rotation=45, fontsize=7)
+    ax.set_yticks(range(len(ys)), ys, fontsize=7)
+    ax.set_xlabel(axes[0])
+    ax.set_ylabel(axes[1])
+
+
+def figure(rows, axes, metrics, run_dir, name, title, chosen=False):
+    numeric, categorical = split_metrics(rows, metrics, keep_constant=chosen)
+    if chosen:  # as asked, in the order asked
+        panels = [m for m in metrics if m in numeric or m in categorical]
+    else:  # the discrete maps (fell, gait, ...) first
+        panels = (categorical + numeric)[:MAX_PANELS]
     if not panels:
         return
     cols = min(3, len(panels))
@@ -72,65 +135,66 @@ def figure(rows, axes, metrics, run_dir, name, title):
     fig.suptitle(title)
     for ax in grid.flat[len(panels):]:
         ax.axis("off")
-    xs = ordered(r[axes[0]] for r in rows)
-    ys = ordered(r[axes[1]] for r in rows) if len(axes) > 1 else None
     for ax, m in zip(grid.flat, panels):
-        ax.set_title(m, fontsize=9)
-        if m in numeric:
-            if ys is None:
-                pts = [(number(r[axes[0]]), number(r[m])) for r in rows]
-                if all(p[0] is not None for p in pts):
-                    ax.plot([p[0] for p in pts], [np.nan if p[1] is None else p[1] for p in pts], "o-")
-                else:
-                    ax.plot(range(len(pts)), [np.nan if p[1] is None else p[1] for p in pts], "o-")
-                    ax.set_xticks(range(len(pts)), xs)
-                ax.set_xlabel(axes[0])
-                continue
-            z = np.full((len(ys), len(xs)), np.nan)
-            for r in rows:
-                v = number(r[m])
-                z[ys.index(r[axes[1]]), xs.index(r[axes[0]])] = np.nan if v is None else v
-            im = ax.imshow(z, origin="lower", aspect="auto", interpolation="nearest")
-            fig.colorbar(im, ax=ax)
-        else:
-            labels = ordered(r[m] or "-" for r in rows)
-            if ys is None:
-                ax.scatter(range(len(rows)), [labels.index(r[m] or "-") for r in rows])
-                ax.set_yticks(range(len(labels)), labels, fontsize=7)
-                ax.set_xticks(range(len(xs)), xs, rotation=45, fontsize=7)
-                ax.set_xlabel(axes[0])
-                continue
-            z = np.full((len(ys), len(xs)), np.nan)
-            for r in rows:
-                z[ys.index(r[axes[1]]), xs.index(r[axes[0]])] = labels.index(r[m] or "-")
-            cmap = plt.get_cmap("tab10", len(labels))
-            im = ax.imshow(z, origin="lower", aspect="auto", interpolation="nearest", cmap=cmap,
-                           vmin=-0.5, vmax=len(labels) - 0.5)
-            bar = fig.colorbar(im, ax=ax, ticks=range(len(labels)))
-            bar.ax.set_yticklabels([lab[:24] for lab in labels], fontsize=7)
-        ax.set_xticks(range(len(xs)), xs, rotation=45, fontsize=7)
-        ax.set_yticks(range(len(ys)), ys, fontsize=7)
-        ax.set_xlabel(axes[0])
-        ax.set_ylabel(axes[1])
+        panel(fig, ax, rows, axes, m, m in numeric, None)
     save_atomic(fig, run_dir, name)
     plt.close(fig)
 
 
-def main(run_dir):
-    rows = read_rows(os.path.join(run_dir, "campaign.csv"))
+def shared_scale(rows, m, numeric):
+    """The colour range (numeric) or the category labels of metric m over all of `rows`."""
+    if not numeric:
+        return ordered(r[m] or "-" for r in rows)
+    values = [v for v in (number(r[m]) for r in rows) if v is not None]
+    return (min(values), max(values)) if values else None
+
+
+def compare_figure(rows, axes, by, metrics, run_dir, name, title):
+    """One row of panels per value of axis `by`, one column per metric, shared scales."""
+    numeric = {m for m in metrics if is_numeric([r[m] for r in rows])}
+    scales = {m: shared_scale(rows, m, m in numeric) for m in metrics}
+    values = ordered(r[by] for r in rows)
+    fig, grid = plt.subplots(len(values), len(metrics), figsize=(5 * len(metrics), 3.6 * len(values)),
+                             squeeze=False, constrained_layout=True)
+    fig.suptitle(title)
+    for row_axes, value in zip(grid, values):
+        subset = [r for r in rows if r[by] == value]
+        annotate = len(subset) <= MAX_ANNOTATED_CELLS
+        for ax, m in zip(row_axes, metrics):
+            panel(fig, ax, subset, axes, m, m in numeric, scales[m], annotate)
+            ax.set_title(f"{m}, {by} = {value}", fontsize=9)
+    save_atomic(fig, run_dir, name)
+    plt.close(fig)
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description="Draws campaign.png beside a campaign's campaign.csv.")
+    parser.add_argument("run_dir")
+    parser.add_argument("--metrics", help="comma-separated metrics to draw; a third axis becomes the figure's rows")
+    args = parser.parse_args(argv)
+    rows = read_rows(os.path.join(args.run_dir, "campaign.csv"))
     if not rows:
-        return
-    axes = axis_keys(run_dir)
+        return 0
+    axes = axis_keys(args.run_dir)
     metrics = [c for c in rows[0].keys() if c not in axes and c != "index"]
-    fixed = axes[2:]
+    chosen = args.metrics.split(",") if args.metrics else None
+    if chosen:
+        unknown = [m for m in chosen if m not in metrics]
+        if unknown:
+            print(f"plot_campaign.py: no metric {', '.join(unknown)} in campaign.csv", file=sys.stderr)
+            return 2
+    by = axes[2] if chosen and len(axes) >= 3 else None
+    fixed = axes[3:] if by else axes[2:]
     for combo in itertools.product(*[ordered(r[k] for r in rows) for k in fixed]):
         subset = [r for r in rows if all(r[k] == v for k, v in zip(fixed, combo))]
         suffix = "".join(f"_{k}={v}" for k, v in zip(fixed, combo))
         title = "campaign" + "".join(f", {k} = {v}" for k, v in zip(fixed, combo))
-        figure(subset, axes[:2], metrics, run_dir, f"campaign{suffix}.png", title)
+        if by:
+            compare_figure(subset, axes[:2], by, chosen, args.run_dir, f"campaign{suffix}.png", title)
+        else:
+            figure(subset, axes[:2], chosen or metrics, args.run_dir, f"campaign{suffix}.png", title, bool(chosen))
+    return 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    main(sys.argv[1])
+    sys.exit(main(sys.argv[1:]))

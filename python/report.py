@@ -4,7 +4,7 @@
 Usage: report.py RUN_ROOT [--references FILE] [--template FILE]
 
 Reads RUN_ROOT/reproduce.json (written by `flexgait reproduce`: whether it was the quick variant,
-and per run its directory, title, command and exit code), the report's rows from
+and per run its directory, title, command, exit code and a caption of its figures), the report's rows from
 data/report/references.yaml (each row: where our number comes from, the thesis's or the paper's
 value and its source) and renders data/report/index.html.j2 with Jinja2 (autoescaped) into
 RUN_ROOT/index.html, through a temporary file and a rename.
@@ -214,6 +214,12 @@ def format_number(value, spec):
     return "n/a" if value is None else format(value, spec)
 
 
+def where(records, column, value):
+    """Jinja2 filter where(COLUMN, VALUE): the records whose COLUMN equals VALUE (a column name may
+    hold dots, e.g. a campaign's axis control.compensation, which selectattr would split)."""
+    return [r for r in records if r[column] == value]
+
+
 def make_environment(template_dir):
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(template_dir),
@@ -224,6 +230,7 @@ def make_environment(template_dir):
         keep_trailing_newline=True,
     )
     env.filters["fmt"] = format_number
+    env.filters["where"] = where
     return env
 
 
@@ -295,7 +302,7 @@ def render_page(root, references_path, template_path):
     env = make_environment(os.path.dirname(os.path.abspath(template_path)))
     exit_codes = {r["dir"]: r["exit_code"] for r in manifest["runs"]}
     sections = render_sections(env, references, RunFiles(root), exit_codes)
-    runs = [{**r, "figures": figures(root, r["dir"])} for r in manifest["runs"]]
+    runs = [{**r, "caption": r.get("caption", ""), "figures": figures(root, r["dir"])} for r in manifest["runs"]]
     template = env.get_template(os.path.basename(template_path))
     return template.render(quick=manifest["quick"], sections=sections, runs=runs)
 

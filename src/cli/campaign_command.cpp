@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/campaign/campaign.hpp"
+#include "flexgait/core/text.hpp"
 #include "mpi_distributor.hpp"
 #include "options.hpp"
 
@@ -19,21 +22,59 @@ struct CampaignArgs {
   int jobs = 0;
   bool resume = false;
   bool keep_runs = false;
+  std::vector<std::string> plot_metrics;  ///< --plot-metrics: campaign.png shows only these
 };
 
-int run_campaign_command(const CampaignArgs& a) {
-  // Everything checked, in every rank alike, before MPI starts and before anything is written.
+/// Throws UsageError naming the first of `metrics` that is not a column of `experiment`.
+void check_plot_metrics(const campaign::Experiment& experiment, const std::vector<std::string>& metrics) {
+  for (const std::string& m : metrics)
+    if (std::find(experiment.metrics.begin(), experiment.metrics.end(), m) == experiment.metrics.end()) {
+      std::string allowed;
+      for (const auto& k : experiment.metrics) allowed += (allowed.empty() ? "" : ", ") + k;
+      throw UsageError(fmt::format("--plot-metrics: '{}' is not a metric of {}; allowed: {}", one_line(m),
+                                   experiment.name, allowed));
+    }
+}
+
+/// The campaign of the arguments, every point checked; nothing is written.
+campaign::Campaign checked_campaign(const CampaignArgs& a) {
   campaign::Experiment experiment = campaign::find_experiment(a.experiment);
+  check_plot_metrics(experiment, a.plot_metrics);
   std::vector<campaign::GridAxis> axes;
   for (const auto& text : a.grid) axes.push_back(campaign::parse_grid_axis(text));
   const Config base = resolve(experiment.schema, a.run);
-  const campaign::Campaign c(std::move(experiment), base, campaign::Grid(std::move(axes)));
-  const std::unique_ptr<PointDistributor> mpi = mpi_distributor_if_launched();
+  return campaign::Campaign(std::move(experiment), base, campaign::Grid(std::move(axes)));
+}
+
+int run_campaign_command(const CampaignArgs& a) {
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  // Everything checked in every rank before anything is written. Under MPI the ranks agree on
+  // the outcome: all go on, or all exit 2 and rank 0 alone says why (a node may fail alone, e.g.
+  // on a --config it cannot read: rank 0 names that rank).
+  std::optional<campaign::Campaign> checked;
+  std::string error;
+  try {
+    checked.emplace(checked_campaign(a));
+  } catch (const UsageError& e) {
+    if (!mpi) throw;
+    error = e.what();
+  }
+  if (mpi) error = mpi->first_error(error);
+  if (!error.empty()) throw UsageError(error);
+  const campaign::Campaign& c = *checked;
   const SweepOutcome out = campaign::run_campaign(
       c, {a.run.out, a.jobs > 0 ? a.jobs : (mpi ? 1 : 0), a.resume, a.keep_runs, mpi.get()});
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const auto csv = std::filesystem::path(a.run.out) / "campaign.csv";
-  if (a.run.plot) run_plot_script("plot_campaign.py", {a.run.out});
+  if (a.run.plot) {
+    std::vector<std::string> args{a.run.out};
+    if (!a.plot_metrics.empty()) {
+      std::string list;
+      for (const auto& m : a.plot_metrics) list += (list.empty() ? "" : ",") + m;
+      args.insert(args.end(), {"--metrics", list});
+    }
+    run_plot_script("plot_campaign.py", args);
+  }
   if (a.run.json) {
     nlohmann::ordered_json j;
     j["experiment"] = c.experiment().name;
@@ -73,6 +114,11 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_flag("--resume", a->resume, "keep the finished points of an interrupted campaign of the same grid in --out");
+  cmd->add_option("--plot-metrics", a->plot_metrics,
+                  "campaign.png shows only these metrics, in this order; a third axis becomes the figure's rows "
+                  "(one per value, shared colour scales), e.g. fell,pelvis_roll_error_max")
+      ->delimiter(',')
+      ->type_name("M1,M2,...");
   cmd->add_flag("--keep-runs", a->keep_runs, "also write each point's run files to OUT/runs/NNNNNN");
   cmd->callback([a, &action] { action = [a] { return run_campaign_command(*a); }; });
 }

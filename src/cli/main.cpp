@@ -1,18 +1,20 @@
 // flexgait: the command-line program. Exit codes: 0 success, 1 runtime failure, 2 bad usage
 // or bad configuration (one line on stderr naming the key, the value and what is allowed). Every
-// message is one line: control characters escaped, long text cut (core one_line).
+// message is one line: control characters escaped, long text cut (core one_line). Under mpirun
+// a bad argument is said once, by rank 0; every rank exits 2.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <functional>
 #include <system_error>
 
+#include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/humanoid/mujoco_messages.hpp"
-#include "flexgait/version.hpp"
 #include "campaign_command.hpp"
 #include "humanoid_commands.hpp"
+#include "mpi_distributor.hpp"
 #include "reproduce_command.hpp"
 #include "rimless_commands.hpp"
 #include "schema_command.hpp"
@@ -44,7 +46,7 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
   flexgait::humanoid::route_mujoco_messages_to_stderr();  // no MUJOCO_LOG.TXT, nothing on stdout
   CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
-  app.set_version_flag("--version", std::string("flexgait ") + flexgait::kVersion);
+  app.set_version_flag("--version", "flexgait " + flexgait::campaign::program_build());
   app.require_subcommand(1);
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
       path += " " + cur->get_name();
     }
     const std::string unknown = unknown_command(app, argc, argv);
+    if (flexgait::cli::secondary_mpi_rank()) return 2;  // every rank has the same arguments: rank 0 says it
     fmt::print(stderr, "error: {}; see '{} --help'\n", unknown.empty() ? flexgait::one_line(e.what(), 1000) : unknown,
                path);
     return 2;
@@ -75,7 +78,8 @@ int main(int argc, char** argv) {
   try {
     return action ? action() : 2;
   } catch (const flexgait::UsageError& e) {  // bad configuration or bad usage, ConfigError included
-    fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
+    // Under mpirun every rank meets it (a campaign's ranks agree on it first): rank 0 says it once.
+    if (!flexgait::cli::secondary_mpi_rank()) fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
     return 2;
   } catch (const std::logic_error& e) {  // a broken contract inside flexgait
     fmt::print(stderr, "error: internal error (a bug in flexgait, please report it): {}\n",

@@ -22,6 +22,7 @@ struct ReproduceOptions {
 struct Step {
   std::string dir, title;
   std::vector<std::string> args;  ///< flexgait's arguments, without --out
+  std::string caption = {};       ///< what its figures show, one sentence (may be empty)
 };
 
 /// One finished run, as reproduce.json lists it for the report.
@@ -29,6 +30,7 @@ struct RunRecord {
   std::string dir, title;
   std::string command;  ///< the command that made it, as the report shows it
   int exit_code = 0;
+  std::string caption;
 };
 
 std::vector<Step> steps(bool quick) {
@@ -63,6 +65,16 @@ std::vector<Step> steps(bool quick) {
                {"humanoid", "mismatch", "--config", walk("walk-dynamic.yaml")}});
   s.push_back({"humanoid-walk-1s", "Humanoid: ROBOTIS's 1.0 s/step with compensation (beyond the thesis)",
                {"humanoid", "walk", "--config", walk("walk-robotis.yaml")}});
+  // The walking envelope: a campaign (campaign/ on the sweep runner), 10-step walks of the default
+  // configuration; quick: the corners of the full grid's step lengths 0.1 and 0.3 m.
+  s.push_back({"humanoid-envelope",
+               "Humanoid: walking envelope, step length × step time, compensation off against both (a campaign)",
+               {"campaign", "humanoid-walk", "--grid", quick ? "walk.step_length=0.1,0.3" : "walk.step_length=0.05:0.3:6",
+                "--grid", quick ? "walk.step_time=0.6,0.8" : "walk.step_time=0.5:1.0:6", "--grid",
+                "control.compensation=off,both", "--plot-metrics", "fell,pelvis_roll_error_max"},
+               "Each cell is one walk of 10 steps at that step length and step time: on the left whether the twin "
+               "fell, on the right its peak pelvis roll error (of a fall: up to the fall); the top row without the "
+               "deformation compensators, the bottom row with both, on the same colour scale."});
   return s;
 }
 
@@ -78,7 +90,11 @@ std::string shown_command(const Step& step) {
 std::string manifest(const std::vector<RunRecord>& runs, bool quick) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& r : runs)
-    list.push_back({{"dir", r.dir}, {"title", r.title}, {"command", r.command}, {"exit_code", r.exit_code}});
+    list.push_back({{"dir", r.dir},
+                    {"title", r.title},
+                    {"command", r.command},
+                    {"exit_code", r.exit_code},
+                    {"caption", r.caption}});
   return nlohmann::json{{"quick", quick}, {"runs", list}}.dump(2) + "\n";
 }
 
@@ -118,7 +134,7 @@ int reproduce(const ReproduceOptions& o) {
       ++failures;
       fmt::print(stderr, "[reproduce] {} exited with {}\n", st.dir, code);
     }
-    runs.push_back({st.dir, st.title, shown_command(st), code});
+    runs.push_back({st.dir, st.title, shown_command(st), code, st.caption});
   }
   root.write("reproduce.json", manifest(runs, o.quick));
   root.write("schema.json", schema_document());  // what every summary field means, from the records
@@ -135,11 +151,12 @@ void add_reproduce_command(CLI::App& app, std::function<int()>& action) {
   auto o = std::make_shared<ReproduceOptions>();
   CLI::App* r = app.add_subcommand(
       "reproduce", "Run every reproduction of both studies (rimless wheel analyses, stiffness bench, compensation "
-                   "studies, stiffness mismatch, 1 s/step walk) and write OUT/index.html with the figures and our "
+                   "studies, stiffness mismatch, 1 s/step walk, walking envelope) and write OUT/index.html with the figures and our "
                    "numbers beside the thesis's and the paper's (python/report.py over data/report/references.yaml); "
                    "exit 1 if a run failed or the report could not be written");
   r->add_option("--out", o->out, "output directory")->capture_default_str();
-  r->add_flag("--quick", o->quick, "shorter variant: 3 steps of the 24 s/step walk, coarser rimless sweeps");
+  r->add_flag("--quick", o->quick,
+              "shorter variant: 3 steps of the 24 s/step walk, coarser rimless sweeps, an 8-point walking envelope");
   r->callback([o, &action] { action = [o] { return reproduce(*o); }; });
 }
 

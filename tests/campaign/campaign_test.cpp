@@ -1,8 +1,9 @@
 // A campaign's cells and checks: the summary flattened under its own keys (null empty, lists by ';',
 // pairs by ':', text quoted as CSV needs, a missing key empty), every point checked before anything
 // runs (the offending point named), a failing run a row with its reason, and the signature holding
-// experiment, axes and base configuration.
+// the program's build, experiment, axes and base configuration.
 #include "flexgait/campaign/campaign.hpp"
+#include "flexgait/campaign/program_build.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -68,6 +69,8 @@ TEST(Campaign, SignatureChangesWithAxesAndBase) {
   EXPECT_EQ(a.signature(), Campaign(toy(), base, Grid({parse_grid_axis("x=1:2:2")})).signature());
   EXPECT_NE(a.signature(), b.signature());
   EXPECT_NE(a.signature(), d.signature());
+  // The build comes first: a campaign of another build (another commit, another edit) is another campaign.
+  EXPECT_EQ(a.signature().rfind("flexgait " + program_build() + "\ncampaign toy\n", 0), 0u) << a.signature();
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 # flexgait campaign: bad grids (exit 2, one line naming the key, nothing written); a 2-D rimless
 # grid and a small humanoid grid give the same campaign.csv bytes with 1 and 2 threads (and, with
 # MODE=mpi, under mpirun -np 3); a point that fails is a row with its reason; kill -9 then --resume
-# gives the same bytes, a torn last line included; --resume of a different grid is refused.
+# gives the same bytes, a torn last line included; --resume of a different grid is refused;
+# --plot-metrics names only metrics of the experiment and draws a 3-D grid as one figure.
 # Usage: campaign_test.sh FLEXGAIT_EXE [mpi MPIRUN]
 set -u
 exe=$1
@@ -31,8 +32,19 @@ if [ "$mode" = mpi ]; then
   mpi_campaign "${walk_grid[@]}" --out "$work/wm"
   check "mpirun -np 3 walk: same bytes as 1 thread" cmp -s "$work/w1/campaign.csv" "$work/wm/campaign.csv"
   mpi_campaign "${rimless_grid[@]}" --out "$work/never" --grid rimless.KK=1
-  check "mpirun: a bad key exits 2" grep -q "rimless.KK" "$work/stderr"
+  check "mpirun: a bad key exits 2 (got $?)" test $? -eq 2
+  check "mpirun: a bad key is said once, by rank 0" test "$(grep -c "rimless.KK" "$work/stderr")" -eq 1
   check "mpirun: a bad key writes nothing" test ! -e "$work/never"
+  mpi_campaign "${rimless_grid[@]}" --out "$work/never" --jobs -3
+  check "mpirun: a bad option exits 2 (got $?)" test $? -eq 2
+  check "mpirun: a bad option is said once" test "$(grep -c "^error: --jobs" "$work/stderr")" -eq 1
+  # Ranks 1 and 2 alone fail (as a node that cannot read --config would): all exit 2, rank 0 names rank 1.
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 1 "$exe" campaign "${rimless_grid[@]}" --no-plot \
+    --out "$work/never" : -np 2 "$exe" campaign "${rimless_grid[@]}" --no-plot --out "$work/never" --set rimless.KK=3 \
+    >"$work/stdout" 2>"$work/stderr"
+  check "mpirun: an error of other ranks only exits 2 (got $?)" test $? -eq 2
+  check "mpirun: rank 0 says it once, naming the rank" test "$(grep -c "^error: rank 1: --set: .*rimless.KK" "$work/stderr")" -eq 1
+  check "mpirun: an error of other ranks only writes nothing" test ! -e "$work/never"
   mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
   check "mpirun: resume of a different grid refused (workers released)" grep -q "different sweep" "$work/stderr"
   echo "campaign mpi: $passed passed, $failed failed"
@@ -63,6 +75,8 @@ expect_usage_error bad-range "ends of the range of rimless.K" rimless-simulate -
 expect_usage_error empty-value "empty value of rimless.K" rimless-simulate --grid rimless.K=1,,2
 expect_usage_error twice "rimless.K' given twice" rimless-simulate --grid rimless.K=1 --grid rimless.K=2
 expect_usage_error bad-set "rimless.KK" rimless-simulate --grid rimless.K=1 --set rimless.KK=2
+expect_usage_error bad-plot-metric "--plot-metrics: 'nope' is not a metric of humanoid-walk" humanoid-walk \
+  --grid walk.step_length=0.1 --plot-metrics fell,nope
 if [ -n "${FLEXGAIT_BUILT_WITHOUT_MPI:-}" ]; then  # as if started by mpirun -np 2
   OMPI_COMM_WORLD_SIZE=2 expect_usage_error mpi-without-mpi "built without MPI" rimless-simulate --grid rimless.K=1000
 fi
@@ -82,6 +96,12 @@ check "config.yaml names the axes" grep -q "^#   --grid rimless.mu=0.3:0.9:4" "$
 if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then  # the figure (python/plot_campaign.py)
   timeout 300 "$exe" campaign "${rimless_grid[@]}" --out "$work/rp" >/dev/null 2>&1
   check "2-D grid: campaign.png drawn" test -s "$work/rp/campaign.png"
+  # --plot-metrics on a 3-D grid: one figure, the third axis as its rows (the walking envelope's).
+  timeout 300 "$exe" campaign humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.3 \
+    --grid walk.step_time=0.6,0.8 --grid control.compensation=off,both --plot-metrics fell,pelvis_roll_error_max \
+    --out "$work/wp" >/dev/null 2>&1
+  check "3-D grid with --plot-metrics: one campaign.png" test -s "$work/wp/campaign.png"
+  check "3-D grid with --plot-metrics: not split by the third axis" test -z "$(ls "$work/wp" | grep 'campaign_')"
 fi
 campaign "${walk_grid[@]}" --out "$work/w1" --jobs 1
 campaign "${walk_grid[@]}" --out "$work/w2" --jobs 2

@@ -104,6 +104,35 @@ TEST(SweepRunner, AnyDistributorGivesTheSameFile) {
   std::filesystem::remove_all(base);
 }
 
+// Records the order the runner hands the points out in, and computes them in that order.
+class RecordingDistributor final : public PointDistributor {
+ public:
+  bool coordinator() const override { return true; }
+  void run(const std::vector<int>& todo, int, const PointFunction& point, const PointDone& done) override {
+    order = todo;
+    for (const int i : todo) done(i, point(i));
+  }
+  std::vector<int> order;
+};
+
+TEST(SweepRunner, HandsOutTheMostExpensivePointsFirstAndWritesByIndex) {
+  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_cost_test";
+  std::filesystem::remove_all(base);
+  run_sweep(job(base / "plain"));
+  SweepJob costly = job(base / "costly");
+  costly.cost = [](int i) { return static_cast<double>(i % 3); };
+  RecordingDistributor recorder;
+  costly.distributor = &recorder;
+  run_sweep(costly);
+  ASSERT_EQ(recorder.order.size(), 40u);
+  for (std::size_t k = 1; k < recorder.order.size(); ++k) {  // cost descending, ties by index
+    const int a = recorder.order[k - 1], b = recorder.order[k];
+    EXPECT_TRUE(a % 3 > b % 3 || (a % 3 == b % 3 && a < b)) << a << " before " << b;
+  }
+  EXPECT_EQ(read_text_file(base / "plain" / "sweep.csv"), read_text_file(base / "costly" / "sweep.csv"));
+  std::filesystem::remove_all(base);
+}
+
 TEST(SweepRunner, AWorkerWritesNothingAndAFailedResumeReleasesTheWorkers) {
   const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_worker_test";
   std::filesystem::remove_all(base);

@@ -202,6 +202,37 @@ class ReferencesFileTest(unittest.TestCase):
                 self.assertTrue(spec["file"].endswith((".json", ".csv")), row["id"])
 
 
+class CampaignRowTest(unittest.TestCase):
+    """A row over a campaign.csv (dotted axis columns) and a run's caption, as the walking envelope has."""
+
+    def test_where_filter_and_caption(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            references = {
+                "sections": REFERENCES["sections"],
+                "rows": [{
+                    "id": "envelope", "section": "demo", "run": "run-b",
+                    "values": {"points": {"file": "campaign.csv",
+                                          "columns": {"control.compensation": "text", "fell": "bool"}}},
+                    "label": "Envelope",
+                    "ours": "{% for m in ['off', 'both'] %}{{ m }}: "
+                            "{{ points|where('control.compensation', m)|selectattr('fell')|list|length }} of "
+                            "{{ points|where('control.compensation', m)|length }} fell; {% endfor %}",
+                    "reference": "—", "source": "spec"}],
+            }
+            tree = RunTree(tmp, references=references)
+            write(os.path.join(tmp, "run-b", "campaign.csv"),
+                  "index,control.compensation,fell\n0,off,true\n1,both,false\n2,off,false\n3,both,false\n")
+            with open(os.path.join(tmp, "reproduce.json"), encoding="utf-8") as f:
+                manifest = json.load(f)
+            manifest["runs"][1]["caption"] = "Each cell <one> walk."
+            write(os.path.join(tmp, "reproduce.json"), json.dumps(manifest))
+            result = tree.render()
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertEqual(page_check.table_rows(tree.page)["envelope"][1], "off: 1 of 2 fell; both: 0 of 2 fell; ")
+            self.assertIn("<p>Each cell &lt;one&gt; walk.</p>", tree.page_text())
+            self.assertEqual(page_check.page_problems(tree.page), [])
+
+
 class JsonPointerTest(unittest.TestCase):
     def test_pointer_resolution(self):
         document = {"a": {"b/c": [10, 20]}, "m~n": 1}

@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/text.hpp"
-#include "flexgait/version.hpp"
 
 namespace flexgait::campaign {
 namespace {
@@ -81,6 +81,8 @@ Config Campaign::point_config(int i) const {
   return c;
 }
 
+double Campaign::cost(int i) const { return experiment_.cost ? experiment_.cost(point_config(i)) : 1.0; }
+
 std::string Campaign::header() const {
   std::string out;
   for (const GridAxis& axis : grid_.axes()) out += csv_field(axis.key) + ",";
@@ -99,7 +101,7 @@ std::string Campaign::row(int i, const std::filesystem::path& run_dir) const {
 }
 
 std::string Campaign::signature() const {
-  std::string out = fmt::format("flexgait {}\ncampaign {}\n", kVersion, experiment_.name);
+  std::string out = fmt::format("flexgait {}\ncampaign {}\n", program_build(), experiment_.name);
   for (const GridAxis& axis : grid_.axes()) {
     out += "grid " + axis.key + "=";
     for (std::size_t k = 0; k < axis.values.size(); ++k) out += (k ? "," : "") + axis.values[k];
@@ -110,7 +112,7 @@ std::string Campaign::signature() const {
 
 std::string Campaign::config_yaml() const {
   std::string out = fmt::format("# campaign of {} (flexgait {}): the base configuration below, and the grid\n",
-                                experiment_.name, kVersion);
+                                experiment_.name, program_build());
   for (const GridAxis& axis : grid_.axes())
     out += fmt::format("#   --grid {}  ({} values)\n", one_line(axis.given, 1000), axis.values.size());
   return out + base_.to_yaml();
@@ -126,6 +128,7 @@ SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run) {
   job.resume = run.resume;
   job.signature = campaign.signature();
   job.distributor = run.distributor;
+  job.cost = [&campaign](int i) { return campaign.cost(i); };
   job.prepare = [&] { write_file_atomic(run.dir / "config.yaml", campaign.config_yaml()); };
   const std::filesystem::path runs = run.keep_runs ? run.dir / "runs" : std::filesystem::path();
   job.row = [&campaign, runs](int i) {

@@ -35,12 +35,15 @@ class Campaign {
   int size() const { return grid_.size(); }
   /// The checked configuration of point i.
   Config point_config(int i) const;
+  /// The estimated cost of point i (Experiment::cost; 1 without one): points run most expensive first.
+  double cost(int i) const;
   /// campaign.csv's header without "index": the axis keys, the metrics, error.
   std::string header() const;
   /// Point i's cells (no index): never throws for a failing run; its message goes to `error`.
   /// `run_dir` not empty: the point's run files go there.
   std::string row(int i, const std::filesystem::path& run_dir = {}) const;
-  /// What a resumed campaign must match: program version, experiment, axes, base configuration.
+  /// What a resumed campaign must match: the program's build (program_build.hpp: version and git
+  /// describe), experiment, axes, base configuration.
   std::string signature() const;
   /// config.yaml: the axes as comments, then the base configuration.
   std::string config_yaml() const;

@@ -77,7 +77,10 @@ Experiment rimless_simulate() {
 }
 
 /// fixed_point.json of `rimless fixed-point` (touchdown section) less its Newton history, with
-/// max_multiplier, the largest |multiplier| (null without a fixed point), for the maps.
+/// max_multiplier, the largest |multiplier| (null without a fixed point), for the maps. The
+/// section is not an axis: on the upright section one orbit has the same multipliers, gait,
+/// period and speed (conjugate return maps), only `state` differs, and gaits with flight never
+/// reach it (README, Campaigns).
 std::string fixed_point_summary(const rimless::FixedPointReport& r) {
   auto j = nlohmann::ordered_json::parse(rimless::fixed_point_json(r));
   j.erase("history");
@@ -107,6 +110,8 @@ Experiment humanoid_walk() {
   Experiment e{"humanoid-walk", "summary.json", experiments::walk_run_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { experiments::walk_run_from_config(c); };
   e.metrics = record_keys<experiments::WalkMetrics>();
+  // The walk's planned duration: a point costs about its simulated time (a fall ends it sooner).
+  e.cost = [](const Config& c) { return static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"); };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::WalkResult r = experiments::run_walk(experiments::walk_run_from_config(c));
     if (const auto dir = kept_run(c, run_dir)) return experiments::write_walk(*dir, "", r);

@@ -27,6 +27,9 @@ struct Experiment {
   /// Runs one point: returns the summary as JSON text (an object). If `run_dir` is not empty, the
   /// run's files go there too (config.yaml and the summary at least). Thread-safe.
   std::function<std::string(const Config& config, const std::filesystem::path& run_dir)> run;
+  /// The estimated cost of a point, in any unit (humanoid-walk: the simulated time it plans);
+  /// empty: all points alike. Only the order the points are handed out depends on it.
+  std::function<double(const Config& config)> cost = {};
 };
 
 /// The names of the experiments, in table order.

@@ -21,13 +21,14 @@ class PointDistributor {
   /// True in the one process that reads and writes files (MPI rank 0; always true for threads).
   virtual bool coordinator() const = 0;
   /// Coordinator: computes the points `todo` with `threads` threads here (and the other workers,
-  /// if any) and calls `done` once per point. Worker processes: compute the points the coordinator
+  /// if any), handing them out in `todo`'s order, and calls `done` once per point. Worker processes: compute the points the coordinator
   /// hands out until it says stop (`todo` and `done` are not used). Returns when all are done.
   virtual void run(const std::vector<int>& todo, int threads, const PointFunction& point, const PointDone& done) = 0;
 };
 
-/// The threads of this process: a oneTBB arena of `threads` threads (0: all cores), one point per
-/// task (points differ in cost, so no chunking).
+/// The threads of this process: a oneTBB arena of `threads` threads (0: all cores), each taking
+/// the next point of `todo`, in its order, when it is free (points differ in cost, so no chunking
+/// and no static split).
 class ThreadDistributor final : public PointDistributor {
  public:
   bool coordinator() const override { return true; }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <condition_variable>
@@ -143,6 +144,13 @@ SweepOutcome run_coordinator(const SweepJob& job, PointDistributor& distributor)
   out.resumed = static_cast<int>(rows.size());
   for (int i = 0; i < job.count; ++i)
     if (!rows.count(i)) todo.push_back(i);
+  if (job.cost) {  // most expensive first (dynamic assignment then ends on the cheap points)
+    std::vector<double> cost(static_cast<std::size_t>(job.count), 0.0);
+    for (const int i : todo) cost[static_cast<std::size_t>(i)] = job.cost(i);
+    std::stable_sort(todo.begin(), todo.end(), [&](int a, int b) {
+      return cost[static_cast<std::size_t>(a)] > cost[static_cast<std::size_t>(b)];
+    });
+  }
 
   const auto t0 = std::chrono::steady_clock::now();
   ProgressBar progress(job.count, "points", out.resumed, true);

@@ -24,6 +24,10 @@ struct SweepJob {
   std::string signature;          ///< what defines the sweep (parameters, configuration); checked on resume
   /// Computes point i; returns its CSV cells (no index, no newline). Must be thread-safe.
   PointFunction row;
+  /// The estimated cost of point i (any unit, e.g. the simulated time it plans): the points are
+  /// handed out most expensive first (ties by index), so the last to start are the cheap ones and
+  /// no worker idles long at the end. Empty: index order. The CSV is sorted by index either way.
+  std::function<double(int)> cost;
   /// Called once the sweep is known to run (after check_resumable, the directory made), before
   /// the points: writes what goes beside the CSV (a campaign's config.yaml). May be empty.
   std::function<void()> prepare;
