@@ -48,6 +48,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   for (const auto& b : m.bodies) m.total_mass += b.mass;
   m.sole_length = r.sole_length;
   m.sole_width = r.sole_width;
+  m.sole_offset = {Vector3d(0, 0, -r.ankle_to_sole), Vector3d(0, 0, -r.ankle_to_sole)};
   return m;
 }
 
@@ -75,7 +76,7 @@ Vector3d center_of_mass(const RobotModel& model, const RobotModelData& data) {
 
 Pose sole_pose(const RobotModel& model, const RobotModelData& data, int side) {
   const Pose& foot = data.frame[model.foot[side]];
-  return {foot.p + foot.R * Vector3d(0, 0, -model.leg[side].ankle_to_sole), foot.R};
+  return {foot.p + foot.R * model.sole_offset[side], foot.R};
 }
 
 LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, int side, const Vector3d& point) {
