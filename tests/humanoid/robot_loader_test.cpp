@@ -6,9 +6,12 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <random>
 #include <string>
 
+#include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/humanoid/model_xml.hpp"
 #include "flexgait/humanoid/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
@@ -115,8 +118,7 @@ TEST(RobotLoader, TwinOfTheLoadedBuiltinCompilesToTheSameNumbers) {
 // The controller's model of a loaded robot against MuJoCo's own model of the same twin: COM,
 // sole poses, leg Jacobians (mj_jac at the sole centre) and the legs' gravity torques (qfrc_bias
 // at rest). Both are exact rigid-body kinematics up to rounding: 1e-10.
-TEST(RobotLoader, ControllerModelAgreesWithMuJoCo) {
-  const LoadedRobot loaded = builtin_loaded();
+void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
   const RobotModel model = walking::make_robot_model(loaded);
   walking::RobotModelData data;
   Compiled twin(twin_mjcf(loaded, RobotParams{}, PlantParams{}));
@@ -151,6 +153,44 @@ TEST(RobotLoader, ControllerModelAgreesWithMuJoCo) {
         EXPECT_NEAR(g(i), twin.d->qfrc_bias[dof], 1e-10);
       }
     }
+  }
+}
+
+TEST(RobotLoader, ControllerModelAgreesWithMuJoCo) { expect_model_agrees_with_mujoco(builtin_loaded()); }
+
+/// The second robot's walk (tests/humanoid/data/small_biped.yaml: the robot small_biped.xml with
+/// its own names and an offset hip pitch axis, 10 steps at 1 s/step); its description path is
+/// relative to the YAML file.
+experiments::WalkRunParams small_biped_walk() {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
+  return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, {}));
+}
+
+TEST(RobotLoader, SecondRobotModelAgreesWithMuJoCo) {
+  const experiments::WalkRunParams walk = small_biped_walk();
+  ASSERT_TRUE(walk.loaded);
+  const LoadedRobot& loaded = *walk.loaded;
+  expect_model_agrees_with_mujoco(loaded);
+  const RobotModel model = walking::make_robot_model(loaded);
+  EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_FALSE(model.leg[side].analytic);  // the offset hip pitch axis
+    EXPECT_EQ(walking::analytic_ik_mismatch(loaded, side), "the hip yaw, roll and pitch axes do not meet in a point");
+  }
+  EXPECT_TRUE(walking::make_robot_model(builtin_loaded()).leg[0].analytic);
+}
+
+// The second robot walks 10 steps at 1 s/step with and without compensation (numeric leg IK).
+TEST(RobotLoader, SecondRobotWalks) {
+  for (const auto mode : {compensation::CompensationMode::kBoth, compensation::CompensationMode::kOff}) {
+    experiments::WalkRunParams walk = small_biped_walk();
+    walk.control.mode = mode;
+    const experiments::WalkResult r = experiments::run_walk(walk);
+    EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_reason << r.metrics.failure;
+    EXPECT_EQ(r.metrics.steps_completed, 10);
+    EXPECT_EQ(r.metrics.ik_clamped, 0);
+    EXPECT_EQ(r.metrics.mujoco_warnings, 0);
   }
 }
 

@@ -2,10 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
-#include <algorithm>
 #include <sstream>
 
 #include "flexgait/core/config_file.hpp"
@@ -85,7 +85,7 @@ std::string ParamSpec::allowed() const {
     case ParamType::Boolean:
       return "true or false";
     case ParamType::Text:
-      return "a non-empty text on one line";
+      return "a non-empty text without control characters";
     case ParamType::Choice: {
       std::string s = "one of ";
       for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : "") + choices[i];
@@ -206,8 +206,10 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
         if (c == text) return text;
       throw ConfigError(spec.key, error_text(origin, spec.key, text, "not an allowed value", &spec));
     case ParamType::Text:
-      if (text.empty() || text.find_first_of("\n\r") != std::string::npos)
-        throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a one-line text", &spec));
+      if (text.empty() || std::any_of(text.begin(), text.end(), [](char c) {
+            return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+          }))
+        throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a one-line text without control characters", &spec));
       return text;
   }
   throw std::logic_error("unhandled parameter type");

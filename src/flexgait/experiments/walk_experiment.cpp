@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 
 #include "flexgait/experiments/capture_point_bound.hpp"
@@ -42,11 +43,18 @@ WalkRunParams walk_run_from_config(const Config& c) {
   WalkRunParams p = record_from_config<WalkRunParams>(c);
   check_with_origin(c, [&] { p.plant = humanoid::plant_from_config(c); });  // with its cross-key check
   p.controller_robot = p.robot;
-  if (!p.description.builtin())
+  if (!p.description.builtin()) {
+    // A relative path given in a configuration file is relative to that file.
+    const std::string& origin = c.origin("robot.description");
+    const auto colon = origin.rfind(':');
+    const std::filesystem::path path(p.description.description);
+    if (path.is_relative() && colon != std::string::npos && std::filesystem::is_regular_file(origin.substr(0, colon)))
+      p.description.description = (std::filesystem::path(origin.substr(0, colon)).parent_path() / path).string();
     check_with_origin(c, [&] {
       p.loaded = std::make_shared<const humanoid::LoadedRobot>(humanoid::load_robot(p.description));
-      (void)walking::make_robot_model(*p.loaded);  // refuses a leg layout the controller cannot handle
+      (void)walking::make_robot_model(*p.loaded);  // refuses a foot the controller cannot handle
     });
+  }
   return p;
 }
 

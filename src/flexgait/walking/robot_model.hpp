@@ -8,6 +8,7 @@
 /// the full form) need. Model (immutable) and Data (frames, scratch) apart; no allocation after
 /// construction.
 #include <array>
+#include <string>
 
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/humanoid/robot_description.hpp"
@@ -40,11 +41,17 @@ struct RobotModel {
 };
 
 RobotModel make_robot_model(const humanoid::RobotParams& robot);
-/// The model of a loaded description. Throws ConfigError (robot.joints.<name>, robot.feet.<side>.*)
-/// when a leg lacks the layout of the analytic IK (leg_kinematics.hpp: hip yaw (z), roll (x), pitch
-/// (y) axes meeting in a point, knee (y) straight below, ankle pitch (y) and roll (x) meeting
-/// straight below the knee, the sole centre straight below the ankle, level at zero angles).
+/// The model of a loaded description. Each leg's IK is analytic when the leg has its layout
+/// (leg_kinematics.hpp: hip yaw (z), roll (x), pitch (y) axes meeting in a point, knee (y)
+/// straight below, ankle pitch (y) and roll (x) meeting straight below the knee, the sole centre
+/// straight below the ankle; checked to 1e-9 m), numeric otherwise (leg[side].analytic, and
+/// analytic_ik_mismatch says why). Throws ConfigError (robot.feet.<side>.body) when a foot's
+/// frame is not parallel to the root's at zero angles.
 RobotModel make_robot_model(const humanoid::LoadedRobot& robot);
+/// Why the analytic IK does not apply to leg `side` of a loaded description ("" when it does).
+std::string analytic_ik_mismatch(const humanoid::LoadedRobot& robot, int side);
+/// Fills leg[side]'s general chain (axes, anchors, sole) from the model's bodies.
+void fill_leg_chain(RobotModel& model, int side);
 
 struct RobotModelData {
   std::array<Pose, kBodies> frame;         ///< world pose of each body

@@ -41,7 +41,29 @@ struct Anchor {
   Vector3d point = Vector3d::Zero();    ///< anchor in that body's frame
 };
 
+/// Why leg `side` of m lacks the analytic IK's layout ("" when it has it).
+std::string layout_mismatch(const RobotModel& m, int side) {
+  const int b0 = 2 + 7 * side;
+  auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
+  const std::array<Vector3d, 6> axes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
+                                        Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
+  for (int i = 0; i < 6; ++i)
+    if (!close(m.bodies[static_cast<std::size_t>(b0 + i)].axis, axes[static_cast<std::size_t>(i)]))
+      return fmt::format("the axis of {} is not {} at zero angles", humanoid::kJointNames[humanoid::leg_first_joint(side) + i],
+                         i == 0 ? "z" : (i == 1 || i == 5 ? "x" : "y"));
+  auto vertical = [](const Vector3d& v) { return std::abs(v.x()) < 1e-9 && std::abs(v.y()) < 1e-9 && v.z() < 0; };
+  if (!(std::abs(offset(1).x()) < 1e-9 && std::abs(offset(1).y()) < 1e-9 && close(offset(2), Vector3d::Zero())))
+    return "the hip yaw, roll and pitch axes do not meet in a point";
+  if (!vertical(offset(3))) return "the knee is not straight below the hip";
+  if (!vertical(offset(4)) || !close(offset(5), Vector3d::Zero()))
+    return "the ankle pitch and roll axes do not meet straight below the knee";
+  if (!vertical(offset(6) + m.sole_offset[static_cast<std::size_t>(side)])) return "the sole centre is not straight below the ankle";
+  return {};
+}
+
 }  // namespace
+
+std::string analytic_ik_mismatch(const LoadedRobot& r, int side) { return layout_mismatch(make_robot_model(r), side); }
 
 RobotModel make_robot_model(const LoadedRobot& r) {
   const int n = static_cast<int>(r.bodies.size());
@@ -129,40 +151,23 @@ RobotModel make_robot_model(const LoadedRobot& r) {
 
   // The soles and the analytic IK's layout.
   for (int side = 0; side < 2; ++side) {
-    const int b0 = 2 + 7 * side, j0 = humanoid::leg_first_joint(side);
+    const int b0 = 2 + 7 * side;
     const std::string foot_key = std::string("robot.feet.") + (side == 0 ? "left" : "right") + ".body";
     const int fb = r.foot[side];
     if (!R0[static_cast<std::size_t>(fb)].isIdentity(1e-9))
       throw ConfigError(foot_key, fmt::format("key '{}' = '{}': the foot's frame is not parallel to the root's at zero joint angles "
                                               "(the sole must be level)", foot_key, r.bodies[static_cast<std::size_t>(fb)].name));
     m.sole_offset[side] = vec(r.sole[side].center);
+    LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
+    fill_leg_chain(m, side);
+    leg.analytic = layout_mismatch(m, side).empty();
     auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
-    const std::array<Vector3d, 6> axes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
-                                          Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
-    std::string why;
-    int bad = j0;  // the joint the message names
-    for (int i = 0; i < 6 && why.empty(); ++i)
-      if (!close(m.bodies[static_cast<std::size_t>(b0 + i)].axis, axes[static_cast<std::size_t>(i)]) && (bad = j0 + i) >= 0)
-        why = fmt::format("its axis is not {} at zero angles", i == 0 ? "z" : (i == 1 || i == 5 ? "x" : "y"));
-    const Vector3d foot_sole = offset(6) + m.sole_offset[side];  // sole centre from the ankle-roll anchor
-    if (why.empty() && !(std::abs(offset(1).x()) < 1e-9 && std::abs(offset(1).y()) < 1e-9 && close(offset(2), Vector3d::Zero())))
-      why = "the hip yaw, roll and pitch axes do not meet in a point";
-    if (why.empty() && !(std::abs(offset(3).x()) < 1e-9 && std::abs(offset(3).y()) < 1e-9 && offset(3).z() < 0))
-      why = "the knee is not straight below the hip";
-    if (why.empty() && !(std::abs(offset(4).x()) < 1e-9 && std::abs(offset(4).y()) < 1e-9 && offset(4).z() < 0 &&
-                         close(offset(5), Vector3d::Zero())))
-      why = "the ankle pitch and roll axes do not meet straight below the knee";
-    if (why.empty() && !(std::abs(foot_sole.x()) < 1e-9 && std::abs(foot_sole.y()) < 1e-9 && foot_sole.z() < 0))
-      why = "the sole centre is not straight below the ankle";
-    if (!why.empty()) {
-      const std::string key = "robot.joints." + std::string(humanoid::kJointNames[bad]);
-      throw ConfigError(key, fmt::format("key '{}': this leg lacks the layout of the analytic IK ({}); "
-                                         "the numeric IK for other layouts is not implemented yet", key, why));
-    }
-    m.leg[side].hip = offset(0) + offset(1);
-    m.leg[side].thigh = -offset(3).z();
-    m.leg[side].shank = -offset(4).z();
-    m.leg[side].ankle_to_sole = -foot_sole.z();
+    leg.hip = offset(0) + offset(1);
+    leg.thigh = -offset(3).z();
+    leg.shank = -offset(4).z();
+    // The F/T sensor (the foot body's origin) to the sole; for the analytic layout, the ankle to the sole.
+    leg.ankle_to_sole = leg.analytic ? -(offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z()
+                                     : -m.sole_offset[static_cast<std::size_t>(side)].z();
   }
   m.sole_length = r.sole[0].length;
   m.sole_width = r.sole[0].width;
