@@ -134,6 +134,12 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const RunDirectory dir(run.out);
   dir.write_config(config);
+  if (params.loaded && !run.json)
+    for (int side = 0; side < 2; ++side) {
+      const std::string why = walking::analytic_ik_mismatch(*params.loaded, side);
+      fmt::print("{}: {} leg IK {}\n", params.description.description, side == 0 ? "left" : "right",
+                 why.empty() ? "analytic" : "numeric (" + why + ")");
+    }
   ProgressBar bar(walking::plan_footsteps(params.walk).duration, "s simulated");
   // --render: PNG frames of the twin (OSMesa, offscreen) at --fps, then video.mp4 via ffmpeg.
   std::unique_ptr<humanoid::Renderer> renderer;

@@ -239,6 +239,24 @@ TEST(RobotLoader, ErrorsNameTheKeyAndTheName) {
   EXPECT_EQ(error_key(xml, p).rfind("robot.exclude_contacts | ", 0), 0u);
 }
 
+// Colliding geoms that touch at zero angles are refused, naming the pair; excluding it loads.
+TEST(RobotLoader, SelfContactAtZeroAnglesIsReportedAndCanBeExcluded) {
+  std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
+  // A deeper pelvis box that reaches into the hip roll links (grandchildren: MuJoCo does not
+  // exclude them), all three colliding.
+  const std::string pelvis = R"(<geom type="box" size="0.09 0.14 0.05")";
+  xml.replace(xml.find(pelvis), pelvis.size(), R"(<geom contype="1" conaffinity="1" type="box" size="0.09 0.14 0.1")");
+  const std::string roll = R"(<geom type="box" size="0.05 0.04 0.035")";
+  for (std::size_t at = xml.find(roll); at != std::string::npos; at = xml.find(roll, at + 1))
+    xml.insert(at + 5, R"( contype="1" conaffinity="1")");
+  const std::string what = error_key(xml, {});
+  EXPECT_EQ(what.rfind("robot.exclude_contacts | ", 0), 0u) << what;
+  EXPECT_NE(what.find("pelvis:l_hip_roll_link"), std::string::npos) << what;
+  RobotDescriptionParams p;
+  p.exclude_contacts = "pelvis:l_hip_roll_link,pelvis:r_hip_roll_link";
+  EXPECT_EQ(error_key(xml, p), "no error");
+}
+
 // A sole given by its size and centre instead of a geom: the same sole.
 TEST(RobotLoader, SoleBySizeAndCentre) {
   RobotDescriptionParams p;

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "flexgait/core/text.hpp"
+#include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/humanoid/twin_mjcf.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -81,6 +83,27 @@ bool is_ancestor(const mjModel* m, int ancestor, int body) {
   for (int b = body; b > 0; b = m->body_parentid[b])
     if (b == ancestor) return true;
   return ancestor == 0;
+}
+
+/// Refuses a robot whose colliding geoms touch each other at zero joint angles (the twin would
+/// start, and stand, in contact with itself), naming the first pair for robot.exclude_contacts.
+void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
+  const ModelPtr twin(load_mjcf(twin_mjcf(robot, RobotParams{}, PlantParams{})), mj_deleteModel);
+  mjData* d = mj_makeData(twin.get());
+  mj_forward(twin.get(), d);
+  const int floor = mj_name2id(twin.get(), mjOBJ_GEOM, "floor");
+  std::string pair;
+  for (int c = 0; c < d->ncon && pair.empty(); ++c) {
+    const mjContact& con = d->contact[c];
+    if (con.geom1 == floor || con.geom2 == floor) continue;
+    pair = name_of(twin.get(), mjOBJ_BODY, twin->geom_bodyid[con.geom1]) + ":" +
+           name_of(twin.get(), mjOBJ_BODY, twin->geom_bodyid[con.geom2]);
+  }
+  mj_deleteData(d);
+  if (!pair.empty())
+    fail("robot.exclude_contacts", exclude,
+         fmt::format("the bodies {} collide at zero joint angles; exclude the pair (robot.exclude_contacts={}) or "
+                     "give their geoms no contact", pair, pair));
 }
 
 }  // namespace
@@ -232,6 +255,7 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       out.exclude.push_back(ids);
     }
   }
+  check_self_contacts(out, params.exclude_contacts);
   return out;
 }
 
