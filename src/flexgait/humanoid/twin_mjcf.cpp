@@ -4,6 +4,8 @@
 
 #include <string_view>
 
+#include "flexgait/humanoid/model_xml.hpp"
+
 namespace flexgait::humanoid {
 namespace {
 
@@ -80,33 +82,8 @@ std::string twin_mjcf(const LoadedRobot& r, const RobotParams& robot, const Plan
   for (const auto& e : r.exclude)
     exclude += fmt::format("    <exclude body1=\"{}\" body2=\"{}\"/>\n", r.bodies[static_cast<std::size_t>(e[0])].name,
                            r.bodies[static_cast<std::size_t>(e[1])].name);
-  return fmt::format(R"(<mujoco model="flexgait_twin">
-  <compiler angle="radian" inertiafromgeom="false" autolimits="true"/>
-  <option timestep="{dt}" integrator="Euler" solver="Newton" iterations="100" tolerance="1e-10" gravity="0 0 -9.81"/>
-  <size nconmax="200" njmax="600"/>
-  <default>
-    <geom contype="0" conaffinity="0" rgba=".75 .75 .75 1"/>
-    <site rgba="1 0 0 1"/>
-  </default>
-  <visual><global offwidth="1280" offheight="720"/></visual>
-  <worldbody>
-    <light pos="0 -2 4" dir="0 0.4 -1" directional="true"/>
-    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="{mu} 0.005 0.0001" solref="{tc} 1" rgba=".8 .85 .8 1"/>
-{bodies}  </worldbody>
-{contact}  <sensor>
-    <force name="l_ft_force" site="l_ft"/>
-    <torque name="l_ft_torque" site="l_ft"/>
-    <force name="r_ft_force" site="r_ft"/>
-    <torque name="r_ft_torque" site="r_ft"/>
-    <framequat name="imu_quat" objtype="site" objname="imu"/>
-    <gyro name="imu_gyro" site="imu"/>
-    <accelerometer name="imu_acc" site="imu"/>
-  </sensor>
-</mujoco>
-)",
-                     fmt::arg("dt", p.physics_dt), fmt::arg("mu", robot.sole_friction), fmt::arg("tc", p.contact_time_constant),
-                     fmt::arg("bodies", bodies),
-                     fmt::arg("contact", exclude.empty() ? std::string() : "  <contact>\n" + exclude + "  </contact>\n"));
+  return twin_document("flexgait_twin", false, robot.sole_friction, p, bodies,
+                       exclude.empty() ? std::string() : "  <contact>\n" + exclude + "  </contact>\n");
 }
 
 }  // namespace flexgait::humanoid
