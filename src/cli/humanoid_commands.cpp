@@ -7,13 +7,17 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/core/progress.hpp"
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
 #include "flexgait/experiments/walk_output.hpp"
+#include "flexgait/humanoid/model_xml.hpp"
 #include "flexgait/humanoid/renderer.hpp"
+#include "flexgait/humanoid/robot_loader.hpp"
+#include "flexgait/humanoid/urdf_export.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
 #include "options.hpp"
 
@@ -130,6 +134,12 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const RunDirectory dir(run.out);
   dir.write_config(config);
+  if (params.loaded && !run.json)
+    for (int side = 0; side < 2; ++side) {
+      const std::string why = walking::analytic_ik_mismatch(*params.loaded, side);
+      fmt::print("{}: {} leg IK {}\n", params.description.description, side == 0 ? "left" : "right",
+                 why.empty() ? "analytic" : "numeric (" + why + ")");
+    }
   ProgressBar bar(walking::plan_footsteps(params.walk).duration, "s simulated");
   // --render: PNG frames of the twin (OSMesa, offscreen) at --fps, then video.mp4 via ffmpeg.
   std::unique_ptr<humanoid::Renderer> renderer;
@@ -174,6 +184,41 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   return m.completed() ? 0 : 1;  // a fall, a failure, a safe stop or a missing step: not a completed walk
 }
 
+struct ExportOptions {
+  std::string config_file;             ///< --config
+  std::vector<std::string> overrides;  ///< --set
+  std::string format = "mjcf";         ///< --format mjcf | urdf
+  std::string out;                     ///< --out FILE
+};
+
+/// `humanoid export`: the twin as MJCF (elastic gears as joint springs, sensors, floor) or the
+/// rigid robot as URDF, written atomically; the walk's configuration keys choose the robot.
+int export_robot(const ExportOptions& options) {
+  RunOptions run;
+  run.config_file = options.config_file;
+  run.overrides = options.overrides;
+  const Config config = resolve(experiments::walk_run_schema(), run);
+  const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
+  std::string text;
+  if (options.format == "mjcf") {
+    text = experiments::walk_twin(params).mjcf;
+  } else {
+    // The builtin robot through the loader (its twin's MJCF, the builtin mapping).
+    humanoid::LoadedRobot loaded;
+    if (params.loaded)
+      loaded = *params.loaded;
+    else
+      loaded = humanoid::load_robot_text(humanoid::humanoid_mjcf(params.robot, params.plant), "xml", "builtin",
+                                         humanoid::RobotDescriptionParams{});
+    text = humanoid::robot_urdf(loaded);
+    fmt::print("load it back with these keys (--set KEY=VALUE), robot.description={}:\n{}", options.out,
+               humanoid::urdf_mapping(loaded));
+  }
+  write_file_atomic(options.out, text);
+  fmt::print("wrote {} ({})\n", options.out, options.format);
+  return 0;
+}
+
 }  // namespace
 
 void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
@@ -199,6 +244,18 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   w->callback([walk_run, walk_render, &action] {
     action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); };
   });
+
+  auto exp = std::make_shared<ExportOptions>();
+  CLI::App* ex = humanoid->add_subcommand(
+      "export", "Write the robot (robot.description and its mapping; builtin by default) as MJCF (the twin: elastic "
+                "gears, sensors, floor; opens in MuJoCo's simulate) or URDF (the rigid robot)");
+  ex->add_option("--config", exp->config_file, "YAML configuration file (robot.*, plant.*)")->check(CLI::ExistingFile);
+  ex->add_option("--set", exp->overrides, "override one key, e.g. --set robot.description=my_robot.xml (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  ex->add_option("--format", exp->format, "mjcf or urdf")->check(CLI::IsMember({"mjcf", "urdf"}))->capture_default_str();
+  ex->add_option("--out", exp->out, "file to write (atomically)")->required();
+  ex->callback([exp, &action] { action = [exp] { return export_robot(*exp); }; });
 
   auto study_run = std::make_shared<RunOptions>();
   CLI::App* cs = humanoid->add_subcommand(

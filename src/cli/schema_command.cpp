@@ -22,6 +22,7 @@ const char* type_name(ParamType type) {
     case ParamType::Integer: return "integer";
     case ParamType::Boolean: return "boolean";
     case ParamType::Choice: return "choice";
+    case ParamType::Text: return "text";
   }
   return "?";
 }

@@ -11,6 +11,7 @@
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/humanoid/robot_description.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
 #include "flexgait/humanoid/stiffness_bench.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
@@ -30,6 +31,7 @@ struct Collect {
     if constexpr (NamedEnum<T>) values[std::string(key)] = std::string(name_of(v));
     else if constexpr (std::is_same_v<T, bool>) values[std::string(key)] = v;
     else if constexpr (std::is_integral_v<T>) values[std::string(key)] = static_cast<std::int64_t>(v);
+    else if constexpr (std::is_same_v<T, std::string>) values[std::string(key)] = v;
     else values[std::string(key)] = static_cast<double>(v);
   }
 };
@@ -45,6 +47,7 @@ std::map<std::string, Value> values_of(const R& r) {
 std::string other_value(const ParamSpec& p, const Value& current) {
   switch (p.type) {
     case ParamType::Boolean: return std::get<bool>(current) ? "false" : "true";
+    case ParamType::Text: return std::get<std::string>(current) + "_2";
     case ParamType::Choice:
       for (const auto& c : p.choices)
         if (c != std::get<std::string>(current)) return c;
@@ -93,6 +96,7 @@ TEST(Record, RimlessParametersDeriveFromOneList) {
 
 TEST(Record, HumanoidParametersDeriveFromOneList) {
   check_record<humanoid::RobotParams>();
+  check_record<humanoid::RobotDescriptionParams>();
   check_record<humanoid::PlantParams>();
   check_record<humanoid::BenchParams>();
   check_record<walking::WalkParams>();
@@ -121,7 +125,7 @@ TEST(Record, ChoicesComeFromTheEnumTable) {
 
 TEST(Record, WalkRunSchemaIsTheUnionOfItsParts) {
   Schema parts = humanoid::robot_schema();
-  parts.merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
+  parts.merge(schema_of<humanoid::RobotDescriptionParams>()).merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
   parts.merge(compensation::compensation_schema()).merge(schema_of<walking::EstimatorParams>());
   parts.merge(schema_of<walking::HealthParams>()).merge(schema_of<humanoid::Push>());
   const Schema run = experiments::walk_run_schema();

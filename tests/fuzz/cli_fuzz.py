@@ -59,7 +59,13 @@ YAML_SNIPPETS = ["a: &a\n  b: *a\n", "---\n", "...\n", "? [a, b]\n: 1\n", "{x: 1
 def schema_keys(exe):
     out = subprocess.run([exe, "schema"], check=True, capture_output=True, text=True).stdout
     configurations = json.loads(out)["configurations"]
+    global TEXT_KEYS
+    TEXT_KEYS = {p["key"] for params in configurations.values() for p in params if p["type"] == "text"}
     return {name: [p["key"] for p in params] for name, params in configurations.items()}
+
+
+TEXT_KEYS = set()  # keys of type text (names, paths): "inf" or "abc" are valid there
+NEVER_VALID_TEXT = ["", "\x7f", "\x1b[31m", "a\tb"]
 
 
 def mutate_yaml(rng, keys):
@@ -104,7 +110,8 @@ def make_case(rng, keys, work):
         else:
             args += [option, value]
     # A value no key accepts, last, so the case must be refused whatever the others did.
-    args += ["--set", "%s=%s" % (rng.choice(schema), rng.choice(NEVER_VALID[:6]))]
+    last = rng.choice(schema)
+    args += ["--set", "%s=%s" % (last, rng.choice(NEVER_VALID_TEXT if last in TEXT_KEYS else NEVER_VALID[:6]))]
     return args
 
 

@@ -75,6 +75,7 @@ py::dict config_dict(const Config& config) {
       case ParamType::Integer: out[py::str(p.key)] = config.integer(p.key); break;
       case ParamType::Boolean: out[py::str(p.key)] = config.boolean(p.key); break;
       case ParamType::Choice: out[py::str(p.key)] = config.choice(p.key); break;
+      case ParamType::Text: out[py::str(p.key)] = config.text(p.key); break;
     }
   }
   return out;

@@ -2,10 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
-#include <algorithm>
 #include <sstream>
 
 #include "flexgait/core/config_file.hpp"
@@ -84,6 +84,8 @@ std::string ParamSpec::allowed() const {
   switch (type) {
     case ParamType::Boolean:
       return "true or false";
+    case ParamType::Text:
+      return "a non-empty text without control characters";
     case ParamType::Choice: {
       std::string s = "one of ";
       for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? ", " : "") + choices[i];
@@ -144,6 +146,15 @@ ParamSpec boolean_param(std::string key, std::string fallback, std::string doc) 
   return p;
 }
 
+ParamSpec text_param(std::string key, std::string fallback, std::string doc) {
+  ParamSpec p;
+  p.key = std::move(key);
+  p.type = ParamType::Text;
+  p.fallback = std::move(fallback);
+  p.doc = std::move(doc);
+  return p;
+}
+
 Schema& Schema::add(ParamSpec spec) {
   if (find(spec.key) != nullptr) throw std::logic_error("duplicate configuration key " + spec.key);
   parse_value(spec, spec.fallback, "default");  // a default outside its own domain is a bug
@@ -194,6 +205,12 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
       for (const auto& c : spec.choices)
         if (c == text) return text;
       throw ConfigError(spec.key, error_text(origin, spec.key, text, "not an allowed value", &spec));
+    case ParamType::Text:
+      if (text.empty() || std::any_of(text.begin(), text.end(), [](char c) {
+            return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+          }))
+        throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a one-line text without control characters", &spec));
+      return text;
   }
   throw std::logic_error("unhandled parameter type");
 }
@@ -226,6 +243,9 @@ std::int64_t Config::integer(const std::string& key) const {
 bool Config::boolean(const std::string& key) const { return std::get<bool>(value(key, ParamType::Boolean)); }
 const std::string& Config::choice(const std::string& key) const {
   return std::get<std::string>(value(key, ParamType::Choice));
+}
+const std::string& Config::text(const std::string& key) const {
+  return std::get<std::string>(value(key, ParamType::Text));
 }
 const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
 

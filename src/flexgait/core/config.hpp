@@ -40,7 +40,7 @@ class ConfigError : public UsageError {
   std::string key_;
 };
 
-enum class ParamType { Real, Integer, Boolean, Choice };
+enum class ParamType { Real, Integer, Boolean, Choice, Text };
 
 /// One documented configuration parameter.
 struct ParamSpec {
@@ -65,6 +65,8 @@ ParamSpec real_param(std::string key, std::string fallback, std::string unit, st
 ParamSpec integer_param(std::string key, std::string fallback, std::string doc, double min, double max);
 ParamSpec choice_param(std::string key, std::string fallback, std::string doc, std::vector<std::string> choices);
 ParamSpec boolean_param(std::string key, std::string fallback, std::string doc);
+/// Free text (a name or a path): any one-line value that is not empty.
+ParamSpec text_param(std::string key, std::string fallback, std::string doc);
 
 /// The set of keys a command accepts, in declaration order.
 class Schema {
@@ -96,6 +98,7 @@ class Config {
   std::int64_t integer(const std::string& key) const;
   bool boolean(const std::string& key) const;
   const std::string& choice(const std::string& key) const;
+  const std::string& text(const std::string& key) const;
   /// Where the value came from: "default", "--set", or "FILE:LINE".
   const std::string& origin(const std::string& key) const;
   /// Replaces a value after validation against the schema (used by sweeps).

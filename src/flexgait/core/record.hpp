@@ -18,8 +18,8 @@
 /// the order of the keys in every derived form. The default of a parameter is the struct's own
 /// default member initialiser: there is no second copy to drift.
 ///
-/// Field types: double, int, std::int64_t, bool, an enum with a name table (enum_names.hpp) and,
-/// for results only, std::string, std::optional<std::string> (null when empty) and
+/// Field types: double, int, std::int64_t, bool, an enum with a name table (enum_names.hpp),
+/// std::string (a parameter of type text: a name or a path) and, for results only, std::optional<std::string> (null when empty) and
 /// std::vector<std::string>.
 #include <cstdint>
 #include <limits>
@@ -95,6 +95,9 @@ ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info
   } else if constexpr (std::is_floating_point_v<T>) {
     p.type = ParamType::Real;
     p.fallback = format_value(static_cast<double>(value));
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    p.type = ParamType::Text;
+    p.fallback = value;
   } else {
     static_assert(kAlwaysFalse<T>, "a configuration field must be a number, a bool or a named enum");
   }
@@ -124,6 +127,8 @@ struct ConfigReader {
       member = static_cast<T>(config.integer(k));
     } else if constexpr (std::is_floating_point_v<T>) {
       member = config.real(k);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      member = config.text(k);
     } else {
       static_assert(kAlwaysFalse<T>, "a configuration field must be a number, a bool or a named enum");
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 
 #include "flexgait/experiments/capture_point_bound.hpp"
@@ -11,6 +12,8 @@
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/humanoid/mujoco_messages.hpp"
 #include "flexgait/humanoid/plant.hpp"
+#include "flexgait/humanoid/robot_loader.hpp"
+#include "flexgait/humanoid/twin_mjcf.hpp"
 
 namespace flexgait::experiments {
 namespace {
@@ -40,17 +43,41 @@ WalkRunParams walk_run_from_config(const Config& c) {
   WalkRunParams p = record_from_config<WalkRunParams>(c);
   check_with_origin(c, [&] { p.plant = humanoid::plant_from_config(c); });  // with its cross-key check
   p.controller_robot = p.robot;
+  if (!p.description.builtin()) {
+    // A relative path given in a configuration file is relative to that file.
+    const std::string& origin = c.origin("robot.description");
+    const auto colon = origin.rfind(':');
+    const std::filesystem::path path(p.description.description);
+    if (path.is_relative() && colon != std::string::npos && std::filesystem::is_regular_file(origin.substr(0, colon)))
+      p.description.description = (std::filesystem::path(origin.substr(0, colon)).parent_path() / path).string();
+    check_with_origin(c, [&] {
+      p.loaded = std::make_shared<const humanoid::LoadedRobot>(humanoid::load_robot(p.description));
+      (void)walking::make_robot_model(*p.loaded);  // refuses a foot the controller cannot handle
+    });
+  }
   return p;
+}
+
+humanoid::TwinModel walk_twin(const WalkRunParams& params) {
+  if (!params.loaded) return humanoid::builtin_twin(params.robot, params.plant);
+  humanoid::TwinModel t;
+  t.mjcf = humanoid::twin_mjcf(*params.loaded, params.robot, params.plant);
+  for (int side = 0; side < 2; ++side) t.sole_center[side] = params.loaded->sole[side].center;
+  return t;
+}
+
+walking::RobotModel walk_controller_model(const WalkRunParams& params) {
+  return params.loaded ? walking::make_robot_model(*params.loaded) : walking::make_robot_model(params.controller_robot);
 }
 
 WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress,
                     const std::function<void(const humanoid::HumanoidPlant&)>& observe) {
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = params.plant.control_period;
-  walking::WalkingController controller(params.controller_robot, params.walk, params.balance, T, params.estimator,
+  walking::WalkingController controller(walk_controller_model(params), params.walk, params.balance, T, params.estimator,
                                         params.health);
   compensation::DeformationCompensator compensator(controller.model(), params.control);
-  humanoid::HumanoidPlant plant(params.robot, params.plant);
+  humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
   plant.reset(controller.initial_pose());
   plant.set_push(params.push);
   const walking::RobotModel& model = controller.model();
@@ -83,7 +110,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.support_margin_min = INFINITY;
   std::size_t next_landing = 0;
   const double settle = 0.5 * params.walk.dsp_ratio * params.walk.step_time;  // after touchdown
-  const double length = params.robot.sole_length, width = params.robot.sole_width;
+  const double length = model.sole_length, width = model.sole_width;
   std::vector<walking::Pose> support;
   support.reserve(2);
 
@@ -201,8 +228,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       Eigen::Vector2d moment = Eigen::Vector2d::Zero();
       for (int side = 0; side < 2; ++side) {
         const Eigen::Matrix3d R = walking::rot_z(g.sole_yaw[side]);
-        const walking::FootContact c = walking::foot_contact(plant.sensors().ft[side], R, params.robot.ankle_to_sole,
-                                                             params.robot.m_foot);
+        const walking::FootContact c = walking::foot_contact(plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
+                                                             model.bodies[static_cast<std::size_t>(model.foot[side])].mass);
         if (c.normal_force <= 1.0) continue;
         moment += c.normal_force * (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset +
                                     R.topLeftCorner<2, 2>() * c.cop);

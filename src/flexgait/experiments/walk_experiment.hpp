@@ -9,6 +9,7 @@
 /// Frames: the plan's world frame has the initial feet at (0, ±w/2); the twin's truth is moved
 /// into it by the offset between the truth and planned initial feet.
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/humanoid/plant.hpp"
+#include "flexgait/humanoid/robot_description.hpp"
 #include "flexgait/humanoid/robot_params.hpp"
 #include "flexgait/walking/walk_params.hpp"
 #include "flexgait/walking/walking_controller.hpp"
@@ -23,7 +25,11 @@
 namespace flexgait::experiments {
 
 struct WalkRunParams {
-  humanoid::RobotParams robot;             ///< the twin (truth)
+  humanoid::RobotParams robot;             ///< the twin (truth) of the builtin robot; sole_friction for any robot
+  humanoid::RobotDescriptionParams description;  ///< robot.description and its mapping (robot.joints.*, robot.feet.*, ...)
+  /// The loaded description (null for the builtin robot): the twin and the controller's model are
+  /// made from it (walk_run_from_config loads it).
+  std::shared_ptr<const humanoid::LoadedRobot> loaded;
   humanoid::PlantParams plant;
   humanoid::RobotParams controller_robot;  ///< the controller's belief of the robot
   walking::WalkParams walk;
@@ -41,6 +47,7 @@ struct WalkRunParams {
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     humanoid::RobotParams::visit_fields(s.robot, v);
+    humanoid::RobotDescriptionParams::visit_fields(s.description, v);
     humanoid::PlantParams::visit_fields(s.plant, v);
     walking::WalkParams::visit_fields(s.walk, v);
     walking::BalanceParams::visit_fields(s.balance, v);
@@ -53,8 +60,13 @@ struct WalkRunParams {
 };
 
 inline Schema walk_run_schema() { return schema_of<WalkRunParams>(); }
-/// The run's parameters (the controller believes the twin's robot); throws ConfigError as plant_from_config.
+/// The run's parameters (the controller believes the twin's robot); throws ConfigError as plant_from_config
+/// and, for a description file, as humanoid::load_robot and walking::make_robot_model.
 WalkRunParams walk_run_from_config(const Config& config);
+/// The twin of the run's robot (builtin or loaded).
+humanoid::TwinModel walk_twin(const WalkRunParams& params);
+/// The controller's model of the run's robot (its belief, controller_robot, for the builtin).
+walking::RobotModel walk_controller_model(const WalkRunParams& params);
 
 struct WalkSample {
   double t = 0;

@@ -75,19 +75,7 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
   const JointVector k = p.gear_stiffness();
   const double extra = r.total_mass - r.listed_mass();  // batteries and computers [kg]
   if (extra < -1e-9) throw std::invalid_argument("robot.total_mass is below the sum of the listed links");
-  return fmt::format(R"(<mujoco model="flexgait_thormang_twin">
-  <compiler angle="radian" inertiafromgeom="true" autolimits="true"/>
-  <option timestep="{dt}" integrator="Euler" solver="Newton" iterations="100" tolerance="1e-10" gravity="0 0 -9.81"/>
-  <size nconmax="200" njmax="600"/>
-  <default>
-    <geom contype="0" conaffinity="0" rgba=".75 .75 .75 1"/>
-    <site rgba="1 0 0 1"/>
-  </default>
-  <visual><global offwidth="1280" offheight="720"/></visual>
-  <worldbody>
-    <light pos="0 -2 4" dir="0 0.4 -1" directional="true"/>
-    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="{mu} 0.005 0.0001" solref="{tc} 1" rgba=".8 .85 .8 1"/>
-    <body name="pelvis" pos="0 0 1">
+  const std::string pelvis = fmt::format(R"(    <body name="pelvis" pos="0 0 1">
       <freejoint name="root"/>
       <site name="imu" pos="0 0 0" size="0.01"/>
       <geom type="box" size="0.09 0.14 0.05" pos="0 0 0" mass="{m_pelvis}"/>
@@ -99,8 +87,33 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
         <geom name="head" type="sphere" size="0.1" pos="0 0 {head_z}" mass="{m_head}"/>
       </body>{left}{right}
     </body>
-  </worldbody>
-  <sensor>
+)",
+                                         fmt::arg("m_pelvis", r.m_pelvis + 0.5 * extra), fmt::arg("m_chest", r.m_chest + 0.5 * extra),
+                                         fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[kWaistYaw], p.gear_damping)),
+                                         fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z),
+                                         fmt::arg("arm_y", r.arm_y), fmt::arg("arm_top", r.arm_com_z + 0.24),
+                                         fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),
+                                         fmt::arg("m_arm", r.m_arm), fmt::arg("m_head", r.m_head), fmt::arg("left", leg(r, p, 0)),
+                                         fmt::arg("right", leg(r, p, 1)));
+  return twin_document("flexgait_thormang_twin", true, r.sole_friction, p, pelvis, "");
+}
+
+std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& p,
+                          const std::string& bodies, const std::string& contact) {
+  return fmt::format(R"(<mujoco model="{model}">
+  <compiler angle="radian" inertiafromgeom="{ifg}" autolimits="true"/>
+  <option timestep="{dt}" integrator="Euler" solver="Newton" iterations="100" tolerance="1e-10" gravity="0 0 -9.81"/>
+  <size nconmax="200" njmax="600"/>
+  <default>
+    <geom contype="0" conaffinity="0" rgba=".75 .75 .75 1"/>
+    <site rgba="1 0 0 1"/>
+  </default>
+  <visual><global offwidth="1280" offheight="720"/></visual>
+  <worldbody>
+    <light pos="0 -2 4" dir="0 0.4 -1" directional="true"/>
+    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="{mu} 0.005 0.0001" solref="{tc} 1" rgba=".8 .85 .8 1"/>
+{bodies}  </worldbody>
+{contact}  <sensor>
     <force name="l_ft_force" site="l_ft"/>
     <torque name="l_ft_torque" site="l_ft"/>
     <force name="r_ft_force" site="r_ft"/>
@@ -111,14 +124,9 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
   </sensor>
 </mujoco>
 )",
-                     fmt::arg("dt", p.physics_dt), fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant),
-                     fmt::arg("m_pelvis", r.m_pelvis + 0.5 * extra), fmt::arg("m_chest", r.m_chest + 0.5 * extra),
-                     fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[kWaistYaw], p.gear_damping)),
-                     fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z),
-                     fmt::arg("arm_y", r.arm_y), fmt::arg("arm_top", r.arm_com_z + 0.24),
-                     fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),
-                     fmt::arg("m_arm", r.m_arm), fmt::arg("m_head", r.m_head), fmt::arg("left", leg(r, p, 0)),
-                     fmt::arg("right", leg(r, p, 1)));
+                     fmt::arg("model", model), fmt::arg("ifg", inertia_from_geom ? "true" : "false"),
+                     fmt::arg("dt", p.physics_dt), fmt::arg("mu", sole_friction), fmt::arg("tc", p.contact_time_constant),
+                     fmt::arg("bodies", bodies), fmt::arg("contact", contact));
 }
 
 mjModel* load_mjcf(const std::string& xml) {

@@ -43,9 +43,19 @@ JointVector standing_pose(const RobotParams& r, double pelvis_height) {
   return q;
 }
 
+TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant) {
+  TwinModel t;
+  t.mjcf = humanoid_mjcf(robot, plant);
+  t.sole_center = {{{0, 0, -robot.ankle_to_sole}, {0, 0, -robot.ankle_to_sole}}};
+  return t;
+}
+
 HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
-    : robot_(robot), params_(plant), rng_(static_cast<std::uint64_t>(plant.noise_seed)) {
-  model_ = load_mjcf(humanoid_mjcf(robot_, params_));
+    : HumanoidPlant(builtin_twin(robot, plant), plant) {}
+
+HumanoidPlant::HumanoidPlant(const TwinModel& twin, const PlantParams& plant)
+    : sole_center_(twin.sole_center), params_(plant), rng_(static_cast<std::uint64_t>(plant.noise_seed)) {
+  model_ = load_mjcf(twin.mjcf);
   data_ = mj_makeData(model_);
   std::vector<int> joints;
   std::vector<ActuatorParams> act;
@@ -66,7 +76,7 @@ HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
   }
   drives_ = std::make_unique<ElasticDrives>(model_, joints, act);
   floor_geom_ = require(model_, mjOBJ_GEOM, "floor");
-  push_body_ = {require(model_, mjOBJ_BODY, "pelvis"), require(model_, mjOBJ_BODY, "chest")};
+  push_body_ = {1, model_->jnt_bodyid[joint_id_[kWaistYaw]]};  // the root body, the waist joint's body
   sole_geom_ = {require(model_, mjOBJ_GEOM, "l_sole"), require(model_, mjOBJ_GEOM, "r_sole")};
   ft_site_ = {require(model_, mjOBJ_SITE, "l_ft"), require(model_, mjOBJ_SITE, "r_ft")};
   ft_sensor_adr_ = {sensor_adr(model_, "l_ft_force"), sensor_adr(model_, "l_ft_torque"),
@@ -234,7 +244,12 @@ GroundTruth HumanoidPlant::truth() const {
   for (int side = 0; side < 2; ++side) {
     const double* p = data_->site_xpos + 3 * ft_site_[side];
     const double* R = data_->site_xmat + 9 * ft_site_[side];
-    for (int i = 0; i < 3; ++i) g.sole_pos[side][i] = p[i] - R[3 * i + 2] * robot_.ankle_to_sole;
+    // The sole centre c in the site frame: p + R c (the builtin's, straight below: p − R e_z d).
+    const auto& c = sole_center_[side];
+    for (int i = 0; i < 3; ++i) {
+      g.sole_pos[side][i] = p[i] - R[3 * i + 2] * -c[2];
+      if (c[0] != 0 || c[1] != 0) g.sole_pos[side][i] += R[3 * i] * c[0] + R[3 * i + 1] * c[1];
+    }
     g.sole_yaw[side] = std::atan2(R[3], R[0]);
   }
   const int pelvis = 1;

@@ -14,6 +14,7 @@
 #include <array>
 #include <memory>
 #include <random>
+#include <string>
 
 #include "flexgait/humanoid/disturbance.hpp"
 #include "flexgait/humanoid/elastic_actuator.hpp"
@@ -46,9 +47,21 @@ struct GroundTruth {
   std::array<double, 3> linear_momentum{};    ///< total linear momentum of the robot (world) [kg m/s]
 };
 
+/// The twin's model: its MJCF (model_xml.hpp's names: joints by kJointNames, sole geoms l_sole /
+/// r_sole, sites imu, l_ft, r_ft, the floor) and each sole's centre in its F/T site's frame.
+struct TwinModel {
+  std::string mjcf;
+  std::array<std::array<double, 3>, 2> sole_center{};  ///< [m]
+};
+
+/// The builtin robot's twin (humanoid_mjcf), sole centres ankle_to_sole below the ankles.
+TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant);
+
 class HumanoidPlant {
  public:
   HumanoidPlant(const RobotParams& robot, const PlantParams& plant);
+  /// The twin of any robot (twin_mjcf.hpp for a loaded description).
+  HumanoidPlant(const TwinModel& twin, const PlantParams& plant);
   ~HumanoidPlant();
   HumanoidPlant(const HumanoidPlant&) = delete;
   HumanoidPlant& operator=(const HumanoidPlant&) = delete;
@@ -74,7 +87,7 @@ class HumanoidPlant {
   /// Sets xfrc_applied for the physics step starting now.
   void apply_push();
 
-  RobotParams robot_;
+  std::array<std::array<double, 3>, 2> sole_center_{};  ///< sole centres in the F/T site frames [m]
   PlantParams params_;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;

@@ -16,6 +16,7 @@ LegGeometry leg_geometry(const humanoid::RobotParams& r, int side) {
 }
 
 Pose leg_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
+  if (!leg.analytic) return leg_chain_forward_kinematics(leg, q);
   const Matrix3d Rh = rot_z(q[0]) * rot_x(q[1]);
   const Vector3d down = -Vector3d::UnitZ();
   Pose sole;
@@ -25,7 +26,66 @@ Pose leg_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
   return sole;
 }
 
+Pose leg_chain_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
+  Pose f;
+  for (int i = 0; i < 6; ++i) {
+    f.p += f.R * leg.anchor[static_cast<std::size_t>(i)];
+    f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(i)], leg.axis[static_cast<std::size_t>(i)]).toRotationMatrix();
+  }
+  f.p += f.R * leg.sole;
+  return f;
+}
+
+IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
+  IkSolution out;
+  LegAngles& q = out.q;
+  // Start from the analytic solution of the nearest analytic leg (hip at the first three anchors,
+  // thigh, shank and sole as the chain's lengths): the forward-bent branch, a few Newton steps away.
+  LegGeometry near;
+  near.hip = leg.anchor[0] + leg.anchor[1] + leg.anchor[2];
+  near.thigh = leg.anchor[3].norm();
+  near.shank = leg.anchor[4].norm();
+  near.ankle_to_sole = (leg.anchor[5] + leg.sole).norm();
+  q = leg_inverse_kinematics(near, sole).q;
+  constexpr double kLambda2 = 1e-4;  // damping λ² far from the target: bounds steps near singularities
+  constexpr double kMaxStep = 0.2;   // largest joint step per iteration [rad]
+  constexpr int kIterations = 100;
+  Eigen::Matrix<double, 6, 1> e;
+  for (int it = 0; it < kIterations; ++it) {
+    // Frames of the joints and the sole now.
+    std::array<Pose, 6> frame;
+    Pose f;
+    for (int i = 0; i < 6; ++i) {
+      f.p += f.R * leg.anchor[static_cast<std::size_t>(i)];
+      frame[static_cast<std::size_t>(i)] = f;
+      f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(i)], leg.axis[static_cast<std::size_t>(i)]).toRotationMatrix();
+    }
+    const Vector3d p = f.p + f.R * leg.sole;
+    const Eigen::AngleAxisd w(Matrix3d(sole.R * f.R.transpose()));
+    e.head<3>() = sole.p - p;
+    e.tail<3>() = w.angle() * w.axis();
+    if (e.norm() < 1e-12) return out;
+    Eigen::Matrix<double, 6, 6> J;
+    for (int i = 0; i < 6; ++i) {
+      const Pose& fi = frame[static_cast<std::size_t>(i)];
+      const Vector3d a = fi.R * leg.axis[static_cast<std::size_t>(i)];
+      J.block<3, 1>(0, i) = a.cross(p - fi.p);
+      J.block<3, 1>(3, i) = a;
+    }
+    // Undamped near the solution (exact Newton steps), damped far from it.
+    const double lambda2 = e.norm() > 1e-4 ? kLambda2 : 0.0;
+    Eigen::Matrix<double, 6, 1> dq =
+        J.transpose() * (J * J.transpose() + lambda2 * Eigen::Matrix<double, 6, 6>::Identity()).ldlt().solve(e);
+    if (dq.cwiseAbs().maxCoeff() > kMaxStep) dq *= kMaxStep / dq.cwiseAbs().maxCoeff();
+    for (int i = 0; i < 6; ++i) q[static_cast<std::size_t>(i)] += dq(i);
+  }
+  out.status = IkStatus::kOutOfReach;
+  out.clamped_by = e.head<3>().norm();
+  return out;
+}
+
 IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
+  if (!leg.analytic) return leg_numeric_inverse_kinematics(leg, sole);
   IkSolution out;
   const double A = leg.thigh, B = leg.shank;
   const Vector3d ankle = sole.p + sole.R * Vector3d(0, 0, leg.ankle_to_sole);

@@ -11,6 +11,13 @@
 /// The inverse is analytic (Kajita et al., "Introduction to Humanoid Robotics", §2.5): the ankle
 /// angles and the knee from the hip seen from the foot, then the hip angles from the remaining
 /// rotation. A target out of reach is clamped to the nearest reachable pose and flagged.
+///
+/// A leg of another layout (a loaded description, issue 16) is a general chain of six revolute
+/// joints (axes and anchors at zero angles, frames parallel to the pelvis); its inverse is
+/// numeric: damped least squares on the sole's pose error (Wampler 1986; Buss 2004),
+///   Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e,   e = (p* − p, log(R* Rᵀ)),
+/// from a bent-knee start, until |e| < 1e-12; a target it cannot reach is flagged kOutOfReach
+/// with clamped_by the remaining position error.
 #include <array>
 
 #include "flexgait/humanoid/robot_params.hpp"
@@ -24,7 +31,12 @@ struct LegGeometry {
   Vector3d hip{0, 0.093, -0.093};  ///< hip point in the pelvis frame [m]
   double thigh = 0.3;              ///< [m]
   double shank = 0.3;              ///< [m]
-  double ankle_to_sole = 0.1145;   ///< [m]
+  double ankle_to_sole = 0.1145;   ///< ankle axes (the F/T sensor) to the sole [m]
+  /// The analytic layout above applies; otherwise the general chain below and the numeric IK.
+  bool analytic = true;
+  std::array<Vector3d, 6> axis{};    ///< general chain: unit joint axes at zero angles (pelvis frame)
+  std::array<Vector3d, 6> anchor{};  ///< joint i's anchor from joint i−1's (joint 0: from the pelvis origin) [m]
+  Vector3d sole = Vector3d::Zero();  ///< sole centre from joint 6's anchor [m]
 };
 
 /// The leg of `side` (0 left, 1 right) of this robot.
@@ -47,5 +59,10 @@ struct IkSolution {
 
 /// Joint angles that put the sole centre at `sole` (pelvis frame). Knee ≥ 0 (forward-bent).
 IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole);
+
+/// The general chain's forward kinematics (any layout; what the numeric IK inverts).
+Pose leg_chain_forward_kinematics(const LegGeometry& leg, const LegAngles& q);
+/// Damped least-squares IK of the general chain (used by leg_inverse_kinematics when !analytic).
+IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& sole);
 
 }  // namespace flexgait::walking

@@ -48,7 +48,20 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   for (const auto& b : m.bodies) m.total_mass += b.mass;
   m.sole_length = r.sole_length;
   m.sole_width = r.sole_width;
+  m.sole_offset = {Vector3d(0, 0, -r.ankle_to_sole), Vector3d(0, 0, -r.ankle_to_sole)};
+  fill_leg_chain(m, 0);
+  fill_leg_chain(m, 1);
   return m;
+}
+
+void fill_leg_chain(RobotModel& m, int side) {
+  const int b0 = 2 + 7 * side;
+  LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
+  for (int i = 0; i < 6; ++i) {
+    leg.axis[static_cast<std::size_t>(i)] = m.bodies[static_cast<std::size_t>(b0 + i)].axis;
+    leg.anchor[static_cast<std::size_t>(i)] = m.bodies[static_cast<std::size_t>(b0 + i)].offset;
+  }
+  leg.sole = m.bodies[static_cast<std::size_t>(b0 + 6)].offset + m.sole_offset[static_cast<std::size_t>(side)];
 }
 
 void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
@@ -75,7 +88,7 @@ Vector3d center_of_mass(const RobotModel& model, const RobotModelData& data) {
 
 Pose sole_pose(const RobotModel& model, const RobotModelData& data, int side) {
   const Pose& foot = data.frame[model.foot[side]];
-  return {foot.p + foot.R * Vector3d(0, 0, -model.leg[side].ankle_to_sole), foot.R};
+  return {foot.p + foot.R * model.sole_offset[side], foot.R};
 }
 
 LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, int side, const Vector3d& point) {

@@ -25,11 +25,14 @@ using humanoid::leg_first_joint;
 WalkingController::WalkingController(const humanoid::RobotParams& robot, const WalkParams& walk,
                                      const BalanceParams& balance, double period, const EstimatorParams& estimator,
                                      const HealthParams& health)
-    : robot_(robot),
-      walk_(walk),
+    : WalkingController(make_robot_model(robot), walk, balance, period, estimator, health) {}
+
+WalkingController::WalkingController(const RobotModel& model, const WalkParams& walk, const BalanceParams& balance,
+                                     double period, const EstimatorParams& estimator, const HealthParams& health)
+    : walk_(walk),
       balance_(balance),
       period_(period),
-      model_(make_robot_model(robot)),
+      model_(model),
       dcm_(DcmGains{balance.dcm_kp, balance.dcm_ki, balance.dcm_integral_limit}),
       estimator_params_(estimator),
       estimator_(estimator),

@@ -105,6 +105,9 @@ class WalkingController {
   /// \param period control period T [s]
   WalkingController(const humanoid::RobotParams& robot, const WalkParams& walk, const BalanceParams& balance,
                     double period, const EstimatorParams& estimator = {}, const HealthParams& health = {});
+  /// \param model the controller's model of any robot (e.g. make_robot_model of a loaded description)
+  WalkingController(const RobotModel& model, const WalkParams& walk, const BalanceParams& balance, double period,
+                    const EstimatorParams& estimator = {}, const HealthParams& health = {});
 
   /// The standing pose the walk starts from (joint angles) [rad].
   const humanoid::JointVector& initial_pose() const { return initial_pose_; }
@@ -142,7 +145,6 @@ class WalkingController {
   /// Cuts the plan at the next double support and rewrites the ZMP reference from sample k on.
   void begin_safe_stop(double t, std::size_t k);
 
-  humanoid::RobotParams robot_;
   WalkParams walk_;
   BalanceParams balance_;
   double period_;

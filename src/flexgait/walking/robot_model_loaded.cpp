@@ -1,0 +1,177 @@
+// The controller's model of a loaded description (robot_model.hpp, issue 16): the file's bodies
+// lumped onto the model's 16 links — each file body onto the nearest link anchor at or above it
+// (the root: the pelvis; the waist joint's body: the chest; each leg joint's body; each foot
+// body) — with the zero-pose frames of the file expressed in the root frame, so that every link
+// frame is parallel to the pelvis at zero angles (the model's convention).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/walking/robot_model.hpp"
+
+namespace flexgait::walking {
+namespace {
+
+using humanoid::LoadedBody;
+using humanoid::LoadedRobot;
+
+Matrix3d rotation(const std::array<double, 4>& q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix(); }
+Vector3d vec(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+
+/// Pose of body b in the frame of its ancestor a (a == b: identity), composed down the chain.
+Pose relative(const LoadedRobot& r, int a, int b) {
+  Pose out;
+  for (int x = b; x != a; x = r.bodies[static_cast<std::size_t>(x)].parent) {
+    const LoadedBody& body = r.bodies[static_cast<std::size_t>(x)];
+    if (body.parent < 0) throw std::logic_error("relative(): not an ancestor");
+    const Matrix3d R = rotation(body.quat);
+    out.p = vec(body.pos) + R * out.p;
+    out.R = R * out.R;
+  }
+  return out;
+}
+
+bool close(const Vector3d& a, const Vector3d& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-9; }
+
+/// One link of the model: a point of a file body (its joint's anchor) and the file bodies lumped on it.
+struct Anchor {
+  int body = 0;                         ///< file body
+  Vector3d point = Vector3d::Zero();    ///< anchor in that body's frame
+};
+
+/// Why leg `side` of m lacks the analytic IK's layout ("" when it has it).
+std::string layout_mismatch(const RobotModel& m, int side) {
+  const int b0 = 2 + 7 * side;
+  auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
+  const std::array<Vector3d, 6> axes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
+                                        Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
+  for (int i = 0; i < 6; ++i)
+    if (!close(m.bodies[static_cast<std::size_t>(b0 + i)].axis, axes[static_cast<std::size_t>(i)]))
+      return fmt::format("the axis of {} is not {} at zero angles", humanoid::kJointNames[humanoid::leg_first_joint(side) + i],
+                         i == 0 ? "z" : (i == 1 || i == 5 ? "x" : "y"));
+  auto vertical = [](const Vector3d& v) { return std::abs(v.x()) < 1e-9 && std::abs(v.y()) < 1e-9 && v.z() < 0; };
+  if (!(std::abs(offset(1).x()) < 1e-9 && std::abs(offset(1).y()) < 1e-9 && close(offset(2), Vector3d::Zero())))
+    return "the hip yaw, roll and pitch axes do not meet in a point";
+  if (!vertical(offset(3))) return "the knee is not straight below the hip";
+  if (!vertical(offset(4)) || !close(offset(5), Vector3d::Zero()))
+    return "the ankle pitch and roll axes do not meet straight below the knee";
+  if (!vertical(offset(6) + m.sole_offset[static_cast<std::size_t>(side)])) return "the sole centre is not straight below the ankle";
+  return {};
+}
+
+}  // namespace
+
+std::string analytic_ik_mismatch(const LoadedRobot& r, int side) { return layout_mismatch(make_robot_model(r), side); }
+
+RobotModel make_robot_model(const LoadedRobot& r) {
+  const int n = static_cast<int>(r.bodies.size());
+  // Zero-pose orientation of every file body in the root frame.
+  std::vector<Matrix3d> R0(static_cast<std::size_t>(n), Matrix3d::Identity());
+  for (int b = 1; b < n; ++b)
+    R0[static_cast<std::size_t>(b)] = R0[static_cast<std::size_t>(r.bodies[static_cast<std::size_t>(b)].parent)] *
+                                      rotation(r.bodies[static_cast<std::size_t>(b)].quat);
+
+  RobotModel m;
+  std::array<Anchor, kBodies> anchor{};
+  auto joint_anchor = [&](int j) {
+    const auto [body, k] = r.joint[j];
+    return Anchor{body, vec(r.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)].pos)};
+  };
+  auto joint_axis = [&](int j) {
+    const auto [body, k] = r.joint[j];
+    return Vector3d(R0[static_cast<std::size_t>(body)] * vec(r.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)].axis));
+  };
+  m.bodies[1].parent = 0;
+  m.bodies[1].joint = humanoid::kWaistYaw;
+  m.bodies[1].axis = joint_axis(humanoid::kWaistYaw);
+  anchor[1] = joint_anchor(humanoid::kWaistYaw);
+  for (int side = 0; side < 2; ++side) {
+    const int b0 = 2 + 7 * side, j0 = humanoid::leg_first_joint(side);
+    for (int i = 0; i < 7; ++i) {
+      auto& b = m.bodies[static_cast<std::size_t>(b0 + i)];
+      b.parent = i == 0 ? 0 : b0 + i - 1;
+      b.joint = i < 6 ? j0 + i : -1;
+      if (i < 6) {
+        b.axis = joint_axis(j0 + i);
+        anchor[static_cast<std::size_t>(b0 + i)] = joint_anchor(j0 + i);
+      } else {
+        anchor[static_cast<std::size_t>(b0 + i)] = {r.foot[side], Vector3d::Zero()};
+      }
+    }
+    m.foot[side] = b0 + 6;
+  }
+  // Offsets: each anchor from its parent's, in the parent's (root-parallel) frame.
+  for (int k = 1; k < kBodies; ++k) {
+    const Anchor& a = anchor[static_cast<std::size_t>(k)];
+    const Anchor& p = anchor[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(k)].parent)];
+    const Pose rel = relative(r, p.body, a.body);
+    m.bodies[static_cast<std::size_t>(k)].offset = R0[static_cast<std::size_t>(p.body)] * (rel.p + rel.R * a.point - p.point);
+  }
+  // Each file body's link: the nearest anchor at or above it (of anchors in one body, the last).
+  std::vector<int> link(static_cast<std::size_t>(n), -1);
+  for (int b = 0; b < n; ++b) {
+    int owner = -1;
+    for (int x = b; x >= 0 && owner < 0; x = r.bodies[static_cast<std::size_t>(x)].parent)
+      for (int k = kBodies - 1; k >= 0 && owner < 0; --k)
+        if (anchor[static_cast<std::size_t>(k)].body == x) owner = k;
+    link[static_cast<std::size_t>(b)] = owner < 0 ? 0 : owner;
+  }
+  // (The foot link takes its whole body even when that body also carries the ankle-roll joint.)
+  // Mass, centre of mass and inertia of each link, in its (root-parallel) frame.
+  for (int k = 0; k < kBodies; ++k) {
+    auto& body = m.bodies[static_cast<std::size_t>(k)];
+    const Anchor& a = anchor[static_cast<std::size_t>(k)];
+    double mass = 0;
+    Vector3d first = Vector3d::Zero(), moment = Vector3d::Zero();
+    int count = 0;
+    std::vector<std::pair<int, Vector3d>> parts;
+    for (int b = 0; b < n; ++b) {
+      const LoadedBody& f = r.bodies[static_cast<std::size_t>(b)];
+      if (link[static_cast<std::size_t>(b)] != k || !(f.mass > 0)) continue;
+      const Pose rel = relative(r, a.body, b);
+      const Vector3d c = R0[static_cast<std::size_t>(a.body)] * (rel.p + rel.R * vec(f.ipos) - a.point);
+      parts.emplace_back(b, c);
+      if (count++ == 0) first = c;
+      mass += f.mass;
+      moment += f.mass * c;
+    }
+    body.mass = mass;
+    body.com = count == 1 ? first : (mass > 0 ? Vector3d(moment / mass) : Vector3d::Zero());
+    for (const auto& [b, c] : parts) {
+      const LoadedBody& f = r.bodies[static_cast<std::size_t>(b)];
+      const Matrix3d Ri = R0[static_cast<std::size_t>(b)] * rotation(f.iquat);
+      const Vector3d d = c - body.com;
+      body.inertia += Ri * vec(f.inertia).asDiagonal() * Ri.transpose() +
+                      f.mass * (d.squaredNorm() * Matrix3d::Identity() - d * d.transpose());
+    }
+  }
+  for (const auto& b : m.bodies) m.total_mass += b.mass;
+
+  // The soles and the analytic IK's layout.
+  for (int side = 0; side < 2; ++side) {
+    const int b0 = 2 + 7 * side;
+    const std::string foot_key = std::string("robot.feet.") + (side == 0 ? "left" : "right") + ".body";
+    const int fb = r.foot[side];
+    if (!R0[static_cast<std::size_t>(fb)].isIdentity(1e-9))
+      throw ConfigError(foot_key, fmt::format("key '{}' = '{}': the foot's frame is not parallel to the root's at zero joint angles "
+                                              "(the sole must be level)", foot_key, r.bodies[static_cast<std::size_t>(fb)].name));
+    m.sole_offset[side] = vec(r.sole[side].center);
+    LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
+    fill_leg_chain(m, side);
+    leg.analytic = layout_mismatch(m, side).empty();
+    auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
+    leg.hip = offset(0) + offset(1);
+    leg.thigh = -offset(3).z();
+    leg.shank = -offset(4).z();
+    // The F/T sensor (the foot body's origin) to the sole; for the analytic layout, the ankle to the sole.
+    leg.ankle_to_sole = leg.analytic ? -(offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z()
+                                     : -m.sole_offset[static_cast<std::size_t>(side)].z();
+  }
+  m.sole_length = r.sole[0].length;
+  m.sole_width = r.sole[0].width;
+  return m;
+}
+
+}  // namespace flexgait::walking

@@ -1,0 +1,279 @@
+// A robot from its description (issue 16): the builtin twin's MJCF loaded back gives the same
+// controller model and a twin that compiles to the same numbers; the controller's model of a
+// loaded robot against MuJoCo's own (COM, sole poses, Jacobians, gravity torques); the errors.
+#include "flexgait/humanoid/robot_loader.hpp"
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/humanoid/twin_mjcf.hpp"
+#include "flexgait/walking/robot_model.hpp"
+
+namespace flexgait::humanoid {
+namespace {
+
+using walking::Matrix3d;
+using walking::Pose;
+using walking::RobotModel;
+using walking::Vector3d;
+
+LoadedRobot builtin_loaded() {
+  return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
+}
+
+struct Compiled {
+  mjModel* m;
+  mjData* d;
+  explicit Compiled(const std::string& xml) : m(load_mjcf(xml)), d(mj_makeData(m)) {}
+  ~Compiled() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  int dof(int joint) const { return m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[joint]).c_str())]; }
+  void set(const Pose& pelvis, const JointVector& q) {
+    mj_resetData(m, d);
+    for (int i = 0; i < 3; ++i) d->qpos[i] = pelvis.p(i);
+    const Eigen::Quaterniond quat(pelvis.R);
+    d->qpos[3] = quat.w(), d->qpos[4] = quat.x(), d->qpos[5] = quat.y(), d->qpos[6] = quat.z();
+    for (int j = 0; j < kJoints; ++j)
+      d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str())]] = q[j];
+    mj_forward(m, d);
+  }
+};
+
+// The builtin's MJCF loaded back: the same controller model as the builtin's own (built from
+// RobotParams by other arithmetic: link centres that MuJoCo computes from the geoms differ by
+// rounding, 1e-15 m; 1e-12 leaves room).
+TEST(RobotLoader, BuiltinLoadedBackGivesTheSameControllerModel) {
+  const RobotModel a = walking::make_robot_model(RobotParams{});
+  const RobotModel b = walking::make_robot_model(builtin_loaded());
+  EXPECT_NEAR(a.total_mass, b.total_mass, 1e-12);
+  for (int k = 0; k < walking::kBodies; ++k) {
+    const auto& x = a.bodies[static_cast<std::size_t>(k)];
+    const auto& y = b.bodies[static_cast<std::size_t>(k)];
+    EXPECT_EQ(x.parent, y.parent) << k;
+    EXPECT_EQ(x.joint, y.joint) << k;
+    EXPECT_LT((x.axis - y.axis).norm(), 1e-12) << k;
+    EXPECT_LT((x.offset - y.offset).norm(), 1e-12) << k;
+    EXPECT_NEAR(x.mass, y.mass, 1e-12) << k;
+    EXPECT_LT((x.com - y.com).norm(), 1e-12) << k;
+  }
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_LT((a.leg[side].hip - b.leg[side].hip).norm(), 1e-12);
+    EXPECT_NEAR(a.leg[side].thigh, b.leg[side].thigh, 1e-12);
+    EXPECT_NEAR(a.leg[side].shank, b.leg[side].shank, 1e-12);
+    EXPECT_NEAR(a.leg[side].ankle_to_sole, b.leg[side].ankle_to_sole, 1e-12);
+    EXPECT_LT((a.sole_offset[side] - b.sole_offset[side]).norm(), 1e-12);
+  }
+  EXPECT_NEAR(a.sole_length, b.sole_length, 1e-15);
+  EXPECT_NEAR(a.sole_width, b.sole_width, 1e-15);
+}
+
+// The twin made from the loaded builtin compiles to the builtin twin's numbers, bit for bit:
+// the loader writes MuJoCo's compiled values at full precision (what makes a reloaded export walk
+// as the builtin does).
+TEST(RobotLoader, TwinOfTheLoadedBuiltinCompilesToTheSameNumbers) {
+  const PlantParams p;
+  const Compiled a(humanoid_mjcf(RobotParams{}, p));
+  const Compiled b(twin_mjcf(builtin_loaded(), RobotParams{}, p));
+  ASSERT_EQ(a.m->nbody, b.m->nbody);
+  ASSERT_EQ(a.m->njnt, b.m->njnt);
+  ASSERT_EQ(a.m->ngeom, b.m->ngeom);
+  ASSERT_EQ(a.m->nsensor, b.m->nsensor);
+  auto same = [](const mjtNum* x, const mjtNum* y, int n, const char* what) {
+    for (int i = 0; i < n; ++i) EXPECT_EQ(x[i], y[i]) << what << "[" << i << "]";
+  };
+  same(a.m->body_pos, b.m->body_pos, 3 * a.m->nbody, "body_pos");
+  same(a.m->body_quat, b.m->body_quat, 4 * a.m->nbody, "body_quat");
+  same(a.m->body_mass, b.m->body_mass, a.m->nbody, "body_mass");
+  same(a.m->body_ipos, b.m->body_ipos, 3 * a.m->nbody, "body_ipos");
+  same(a.m->body_iquat, b.m->body_iquat, 4 * a.m->nbody, "body_iquat");
+  same(a.m->body_inertia, b.m->body_inertia, 3 * a.m->nbody, "body_inertia");
+  same(a.m->jnt_pos, b.m->jnt_pos, 3 * a.m->njnt, "jnt_pos");
+  same(a.m->jnt_axis, b.m->jnt_axis, 3 * a.m->njnt, "jnt_axis");
+  same(a.m->jnt_stiffness, b.m->jnt_stiffness, a.m->njnt, "jnt_stiffness");
+  same(a.m->dof_damping, b.m->dof_damping, a.m->nv, "dof_damping");
+  same(a.m->dof_armature, b.m->dof_armature, a.m->nv, "dof_armature");
+  same(a.m->geom_size, b.m->geom_size, 3 * a.m->ngeom, "geom_size");
+  same(a.m->geom_pos, b.m->geom_pos, 3 * a.m->ngeom, "geom_pos");
+  same(a.m->geom_quat, b.m->geom_quat, 4 * a.m->ngeom, "geom_quat");
+  same(a.m->geom_friction, b.m->geom_friction, 3 * a.m->ngeom, "geom_friction");
+  same(a.m->geom_solref, b.m->geom_solref, mjNREF * a.m->ngeom, "geom_solref");
+  same(a.m->geom_solimp, b.m->geom_solimp, mjNIMP * a.m->ngeom, "geom_solimp");
+  for (int g = 0; g < a.m->ngeom; ++g) {
+    EXPECT_EQ(a.m->geom_contype[g], b.m->geom_contype[g]) << g;
+    EXPECT_EQ(a.m->geom_conaffinity[g], b.m->geom_conaffinity[g]) << g;
+    EXPECT_EQ(a.m->geom_type[g], b.m->geom_type[g]) << g;
+  }
+  same(a.m->site_pos, b.m->site_pos, 3 * a.m->nsite, "site_pos");
+}
+
+// The controller's model of a loaded robot against MuJoCo's own model of the same twin: COM,
+// sole poses, leg Jacobians (mj_jac at the sole centre) and the legs' gravity torques (qfrc_bias
+// at rest). Both are exact rigid-body kinematics up to rounding: 1e-10.
+void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
+  const RobotModel model = walking::make_robot_model(loaded);
+  walking::RobotModelData data;
+  Compiled twin(twin_mjcf(loaded, RobotParams{}, PlantParams{}));
+  EXPECT_NEAR(model.total_mass, twin.m->body_subtreemass[0], 1e-10);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> a(-0.5, 0.5), small(-0.3, 0.3);
+  std::vector<mjtNum> jacp(static_cast<std::size_t>(3 * twin.m->nv)), jacr(static_cast<std::size_t>(3 * twin.m->nv));
+  for (int trial = 0; trial < 30; ++trial) {
+    const Pose pelvis{Vector3d(small(rng), small(rng), 0.8 + small(rng)), walking::rpy_to_matrix(small(rng), small(rng), small(rng))};
+    JointVector q;
+    for (auto& v : q) v = a(rng);
+    walking::forward_kinematics(model, data, pelvis, q);
+    twin.set(pelvis, q);
+    const Vector3d com = walking::center_of_mass(model, data);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(com(i), twin.d->subtree_com[3 + i], 1e-10);
+    for (int side = 0; side < 2; ++side) {
+      const int geom = mj_name2id(twin.m, mjOBJ_GEOM, side == 0 ? "l_sole" : "r_sole");
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(twin.d->geom_xmat + 9 * geom);
+      const Vector3d bottom = Vector3d(twin.d->geom_xpos + 3 * geom) - R.col(2) * twin.m->geom_size[3 * geom + 2];
+      const Pose sole = walking::sole_pose(model, data, side);
+      EXPECT_LT((sole.p - bottom).norm(), 1e-10);
+      EXPECT_LT((sole.R - Matrix3d(R)).cwiseAbs().maxCoeff(), 1e-10);
+      const walking::LegJacobian J = walking::leg_jacobian(model, data, side, sole.p);
+      mj_jac(twin.m, twin.d, jacp.data(), jacr.data(), sole.p.data(), twin.m->geom_bodyid[geom]);
+      const walking::LegTorque g = walking::leg_gravity_torque(model, data, side);
+      for (int i = 0; i < kLegJoints; ++i) {
+        const int dof = twin.dof(leg_first_joint(side) + i);
+        for (int r = 0; r < 3; ++r) {
+          EXPECT_NEAR(J(r, i), jacp[static_cast<std::size_t>(r * twin.m->nv + dof)], 1e-10);
+          EXPECT_NEAR(J(3 + r, i), jacr[static_cast<std::size_t>(r * twin.m->nv + dof)], 1e-10);
+        }
+        EXPECT_NEAR(g(i), twin.d->qfrc_bias[dof], 1e-10);
+      }
+    }
+  }
+}
+
+TEST(RobotLoader, ControllerModelAgreesWithMuJoCo) { expect_model_agrees_with_mujoco(builtin_loaded()); }
+
+/// The second robot's walk (tests/humanoid/data/small_biped.yaml: the robot small_biped.xml with
+/// its own names and an offset hip pitch axis, 10 steps at 1 s/step); its description path is
+/// relative to the YAML file.
+experiments::WalkRunParams small_biped_walk() {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
+  return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, {}));
+}
+
+TEST(RobotLoader, SecondRobotModelAgreesWithMuJoCo) {
+  const experiments::WalkRunParams walk = small_biped_walk();
+  ASSERT_TRUE(walk.loaded);
+  const LoadedRobot& loaded = *walk.loaded;
+  expect_model_agrees_with_mujoco(loaded);
+  const RobotModel model = walking::make_robot_model(loaded);
+  EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_FALSE(model.leg[side].analytic);  // the offset hip pitch axis
+    EXPECT_EQ(walking::analytic_ik_mismatch(loaded, side), "the hip yaw, roll and pitch axes do not meet in a point");
+  }
+  EXPECT_TRUE(walking::make_robot_model(builtin_loaded()).leg[0].analytic);
+}
+
+// The second robot walks 10 steps at 1 s/step with and without compensation (numeric leg IK).
+TEST(RobotLoader, SecondRobotWalks) {
+  for (const auto mode : {compensation::CompensationMode::kBoth, compensation::CompensationMode::kOff}) {
+    experiments::WalkRunParams walk = small_biped_walk();
+    walk.control.mode = mode;
+    const experiments::WalkResult r = experiments::run_walk(walk);
+    EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_reason << r.metrics.failure;
+    EXPECT_EQ(r.metrics.steps_completed, 10);
+    EXPECT_EQ(r.metrics.ik_clamped, 0);
+    EXPECT_EQ(r.metrics.mujoco_warnings, 0);
+  }
+}
+
+std::string error_key(const std::string& text, const RobotDescriptionParams& params) {
+  try {
+    load_robot_text(text, "xml", "test.xml", params);
+  } catch (const ConfigError& e) {
+    return e.key() + " | " + e.what();
+  }
+  return "no error";
+}
+
+TEST(RobotLoader, ErrorsNameTheKeyAndTheName) {
+  const std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
+  RobotDescriptionParams p;
+  p.description = "/no/such/robot.xml";
+  try {
+    load_robot(p);
+    ADD_FAILURE() << "a missing file loaded";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "robot.description");
+    EXPECT_NE(std::string(e.what()).find("/no/such/robot.xml"), std::string::npos);
+  }
+  EXPECT_NE(error_key("<mujoco><worldbody><body></mujoco>", {}).find("robot.description | "), std::string::npos);
+  EXPECT_NE(error_key("<mujoco><worldbody><body></mujoco>", {}).find("MuJoCo"), std::string::npos);
+  p = {};
+  p.joints[kLeftKnee] = "left_knee_joint";
+  const std::string missing = error_key(xml, p);
+  EXPECT_EQ(missing.rfind("robot.joints.l_knee | ", 0), 0u) << missing;
+  EXPECT_NE(missing.find("left_knee_joint"), std::string::npos);
+  p = {};
+  p.feet[0].body = "l_ankle_pitch_link";  // five joints from the root to it
+  EXPECT_EQ(error_key(xml, p).rfind("robot.feet.left.body | ", 0), 0u) << error_key(xml, p);
+  EXPECT_NE(error_key(xml, p).find("5 joints"), std::string::npos);
+  p = {};
+  p.feet[1].sole_geom = "none";
+  EXPECT_EQ(error_key(xml, p).rfind("robot.feet.right.sole_geom | ", 0), 0u) << error_key(xml, p);
+  p = {};
+  p.feet[1].sole_geom = "l_sole";
+  EXPECT_EQ(error_key(xml, p).rfind("robot.feet.right.sole_geom | ", 0), 0u) << error_key(xml, p);
+  p = {};
+  p.imu_body = "nose";
+  EXPECT_EQ(error_key(xml, p).rfind("robot.imu_body | ", 0), 0u);
+  p = {};
+  p.exclude_contacts = "pelvis-chest";
+  EXPECT_EQ(error_key(xml, p).rfind("robot.exclude_contacts | ", 0), 0u);
+}
+
+// Colliding geoms that touch at zero angles are refused, naming the pair; excluding it loads.
+TEST(RobotLoader, SelfContactAtZeroAnglesIsReportedAndCanBeExcluded) {
+  std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
+  // A deeper pelvis box that reaches into the hip roll links (grandchildren: MuJoCo does not
+  // exclude them), all three colliding.
+  const std::string pelvis = R"(<geom type="box" size="0.09 0.14 0.05")";
+  xml.replace(xml.find(pelvis), pelvis.size(), R"(<geom contype="1" conaffinity="1" type="box" size="0.09 0.14 0.1")");
+  const std::string roll = R"(<geom type="box" size="0.05 0.04 0.035")";
+  for (std::size_t at = xml.find(roll); at != std::string::npos; at = xml.find(roll, at + 1))
+    xml.insert(at + 5, R"( contype="1" conaffinity="1")");
+  const std::string what = error_key(xml, {});
+  EXPECT_EQ(what.rfind("robot.exclude_contacts | ", 0), 0u) << what;
+  EXPECT_NE(what.find("pelvis:l_hip_roll_link"), std::string::npos) << what;
+  RobotDescriptionParams p;
+  p.exclude_contacts = "pelvis:l_hip_roll_link,pelvis:r_hip_roll_link";
+  EXPECT_EQ(error_key(xml, p), "no error");
+}
+
+// A sole given by its size and centre instead of a geom: the same sole.
+TEST(RobotLoader, SoleBySizeAndCentre) {
+  RobotDescriptionParams p;
+  for (auto& f : p.feet) {
+    f.sole_geom = "none";
+    f.sole_size = "0.22 0.15";
+    f.sole_center = "0 0 -0.1145";
+  }
+  const LoadedRobot r = load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "b.xml", p);
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_EQ(r.sole[side].geom, -1);
+    EXPECT_EQ(r.sole[side].length, 0.22);
+    EXPECT_NEAR(r.sole[side].center[2], builtin_loaded().sole[side].center[2], 1e-15);
+  }
+  const Compiled twin(twin_mjcf(r, RobotParams{}, PlantParams{}));
+  EXPECT_GE(mj_name2id(twin.m, mjOBJ_GEOM, "l_sole"), 0);
+}
+
+}  // namespace
+}  // namespace flexgait::humanoid
