@@ -1,9 +1,10 @@
 """Shared helpers of the plotting scripts: CSV reading and atomic PNG writing (matplotlib, Agg)."""
 import csv
 import os
-import tempfile
 
 import matplotlib
+
+from atomic_write import temporary_beside
 
 matplotlib.use("Agg")
 
@@ -16,11 +17,5 @@ def read_rows(path):
 
 def save_atomic(fig, run_dir, name, dpi=100):
     """Writes the figure to RUN_DIR/NAME through a temporary file and a rename."""
-    fd, tmp = tempfile.mkstemp(dir=run_dir, prefix=f".{name}.", suffix=".png")
-    os.close(fd)
-    try:
-        fig.savefig(tmp, dpi=dpi)
-        os.replace(tmp, os.path.join(run_dir, name))
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    with temporary_beside(run_dir, name) as tmp:
+        fig.savefig(tmp, dpi=dpi, format=os.path.splitext(name)[1][1:] or "png")

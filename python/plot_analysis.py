@@ -8,6 +8,7 @@ import os
 import subprocess
 import sys
 
+from atomic_write import write_text_atomic
 from flexgait_plotting import read_rows, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -20,10 +21,8 @@ def gait_vs_friction(run_dir):
     here = os.path.dirname(os.path.abspath(__file__))
     subprocess.run([sys.executable, os.path.join(here, "plot_sweep.py"), run_dir, "friction coefficient mu"], check=True)
     th = rows(run_dir, "thresholds.csv")
-    with open(os.path.join(run_dir, "thresholds.txt.tmp"), "w") as f:
-        for r in th:
-            f.write(f"{r['gait_below']} | {r['gait_above']} at mu = {float(r['threshold']):.4f}\n")
-    os.replace(os.path.join(run_dir, "thresholds.txt.tmp"), os.path.join(run_dir, "thresholds.txt"))
+    write_text_atomic(run_dir, "thresholds.txt",
+                      "".join(f"{r['gait_below']} | {r['gait_above']} at mu = {float(r['threshold']):.4f}\n" for r in th))
     os.replace(os.path.join(run_dir, "sweep.png"), os.path.join(run_dir, "gait-vs-friction.png"))
 
 

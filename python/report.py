@@ -20,11 +20,12 @@ import csv
 import json
 import os
 import sys
-import tempfile
 
 import jinja2
 import markupsafe
 import yaml
+
+from atomic_write import write_text_atomic
 
 DATA_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "data", "report")
 ROW_FIELDS = {"id", "section", "run", "values", "label", "ours", "reference", "source"}
@@ -307,17 +308,6 @@ def render_page(root, references_path, template_path):
     return template.render(quick=manifest["quick"], sections=sections, runs=runs)
 
 
-def write_atomic(root, name, text):
-    fd, tmp = tempfile.mkstemp(dir=root, prefix=f".{name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, os.path.join(root, name))
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-
-
 def main(argv):
     parser = argparse.ArgumentParser(description="Writes RUN_ROOT/index.html, the reproduction report.")
     parser.add_argument("root", help="the run root of flexgait reproduce (holds reproduce.json)")
@@ -329,7 +319,7 @@ def main(argv):
     except ReportError as e:
         print(f"report.py: index.html not written:\n{e}", file=sys.stderr)
         return 1
-    write_atomic(args.root, "index.html", page)
+    write_text_atomic(args.root, "index.html", page)
     return 0
 
 

@@ -155,6 +155,8 @@ kill -9 "$pid" 2>/dev/null
 wait "$pid" 2>/dev/null
 "$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --jobs 2 --resume --out "$work/sweep_killed" --no-plot >/dev/null 2>&1
 check "killed and resumed sweep equals the one run through" cmp -s "$work/sweep_full/sweep.csv" "$work/sweep_killed/sweep.csv"
+check "a finished sweep's directory is marked complete" test -f "$work/sweep_full/complete"
+check "the resumed sweep's directory is marked complete" test -f "$work/sweep_killed/complete"
 expect_usage_error resume-other-sweep "--resume" rimless sweep --param rimless.mu --from 0.3 --to 0.6 --count 6 --resume
 for name in fixed-points energy; do
   "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
@@ -266,10 +268,41 @@ check "MuJoCo's warnings on stderr" grep -q "warning: MuJoCo:" "$work/err"
 check "an unstable bench exits 1 (got $?)" test $? -eq 1
 check "the bench failure is named" grep -q "error: the stiffness bench failed" "$work/err"
 check "no MUJOCO_LOG.TXT" test ! -e "$work/MUJOCO_LOG.TXT"
-timeout 60 "$exe" rimless simulate --set rimless.K=1e9 --set sim.max_wall_time=1 --no-plot --out "$work/stiff" \
+timeout 60 "$exe" rimless simulate --set rimless.K=1e9 --set sim.max_wall_time=1 --set sim.max_step_rate=1e12 --no-plot --out "$work/stiff" \
   >/dev/null 2>"$work/err"
 check "a stiff run that makes no progress ends at sim.max_wall_time, exit 1 (got $?)" test $? -eq 1
 check "it names the limit and suggests bdf" grep -q "sim.max_wall_time reached.*solver.method=bdf" "$work/err"
+# The deterministic work limit: a stiff leg (K = 1e9 N/m) holds dop853 at ~5e6 steps per simulated
+# second and ends at once; a damper that makes |lambda| = 1e9 1/s is refused before the first step.
+timeout 60 "$exe" rimless simulate --set rimless.K=1e9 --no-plot --out "$work/stiff1" >/dev/null 2>"$work/err"
+check "a stiff leg ends at sim.max_step_rate, exit 1 (got $?)" test $? -eq 1
+check "it names the work limit, the leg's mode and bdf: $(cat "$work/err")" \
+  grep -q "sim.max_step_rate reached.*lambda.*solver.method=bdf" "$work/err"
+timeout 60 "$exe" rimless simulate --set rimless.C=1e9 --no-plot --out "$work/stiff2" >/dev/null 2>"$work/err"
+check "a stiff damper ends before its first step, exit 1 (got $?)" test $? -eq 1
+check "it names the work limit and bdf: $(cat "$work/err")" \
+  grep -q "sim.max_step_rate exceeded from the start.*stability.*solver.method=bdf" "$work/err"
+timeout 60 "$exe" rimless simulate --set rimless.C=1e9 --set solver.method=bdf --no-plot --out "$work/stiff3" >/dev/null 2>"$work/err"
+check "with bdf the same stiff damper walks its 20 steps: $(cat "$work/err")" test $? -eq 0
+check "a run that ended for a reason is still complete (its files are written)" test -f "$work/stiff2/complete"
+
+# The complete marker: a run killed mid-way has none (and its temporaries are removed when the
+# directory is written again); a finished run has one; a usage error writes nothing at all.
+"$exe" rimless simulate --set sim.steps=200000 --set sim.max_time=1e6 --no-plot --out "$work/killed" >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 3000); do
+  ls -a "$work/killed" 2>/dev/null | grep -q '^\.log\.csv\.tmp-' && break
+  sleep 0.01
+done
+sleep 0.2
+kill -9 "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+check "a killed run has no complete marker" test ! -e "$work/killed/complete"
+check "a killed run leaves its temporaries" test -n "$(ls -a "$work/killed" | grep '^\.log\.csv\.tmp-')"
+"$exe" rimless simulate --set sim.steps=2 --no-plot --out "$work/killed" >/dev/null 2>&1
+check "the run written again over it is complete" test -f "$work/killed/complete"
+check "and the killed writer's temporaries are gone: $(ls -a "$work/killed" | tr '\n' ' ')" \
+  test -z "$(ls -a "$work/killed" | grep '\.tmp-')"
 
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

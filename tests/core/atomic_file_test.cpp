@@ -4,7 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
+#include <optional>
+#include <stdexcept>
 
 #include "flexgait/core/run_directory.hpp"
 
@@ -85,6 +90,71 @@ TEST(RunDirectory, CreatesNestedDirectoryAndRejectsAFile) {
   EXPECT_EQ(read_text_file(dir / "x" / "y" / "summary.json"), "{}\n");
   write_file_atomic(dir / "plain", "file");
   EXPECT_THROW(RunDirectory(dir / "plain"), UsageError);  // a bad --out is bad usage: exit 2
+}
+
+TEST(RunDirectory, CompleteOnlyWhenItsScopeEndsNormally) {
+  const auto dir = fresh_dir("complete");
+  {
+    RunDirectory run(dir / "ok");
+    run.write("summary.json", "{}\n");
+    EXPECT_FALSE(run_directory_complete(run.path()));  // still being written
+  }
+  EXPECT_TRUE(run_directory_complete(dir / "ok"));
+  {
+    RunDirectory again(dir / "ok");  // written again: not complete until it is done
+    EXPECT_FALSE(run_directory_complete(dir / "ok"));
+  }
+  EXPECT_TRUE(run_directory_complete(dir / "ok"));
+  try {
+    RunDirectory run(dir / "failed");
+    run.write("config.yaml", "a: 1\n");
+    throw std::runtime_error("the run failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_FALSE(run_directory_complete(dir / "failed"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "failed" / "config.yaml"));
+}
+
+TEST(RunDirectory, MovedFromMarksNothing) {
+  const auto dir = fresh_dir("moved");
+  auto make = [&] { return std::optional<RunDirectory>(RunDirectory(dir / "run")); };
+  std::optional<RunDirectory> run = make();
+  EXPECT_FALSE(run_directory_complete(dir / "run"));  // the moved-from temporary wrote nothing
+  run.reset();
+  EXPECT_TRUE(run_directory_complete(dir / "run"));
+}
+
+TEST(Temporaries, OwnerIsParsedFromTheNamingScheme) {
+  EXPECT_EQ(temporary_owner(".log.csv.tmp-4242-a1B2c3"), 4242);
+  EXPECT_EQ(temporary_owner(".walk.png.tmp-17-x_y8k2ab"), 17);  // python/atomic_write.py's form
+  EXPECT_EQ(temporary_owner("log.csv"), 0);
+  EXPECT_EQ(temporary_owner(".log.csv.tmp-XXXXXX"), 0);  // the old scheme, no owner
+  EXPECT_EQ(temporary_owner(".log.csv.tmp-12a-b"), 0);
+  EXPECT_EQ(temporary_owner(".log.csv.tmp-12-"), 0);
+  EXPECT_EQ(temporary_owner(".tmp-1234567890-a"), 0);  // more digits than a pid has
+}
+
+TEST(Temporaries, AKilledWritersFileIsRemovedALiveOnesKept) {
+  const auto dir = fresh_dir("orphans");
+  // A child process starts an atomic write and dies without committing or unwinding (as under
+  // kill -9): its temporary file stays behind.
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    AtomicFileWriter file(dir / "log.csv");
+    file.append("half a row");
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  AtomicFileWriter live(dir / "events.csv");  // this process's, still being written
+  ASSERT_EQ(count_entries(dir), 2);
+  EXPECT_EQ(remove_orphaned_temporaries(dir), 1);
+  EXPECT_EQ(count_entries(dir), 1);
+  EXPECT_TRUE(std::filesystem::exists(live.temporary_path()));
+  live.append("a\n");
+  live.commit();
+  EXPECT_EQ(read_text_file(dir / "events.csv"), "a\n");
 }
 
 }  // namespace

@@ -76,29 +76,34 @@ TEST(RunFiles, SameBytesAsTheInMemoryResult) {
 }
 
 // A run interrupted by an exception (here thrown by a sink after the 50th sample) leaves no file
-// under a final name, and no temporary file either.
+// under a final name, no temporary file, and no `complete` marker.
 TEST(RunFiles, InterruptedRunLeavesNoFileUnderItsFinalName) {
+  const auto dir = fresh_dir("interrupted");
+  int entries_while_running = -1;
   struct Interrupting final : RunSink {
-    explicit Interrupting(RunFiles& f) : files(f) {}
+    Interrupting(RunFiles& f, const std::filesystem::path& d, int& entries) : files(f), dir(d), entries(entries) {}
     void on_start(double e0) override { files.on_start(e0); }
     void on_sample(const LogSample& s) override {
       files.on_sample(s);
-      if (++samples == 50) throw std::runtime_error("interrupted");
+      if (++samples < 50) return;
+      entries = count_entries(dir);
+      throw std::runtime_error("interrupted");
     }
     void on_event(const EventRecord& e) override { files.on_event(e); }
     void on_step(const StepRecord& s) override { files.on_step(s); }
     RunFiles& files;
+    const std::filesystem::path& dir;
+    int& entries;
     int samples = 0;
   };
-  const auto dir = fresh_dir("interrupted");
-  {
+  auto interrupted_run = [&] {
     const RunDirectory run(dir);
     RunFiles files(run);
-    Interrupting sink(files);
-    EXPECT_THROW(simulate_flexible(measured_wheel(0.6), InitialState{}, run_options(5), sink), std::runtime_error);
-    EXPECT_EQ(count_entries(dir), 3);  // the three temporary files, while the writer lives
-    for (const char* name : {"log.csv", "events.csv", "steps.csv"}) EXPECT_FALSE(std::filesystem::exists(dir / name));
-  }
+    Interrupting sink(files, dir, entries_while_running);
+    simulate_flexible(measured_wheel(0.6), InitialState{}, run_options(5), sink);
+  };
+  EXPECT_THROW(interrupted_run(), std::runtime_error);
+  EXPECT_EQ(entries_while_running, 3);  // the three temporary files, while the writers lived
   EXPECT_EQ(count_entries(dir), 0);
 }
 

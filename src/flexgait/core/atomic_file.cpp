@@ -1,6 +1,7 @@
 #include "flexgait/core/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -43,7 +44,9 @@ AtomicFileWriter::AtomicFileWriter(std::filesystem::path path) : path_(std::move
   const std::filesystem::path dir = path_.has_parent_path() ? path_.parent_path() : ".";
   std::string leaf = ".";  // built step by step: GCC 12 warns falsely (-Wrestrict) on a + b + c
   leaf += path_.filename().string();
-  leaf += ".tmp-XXXXXX";
+  leaf += ".tmp-";
+  leaf += std::to_string(::getpid());
+  leaf += "-XXXXXX";
   const std::string pattern = (dir / leaf).string();
   std::vector<char> name(pattern.begin(), pattern.end());
   name.push_back('\0');
@@ -93,6 +96,34 @@ void AtomicFileWriter::commit() {
     errno = err;
     fail("cannot rename into place", path_);
   }
+}
+
+long temporary_owner(const std::string& filename) {
+  if (filename.empty() || filename[0] != '.') return 0;
+  const std::size_t tag = filename.rfind(".tmp-");
+  if (tag == std::string::npos) return 0;
+  const std::size_t digits = tag + 5, dash = filename.find('-', digits);
+  if (dash == std::string::npos || dash == digits || dash + 1 == filename.size() || dash - digits > 9) return 0;
+  long pid = 0;
+  for (std::size_t i = digits; i < dash; ++i) {
+    if (filename[i] < '0' || filename[i] > '9') return 0;
+    pid = 10 * pid + (filename[i] - '0');
+  }
+  return pid;
+}
+
+int remove_orphaned_temporaries(const std::filesystem::path& dir) {
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const long pid = temporary_owner(entry.path().filename().string());
+    if (pid <= 0 || !entry.is_regular_file(ec)) continue;
+    // kill(pid, 0) probes without signalling; ESRCH: no such process. A live process (even an
+    // unrelated one that reused the id) keeps its files: removing a live writer's file is worse.
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    if (std::filesystem::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
 }
 
 std::string read_text_file(const std::filesystem::path& path) {

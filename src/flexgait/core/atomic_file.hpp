@@ -13,7 +13,7 @@ namespace flexgait {
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
 /// A file written in pieces that appears whole or not at all: the pieces go to a temporary file
-/// beside `path` (".NAME.tmp-XXXXXX"); commit() flushes it to disk and renames it over `path`.
+/// beside `path` (".NAME.tmp-PID-XXXXXX", see temporary_owner()); commit() flushes it to disk and renames it over `path`.
 /// Destroyed without commit() (an exception, an early return), it removes the temporary file and
 /// `path` is untouched. A process killed mid-way leaves at most the temporary file, never a
 /// half-written `path`.
@@ -38,6 +38,15 @@ class AtomicFileWriter {
   std::filesystem::path path_, tmp_;
   int fd_ = -1;
 };
+
+/// The process id that owns a temporary file named by the project's scheme ".NAME.tmp-PID-XXXXXX"
+/// (AtomicFileWriter here, `atomic_write.py` in the Python scripts), or 0 if `filename` is not one.
+long temporary_owner(const std::string& filename);
+
+/// Removes the temporary files in `dir` (not recursively) whose owning process no longer exists:
+/// what a killed writer left behind. Temporaries of live processes are kept. Returns how many
+/// were removed; errors (a file vanishing meanwhile) are ignored.
+int remove_orphaned_temporaries(const std::filesystem::path& dir);
 
 /// The whole content of a file ("" if it cannot be read).
 std::string read_text_file(const std::filesystem::path& path);

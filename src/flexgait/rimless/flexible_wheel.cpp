@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/numerics/ode_integrator.hpp"
@@ -130,6 +131,23 @@ namespace {
 // How far a foot that left the ground must rise before its touchdown guard is armed (WheelFlow):
 // ten times the integration error of the foot height, never below 1e-9 L0 [m].
 double foot_clearance(const WheelParams& w, const SimulationOptions& o) { return std::max(1e-9, 10.0 * o.rtol) * w.L0; }
+
+// What makes a flow stiff here: the leg's fastest mode, the larger root of m s² + C s + K = 0,
+// |λ| = C/2m + sqrt((C/2m)² + K/m) [1/s]. An explicit or Adams method's step stays below
+// kStabilityBoundary/|λ| whatever the tolerance (DOP853's stability region reaches -6.1 on the
+// real axis, Hairer–Wanner IV.2; CVODE's Adams orders reach less), BDF's does not.
+double leg_fastest_mode(const WheelParams& w) {
+  const double half = w.C / (2.0 * w.m);
+  return half + std::sqrt(half * half + w.K / w.m);
+}
+constexpr double kStabilityBoundary = 6.1;
+
+// The work limits' advice.
+std::string stiffness_hint(const WheelParams& w, numerics::OdeMethod method) {
+  const double lambda = leg_fastest_mode(w);
+  return fmt::format("the leg's fastest mode has |lambda| = {:.3g} 1/s (rimless.K, rimless.C, rimless.m){}", lambda,
+                     method == numerics::OdeMethod::Bdf ? "" : ": a stiff flow runs faster with solver.method=bdf");
+}
 
 // The integrator's options.
 
@@ -420,16 +438,37 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
 
   const auto wall0 = std::chrono::steady_clock::now();
   long long solver_calls = 0;
+  constexpr long long kRateWindow = 4096;  // solver steps over which sim.max_step_rate is averaged
+  double window_start = t;
   bool hit = false;
   while (!hit && res.steps_completed < steps_wanted) {
-    if (++solver_calls % 256 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() > m.opt.max_wall_time) {
-      // sqrt(K/m): the leg's natural frequency, what makes the flow stiff for adams and dop853.
-      fail(t, "wall-time limit sim.max_wall_time reached",
-           fmt::format("{} s at t = {} s after {} steps; leg frequency sqrt(K/m) = {:.3g} rad/s{}", m.opt.max_wall_time, t,
-                       res.steps_completed, std::sqrt(w.K / w.m),
-                       m.opt.method == numerics::OdeMethod::Bdf ? "" : ": a stiff flow runs faster with solver.method=bdf"));
+    ++solver_calls;
+    // Known before the first step: stability alone needs |λ|/6.1 steps per simulated second.
+    if (solver_calls == 1 && m.opt.method != numerics::OdeMethod::Bdf &&
+        leg_fastest_mode(w) / kStabilityBoundary > m.opt.max_step_rate) {
+      fail(t, "work limit sim.max_step_rate exceeded from the start",
+           fmt::format("{} needs at least {:.3g} steps per simulated second for stability alone (limit {:.3g}); {}",
+                       name_of(m.opt.method), leg_fastest_mode(w) / kStabilityBoundary, m.opt.max_step_rate,
+                       stiffness_hint(w, m.opt.method)));
       break;
+    }
+    if (solver_calls % 256 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() > m.opt.max_wall_time) {
+      fail(t, "wall-time limit sim.max_wall_time reached",
+           fmt::format("{} s at t = {} s after {} steps; {}", m.opt.max_wall_time, t, res.steps_completed,
+                       stiffness_hint(w, m.opt.method)));
+      break;
+    }
+    if (solver_calls % kRateWindow == 0) {
+      const double rate = static_cast<double>(kRateWindow) / std::max(t - window_start, 1e-300);
+      if (rate > m.opt.max_step_rate) {
+        fail(t, "work limit sim.max_step_rate reached",
+             fmt::format("{:.3g} solver steps per simulated second over the last {} (limit {:.3g}) at t = {} s after {} "
+                         "steps; {}",
+                         rate, kRateWindow, m.opt.max_step_rate, t, res.steps_completed, stiffness_hint(w, m.opt.method)));
+        break;
+      }
+      window_start = t;
     }
     const double t_stop = std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time);
     numerics::StepStatus status;

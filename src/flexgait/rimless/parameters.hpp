@@ -98,6 +98,13 @@ struct SimulationOptions {
   /// or Adams method) ends with a named failure instead of running for hours. Machine-dependent
   /// by nature: a run it ends is not reproducible bytes; one it does not end is unaffected.
   double max_wall_time = 300.0;
+  /// Work limit [solver steps per second of simulated time], averaged over every 4096 solver
+  /// steps: above it the solver is held at tiny steps by a mode far faster than the gait (a stiff
+  /// leg on adams or dop853, K = 1e9 N/m: ~5e6) or by chattering contacts, and the run ends with a
+  /// named failure; a leg mode |λ| with |λ|/6.1 above it (stability alone) ends it before the
+  /// first step. A walking wheel at the spec's parameters takes ~10²–10³ steps per simulated
+  /// second. Deterministic, unlike max_wall_time.
+  double max_step_rate = 1e6;
   double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
   double rtol = 1e-10;          ///< the integrator's relative tolerance
   double atol = 1e-12;          ///< the integrator's absolute tolerance
@@ -114,6 +121,10 @@ struct SimulationOptions {
     v("sim.max_time", s.max_time, {.unit = "s", .doc = "simulated-time limit", .bounds = positive()});
     v("sim.max_wall_time", s.max_wall_time,
       {.unit = "s", .doc = "wall-clock limit of one run (ends a run that makes no progress, e.g. a stiff flow)",
+       .bounds = positive()});
+    v("sim.max_step_rate", s.max_step_rate,
+      {.unit = "1/s",
+       .doc = "solver steps per simulated second (over every 4096 steps) above which a run ends as stuck (stiff flow)",
        .bounds = positive()});
     v("sim.max_step_time", s.max_step_time,
       {.unit = "s", .doc = "a step longer than this is reported as stopped", .bounds = positive()});
