@@ -91,8 +91,13 @@ int compensation_study(const RunOptions& run) {
                100 * j["estimate_error_share_of_deflection"].get<double>());
     fmt::print("results in {}\n", dir.path().string());
   }
-  for (const auto& r : results)
-    if (r.metrics.fell || !r.metrics.failure.empty()) return 1;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const auto& m = results[i].metrics;
+    if (!m.fell && m.failure.empty()) continue;
+    fmt::print(stderr, "error: the {} walk {} at t = {:.2f} s: {}\n", cases[i].name, m.failure.empty() ? "fell" : "failed",
+               m.failure.empty() ? m.fall_time : m.failure_time, one_line(m.failure.empty() ? m.fall_reason : m.failure, 1000));
+    return 1;
+  }
   return 0;
 }
 
@@ -118,8 +123,13 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
                  row["pelvis_roll_error_max_on"].get<double>(), row["fell_on"].get<bool>() ? " (fell)" : "");
     fmt::print("results in {}\n", dir.path().string());
   }
-  for (const auto& r : results)  // a fall is a result here; a failed simulation is not
-    if (!r.metrics.failure.empty()) return 1;
+  for (std::size_t i = 0; i < results.size(); ++i) {  // a fall is a result here; a failed simulation is not
+    const auto& m = results[i].metrics;
+    if (m.failure.empty()) continue;
+    fmt::print(stderr, "error: the {} walk failed at t = {:.2f} s: {}\n", cases[i].name, m.failure_time,
+               one_line(m.failure, 1000));
+    return 1;
+  }
   return 0;
 }
 
@@ -162,26 +172,33 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const std::string summary = experiments::write_walk(dir, "", r);
   if (run.plot) run_plot_script("plot_walk.py", {dir.path().string()});
   const auto& m = r.metrics;
+  // A walk that did not complete (a failure, a fall, a safe stop, a step left unlanded) is exit 1
+  // with one line on stderr saying why, as every command's failures are.
+  std::string incomplete;
+  if (!m.failure.empty())
+    incomplete = fmt::format("the walk failed at t = {:.2f} s after {} of {} steps: {}", m.failure_time, m.steps_completed,
+                             m.steps_planned, one_line(m.failure, 1000));
+  else if (m.fell)
+    incomplete = fmt::format("the robot fell at t = {:.2f} s ({}) after {} of {} steps", m.fall_time, m.fall_reason,
+                             m.steps_completed, m.steps_planned);
+  else if (m.safe_stop)
+    incomplete = fmt::format("the walk stopped safely at t = {:.2f} s after {} of {} steps: {}", m.safe_stop_time,
+                             m.steps_completed, m.steps_planned, m.safe_stop_reason);
+  else if (!m.completed())
+    incomplete = fmt::format("the walk landed {} of {} steps", m.steps_completed, m.steps_planned);
   if (run.json) {
     fmt::print("{}", summary);
   } else {
-    if (!m.failure.empty())
-      fmt::print("FAILED at t = {:.2f} s after {} of {} steps: {}\n", m.failure_time, m.steps_completed, m.steps_planned,
-                 one_line(m.failure, 1000));
-    else if (m.fell)
-      fmt::print("FELL at t = {:.2f} s ({}) after {} of {} steps\n", m.fall_time, m.fall_reason, m.steps_completed,
-                 m.steps_planned);
-    else if (m.safe_stop)
-      fmt::print("STOPPED SAFELY at t = {:.2f} s after {} of {} steps: {}\n", m.safe_stop_time, m.steps_completed,
-                 m.steps_planned, m.safe_stop_reason);
-    else
+    if (incomplete.empty())
       fmt::print("walked {} of {} steps in {:.1f} s (real-time factor {:.1f})\n", m.steps_completed, m.steps_planned,
                  m.simulated_time, m.real_time_factor);
     fmt::print("ZMP rms error x {:.4f} m, y {:.4f} m; pelvis roll error max {:.4f} rad, pitch max {:.4f} rad\n",
                m.zmp_rms_x, m.zmp_rms_y, m.pelvis_roll_error_max, m.pelvis_pitch_error_max);
     fmt::print("results in {}\n", dir.path().string());
   }
-  return m.completed() ? 0 : 1;  // a fall, a failure, a safe stop or a missing step: not a completed walk
+  if (incomplete.empty()) return 0;
+  fmt::print(stderr, "error: {}\n", incomplete);
+  return 1;
 }
 
 struct ExportOptions {

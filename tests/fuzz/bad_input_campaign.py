@@ -9,8 +9,8 @@ Each case is one command line (or one Python call) with its expected kind of ans
     masses, huge gains, extreme friction, fine sampling), on short runs. Expected: exit 0 with
     finite results, exit 1 with a named failure ("error: ..." on stderr), or exit 2 naming the
     keys of an infeasible combination — never a crash, a hang or a silent NaN.
-  * class "python": bad calls to the bindings. Expected: ValueError (never another exception,
-    never a crash).
+  * class "python": bad calls to the bindings. Expected: ValueError, or TypeError where the
+    argument's type is wrong (Python's convention) — never another exception, never a crash.
 
 Every answer is classified: refused (exit 2, one line, nothing written), named-failure (exit 1
 with an "error:" line), ok (exit 0, every number in the run's JSON files finite), and the defects
@@ -74,14 +74,21 @@ def schema(exe):
 
 
 def interval(allowed):
-    """The numeric ends of a domain text such as "[1e-06, 10]" or "(0, inf)" (None if not one)."""
-    m = re.match(r"^\s*([\[(])\s*([-+0-9.eEinf]+)\s*,\s*([-+0-9.eEinf]+)\s*([\])])", allowed or "")
-    if not m:
-        return None
+    """The ends of a domain as `flexgait schema` words it ("... in [0, 0.78]", "... > 0",
+    ">= 0", "< 1", "<= 1"): (lo, hi, lo_closed, hi_closed), or None for other domains."""
+    text = allowed or ""
+    m = re.search(r"in ([\[(])\s*([^,\s]+)\s*,\s*([^\])\s]+)\s*([\])])", text)
     try:
-        return float(m.group(2)), float(m.group(3)), m.group(1) == "[", m.group(4) == "]"
+        if m:
+            return float(m.group(2)), float(m.group(3)), m.group(1) == "[", m.group(4) == "]"
+        m = re.search(r"(>=|>|<=|<) *([-+0-9.eE]+)", text)
+        if m:
+            v = float(m.group(2))
+            op = m.group(1)
+            return (v, math.inf, op == ">=", False) if op.startswith(">") else (-math.inf, v, False, op == "<=")
     except ValueError:
         return None
+    return None
 
 
 # Keys that set how long a run is: their far ends are long runs, not extreme physics.
@@ -233,7 +240,7 @@ PYTHON_CALLS = [
 
 
 def run_python_case(call, pythonpath, timeout):
-    code = ("import flexgait, sys\ntry:\n    %s\nexcept ValueError:\n    sys.exit(42)\nexcept Exception as e:\n"
+    code = ("import flexgait, sys\ntry:\n    %s\nexcept (ValueError, TypeError):\n    sys.exit(42)\nexcept Exception as e:\n"
             "    print(type(e).__name__, e, file=sys.stderr)\n    sys.exit(43)\n" % call)
     try:
         p = subprocess.run(["/usr/bin/python3", "-c", code], capture_output=True, timeout=timeout,
@@ -245,7 +252,7 @@ def run_python_case(call, pythonpath, timeout):
         return "refused", ""
     if p.returncode < 0:
         return "crash", "signal %d" % -p.returncode
-    return "unclear", "exit %d (no ValueError): %s" % (p.returncode, stderr[-400:].strip())
+    return "unclear", "exit %d (no ValueError or TypeError): %s" % (p.returncode, stderr[-400:].strip())
 
 
 def main():
