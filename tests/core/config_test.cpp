@@ -46,6 +46,25 @@ TEST(Config, DefaultsFileAndOverridesInOrder) {
   EXPECT_EQ(c.origin("model.legs"), file.string() + ":3");
 }
 
+TEST(Config, CrossFieldErrorNamesEveryKeysOrigin) {
+  const auto file = write_temp("cross.yaml", "model:\n  K: 2500\n");
+  const Config c = resolve_config(test_schema(), file, {"model.legs=4"});
+  try {
+    check_with_origin(c, [] { throw ConfigError("model.legs", "key 'model.legs' = '4': too few for model.K = 2500"); });
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "model.legs");
+    EXPECT_EQ(std::string(e.what()), "--set: key 'model.legs' = '4': too few for model.K = 2500 (model.K from " +
+                                         file.string() + ":2)");
+  }
+  try {  // a key named only inside a longer name is not named; one from the same origin adds nothing
+    check_with_origin(c, [] { throw ConfigError("model.legs", "key 'model.legs': see model.K_max and run.model.x"); });
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "--set: key 'model.legs': see model.K_max and run.model.x");
+  }
+}
+
 TEST(Config, ResolvedYamlRoundTripsExactly) {
   const Config c = resolve_config(test_schema(), std::nullopt, {"model.K=0.1"});
   const auto file = write_temp("roundtrip.yaml", c.to_yaml());

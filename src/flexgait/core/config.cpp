@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
@@ -173,12 +174,37 @@ const ParamSpec* Schema::find(const std::string& key) const {
   return nullptr;
 }
 
+namespace {
+
+// True if `key` occurs in `text` as a whole dotted name (not inside a longer one).
+bool mentions(const std::string& text, const std::string& key) {
+  auto part_of_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.'; };
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const bool starts = at == 0 || !part_of_name(text[at - 1]);
+    const std::size_t end = at + key.size();
+    const bool ends = end == text.size() || !part_of_name(text[end]) || (text[end] == '.' && end + 1 == text.size());
+    if (starts && ends) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void check_with_origin(const Config& config, const std::function<void()>& check) {
   try {
     check();
   } catch (const ConfigError& e) {
     if (e.key().empty() || config.schema().find(e.key()) == nullptr) throw;
-    throw ConfigError(e.key(), config.origin(e.key()) + ": " + e.what());
+    // The blamed key's origin in front; every other key the message names, with its own origin
+    // where that differs (a file's value checked against a --set one: both places are named).
+    const std::string& blamed = config.origin(e.key());
+    std::string others;
+    const std::string what = e.what();
+    for (const ParamSpec& p : config.schema().params()) {
+      if (p.key == e.key() || !mentions(what, p.key) || config.origin(p.key) == blamed) continue;
+      others += fmt::format("{}{} from {}", others.empty() ? "" : "; ", p.key, config.origin(p.key));
+    }
+    throw ConfigError(e.key(), blamed + ": " + what + (others.empty() ? "" : " (" + others + ")"));
   }
 }
 
