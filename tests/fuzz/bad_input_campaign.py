@@ -168,7 +168,8 @@ def make_cli_case(rng, cls, config, work):
     elif cls == "option":
         args = list(rng.choice(BAD_OPTIONS))
     elif cls == "extreme-physics":
-        physical = [p for p in keys if p["key"] not in RUN_LENGTH_KEYS]
+        physical = [p for p in keys if p["key"] not in RUN_LENGTH_KEYS and
+                    not (command == ["rimless", "simulate"] and p["key"].split(".")[0] in ("analysis", "stagnation"))]
         chosen = rng.sample(physical, min(len(physical), rng.randint(1, 3)))
         for p in chosen:
             v = extreme_value(rng, p)
