@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/run_directory.hpp"
@@ -11,6 +13,7 @@
 #include "flexgait/rimless/basin.hpp"
 #include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
+#include "mpi_distributor.hpp"
 
 namespace flexgait::cli {
 namespace {
@@ -91,12 +94,13 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   return 0;
 }
 
-int basin(const MapRun& a, const CLI::App& cmd) {
+/// The basin's configuration and grid, every option checked.
+std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a, const CLI::App& cmd) {
   reject_unused(cmd, {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count"},
                 "analysis basin (it takes --x-range and --y-range)");
   for (const char* o : {"--x", "--y", "--x-range", "--y-range"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis basin", o));
-  const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
   rimless::BasinSpec spec;
   spec.x = rimless::parse_basin_axis("--x-range", a.map.x, a.map.x_range);
   spec.y = rimless::parse_basin_axis("--y-range", a.map.y, a.map.y_range);
@@ -104,16 +108,40 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   spec.tolerance = a.map.tolerance;
   spec.section = section_of(a.section);
   rimless::check_basin(s.config, spec);
-  check_resume(a, "basin");
-  const RunDirectory dir(a.run.out);
-  dir.write_config(s.config);
+  return {std::move(s), spec};
+}
+
+int basin(const MapRun& a, const CLI::App& cmd) {
+  // Under mpirun the cells are spread over the ranks (mpi_distributor.hpp); the ranks agree on the
+  // checks: all go on, or all exit 2 and rank 0 alone says why. Rank 0 alone writes files.
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  std::optional<std::pair<rimless::WheelSetup, rimless::BasinSpec>> checked;
+  std::string error;
+  try {
+    checked.emplace(checked_basin(a, cmd));
+    if (!mpi || mpi->coordinator()) check_resume(a, "basin");
+  } catch (const UsageError& e) {
+    if (!mpi) throw;
+    error = e.what();
+  }
+  if (mpi) error = mpi->first_error(error);
+  if (!error.empty()) throw UsageError(error);
+  const rimless::WheelSetup& s = checked->first;
+  const rimless::BasinSpec& spec = checked->second;
+  std::optional<RunDirectory> made;
+  if (!mpi || mpi->coordinator()) {
+    made.emplace(a.run.out);
+    made->write_config(s.config);
+  }
+  // Every rank finds the same reference (the same configuration, deterministic Newton).
   const rimless::BasinReference ref = rimless::basin_reference(s.config, spec.section);
   SweepJob job;
-  job.dir = dir.path();
+  job.dir = a.run.out;
+  job.distributor = mpi.get();
   job.name = "basin";
   job.header = rimless::basin_header();
   job.count = spec.cells();
-  job.jobs = a.jobs;
+  job.jobs = a.jobs > 0 ? a.jobs : (mpi ? 1 : 0);
   job.resume = a.resume;
   job.signature = fmt::format("basin {} {}:{}:{} {} {}:{}:{} steps {} tolerance {} {}\n{}", spec.x.key,
                               format_number(spec.x.from), format_number(spec.x.to), spec.x.count, spec.y.key,
@@ -122,6 +150,8 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   const Config base = s.config;
   job.row = [base, spec, ref](int i) { return rimless::basin_row(base, spec, ref, i); };
   const SweepOutcome out = run_sweep(job);
+  if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
+  const RunDirectory& dir = *made;
   const auto counts = rimless::basin_counts(read_text_file(dir.path() / "basin.csv"));
   const int converged = counts.at("converged");
   const double fraction = static_cast<double>(converged) / spec.cells();

@@ -38,7 +38,8 @@ struct MapRun {
   std::string section;
 };
 
-/// Runs orbit-diagram or basin; every option checked before anything is written.
+/// Runs orbit-diagram or basin; every option checked before anything is written. The basin's cells
+/// are spread over the ranks when started by mpirun (like `flexgait campaign`).
 int run_map_analysis(const MapRun& a, const CLI::App& cmd);
 
 }  // namespace flexgait::cli
