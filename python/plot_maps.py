@@ -32,7 +32,9 @@ def draw_branch(ax, rows, column, label_gaits=True, gait_colours=None):
     def flush():
         if len(segment) < 2:
             return
-        gait, stable = segment[-1]["gait"], segment[-1]["stable"] == "true"  # segment[0] may be the previous run's end
+        # the run's own rows: not segment[0] (the previous run's end) nor segment[-1] (a located end)
+        own = next((r for r in segment[1:] if not r["event"]), segment[-1])
+        gait, stable = own["gait"], own["stable"] == "true"
         colour = gait_colours.setdefault(gait, COLOURS[len(gait_colours) % len(COLOURS)])
         ax.plot([_float(r["parameter"]) for r in segment], [_float(r[column]) for r in segment],
                 "-" if stable else "--", color=colour, lw=1.6)
@@ -40,9 +42,16 @@ def draw_branch(ax, rows, column, label_gaits=True, gait_colours=None):
     for r in pts:
         key = (r["gait"], r["stable"])
         if segment and (segment[-1]["gait"], segment[-1]["stable"]) != key:
-            last = segment[-1]
-            flush()
-            segment = [last]  # the segments touch
+            # The segments touch: at the located special point when r is one (the old run ends there),
+            # else at the old run's last point.
+            if r["event"]:
+                segment.append(r)
+                flush()
+                segment = []
+            else:
+                last = segment[-1]
+                flush()
+                segment = [last]
         segment.append(r)
     flush()
     if label_gaits:
