@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Figures of the rimless-wheel analyses (flexgait rimless analysis NAME).
 
-Usage: plot_analysis.py NAME RUN_DIR   (writes RUN_DIR/NAME.png atomically)
+Usage: plot_analysis.py NAME RUN_DIR [PARAM]   (writes RUN_DIR/NAME.png atomically; orbit-diagram writes
+orbit.png, basin basin.png, PARAM labels the orbit diagram's axis)
 """
 import math
 import os
@@ -10,6 +11,7 @@ import sys
 
 from atomic_write import write_text_atomic
 from flexgait_plotting import read_rows, save_atomic
+import plot_maps
 import matplotlib.pyplot as plt  # noqa: E402
 
 
@@ -153,8 +155,12 @@ def stagnation_map(run_dir):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 4 and sys.argv[1] == "orbit-diagram":
+        plot_maps.orbit_diagram(sys.argv[2], sys.argv[3])
+        sys.exit(0)
     if len(sys.argv) != 3:
         sys.stderr.write(__doc__)
         sys.exit(2)
     {"gait-vs-friction": gait_vs_friction, "energy": energy, "fixed-points": fixed_points,
-     "robustness": robustness, "stagnation": stagnation, "stagnation-map": stagnation_map}[sys.argv[1]](sys.argv[2])
+     "robustness": robustness, "stagnation": stagnation, "stagnation-map": stagnation_map,
+     "orbit-diagram": plot_maps.orbit_diagram, "basin": plot_maps.basin}[sys.argv[1]](sys.argv[2])

@@ -55,6 +55,35 @@ std::vector<Step> steps(bool quick) {
                {"rimless", "analysis", "stagnation", "--config", stagnation}});
   s.push_back({"rimless-stagnation-map", "Rimless wheel: stagnation interval against mu - tan(phi), I, C and K",
                {"rimless", "analysis", "stagnation-map", "--config", stagnation}});
+  // Issue 18: the gait continued in mu through the behaviour thresholds; the orbit diagram over the
+  // slope with the continued branches over it (the two branches meet where the touchdown section's
+  // foot mode changes, slope 0.2193 (branch ends there), which the continuation does not cross); a basin of the gait.
+  s.push_back({"rimless-mu-continuation", "Rimless wheel: the gait continued in mu from 0.6 down (pseudo-arclength)",
+               {"rimless", "continuation", "--config", rimless, "--param", "rimless.mu", "--from", "0.6", "--to", "0.1"},
+               "The fixed point's angular velocity at the touchdown section and its largest |multiplier| against mu: "
+               "stable solid, unstable dashed, each gait in its colour, located gait changes and bifurcations "
+               "marked; the branch ends where the section's foot mode changes."});
+  s.push_back({"rimless-slope-branch-low", "Rimless wheel: the gait continued in the slope from 0.2 up",
+               {"rimless", "continuation", "--config", rimless, "--param", "rimless.slope", "--from", "0.2", "--to",
+                "0.2355"}});
+  s.push_back({"rimless-slope-branch-high", "Rimless wheel: the gait continued in the slope from 0.222 up",
+               {"rimless", "continuation", "--config", rimless, "--param", "rimless.slope", "--from", "0.222", "--to",
+                "0.2355"}});
+  s.push_back({"rimless-orbit-slope", "Rimless wheel: orbit diagram over the slope, with the continued branches",
+               {"rimless", "analysis", "orbit-diagram", "--config", rimless, "--param", "rimless.slope", "--from", "0.2",
+                "--to", "0.2355", "--count", quick ? "40" : "200", "--transient", quick ? "200" : "400", "--record",
+                quick ? "32" : "64", "--branch", "@root/rimless-slope-branch-low/branch.csv", "--branch",
+                "@root/rimless-slope-branch-high/branch.csv"},
+               "Each dot is the angular velocity at a touchdown after the transient, coloured by the step's gait; "
+               "black: the continued fixed points (solid stable, dashed unstable). Past the Neimark-Sacker point the "
+               "steps spread over an invariant curve and then chaos with periodic windows; past 0.2356 the wheel "
+               "runs away."});
+  s.push_back({"rimless-basin", "Rimless wheel: basin of attraction of the gait over the initial state",
+               {"rimless", "analysis", "basin", "--config", rimless, "--x", "initial.omega", "--y", "initial.beta",
+                "--x-range", quick ? "-1:3:24" : "-1:3:80", "--y-range", quick ? "-0.3:0.3:16" : "-0.3:0.3:50"},
+               "Each cell is one start (initial angular velocity, stance-leg angle): green when it converges to the "
+               "gait Newton finds from the configured start, red when the wheel rolls back onto its previous leg, "
+               "grey when the start puts a foot below the ground."});
   s.push_back({"humanoid-bench", "Humanoid: stiffness bench (thesis Fig. 12)", {"humanoid", "bench"}});
   std::vector<std::string> quasi{"humanoid", "compensation", "--config", walk("walk-quasi-static.yaml")};
   if (quick) quasi.insert(quasi.end(), {"--set", "walk.steps=3"});
@@ -127,7 +156,8 @@ int reproduce(const ReproduceOptions& o) {
     fmt::print("[reproduce {}/{}] {}\n", i + 1, plan.size(), st.title);
     std::fflush(stdout);
     std::vector<std::string> argv{self.string()};
-    argv.insert(argv.end(), st.args.begin(), st.args.end());
+    for (const auto& arg : st.args)  // "@root/DIR/FILE": a file an earlier run of this reproduction wrote
+      argv.push_back(arg.starts_with("@root/") ? (root.path() / arg.substr(6)).string() : arg);
     argv.insert(argv.end(), {"--out", (root.path() / st.dir).string()});
     const int code = run_process(argv);
     if (code != 0) {
@@ -156,7 +186,8 @@ void add_reproduce_command(CLI::App& app, std::function<int()>& action) {
                    "exit 1 if a run failed or the report could not be written");
   r->add_option("--out", o->out, "output directory")->capture_default_str();
   r->add_flag("--quick", o->quick,
-              "shorter variant: 3 steps of the 24 s/step walk, coarser rimless sweeps, an 8-point walking envelope");
+              "shorter variant: 3 steps of the 24 s/step walk, coarser rimless sweeps, a coarser orbit diagram and basin, "
+              "an 8-point walking envelope");
   r->callback([o, &action] { action = [o] { return reproduce(*o); }; });
 }
 

@@ -20,6 +20,7 @@
 #include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "options.hpp"
+#include "rimless_map_commands.hpp"
 
 namespace flexgait::cli {
 namespace {
@@ -161,6 +162,7 @@ struct AnalysisArgs {
   bool resume = false;
   std::string section = "touchdown";
   std::vector<std::string> vary;
+  MapOptions map;  ///< orbit-diagram and basin (rimless_map_commands.hpp)
 };
 
 /// The stagnation map's default variations of the base configuration (configs/rimless-stagnation.yaml):
@@ -184,6 +186,9 @@ std::vector<std::string> default_stagnation_map() {
 int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   // Every option checked before anything is written; an option this analysis ignores is refused.
   const std::string which = "analysis " + a.name;
+  if (a.name == "orbit-diagram" || a.name == "basin")
+    return run_map_analysis({a.name, a.run, a.map, a.from, a.to, a.count, a.jobs, a.resume, a.section}, cmd);
+  reject_unused(cmd, map_option_names(), which + " (only orbit-diagram and basin take it)");
   const bool friction_sweep = a.name == "gait-vs-friction";
   const bool stagnation_run = a.name == "stagnation" || a.name == "stagnation-map";
   if (!friction_sweep && !stagnation_run)
@@ -330,6 +335,7 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);
   dir.write("branch.csv", rimless::gait_branch_csv(b));
+  if (a.run.plot) run_plot_script("plot_maps.py", {"bifurcation", dir.path().string(), b.param});
   if (a.run.json) {
     nlohmann::ordered_json j;
     j["param"] = b.param;
@@ -419,11 +425,13 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
                   "(single support, stick against slip), fixed-points (the four behaviours), robustness (of the "
                   "sliding gait), stagnation (paper Fig. 12: the critical omega0, the time sliding near the true "
                   "vertical against |omega0 - omega_c|, the stagnation interval), stagnation-map (how the interval "
-                  "moves with mu - tan(phi), I, C, K)");
+                  "moves with mu - tan(phi), I, C, K), orbit-diagram (section values of many steps after a transient, against "
+                  "a parameter), basin (a grid of initial states: which converge to the gait, which fall and why)");
   add_run_options(*anc, an->run, "runs/rimless-analysis");
   anc->add_option("name", an->name, "which analysis")
       ->required()
-      ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation", "stagnation-map"}));
+      ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation", "stagnation-map",
+                                  "orbit-diagram", "basin"}));
   anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k), comma separated, for energy, fixed-points, "
                                    "robustness")
       ->type_name("MU,...");
@@ -441,6 +449,7 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   anc->add_option("--vary", an->vary, "stagnation-map: one map point, KEY=VALUE[,KEY=VALUE...] set on the "
                                      "configuration (rimless.mu sets mu_s and mu_k); repeat for more points; default: "
                                      "the base and mu, I, C, K one at a time, and I = 0.02 with mu = 0.25");
+  add_map_options(*anc, an->map);
   anc->callback([an, anc, &action] { action = [an, anc] { return analysis(*an, *anc); }; });
 }
 

@@ -304,5 +304,55 @@ check "the run written again over it is complete" test -f "$work/killed/complete
 check "and the killed writer's temporaries are gone: $(ls -a "$work/killed" | tr '\n' ' ')" \
   test -z "$(ls -a "$work/killed" | grep '\.tmp-')"
 
+# ---- issue 18: orbit diagram and basin (helper-basin block) ----
+# The rigid wheel's orbit diagram over the slope: every recorded crossing is ω*(φ) (closed form
+# r sqrt(a/(1 - r²)), rigid_wheel.hpp) to 1e-8 rad/s; the same bytes for 1 and 2 threads.
+orbit=(rimless analysis orbit-diagram --set sim.model=rigid --param rimless.slope --from 0.05 --to 0.2 --count 4
+       --transient 60 --record 5 --no-plot)
+timeout 120 "$exe" "${orbit[@]}" --jobs 1 --out "$work/orbit1" >/dev/null 2>"$work/err"
+check "orbit-diagram exits 0: $(cat "$work/err")" test $? -eq 0
+timeout 120 "$exe" "${orbit[@]}" --jobs 2 --out "$work/orbit2" >/dev/null 2>&1
+check "orbit-diagram: same bytes for 1 and 2 threads" cmp -s "$work/orbit1/orbit.csv" "$work/orbit2/orbit.csv"
+check "orbit-diagram: orbit.csv columns" test "$(head -1 "$work/orbit1/orbit.csv")" = \
+  "parameter,step,mode,gait,thetad,state,failure"
+check "orbit-diagram: the rigid wheel sits on omega*(phi)" python3 -c "
+import csv, math, sys
+m, L0, I, g, N = 1.0, 1.0, 0.3, 9.81, 10
+a_ = math.pi / N
+for r in csv.DictReader(open(sys.argv[1])):
+    phi = float(r['parameter'])
+    J = m * L0 * L0 + I
+    rr = (m * L0 * L0 * math.cos(2 * a_) + I) / J
+    a = 4 * m * g * L0 * math.sin(a_) * math.sin(phi) / J
+    assert abs(float(r['thetad']) - rr * math.sqrt(a / (1 - rr * rr))) < 1e-8, r
+" "$work/orbit1/orbit.csv"
+expect_usage_error orbit-key rimless.nothing rimless analysis orbit-diagram --param rimless.nothing --from 0.1 --to 0.2 --count 3
+expect_usage_error orbit-empty "--to" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.1 --count 3
+expect_usage_error orbit-count "--count" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.2 --count 1
+expect_usage_error orbit-basin-option "--x-range" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.2 --count 3 --x-range 0:1:3
+# A small basin of the rigid wheel: one row per cell, the area in summary.json, the same bytes
+# for 1 and 2 threads.
+basin=(rimless analysis basin --set sim.model=rigid --x initial.omega --y initial.beta --x-range -1:2.5:8
+       --y-range -0.25:0.25:5 --no-plot)
+timeout 120 "$exe" "${basin[@]}" --jobs 1 --out "$work/basin1" >/dev/null 2>"$work/err"
+check "basin exits 0: $(cat "$work/err")" test $? -eq 0
+timeout 120 "$exe" "${basin[@]}" --jobs 2 --out "$work/basin2" >/dev/null 2>&1
+check "basin: same bytes for 1 and 2 threads" cmp -s "$work/basin1/basin.csv" "$work/basin2/basin.csv"
+check "basin: 40 cells" test "$(tail -n +2 "$work/basin1/basin.csv" | wc -l)" -eq 40
+check "basin: converged and rolled-back cells, area = converged x cell" python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+o = d['outcomes']
+assert o['converged'] > 0 and o['rolled_back'] > 0, o
+assert abs(d['basin_area'] - o['converged'] * 0.5 * 0.125) < 1e-12, d
+assert d['reference']['found'] and d['reference']['stable'], d
+" "$work/basin1/summary.json"
+expect_usage_error basin-key "--x" rimless analysis basin --x rimless.slope --y initial.beta --x-range 0:1:3 --y-range 0:0.1:3
+expect_usage_error basin-empty "--x-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 1:1:3 --y-range 0:0.1:3
+expect_usage_error basin-count "--y-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:1
+expect_usage_error basin-beta "initial.beta" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.5:3
+expect_usage_error basin-from "--from" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:3 --from 1
+# ---- end of the issue 18 block ----
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "flexgait/core/text.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
@@ -44,6 +46,32 @@ TEST(GaitBranch, RigidWheelOverTheSlopeIsTheClosedForm) {
   const std::string csv = gait_branch_csv(b);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event");
+}
+
+// The flexible wheel from μ = 0.6 down to 0.2 (default step 0.01): the stance foot starts to slip
+// at touchdown; the continuation locates the change (bisection to 1e-7 of the interval: 4e-8 in μ)
+// even though a map evaluation can fail near the boundary. Newton's gait, found directly from the
+// configured start at the located μ ∓ 2e-4, must be the label before and after: the location is
+// within 2e-4 of where the direct gait changes.
+TEST(GaitBranch, FlexibleWheelLocatesTheStickToSlipStickChange) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  GaitContinuationSpec spec{.param = "rimless.mu", .from = 0.6, .to = 0.2};
+  const GaitBranch b = continue_gait(base, spec);
+  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  const GaitBranchRow* change = nullptr;
+  for (const auto& r : b.rows)
+    if (r.event.starts_with("gait ")) change = &r;
+  ASSERT_NE(change, nullptr) << b.stop_reason;
+  EXPECT_EQ(change->event, "gait stick -> slip-stick");
+  EXPECT_EQ(b.stop_reason.find("not located"), std::string::npos) << b.stop_reason;
+  for (const auto& [dp, gait] : {std::pair{2e-4, "stick"}, std::pair{-2e-4, "slip-stick"}}) {
+    const Config c = config_at(base, "rimless.mu", format_number(change->p + dp), "test");
+    const SimulationOptions sim = simulation_from_config(c);
+    const FixedPointReport fp = find_fixed_point(wheel_from_config(c), sim, analysis_from_config(c), sim.model,
+                                                 Section::Touchdown, initial_from_config(c));
+    ASSERT_TRUE(fp.converged) << fp.failure;
+    EXPECT_EQ(fp.gait, gait) << "mu = " << change->p + dp;
+  }
 }
 
 TEST(GaitBranch, RefusesBadInput) {

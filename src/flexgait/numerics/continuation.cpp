@@ -214,14 +214,25 @@ struct Walker {
                      std::string& after) {
     double sa = 0;
     after.clear();
-    Solved mid;
+    Solved mid, base = a;  // base: the last corrected point with label la (at s = sa)
     while (sb - sa > opt.label_tolerance) {
-      const double s = 0.5 * (sa + sb);
-      if (auto e = correct(f, a.x, a.t, s, opt, mid)) return "locating the label change: " + *e;
+      // Predicted from the nearest point with the old label: a corrector started at `a` may not
+      // converge across the boundary's kink in the map (the label marks a non-smooth change). A
+      // map that cannot be evaluated at the midpoint (e.g. an event the integrator misses) is
+      // tried at 0.3 and 0.7 of the bracket before giving up: any interior point halves it enough.
+      double s = 0;
+      Error e;
+      for (const double frac : {0.5, 0.3, 0.7}) {
+        s = sa + frac * (sb - sa);
+        e = correct(f, base.x, base.t, s - sa, opt, mid);
+        if (!e) break;
+      }
+      if (e) return "locating the label change: " + *e;
       const Eigen::Index n = mid.x.size() - 1;
       const std::string l = f.label(mid.x.head(n), mid.x(n));
       if (l == la) {
         sa = s;
+        base = mid;
       } else {
         sb = s;
         after = l;
@@ -229,7 +240,7 @@ struct Walker {
       }
     }
     if (after.empty()) {  // the end of the step is the first point with the new label
-      if (auto e = correct(f, a.x, a.t, sb, opt, out)) return "locating the label change: " + *e;
+      if (auto e = correct(f, base.x, base.t, sb - sa, opt, out)) return "locating the label change: " + *e;
       const Eigen::Index n = out.x.size() - 1;
       after = f.label(out.x.head(n), out.x(n));
     }
@@ -322,7 +333,7 @@ struct Walker {
         why = *e;
         ds /= 2;
         if (ds < opt.min_step) {
-          branch.stop_reason = "no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why;
+          stop("no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why);
           return;
         }
       }
@@ -335,7 +346,7 @@ struct Walker {
         Solved end;
         double s = ds;
         if (auto e = locate(a, ds, psi(a), psi(b), psi, end, s)) {
-          branch.stop_reason = "could not stop on p = " + number(bound) + ": " + *e;
+          stop("could not stop on p = " + number(bound) + ": " + *e);
           return;
         }
         // On the bound exactly: Newton at p = bound from the located point (kept if that fails).
@@ -349,8 +360,8 @@ struct Walker {
         if (opt.detect) detect(a, end, s);
         branch.points.push_back(make_point(f, end, branch.points.back().arclength + s));
         branch.reached_end = bound == p_end;
-        branch.stop_reason = branch.reached_end ? "reached p = " + number(p_end)
-                                                : "turned back to p = " + number(bound) + " (left the parameter interval)";
+        stop(branch.reached_end ? "reached p = " + number(p_end)
+                                : "turned back to p = " + number(bound) + " (left the parameter interval)");
         return;
       }
       if (opt.detect) detect(a, b, ds);
@@ -359,7 +370,12 @@ struct Walker {
       if (b.iterations >= 6) ds = std::max(0.5 * ds, opt.min_step);
       a = std::move(b);
     }
-    branch.stop_reason = "max_points (" + std::to_string(opt.max_points) + ") reached";
+    stop("max_points (" + std::to_string(opt.max_points) + ") reached");
+  }
+
+  /// Sets why the branch ended, keeping the notes detect() left (a special point not located).
+  void stop(const std::string& reason) {
+    branch.stop_reason = branch.stop_reason.empty() ? reason : reason + "; " + branch.stop_reason;
   }
 };
 

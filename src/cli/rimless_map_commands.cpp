@@ -1,0 +1,237 @@
+#include "rimless_map_commands.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/sweep_runner.hpp"
+#include "flexgait/core/text.hpp"
+#include "flexgait/rimless/basin.hpp"
+#include "flexgait/rimless/orbit_diagram.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
+#include "mpi_distributor.hpp"
+
+namespace flexgait::cli {
+namespace {
+
+rimless::Section section_of(const std::string& name) {
+  return name == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+}
+
+/// A resumed sweep must match the one in --out: checked before anything is written.
+void check_resume(const MapRun& a, const std::string& name) {
+  if (!a.resume) return;
+  SweepJob probe;
+  probe.dir = a.run.out;
+  probe.name = name;
+  probe.resume = true;
+  probe.signature = "?";
+  if (!std::filesystem::exists(probe.dir / (name + ".signature"))) check_resumable(probe);
+}
+
+/// The --branch file's text: a branch.csv of `rimless continuation` in the same key.
+std::string read_branch(const std::string& path, const std::string& param) {
+  const std::string text = read_text_file(path);
+  const auto records = parse_csv(text);
+  const auto bad = [&](const std::string& why) {
+    return UsageError(fmt::format("--branch: '{}' {}; allowed: a branch.csv written by `flexgait rimless continuation "
+                                  "--param {}`", one_line(path), why, param));
+  };
+  if (records.empty()) throw bad("cannot be read or is empty");
+  const auto& h = records.front().fields;
+  if (h.empty() || h.front() != "parameter" || std::find(h.begin(), h.end(), "thetad") == h.end() ||
+      std::find(h.begin(), h.end(), "stable") == h.end())
+    throw bad("has no parameter, thetad and stable columns");
+  // config.yaml beside it names the key only indirectly; the header cannot: trust the caller's --param.
+  return text;
+}
+
+int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
+  reject_unused(cmd, {"--x", "--y", "--x-range", "--y-range", "--steps-limit", "--tolerance"},
+                "analysis orbit-diagram (only basin takes them)");
+  if (cmd.count("--param") == 0) throw UsageError("--param: required by analysis orbit-diagram; allowed: a real key");
+  for (const char* o : {"--from", "--to", "--count"})
+    if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis orbit-diagram", o));
+  const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  rimless::check_sweep_param(s.config.schema(), a.map.param);
+  if (a.from == a.to)
+    throw UsageError(fmt::format("--to: {} equals --from; allowed: a value other than --from", format_number(a.to)));
+  if (a.count < 2) throw UsageError(fmt::format("--count: {}; allowed: an integer >= 2", a.count));
+  rimless::OrbitDiagramSpec spec{{a.map.param, a.from, a.to, a.count, section_of(a.section)}, a.map.transient,
+                                 a.map.record};
+  rimless::check_orbit_diagram(s.config, spec);
+  std::vector<std::string> branches;
+  for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param));
+  check_resume(a, "orbit_points");
+  const RunDirectory dir(a.run.out);
+  dir.write_config(s.config);
+  SweepJob job;
+  job.dir = dir.path();
+  job.name = "orbit_points";
+  job.header = rimless::orbit_points_header();
+  job.count = spec.sweep.count;
+  job.jobs = a.jobs;
+  job.resume = a.resume;
+  job.signature = fmt::format("orbit-diagram {} {} {} {} {} transient {} record {}\n{}", spec.sweep.param,
+                              format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count, a.section,
+                              spec.transient, spec.record, s.config.to_yaml());
+  const Config base = s.config;
+  job.row = [base, spec](int i) { return rimless::orbit_points_row(base, spec, i); };
+  const SweepOutcome out = run_sweep(job);
+  const std::string points = read_text_file(dir.path() / "orbit_points.csv");
+  dir.write("orbit.csv", rimless::orbit_csv(points));
+  dir.write("summary.json", rimless::orbit_summary_json(points));
+  for (std::size_t k = 0; k < branches.size(); ++k) dir.write(fmt::format("branch_{}.csv", k + 1), branches[k]);
+  if (a.run.plot) run_plot_script("plot_analysis.py", {"orbit-diagram", dir.path().string(), spec.sweep.param});
+  fmt::print("orbit diagram of {} over [{}, {}], {} values x {} crossings after {} steps: {} computed, {} resumed, "
+             "{:.2f} s\n", spec.sweep.param, format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count,
+             spec.record, spec.transient, out.computed, out.resumed, out.seconds);
+  fmt::print("wrote {}\n", (dir.path() / "orbit.csv").string());
+  return 0;
+}
+
+/// The basin's configuration and grid, every option checked.
+std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a, const CLI::App& cmd) {
+  reject_unused(cmd, {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count"},
+                "analysis basin (it takes --x-range and --y-range)");
+  for (const char* o : {"--x", "--y", "--x-range", "--y-range"})
+    if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis basin", o));
+  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  rimless::BasinSpec spec;
+  spec.x = rimless::parse_basin_axis("--x-range", a.map.x, a.map.x_range);
+  spec.y = rimless::parse_basin_axis("--y-range", a.map.y, a.map.y_range);
+  spec.steps_limit = a.map.steps_limit;
+  spec.tolerance = a.map.tolerance;
+  spec.section = section_of(a.section);
+  rimless::check_basin(s.config, spec);
+  return {std::move(s), spec};
+}
+
+int basin(const MapRun& a, const CLI::App& cmd) {
+  // Under mpirun the cells are spread over the ranks (mpi_distributor.hpp); the ranks agree on the
+  // checks: all go on, or all exit 2 and rank 0 alone says why. Rank 0 alone writes files.
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  std::optional<std::pair<rimless::WheelSetup, rimless::BasinSpec>> checked;
+  std::string error;
+  try {
+    checked.emplace(checked_basin(a, cmd));
+    if (!mpi || mpi->coordinator()) check_resume(a, "basin");
+  } catch (const UsageError& e) {
+    if (!mpi) throw;
+    error = e.what();
+  }
+  if (mpi) error = mpi->first_error(error);
+  if (!error.empty()) throw UsageError(error);
+  const rimless::WheelSetup& s = checked->first;
+  const rimless::BasinSpec& spec = checked->second;
+  std::optional<RunDirectory> made;
+  if (!mpi || mpi->coordinator()) {
+    made.emplace(a.run.out);
+    made->write_config(s.config);
+  }
+  // Every rank finds the same reference (the same configuration, deterministic Newton).
+  const rimless::BasinReference ref = rimless::basin_reference(s.config, spec.section);
+  SweepJob job;
+  job.dir = a.run.out;
+  job.distributor = mpi.get();
+  job.name = "basin";
+  job.header = rimless::basin_header();
+  job.count = spec.cells();
+  job.jobs = a.jobs > 0 ? a.jobs : (mpi ? 1 : 0);
+  job.resume = a.resume;
+  job.signature = fmt::format("basin {} {}:{}:{} {} {}:{}:{} steps {} tolerance {} {}\n{}", spec.x.key,
+                              format_number(spec.x.from), format_number(spec.x.to), spec.x.count, spec.y.key,
+                              format_number(spec.y.from), format_number(spec.y.to), spec.y.count, spec.steps_limit,
+                              format_number(spec.tolerance), a.section, s.config.to_yaml());
+  const Config base = s.config;
+  job.row = [base, spec, ref](int i) { return rimless::basin_row(base, spec, ref, i); };
+  const SweepOutcome out = run_sweep(job);
+  if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
+  const RunDirectory& dir = *made;
+  const auto counts = rimless::basin_counts(read_text_file(dir.path() / "basin.csv"));
+  const int converged = counts.at("converged");
+  const double fraction = static_cast<double>(converged) / spec.cells();
+  const double cell_area = std::abs(spec.x.spacing() * spec.y.spacing());
+  nlohmann::ordered_json j;
+  j["x"] = {{"key", spec.x.key}, {"from", spec.x.from}, {"to", spec.x.to}, {"count", spec.x.count}};
+  j["y"] = {{"key", spec.y.key}, {"from", spec.y.from}, {"to", spec.y.to}, {"count", spec.y.count}};
+  j["section"] = a.section;
+  j["steps_limit"] = spec.steps_limit;
+  j["tolerance"] = spec.tolerance;
+  nlohmann::ordered_json r;
+  r["found"] = ref.found;
+  if (ref.found) {
+    nlohmann::ordered_json st;
+    const auto names = ref.point.names();
+    for (Eigen::Index k = 0; k < ref.point.z.size(); ++k) st[names.at(static_cast<std::size_t>(k))] = ref.point.z(k);
+    r["state"] = st;
+    r["mode"] = ref.point.flight ? "flight" : rimless::mode_name(ref.point.mode);
+    r["gait"] = ref.gait;
+    r["stable"] = ref.stable;
+    r["max_multiplier"] = ref.max_multiplier;
+  } else {
+    r["failure"] = ref.failure;
+  }
+  j["reference"] = r;
+  nlohmann::ordered_json outcomes;
+  for (const auto& name : rimless::basin_outcomes()) outcomes[name] = counts.at(name);
+  j["outcomes"] = outcomes;
+  j["cells"] = spec.cells();
+  j["basin_fraction"] = fraction;
+  // Each grid point stands for one cell of the grid spacing's size.
+  j["cell_area"] = cell_area;
+  j["basin_area"] = converged * cell_area;
+  j["area_unit"] = fmt::format("({}) x ({})", s.config.schema().find(spec.x.key)->unit,
+                               s.config.schema().find(spec.y.key)->unit);
+  dir.write("summary.json", j.dump(2) + "\n");
+  if (a.run.plot) run_plot_script("plot_analysis.py", {"basin", dir.path().string()});
+  if (!ref.found)
+    fmt::print(stderr, "warning: no reference gait (Newton from the configured initial state: {}); no cell can "
+                       "converge\n", one_line(ref.failure, 300));
+  fmt::print("basin over {} x {} ({} cells): {} converged to the '{}' gait ({:.4f} of the grid, area {:.6g} {}), "
+             "{} computed, {} resumed, {:.2f} s\n", spec.x.key, spec.y.key, spec.cells(), converged, ref.gait, fraction,
+             converged * cell_area, j["area_unit"].get<std::string>(), out.computed, out.resumed, out.seconds);
+  fmt::print("wrote {}\n", (dir.path() / "basin.csv").string());
+  return 0;
+}
+
+}  // namespace
+
+void add_map_options(CLI::App& anc, MapOptions& o) {
+  anc.add_option("--param", o.param, "orbit-diagram: real configuration key to vary (e.g. rimless.slope), or "
+                                     "rimless.mu for mu_s = mu_k");
+  anc.add_option("--transient", o.transient, "orbit-diagram: steps simulated before the first recorded crossing")
+      ->capture_default_str();
+  anc.add_option("--record", o.record, "orbit-diagram: section crossings recorded at each value")->capture_default_str();
+  anc.add_option("--branch", o.branches, "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
+                                         "copied to branch_K.csv and drawn over the dots (stable solid, unstable "
+                                         "dashed); repeat for more branches")
+      ->allow_extra_args(false);
+  anc.add_option("--x", o.x, "basin: key of the initial state on the x axis (initial.omega or initial.beta)");
+  anc.add_option("--y", o.y, "basin: key of the initial state on the y axis");
+  anc.add_option("--x-range", o.x_range, "basin: FROM:TO:COUNT of the x key (its unit)")->type_name("A:B:N");
+  anc.add_option("--y-range", o.y_range, "basin: FROM:TO:COUNT of the y key (its unit)")->type_name("A:B:N");
+  anc.add_option("--steps-limit", o.steps_limit, "basin: section crossings simulated per cell at most")
+      ->capture_default_str();
+  anc.add_option("--tolerance", o.tolerance, "basin: converged when every section-state component is within this "
+                                             "fraction of its scale (sqrt(g L0), sqrt(g/L0), alpha) of the gait's")
+      ->check(finite_number())
+      ->capture_default_str();
+}
+
+const std::vector<std::string>& map_option_names() {
+  static const std::vector<std::string> names{"--param", "--transient", "--record", "--branch", "--x", "--y",
+                                              "--x-range", "--y-range", "--steps-limit", "--tolerance"};
+  return names;
+}
+
+int run_map_analysis(const MapRun& a, const CLI::App& cmd) {
+  reject_unused(cmd, {"--mu", "--vary"}, "analysis " + a.name);
+  return a.name == "basin" ? basin(a, cmd) : orbit_diagram(a, cmd);
+}
+
+}  // namespace flexgait::cli

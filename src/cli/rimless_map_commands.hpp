@@ -1,0 +1,45 @@
+#pragma once
+/// \file rimless_map_commands.hpp
+/// `flexgait rimless analysis orbit-diagram` and `... basin` (issue 18): brute-force maps of the
+/// wheel's long-run behaviour over a parameter or over initial states, on the sweep runner.
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "options.hpp"
+
+namespace flexgait::cli {
+
+/// The options only these two analyses take (besides --from/--to/--count, --jobs, --resume, --section).
+struct MapOptions {
+  std::string param;            ///< orbit-diagram: the key varied
+  int transient = 100, record = 30;
+  std::vector<std::string> branches;  ///< orbit-diagram: branch.csv files of `rimless continuation` to overlay
+  std::string x, y;             ///< basin: keys of the initial state
+  std::string x_range, y_range; ///< basin: FROM:TO:COUNT
+  int steps_limit = 200;
+  double tolerance = 1e-6;
+};
+
+/// Adds the options above to the analysis subcommand.
+void add_map_options(CLI::App& analysis, MapOptions& options);
+
+/// The options of add_map_options, for the other analyses to refuse.
+const std::vector<std::string>& map_option_names();
+
+/// What the analysis subcommand hands over.
+struct MapRun {
+  std::string name;   ///< "orbit-diagram" or "basin"
+  RunOptions run;
+  MapOptions map;
+  double from = 0, to = 0;
+  int count = 0;
+  int jobs = 0;
+  bool resume = false;
+  std::string section;
+};
+
+/// Runs orbit-diagram or basin; every option checked before anything is written. The basin's cells
+/// are spread over the ranks when started by mpirun (like `flexgait campaign`).
+int run_map_analysis(const MapRun& a, const CLI::App& cmd);
+
+}  // namespace flexgait::cli

@@ -1,0 +1,147 @@
+#include "flexgait/rimless/basin.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "flexgait/core/text.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/sweep.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+/// max_i |a_i - b_i| / scale_i, or infinity when the modes or dimensions differ.
+double scaled_distance(const WheelParams& w, const SectionState& a, const SectionState& b) {
+  if (a.flight != b.flight || a.mode != b.mode || a.z.size() != b.z.size()) return INFINITY;
+  const Eigen::VectorXd s = b.scale(w);
+  return ((a.z - b.z).array().abs() / s.array()).maxCoeff();
+}
+
+Config cell_config(const Config& base, const BasinSpec& spec, int ix, int iy) {
+  const Config c = config_at(base, spec.x.key, format_number(spec.x.value(ix)), fmt::format("--x-range point {}", ix));
+  return config_at(c, spec.y.key, format_number(spec.y.value(iy)), fmt::format("--y-range point {}", iy));
+}
+
+}  // namespace
+
+BasinAxis parse_basin_axis(const std::string& option, const std::string& key, const std::string& text) {
+  const auto bad = [&](const std::string& why) {
+    return UsageError(fmt::format("{}: '{}' {}; allowed: FROM:TO:COUNT, finite numbers FROM != TO, an integer "
+                                  "COUNT >= 2 (e.g. 0.5:2.5:100)", option, one_line(text), why));
+  };
+  const std::vector<std::string> f = split_text(text, ':');
+  if (f.size() != 3) throw bad("does not have three fields");
+  const auto from = parse_finite_number(f[0]), to = parse_finite_number(f[1]), n = parse_finite_number(f[2]);
+  if (!from || !to) throw bad("has a bound that is not a finite number");
+  if (*from == *to) throw bad("is an empty range (FROM = TO)");
+  if (!n || *n != std::floor(*n) || *n < 2 || *n > 100000) throw bad("has a COUNT that is not an integer in [2, 100000]");
+  return {key, *from, *to, static_cast<int>(*n)};
+}
+
+void check_basin(const Config& base, const BasinSpec& spec) {
+  const Schema initial = schema_of<InitialState>();
+  for (const auto* a : {&spec.x, &spec.y}) {
+    const std::string option = a == &spec.x ? "--x" : "--y";
+    const ParamSpec* p = initial.find(a->key);
+    if (p == nullptr || p->type != ParamType::Real)
+      throw ConfigError(a->key, fmt::format("{}: '{}' is not a key of the initial state; allowed: initial.omega, "
+                                            "initial.beta", option, one_line(a->key)));
+  }
+  if (spec.x.key == spec.y.key)
+    throw ConfigError(spec.y.key, fmt::format("--y: '{}' is --x's key too; allowed: the other key of the initial state",
+                                              spec.y.key));
+  if (spec.steps_limit < 1)
+    throw ConfigError("--steps-limit", fmt::format("--steps-limit: {}; allowed: an integer >= 1", spec.steps_limit));
+  if (!(spec.tolerance > 0) || !std::isfinite(spec.tolerance))
+    throw ConfigError("--tolerance", fmt::format("--tolerance: {}; allowed: a finite number > 0", spec.tolerance));
+  for (int iy = 0; iy < spec.y.count; ++iy)
+    for (int ix = 0; ix < spec.x.count; ++ix) cell_config(base, spec, ix, iy);
+}
+
+BasinReference basin_reference(const Config& base, Section section) {
+  const WheelParams w = wheel_from_config(base);
+  const SimulationOptions sim = simulation_from_config(base);
+  const FixedPointReport fp =
+      find_fixed_point(w, sim, analysis_from_config(base), sim.model, section, initial_from_config(base));
+  BasinReference ref;
+  ref.found = fp.converged;
+  ref.failure = fp.failure;
+  if (!fp.converged) return ref;
+  ref.point = fp.point;
+  ref.gait = fp.gait;
+  ref.stable = fp.stable;
+  for (const auto& m : fp.multipliers) ref.max_multiplier = std::max(ref.max_multiplier, std::abs(m));
+  return ref;
+}
+
+std::string failure_outcome(const std::string& failure) {
+  std::string_view f = failure;
+  for (std::string_view prefix : {"transient: ", "reaching the section: "})
+    if (f.starts_with(prefix)) f.remove_prefix(prefix.size());
+  if (f.starts_with("rolled back")) return "rolled_back";
+  if (f.starts_with("stopped")) return "stopped";
+  if (f.starts_with("slid away")) return "slid_away";
+  if (f.starts_with("time limit")) return "time_limit";
+  return "failed";
+}
+
+std::string basin_header() { return "x,y,outcome,gait,steps,distance,failure"; }
+
+std::string basin_row(const Config& base, const BasinSpec& spec, const BasinReference& ref, int cell) {
+  const int ix = cell % spec.x.count, iy = cell / spec.x.count;
+  const Config c = cell_config(base, spec, ix, iy);
+  const WheelParams w = wheel_from_config(c);
+  SimulationOptions sim = simulation_from_config(c);
+  sim.log = false;
+  // The run's length is its number of steps; sim.max_time (meant for one simulate run) does not cut
+  // it short. sim.max_step_time still ends a wheel that stops.
+  sim.max_time = std::numeric_limits<double>::infinity();
+  const auto row = [&](const std::string& outcome, const std::string& gait, int steps, double distance,
+                       const std::string& failure) {
+    return fmt::format("{},{},{},{},{},{},{}", format_number(spec.x.value(ix)), format_number(spec.y.value(iy)), outcome,
+                       gait, steps, format_number(distance), csv_field(failure));
+  };
+  SectionState p;
+  // The first crossing of the section after the first step (settle_on_section simulates >= 1 step).
+  std::optional<std::string> e;
+  try {
+    e = settle_on_section(w, sim, sim.model, spec.section, initial_from_config(c), 1, p);
+  } catch (const std::invalid_argument& what) {  // e.g. a foot below the ground at the start
+    return row("infeasible", "", 0, NAN, what.what());
+  }
+  if (e) return row(failure_outcome(*e), "", 0, NAN, *e);
+  PoincareMap map(w, sim, sim.model, spec.section);
+  std::string gait;
+  double distance = ref.found ? scaled_distance(w, p, ref.point) : INFINITY;
+  for (int n = 1;; ++n) {
+    if (distance <= spec.tolerance) return row("converged", gait.empty() ? ref.gait : gait, n, distance, "");
+    if (n == spec.steps_limit) return row("step_limit", gait, n, distance, "");
+    const MapStep s = map.apply(p, false);
+    if (s.failure) return row(failure_outcome(*s.failure), gait, n, distance, *s.failure);
+    const double moved = scaled_distance(w, s.next, p);
+    p = s.next;
+    gait = s.gait;
+    distance = ref.found ? scaled_distance(w, p, ref.point) : INFINITY;
+    if (moved <= 0.01 * spec.tolerance && distance > 100 * spec.tolerance)
+      return row("other_gait", gait, n + 1, distance, "");
+  }
+}
+
+const std::vector<std::string>& basin_outcomes() {
+  static const std::vector<std::string> names{"converged", "other_gait", "rolled_back", "stopped", "slid_away",
+                                              "time_limit", "failed", "step_limit", "infeasible"};
+  return names;
+}
+
+std::map<std::string, int> basin_counts(const std::string& basin_csv) {
+  std::map<std::string, int> counts;
+  for (const auto& name : basin_outcomes()) counts[name] = 0;
+  const std::vector<CsvRecord> records = parse_csv(basin_csv);
+  for (std::size_t r = 1; r < records.size(); ++r) ++counts[records[r].fields.at(3)];  // index, x, y, outcome
+  return counts;
+}
+
+}  // namespace flexgait::rimless

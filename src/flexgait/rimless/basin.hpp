@@ -1,0 +1,77 @@
+#pragma once
+/// \file basin.hpp
+/// Basin of attraction of the wheel's gait (issue 18; Schwab & Wisse 2001): a grid of initial
+/// states over two keys of the initial state (initial.omega × initial.beta), each simulated step
+/// by step on the Poincaré section until it converges to the reference gait, falls or stops, or
+/// reaches the step limit. The reference is the fixed point Newton finds from the configured
+/// initial state (fixed_point.hpp), found once before the grid. Cells are independent: the
+/// command line runs them on the sweep runner (all cores, resumable, the same bytes for any
+/// number of threads). sim.max_time does not limit a cell: --steps-limit does.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/rimless/poincare.hpp"
+
+namespace flexgait::rimless {
+
+/// One axis of the grid: `count` values of `key` from `from` to `to`, ends included.
+struct BasinAxis {
+  std::string key;   ///< a real key of the initial state (initial.omega, initial.beta)
+  double from = 0, to = 0;
+  int count = 0;
+  double value(int i) const { return from + (to - from) * i / (count - 1); }
+  double spacing() const { return (to - from) / (count - 1); }
+};
+
+struct BasinSpec {
+  BasinAxis x, y;
+  int steps_limit = 200;     ///< section crossings simulated per cell at most
+  double tolerance = 1e-6;   ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance (scale: SectionState::scale)
+  Section section = Section::Touchdown;
+  int cells() const { return x.count * y.count; }
+};
+
+/// "A:B:N" as an axis of `key`; throws UsageError naming `option` (A, B finite, A != B, N an
+/// integer >= 2).
+BasinAxis parse_basin_axis(const std::string& option, const std::string& key, const std::string& text);
+
+/// Throws ConfigError naming the option unless both keys are distinct real keys of the initial
+/// state, the limits positive, and every cell's configuration valid (the corners name --x-range or
+/// --y-range).
+void check_basin(const Config& base, const BasinSpec& spec);
+
+/// The gait the cells are compared with.
+struct BasinReference {
+  bool found = false;
+  SectionState point;   ///< the fixed point (when found)
+  std::string gait;
+  bool stable = false;
+  double max_multiplier = 0;
+  std::string failure;  ///< why Newton found none
+};
+BasinReference basin_reference(const Config& base, Section section);
+
+/// What became of one cell (basin.csv's outcome column):
+///   converged   — reached the reference fixed point within the tolerance;
+///   other_gait  — settled on another period-1 orbit (successive crossings within tolerance/100,
+///                 farther than 100 × tolerance from the reference);
+///   rolled_back — fell back onto the previous leg; stopped — came to rest or no leg landed within
+///   sim.max_step_time; slid_away; time_limit; failed — any other failure (named in `failure`);
+///   step_limit  — none of these within steps_limit crossings;
+///   infeasible  — the initial state cannot be simulated (a foot below the ground; in `failure`).
+std::string basin_header();  ///< x, y, outcome, gait, steps, distance, failure
+std::string basin_row(const Config& base, const BasinSpec& spec, const BasinReference& ref, int cell);
+
+/// The outcome class of a simulation failure's message.
+std::string failure_outcome(const std::string& failure);
+
+/// The outcomes above, in that order.
+const std::vector<std::string>& basin_outcomes();
+
+/// Counts of each outcome in basin.csv's text (with its index column); every outcome present, 0
+/// when no cell has it.
+std::map<std::string, int> basin_counts(const std::string& basin_csv);
+
+}  // namespace flexgait::rimless
