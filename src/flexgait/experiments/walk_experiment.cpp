@@ -37,6 +37,21 @@ bool finite_truth(const humanoid::GroundTruth& g) {
          finite(g.pelvis_quat) && finite(g.com);
 }
 
+/// A step the legs cannot take: the controller walks at walk.pelvis_height above z = 0 (it is not
+/// told of the step), so a foot landing on a step up must fold its leg by h (hip to ankle at least
+/// 5 % of thigh + shank, as standing_pose) and one reaching down a step must stretch by |h|.
+void check_step_reach(const WalkRunParams& p) {
+  const humanoid::TerrainParams& t = p.plant.terrain;
+  if (t.kind != humanoid::TerrainKind::kStep || p.loaded) return;  // (the builtin robot's legs; a loaded one: the key's bounds)
+  const double reach = p.robot.thigh + p.robot.shank;
+  const double leg = p.walk.pelvis_height - p.robot.hip_axes_depth - p.robot.ankle_to_sole;  // hip to ankle axes standing
+  const double up = leg - 0.05 * reach, down = reach - leg;
+  if (t.step_height > up || -t.step_height > down)
+    throw ConfigError("terrain.step.height",
+                      fmt::format("key 'terrain.step.height' = '{}': beyond the legs' reach at walk.pelvis_height = {} "
+                                  "(from {:.4f} to {:.4f} m)", t.step_height, p.walk.pelvis_height, -down, up));
+}
+
 }  // namespace
 
 WalkRunParams walk_run_from_config(const Config& c) {
@@ -55,6 +70,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
       (void)walking::make_robot_model(*p.loaded);  // refuses a foot the controller cannot handle
     });
   }
+  check_with_origin(c, [&] { check_step_reach(p); });
   return p;
 }
 
@@ -140,7 +156,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
         if (before.sole_contact[side])
           soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0), walking::rot_z(before.sole_yaw[side])});
       if (direction.norm() > 0)
-        m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2], -plant.model()->opt.gravity[2],
+        m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
+                                                    -plant.model()->opt.gravity[2],
                                                     support_polygon(soles, length, width),
                                                     Eigen::Vector2d(before.com[0], before.com[1]), direction)
                                     .impulse;
@@ -198,7 +215,9 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
 
     // Falls.
     const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());
-    if (g.pelvis_pos[2] < params.walk.pelvis_height - params.fall_height) m.fall_reason = "pelvis too low";
+    // (the pelvis's height above the floor under it: terrain.hpp)
+    const double floor_z = plant.terrain().height(g.pelvis_pos[0], g.pelvis_pos[1]);
+    if (g.pelvis_pos[2] - floor_z < params.walk.pelvis_height - params.fall_height) m.fall_reason = "pelvis too low";
     else if (std::abs(walking::roll_of(R)) > params.fall_tilt || std::abs(walking::pitch_of(R)) > params.fall_tilt)
       m.fall_reason = "pelvis tilted beyond the limit";
     else if (g.non_sole_contact) m.fall_reason = "a body other than a sole touched the floor";
