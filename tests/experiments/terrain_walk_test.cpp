@@ -3,6 +3,8 @@
 // legs' reach is refused naming its key.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <numbers>
 
 #include "flexgait/core/config.hpp"
@@ -25,6 +27,21 @@ TEST(TerrainWalk, StandsOnATwoDegreeRamp) {
     const WalkMetrics m = run_walk(p).metrics;
     EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time;
     EXPECT_TRUE(m.failure.empty()) << m.failure;
+    EXPECT_EQ(m.mujoco_warnings, 0);
+  }
+}
+
+TEST(TerrainWalk, LoadedRobotWalksTheRampAndTheRoughFloor) {
+  // The second robot (issue 16) gets the same floor through the shared twin document.
+  const char* data = std::getenv("FLEXGAIT_TEST_DATA");
+  ASSERT_NE(data, nullptr);
+  const std::filesystem::path file = std::filesystem::path(data) / "small_biped.yaml";
+  for (const auto& floor : {std::vector<std::string>{"terrain.kind=ramp", "terrain.ramp.angle=0.0349", "walk.steps=4"},
+                            std::vector<std::string>{"terrain.kind=rough", "terrain.rough.amplitude=0.005", "walk.steps=2"}}) {
+    const WalkRunParams p = walk_run_from_config(resolve_config(walk_run_schema(), file, floor));
+    ASSERT_TRUE(p.loaded);
+    const WalkMetrics m = run_walk(p).metrics;
+    EXPECT_TRUE(m.completed()) << floor[0] << ": " << m.fall_reason << m.failure;
     EXPECT_EQ(m.mujoco_warnings, 0);
   }
 }
