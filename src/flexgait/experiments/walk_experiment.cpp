@@ -264,9 +264,10 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     }
     // Landings, once the foot has settled.
     // (steps a safe stop dropped are never landed)
-    while (next_landing < controller.plan().steps.size() && t_now >= out.plan.steps[next_landing].t_land + settle &&
+    // (the controller's plan: a safe stop cuts it, step adjustment moves its landings or adds a recovery step)
+    while (next_landing < controller.plan().steps.size() && t_now >= controller.plan().steps[next_landing].t_land + settle &&
            !m.fell) {
-      const walking::Step& s = out.plan.steps[next_landing];
+      const walking::Step& s = controller.plan().steps[next_landing];
       Landing l;
       l.step = static_cast<int>(next_landing);
       l.side = s.swing;
@@ -331,6 +332,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   if (progress) progress(out.plan.duration);
 
   m.steps_completed = static_cast<int>(out.landings.size());
+  m.steps_planned = std::max(m.steps_planned, static_cast<int>(controller.plan().steps.size()));  // with a recovery step
   m.zmp_rms_x = zx.rms();
   m.zmp_rms_y = zy.rms();
   m.zmp_max_x = zx.max;
