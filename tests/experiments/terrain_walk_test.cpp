@@ -60,6 +60,25 @@ TEST(TerrainWalk, WalksOverASmallStepOrNamesTheFall) {
   }
 }
 
+TEST(TerrainWalk, KnownStepHeightsCarryTheTwinUpAStepItFallsOnUnaware) {
+  // 0.25 m steps put no sole across the edge at x = 0.375 m (footprints at 0.25 and 0.5 m, 0.22 m
+  // long): unaware, the foot lands 4 cm early and the twin falls (measured: after 2 steps); told
+  // the heights, it places the foot on the step and walks on.
+  WalkRunParams p;
+  p.plant.terrain.kind = TerrainKind::kStep;
+  p.plant.terrain.step_height = 0.04;
+  p.plant.terrain.step_x = 0.375;
+  p.walk.step_length = 0.25;
+  p.walk.steps = 6;
+  const WalkMetrics unaware = run_walk(p).metrics;
+  EXPECT_TRUE(unaware.fell);
+  EXPECT_FALSE(unaware.fall_reason.empty());
+  p.plant.terrain.known_heights = true;
+  const WalkMetrics told = run_walk(p).metrics;
+  EXPECT_TRUE(told.completed()) << told.fall_reason << " at " << told.fall_time;
+  EXPECT_EQ(told.mujoco_warnings, 0);
+}
+
 TEST(TerrainWalk, RoughFloorSameBytesTwice) {
   WalkRunParams p;
   p.plant.terrain.kind = TerrainKind::kRough;

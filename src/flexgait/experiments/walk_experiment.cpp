@@ -94,6 +94,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
                                         params.health);
   compensation::DeformationCompensator compensator(controller.model(), params.control);
   humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
+  // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
+  if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
   plant.reset(controller.initial_pose());
   plant.set_push(params.push);
   const walking::RobotModel& model = controller.model();

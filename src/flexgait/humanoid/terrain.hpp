@@ -39,6 +39,7 @@ struct TerrainParams {
   double rough_amplitude = 0.01;    ///< A, largest |h| [m]
   double rough_correlation = 0.1;   ///< ℓ [m]
   int rough_seed = 1;
+  bool known_heights = false;       ///< the walking controller is told the floor's heights at its footprints
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -54,6 +55,8 @@ struct TerrainParams {
     v("terrain.rough.correlation", s.rough_correlation,
       {.unit = "m", .doc = "rough floor: correlation length (autocorrelation exp(-r^2/l^2))", .bounds = closed(0.02, 1)});
     v("terrain.rough.seed", s.rough_seed, {.doc = "rough floor: seed of its heights", .bounds = closed(0, 2147483647)});
+    v("terrain.known_heights", s.known_heights,
+      {.doc = "the controller is told the floor's heights at its footprints (else it feels the floor through its sensors only)"});
   }
 };
 

@@ -11,6 +11,8 @@ namespace {
 
 /// Step adjustment replans when a landing moves by this much [m] (fewer rewrites of the reference).
 constexpr double kReplanDistance = 0.005;
+/// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
+constexpr double kLastAdjustment = 0.75;
 
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
@@ -279,11 +281,11 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
   const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
   const auto n = static_cast<int>(plan_.steps.size());
   if (feet.step >= 0 && feet.step < n) {
-    // Walking (or the recovery step): from the step's double support to a quarter of its swing
-    // (the swing foot's path follows a change of its landing by quintic_blend(1/4) ≈ 10 % at most),
-    // the landing is the planned one moved by (S2) for the error now.
+    // Walking (or the recovery step): from the step's double support to three quarters of its
+    // swing, the landing is the planned one moved by (S2) for the error now.
     Step& s = plan_.steps[static_cast<std::size_t>(feet.step)];
-    if (t + period_ > s.t_lift + 0.25 * (s.t_land - s.t_lift)) return;
+    const double u0 = std::clamp((t + period_ - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);  // swing phase
+    if (u0 > kLastAdjustment) return;
     if (adjusted_step_ != feet.step) {
       adjusted_step_ = feet.step;
       planned_landing_ = s.to;
@@ -295,6 +297,15 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
     const Eigen::Vector2d d(to.x - s.to.x, to.y - s.to.y);
     if (d.norm() < kReplanDistance) return;
     status_.step_shift = Eigen::Vector2d(to.x - planned_landing_.x, to.y - planned_landing_.y);
+    if (u0 > 0) {
+      // Mid-swing: the swing foot stays where it is, p0 = from + b0 (to − from), and goes on to the
+      // new landing: from' = (p0 − b0 to') / (1 − b0), so that from' + b (to' − from') = p0 at b0.
+      const double b0 = quintic_blend(u0);
+      const Eigen::Vector2d from(s.from.x, s.from.y), old_to(s.to.x, s.to.y);
+      const Eigen::Vector2d p0 = from + b0 * (old_to - from), new_from = (p0 - b0 * (old_to + d)) / (1 - b0);
+      s.from.x = new_from.x();
+      s.from.y = new_from.y();
+    }
     // The footprints placed from this landing on move with it.
     auto move = [&](Footprint& f) { f.x += d.x(), f.y += d.y(); };
     for (int j = feet.step; j < n; ++j) {
@@ -359,6 +370,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.com_ref = Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0));
 
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);
+  pelvis_.p.z() = walk_.pelvis_height + feet.floor_z;  // (floor_z = 0 unless know_floor)
   status_.step = feet.step;
   status_.sole = feet.sole;
   status_.swinging = feet.swinging;

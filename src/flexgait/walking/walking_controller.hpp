@@ -115,6 +115,13 @@ class WalkingController {
   const humanoid::JointVector& initial_pose() const { return initial_pose_; }
   /// One control period: sensors at time t in, motor position commands out [rad].
   const humanoid::JointVector& update(const humanoid::SensorReadings& sensors, double t);
+  /// Tells the controller the floor's height(x, y) [m] at its footprints before the walk
+  /// (terrain.known_heights): the soles are placed there and the pelvis keeps walk.pelvis_height
+  /// above the mean of the feet's floor heights. Unknown (the default), the floor is z = 0.
+  template <class Height>
+  void know_floor(const Height& height) {
+    set_footprint_heights(plan_, height);
+  }
 
   const ControllerStatus& status() const { return status_; }
   /// The plan being walked (cut short by a safe stop).
