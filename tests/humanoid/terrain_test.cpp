@@ -21,28 +21,11 @@ PlantParams on(const TerrainParams& t) {
 }
 
 TerrainParams ramp(double angle, double start) {
-  TerrainParams t;
-  t.kind = TerrainKind::kRamp;
-  t.ramp_angle = angle;
-  t.ramp_start = start;
-  return t;
+  return {.kind = TerrainKind::kRamp, .ramp_angle = angle, .ramp_start = start};
 }
-
-TerrainParams step(double height, double x) {
-  TerrainParams t;
-  t.kind = TerrainKind::kStep;
-  t.step_height = height;
-  t.step_x = x;
-  return t;
-}
-
+TerrainParams step(double height, double x) { return {.kind = TerrainKind::kStep, .step_height = height, .step_x = x}; }
 TerrainParams rough(double amplitude, double correlation, int seed = 1) {
-  TerrainParams t;
-  t.kind = TerrainKind::kRough;
-  t.rough_amplitude = amplitude;
-  t.rough_correlation = correlation;
-  t.rough_seed = seed;
-  return t;
+  return {.kind = TerrainKind::kRough, .rough_amplitude = amplitude, .rough_correlation = correlation, .rough_seed = seed};
 }
 
 /// The floor's height under (x, y) in MuJoCo: a ray down from 3 m. y is kept beside the robot
