@@ -326,6 +326,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.roll_kin_encoder = roll_enc;
       w.roll_kin_estimate = roll_est;
       w.push_force = g.push_force;
+      w.dcm = {st.dcm.x(), st.dcm.y()};
+      w.dcm_ref = {st.dcm_ref.x(), st.dcm_ref.y()};
       out.log.push_back(w);
     }
     if (progress && k % 250 == 0) progress(t_now);
