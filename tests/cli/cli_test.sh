@@ -231,6 +231,12 @@ expect_usage_error walk-bad-k-belief "control.k_joint" humanoid walk --set contr
 expect_usage_error walk-push-unknown-body "key 'disturbance.push.body' = 'arm'" humanoid walk --set disturbance.push.body=arm
 expect_usage_error walk-push-in-the-past "key 'disturbance.push.time' = '-1'" humanoid walk --set disturbance.push.time=-1
 expect_usage_error walk-push-negative-duration "key 'disturbance.push.duration' = '-0.1'" humanoid walk --set disturbance.push.duration=-0.1
+expect_usage_error walk-terrain-unknown-kind "key 'terrain.kind' = 'hill'" humanoid walk --set terrain.kind=hill
+expect_usage_error walk-terrain-steep-ramp "key 'terrain.ramp.angle' = '0.5'" humanoid walk --set terrain.kind=ramp --set terrain.ramp.angle=0.5
+expect_usage_error walk-terrain-step-beyond-reach "key 'terrain.step.height' = '-0.06'" humanoid walk --set terrain.kind=step \
+  --set terrain.step.height=-0.06
+expect_usage_error walk-terrain-flat-rough "key 'terrain.rough.amplitude' = '0'" humanoid walk --set terrain.kind=rough \
+  --set terrain.rough.amplitude=0
 
 # Humanoid compensation study and stiffness mismatch (one short step each).
 "$exe" humanoid compensation --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --out "$work/comp" \

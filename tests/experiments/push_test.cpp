@@ -117,6 +117,16 @@ TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
   EXPECT_THROW(largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0), std::invalid_argument);  // 1 N s is recovered
 }
 
+TEST(Push, StepAdjustmentKeepsTheNominalWalk) {
+  // Step adjustment on without a push: the gait of walk-robotis.yaml still lands every step.
+  WalkRunParams p;
+  p.balance.mode = walking::BalanceMode::kDcm;
+  p.balance.step_adjustment = true;
+  p.walk.steps = 6;
+  const WalkMetrics m = run_walk(p).metrics;
+  EXPECT_TRUE(m.completed()) << m.fall_reason << " at " << m.fall_time;
+}
+
 TEST(Push, SameConfigurationSameBytes) {
   WalkRunParams p = standing(10.0);
   p.walk.end_time = 1.0;

@@ -37,6 +37,21 @@ bool finite_truth(const humanoid::GroundTruth& g) {
          finite(g.pelvis_quat) && finite(g.com);
 }
 
+/// A step the legs cannot take: the controller walks at walk.pelvis_height above z = 0 (it is not
+/// told of the step), so a foot landing on a step up must fold its leg by h (hip to ankle at least
+/// 5 % of thigh + shank, as standing_pose) and one reaching down a step must stretch by |h|.
+void check_step_reach(const WalkRunParams& p) {
+  const humanoid::TerrainParams& t = p.plant.terrain;
+  if (t.kind != humanoid::TerrainKind::kStep || p.loaded) return;  // (the builtin robot's legs; a loaded one: the key's bounds)
+  const double reach = p.robot.thigh + p.robot.shank;
+  const double leg = p.walk.pelvis_height - p.robot.hip_axes_depth - p.robot.ankle_to_sole;  // hip to ankle axes standing
+  const double up = leg - 0.05 * reach, down = reach - leg;
+  if (t.step_height > up || -t.step_height > down)
+    throw ConfigError("terrain.step.height",
+                      fmt::format("key 'terrain.step.height' = '{}': beyond the legs' reach at walk.pelvis_height = {} "
+                                  "(from {:.4f} to {:.4f} m)", t.step_height, p.walk.pelvis_height, -down, up));
+}
+
 }  // namespace
 
 WalkRunParams walk_run_from_config(const Config& c) {
@@ -55,6 +70,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
       (void)walking::make_robot_model(*p.loaded);  // refuses a foot the controller cannot handle
     });
   }
+  check_with_origin(c, [&] { check_step_reach(p); });
   return p;
 }
 
@@ -78,6 +94,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
                                         params.health);
   compensation::DeformationCompensator compensator(controller.model(), params.control);
   humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
+  // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
+  if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
   plant.reset(controller.initial_pose());
   plant.set_push(params.push);
   const walking::RobotModel& model = controller.model();
@@ -140,7 +158,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
         if (before.sole_contact[side])
           soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0), walking::rot_z(before.sole_yaw[side])});
       if (direction.norm() > 0)
-        m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2], -plant.model()->opt.gravity[2],
+        m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
+                                                    -plant.model()->opt.gravity[2],
                                                     support_polygon(soles, length, width),
                                                     Eigen::Vector2d(before.com[0], before.com[1]), direction)
                                     .impulse;
@@ -198,7 +217,9 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
 
     // Falls.
     const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());
-    if (g.pelvis_pos[2] < params.walk.pelvis_height - params.fall_height) m.fall_reason = "pelvis too low";
+    // (the pelvis's height above the floor under it: terrain.hpp)
+    const double floor_z = plant.terrain().height(g.pelvis_pos[0], g.pelvis_pos[1]);
+    if (g.pelvis_pos[2] - floor_z < params.walk.pelvis_height - params.fall_height) m.fall_reason = "pelvis too low";
     else if (std::abs(walking::roll_of(R)) > params.fall_tilt || std::abs(walking::pitch_of(R)) > params.fall_tilt)
       m.fall_reason = "pelvis tilted beyond the limit";
     else if (g.non_sole_contact) m.fall_reason = "a body other than a sole touched the floor";
@@ -245,9 +266,10 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     }
     // Landings, once the foot has settled.
     // (steps a safe stop dropped are never landed)
-    while (next_landing < controller.plan().steps.size() && t_now >= out.plan.steps[next_landing].t_land + settle &&
+    // (the controller's plan: a safe stop cuts it, step adjustment moves its landings or adds a recovery step)
+    while (next_landing < controller.plan().steps.size() && t_now >= controller.plan().steps[next_landing].t_land + settle &&
            !m.fell) {
-      const walking::Step& s = out.plan.steps[next_landing];
+      const walking::Step& s = controller.plan().steps[next_landing];
       Landing l;
       l.step = static_cast<int>(next_landing);
       l.side = s.swing;
@@ -304,6 +326,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.roll_kin_encoder = roll_enc;
       w.roll_kin_estimate = roll_est;
       w.push_force = g.push_force;
+      w.dcm = {st.dcm.x(), st.dcm.y()};
+      w.dcm_ref = {st.dcm_ref.x(), st.dcm_ref.y()};
       out.log.push_back(w);
     }
     if (progress && k % 250 == 0) progress(t_now);
@@ -312,6 +336,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   if (progress) progress(out.plan.duration);
 
   m.steps_completed = static_cast<int>(out.landings.size());
+  m.steps_planned = std::max(m.steps_planned, static_cast<int>(controller.plan().steps.size()));  // with a recovery step
   m.zmp_rms_x = zx.rms();
   m.zmp_rms_y = zy.rms();
   m.zmp_max_x = zx.max;

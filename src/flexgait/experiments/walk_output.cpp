@@ -16,7 +16,8 @@ std::string walk_log_csv(const WalkResult& r) {
                  "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
                  "roll_correction", "pitch_correction", "support_margin", "roll_kin_encoder", "roll_kin_estimate", "l_sole_x", "l_sole_y", "l_sole_z",
                  "r_sole_x", "r_sole_y", "r_sole_z", "roll_true", "pitch_true", "sensor_faults", "safe_stop",
-                 "push_force_x", "push_force_y", "push_force_z"});
+                 "push_force_x", "push_force_y", "push_force_z", "dcm_x", "dcm_y", "dcm_ref_x", "dcm_ref_y", "dcm_error_x",
+                 "dcm_error_y"});
   for (const auto& w : r.log) {
     csv.cell(w.t).cell(static_cast<long long>(w.step)).cell(w.zmp_ref_x).cell(w.zmp_ref_y).cell(w.zmp_ft_x);
     csv.cell(w.zmp_ft_y).cell(w.zmp_true_x).cell(w.zmp_true_y).cell(w.com_ref_x).cell(w.com_ref_y).cell(w.com_x);
@@ -26,6 +27,7 @@ std::string walk_log_csv(const WalkResult& r) {
     csv.cell(w.roll_true).cell(w.pitch_true).cell(static_cast<long long>(w.sensor_faults));
     csv.cell(static_cast<long long>(w.safe_stop ? 1 : 0));
     for (const double f : w.push_force) csv.cell(f);
+    csv.cell(w.dcm[0]).cell(w.dcm[1]).cell(w.dcm_ref[0]).cell(w.dcm_ref[1]).cell(w.dcm[0] - w.dcm_ref[0]).cell(w.dcm[1] - w.dcm_ref[1]);
     csv.end_row();
   }
   return csv.str();

@@ -100,6 +100,7 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
 
 std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& p,
                           const std::string& bodies, const std::string& contact) {
+  const TerrainMjcf floor = terrain_mjcf(p.terrain, sole_friction, p.contact_time_constant);
   return fmt::format(R"(<mujoco model="{model}">
   <compiler angle="radian" inertiafromgeom="{ifg}" autolimits="true"/>
   <option timestep="{dt}" integrator="Euler" solver="Newton" iterations="100" tolerance="1e-10" gravity="0 0 -9.81"/>
@@ -109,10 +110,9 @@ std::string twin_document(const std::string& model, bool inertia_from_geom, doub
     <site rgba="1 0 0 1"/>
   </default>
   <visual><global offwidth="1280" offheight="720"/></visual>
-  <worldbody>
+{asset}  <worldbody>
     <light pos="0 -2 4" dir="0 0.4 -1" directional="true"/>
-    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="{mu} 0.005 0.0001" solref="{tc} 1" rgba=".8 .85 .8 1"/>
-{bodies}  </worldbody>
+{floor}{bodies}  </worldbody>
 {contact}  <sensor>
     <force name="l_ft_force" site="l_ft"/>
     <torque name="l_ft_torque" site="l_ft"/>
@@ -124,8 +124,9 @@ std::string twin_document(const std::string& model, bool inertia_from_geom, doub
   </sensor>
 </mujoco>
 )",
-                     fmt::arg("model", model), fmt::arg("ifg", inertia_from_geom ? "true" : "false"),
-                     fmt::arg("dt", p.physics_dt), fmt::arg("mu", sole_friction), fmt::arg("tc", p.contact_time_constant),
+                     fmt::arg("asset", floor.asset.empty() ? "" : "  <asset>\n" + floor.asset + "  </asset>\n"),
+                     fmt::arg("floor", floor.geoms), fmt::arg("model", model), fmt::arg("ifg", inertia_from_geom ? "true" : "false"),
+                     fmt::arg("dt", p.physics_dt),
                      fmt::arg("bodies", bodies), fmt::arg("contact", contact));
 }
 

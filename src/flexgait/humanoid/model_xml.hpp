@@ -17,7 +17,7 @@ namespace flexgait::humanoid {
 std::string humanoid_mjcf(const RobotParams& robot, const PlantParams& plant);
 
 /// The twin's document around its robot (shared by the builtin and loaded twins): compiler and
-/// physics options from `plant`, the floor (friction sole_friction, contact time constant), the
+/// physics options from `plant`, the floor (plant.terrain, terrain.hpp; friction sole_friction, contact time constant), the
 /// robot's `bodies` (MJCF body elements, indented for the worldbody), `contact` (a <contact>
 /// element or ""), and the F/T and IMU sensors on the sites l_ft, r_ft and imu.
 std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& plant,

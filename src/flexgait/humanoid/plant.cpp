@@ -54,8 +54,18 @@ HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
     : HumanoidPlant(builtin_twin(robot, plant), plant) {}
 
 HumanoidPlant::HumanoidPlant(const TwinModel& twin, const PlantParams& plant)
-    : sole_center_(twin.sole_center), params_(plant), rng_(static_cast<std::uint64_t>(plant.noise_seed)) {
+    : sole_center_(twin.sole_center), params_(plant), terrain_(plant.terrain), rng_(static_cast<std::uint64_t>(plant.noise_seed)) {
   model_ = load_mjcf(twin.mjcf);
+  if (params_.terrain.kind == TerrainKind::kRough) {
+    // The rough floor's heights (terrain.hpp), as MuJoCo's normalised data: h = −A + 2A·data.
+    const int f = require(model_, mjOBJ_HFIELD, kTerrainHfield);
+    const HeightGrid& grid = terrain_.grid();
+    if (model_->hfield_nrow[f] != grid.nrow || model_->hfield_ncol[f] != grid.ncol)
+      throw std::logic_error("the twin's height field does not match its terrain");
+    const double a = params_.terrain.rough_amplitude;
+    float* data = model_->hfield_data + model_->hfield_adr[f];
+    for (std::size_t i = 0; i < grid.height.size(); ++i) data[i] = static_cast<float>((grid.height[i] + a) / (2 * a));
+  }
   data_ = mj_makeData(model_);
   std::vector<int> joints;
   std::vector<ActuatorParams> act;
@@ -75,7 +85,7 @@ HumanoidPlant::HumanoidPlant(const TwinModel& twin, const PlantParams& plant)
     act.push_back(a);
   }
   drives_ = std::make_unique<ElasticDrives>(model_, joints, act);
-  floor_geom_ = require(model_, mjOBJ_GEOM, "floor");
+  (void)require(model_, mjOBJ_GEOM, "floor");
   push_body_ = {1, model_->jnt_bodyid[joint_id_[kWaistYaw]]};  // the root body, the waist joint's body
   sole_geom_ = {require(model_, mjOBJ_GEOM, "l_sole"), require(model_, mjOBJ_GEOM, "r_sole")};
   ft_site_ = {require(model_, mjOBJ_SITE, "l_ft"), require(model_, mjOBJ_SITE, "r_ft")};
@@ -120,8 +130,20 @@ void HumanoidPlant::reset(const JointVector& pose) {
     // Box bottom: centre z minus the half-extent along world z (soles are level in a level pose).
     const double* R = data_->geom_xmat + 9 * g;
     const double* h = model_->geom_size + 3 * g;
-    const double extent = std::abs(R[6]) * h[0] + std::abs(R[7]) * h[1] + std::abs(R[8]) * h[2];
-    lowest = std::min(lowest, data_->geom_xpos[3 * g + 2] - extent);
+    const double* c = data_->geom_xpos + 3 * g;
+    if (params_.terrain.kind == TerrainKind::kFlat) {
+      const double extent = std::abs(R[6]) * h[0] + std::abs(R[7]) * h[1] + std::abs(R[8]) * h[2];
+      lowest = std::min(lowest, c[2] - extent);
+      continue;
+    }
+    // On a terrain: the sole's bottom face on a 9 × 9 grid of points, each against the floor under it.
+    for (int i = -4; i <= 4; ++i)
+      for (int k = -4; k <= 4; ++k) {
+        const double u[3] = {0.25 * i * h[0], 0.25 * k * h[1], -h[2]};
+        double p[3];
+        for (int r = 0; r < 3; ++r) p[r] = c[r] + R[3 * r] * u[0] + R[3 * r + 1] * u[1] + R[3 * r + 2] * u[2];
+        lowest = std::min(lowest, p[2] - terrain_.height(p[0], p[1]));
+      }
   }
   data_->qpos[2] -= lowest;
   mj_forward(model_, data_);
@@ -257,9 +279,8 @@ GroundTruth HumanoidPlant::truth() const {
   double fz = 0, mx = 0, my = 0;
   for (int c = 0; c < data_->ncon; ++c) {
     const mjContact& con = data_->contact[c];
-    const bool floor = con.geom1 == floor_geom_ || con.geom2 == floor_geom_;
-    if (!floor) continue;
-    const int other = con.geom1 == floor_geom_ ? con.geom2 : con.geom1;
+    if (!is_floor(con.geom1) && !is_floor(con.geom2)) continue;
+    const int other = is_floor(con.geom1) ? con.geom2 : con.geom1;
     if (other != sole_geom_[0] && other != sole_geom_[1]) g.non_sole_contact = true;
     for (int side = 0; side < 2; ++side) g.sole_contact[side] = g.sole_contact[side] || other == sole_geom_[side];
     mjtNum f[6];

@@ -22,6 +22,7 @@
 #include "flexgait/humanoid/robot_params.hpp"
 #include "flexgait/humanoid/sensor_faults.hpp"
 #include "flexgait/humanoid/sensors.hpp"
+#include "flexgait/humanoid/terrain.hpp"
 
 namespace flexgait::humanoid {
 
@@ -66,7 +67,8 @@ class HumanoidPlant {
   HumanoidPlant(const HumanoidPlant&) = delete;
   HumanoidPlant& operator=(const HumanoidPlant&) = delete;
 
-  /// Puts the robot in `pose` (link and motor angles), pelvis level, soles on the floor, at rest.
+  /// Puts the robot in `pose` (link and motor angles), pelvis level, at rest, lowered until a sole
+  /// touches the floor (on a terrain: its lowest point over the soles, terrain.hpp's heights).
   void reset(const JointVector& pose);
   /// Advances one control period with these motor-side position commands [rad].
   void step(const JointVector& command);
@@ -81,6 +83,8 @@ class HumanoidPlant {
   const mjModel* model() const { return model_; }
   const mjData* data() const { return data_; }
   const PlantParams& params() const { return params_; }
+  /// The floor (plant.terrain's geometry; for evaluation only: the controller is not told).
+  const Terrain& terrain() const { return terrain_; }
 
  private:
   void read_sensors();
@@ -89,11 +93,13 @@ class HumanoidPlant {
 
   std::array<std::array<double, 3>, 2> sole_center_{};  ///< sole centres in the F/T site frames [m]
   PlantParams params_;
+  Terrain terrain_;
   mjModel* model_ = nullptr;
   mjData* data_ = nullptr;
   std::unique_ptr<ElasticDrives> drives_;
   std::array<int, kJoints> joint_id_{};
-  int floor_geom_ = -1;
+  /// A geom of the floor: any geom of the world body (the terrain's, terrain.hpp).
+  bool is_floor(int geom) const { return model_->geom_bodyid[geom] == 0; }
   std::array<int, 2> push_body_{};  ///< body ids of PushBody: pelvis, chest
   Push push_;
   std::array<double, 3> push_force_{}, push_impulse_{}, floor_impulse_{};

@@ -9,6 +9,7 @@
 #include "flexgait/core/record.hpp"
 #include "flexgait/humanoid/joints.hpp"
 #include "flexgait/humanoid/sensor_faults.hpp"
+#include "flexgait/humanoid/terrain.hpp"
 
 namespace flexgait::humanoid {
 
@@ -85,6 +86,7 @@ struct PlantParams {
   int noise_seed = 1;             ///< seed of the sensor noise
   ImuModel imu;                   ///< IMU bias, bias drift, AHRS error (plant.imu.*)
   SensorFaults faults;            ///< the sensors' fault schedule (plant.faults.*)
+  TerrainParams terrain;          ///< the floor (terrain.*; flat by default)
 
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
   /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
@@ -120,6 +122,7 @@ struct PlantParams {
     v("plant.noise.seed", s.noise_seed, {.doc = "seed of the sensor noise", .bounds = closed(0, 2147483647)});
     ImuModel::visit_fields(s.imu, v);
     SensorFaults::visit_fields(s.faults, v);
+    TerrainParams::visit_fields(s.terrain, v);
   }
 };
 

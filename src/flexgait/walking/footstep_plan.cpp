@@ -12,7 +12,7 @@ Eigen::Vector2d blend(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double
   return a + quintic_blend(s) * (b - a);
 }
 
-Pose pose_of(const Footprint& f) { return {Vector3d(f.x, f.y, 0), rot_z(f.yaw)}; }
+Pose pose_of(const Footprint& f) { return {Vector3d(f.x, f.y, f.z), rot_z(f.yaw)}; }
 
 // The step whose interval holds t, for t within the walk (steps are contiguous and equally long).
 std::size_t step_at(const WalkPlan& plan, double t) {
@@ -81,11 +81,13 @@ FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t) {
   FeetTarget out;
   if (plan.steps.empty() || t < plan.steps.front().t_begin) {
     for (int side = 0; side < 2; ++side) out.sole[side] = pose_of(plan.initial[side]);
+    out.floor_z = 0.5 * (plan.initial[0].z + plan.initial[1].z);
     return out;
   }
   if (t >= plan.steps.back().t_land) {
     for (int side = 0; side < 2; ++side) out.sole[side] = pose_of(plan.final[side]);
     out.step = static_cast<int>(plan.steps.size());
+    out.floor_z = 0.5 * (plan.final[0].z + plan.final[1].z);
     return out;
   }
   const std::size_t i = step_at(plan, t);
@@ -94,14 +96,18 @@ FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t) {
   out.sole[1 - s.swing] = pose_of(s.stance);
   if (t < s.t_lift) {
     out.sole[s.swing] = pose_of(s.from);
+    out.floor_z = 0.5 * (s.from.z + s.stance.z);
     return out;
   }
   // Swing: quintic blend in x, y, yaw; height 64 h s³(1 − s)³ (apex h at s = 1/2, smooth ends).
   const double u = std::clamp((t - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);
   const double b = quintic_blend(u);
-  const double z = 64 * swing_height * std::pow(u * (1 - u), 3);
+  // (on known footprint heights: the base blends from.z → to.z, the arc clears the higher one)
+  const double base = s.from.z + b * (s.to.z - s.from.z);
+  const double z = 64 * (swing_height + std::abs(s.to.z - s.from.z)) * std::pow(u * (1 - u), 3);
+  out.floor_z = 0.5 * (base + s.stance.z);
   Pose p;
-  p.p = Vector3d(s.from.x + b * (s.to.x - s.from.x), s.from.y + b * (s.to.y - s.from.y), z);
+  p.p = Vector3d(s.from.x + b * (s.to.x - s.from.x), s.from.y + b * (s.to.y - s.from.y), base + z);
   p.R = rot_z(s.from.yaw + b * (s.to.yaw - s.from.yaw));
   out.sole[s.swing] = p;
   out.swinging[s.swing] = u > 0 && u < 1;

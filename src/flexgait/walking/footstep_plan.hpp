@@ -20,6 +20,7 @@ namespace flexgait::walking {
 struct Footprint {
   double x = 0, y = 0;  ///< sole centre on the floor [m]
   double yaw = 0;       ///< [rad]
+  double z = 0;         ///< floor height under it [m]: 0 unless the controller is told the floor (know_floor)
 };
 
 struct Step {
@@ -50,8 +51,24 @@ struct FeetTarget {
   std::array<Pose, 2> sole;
   std::array<bool, 2> swinging{};
   int step = -1;  ///< index of the current step, −1 before the first, steps.size() after the last
+  double floor_z = 0;  ///< mean floor height under the feet (the swing foot's blended, without its arc) [m]
 };
+/// With footprint heights (Footprint::z) the swing blends from.z to to.z and its arc rises
+/// swing_height above the higher of the two.
 FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t);
+
+/// Sets every footprint's z to height(x, y) [m] (a controller told the floor's heights).
+template <class Height>
+void set_footprint_heights(WalkPlan& plan, const Height& height) {
+  auto set = [&](Footprint& f) { f.z = height(f.x, f.y); };
+  for (Footprint& f : plan.initial) set(f);
+  for (Footprint& f : plan.final) set(f);
+  for (Step& s : plan.steps) {
+    set(s.from);
+    set(s.to);
+    set(s.stance);
+  }
+}
 
 /// Quintic blend 10s³ − 15s⁴ + 6s⁵ of s ∈ [0, 1] (zero velocity and acceleration at both ends).
 double quintic_blend(double s);

@@ -79,6 +79,11 @@ struct BalanceParams {
   double cop_admittance = 0.002;
   double com_velocity_filter_time = 0.01;  ///< low-pass on the estimated COM velocity [s]
   double com_bias_time = 2.0;       ///< time constant pulling the COM estimate's mean onto the measured ZMP's [s]; 0: off
+  // Step adjustment (mode dcm; step_adjustment.hpp).
+  bool step_adjustment = false;     ///< move the next footstep when the DCM error leaves the sole
+  double step_adjustment_limit = 0.25;  ///< |Δ| along each axis of the stance sole [m]
+  double step_reach = 0.4;          ///< landing to stance sole centre, at most [m]
+  double recovery_step_time = 0.5;  ///< standing: the inserted recovery step's duration (double support walk.dsp_ratio of it) [s]
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -119,6 +124,14 @@ struct BalanceParams {
     v("balance.com_bias_time", s.com_bias_time,
       {.unit = "s", .doc = "DCM stabiliser: time constant pulling the COM estimate's mean onto the measured ZMP's (0: off)",
        .bounds = closed(0, 100)});
+    v("balance.step_adjustment", s.step_adjustment,
+      {.doc = "dcm mode: move the next footstep toward the capture point when the DCM error leaves the sole (standing: step)"});
+    v("balance.step_adjustment_limit", s.step_adjustment_limit,
+      {.unit = "m", .doc = "step adjustment: largest shift of a footstep along each axis", .bounds = closed(0, 0.5)});
+    v("balance.step_reach", s.step_reach,
+      {.unit = "m", .doc = "step adjustment: largest distance from the stance sole centre to the landing", .bounds = closed(0.2, 1)});
+    v("balance.recovery_step_time", s.recovery_step_time,
+      {.unit = "s", .doc = "step adjustment while standing: duration of the recovery step", .bounds = closed(0.2, 2)});
   }
 };
 

@@ -9,6 +9,11 @@
 namespace flexgait::walking {
 namespace {
 
+/// Step adjustment replans when a landing moves by this much [m] (fewer rewrites of the reference).
+constexpr double kReplanDistance = 0.005;
+/// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
+constexpr double kLastAdjustment = 0.75;
+
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
 
@@ -39,6 +44,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
       health_(health, period) {
   if (!(period > 0)) throw std::invalid_argument("WalkingController: the period must be positive");
   plan_ = plan_footsteps(walk_);
+  plan_.steps.reserve(plan_.steps.size() + 1);  // room for a recovery step (adjust_steps)
   // The initial standing pose: COM over the middle of the feet, pelvis level at its height.
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, 0.0);
   pelvis_.p = Vector3d(0, 0, walk_.pelvis_height);
@@ -268,6 +274,90 @@ void WalkingController::begin_safe_stop(double t, std::size_t k) {
   }
 }
 
+void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& feet) {
+  const double omega = std::sqrt(kGravity / gains_.com_height);
+  const Eigen::Vector2d e = status_.dcm - status_.dcm_ref;
+  const Eigen::Vector2d half(0.5 * model_.sole_length, 0.5 * model_.sole_width);
+  const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
+  const auto n = static_cast<int>(plan_.steps.size());
+  if (feet.step >= 0 && feet.step < n) {
+    // Walking (or the recovery step): from the step's double support to three quarters of its
+    // swing, the landing is the planned one moved by (S2) for the error now.
+    Step& s = plan_.steps[static_cast<std::size_t>(feet.step)];
+    const double u0 = std::clamp((t + period_ - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);  // swing phase
+    if (u0 > kLastAdjustment) return;
+    if (adjusted_step_ != feet.step) {
+      adjusted_step_ = feet.step;
+      planned_landing_ = s.to;
+    }
+    const Eigen::Vector2d beyond = dcm_error_beyond_sole(e, s.stance, half);
+    const Footprint to = beyond.squaredNorm() > 0
+                             ? adjusted_landing(planned_landing_, s.stance, s.swing, beyond, omega, s.t_land - t, limits)
+                             : planned_landing_;
+    const Eigen::Vector2d d(to.x - s.to.x, to.y - s.to.y);
+    if (d.norm() < kReplanDistance) return;
+    status_.step_shift = Eigen::Vector2d(to.x - planned_landing_.x, to.y - planned_landing_.y);
+    if (u0 > 0) {
+      // Mid-swing: the swing foot stays where it is, p0 = from + b0 (to − from), and goes on to the
+      // new landing: from' = (p0 − b0 to') / (1 − b0), so that from' + b (to' − from') = p0 at b0.
+      const double b0 = quintic_blend(u0);
+      const Eigen::Vector2d from(s.from.x, s.from.y), old_to(s.to.x, s.to.y);
+      const Eigen::Vector2d p0 = from + b0 * (old_to - from), new_from = (p0 - b0 * (old_to + d)) / (1 - b0);
+      s.from.x = new_from.x();
+      s.from.y = new_from.y();
+    }
+    // The footprints placed from this landing on move with it.
+    auto move = [&](Footprint& f) { f.x += d.x(), f.y += d.y(); };
+    for (int j = feet.step; j < n; ++j) {
+      Step& sj = plan_.steps[static_cast<std::size_t>(j)];
+      move(sj.to);
+      if (j == feet.step) continue;
+      move(sj.stance);
+      if (j >= feet.step + 2) move(sj.from);
+    }
+    move(plan_.final[s.swing]);
+    if (feet.step + 1 < n) move(plan_.final[1 - s.swing]);
+  } else if (n == 0 && !recovery_step_) {
+    // Standing: the support polygon of both feet (the box around them along their heading).
+    const std::array<Footprint, 2>& f = plan_.initial;
+    const Footprint mid{0.5 * (f[0].x + f[1].x), 0.5 * (f[0].y + f[1].y), f[0].yaw};
+    const double width = std::hypot(f[0].x - f[1].x, f[0].y - f[1].y);
+    const Eigen::Vector2d beyond = dcm_error_beyond_sole(e, mid, Eigen::Vector2d(half.x(), half.y() + 0.5 * width));
+    if (beyond.squaredNorm() == 0) return;
+    const double T = balance_.recovery_step_time, ds = walk_.dsp_ratio * T;
+    const double settle = std::max(ds, 0.2 * T);
+    // The ZMP reference must hold the step and its settling (with the preview horizon).
+    if (static_cast<std::size_t>(std::ceil((t + T + settle) / period_)) + gains_.G_p.size() + 1 >= ref_x_.size()) return;
+    recovery_step_ = true;
+    // The foot on the side the error leaves by steps; straight ahead or back, the less loaded one.
+    const int swing = std::abs(beyond.y()) > 1e-3 ? (beyond.y() > 0 ? 0 : 1)
+                                                  : (foot_contact_[0].normal_force < foot_contact_[1].normal_force ? 0 : 1);
+    Step st;
+    st.swing = swing;
+    st.t_begin = t;
+    st.t_lift = t + ds;
+    st.t_land = t + T;
+    st.from = f[swing];
+    st.stance = f[1 - swing];
+    st.to = adjusted_landing(st.from, st.stance, swing, beyond, omega, T, limits);
+    status_.step_shift = Eigen::Vector2d(st.to.x - st.from.x, st.to.y - st.from.y);
+    plan_.steps.push_back(st);  // reserved at construction: no allocation
+    plan_.final[swing] = st.to;
+    plan_.final[1 - swing] = st.stance;
+    plan_.t_settle = st.t_land + settle;
+    adjusted_step_ = 0;  // its later adjustments start from the place where the foot would stand still
+    planned_landing_ = st.from;
+  } else {
+    return;
+  }
+  // The preview controller replans: the ZMP reference of the new plan from now on.
+  for (std::size_t i = k; i < ref_x_.size(); ++i) {
+    const Eigen::Vector2d p = zmp_reference(plan_, static_cast<double>(i) * period_);
+    ref_x_[i] = p.x();
+    ref_y_[i] = p.y();
+  }
+}
+
 const humanoid::JointVector& WalkingController::update(const humanoid::SensorReadings& raw, double t) {
   status_.t = t;
   const auto last = ref_x_.size() - gains_.G_p.size() - 1;
@@ -280,6 +370,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.com_ref = Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0));
 
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);
+  pelvis_.p.z() = walk_.pelvis_height + feet.floor_z;  // (floor_z = 0 unless know_floor)
   status_.step = feet.step;
   status_.sole = feet.sole;
   status_.swinging = feet.swinging;
@@ -293,6 +384,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   const double yaw = std::atan2(heading.y(), heading.x());
   const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
   if (dcm) dcm_balance(s, feet, yaw);
+  // (from walk.start_time on: the COM estimate settles while the robot first stands)
+  if (dcm && balance_.step_adjustment && !safe_stop_.active && t >= walk_.start_time) adjust_steps(t, k, feet);
   for (int side = 0; side < 2; ++side) {
     if (!dcm) foot_rotation_[side] -= period_ / balance_.ankle_return_time * foot_rotation_[side];
     if (!balance_.enabled || feet.swinging[side]) foot_rotation_[side].setZero();

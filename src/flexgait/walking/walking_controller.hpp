@@ -57,6 +57,7 @@
 #include "flexgait/walking/preview_control.hpp"
 #include "flexgait/walking/robot_model.hpp"
 #include "flexgait/walking/sensor_health.hpp"
+#include "flexgait/walking/step_adjustment.hpp"
 #include "flexgait/walking/walk_params.hpp"
 
 namespace flexgait::walking {
@@ -88,6 +89,7 @@ struct ControllerStatus {
   Eigen::Vector2d dcm = Eigen::Vector2d::Zero();           ///< ξ of the estimate [m]
   Eigen::Vector2d dcm_ref = Eigen::Vector2d::Zero();       ///< ξ of the plan [m]
   Eigen::Vector2d zmp_command = Eigen::Vector2d::Zero();   ///< the stabiliser's ZMP command (eq. D2) [m]
+  Eigen::Vector2d step_shift = Eigen::Vector2d::Zero();    ///< step adjustment: the last shift of a landing [m]
 };
 
 /// Why and when the controller stopped the walk.
@@ -113,6 +115,13 @@ class WalkingController {
   const humanoid::JointVector& initial_pose() const { return initial_pose_; }
   /// One control period: sensors at time t in, motor position commands out [rad].
   const humanoid::JointVector& update(const humanoid::SensorReadings& sensors, double t);
+  /// Tells the controller the floor's height(x, y) [m] at its footprints before the walk
+  /// (terrain.known_heights): the soles are placed there and the pelvis keeps walk.pelvis_height
+  /// above the mean of the feet's floor heights. Unknown (the default), the floor is z = 0.
+  template <class Height>
+  void know_floor(const Height& height) {
+    set_footprint_heights(plan_, height);
+  }
 
   const ControllerStatus& status() const { return status_; }
   /// The plan being walked (cut short by a safe stop).
@@ -138,6 +147,10 @@ class WalkingController {
   void update_foot_lift(const FeetTarget& feet, const Eigen::Vector2d& zmp);
   /// The DCM stabiliser: COM estimate, ZMP command, foot rotations toward its centres of pressure.
   void dcm_balance(const humanoid::SensorReadings& sensors, const FeetTarget& feet, double yaw);
+  /// Step adjustment (step_adjustment.hpp): while walking, moves the current step's landing and
+  /// the later footsteps once per step; standing (a plan without steps), inserts one recovery
+  /// step. Rewrites the ZMP reference from sample k on, so the preview controller replans.
+  void adjust_steps(double t, std::size_t k, const FeetTarget& feet);
   /// ZMP feedback: advances its filter and integral, returns the COM shift [m].
   Eigen::Vector2d zmp_feedback();
   /// Health of the readings, escalation to a safe stop and the attitude estimate.
@@ -176,6 +189,9 @@ class WalkingController {
   double ft_fade_ = 1, imu_fade_ = 1;  ///< 1, fading to 0 after a failure of the F/T or IMU
   bool ft_failed_ = false, imu_failed_ = false;
   SafeStop safe_stop_;
+  int adjusted_step_ = -1;        ///< the step whose landing is being adjusted
+  Footprint planned_landing_;     ///< its landing before adjustment
+  bool recovery_step_ = false;    ///< a recovery step was inserted (standing)
   ControllerStatus status_;
 };
 
