@@ -1,5 +1,5 @@
-// control.load_model (issue 20): the measured load (ankle F/T wrenches) equals the thesis's weight
-// split when the readings are what the split assumes — the robot standing still in double support,
+// control.load_model (issue 20): the measured load (ankle F/T wrenches, read by the output
+// compensator) equals the thesis's weight split when the readings are what the split assumes — the robot standing still in double support,
 // half the weight under each sole centre — exactly without noise and to the F/T noise with it; the
 // output compensator then finds the same joint angles. The dynamic load adds exactly the Newton–Euler
 // inertial torques of the planned motion (a constant joint acceleration, differentiated by the
@@ -116,8 +116,11 @@ TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillToTheFtNoise) {
     measured.sense(noisy);
   }
   const double a = 1.0 - std::exp(-kPeriod / p.load_filter_time), filtered = std::sqrt(a / (2 - a));
-  gravity.input(s.q, Matrix3d::Identity(), s.plan());
-  measured.input(s.q, Matrix3d::Identity(), s.plan());
+  // The output side reads the F/T (the input side is a feed-forward of the plan's loads).
+  const JointVector encoder = gravity.input(s.q, Matrix3d::Identity(), s.plan());
+  const OutputEstimate eg = gravity.output(encoder, Matrix3d::Identity(), s.plan());
+  const OutputEstimate em = measured.output(encoder, Matrix3d::Identity(), s.plan());
+  ASSERT_TRUE(eg.converged && em.converged);
   walking::RobotModelData data;
   walking::forward_kinematics(s.model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, s.q);
   for (int side = 0; side < 2; ++side) {
@@ -126,7 +129,9 @@ TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillToTheFtNoise) {
     for (int i = 0; i < humanoid::kLegJoints; ++i) {
       const int j = humanoid::leg_first_joint(side) + i;
       const double sd = filtered * std::sqrt(sf * sf * J.col(i).head<3>().squaredNorm() + st * st * J.col(i).tail<3>().squaredNorm());
-      EXPECT_NEAR(measured.input_torque()[j], gravity.input_torque()[j], 5 * sd) << j;
+      EXPECT_NEAR(em.gravity_torque[j], eg.gravity_torque[j], 5 * sd) << j;
+      // θ̂ moves by (K + G)⁻¹ Δτ ≈ Δτ / k: 5 sd / k.
+      EXPECT_NEAR(em.newton[j], eg.newton[j], 5 * sd / p.k_joint) << j;
     }
   }
 }
@@ -141,7 +146,7 @@ TEST(LoadModel, DynamicAddsTheInertialTorquesOfThePlannedMotion) {
   plan.pelvis = Pose{Vector3d(0, 0, 0.72), Matrix3d::Identity()};
   const auto ft = s.readings();
   JointVector q{}, q_prev{};
-  const int samples = 400;  // 1.6 s: the acceleration filter (τ = 0.02 s) has settled to e^{−80}
+  const int samples = 1000;  // 4 s: the acceleration filter (τ = 0.1 s) has settled to e^{−40}
   for (int k = 0; k < samples; ++k) {
     q_prev = q;
     const double t = k * kPeriod;

@@ -128,6 +128,15 @@ double compare_with_mj_rne(const RobotModel& model, Reference& ref, unsigned see
 
 RobotModel builtin() { return make_robot_model(humanoid::RobotParams{}); }
 
+/// Joint angles uniform in ±amplitude [rad].
+JointVector random_angles(unsigned seed, double amplitude) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  JointVector q{};
+  for (double& v : q) v = u(rng);
+  return q;
+}
+
 TEST(RobotModelDynamics, BuiltinRobotMatchesMjRne) {
   const RobotModel model = builtin();
   Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
@@ -172,10 +181,7 @@ TEST(RobotModelDynamics, LoadedRobotMatchesMjRneOnItsOwnFile) {
 
 TEST(RobotModelDynamics, AtRestTheLegTorquesAreTheirGravityTorques) {
   const RobotModel model = builtin();
-  std::mt19937 rng(4);
-  std::uniform_real_distribution<double> u(-0.6, 0.6);
-  JointVector q{};
-  for (double& v : q) v = u(rng);
+  const JointVector q = random_angles(4, 0.6);
   RobotModelData kin;
   forward_kinematics(model, kin, Pose{Vector3d(0, 0, 0.7), Matrix3d(Eigen::AngleAxisd(0.2, Vector3d(1, 2, 0).normalized()))}, q);
   RobotDynamicsData dyn;
@@ -189,10 +195,7 @@ TEST(RobotModelDynamics, AtRestTheLegTorquesAreTheirGravityTorques) {
 
 TEST(RobotModelDynamics, WithTheGroundForceGivenAtTheFeetItIsTheFullGravityTorque) {
   const RobotModel model = builtin();
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
-  JointVector q{};
-  for (double& v : q) v = u(rng);
+  const JointVector q = random_angles(5, 0.4);
   RobotModelData kin;
   forward_kinematics(model, kin, Pose{Vector3d(0, 0, 0.7), Matrix3d::Identity()}, q);
   compensation::FootLoads loads;

@@ -29,6 +29,7 @@ DeformationCompensator::DeformationCompensator(const walking::RobotModel& model,
       params_(params),
       period_(period),
       filter_gain_(params.load_filter_time > 0 ? 1.0 - std::exp(-period / params.load_filter_time) : 1.0),
+      acceleration_gain_(params.acceleration_filter_time > 0 ? 1.0 - std::exp(-period / params.acceleration_filter_time) : 1.0),
       stiffness_(params.stiffness()),
       talos_{{TalosHipRoll(params.talos_cutoff, params.talos_limit, period),
               TalosHipRoll(params.talos_cutoff, params.talos_limit, period)}} {}
@@ -45,18 +46,18 @@ void DeformationCompensator::sense(const std::array<humanoid::ForceTorque, 2>& f
 }
 
 void DeformationCompensator::differentiate_plan(const humanoid::JointVector& desired, const walking::Pose& pelvis) {
-  // Backward differences over T, the accelerations low-passed (control.load_filter_time): the
+  // Backward differences over T, the accelerations low-passed (control.acceleration_filter_time): the
   // balance loops put sensor noise into θ_d, which a second difference amplifies by 4/T².
   const double T = period_;
   for (int j = 0; j < kJoints; ++j) {
     qd_[j] = planned_samples_ >= 1 ? (desired[j] - q_prev_[j]) / T : 0.0;
     const double qdd = planned_samples_ >= 2 ? (qd_[j] - qd_prev_[j]) / T : 0.0;
-    qdd_[j] += filter_gain_ * (qdd - qdd_[j]);
+    qdd_[j] += acceleration_gain_ * (qdd - qdd_[j]);
   }
   const walking::Vector3d v = planned_samples_ >= 1 ? walking::Vector3d((pelvis.p - pelvis_prev_) / T) : walking::Vector3d::Zero();
   const walking::Vector3d a = planned_samples_ >= 2 ? walking::Vector3d((v - pelvis_velocity_) / T) : walking::Vector3d::Zero();
   base_.velocity = v;
-  base_.acceleration += filter_gain_ * (a - base_.acceleration);
+  base_.acceleration += acceleration_gain_ * (a - base_.acceleration);
   q_prev_ = desired;
   qd_prev_ = qd_;
   pelvis_prev_ = pelvis.p;
@@ -80,10 +81,25 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     return tau_;
   }
   // Each foot's F/T wrench (foot frame) turned into the world by this pose's foot frame.
+  if (params_.split == WeightSplit::kCom && planned_cop_) plan_loads_ = com_loads(model_, data_, support.swinging);
   for (int side = 0; side < 2; ++side) {
-    const walking::Matrix3d& Rf = data_.frame[model_.foot[side]].R;
+    const walking::Pose& foot = data_.frame[model_.foot[side]];
     feet_.given[side] = sensed_;
-    feet_.wrench[side] = {Rf * ft_[side].force, Rf * ft_[side].moment};
+    feet_.wrench[side] = {foot.R * ft_[side].force, foot.R * ft_[side].moment};
+    if (!planned_cop_) continue;
+    // The input side (a feed-forward): the plan's ground force, the weight shared as the split
+    // says, at the split's centres of pressure. Not the F/T reading: fed into the commands it
+    // closes a loop of gain ≈ 1 through the gears (a flat foot's ankle torque is k times the
+    // command's change; in double support the feet's loads follow the legs' lengths), and the 1 s
+    // walk falls. Nor M (g + a) with a the commanded pelvis's acceleration: that doubles the
+    // 1 s walk's peak roll error (the reference-ZMP split already places the force).
+    const auto& b = model_.bodies[static_cast<std::size_t>(model_.foot[side])];
+    const walking::Vector3d weight(0, 0, -b.mass * walking::kGravity);
+    const walking::Vector3d ground(0, 0, plan_loads_.share[side] * model_.total_mass * walking::kGravity);
+    const walking::Pose sole = walking::sole_pose(model_, data_, side);
+    const walking::Vector3d cop = sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
+    feet_.given[side] = true;
+    feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }
   static const humanoid::JointVector kRest{};
   static const walking::BaseMotion kAtRest{};
@@ -113,7 +129,9 @@ const humanoid::JointVector& DeformationCompensator::input(const humanoid::Joint
     input_torque_.fill(0.0);
     return command_;
   }
+  planned_cop_ = true;
   input_torque_ = torque(desired, pelvis_R, support);
+  planned_cop_ = false;
   for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / stiffness_[j];  // eq. 9
   return command_;
 }
