@@ -105,8 +105,9 @@ struct CompensationParams {
       {.doc = "split of the weight between the feet (eqs. 5-6) about: com = the pose's centre of mass (the "
               "thesis), zmp = the reference ZMP (continuous at lift-off in a dynamic gait)"});
     v("control.load_model", s.load_model,
-      {.doc = "the compensators' load: gravity = the weight split (the thesis), measured = each foot's ankle F/T "
-              "wrench plus the legs' own weight, dynamic = measured plus the legs' inertial torques of the planned motion"});
+      {.doc = "the compensators' load: gravity = the weight split (the thesis), measured = the output compensator "
+              "reads each foot's ankle F/T wrench (plus the legs' own weight), dynamic = measured plus, in both "
+              "compensators, the legs' inertial torques of the planned motion"});
     v("control.load_filter_time", s.load_filter_time,
       {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
     v("control.acceleration_filter_time", s.acceleration_filter_time,
