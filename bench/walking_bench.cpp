@@ -36,11 +36,13 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The thesis's Fig. 2 loop in one control period: update, input compensator (eqs. 8-9), output
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
+// Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
   walking::WalkingController c(humanoid::RobotParams{}, walking::WalkParams{}, walking::BalanceParams{}, 0.004);
   compensation::CompensationParams p;
   p.split = static_cast<compensation::WeightSplit>(state.range(0));
-  compensation::DeformationCompensator comp(c.model(), p);
+  p.load_model = static_cast<compensation::LoadModel>(state.range(1));
+  compensation::DeformationCompensator comp(c.model(), p, 0.004);
   humanoid::SensorReadings s;
   for (auto& ft : s.ft) ft.force = {0, 0, -250.0};
   const long ticks = static_cast<long>(c.plan().duration / 0.004);
@@ -48,7 +50,8 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   for (auto _ : state) {
     const humanoid::JointVector& desired = c.update(s, static_cast<double>(k) * 0.004);
     const walking::ControllerStatus& st = c.status();
-    const compensation::SupportPlan plan{st.swinging, st.sole, st.zmp_ref};
+    const compensation::SupportPlan plan{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0};
+    if (p.load_model != compensation::LoadModel::kGravity) comp.sense(s.ft);
     const humanoid::JointVector& command = comp.input(desired, st.pelvis.R, plan);
     const compensation::OutputEstimate& e = comp.output(command, st.pelvis.R, plan);
     benchmark::DoNotOptimize(e.newton.data());
@@ -57,9 +60,15 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
     if (++k == ticks) k = 0;
   }
   state.counters["newton_iterations"] = static_cast<double>(iterations) / static_cast<double>(std::max(1L, calls));
-  state.SetLabel(state.range(0) == 0 ? "split about the COM" : "split about the reference ZMP");
+  state.SetLabel(std::string(state.range(0) == 0 ? "split about the COM" : "split about the reference ZMP") +
+                 ", load_model = " + std::string(name_of(p.load_model)));
 }
-BENCHMARK(ControllerUpdateWithCompensators)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(ControllerUpdateWithCompensators)
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({1, 2})
+    ->Unit(benchmark::kMicrosecond);
 
 void ClosedLoopWalk(benchmark::State& state) {
   experiments::WalkRunParams p;

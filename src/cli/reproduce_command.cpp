@@ -92,6 +92,10 @@ std::vector<Step> steps(bool quick) {
                {"humanoid", "compensation", "--config", walk("walk-dynamic.yaml")}});
   s.push_back({"humanoid-mismatch", "Humanoid: stiffness model wrong by ±30 % (3 s/step, balance on)",
                {"humanoid", "mismatch", "--config", walk("walk-dynamic.yaml")}});
+  std::vector<std::string> fast{"humanoid", "compensation", "--config", walk("walk-robotis.yaml")};
+  if (quick) fast.insert(fast.end(), {"--set", "walk.steps=3"});
+  s.push_back({"humanoid-compensation-1s",
+               "Humanoid: 1.0 s/step, compensation off against the field's baselines and ours (issue 20)", fast});
   s.push_back({"humanoid-walk-1s", "Humanoid: ROBOTIS's 1.0 s/step with compensation (beyond the thesis)",
                {"humanoid", "walk", "--config", walk("walk-robotis.yaml")}});
   // The walking envelope: a campaign (campaign/ on the sweep runner), 10-step walks of the default

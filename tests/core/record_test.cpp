@@ -114,7 +114,7 @@ TEST(Record, PlantStiffnessDefaultIsTheSchemasDefault) {
 
 TEST(Record, ChoicesComeFromTheEnumTable) {
   const Schema s = compensation::compensation_schema();
-  EXPECT_EQ(s.find("control.compensation")->choices, (std::vector<std::string>{"off", "input", "output", "both"}));
+  EXPECT_EQ(s.find("control.compensation")->choices, (std::vector<std::string>{"off", "input", "output", "both", "robotis", "talos"}));
   EXPECT_EQ(s.find("control.weight_split")->fallback, "zmp");
   for (const auto& name : enum_name_list<compensation::CompensationMode>())
     EXPECT_EQ(name_of(*enum_from_name<compensation::CompensationMode>(name)), name);

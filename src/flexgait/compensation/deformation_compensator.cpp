@@ -1,5 +1,7 @@
 #include "flexgait/compensation/deformation_compensator.hpp"
 
+#include <cmath>
+
 namespace flexgait::compensation {
 namespace {
 
@@ -21,8 +23,47 @@ void set_legs(humanoid::JointVector& v, const LegVector& legs) {
 
 }  // namespace
 
-DeformationCompensator::DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params)
-    : model_(model), params_(params), stiffness_(params.stiffness()) {}
+DeformationCompensator::DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params,
+                                               double period)
+    : model_(model),
+      params_(params),
+      period_(period),
+      filter_gain_(params.load_filter_time > 0 ? 1.0 - std::exp(-period / params.load_filter_time) : 1.0),
+      acceleration_gain_(params.acceleration_filter_time > 0 ? 1.0 - std::exp(-period / params.acceleration_filter_time) : 1.0),
+      stiffness_(params.stiffness()),
+      talos_{{TalosHipRoll(params.talos_cutoff, params.talos_limit, period),
+              TalosHipRoll(params.talos_cutoff, params.talos_limit, period)}} {}
+
+void DeformationCompensator::sense(const std::array<humanoid::ForceTorque, 2>& ft) {
+  for (int side = 0; side < 2; ++side) {
+    const walking::Vector3d f(ft[side].force.data()), m(ft[side].torque.data());
+    walking::Wrench& w = ft_[side];
+    const double a = sensed_ ? filter_gain_ : 1.0;
+    w.force += a * (f - w.force);
+    w.moment += a * (m - w.moment);
+  }
+  sensed_ = true;
+}
+
+void DeformationCompensator::differentiate_plan(const humanoid::JointVector& desired, const walking::Pose& pelvis) {
+  // Backward differences over T, the accelerations low-passed (control.acceleration_filter_time): the
+  // balance loops put sensor noise into θ_d, which a second difference amplifies by 4/T².
+  const double T = period_;
+  for (int j = 0; j < kJoints; ++j) {
+    qd_[j] = planned_samples_ >= 1 ? (desired[j] - q_prev_[j]) / T : 0.0;
+    const double qdd = planned_samples_ >= 2 ? (qd_[j] - qd_prev_[j]) / T : 0.0;
+    qdd_[j] += acceleration_gain_ * (qdd - qdd_[j]);
+  }
+  const walking::Vector3d v = planned_samples_ >= 1 ? walking::Vector3d((pelvis.p - pelvis_prev_) / T) : walking::Vector3d::Zero();
+  const walking::Vector3d a = planned_samples_ >= 2 ? walking::Vector3d((v - pelvis_velocity_) / T) : walking::Vector3d::Zero();
+  base_.velocity = v;
+  base_.acceleration += acceleration_gain_ * (a - base_.acceleration);
+  q_prev_ = desired;
+  qd_prev_ = qd_;
+  pelvis_prev_ = pelvis.p;
+  pelvis_velocity_ = v;
+  planned_samples_ = std::min(planned_samples_ + 1, 2);
+}
 
 const humanoid::JointVector& DeformationCompensator::torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
                                                             const SupportPlan& support) {
@@ -34,8 +75,39 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
                                                                const walking::Matrix3d& R, const SupportPlan& support) {
   // The pelvis position does not change a gravity torque; only its attitude does.
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), R}, q);
-  if (params_.split == WeightSplit::kCom) plan_loads_ = com_loads(model_, data_, support.swinging);
-  tau_ = gravity_torque(model_, data_, plan_loads_, params_.gravity);
+  if (params_.load_model == LoadModel::kGravity) {
+    if (params_.split == WeightSplit::kCom) plan_loads_ = com_loads(model_, data_, support.swinging);
+    tau_ = gravity_torque(model_, data_, plan_loads_, params_.gravity);
+    return tau_;
+  }
+  // Each foot's F/T wrench (foot frame) turned into the world by this pose's foot frame.
+  if (params_.split == WeightSplit::kCom && planned_cop_) plan_loads_ = com_loads(model_, data_, support.swinging);
+  for (int side = 0; side < 2; ++side) {
+    const walking::Pose& foot = data_.frame[model_.foot[side]];
+    feet_.given[side] = sensed_;
+    feet_.wrench[side] = {foot.R * ft_[side].force, foot.R * ft_[side].moment};
+    if (!planned_cop_) continue;
+    // The input side (a feed-forward): the plan's ground force, the weight shared as the split
+    // says, at the split's centres of pressure. Not the F/T reading: fed into the commands it
+    // closes a loop of gain ≈ 1 through the gears (a flat foot's ankle torque is k times the
+    // command's change; in double support the feet's loads follow the legs' lengths), and the 1 s
+    // walk falls. Nor M (g + a) with a the commanded pelvis's acceleration: that doubles the
+    // 1 s walk's peak roll error (the reference-ZMP split already places the force).
+    const auto& b = model_.bodies[static_cast<std::size_t>(model_.foot[side])];
+    const walking::Vector3d weight(0, 0, -b.mass * walking::kGravity);
+    const walking::Vector3d ground(0, 0, plan_loads_.share[side] * model_.total_mass * walking::kGravity);
+    const walking::Pose sole = walking::sole_pose(model_, data_, side);
+    const walking::Vector3d cop = sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
+    feet_.given[side] = true;
+    feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
+  }
+  static const humanoid::JointVector kRest{};
+  static const walking::BaseMotion kAtRest{};
+  const bool dynamic = params_.load_model == LoadModel::kDynamic;
+  walking::inverse_dynamics(model_, data_, dynamic ? base_ : kAtRest, dynamic ? qd_ : kRest, dynamic ? qdd_ : kRest,
+                            dynamics_, feet_);
+  tau_ = dynamics_.tau;
+  tau_[humanoid::kWaistYaw] = 0.0;  // the waist carries no modelled load (as in the gravity form)
   return tau_;
 }
 
@@ -48,13 +120,39 @@ const humanoid::JointVector& DeformationCompensator::input(const humanoid::Joint
                                                            const walking::Matrix3d& pelvis_R,
                                                            const SupportPlan& support) {
   command_ = desired;
+  if (params_.load_model == LoadModel::kDynamic) differentiate_plan(desired, support.pelvis);
+  if (params_.mode == CompensationMode::kRobotis || params_.mode == CompensationMode::kTalos) {
+    apply_baseline(desired, pelvis_R, support);
+    return command_;
+  }
   if (!params_.input()) {
     input_torque_.fill(0.0);
     return command_;
   }
+  planned_cop_ = true;
   input_torque_ = torque(desired, pelvis_R, support);
+  planned_cop_ = false;
   for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / stiffness_[j];  // eq. 9
   return command_;
+}
+
+void DeformationCompensator::apply_baseline(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R,
+                                            const SupportPlan& support) {
+  // Both read the modelled hip roll torque: TALOS its size, ROBOTIS only its sign (the direction
+  // of the stance hip roll's sag, which its fixed feed-forward opposes: θ_cmd − θ_d has the sign of
+  // τ, eq. 9).
+  const bool talos = params_.mode == CompensationMode::kTalos;
+  input_torque_ = torque(desired, pelvis_R, support);
+  for (int side = 0; side < 2; ++side) {
+    const int hip_roll = leg_first_joint(side) + 1;
+    if (talos) {
+      const double tau = support.swinging[side] ? 0.0 : input_torque_[hip_roll];
+      command_[hip_roll] += talos_[side].update(tau, stiffness_[hip_roll]);
+    } else if (!support.swinging[side] && support.swinging[1 - side]) {
+      const double against_sag = input_torque_[hip_roll] >= 0 ? 1.0 : -1.0;
+      command_[hip_roll] += robotis_hip_roll(support.single_support_phase, params_.robotis_hip_roll, against_sag);
+    }
+  }
 }
 
 const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector& encoder,

@@ -10,24 +10,49 @@
 ///    G = ∂τ_g/∂θ by forward differences. The one-step form (12) and the conventional estimate are
 ///    reported beside it.
 /// k is the controller's belief (control.k_joint), apart from the plant's true stiffness.
-/// Allocation-free after construction.
+///
+/// The load (control.load_model, issue 20): `gravity` is the thesis's static model above
+/// (gravity_torque.hpp). `measured`: the output compensator's legs carry their own links' weight
+/// and, at the ankle, the wrench the F/T sensor reads (low-passed with control.load_filter_time;
+/// the foot below the sensor is in the reading) — τ = g_leg,above(θ) + J_sᵀ w_s, by
+/// robot_model_dynamics with the feet's wrenches given; its Newton solves with it. The input
+/// compensator, a feed-forward, keeps the plan's loads (the full form): the F/T reading fed into
+/// the commands closes a loop of gain ≈ 1 through the gears, and the walks fall. `dynamic`: both
+/// add the legs' inertial torques of the planned motion — the desired joint angles' and the
+/// commanded pelvis's velocities and accelerations (backward differences over the control
+/// period, the accelerations low-passed with control.acceleration_filter_time) through the
+/// recursive Newton–Euler.
+///
+/// control.compensation = robotis | talos: the field's baselines (field_baselines.hpp), input side
+/// only. Allocation-free after construction.
 #include <array>
 #include <string_view>
 
+#include "flexgait/compensation/field_baselines.hpp"
 #include "flexgait/compensation/gravity_torque.hpp"
 #include "flexgait/compensation/link_angle_newton.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
+#include "flexgait/humanoid/sensors.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/robot_model_dynamics.hpp"
 
 namespace flexgait::compensation {
 
-enum class CompensationMode { kOff, kInput, kOutput, kBoth };
-constexpr std::array<EnumName<CompensationMode>, 4> enum_names(CompensationMode) {
+enum class CompensationMode { kOff, kInput, kOutput, kBoth, kRobotis, kTalos };
+constexpr std::array<EnumName<CompensationMode>, 6> enum_names(CompensationMode) {
   return {{{CompensationMode::kOff, "off"},
            {CompensationMode::kInput, "input"},
            {CompensationMode::kOutput, "output"},
-           {CompensationMode::kBoth, "both"}}};
+           {CompensationMode::kBoth, "both"},
+           {CompensationMode::kRobotis, "robotis"},
+           {CompensationMode::kTalos, "talos"}}};
+}
+
+/// What loads the deformation model's torque comes from (issue 20).
+enum class LoadModel { kGravity, kMeasured, kDynamic };
+constexpr std::array<EnumName<LoadModel>, 3> enum_names(LoadModel) {
+  return {{{LoadModel::kGravity, "gravity"}, {LoadModel::kMeasured, "measured"}, {LoadModel::kDynamic, "dynamic"}}};
 }
 
 /// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
@@ -43,6 +68,8 @@ struct SupportPlan {
   std::array<bool, 2> swinging{};                                          ///< which feet swing
   std::array<walking::Pose, 2> soles;                                      ///< planned sole poses (world)
   Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();                       ///< reference ZMP (world) [m]
+  walking::Pose pelvis;                                                    ///< commanded pelvis pose (world; load_model dynamic)
+  double single_support_phase = -1;  ///< s ∈ [0, 1] from lift-off to touchdown, −1 outside single support (robotis)
 };
 
 struct CompensationParams {
@@ -55,6 +82,12 @@ struct CompensationParams {
     ones.fill(1.0);
     return ones;
   }();
+  LoadModel load_model = LoadModel::kGravity;
+  double load_filter_time = 0.1;   ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
+  double acceleration_filter_time = 0.1;  ///< time constant of the planned accelerations' low-pass [s]
+  double robotis_hip_roll = 0.017; ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
+  double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
+  double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
   NewtonSettings newton;
   double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ [rad]
 
@@ -65,11 +98,24 @@ struct CompensationParams {
   static void visit_fields(Self& s, Visit& v) {
     v("control.compensation", s.mode,
       {.doc = "actuator deformation compensation: none, the input compensator (eqs. 8-9), the output "
-              "compensator (eqs. 10-13) or both"});
+              "compensator (eqs. 10-13), both, or a field baseline: robotis (THORMANG3's fixed stance hip roll "
+              "feed-forward) or talos (TALOS's stance hip roll tau/K, low-passed, saturated)"});
     v("control.gravity_model", s.gravity, {.doc = "gravity torque: thesis = J^T F only (eq. 4), full = the legs' own weight too"});
     v("control.weight_split", s.split,
       {.doc = "split of the weight between the feet (eqs. 5-6) about: com = the pose's centre of mass (the "
               "thesis), zmp = the reference ZMP (continuous at lift-off in a dynamic gait)"});
+    v("control.load_model", s.load_model,
+      {.doc = "the compensators' load: gravity = the weight split (the thesis), measured = the output compensator "
+              "reads each foot's ankle F/T wrench (plus the legs' own weight), dynamic = measured plus, in both "
+              "compensators, the legs' inertial torques of the planned motion"});
+    v("control.load_filter_time", s.load_filter_time,
+      {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
+    v("control.acceleration_filter_time", s.acceleration_filter_time,
+      {.unit = "s", .doc = "dynamic: time constant of the planned accelerations' low-pass (0: none)", .bounds = closed(0, 1)});
+    v("control.robotis_hip_roll", s.robotis_hip_roll,
+      {.unit = "rad", .doc = "robotis: stance hip roll feed-forward at mid single support", .bounds = closed(0, 0.2)});
+    v("control.talos_cutoff", s.talos_cutoff, {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});
+    v("control.talos_limit", s.talos_limit, {.unit = "rad", .doc = "talos: hip roll correction saturation", .bounds = closed(0, 0.2)});
     v("control.k_joint", s.k_joint, {.unit = "Nm/rad", .doc = "the controller's belief of the gears' stiffness", .bounds = closed(1, 1e7)});
     v("control.newton_max_iterations", s.newton.max_iterations,
       {.doc = "output compensator: Newton steps at most", .bounds = closed(1, 100)});
@@ -81,8 +127,8 @@ struct CompensationParams {
   bool output() const { return mode == CompensationMode::kOutput || mode == CompensationMode::kBoth; }
 };
 
-/// Keys control.compensation, control.gravity_model, control.weight_split, control.k_joint,
-/// control.newton_*.
+/// Keys control.compensation, control.gravity_model, control.weight_split, control.load_model,
+/// control.load_filter_time, control.acceleration_filter_time, control.robotis_hip_roll, control.talos_*, control.k_joint, control.newton_*.
 inline Schema compensation_schema() { return schema_of<CompensationParams>(); }
 inline CompensationParams compensation_from_config(const Config& config) {
   return record_from_config<CompensationParams>(config);
@@ -103,10 +149,16 @@ struct OutputEstimate {
 
 class DeformationCompensator {
  public:
-  DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params);
+  /// \param period control period T [s] (the filters and the planned motion's differences)
+  DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params, double period = 0.004);
+
+  /// load_model measured/dynamic: this period's ankle F/T readings (the leg's wrench on each foot,
+  /// foot frame, at the foot origin), low-passed. Call once per period before input and output.
+  void sense(const std::array<humanoid::ForceTorque, 2>& ft);
 
   /// Eqs. 8-9: motor commands for the desired joint angles and the commanded pelvis attitude
-  /// `pelvis_R` (world). With input compensation off: θ_d itself.
+  /// `pelvis_R` (world). With input compensation off: θ_d itself; robotis, talos: θ_d with their
+  /// hip roll offsets. Call once per period (load_model dynamic differentiates θ_d and the pelvis).
   const humanoid::JointVector& input(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R,
                                      const SupportPlan& support);
   /// τ_g(θ_d) of the last `input` call [Nm].
@@ -125,17 +177,37 @@ class DeformationCompensator {
  private:
   /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).
   void split_by_plan(const SupportPlan& support);
+  /// load_model dynamic: the planned joint and pelvis velocities and accelerations from this θ_d.
+  void differentiate_plan(const humanoid::JointVector& desired, const walking::Pose& pelvis);
+  /// The field baselines' hip roll offsets on command_.
+  void apply_baseline(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R, const SupportPlan& support);
   /// τ_g with the loads of the last split_by_plan (kZmpReference) or of this pose (kCom).
   const humanoid::JointVector& torque_at(const humanoid::JointVector& q, const walking::Matrix3d& R,
                                          const SupportPlan& support);
 
   walking::RobotModel model_;
   CompensationParams params_;
+  double period_;
+  double filter_gain_;  ///< 1 − e^{−T/τ} of control.load_filter_time
+  double acceleration_gain_;  ///< the same of control.acceleration_filter_time
   humanoid::JointVector stiffness_;  ///< params_.stiffness(), computed once [Nm/rad]
   walking::RobotModelData data_;
   FootLoads plan_loads_;  ///< the split about the reference ZMP (kZmpReference), from the plan
   humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};
   OutputEstimate estimate_;
+  // load_model measured/dynamic:
+  bool sensed_ = false;                      ///< a reading has arrived (the filter starts from it)
+  bool planned_cop_ = false;                 ///< evaluating for the input side: measured force at the plan's CoP
+  std::array<walking::Wrench, 2> ft_{};      ///< low-passed F/T wrenches, foot frame
+  walking::FootWrenches feet_;               ///< the same in the world for the pose being evaluated
+  walking::RobotDynamicsData dynamics_;
+  // load_model dynamic: the planned motion
+  int planned_samples_ = 0;
+  humanoid::JointVector q_prev_{}, qd_{}, qd_prev_{}, qdd_{};
+  walking::Vector3d pelvis_prev_ = walking::Vector3d::Zero(), pelvis_velocity_ = walking::Vector3d::Zero();
+  walking::BaseMotion base_;
+  // baselines
+  std::array<TalosHipRoll, 2> talos_;
 };
 
 }  // namespace flexgait::compensation

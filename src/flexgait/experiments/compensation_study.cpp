@@ -13,10 +13,12 @@ namespace {
 using compensation::CompensationMode;
 using compensation::GravityForm;
 
-WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form) {
+WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form,
+                   compensation::LoadModel load = compensation::LoadModel::kGravity) {
   WalkRunParams p = base;
   p.control.mode = mode;
   p.control.gravity = form;
+  p.control.load_model = load;
   return p;
 }
 
@@ -33,9 +35,14 @@ double cut(double off, double on) { return off > 0 ? 1.0 - on / off : 0.0; }
 }  // namespace
 
 std::vector<StudyCase> compensation_cases(const WalkRunParams& base) {
+  using compensation::LoadModel;
   return {{"off", with(base, CompensationMode::kOff, base.control.gravity)},
           {"both", with(base, CompensationMode::kBoth, GravityForm::kFull)},
-          {"both-thesis-form", with(base, CompensationMode::kBoth, GravityForm::kThesis)}};
+          {"both-thesis-form", with(base, CompensationMode::kBoth, GravityForm::kThesis)},
+          {"robotis", with(base, CompensationMode::kRobotis, GravityForm::kFull)},
+          {"talos", with(base, CompensationMode::kTalos, GravityForm::kFull)},
+          {"both-measured", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kMeasured)},
+          {"both-dynamic", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic)}};
 }
 
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales) {
@@ -84,7 +91,29 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   j["newton_conventional_max"] = on.newton_conventional_max;
   j["newton_iterations_max"] = on.newton_iterations_max;
   j["newton_failures"] = on.newton_failures;
-  j["fell"] = {{"off", off.fell}, {"both", on.fell}, {"both-thesis-form", thesis.fell}};
+  nlohmann::ordered_json fell, table = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const WalkMetrics& m = results[i].metrics;
+    fell[cases[i].name] = m.fell;
+    // Without an output compensator the controller's joint angles are the encoders': their error
+    // is the whole deflection (share 1).
+    const bool output = cases[i].params.control.output();
+    nlohmann::ordered_json row;
+    row["case"] = cases[i].name;
+    row["compensation"] = std::string(name_of(cases[i].params.control.mode));
+    row["load_model"] = std::string(name_of(cases[i].params.control.load_model));
+    row["fell"] = m.fell;
+    row["pelvis_roll_error_max"] = m.pelvis_roll_error_max;
+    row["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, m.pelvis_roll_error_max);
+    row["zmp_rms_x"] = m.zmp_rms_x;
+    row["zmp_rms_y"] = m.zmp_rms_y;
+    row["landing_error_mean"] = m.landing_error_mean;
+    row["estimate_error_share_of_deflection"] =
+        !output ? 1.0 : (m.deflection_rms > 0 ? m.estimate_error_rms / m.deflection_rms : 0.0);
+    table.push_back(row);
+  }
+  j["fell"] = fell;
+  j["table"] = table;
   nlohmann::ordered_json all;
   for (std::size_t i = 0; i < cases.size(); ++i) all[cases[i].name] = nlohmann::ordered_json::parse(walk_summary_json(results[i]));
   j["cases"] = all;

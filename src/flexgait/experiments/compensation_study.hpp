@@ -5,7 +5,8 @@
 ///  - compensation study: the same gait with compensation off, both compensators with the full
 ///    gravity torque, and both with the thesis form (eq. 4 only) — pelvis error (Fig. 13), ZMP
 ///    tracking (Fig. 14), estimated against true joint angles, Newton against the conventional
-///    estimate (Fig. 15);
+///    estimate (Fig. 15) — and beside them the field's baselines (robotis, talos) and ours with
+///    the measured and dynamic loads (issue 20), in one table;
 ///  - stiffness mismatch: the twin's true stiffness scaled against the controller's belief
 ///    (control.k_joint), compensation off and both, balance controller as configured.
 #include <string>
@@ -20,7 +21,8 @@ struct StudyCase {
   WalkRunParams params;
 };
 
-/// off, both (full form), both (thesis form), from `base` (its other settings kept).
+/// off, both (full form), both (thesis form), robotis, talos, both-measured, both-dynamic, from
+/// `base` (its other settings kept).
 std::vector<StudyCase> compensation_cases(const WalkRunParams& base);
 /// For each scale s: the twin's k_joint = s × its configured value, compensation off and both.
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales);

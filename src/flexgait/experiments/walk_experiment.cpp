@@ -92,7 +92,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const double T = params.plant.control_period;
   walking::WalkingController controller(walk_controller_model(params), params.walk, params.balance, T, params.estimator,
                                         params.health);
-  compensation::DeformationCompensator compensator(controller.model(), params.control);
+  compensation::DeformationCompensator compensator(controller.model(), params.control, T);
   humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
   if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
@@ -140,7 +140,12 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const humanoid::SensorReadings& sensors = controller.sensors();
     flags_since_log |= st.sensor_flags;
     // The thesis's Fig. 2: input compensator → robot → encoders → output compensator.
-    const compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref};
+    compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0};
+    if ((st.swinging[0] || st.swinging[1]) && st.step >= 0 && st.step < static_cast<int>(controller.plan().steps.size())) {
+      const walking::Step& s = controller.plan().steps[static_cast<std::size_t>(st.step)];
+      plan_now.single_support_phase = std::clamp((t - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);
+    }
+    if (params.control.load_model != compensation::LoadModel::kGravity) compensator.sense(sensors.ft);
     const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
     const compensation::OutputEstimate* estimate =
         params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;

@@ -1,0 +1,66 @@
+#pragma once
+/// \file robot_model_dynamics.hpp
+/// Inverse dynamics of the controller's own rigid-body model (robot_model.hpp) by the recursive
+/// Newton–Euler algorithm (Luh, Walker and Paul 1980; Featherstone, "Rigid Body Dynamics
+/// Algorithms", §5.3), in the world frame, for the floating pelvis (issue 20, spec humanoid.md
+/// "The actuator deformation model" beyond statics). No simulator, no allocation.
+///
+/// Forward pass, body i with parent p, r = p_i − p_p, a = R_i · axis (joint origins lie on the axes):
+///     ω_i = ω_p + a q̇_i,            α_i = α_p + a q̈_i + ω_p × a q̇_i,
+///     v_i = v_p + ω_p × r,          a_i = a_p + α_p × r + ω_p × (ω_p × r),
+/// with the pelvis's a_0 = its acceleration − g (gravity as a fictitious upward acceleration).
+/// Each body's inertial wrench at its centre c_i = R_i com:
+///     F_i = m_i (a_i + α_i × c_i + ω_i × (ω_i × c_i)),   N_i = I_i α_i + ω_i × I_i ω_i, I_i = R_i I R_iᵀ.
+/// Backward pass (children before parents): the wrench the parent applies to body i's subtree,
+///     f_i = F_i + Σ_children f_j,   n_i = N_i + c_i × F_i + Σ_children (n_j + (p_j − p_i) × f_j),
+/// about the body origin p_i; the joint torque is τ_i = a · n_i (the gear torque on the child,
+/// the sign of leg_gravity_torque) and (f_0, n_0) is the net wrench the pelvis needs.
+/// A foot's wrench may be given instead of computed (a measured ankle F/T reading: the leg's wrench
+/// on the foot); then nothing below the sensor is modelled. With q̇ = q̈ = 0 and the pelvis at rest
+/// the leg torques are leg_gravity_torque's.
+#include <array>
+
+#include "flexgait/humanoid/joints.hpp"
+#include "flexgait/walking/robot_model.hpp"
+
+namespace flexgait::walking {
+
+/// The pelvis's motion, world frame.
+struct BaseMotion {
+  Vector3d velocity = Vector3d::Zero();              ///< of the pelvis origin [m/s]
+  Vector3d angular_velocity = Vector3d::Zero();      ///< [rad/s]
+  Vector3d acceleration = Vector3d::Zero();          ///< of the pelvis origin, d/dt velocity [m/s^2]
+  Vector3d angular_acceleration = Vector3d::Zero();  ///< [rad/s^2]
+};
+
+/// A force and a moment about a stated point, world frame.
+struct Wrench {
+  Vector3d force = Vector3d::Zero();   ///< [N]
+  Vector3d moment = Vector3d::Zero();  ///< [Nm]
+};
+
+struct RobotDynamicsData {
+  std::array<Vector3d, kBodies> angular_velocity;      ///< ω_i, world [rad/s]
+  std::array<Vector3d, kBodies> velocity;              ///< v_i of the body origin, world [m/s]
+  std::array<Vector3d, kBodies> angular_acceleration;  ///< α_i, world [rad/s^2]
+  std::array<Vector3d, kBodies> acceleration;          ///< a_i of the body origin, world, gravity taken out [m/s^2]
+  std::array<Wrench, kBodies> joint_wrench;            ///< (f_i, n_i): the parent's wrench on body i's subtree, about p_i
+  humanoid::JointVector tau{};                         ///< τ of every actuated joint [Nm]
+};
+
+/// Feet whose wrench is given (the leg's wrench on the foot at the foot origin, world; e.g. an
+/// ankle F/T reading) rather than computed from the foot's own inertia.
+struct FootWrenches {
+  std::array<bool, 2> given{};
+  std::array<Wrench, 2> wrench;
+};
+
+/// Inverse dynamics after forward_kinematics(model, kinematics, pelvis, q).
+/// \param qd joint velocities (humanoid::kJoints) [rad/s]; \param qdd joint accelerations [rad/s^2]
+/// \param gravity 1 to include the weight (kGravity), 0 for the inertial part alone
+/// \return the torques in data.tau; the pelvis's wrench in data.joint_wrench[0]
+void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
+                      const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
+                      const FootWrenches& feet = {}, double gravity = 1.0);
+
+}  // namespace flexgait::walking

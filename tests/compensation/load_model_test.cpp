@@ -1,0 +1,195 @@
+// control.load_model (issue 20): the measured load (ankle F/T wrenches, read by the output
+// compensator) equals the thesis's weight split when the readings are what the split assumes — the robot standing still in double support,
+// half the weight under each sole centre — exactly without noise and to the F/T noise with it; the
+// output compensator then finds the same joint angles. The dynamic load adds exactly the Newton–Euler
+// inertial torques of the planned motion (a constant joint acceleration, differentiated by the
+// compensator), and at rest it is the measured load.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "flexgait/compensation/deformation_compensator.hpp"
+#include "flexgait/walking/leg_kinematics.hpp"
+#include "flexgait/walking/robot_model_dynamics.hpp"
+
+namespace flexgait::compensation {
+namespace {
+
+using humanoid::JointVector;
+using humanoid::kJoints;
+using walking::Matrix3d;
+using walking::Pose;
+using walking::Vector3d;
+
+constexpr double kPeriod = 0.004;  // [s]
+
+/// Standing on both feet, soles flat under the hips, the COM over the middle of the soles.
+struct Stance {
+  walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
+  std::array<Pose, 2> soles;
+  JointVector q{};
+  Stance() {
+    const double y = model.leg[0].anchor[0].y();
+    soles = {Pose{Vector3d(0, y, 0), Matrix3d::Identity()}, Pose{Vector3d(0, -y, 0), Matrix3d::Identity()}};
+    Pose pelvis{Vector3d(0, 0, 0.72), Matrix3d::Identity()};
+    walking::RobotModelData data;
+    for (int it = 0; it < 40; ++it) {
+      for (int side = 0; side < 2; ++side) {
+        const walking::IkSolution ik = walking::leg_inverse_kinematics(model.leg[side], Pose{soles[side].p - pelvis.p, Matrix3d::Identity()});
+        for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(side) + i] = ik.q[i];
+      }
+      walking::forward_kinematics(model, data, pelvis, q);
+      pelvis.p.x() -= walking::center_of_mass(model, data).x();
+    }
+  }
+  SupportPlan plan() const {
+    SupportPlan p;
+    p.soles = soles;
+    p.zmp_ref = 0.5 * (soles[0].p + soles[1].p).head<2>();  // equal split, each share at its sole centre
+    return p;
+  }
+  /// What each ankle F/T sensor reads when the ground pushes W/2 up at each sole centre: the leg's
+  /// wrench on the foot (foot frame, about the foot origin) = −(ground's) − (the foot's weight).
+  std::array<humanoid::ForceTorque, 2> readings() const {
+    walking::RobotModelData data;
+    walking::forward_kinematics(model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
+    std::array<humanoid::ForceTorque, 2> ft;
+    for (int side = 0; side < 2; ++side) {
+      const Pose& foot = data.frame[model.foot[side]];
+      const auto& b = model.bodies[model.foot[side]];
+      const Vector3d ground(0, 0, 0.5 * model.total_mass * walking::kGravity), weight(0, 0, -b.mass * walking::kGravity);
+      const Vector3d f = -ground - weight;
+      const Vector3d m = -(walking::sole_pose(model, data, side).p - foot.p).cross(ground) - (foot.R * b.com).cross(weight);
+      const Vector3d fs = foot.R.transpose() * f, ms = foot.R.transpose() * m;
+      for (int i = 0; i < 3; ++i) ft[side].force[i] = fs(i), ft[side].torque[i] = ms(i);
+    }
+    return ft;
+  }
+};
+
+CompensationParams params(LoadModel load) {
+  CompensationParams p;
+  p.mode = CompensationMode::kBoth;
+  p.load_model = load;
+  return p;
+}
+
+TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillWithoutNoise) {
+  const Stance s;
+  DeformationCompensator gravity(s.model, params(LoadModel::kGravity), kPeriod);
+  DeformationCompensator measured(s.model, params(LoadModel::kMeasured), kPeriod);
+  measured.sense(s.readings());
+  const JointVector a = gravity.input(s.q, Matrix3d::Identity(), s.plan());
+  const JointVector ta = gravity.input_torque();
+  const JointVector b = measured.input(s.q, Matrix3d::Identity(), s.plan());
+  const JointVector tb = measured.input_torque();
+  for (int j = 0; j < kJoints; ++j) {
+    EXPECT_NEAR(tb[j], ta[j], 1e-9) << j;  // rounding on O(100) Nm
+    EXPECT_NEAR(b[j], a[j], 1e-12) << j;
+  }
+  EXPECT_GT(std::abs(ta[humanoid::kLeftKnee]), 5.0);  // the comparison is not of zeros
+  // The output compensator solves the same equation: the same joint angles.
+  JointVector encoder = a;
+  const OutputEstimate eg = gravity.output(encoder, Matrix3d::Identity(), s.plan());
+  const OutputEstimate em = measured.output(encoder, Matrix3d::Identity(), s.plan());
+  ASSERT_TRUE(eg.converged && em.converged);
+  for (int j = 0; j < kJoints; ++j) EXPECT_NEAR(em.newton[j], eg.newton[j], 1e-11) << j;
+}
+
+TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillToTheFtNoise) {
+  // F/T noise σ_f = 0.5 N, σ_τ = 0.05 Nm per axis (an ATI Mini85-class sensor), white, through the
+  // first-order low-pass (gain a = 1 − e^{−T/τ}): std σ √(a / (2 − a)). Each joint torque moves by
+  // J_sᵀ Δw (J_s the leg's Jacobian at the sensor): its std is √(Σ J² σ²); the tolerance is 5 std.
+  const double sf = 0.5, st = 0.05;
+  const Stance s;
+  CompensationParams p = params(LoadModel::kMeasured);
+  DeformationCompensator gravity(s.model, params(LoadModel::kGravity), kPeriod);
+  DeformationCompensator measured(s.model, p, kPeriod);
+  const auto exact = s.readings();
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n(0, 1);
+  for (int k = 0; k < 2000; ++k) {
+    auto noisy = exact;
+    for (auto& r : noisy)
+      for (int i = 0; i < 3; ++i) r.force[i] += sf * n(rng), r.torque[i] += st * n(rng);
+    measured.sense(noisy);
+  }
+  const double a = 1.0 - std::exp(-kPeriod / p.load_filter_time), filtered = std::sqrt(a / (2 - a));
+  // The output side reads the F/T (the input side is a feed-forward of the plan's loads).
+  const JointVector encoder = gravity.input(s.q, Matrix3d::Identity(), s.plan());
+  const OutputEstimate eg = gravity.output(encoder, Matrix3d::Identity(), s.plan());
+  const OutputEstimate em = measured.output(encoder, Matrix3d::Identity(), s.plan());
+  ASSERT_TRUE(eg.converged && em.converged);
+  walking::RobotModelData data;
+  walking::forward_kinematics(s.model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, s.q);
+  for (int side = 0; side < 2; ++side) {
+    const Vector3d sensor = data.frame[s.model.foot[side]].p;
+    const walking::LegJacobian J = walking::leg_jacobian(s.model, data, side, sensor);
+    for (int i = 0; i < humanoid::kLegJoints; ++i) {
+      const int j = humanoid::leg_first_joint(side) + i;
+      const double sd = filtered * std::sqrt(sf * sf * J.col(i).head<3>().squaredNorm() + st * st * J.col(i).tail<3>().squaredNorm());
+      EXPECT_NEAR(em.gravity_torque[j], eg.gravity_torque[j], 5 * sd) << j;
+      // θ̂ moves by (K + G)⁻¹ Δτ ≈ Δτ / k: 5 sd / k.
+      EXPECT_NEAR(em.newton[j], eg.newton[j], 5 * sd / p.k_joint) << j;
+    }
+  }
+}
+
+TEST(LoadModel, DynamicAddsTheInertialTorquesOfThePlannedMotion) {
+  const Stance s;
+  DeformationCompensator measured(s.model, params(LoadModel::kMeasured), kPeriod);
+  DeformationCompensator dynamic(s.model, params(LoadModel::kDynamic), kPeriod);
+  JointVector acceleration{};
+  for (int j = 0; j < kJoints; ++j) acceleration[j] = 0.5 * std::sin(j + 1.0);  // [rad/s²]
+  SupportPlan plan = s.plan();
+  plan.pelvis = Pose{Vector3d(0, 0, 0.72), Matrix3d::Identity()};
+  const auto ft = s.readings();
+  JointVector q{}, q_prev{};
+  const int samples = 1000;  // 4 s: the acceleration filter (τ = 0.1 s) has settled to e^{−40}
+  for (int k = 0; k < samples; ++k) {
+    q_prev = q;
+    const double t = k * kPeriod;
+    for (int j = 0; j < kJoints; ++j) q[j] = s.q[j] + 0.5 * acceleration[j] * t * t;
+    dynamic.sense(ft);
+    dynamic.input(q, Matrix3d::Identity(), plan);
+  }
+  measured.sense(ft);
+  measured.input(q, Matrix3d::Identity(), plan);
+  // Expected: the Newton–Euler inertial part alone (no gravity, no foot wrench) with the
+  // compensator's backward-difference velocity and the exact acceleration (a quadratic's second
+  // difference is exact).
+  JointVector qd{};
+  for (int j = 0; j < kJoints; ++j) qd[j] = (q[j] - q_prev[j]) / kPeriod;
+  walking::RobotModelData data;
+  walking::forward_kinematics(s.model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
+  walking::FootWrenches nothing;
+  nothing.given = {true, true};
+  walking::RobotDynamicsData dyn;
+  walking::inverse_dynamics(s.model, data, walking::BaseMotion{}, qd, acceleration, dyn, nothing, 0.0);
+  double largest = 0;
+  for (int j = humanoid::kLeftHipYaw; j < kJoints; ++j) {
+    // 1e-6 Nm: rounding of the second difference, ~1e-16 · 4 / T² rad/s² times O(1) kg m²
+    EXPECT_NEAR(dynamic.input_torque()[j] - measured.input_torque()[j], dyn.tau[j], 1e-6) << j;
+    largest = std::max(largest, std::abs(dyn.tau[j]));
+  }
+  EXPECT_GT(largest, 0.05);  // the inertial torques are not negligible here
+}
+
+TEST(LoadModel, DynamicAtRestIsMeasured) {
+  const Stance s;
+  DeformationCompensator measured(s.model, params(LoadModel::kMeasured), kPeriod);
+  DeformationCompensator dynamic(s.model, params(LoadModel::kDynamic), kPeriod);
+  SupportPlan plan = s.plan();
+  plan.pelvis = Pose{Vector3d(0, 0, 0.72), Matrix3d::Identity()};
+  for (int k = 0; k < 3; ++k) {
+    dynamic.sense(s.readings());
+    dynamic.input(s.q, Matrix3d::Identity(), plan);
+  }
+  measured.sense(s.readings());
+  measured.input(s.q, Matrix3d::Identity(), plan);
+  for (int j = 0; j < kJoints; ++j) EXPECT_EQ(dynamic.input_torque()[j], measured.input_torque()[j]) << j;
+}
+
+}  // namespace
+}  // namespace flexgait::compensation

@@ -1,0 +1,224 @@
+// Recursive Newton–Euler of the controller's model against MuJoCo's mj_rne (an independent
+// implementation, in a different formulation: spatial algebra at the subtree COM) on the same
+// pose, velocity and acceleration of the floating pelvis and every joint: the builtin robot (its
+// model written as MJCF, point masses and with inertias) and the loaded test robot
+// tests/humanoid/data/small_biped.xml (MuJoCo reads the file itself). At rest it is the legs'
+// gravity torque, and with the ground's force given at the feet it is the full form of τ_g.
+#include "flexgait/walking/robot_model_dynamics.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <random>
+#include <string>
+
+#include "flexgait/compensation/gravity_torque.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/humanoid/model_xml.hpp"
+
+namespace flexgait::walking {
+namespace {
+
+using humanoid::JointVector;
+using humanoid::kJoints;
+
+// mj_rne and this RNE differ only by rounding: 1e-9 of the largest generalized force is the
+// issue's bound (the forces are O(10-1000); double rounding leaves ~1e-13 relative).
+constexpr double kRelative = 1e-9;
+
+/// The model as MJCF: each body at its offset (frames parallel to the pelvis at zero angles), its
+/// hinge at the origin, its inertial as given. Point masses get MuJoCo's smallest inertia bound
+/// (1e-14 kg m², which moves a torque by < 1e-12 Nm here).
+std::string mjcf_of(const RobotModel& model) {
+  std::function<std::string(int)> body = [&](int i) {
+    const auto& b = model.bodies[i];
+    std::string s = fmt::format("<body name=\"b{}\" pos=\"{:.17g} {:.17g} {:.17g}\">", i, b.offset.x(), b.offset.y(), b.offset.z());
+    if (i == 0) s += "<freejoint name=\"root\"/>";
+    else if (b.joint >= 0)
+      s += fmt::format("<joint name=\"j{}\" axis=\"{:.17g} {:.17g} {:.17g}\"/>", b.joint, b.axis.x(), b.axis.y(), b.axis.z());
+    const Matrix3d& I = b.inertia;
+    s += fmt::format("<inertial pos=\"{:.17g} {:.17g} {:.17g}\" mass=\"{:.17g}\" ", b.com.x(), b.com.y(), b.com.z(), b.mass);
+    s += I.isZero() ? std::string("diaginertia=\"0 0 0\"/>")
+                    : fmt::format("fullinertia=\"{:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\"/>", I(0, 0), I(1, 1),
+                                  I(2, 2), I(0, 1), I(0, 2), I(1, 2));
+    for (int k = i + 1; k < kBodies; ++k)
+      if (model.bodies[k].parent == i) s += body(k);
+    return s + "</body>";
+  };
+  return "<mujoco><compiler angle=\"radian\" boundinertia=\"1e-14\"/><option gravity=\"0 0 -9.81\"/><worldbody>" + body(0) +
+         "</worldbody></mujoco>";
+}
+
+/// A MuJoCo model and which of its joints each flexgait joint is.
+struct Reference {
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  std::array<int, kJoints> joint{};
+  Reference(mjModel* model, const std::function<std::string(int)>& name) : m(model), d(mj_makeData(model)) {
+    for (int j = 0; j < kJoints; ++j) {
+      joint[j] = mj_name2id(m, mjOBJ_JOINT, name(j).c_str());
+      EXPECT_GE(joint[j], 0) << name(j);
+    }
+  }
+  ~Reference() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  Reference(const Reference&) = delete;
+  Reference& operator=(const Reference&) = delete;
+};
+
+/// Compares this RNE with mj_rne on random states; returns the largest relative difference.
+double compare_with_mj_rne(const RobotModel& model, Reference& ref, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    Pose pelvis{Vector3d(u(rng), u(rng), 0.7 + 0.1 * u(rng)),
+                Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
+    JointVector q{}, qd{}, qdd{};
+    for (int j = 0; j < kJoints; ++j) q[j] = 0.6 * u(rng), qd[j] = 3 * u(rng), qdd[j] = 30 * u(rng);
+    BaseMotion base;
+    Eigen::Matrix<double, 6, 1> base_qvel, base_qacc;
+    for (int i = 0; i < 6; ++i) base_qvel(i) = u(rng), base_qacc(i) = 5 * u(rng);
+    // MuJoCo's free joint: linear velocity of the body origin in the world, angular in the body frame.
+    base.velocity = base_qvel.head<3>();
+    base.angular_velocity = pelvis.R * base_qvel.tail<3>();
+    base.acceleration = base_qacc.head<3>();
+    base.angular_acceleration = pelvis.R * base_qacc.tail<3>();
+
+    mj_resetData(ref.m, ref.d);
+    for (int i = 0; i < 3; ++i) ref.d->qpos[i] = pelvis.p(i);
+    const Eigen::Quaterniond quat(pelvis.R);
+    ref.d->qpos[3] = quat.w(), ref.d->qpos[4] = quat.x(), ref.d->qpos[5] = quat.y(), ref.d->qpos[6] = quat.z();
+    for (int i = 0; i < 6; ++i) ref.d->qvel[i] = base_qvel(i);
+    for (int j = 0; j < kJoints; ++j) {
+      ref.d->qpos[ref.m->jnt_qposadr[ref.joint[j]]] = q[j];
+      ref.d->qvel[ref.m->jnt_dofadr[ref.joint[j]]] = qd[j];
+    }
+    mj_forward(ref.m, ref.d);
+    for (int i = 0; i < 6; ++i) ref.d->qacc[i] = base_qacc(i);
+    for (int j = 0; j < kJoints; ++j) ref.d->qacc[ref.m->jnt_dofadr[ref.joint[j]]] = qdd[j];
+    std::vector<mjtNum> expected(static_cast<std::size_t>(ref.m->nv));
+    mj_rne(ref.m, ref.d, 1, expected.data());
+
+    RobotModelData kin;
+    forward_kinematics(model, kin, pelvis, q);
+    RobotDynamicsData dyn;
+    inverse_dynamics(model, kin, base, qd, qdd, dyn);
+    Eigen::Matrix<double, 6 + kJoints, 1> ours, theirs;
+    ours.head<3>() = dyn.joint_wrench[0].force;
+    ours.segment<3>(3) = pelvis.R.transpose() * dyn.joint_wrench[0].moment;  // about the pelvis origin, body frame
+    for (int i = 0; i < 6; ++i) theirs(i) = expected[static_cast<std::size_t>(i)];
+    for (int j = 0; j < kJoints; ++j) {
+      ours(6 + j) = dyn.tau[j];
+      theirs(6 + j) = expected[static_cast<std::size_t>(ref.m->jnt_dofadr[ref.joint[j]])];
+    }
+    const double scale = theirs.lpNorm<Eigen::Infinity>();
+    worst = std::max(worst, (ours - theirs).lpNorm<Eigen::Infinity>() / scale);
+    EXPECT_LE((ours - theirs).lpNorm<Eigen::Infinity>(), kRelative * scale)
+        << "trial " << trial << "\nours   " << ours.transpose() << "\ntheirs " << theirs.transpose();
+  }
+  return worst;
+}
+
+RobotModel builtin() { return make_robot_model(humanoid::RobotParams{}); }
+
+/// Joint angles uniform in ±amplitude [rad].
+JointVector random_angles(unsigned seed, double amplitude) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  JointVector q{};
+  for (double& v : q) v = u(rng);
+  return q;
+}
+
+TEST(RobotModelDynamics, BuiltinRobotMatchesMjRne) {
+  const RobotModel model = builtin();
+  Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
+  RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 1)));
+}
+
+TEST(RobotModelDynamics, BuiltinRobotWithInertiasMatchesMjRne) {
+  RobotModel model = builtin();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (auto& b : model.bodies) {  // a box of random sides (0.05-0.35 m) at a random attitude: a physical inertia
+    const Vector3d side = Vector3d(0.2, 0.2, 0.2) + 0.15 * Vector3d(u(rng), u(rng), u(rng));
+    const Vector3d s2 = side.cwiseProduct(side);
+    const Vector3d diagonal = b.mass / 12 * Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y());
+    const Matrix3d R = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+    b.inertia = R * diagonal.asDiagonal() * R.transpose();
+  }
+  Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
+  // MuJoCo stores a full inertia as its principal moments and axes (an iterative eigensolver, good
+  // to ~1e-9 relative): compare on the inertias it simulates.
+  for (int i = 0; i < kBodies; ++i) {
+    const int id = mj_name2id(ref.m, mjOBJ_BODY, fmt::format("b{}", i).c_str());
+    const mjtNum* q = ref.m->body_iquat + 4 * id;
+    const Matrix3d R = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+    model.bodies[i].inertia = R * Vector3d(ref.m->body_inertia + 3 * id).asDiagonal() * R.transpose();
+  }
+  RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 2)));
+}
+
+TEST(RobotModelDynamics, LoadedRobotMatchesMjRneOnItsOwnFile) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path data = dir ? dir : "tests/humanoid/data";
+  const experiments::WalkRunParams w =
+      experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), data / "small_biped.yaml", {}));
+  const RobotModel model = experiments::walk_controller_model(w);
+  char error[1000] = "";
+  mjModel* m = mj_loadXML((data / "small_biped.xml").string().c_str(), nullptr, error, sizeof error);
+  ASSERT_NE(m, nullptr) << error;
+  Reference ref(m, [&](int j) { return w.description.joints[static_cast<std::size_t>(j)]; });
+  RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 3)));
+}
+
+TEST(RobotModelDynamics, AtRestTheLegTorquesAreTheirGravityTorques) {
+  const RobotModel model = builtin();
+  const JointVector q = random_angles(4, 0.6);
+  RobotModelData kin;
+  forward_kinematics(model, kin, Pose{Vector3d(0, 0, 0.7), Matrix3d(Eigen::AngleAxisd(0.2, Vector3d(1, 2, 0).normalized()))}, q);
+  RobotDynamicsData dyn;
+  inverse_dynamics(model, kin, BaseMotion{}, JointVector{}, JointVector{}, dyn);
+  for (int side = 0; side < 2; ++side) {
+    const LegTorque g = leg_gravity_torque(model, kin, side);
+    for (int i = 0; i < humanoid::kLegJoints; ++i)
+      EXPECT_NEAR(dyn.tau[humanoid::leg_first_joint(side) + i], g(i), 1e-12 * model.total_mass * kGravity);  // rounding
+  }
+}
+
+TEST(RobotModelDynamics, WithTheGroundForceGivenAtTheFeetItIsTheFullGravityTorque) {
+  const RobotModel model = builtin();
+  const JointVector q = random_angles(5, 0.4);
+  RobotModelData kin;
+  forward_kinematics(model, kin, Pose{Vector3d(0, 0, 0.7), Matrix3d::Identity()}, q);
+  compensation::FootLoads loads;
+  loads.share = {0.3, 0.7};
+  loads.cop = {Eigen::Vector2d(0.02, -0.01), Eigen::Vector2d(-0.03, 0.015)};
+  const JointVector expected = compensation::gravity_torque(model, kin, loads, compensation::GravityForm::kFull);
+  // The leg's wrench on each foot: the foot's weight held up less the ground's push at its CoP.
+  FootWrenches feet;
+  for (int side = 0; side < 2; ++side) {
+    const Pose& foot = kin.frame[model.foot[side]];
+    const Pose sole = sole_pose(model, kin, side);
+    const Vector3d cop = sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0);
+    const Vector3d ground(0, 0, loads.share[side] * model.total_mass * kGravity);
+    const auto& b = model.bodies[model.foot[side]];
+    const Vector3d weight(0, 0, -b.mass * kGravity);
+    feet.given[side] = true;
+    feet.wrench[side].force = -weight - ground;
+    feet.wrench[side].moment = -(foot.R * b.com).cross(weight) - (cop - foot.p).cross(ground);
+  }
+  RobotDynamicsData dyn;
+  inverse_dynamics(model, kin, BaseMotion{}, JointVector{}, JointVector{}, dyn, feet);
+  for (int j = humanoid::kLeftHipYaw; j < kJoints; ++j) EXPECT_NEAR(dyn.tau[j], expected[j], 1e-10) << j;  // rounding on O(100) Nm
+}
+
+}  // namespace
+}  // namespace flexgait::walking
