@@ -1,7 +1,7 @@
 // flexgait: the command-line program. Exit codes: 0 success, 1 runtime failure, 2 bad usage
 // or bad configuration (one line on stderr naming the key, the value and what is allowed). Every
 // message is one line: control characters escaped, long text cut (core one_line). Under mpirun
-// a bad argument is said once, by rank 0; every rank exits 2.
+// a bad argument is said once, by rank 0, which exits 2 (so does mpirun); the other ranks exit 0.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -70,7 +70,9 @@ int main(int argc, char** argv) {
       path += " " + cur->get_name();
     }
     const std::string unknown = unknown_command(app, argc, argv);
-    if (flexgait::cli::secondary_mpi_rank()) return 2;  // every rank has the same arguments: rank 0 says it
+    // Every rank has the same arguments: rank 0 says it and exits 2. Another rank leaves both to
+    // rank 0: had it exited 2 first, mpirun would abort the job, rank 0 unheard (seen under load).
+    if (flexgait::cli::secondary_mpi_rank()) return 0;
     fmt::print(stderr, "error: {}; see '{} --help'\n", unknown.empty() ? flexgait::one_line(e.what(), 1000) : unknown,
                path);
     return 2;
@@ -78,8 +80,10 @@ int main(int argc, char** argv) {
   try {
     return action ? action() : 2;
   } catch (const flexgait::UsageError& e) {  // bad configuration or bad usage, ConfigError included
-    // Under mpirun every rank meets it (a campaign's ranks agree on it first): rank 0 says it once.
-    if (!flexgait::cli::secondary_mpi_rank()) fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
+    // Under mpirun every rank meets it (a campaign's ranks agree on it first): rank 0 says it once
+    // and exits 2; the others exit 0, for the reason above.
+    if (flexgait::cli::secondary_mpi_rank()) return 0;
+    fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
     return 2;
   } catch (const std::logic_error& e) {  // a broken contract inside flexgait
     fmt::print(stderr, "error: internal error (a bug in flexgait, please report it): {}\n",
