@@ -55,6 +55,12 @@ constexpr std::array<EnumName<LoadModel>, 3> enum_names(LoadModel) {
   return {{{LoadModel::kGravity, "gravity"}, {LoadModel::kMeasured, "measured"}, {LoadModel::kDynamic, "dynamic"}}};
 }
 
+/// Online stiffness identification while walking (issue 20, stiffness_estimator.hpp).
+enum class KEstimation { kOff, kOn };
+constexpr std::array<EnumName<KEstimation>, 2> enum_names(KEstimation) {
+  return {{{KEstimation::kOff, "off"}, {KEstimation::kOn, "on"}}};
+}
+
 /// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
 /// thesis), or the controller's reference ZMP (where the ground force acts in a dynamic gait; it
 /// moves onto the stance sole by the end of double support, so the split is continuous at lift-off).
@@ -85,6 +91,11 @@ struct CompensationParams {
   LoadModel load_model = LoadModel::kGravity;
   double load_filter_time = 0.1;   ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
   double acceleration_filter_time = 0.1;  ///< time constant of the planned accelerations' low-pass [s]
+  KEstimation k_estimation = KEstimation::kOff;
+  double k_estimation_memory = 5.0;       ///< forgetting time constant: λ = e^{−T/memory} [s]
+  double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
+  double k_estimation_noise = 0.002;      ///< standard deviation of the foot-tilt observation [rad]
+  double k_estimation_confidence = 0.05;  ///< relative standard deviation below which the compensators use the estimate
   double robotis_hip_roll = 0.017; ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
   double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
   double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
@@ -112,6 +123,19 @@ struct CompensationParams {
       {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
     v("control.acceleration_filter_time", s.acceleration_filter_time,
       {.unit = "s", .doc = "dynamic: time constant of the planned accelerations' low-pass (0: none)", .bounds = closed(0, 1)});
+    v("control.k_estimation", s.k_estimation,
+      {.doc = "online stiffness identification while walking: on = estimate 1/k of each leg's roll and pitch joint "
+              "groups by RLS from the stance foot's tilt seen through the encoders and the IMU; the compensators "
+              "use a group's estimate once confident"});
+    v("control.k_estimation_memory", s.k_estimation_memory,
+      {.unit = "s", .doc = "k_estimation: forgetting time constant of the RLS", .bounds = closed(0.01, 1e6)});
+    v("control.k_estimation_min_torque", s.k_estimation_min_torque,
+      {.unit = "Nm", .doc = "k_estimation: a sample is used when its torque regressor is at least this", .bounds = closed(0, 1e4)});
+    v("control.k_estimation_noise", s.k_estimation_noise,
+      {.unit = "rad", .doc = "k_estimation: standard deviation of the foot-tilt observation", .bounds = closed(1e-9, 1)});
+    v("control.k_estimation_confidence", s.k_estimation_confidence,
+      {.doc = "k_estimation: the compensators use a group's estimate once its relative standard deviation is at most this",
+       .bounds = closed(1e-6, 1)});
     v("control.robotis_hip_roll", s.robotis_hip_roll,
       {.unit = "rad", .doc = "robotis: stance hip roll feed-forward at mid single support", .bounds = closed(0, 0.2)});
     v("control.talos_cutoff", s.talos_cutoff, {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});
@@ -173,6 +197,9 @@ class DeformationCompensator {
                                       const SupportPlan& support);
 
   const CompensationParams& params() const { return params_; }
+  /// Replaces the belief of the gears' stiffness (control.k_estimation: the confident estimate) [Nm/rad], > 0.
+  void set_stiffness(const humanoid::JointVector& k) { stiffness_ = k; }
+  const humanoid::JointVector& stiffness() const { return stiffness_; }
 
  private:
   /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).

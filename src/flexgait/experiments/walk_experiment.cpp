@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <cmath>
 
+#include "flexgait/compensation/stiffness_estimator.hpp"
 #include "flexgait/experiments/capture_point_bound.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
@@ -93,6 +94,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   walking::WalkingController controller(walk_controller_model(params), params.walk, params.balance, T, params.estimator,
                                         params.health);
   compensation::DeformationCompensator compensator(controller.model(), params.control, T);
+  const bool k_estimation = params.control.k_estimation == compensation::KEstimation::kOn;
+  compensation::StiffnessEstimator stiffness_estimator(controller.model(), params.control, T);
   humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
   if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
@@ -149,6 +152,13 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
     const compensation::OutputEstimate* estimate =
         params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;
+    if (k_estimation) {
+      // Online stiffness identification (issue 20): the torque the output compensator solved with.
+      const humanoid::JointVector& tau =
+          estimate ? estimate->gravity_torque : compensator.torque(sensors.encoder, controller.attitude(), plan_now);
+      stiffness_estimator.update(t, sensors.encoder, controller.attitude(), tau, sensors.ft, plan_now, st.sensor_flags == 0);
+      compensator.set_stiffness(stiffness_estimator.stiffness());
+    }
     const humanoid::GroundTruth before = plant.truth();  // the state the sensors read
     const Eigen::Matrix3d R_before = walking::quat_to_matrix(before.pelvis_quat.data());
     const double roll_true = walking::roll_of(R_before), pitch_true = walking::pitch_of(R_before);
@@ -328,6 +338,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       }
       w.torque_model = compensator.input_torque();
       w.torque_true = before.gear_torque;
+      if (k_estimation) w.k_estimate = stiffness_estimator.estimate();
       w.roll_kin_encoder = roll_enc;
       w.roll_kin_estimate = roll_est;
       w.push_force = g.push_force;
@@ -395,6 +406,12 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.simulated_time = g.t;
   m.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   m.real_time_factor = m.wall_time > 0 ? m.simulated_time / m.wall_time : 0.0;
+  if (k_estimation) {
+    out.k_estimation = true;
+    out.k_estimate = stiffness_estimator.estimate();
+    for (int j = 0; j < humanoid::kJoints; ++j)
+      out.k_identified[j] = stiffness_estimator.group(j) != compensation::StiffnessEstimator::kNone;
+  }
   return out;
 }
 

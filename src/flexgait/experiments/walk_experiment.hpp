@@ -94,6 +94,7 @@ struct WalkSample {
   humanoid::JointVector torque_model{};  ///< τ_g of the input compensator (desired pose) [Nm]
   humanoid::JointVector torque_estimate{};  ///< τ_g of the output compensator (estimated pose) [Nm]
   humanoid::JointVector torque_true{};   ///< the twin's gear torques [Nm]
+  humanoid::JointVector k_estimate{};    ///< control.k_estimation on: each joint's stiffness estimate [Nm/rad]
   /// Pelvis roll by kinematics from the stance sole (flat on the floor) through the encoders and
   /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.
   double roll_kin_encoder = 0, roll_kin_estimate = 0;
@@ -244,6 +245,9 @@ struct WalkMetrics {
 
 struct WalkResult {
   WalkMetrics metrics;
+  bool k_estimation = false;            ///< control.k_estimation was on: the fields below apply
+  humanoid::JointVector k_estimate{};   ///< the final stiffness estimate of each joint [Nm/rad]
+  std::array<bool, humanoid::kJoints> k_identified{};  ///< the joints the estimation identifies (leg roll and pitch)
   std::vector<WalkSample> log;
   std::vector<Landing> landings;
   walking::WalkPlan plan;

@@ -39,6 +39,9 @@ std::string walk_joints_csv(const WalkResult& r) {
   std::vector<std::string> header{"t"};
   for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
     for (const auto f : kFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
+  // control.k_estimation on: each leg joint's stiffness estimate over time (issue 20).
+  if (r.k_estimation)
+    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) header.push_back("k_est_" + std::string(humanoid::kJointNames[j]));
   CsvWriter csv(header);
   for (const auto& w : r.log) {
     csv.cell(w.t);
@@ -46,6 +49,8 @@ std::string walk_joints_csv(const WalkResult& r) {
       csv.cell(w.desired[j]).cell(w.command[j]).cell(w.encoder[j]).cell(w.link[j]).cell(w.estimate[j]);
       csv.cell(w.conventional[j]).cell(w.torque_model[j]).cell(w.torque_estimate[j]).cell(w.torque_true[j]);
     }
+    if (r.k_estimation)
+      for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) csv.cell(w.k_estimate[j]);
     csv.end_row();
   }
   return csv.str();
@@ -73,7 +78,24 @@ std::string walk_footsteps_csv(const WalkResult& r) {
   return csv.str();
 }
 
-std::string walk_summary_json(const WalkResult& r) { return record_json(r.metrics).dump(2) + "\n"; }
+std::string walk_summary_json(const WalkResult& r) {
+  nlohmann::ordered_json j = record_json(r.metrics);
+  if (r.k_estimation) {
+    // The identified joints' final estimates (the leg roll and pitch joints) and their mean (issue 20).
+    nlohmann::ordered_json k = nlohmann::ordered_json::object();
+    double sum = 0;
+    int n = 0;
+    for (int i = 0; i < humanoid::kJoints; ++i)
+      if (r.k_identified[i]) {
+        k[std::string(humanoid::kJointNames[i])] = r.k_estimate[i];
+        sum += r.k_estimate[i];
+        ++n;
+      }
+    j["k_estimate"] = k;
+    j["k_estimate_mean"] = n > 0 ? sum / n : 0.0;
+  }
+  return j.dump(2) + "\n";
+}
 
 std::string walk_timing_json(const WalkResult& r) {
   nlohmann::ordered_json j;

@@ -1,0 +1,78 @@
+#pragma once
+/// \file stiffness_estimator.hpp
+/// Online identification of the gears' stiffness while walking (issue 20, control.k_estimation).
+///
+/// The model (spec humanoid.md, "The actuator deformation model"): θ_link = θ_enc − τ/k. A stance
+/// foot flat on the ground fixes the foot's tilt; the IMU gives the pelvis attitude; the encoders
+/// give the chain between them. The foot's tilt seen through the encoders, R_obs = R_imu · R_foot(θ_enc),
+/// differs from the flat foot by the chain's deflections: to first order the rotation
+///     ω = Σ_i a_i τ_i c_i,   c_i = 1/k_i,  a_i the joint axis (world)
+/// of which the horizontal components are observed (ω_x = −R_obs(1,2), ω_y = R_obs(0,2); the
+/// foot's yaw is not known). Two measurements per stance foot, against the leg's joints: the
+/// joints are not identifiable one by one — the deflections about parallel axes (hip pitch, knee,
+/// ankle pitch; hip roll, ankle roll) enter only as their torque-weighted sum, and the foot's
+/// position, which would separate them, is not measured (the pelvis's is unknown). So one
+/// c per joint group and leg: roll (axis mostly x) and pitch (axis mostly y); the yaw joints'
+/// deflections (axis z) are not seen and keep the belief.
+///
+/// Each leg's [c_roll, c_pitch] is estimated by RLS with forgetting (forgetting_rls.hpp), the
+/// regressor h_g = Σ_{i∈g} (a_i)_xy τ_i, τ the compensators' modelled torque; a sample is used
+/// only when the foot is in firm support by its F/T sensor (normal force ≥ a quarter of the weight,
+/// the centre of pressure within the middle 60 % of the sole's length and width) and |h| ≥
+/// control.k_estimation_min_torque. Bad data (a NaN, or an F/T reading older than 50 ms, or the
+/// controller's sensor check flagging a sensor) keeps the last estimate and is counted.
+/// The estimate stays within [0.1, 10] × the belief (so k > 0 always). A group is confident when
+/// its relative standard deviation sqrt(P_gg)/c_g ≤ control.k_estimation_confidence (P the RLS
+/// covariance with prior (c₀)² and measurement variance control.k_estimation_noise²); from then
+/// on stiffness() gives 1/c_g for its joints (the last confident value if confidence lapses).
+/// Allocation-free after construction; free of the simulator.
+#include <array>
+
+#include "flexgait/compensation/deformation_compensator.hpp"
+#include "flexgait/compensation/forgetting_rls.hpp"
+
+namespace flexgait::compensation {
+
+class StiffnessEstimator {
+ public:
+  static constexpr int kGroups = 2;  ///< per leg: roll, pitch
+  enum Group { kNone = -1, kRoll = 0, kPitch = 1 };
+
+  StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period);
+
+  /// One control period. \param t now [s] (the F/T stamps' staleness); \param torque the modelled
+  /// gear torque of every joint [Nm]; \param sensors_ok false when the controller's sensor check
+  /// flags a sensor this period. Returns how many feet gave a sample.
+  int update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
+             const humanoid::JointVector& torque, const std::array<humanoid::ForceTorque, 2>& ft,
+             const SupportPlan& support, bool sensors_ok);
+
+  /// The raw estimate of each joint's stiffness, 1/c of its group (the belief for the yaw joints
+  /// and the waist) [Nm/rad].
+  const humanoid::JointVector& estimate() const { return estimate_; }
+  /// What the compensators use: the estimate of the confident groups, the belief elsewhere.
+  const humanoid::JointVector& stiffness() const { return stiffness_; }
+  /// The group a joint belongs to (kNone: not identified).
+  Group group(int joint) const { return group_[joint]; }
+  bool confident(int side, Group g) const { return confident_[side][g]; }
+  /// Relative standard deviation sqrt(P_gg)/c_g of a group.
+  double relative_std(int side, Group g) const;
+  long samples() const { return samples_; }     ///< foot samples used
+  long bad_data() const { return bad_data_; }   ///< periods skipped for bad data
+
+ private:
+  void publish(int side);
+
+  walking::RobotModel model_;
+  CompensationParams params_;
+  double noise_variance_;
+  humanoid::JointVector belief_, estimate_, stiffness_;
+  std::array<Group, humanoid::kJoints> group_{};
+  std::array<std::array<double, kGroups>, 2> c_min_{}, c_max_{};
+  std::array<ForgettingRls<kGroups>, 2> rls_;
+  std::array<std::array<bool, kGroups>, 2> confident_{};
+  walking::RobotModelData data_;
+  long samples_ = 0, bad_data_ = 0;
+};
+
+}  // namespace flexgait::compensation
