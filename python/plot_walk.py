@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Figures of a walk: ZMP x/y against the reference, COM, pelvis roll/pitch (IMU), footprints.
 
-Usage: plot_walk.py RUN_DIR   (reads log.csv and footsteps.csv; writes walk.png atomically)
+Usage: plot_walk.py RUN_DIR   (reads log.csv and footsteps.csv; writes walk.png atomically;
+with control.k_estimation on, also k_estimate.png from joints.csv's k_est_ columns)
 """
 import math
 import os
@@ -75,6 +76,29 @@ def main(run_dir):
     ax.set_title("footprints from above (dashed: planned, filled: landed)")
     ax.legend(fontsize=8)
     save_atomic(fig, run_dir, "walk.png")
+    plot_k_estimate(run_dir)
+
+
+def plot_k_estimate(run_dir):
+    """The stiffness estimate over time, one line per leg and joint group (issue 20)."""
+    path = os.path.join(run_dir, "joints.csv")
+    if not os.path.exists(path):
+        return
+    rows = read_rows(path)
+    if not rows or "k_est_l_knee" not in rows[0]:
+        return
+    fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
+    t = column(rows, "t")
+    for joint, label in (("l_hip_roll", "left roll"), ("l_knee", "left pitch"),
+                         ("r_hip_roll", "right roll"), ("r_knee", "right pitch")):
+        ax.plot(t, column(rows, f"k_est_{joint}"), lw=0.9, label=label)
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("k estimate [Nm/rad]")
+    final = [float(rows[-1][f"k_est_{j}"]) for j in ("l_hip_roll", "l_knee", "r_hip_roll", "r_knee")]
+    ax.set_ylim(0, 2.5 * max(final))  # (the first samples, barely excited, swing to the bounds)
+    ax.set_title("gear stiffness identified while walking (control.k_estimation)")
+    ax.legend(fontsize=8)
+    save_atomic(fig, run_dir, "k_estimate.png")
 
 
 if __name__ == "__main__":
