@@ -9,7 +9,8 @@
 #include <random>
 
 #include "flexgait/compensation/stiffness_estimator.hpp"
-#include "flexgait/walking/leg_kinematics.hpp"
+
+#include "double_support_stance.hpp"
 
 namespace flexgait::compensation {
 namespace {
@@ -17,8 +18,6 @@ namespace {
 using humanoid::JointVector;
 using humanoid::kJoints;
 using walking::Matrix3d;
-using walking::Pose;
-using walking::Vector3d;
 
 constexpr double kPeriod = 0.004;  // [s]
 constexpr double kTrue = 1250.0, kBelief = 1000.0;  // [Nm/rad]
@@ -77,38 +76,14 @@ TEST(ForgettingRls, ForgettingTracksAChangeAndNonFiniteDataChangesNothing) {
   EXPECT_EQ(rls.P(), P);
 }
 
-/// Standing on both feet, soles flat under the hips, pelvis level: the link angles θ_link.
-struct Stance {
-  walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
-  SupportPlan plan;
-  JointVector link{};
-  Stance() {
-    const double y = model.leg[0].anchor[0].y();
-    plan.soles = {Pose{Vector3d(0, y, 0), Matrix3d::Identity()}, Pose{Vector3d(0, -y, 0), Matrix3d::Identity()}};
-    const Vector3d pelvis(0, 0, 0.72);
-    for (int side = 0; side < 2; ++side) {
-      const walking::IkSolution ik =
-          walking::leg_inverse_kinematics(model.leg[side], Pose{plan.soles[side].p - pelvis, Matrix3d::Identity()});
-      for (int i = 0; i < humanoid::kLegJoints; ++i) link[humanoid::leg_first_joint(side) + i] = ik.q[i];
-    }
-  }
-  /// Half the weight on each sole centre, read at time t.
-  std::array<humanoid::ForceTorque, 2> readings(double t) const {
-    walking::RobotModelData data;
-    walking::forward_kinematics(model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, link);
-    std::array<humanoid::ForceTorque, 2> ft;
-    for (int side = 0; side < 2; ++side) {
-      const Pose& foot = data.frame[model.foot[side]];
-      const auto& b = model.bodies[model.foot[side]];
-      const Vector3d ground(0, 0, 0.5 * model.total_mass * walking::kGravity), weight(0, 0, -b.mass * walking::kGravity);
-      const Vector3d f = -ground - weight;
-      const Vector3d m = -(walking::sole_pose(model, data, side).p - foot.p).cross(ground) - (foot.R * b.com).cross(weight);
-      for (int i = 0; i < 3; ++i) ft[side].force[i] = f(i), ft[side].torque[i] = m(i);
-      ft[side].stamp = t;
-    }
-    return ft;
-  }
-};
+using fixtures::Stance;
+
+/// The stance's F/T readings, measured at time t.
+std::array<humanoid::ForceTorque, 2> readings(const Stance& s, double t) {
+  std::array<humanoid::ForceTorque, 2> ft = s.readings();
+  ft[0].stamp = ft[1].stamp = t;
+  return ft;
+}
 
 CompensationParams estimation_params() {
   CompensationParams p;
@@ -127,9 +102,9 @@ TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt)
   for (int k = 0; k < 500; ++k) {
     for (int j = 0; j < kJoints; ++j) {
       tau[j] = torque(rng);
-      encoder[j] = s.link[j] + tau[j] / kTrue;  // θ_enc = θ_link + τ/k
+      encoder[j] = s.q[j] + tau[j] / kTrue;  // θ_enc = θ_link + τ/k
     }
-    e.update(k * kPeriod, encoder, Matrix3d::Identity(), tau, s.readings(k * kPeriod), s.plan, true);
+    e.update(k * kPeriod, encoder, Matrix3d::Identity(), tau, readings(s, k * kPeriod), s.plan(), true);
   }
   EXPECT_GT(e.samples(), 950);  // (a few random torques fall below control.k_estimation_min_torque)
   for (int side = 0; side < 2; ++side)
@@ -151,25 +126,25 @@ TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt)
 TEST(StiffnessEstimator, BadDataKeepsTheEstimateAndAdversarialDataStaysBoundedAndPositive) {
   const Stance s;
   StiffnessEstimator e(s.model, estimation_params(), kPeriod);
-  JointVector tau{}, encoder = s.link;
+  JointVector tau{}, encoder = s.q;
   tau.fill(30.0);
   for (int j = 0; j < kJoints; ++j) encoder[j] += tau[j] / kTrue;
-  for (int k = 0; k < 100; ++k) e.update(k * kPeriod, encoder, Matrix3d::Identity(), tau, s.readings(k * kPeriod), s.plan, true);
+  for (int k = 0; k < 100; ++k) e.update(k * kPeriod, encoder, Matrix3d::Identity(), tau, readings(s, k * kPeriod), s.plan(), true);
   const JointVector before = e.estimate();
   const double t = 100 * kPeriod;
   JointVector nan_encoder = encoder;
   nan_encoder[humanoid::kLeftKnee] = NAN;
-  auto nan_ft = s.readings(t);
+  auto nan_ft = readings(s, t);
   nan_ft[1].force[2] = NAN;
-  EXPECT_EQ(e.update(t, nan_encoder, Matrix3d::Identity(), tau, s.readings(t), s.plan, true), 0);
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, nan_ft, s.plan, true), 0);
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, s.readings(t - 0.1), s.plan, true), 0);  // stale
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, s.readings(t), s.plan, false), 0);       // flagged
+  EXPECT_EQ(e.update(t, nan_encoder, Matrix3d::Identity(), tau, readings(s, t), s.plan(), true), 0);
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, nan_ft, s.plan(), true), 0);
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, readings(s, t - 0.1), s.plan(), true), 0);  // stale
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, readings(s, t), s.plan(), false), 0);       // flagged
   EXPECT_EQ(e.bad_data(), 4);
   EXPECT_EQ(e.estimate(), before);
   // Encoders bent the wrong way, far: the estimate hits its bound, k stays positive.
-  for (int j = 0; j < kJoints; ++j) encoder[j] = s.link[j] - 0.3 * tau[j] / kTrue;
-  for (int k = 0; k < 2000; ++k) e.update(t + k * kPeriod, encoder, Matrix3d::Identity(), tau, s.readings(t + k * kPeriod), s.plan, true);
+  for (int j = 0; j < kJoints; ++j) encoder[j] = s.q[j] - 0.3 * tau[j] / kTrue;
+  for (int k = 0; k < 2000; ++k) e.update(t + k * kPeriod, encoder, Matrix3d::Identity(), tau, readings(s, t + k * kPeriod), s.plan(), true);
   for (int j = 0; j < kJoints; ++j) {
     EXPECT_GT(e.estimate()[j], 0.0);
     EXPECT_GE(e.estimate()[j], kBelief / 10 - 1e-9);
