@@ -23,13 +23,20 @@ def sole_outline(x, y, yaw, length=0.22, width=0.15):
     return [(x + c * a * length - s * b * width, y + s * a * length + c * b * width) for a, b in corners]
 
 
-def push_interval(rows, t):
-    """(start, end) of the logged samples carrying a push force, or None."""
+def push_intervals(rows, t):
+    """[(start, end)] of each run of logged samples carrying a push force (one per push apart)."""
     if not rows or "push_force_x" not in rows[0]:
-        return None
-    on = [ti for ti, r in zip(t, rows)
-          if any(float(r[f"push_force_{a}"]) != 0.0 for a in "xyz")]
-    return (min(on), max(on)) if on else None
+        return []
+    out = []
+    was_on = False
+    for ti, r in zip(t, rows):
+        on = any(float(r[f"push_force_{a}"]) != 0.0 for a in "xyz")
+        if on and not was_on:
+            out.append([ti, ti])
+        elif on:
+            out[-1][1] = ti
+        was_on = on
+    return out
 
 
 def main(run_dir):
@@ -37,10 +44,10 @@ def main(run_dir):
     steps = read_rows(os.path.join(run_dir, "footsteps.csv"))
     t = column(rows, "t")
     fig, axes = plt.subplots(2, 2, figsize=(13, 8), constrained_layout=True)
-    push = push_interval(rows, t)
-    if push is not None:
+    for i, push in enumerate(push_intervals(rows, t)):
         for ax in (axes[0][0], axes[0][1], axes[1][0]):
-            ax.axvspan(push[0], max(push[1], push[0] + 0.01), color="tab:orange", alpha=0.25, label="push")
+            ax.axvspan(push[0], max(push[1], push[0] + 0.01), color="tab:orange", alpha=0.25,
+                       label="push" if i == 0 else None)
     for ax, axis in ((axes[0][0], "x"), (axes[0][1], "y")):
         ax.plot(t, column(rows, f"zmp_ref_{axis}"), "k--", lw=1.2, label="ZMP reference")
         ax.plot(t, column(rows, f"zmp_true_{axis}"), lw=0.9, label="ZMP (contact forces)")

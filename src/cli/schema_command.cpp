@@ -23,6 +23,7 @@ const char* type_name(ParamType type) {
     case ParamType::Boolean: return "boolean";
     case ParamType::Choice: return "choice";
     case ParamType::Text: return "text";
+    case ParamType::List: return "list";
   }
   return "?";
 }
@@ -37,6 +38,13 @@ nlohmann::ordered_json configuration_json(const Schema& schema) {
     k["unit"] = p.unit;
     k["doc"] = p.doc;
     k["allowed"] = p.allowed();
+    if (p.type == ParamType::List) {
+      nlohmann::ordered_json fields = nlohmann::ordered_json::array();
+      for (const ParamSpec& f : p.item_fields)
+        fields.push_back({{"name", f.key}, {"type", type_name(f.type)}, {"length", f.length}, {"unit", f.unit},
+                          {"doc", f.doc}, {"allowed", f.allowed()}});
+      k["item_fields"] = std::move(fields);
+    }
     keys.push_back(std::move(k));
   }
   return keys;

@@ -76,6 +76,7 @@ py::dict config_dict(const Config& config) {
       case ParamType::Boolean: out[py::str(p.key)] = config.boolean(p.key); break;
       case ParamType::Choice: out[py::str(p.key)] = config.choice(p.key); break;
       case ParamType::Text: out[py::str(p.key)] = config.text(p.key); break;
+      case ParamType::List: out[py::str(p.key)] = format_value(config.list(p.key), p.item_fields); break;  // flow YAML
     }
   }
   return out;

@@ -17,6 +17,13 @@ namespace {
 
 std::string bound_text(double v) { return fmt::format("{}", v); }
 
+// "time, body, force, duration": the fields of a List's items.
+std::string field_names(const ParamSpec& list) {
+  std::string s;
+  for (std::size_t i = 0; i < list.item_fields.size(); ++i) s += (i ? ", " : "") + list.item_fields[i].key;
+  return s;
+}
+
 std::string error_text(const std::string& origin, const std::string& key, const std::string& value,
                        const std::string& problem, const ParamSpec* spec) {
   std::string msg = fmt::format("{}: key '{}' = '{}': {}", origin, one_line(key), one_line(value), problem);
@@ -82,7 +89,14 @@ std::string suggestion(const Schema& schema, const std::string& key) {
 }  // namespace
 
 std::string ParamSpec::allowed() const {
+  if (length > 0) {
+    ParamSpec one = *this;
+    one.length = 0;
+    return fmt::format("a list of {} values, each {}", length, one.allowed());
+  }
   switch (type) {
+    case ParamType::List:
+      return "a list of mappings, each with the fields " + field_names(*this);
     case ParamType::Boolean:
       return "true or false";
     case ParamType::Text:
@@ -208,8 +222,77 @@ void check_with_origin(const Config& config, const std::function<void()>& check)
   }
 }
 
+namespace {
+
+ConfigScalar scalar_of(const ConfigValue& value) {
+  return std::visit(
+      [](const auto& v) -> ConfigScalar {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, ConfigList>)
+          throw std::logic_error("a list item's field holds a list value");
+        else
+          return v;
+      },
+      value);
+}
+
+// One item of a List (ParamType::List): every field of spec.item_fields, each checked against its
+// own spec under the key `key[i].field`.
+std::vector<std::vector<ConfigScalar>> parse_item(const ParamSpec& spec, std::size_t i,
+                                                  const std::vector<ItemFieldText>& item, const std::string& origin) {
+  const std::string item_key = fmt::format("{}[{}]", spec.key, i);
+  for (const ItemFieldText& f : item) {
+    const bool known = std::any_of(spec.item_fields.begin(), spec.item_fields.end(),
+                                   [&](const ParamSpec& p) { return p.key == f.name; });
+    if (!known) {
+      const std::string key = item_key + "." + f.name;
+      throw ConfigError(key, fmt::format("{}: unknown key '{}'; an item of {} has the fields {}", origin, one_line(key),
+                                         spec.key, field_names(spec)));
+    }
+  }
+  std::vector<std::vector<ConfigScalar>> fields;
+  for (const ParamSpec& field : spec.item_fields) {
+    ParamSpec named = field;
+    named.key = item_key + "." + field.key;
+    const auto given = std::find_if(item.begin(), item.end(), [&](const ItemFieldText& f) { return f.name == field.key; });
+    if (given == item.end())
+      throw ConfigError(named.key, fmt::format("{}: key '{}' missing; allowed: {}{}", origin, named.key, named.allowed(),
+                                               named.unit.empty() ? "" : " (" + named.unit + ")"));
+    std::string shown = given->values.empty() ? "" : given->values[0];
+    if (given->list) {
+      shown = "[";
+      for (std::size_t j = 0; j < given->values.size(); ++j) shown += (j ? ", " : "") + given->values[j];
+      shown += "]";
+    }
+    const bool shape_ok = field.length == 0 ? !given->list
+                                            : given->list && given->values.size() == static_cast<std::size_t>(field.length);
+    if (!shape_ok)
+      throw ConfigError(named.key, error_text(origin, named.key, shown,
+                                              field.length == 0 ? "a list where one value belongs"
+                                                                : fmt::format("not a list of {} values", field.length),
+                                              &named));
+    named.length = 0;
+    std::vector<ConfigScalar> values;
+    for (const std::string& v : given->values) values.push_back(scalar_of(parse_value(named, v, origin)));
+    fields.push_back(std::move(values));
+  }
+  return fields;
+}
+
+}  // namespace
+
 ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin) {
   switch (spec.type) {
+    case ParamType::List: {
+      std::vector<std::vector<ItemFieldText>> items;
+      try {
+        items = parse_list_text(text);
+      } catch (const ConfigError& e) {
+        throw ConfigError(spec.key, error_text(origin, spec.key, text, e.what(), &spec));
+      }
+      ConfigList list;
+      for (std::size_t i = 0; i < items.size(); ++i) list.items.push_back(parse_item(spec, i, items[i], origin));
+      return list;
+    }
     case ParamType::Real: {
       double v = 0;
       if (!parse_double(text, v)) throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a number", &spec));
@@ -241,7 +324,42 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
   throw std::logic_error("unhandled parameter type");
 }
 
-std::string format_value(const ConfigValue& value) {
+namespace {
+
+ConfigValue value_of(const ConfigScalar& scalar) {
+  return std::visit([](const auto& v) -> ConfigValue { return v; }, scalar);
+}
+
+// A List value as YAML: flow items (`{time: 4.1, force: [0.0, 120.0, 0.0]}`) in a flow or block list.
+void emit_list(YAML::Emitter& out, const ConfigList& list, const std::vector<ParamSpec>& item_fields) {
+  out << YAML::BeginSeq;
+  for (const auto& item : list.items) {
+    if (item.size() != item_fields.size()) throw std::logic_error("a list item does not match its fields");
+    out << YAML::Flow << YAML::BeginMap;
+    for (std::size_t f = 0; f < item.size(); ++f) {
+      out << YAML::Key << item_fields[f].key << YAML::Value;
+      if (item_fields[f].length == 0) {
+        out << format_value(value_of(item[f].at(0)));
+      } else {
+        out << YAML::Flow << YAML::BeginSeq;
+        for (const ConfigScalar& v : item[f]) out << format_value(value_of(v));
+        out << YAML::EndSeq;
+      }
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+}  // namespace
+
+std::string format_value(const ConfigValue& value, const std::vector<ParamSpec>& item_fields) {
+  if (const auto* list = std::get_if<ConfigList>(&value)) {
+    YAML::Emitter out;
+    out << YAML::Flow;
+    emit_list(out, *list, item_fields);
+    return out.c_str();
+  }
   struct Visitor {
     std::string operator()(double v) const {
       std::string s = fmt::format("{}", v);  // shortest text that round-trips
@@ -251,6 +369,7 @@ std::string format_value(const ConfigValue& value) {
     std::string operator()(std::int64_t v) const { return fmt::format("{}", v); }
     std::string operator()(bool v) const { return v ? "true" : "false"; }
     std::string operator()(const std::string& v) const { return v; }
+    std::string operator()(const ConfigList&) const { return {}; }  // (above)
   };
   return std::visit(Visitor{}, value);
 }
@@ -273,13 +392,18 @@ const std::string& Config::choice(const std::string& key) const {
 const std::string& Config::text(const std::string& key) const {
   return std::get<std::string>(value(key, ParamType::Text));
 }
+const ConfigList& Config::list(const std::string& key) const {
+  return std::get<ConfigList>(value(key, ParamType::List));
+}
 const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
 
-void Config::set(const std::string& key, const std::string& text, const std::string& origin) {
+void Config::set(const std::string& key, const std::string& text, const std::string& origin, bool list) {
   const ParamSpec* spec = schema_.find(key);
   if (spec == nullptr)
     throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}'){}", origin, one_line(key), one_line(text),
                                        suggestion(schema_, key)));
+  if (list && spec->type != ParamType::List)
+    throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, one_line(key)));
   values_[key] = parse_value(*spec, text, origin);
   origins_[key] = origin;
 }
@@ -301,7 +425,11 @@ std::string Config::to_yaml() const {
       out << YAML::Key << parts[i] << YAML::Value << YAML::BeginMap;
       open.push_back(parts[i]);
     }
-    out << YAML::Key << parts.back() << YAML::Value << format_value(values_.at(spec.key));
+    out << YAML::Key << parts.back() << YAML::Value;
+    if (spec.type == ParamType::List)
+      emit_list(out, std::get<ConfigList>(values_.at(spec.key)), spec.item_fields);
+    else
+      out << format_value(values_.at(spec.key));
     std::string comment = spec.doc;
     if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
     if (!comment.empty()) out << YAML::Comment(comment);
@@ -320,7 +448,7 @@ Config resolve_config(const Schema& schema, const std::optional<std::filesystem:
     cfg.origins_[spec.key] = "default";
   }
   if (file) {
-    for (const ConfigEntry& e : read_config_file(*file)) cfg.set(e.key, e.text, e.origin);
+    for (const ConfigEntry& e : read_config_file(*file)) cfg.set(e.key, e.text, e.origin, e.list);
   }
   for (const ConfigEntry& e : options) cfg.set(e.key, e.text, e.origin);
   for (const auto& item : overrides) {

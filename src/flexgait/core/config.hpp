@@ -40,7 +40,10 @@ class ConfigError : public UsageError {
   std::string key_;
 };
 
-enum class ParamType { Real, Integer, Boolean, Choice, Text };
+/// List: a list of structured items (e.g. disturbance.pushes), each a mapping of the fields
+/// `ParamSpec::item_fields`, every field given; written as YAML (a block list in a file, flow
+/// YAML such as `[{time: 1, force: [0, 9, 0]}]` after --set).
+enum class ParamType { Real, Integer, Boolean, Choice, Text, List };
 
 /// One documented configuration parameter.
 struct ParamSpec {
@@ -54,6 +57,8 @@ struct ParamSpec {
   bool min_inclusive = true;
   bool max_inclusive = true;
   std::vector<std::string> choices;  ///< allowed values (Choice)
+  std::vector<ParamSpec> item_fields;  ///< List: the fields of one item (key: the field's name)
+  int length = 0;  ///< a field of a List item: 0 one value, n > 0 a list of exactly n values of `type`
 
   /// Human-readable domain, e.g. "a real number > 0" or "one of flexible, rigid".
   std::string allowed() const;
@@ -82,13 +87,20 @@ class Schema {
   std::vector<ParamSpec> params_;
 };
 
-using ConfigValue = std::variant<double, std::int64_t, bool, std::string>;
+using ConfigScalar = std::variant<double, std::int64_t, bool, std::string>;
+/// A List value: items × fields (in ParamSpec::item_fields order) × values (1, or the field's length).
+struct ConfigList {
+  std::vector<std::vector<std::vector<ConfigScalar>>> items;
+  bool operator==(const ConfigList&) const = default;
+};
+using ConfigValue = std::variant<double, std::int64_t, bool, std::string, ConfigList>;
 
 /// One value with its dotted key, its text and where it comes from ("FILE:LINE", "--steps").
 struct ConfigEntry {
   std::string key;
   std::string text;
   std::string origin;
+  bool list = false;  ///< the text is a YAML list read from a file (a key that takes one value refuses it)
 };
 
 /// A resolved configuration: every key of its schema has a validated value.
@@ -99,10 +111,12 @@ class Config {
   bool boolean(const std::string& key) const;
   const std::string& choice(const std::string& key) const;
   const std::string& text(const std::string& key) const;
+  const ConfigList& list(const std::string& key) const;
   /// Where the value came from: "default", "--set", or "FILE:LINE".
   const std::string& origin(const std::string& key) const;
   /// Replaces a value after validation against the schema (used by sweeps).
-  void set(const std::string& key, const std::string& text, const std::string& origin = "--set");
+  /// `list`: the text is a YAML list from a file (refused by a key that takes one value).
+  void set(const std::string& key, const std::string& text, const std::string& origin = "--set", bool list = false);
   /// The resolved configuration as nested YAML, keys in schema order; round-trips through load.
   std::string to_yaml() const;
   const Schema& schema() const { return schema_; }
@@ -123,8 +137,9 @@ void check_with_origin(const Config& config, const std::function<void()>& check)
 /// Parses `text` as the value of `spec`; throws ConfigError naming origin, key and domain.
 ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin);
 
-/// Formats a value as YAML scalar text that parses back to the identical value.
-std::string format_value(const ConfigValue& value);
+/// Formats a value as YAML text that parses back to the identical value (a list: flow YAML, whose
+/// items need their spec to be named: `item_fields`).
+std::string format_value(const ConfigValue& value, const std::vector<ParamSpec>& item_fields = {});
 
 /// Resolves defaults, then the YAML file (if any), then `options` (values of command-line options
 /// such as --steps, each under its own origin), then `key=value` overrides (--set) in order.

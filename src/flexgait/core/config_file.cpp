@@ -1,6 +1,8 @@
 #include "flexgait/core/config_file.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/emitter.h>
+#include <yaml-cpp/emittermanip.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/exceptions.h>
 #include <yaml-cpp/parser.h>
@@ -163,21 +165,54 @@ struct Flattener {
         }
         case Node::Kind::Null:
           throw ConfigError(key, fmt::format("{}: key '{}' has no value", origin, shown));
-        case Node::Kind::Sequence:
-          throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, shown));
+        case Node::Kind::Sequence: {
+          const auto [it, added] = origins.emplace(key, origin);
+          if (!added)
+            throw ConfigError(key, fmt::format("{}: key '{}' given twice (first at {})", origin, shown, it->second));
+          YAML::Emitter text;
+          text << YAML::Flow;
+          emit(text, *v.node, origin);
+          out.push_back({key, text.c_str(), origin, true});
+          break;
+        }
       }
+    }
+  }
+
+  // A list value as flow YAML, aliases expanded (each node counted against the limit).
+  void emit(YAML::Emitter& text, const Node& node, const std::string& origin) {
+    if (++visited > kMaxConfigNodes)
+      throw ConfigError("", fmt::format("{}: aliases expand to more than {} values (a configuration has a few "
+                                        "hundred)", origin, kMaxConfigNodes));
+    switch (node.kind) {
+      case Node::Kind::Null: text << YAML::Null; break;
+      case Node::Kind::Scalar: text << node.scalar; break;
+      case Node::Kind::Sequence:
+        text << YAML::BeginSeq;
+        for (const auto& [k, v] : node.entries) emit(text, *v.node, origin);
+        text << YAML::EndSeq;
+        break;
+      case Node::Kind::Map:
+        text << YAML::BeginMap;
+        for (const auto& [k, v] : node.entries) {
+          text << YAML::Key;
+          emit(text, *k.node, origin);
+          text << YAML::Value;
+          emit(text, *v.node, origin);
+        }
+        text << YAML::EndMap;
+        break;
     }
   }
 };
 
-}  // namespace
-
-std::vector<ConfigEntry> parse_config_yaml(std::string_view text, const std::string& name) {
+// The document's root (none when empty); syntax errors and a second document are ConfigErrors.
+std::optional<Ref> parse_tree(std::string_view text, const std::string& name) {
   std::istringstream in{std::string(text)};
   TreeBuilder tree(name);
   try {
     YAML::Parser parser(in);
-    if (!parser.HandleNextDocument(tree)) return {};
+    if (!parser.HandleNextDocument(tree)) return std::nullopt;
     TreeBuilder second(name);
     if (parser.HandleNextDocument(second))
       throw ConfigError("", fmt::format("{}:{}: a second YAML document; a configuration is one mapping of keys", name,
@@ -186,7 +221,47 @@ std::vector<ConfigEntry> parse_config_yaml(std::string_view text, const std::str
     const std::string where = e.mark.is_null() ? name : fmt::format("{}:{}", name, e.mark.line + 1);
     throw ConfigError("", fmt::format("{}: YAML syntax error: {}", where, one_line(e.msg, 200)));
   }
-  const std::optional<Ref>& root = tree.root();
+  return tree.root();
+}
+
+}  // namespace
+
+std::vector<std::vector<ItemFieldText>> parse_list_text(std::string_view text) {
+  const std::optional<Ref> root = parse_tree(text, "list");
+  if (!root || root->node->kind != Node::Kind::Sequence) throw ConfigError("", "not a list");
+  std::size_t visited = 0;
+  auto count = [&] {
+    if (++visited > kMaxConfigNodes) throw ConfigError("", fmt::format("more than {} values", kMaxConfigNodes));
+  };
+  std::vector<std::vector<ItemFieldText>> items;
+  for (const auto& [unused, item] : root->node->entries) {
+    count();
+    if (item.node->kind != Node::Kind::Map)
+      throw ConfigError("", fmt::format("item {} is {}, not a mapping of fields", items.size(), kind_name(item.node->kind)));
+    std::vector<ItemFieldText> fields;
+    for (const auto& [k, v] : item.node->entries) {
+      count();
+      ItemFieldText f{k.node->scalar, {}, v.node->kind == Node::Kind::Sequence};
+      if (v.node->kind == Node::Kind::Scalar) f.values.push_back(v.node->scalar);
+      for (const auto& [unused2, e] : v.node->entries) {
+        count();
+        if (e.node->kind != Node::Kind::Scalar)
+          throw ConfigError("", fmt::format("item {} field '{}' holds {}, not a value", items.size(), one_line(f.name),
+                                            kind_name(e.node->kind)));
+        f.values.push_back(e.node->scalar);
+      }
+      if (v.node->kind != Node::Kind::Scalar && v.node->kind != Node::Kind::Sequence)
+        throw ConfigError("", fmt::format("item {} field '{}' is {}, not a value or a list of values", items.size(),
+                                          one_line(f.name), kind_name(v.node->kind)));
+      fields.push_back(std::move(f));
+    }
+    items.push_back(std::move(fields));
+  }
+  return items;
+}
+
+std::vector<ConfigEntry> parse_config_yaml(std::string_view text, const std::string& name) {
+  const std::optional<Ref> root = parse_tree(text, name);
   if (!root || root->node->kind == Node::Kind::Null) return {};
   if (root->node->kind != Node::Kind::Map)
     throw ConfigError("", fmt::format("{}: the top level must be a mapping of keys", name));

@@ -20,7 +20,17 @@
 ///
 /// Field types: double, int, std::int64_t, bool, an enum with a name table (enum_names.hpp),
 /// std::string (a parameter of type text: a name or a path) and, for results only, std::optional<std::string> (null when empty) and
-/// std::vector<std::string>.
+/// std::vector<std::string>; and a list of structured items, std::vector<Item> (a parameter of type
+/// list), where Item declares its fields with short names in
+///
+///     template <class Self, class Visitor>
+///     static void visit_item_fields(Self& self, Visitor& visit) {
+///       visit("time", self.time, {.unit = "s", .doc = "start", .bounds = non_negative()});
+///       visit("force", self.force, {.unit = "N", .doc = "world frame"});  // std::array<double, 3>
+///     }
+///
+/// of the scalar types above or std::array<double, N>. Every field of an item must be given.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -71,6 +81,102 @@ namespace detail {
 template <class T>
 inline constexpr bool kAlwaysFalse = false;
 
+template <class T>
+struct IsDoubleArray : std::false_type {};
+template <std::size_t N>
+struct IsDoubleArray<std::array<double, N>> : std::true_type {};
+
+template <class T>
+ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info);
+
+/// The field specs of a list's item (keys: the field names; std::array<double, N>: length N).
+struct ItemSpecBuilder {
+  std::vector<ParamSpec>& fields;
+  template <class T>
+  void operator()(std::string_view name, const T& value, const FieldInfo& info) {
+    if constexpr (IsDoubleArray<T>::value) {
+      fields.push_back(param_spec(name, value[0], info));
+      fields.back().length = static_cast<int>(value.size());
+    } else {
+      fields.push_back(param_spec(name, value, info));
+    }
+  }
+};
+
+/// An item's fields as configuration values, in declaration order.
+struct ItemWriter {
+  std::vector<std::vector<ConfigScalar>>& fields;
+  template <class T>
+  void operator()(std::string_view, const T& value, const FieldInfo&) {
+    std::vector<ConfigScalar> values;
+    if constexpr (IsDoubleArray<T>::value) {
+      for (const double v : value) values.emplace_back(v);
+    } else if constexpr (std::is_same_v<T, bool>) {
+      values.emplace_back(value);
+    } else if constexpr (NamedEnum<T>) {
+      values.emplace_back(std::string(name_of(value)));
+    } else if constexpr (std::is_integral_v<T>) {
+      values.emplace_back(static_cast<std::int64_t>(value));
+    } else if constexpr (std::is_floating_point_v<T>) {
+      values.emplace_back(static_cast<double>(value));
+    } else {
+      values.emplace_back(std::string(value));
+    }
+    fields.push_back(std::move(values));
+  }
+};
+
+/// An item's fields from configuration values (checked against ItemSpecBuilder's specs).
+struct ItemReader {
+  const std::vector<std::vector<ConfigScalar>>& fields;
+  std::size_t next = 0;
+  template <class T>
+  void operator()(std::string_view name, T& member, const FieldInfo&) {
+    const std::vector<ConfigScalar>& values = fields.at(next++);
+    if constexpr (IsDoubleArray<T>::value) {
+      for (std::size_t i = 0; i < member.size(); ++i) member[i] = std::get<double>(values.at(i));
+    } else if constexpr (std::is_same_v<T, bool>) {
+      member = std::get<bool>(values.at(0));
+    } else if constexpr (NamedEnum<T>) {
+      const auto value = enum_from_name<T>(std::get<std::string>(values.at(0)));
+      if (!value) throw std::logic_error("list item field " + std::string(name) + " holds a name outside its enum");
+      member = *value;
+    } else if constexpr (std::is_integral_v<T>) {
+      member = static_cast<T>(std::get<std::int64_t>(values.at(0)));
+    } else if constexpr (std::is_floating_point_v<T>) {
+      member = std::get<double>(values.at(0));
+    } else {
+      member = std::get<std::string>(values.at(0));
+    }
+  }
+};
+
+/// A list of structured items: std::vector<Item> whose Item declares visit_item_fields.
+template <class T>
+struct IsItemList : std::false_type {};
+template <class Item>
+  requires requires(const Item& item, ItemSpecBuilder& b) { Item::visit_item_fields(item, b); }
+struct IsItemList<std::vector<Item>> : std::true_type {};
+
+template <class Item>
+std::vector<ParamSpec> item_fields_of() {
+  std::vector<ParamSpec> fields;
+  ItemSpecBuilder builder{fields};
+  const Item item{};
+  Item::visit_item_fields(item, builder);
+  return fields;
+}
+
+template <class Item>
+ConfigList config_list_of(const std::vector<Item>& items) {
+  ConfigList list;
+  for (const Item& item : items) {
+    ItemWriter writer{list.items.emplace_back()};
+    Item::visit_item_fields(item, writer);
+  }
+  return list;
+}
+
 /// The configuration parameter of one field.
 template <class T>
 ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info) {
@@ -98,6 +204,10 @@ ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info
   } else if constexpr (std::is_same_v<T, std::string>) {
     p.type = ParamType::Text;
     p.fallback = value;
+  } else if constexpr (IsItemList<T>::value) {
+    p.type = ParamType::List;
+    p.item_fields = item_fields_of<typename T::value_type>();
+    p.fallback = format_value(config_list_of(value), p.item_fields);
   } else {
     static_assert(kAlwaysFalse<T>, "a configuration field must be a number, a bool or a named enum");
   }
@@ -129,6 +239,12 @@ struct ConfigReader {
       member = config.real(k);
     } else if constexpr (std::is_same_v<T, std::string>) {
       member = config.text(k);
+    } else if constexpr (IsItemList<T>::value) {
+      member.clear();
+      for (const auto& fields : config.list(k).items) {
+        ItemReader reader{fields};
+        T::value_type::visit_item_fields(member.emplace_back(), reader);
+      }
     } else {
       static_assert(kAlwaysFalse<T>, "a configuration field must be a number, a bool or a named enum");
     }
@@ -158,7 +274,7 @@ R record_from_config(const Config& config, R base = R{}) {
 /// One field of a record as `schema.json` describes it.
 struct FieldDescription {
   std::string key;
-  std::string type;  ///< real, integer, boolean, choice, text
+  std::string type;  ///< real, integer, boolean, choice, text, list
   std::string unit;
   std::string doc;
   std::vector<std::string> choices;  ///< for choice
@@ -186,6 +302,8 @@ struct Describer {
       d.type = "text or null";
     } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
       d.type = "list of text";
+    } else if constexpr (IsItemList<T>::value) {
+      d.type = "list";
     } else {
       static_assert(kAlwaysFalse<T>, "unsupported record field type");
     }

@@ -100,7 +100,12 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
   if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
   plant.reset(controller.initial_pose());
-  plant.set_push(params.push);
+  const std::vector<humanoid::Push> pushes = humanoid::all_pushes(params.pushes, params.push);
+  plant.set_pushes(pushes);
+  // The capture-point bound is taken for the earliest push (summary.json).
+  const humanoid::Push first_push =
+      pushes.empty() ? params.push
+                     : *std::min_element(pushes.begin(), pushes.end(), [](const auto& a, const auto& b) { return a.time < b.time; });
   const walking::RobotModel& model = controller.model();
 
   WalkResult out;
@@ -110,7 +115,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.riccati_residual = controller.gains().riccati_residual;
   m.compensation = params.control.mode;
   m.gravity_model = params.control.gravity;
-  m.pushed = params.push.active();
+  m.pushed = !pushes.empty();
   bool bound_taken = false;
 
   // Truth → plan frame: the offset between the initial feet.
@@ -164,10 +169,10 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const double roll_true = walking::roll_of(R_before), pitch_true = walking::pitch_of(R_before);
     const humanoid::JointVector encoder = sensors.encoder;  // (the plant's sensors change on step)
     const bool in_walk = before.t >= t_walk0 && before.t <= out.plan.t_settle;
-    if (m.pushed && !bound_taken && before.t + 0.5 * params.plant.physics_dt >= params.push.time) {
+    if (m.pushed && !bound_taken && before.t + 0.5 * params.plant.physics_dt >= first_push.time) {
       // The capture-point bound of the push's direction, where the robot stands as it begins.
       bound_taken = true;
-      const Eigen::Vector2d direction(params.push.force[0], params.push.force[1]);
+      const Eigen::Vector2d direction(first_push.force[0], first_push.force[1]);
       std::vector<walking::Pose> soles;
       for (int side = 0; side < 2; ++side)
         if (before.sole_contact[side])

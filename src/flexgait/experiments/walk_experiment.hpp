@@ -38,11 +38,12 @@ struct WalkRunParams {
   walking::EstimatorParams estimator;      ///< the controller's attitude estimator (estimator.*)
   walking::HealthParams health;            ///< the controller's sensor health checks (health.*)
   humanoid::Push push;                     ///< a push on the twin (disturbance.push.*; none by default)
+  std::vector<humanoid::Push> pushes;      ///< more pushes (disturbance.pushes; the single push is added after them)
   double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                  ///< or tilts this far [rad]
 
-  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*, output.log_period (the controller's
+  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*, disturbance.pushes, output.log_period (the controller's
   /// belief of the robot and the fall thresholds are not keys).
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -55,6 +56,8 @@ struct WalkRunParams {
     walking::EstimatorParams::visit_fields(s.estimator, v);
     walking::HealthParams::visit_fields(s.health, v);
     humanoid::Push::visit_fields(s.push, v);
+    v("disturbance.pushes", s.pushes, {.doc = "pushes on the twin, each {time [s], body, force [N, world], duration [s]}; "
+                                              "disturbance.push.* adds one more"});
     v("output.log_period", s.log_period, {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
   }
 };

@@ -8,10 +8,12 @@
 /// when round(time/dt) <= n < round((time + duration)/dt), so the applied impulse is exactly
 /// F dt (round((time + duration)/dt) − round(time/dt)) — F × duration when both are multiples of dt.
 ///
-/// Only the single push of the keys disturbance.push.*: the configuration reader takes a mapping
-/// of scalars (core/config_file.hpp refuses lists), so the list form is not read.
+/// Pushes are given as a list, `disturbance.pushes: [{time: 4.1, body: chest, force: [0, 120, 0],
+/// duration: 0.1}, ...]` (every field in each item), and one more by the keys disturbance.push.*;
+/// `all_pushes` joins them (the single push after the list). Pushes that overlap in time add up.
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "flexgait/core/record.hpp"
 
@@ -34,6 +36,15 @@ struct Push {
   /// |F| × duration [N s] (the nominal impulse; the plant reports what it applied).
   double impulse() const { return active() ? std::hypot(force[0], force[1], force[2]) * duration : 0.0; }
 
+  /// The fields of one item of disturbance.pushes.
+  template <class Self, class Visit>
+  static void visit_item_fields(Self& s, Visit& v) {
+    v("time", s.time, {.unit = "s", .doc = "start of the push (simulated time)", .bounds = non_negative()});
+    v("body", s.body, {.doc = "body the push acts on (at its centre of mass)"});
+    v("force", s.force, {.unit = "N", .doc = "push force, world frame [x, y, z]", .bounds = closed(-1e5, 1e5)});
+    v("duration", s.duration, {.unit = "s", .doc = "how long the force acts", .bounds = closed(0, 1e4)});
+  }
+
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("disturbance.push.time", s.time, {.unit = "s", .doc = "start of the push (simulated time)", .bounds = non_negative()});
@@ -45,5 +56,14 @@ struct Push {
     v("disturbance.push.duration", s.duration, {.unit = "s", .doc = "how long the force acts", .bounds = closed(0, 1e4)});
   }
 };
+
+/// The pushes of `list` that happen (Push::active), then `single` if it happens.
+inline std::vector<Push> all_pushes(const std::vector<Push>& list, const Push& single) {
+  std::vector<Push> out;
+  for (const Push& p : list)
+    if (p.active()) out.push_back(p);
+  if (single.active()) out.push_back(single);
+  return out;
+}
 
 }  // namespace flexgait::humanoid

@@ -165,20 +165,24 @@ void HumanoidPlant::step(const JointVector& command) {
   read_sensors();
 }
 
-void HumanoidPlant::set_push(const Push& push) { push_ = push; }
+void HumanoidPlant::set_pushes(std::vector<Push> pushes) { pushes_ = std::move(pushes); }
 
 void HumanoidPlant::apply_push() {
   const double dt = model_->opt.timestep;
   const long n = std::lround(data_->time / dt);
-  const bool on = push_.active() && n >= std::lround(push_.time / dt) && n < std::lround((push_.time + push_.duration) / dt);
-  const int body = push_body_[static_cast<int>(push_.body)];
   for (const int b : push_body_)
     for (int i = 0; i < 6; ++i) data_->xfrc_applied[6 * b + i] = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    push_force_[i] = on ? push_.force[i] : 0.0;
-    data_->xfrc_applied[6 * body + i] = push_force_[i];  // force at the body's COM, world frame
-    push_impulse_[i] += push_force_[i] * dt;
+  push_force_ = {};
+  for (const Push& push : pushes_) {
+    const bool on = push.active() && n >= std::lround(push.time / dt) && n < std::lround((push.time + push.duration) / dt);
+    if (!on) continue;
+    const int body = push_body_[static_cast<int>(push.body)];
+    for (int i = 0; i < 3; ++i) {
+      data_->xfrc_applied[6 * body + i] += push.force[i];  // force at the body's COM, world frame
+      push_force_[i] += push.force[i];
+    }
   }
+  for (int i = 0; i < 3; ++i) push_impulse_[i] += push_force_[i] * dt;
 }
 
 void HumanoidPlant::read_sensors() {

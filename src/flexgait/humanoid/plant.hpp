@@ -72,8 +72,11 @@ class HumanoidPlant {
   void reset(const JointVector& pose);
   /// Advances one control period with these motor-side position commands [rad].
   void step(const JointVector& command);
-  /// The push to apply from now on (replaces any earlier one; disturbance.hpp for its timing).
-  void set_push(const Push& push);
+  /// The pushes to apply from now on (replace any earlier ones; disturbance.hpp for their timing);
+  /// forces on the same body at the same time add up.
+  void set_pushes(std::vector<Push> pushes);
+  /// One push (set_pushes with one).
+  void set_push(const Push& push) { set_pushes({push}); }
   const SensorReadings& sensors() const { return sensors_; }
   GroundTruth truth() const;
   double time() const;
@@ -101,7 +104,7 @@ class HumanoidPlant {
   /// A geom of the floor: any geom of the world body (the terrain's, terrain.hpp).
   bool is_floor(int geom) const { return model_->geom_bodyid[geom] == 0; }
   std::array<int, 2> push_body_{};  ///< body ids of PushBody: pelvis, chest
-  Push push_;
+  std::vector<Push> pushes_;
   std::array<double, 3> push_force_{}, push_impulse_{}, floor_impulse_{};
   std::array<int, 2> sole_geom_{};
   std::array<int, 2> ft_site_{};
