@@ -182,9 +182,7 @@ def non_finite_in(text):
     return re.search(r"(?<![A-Za-z_\"])(-?nan|-?inf|NaN|-?Infinity)(?![A-Za-z_\"])", text) is not None
 
 
-def classify(proc_code, stdout, stderr, out, timed_out, expect_refusal):
-    if timed_out:
-        return "hang"
+def classify(proc_code, stdout, stderr, out, expect_refusal):
     if proc_code < 0 or proc_code >= 128 or "internal error" in stderr:
         return "crash"
     lines = stderr.count("\n")
@@ -216,7 +214,7 @@ def run_cli_case(exe, args, out_override, work, timeout, expect_refusal):
     stderr = p.stderr.decode("utf-8", "replace")
     stdout = p.stdout.decode("utf-8", "replace")
     check_out = out if out_override is None else os.path.join(work, "never")
-    outcome = classify(p.returncode, stdout, stderr, check_out, False, expect_refusal)
+    outcome = classify(p.returncode, stdout, stderr, check_out, expect_refusal)
     return outcome, "exit %d: %s" % (p.returncode, stderr[-600:].strip())
 
 
@@ -294,8 +292,8 @@ def main():
                 if only:
                     print("args:", args, "\noutcome:", outcome, detail)
                 if outcome in DEFECTS:
-                    defects.append("%s %s:%d %s: %s\n  args: %s\n  replay: %s %s --seed %d --case %s:%d" %
-                                   (outcome, cls, k, "", detail, args, sys.argv[0], a.exe, a.seed, cls, k))
+                    defects.append("%s %s:%d: %s\n  args: %s\n  replay: %s %s --seed %d --case %s:%d" %
+                                   (outcome, cls, k, detail, args, sys.argv[0], a.exe, a.seed, cls, k))
     print("| class | tried | " + " | ".join(OUTCOMES) + " |")
     print("|---|---" + "|---" * len(OUTCOMES) + "|")
     for cls in classes:
