@@ -14,22 +14,22 @@
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
 #include "flexgait/experiments/walk_output.hpp"
-#include "flexgait/humanoid/model_xml.hpp"
-#include "flexgait/humanoid/renderer.hpp"
-#include "flexgait/humanoid/robot_loader.hpp"
-#include "flexgait/humanoid/urdf_export.hpp"
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/renderer.hpp"
+#include "flexgait/twin/robot_loader.hpp"
+#include "flexgait/robot/urdf_export.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "options.hpp"
 
 namespace flexgait::cli {
 namespace {
 
 int bench(const RunOptions& run) {
-  const Config config = resolve(humanoid::bench_schema(), run);
-  const humanoid::BenchParams params = humanoid::bench_from_config(config);
+  const Config config = resolve(experiments::bench_schema(), run);
+  const experiments::BenchParams params = experiments::bench_from_config(config);
   const RunDirectory dir(run.out);  // --out before the computation
   dir.write_config(config);
-  const humanoid::BenchResult r = humanoid::run_stiffness_bench(params);
+  const experiments::BenchResult r = experiments::run_stiffness_bench(params);
 
   const std::string summary = experiments::bench_summary_json(r);
   dir.write("bench.csv", experiments::bench_csv(r));
@@ -173,8 +173,8 @@ int walk(const RunOptions& run, const RenderOptions& render) {
     std::filesystem::create_directories(dir.path() / "frames");
     observe = [&](const humanoid::HumanoidPlant& plant) {
       if (period++ % every != 0) return;
-      if (!renderer) renderer = std::make_unique<humanoid::Renderer>(plant.model(), render.width, render.height);
-      const auto& rgb = renderer->render(plant.data());
+      if (!renderer) renderer = std::make_unique<humanoid::Renderer>(plant, render.width, render.height);
+      const auto& rgb = renderer->render(plant);
       dir.write(fmt::format("frames/frame_{:05d}.png", frame++), humanoid::encode_png(rgb, render.width, render.height));
     };
   }

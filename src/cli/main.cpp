@@ -11,7 +11,7 @@
 #include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
-#include "flexgait/humanoid/mujoco_messages.hpp"
+#include "flexgait/twin/mujoco_messages.hpp"
 #include "campaign_command.hpp"
 #include "humanoid_commands.hpp"
 #include "mpi_distributor.hpp"

@@ -8,7 +8,7 @@
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/rimless/simulation.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
@@ -56,7 +56,7 @@ std::string schema_document() {
   nlohmann::ordered_json doc;
   doc["configurations"]["rimless"] = configuration_json(rimless::rimless_analysis_schema());
   doc["configurations"]["humanoid-walk"] = configuration_json(experiments::walk_run_schema());
-  doc["configurations"]["humanoid-bench"] = configuration_json(humanoid::bench_schema());
+  doc["configurations"]["humanoid-bench"] = configuration_json(experiments::bench_schema());
   nlohmann::ordered_json rimless_summary = record_schema_json<rimless::SimulationResult>();
   rimless_summary["fields"].insert(rimless_summary["fields"].begin(),
                                    nlohmann::ordered_json{{"key", "model"}, {"type", "choice"}, {"unit", ""},
@@ -65,7 +65,7 @@ std::string schema_document() {
   doc["results"]["rimless simulate: summary.json"] = std::move(rimless_summary);
   doc["results"]["rimless analysis stagnation: stagnation.json"] = record_schema_json<rimless::StagnationSummary>();
   doc["results"]["humanoid walk: summary.json"] = record_schema_json<experiments::WalkMetrics>();
-  doc["results"]["humanoid bench: summary.json"] = record_schema_json<humanoid::BenchResult>();
+  doc["results"]["humanoid bench: summary.json"] = record_schema_json<experiments::BenchResult>();
   return doc.dump(2) + "\n";
 }
 

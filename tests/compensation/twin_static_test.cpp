@@ -15,7 +15,7 @@
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/plant.hpp"
+#include "flexgait/twin/plant.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
 
 namespace flexgait::compensation {

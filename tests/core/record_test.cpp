@@ -11,9 +11,9 @@
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/robot_description.hpp"
-#include "flexgait/humanoid/robot_params.hpp"
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/robot/robot_description.hpp"
+#include "flexgait/robot/robot_params.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/parameters.hpp"
 #include "flexgait/walking/walk_params.hpp"
@@ -99,7 +99,7 @@ TEST(Record, HumanoidParametersDeriveFromOneList) {
   check_record<humanoid::RobotParams>();
   check_record<humanoid::RobotDescriptionParams>();
   check_record<humanoid::PlantParams>();
-  check_record<humanoid::BenchParams>();
+  check_record<experiments::BenchParams>();
   check_record<walking::WalkParams>();
   check_record<walking::BalanceParams>();
   check_record<compensation::CompensationParams>();

@@ -8,7 +8,7 @@
 #include "flexgait/experiments/push_recovery.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
-#include "flexgait/humanoid/plant.hpp"
+#include "flexgait/twin/plant.hpp"
 
 namespace flexgait::experiments {
 namespace {
@@ -35,7 +35,7 @@ Eigen::Vector3d impulse_from_momentum(const Push& push) {
     EXPECT_NEAR(b.push_impulse[i], push.force[i] * push.duration, 1e-9 * std::abs(push.force[i]) + 1e-12);
   EXPECT_FALSE(b.non_sole_contact);
   EXPECT_TRUE(a.sole_contact[0] && a.sole_contact[1] && b.sole_contact[0] && b.sole_contact[1]);  // no contact change
-  const double g = -plant.model()->opt.gravity[2];
+  const double g = plant.gravity();
   Eigen::Vector3d out;
   for (int i = 0; i < 3; ++i) out(i) = (b.linear_momentum[i] - a.linear_momentum[i]) - (b.floor_impulse[i] - a.floor_impulse[i]);
   out.z() += plant.total_mass() * g * (b.t - a.t);

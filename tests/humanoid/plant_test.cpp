@@ -1,15 +1,16 @@
 // The twin: mass, standing on its own, gravity deflection of the elastic gears, sensors,
 // encoder quantisation, determinism.
-#include "flexgait/humanoid/plant.hpp"
+#include "flexgait/twin/plant.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
-#include <string>
 #include <numbers>
+#include <string>
 
-#include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -72,8 +73,8 @@ TEST(HumanoidPlant, StaticDeflectionIsGravityTorqueOverStiffness) {
   for (double k : {600.0, 1000.0, 2000.0}) {
     HumanoidPlant plant(RobotParams{}, default_plant(k));
     stand(plant, 6.0);
-    const mjModel* m = plant.model();
-    const mjData* d = plant.data();
+    const mjModel* m = plant_model(plant);
+    const mjData* d = plant_data(plant);
     const GroundTruth t = plant.truth();
     for (int side = 0; side < 2; ++side) {
       for (int offset : {1, 2, 3}) {  // hip roll, hip pitch, knee
@@ -115,6 +116,61 @@ TEST(HumanoidPlant, SameInputSameBytes) {
   EXPECT_EQ(0, std::memcmp(ta.link_angle.data(), tb.link_angle.data(), sizeof(double) * kJoints));
   EXPECT_EQ(0, std::memcmp(&a.sensors().ft, &b.sensors().ft, sizeof(a.sensors().ft)));
   EXPECT_EQ(0, std::memcmp(&a.sensors().imu, &b.sensors().imu, sizeof(a.sensors().imu)));
+}
+
+// A copy of the plant is its whole state: stepped with the same commands as the original, it
+// gives the same bytes (MuJoCo's state, motors, sensor noise generator and drifts, faults, pushes).
+TEST(HumanoidPlant, ACopyContinuesAsTheOriginal) {
+  PlantParams params = default_plant();
+  params.ft_force_noise = 2.0;  // the noise generator is part of the state
+  params.imu.gyro_bias_walk = 0.01;
+  HumanoidPlant a(RobotParams{}, params);
+  const JointVector pose = standing_pose(RobotParams{}, kStandHeight);
+  a.reset(pose);
+  a.set_push(Push{0.3, PushBody::kChest, {30, 0, 0}, 0.4});
+  JointVector command = pose;
+  for (int i = 0; i < 100; ++i) a.step(command);
+  HumanoidPlant b = a;
+  HumanoidPlant c(RobotParams{}, params);
+  c = a;
+  for (int i = 0; i < 100; ++i) {
+    command[kLeftKnee] = pose[kLeftKnee] + 0.1 * std::sin(0.05 * i);
+    a.step(command);
+    b.step(command);
+    c.step(command);
+  }
+  for (const HumanoidPlant* copy : {&b, &c}) {
+    const GroundTruth ta = a.truth(), tb = copy->truth();
+    EXPECT_EQ(ta.link_angle, tb.link_angle);
+    EXPECT_EQ(ta.motor_angle, tb.motor_angle);
+    EXPECT_EQ(ta.pelvis_pos, tb.pelvis_pos);
+    EXPECT_EQ(ta.push_impulse, tb.push_impulse);
+    EXPECT_EQ(ta.floor_impulse, tb.floor_impulse);
+    EXPECT_EQ(0, std::memcmp(&a.sensors().ft, &copy->sensors().ft, sizeof(a.sensors().ft)));
+    EXPECT_EQ(0, std::memcmp(&a.sensors().imu, &copy->sensors().imu, sizeof(a.sensors().imu)));
+  }
+  EXPECT_EQ(plant_model(a), plant_model(b)) << "copies share the const model";
+  EXPECT_NE(plant_data(a), plant_data(b));
+}
+
+// reset() depends on the pose only: what the plant did before leaves no trace (the gear springs
+// are forces of the drives' state, not a reference stored in the model), so the first readings
+// after a reset are the same bytes whatever came before.
+TEST(HumanoidPlant, ResetDependsOnThePoseOnly) {
+  const JointVector pose = standing_pose(RobotParams{}, kStandHeight);
+  HumanoidPlant fresh(RobotParams{}, default_plant());
+  fresh.reset(pose);
+  HumanoidPlant used(RobotParams{}, default_plant());
+  used.reset(standing_pose(RobotParams{}, 0.70));
+  for (int i = 0; i < 50; ++i) used.step(standing_pose(RobotParams{}, 0.72));
+  used.reset(pose);
+  const mjData* a = plant_data(fresh);
+  const mjData* b = plant_data(used);
+  const int n = plant_model(fresh)->nsensordata;
+  EXPECT_EQ(0, std::memcmp(a->sensordata, b->sensordata, sizeof(mjtNum) * static_cast<std::size_t>(n)));
+  EXPECT_EQ(0, std::memcmp(a->qacc, b->qacc, sizeof(mjtNum) * static_cast<std::size_t>(plant_model(fresh)->nv)));
+  // At rest with no deflection, the gears carry no torque: the legs' joints have no spring force.
+  for (int j = 0; j < kJoints; ++j) EXPECT_EQ(fresh.truth().gear_torque[j], 0.0) << kJointNames[j];
 }
 
 }  // namespace

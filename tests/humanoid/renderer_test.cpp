@@ -1,12 +1,12 @@
 // Offscreen rendering (OSMesa): a frame of the standing twin is a valid PNG of the requested size,
 // shows the robot (not a blank image), and changes when the robot moves.
-#include "flexgait/humanoid/renderer.hpp"
+#include "flexgait/twin/renderer.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
 
-#include "flexgait/humanoid/plant.hpp"
+#include "flexgait/twin/plant.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -21,8 +21,8 @@ TEST(Renderer, DrawsTheTwinIntoAPng) {
   PlantParams p;
   HumanoidPlant plant(RobotParams{}, p);
   plant.reset(standing_pose(RobotParams{}, 0.75));
-  Renderer renderer(plant.model(), 320, 240);
-  const std::vector<unsigned char> standing = renderer.render(plant.data());
+  Renderer renderer(plant, 320, 240);
+  const std::vector<unsigned char> standing = renderer.render(plant);
   ASSERT_EQ(standing.size(), 320u * 240u * 3u);
   // The robot is in the middle of the picture: the centre column differs from the image corner.
   long differing = 0;
@@ -38,7 +38,7 @@ TEST(Renderer, DrawsTheTwinIntoAPng) {
   // Another pose, another picture.
   JointVector bent = standing_pose(RobotParams{}, 0.70);
   plant.reset(bent);
-  EXPECT_NE(renderer.render(plant.data()), standing);
+  EXPECT_NE(renderer.render(plant), standing);
 }
 
 TEST(Renderer, DrawsAnArrowForAPush) {
@@ -47,12 +47,12 @@ TEST(Renderer, DrawsAnArrowForAPush) {
   plant.reset(pose);
   plant.set_push(Push{0.0, PushBody::kChest, {0, 200, 0}, 0.1});  // sideways: across the side view
   plant.step(pose);
-  Renderer renderer(plant.model(), 320, 240);
-  const std::vector<unsigned char> pushed = renderer.render(plant.data());
+  Renderer renderer(plant, 320, 240);
+  const std::vector<unsigned char> pushed = renderer.render(plant);
   plant.reset(pose);
   plant.set_push(Push{});
   plant.step(pose);
-  const std::vector<unsigned char> still = renderer.render(plant.data());
+  const std::vector<unsigned char> still = renderer.render(plant);
   // The orange arrow: pixels with much more red than blue appear only with the push.
   const auto orange = [](const std::vector<unsigned char>& rgb) {
     long n = 0;

@@ -1,7 +1,7 @@
 // A robot from its description (issue 16): the builtin twin's MJCF loaded back gives the same
 // controller model and a twin that compiles to the same numbers; the controller's model of a
 // loaded robot against MuJoCo's own (COM, sole poses, Jacobians, gravity torques); the errors.
-#include "flexgait/humanoid/robot_loader.hpp"
+#include "flexgait/twin/robot_loader.hpp"
 
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
@@ -12,8 +12,9 @@
 #include <string>
 
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/model_xml.hpp"
-#include "flexgait/humanoid/twin_mjcf.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::humanoid {

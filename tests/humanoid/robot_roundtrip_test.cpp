@@ -8,9 +8,9 @@
 
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/model_xml.hpp"
-#include "flexgait/humanoid/robot_loader.hpp"
-#include "flexgait/humanoid/urdf_export.hpp"
+#include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/robot_loader.hpp"
+#include "flexgait/robot/urdf_export.hpp"
 
 namespace flexgait::humanoid {
 namespace {

@@ -1,15 +1,16 @@
 // The twin's floor (issue 19): MuJoCo's floor matches terrain.hpp's heights and the keys (slope,
 // step, rough amplitude and correlation), the flat floor is the plane of earlier versions, the
 // twin stands on a ramp and a rough floor without a MuJoCo warning, same seed same heights.
-#include "flexgait/humanoid/terrain.hpp"
+#include "flexgait/robot/terrain.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "flexgait/humanoid/model_xml.hpp"
-#include "flexgait/humanoid/plant.hpp"
+#include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/plant.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -33,10 +34,10 @@ TerrainParams rough(double amplitude, double correlation, int seed = 1) {
 double mujoco_floor(const HumanoidPlant& plant, double x, double y) {
   const mjtNum from[3] = {x, y, 3.0}, down[3] = {0, 0, -1};
   int geom = -1;
-  const mjtNum distance = mj_ray(plant.model(), plant.data(), from, down, nullptr, 1, -1, &geom);
+  const mjtNum distance = mj_ray(plant_model(plant), plant_data(plant), from, down, nullptr, 1, -1, &geom);
   EXPECT_GE(geom, 0) << "no floor under " << x << ", " << y;
   if (geom >= 0) {
-    EXPECT_EQ(plant.model()->geom_bodyid[geom], 0) << "the ray hit the robot";
+    EXPECT_EQ(plant_model(plant)->geom_bodyid[geom], 0) << "the ray hit the robot";
   }
   return 3.0 - distance;
 }

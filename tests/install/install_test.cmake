@@ -14,6 +14,19 @@ foreach(f include/flexgait/rimless/rigid_wheel.hpp include/flexgait/version.hpp 
     message(FATAL_ERROR "not installed: ${f}")
   endif()
 endforeach()
+# MuJoCo is private to flexgait::twin: no installed header includes it, no twin/detail/ header is
+# installed, and the package does not look for it.
+file(GLOB_RECURSE headers "${WORK_DIR}/prefix/include/flexgait/*.hpp")
+foreach(h ${headers})
+  file(STRINGS "${h}" lines REGEX "#include <mujoco/")
+  if(lines OR h MATCHES "/detail/")
+    message(FATAL_ERROR "installed header exposes MuJoCo: ${h}")
+  endif()
+endforeach()
+file(STRINGS "${WORK_DIR}/prefix/lib/cmake/flexgait/flexgaitConfig.cmake" lines REGEX "mujoco")
+if(lines)
+  message(FATAL_ERROR "flexgaitConfig.cmake looks for MuJoCo: ${lines}")
+endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/install/consumer" -B "${WORK_DIR}/build"
                         "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix" "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}"
                         "-DCMAKE_EXE_LINKER_FLAGS=${CXX_FLAGS}"
@@ -25,10 +38,12 @@ execute_process(COMMAND ${CMAKE_COMMAND} --build "${WORK_DIR}/build" RESULT_VARI
 if(rc)
   message(FATAL_ERROR "consumer build failed")
 endif()
-execute_process(COMMAND "${WORK_DIR}/build/consumer" RESULT_VARIABLE rc)
-if(rc)
-  message(FATAL_ERROR "consumer run failed")
-endif()
+foreach(program consumer twin_consumer)
+  execute_process(COMMAND "${WORK_DIR}/build/${program}" RESULT_VARIABLE rc)
+  if(rc)
+    message(FATAL_ERROR "${program} run failed")
+  endif()
+endforeach()
 execute_process(COMMAND "${WORK_DIR}/prefix/bin/flexgait" --version RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "installed flexgait does not run")

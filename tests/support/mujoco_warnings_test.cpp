@@ -16,7 +16,8 @@
 #include <limits>
 #include <string>
 
-#include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
 
 namespace flexgait::test_support {
 namespace {

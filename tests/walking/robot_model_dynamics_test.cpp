@@ -18,7 +18,8 @@
 
 #include "flexgait/compensation/gravity_torque.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
 
 namespace flexgait::walking {
 namespace {

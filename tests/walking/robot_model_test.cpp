@@ -9,7 +9,8 @@
 #include <random>
 #include <string>
 
-#include "flexgait/humanoid/model_xml.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
 
 namespace flexgait::walking {
 namespace {

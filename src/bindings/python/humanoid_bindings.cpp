@@ -7,7 +7,7 @@
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 
 namespace flexgait::python {
 namespace {
@@ -15,12 +15,12 @@ namespace {
 using OptionalPath = std::optional<std::string>;
 
 py::dict bench(const py::object& config, const OptionalPath& config_file) {
-  const Config c = make_config(humanoid::bench_schema(), config, config_file);
-  const humanoid::BenchParams params = humanoid::bench_from_config(c);
+  const Config c = make_config(experiments::bench_schema(), config, config_file);
+  const experiments::BenchParams params = experiments::bench_from_config(c);
   std::string csv, summary;
   {
     py::gil_scoped_release release;
-    const humanoid::BenchResult r = humanoid::run_stiffness_bench(params);
+    const experiments::BenchResult r = experiments::run_stiffness_bench(params);
     csv = experiments::bench_csv(r);
     summary = experiments::bench_summary_json(r);
   }

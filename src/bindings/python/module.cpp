@@ -8,8 +8,8 @@
 #include "convert.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/humanoid/mujoco_messages.hpp"
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/twin/mujoco_messages.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/version.hpp"
 
@@ -20,7 +20,7 @@ namespace {
 flexgait::Schema schema_named(const std::string& name) {
   if (name == "rimless") return flexgait::rimless::rimless_analysis_schema();
   if (name == "walk") return flexgait::experiments::walk_run_schema();
-  if (name == "bench") return flexgait::humanoid::bench_schema();
+  if (name == "bench") return flexgait::experiments::bench_schema();
   throw py::value_error("schema: '" + name + "' is not one of rimless, walk, bench");
 }
 
@@ -50,7 +50,7 @@ PYBIND11_MODULE(flexgait, m) {
   m.attr("__version__") = flexgait::kVersion;
   // MuJoCo's messages to stderr, not to stdout and MUJOCO_LOG.TXT; hooks another module (MuJoCo's
   // own Python bindings) has set are left alone.
-  if (mju_user_warning == nullptr && mju_user_error == nullptr) flexgait::humanoid::route_mujoco_messages_to_stderr();
+  if (!flexgait::humanoid::mujoco_messages_hooked()) flexgait::humanoid::route_mujoco_messages_to_stderr();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -12,7 +12,7 @@
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
@@ -121,11 +121,11 @@ Experiment humanoid_walk() {
 }
 
 Experiment humanoid_bench() {
-  Experiment e{"humanoid-bench", "summary.json", humanoid::bench_schema(), set_key, {}, {}, {}};
-  e.check = [](const Config& c) { humanoid::bench_from_config(c); };
-  e.metrics = record_keys<humanoid::BenchResult>();
+  Experiment e{"humanoid-bench", "summary.json", experiments::bench_schema(), set_key, {}, {}, {}};
+  e.check = [](const Config& c) { experiments::bench_from_config(c); };
+  e.metrics = record_keys<experiments::BenchResult>();
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
-    const humanoid::BenchResult r = humanoid::run_stiffness_bench(humanoid::bench_from_config(c));
+    const experiments::BenchResult r = experiments::run_stiffness_bench(experiments::bench_from_config(c));
     std::string summary = experiments::bench_summary_json(r);
     if (const auto dir = kept_run(c, run_dir)) {
       dir->write("bench.csv", experiments::bench_csv(r));

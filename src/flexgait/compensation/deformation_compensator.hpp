@@ -33,7 +33,7 @@
 #include "flexgait/compensation/link_angle_newton.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
-#include "flexgait/humanoid/sensors.hpp"
+#include "flexgait/robot/sensors.hpp"
 #include "flexgait/walking/robot_model.hpp"
 #include "flexgait/walking/robot_model_dynamics.hpp"
 

@@ -24,7 +24,7 @@
 #include <string_view>
 
 #include "flexgait/core/enum_names.hpp"
-#include "flexgait/humanoid/joints.hpp"
+#include "flexgait/robot/joints.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::compensation {

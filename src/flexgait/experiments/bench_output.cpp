@@ -5,7 +5,7 @@
 
 namespace flexgait::experiments {
 
-std::string bench_csv(const humanoid::BenchResult& r) {
+std::string bench_csv(const BenchResult& r) {
   CsvWriter csv({"compensated", "command", "encoder", "link", "gravity_torque", "error_link_minus_encoder",
                  "error_link_minus_command", "estimate_newton", "estimate_conventional", "newton_iterations"});
   for (const auto* set : {&r.uncompensated, &r.compensated}) {
@@ -18,6 +18,6 @@ std::string bench_csv(const humanoid::BenchResult& r) {
   return csv.str();
 }
 
-std::string bench_summary_json(const humanoid::BenchResult& r) { return record_json(r).dump(2) + "\n"; }
+std::string bench_summary_json(const BenchResult& r) { return record_json(r).dump(2) + "\n"; }
 
 }  // namespace flexgait::experiments

@@ -3,13 +3,13 @@
 /// the bench for Fig. 15): bench.csv and summary.json, for the command line and the bindings.
 #include <string>
 
-#include "flexgait/humanoid/stiffness_bench.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 
 namespace flexgait::experiments {
 
 /// One row per pose of both sweeps: command, encoder, true link, gravity torque, errors, estimates.
-std::string bench_csv(const humanoid::BenchResult& result);
+std::string bench_csv(const BenchResult& result);
 /// k_fit against the true k, R², errors uncompensated and compensated, the output estimates' errors.
-std::string bench_summary_json(const humanoid::BenchResult& result);
+std::string bench_summary_json(const BenchResult& result);
 
 }  // namespace flexgait::experiments

@@ -11,10 +11,9 @@
 #include "flexgait/experiments/capture_point_bound.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
-#include "flexgait/humanoid/mujoco_messages.hpp"
-#include "flexgait/humanoid/plant.hpp"
-#include "flexgait/humanoid/robot_loader.hpp"
-#include "flexgait/humanoid/twin_mjcf.hpp"
+#include "flexgait/twin/plant.hpp"
+#include "flexgait/twin/robot_loader.hpp"
+#include "flexgait/twin/twin_mjcf.hpp"
 
 namespace flexgait::experiments {
 namespace {
@@ -179,7 +178,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
           soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0), walking::rot_z(before.sole_yaw[side])});
       if (direction.norm() > 0)
         m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
-                                                    -plant.model()->opt.gravity[2],
+                                                    plant.gravity(),
                                                     support_polygon(soles, length, width),
                                                     Eigen::Vector2d(before.com[0], before.com[1]), direction)
                                     .impulse;
@@ -228,7 +227,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
 
     // The simulation's own failures end the walk: MuJoCo's warnings (it has already reset an
     // unstable state or dropped contacts), or a state that is no longer finite.
-    if (g.warnings > 0) m.failure = "MuJoCo: " + humanoid::mujoco_warnings_text(plant.data());
+    if (g.warnings > 0) m.failure = "MuJoCo: " + plant.warnings_text();
     else if (!finite_truth(g)) m.failure = "the simulation diverged: a non-finite state";
     if (!m.failure.empty()) {
       m.failure_time = t_now;

@@ -16,9 +16,9 @@
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
-#include "flexgait/humanoid/plant.hpp"
-#include "flexgait/humanoid/robot_description.hpp"
-#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/twin/plant.hpp"
+#include "flexgait/robot/robot_description.hpp"
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/walk_params.hpp"
 #include "flexgait/walking/walking_controller.hpp"
 

@@ -10,7 +10,7 @@
 /// and the ground's torque about the sole centre is τ + (0, 0, d) × f.
 #include <Eigen/Dense>
 
-#include "flexgait/humanoid/sensors.hpp"
+#include "flexgait/robot/sensors.hpp"
 
 namespace flexgait::walking {
 

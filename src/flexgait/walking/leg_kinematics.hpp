@@ -20,7 +20,7 @@
 /// with clamped_by the remaining position error.
 #include <array>
 
-#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/rotation.hpp"
 
 namespace flexgait::walking {

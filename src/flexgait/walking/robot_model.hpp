@@ -10,9 +10,9 @@
 #include <array>
 #include <string>
 
-#include "flexgait/humanoid/joints.hpp"
-#include "flexgait/humanoid/robot_description.hpp"
-#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/robot/joints.hpp"
+#include "flexgait/robot/robot_description.hpp"
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
 
 namespace flexgait::walking {

@@ -20,7 +20,7 @@
 /// the leg torques are leg_gravity_torque's.
 #include <array>
 
-#include "flexgait/humanoid/joints.hpp"
+#include "flexgait/robot/joints.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::walking {

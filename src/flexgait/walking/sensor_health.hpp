@@ -14,8 +14,8 @@
 #include <cstdint>
 
 #include "flexgait/core/record.hpp"
-#include "flexgait/humanoid/sensor_faults.hpp"
-#include "flexgait/humanoid/sensors.hpp"
+#include "flexgait/robot/sensor_faults.hpp"
+#include "flexgait/robot/sensors.hpp"
 
 namespace flexgait::walking {
 

@@ -46,9 +46,9 @@
 #include <array>
 #include <vector>
 
-#include "flexgait/humanoid/joints.hpp"
-#include "flexgait/humanoid/sensors.hpp"
-#include "flexgait/humanoid/robot_params.hpp"
+#include "flexgait/robot/joints.hpp"
+#include "flexgait/robot/sensors.hpp"
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/attitude_estimator.hpp"
 #include "flexgait/walking/dcm_stabiliser.hpp"
 #include "flexgait/walking/foot_wrench.hpp"

@@ -1,0 +1,110 @@
+#include "flexgait/experiments/stiffness_bench.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "flexgait/compensation/link_angle_newton.hpp"
+#include "flexgait/twin/actuator_rig.hpp"
+
+namespace flexgait::experiments {
+
+BenchParams bench_from_config(const Config& c) {
+  BenchParams p = record_from_config<BenchParams>(c);
+  if (p.angle_max <= p.angle_min)
+    throw ConfigError("bench.angle_max", fmt::format("key 'bench.angle_max' = '{}': must exceed bench.angle_min = {} (rad)",
+                                                     p.angle_max, p.angle_min));
+  return p;
+}
+
+BenchResult run_stiffness_bench(const BenchParams& p) {
+  const humanoid::ActuatorRigParams rig{p.actuator, p.arm_length, p.load_mass, p.physics_dt};
+  const double weight_arm = p.load_mass * 9.81 * p.arm_length;  // m g l [Nm]
+  std::string failure;  // the first sweep's failure ends the bench
+  auto sweep = [&](double k_comp) {
+    humanoid::ActuatorRig bench(rig, p.angle_min);
+    std::vector<BenchSample> out;
+    const int settle = static_cast<int>(std::lround(p.settle_time / p.physics_dt));
+    for (int i = 0; i < p.poses; ++i) {
+      const double desired = p.angle_min + (p.angle_max - p.angle_min) * i / (p.poses - 1);
+      // Input compensator (eq. 9) with the bench's gravity model: the arm sags by τ_g / k.
+      const double command = k_comp > 0 ? desired - weight_arm * std::cos(desired) / k_comp : desired;
+      for (int s = 0; s < settle && bench.warnings() == 0; ++s) bench.step(command);
+      if (bench.warnings() > 0) failure = fmt::format("pose {}: MuJoCo: {}", i, bench.warnings_text());
+      else if (!std::isfinite(bench.link_angle()) || !std::isfinite(bench.motor().theta_m))
+        failure = fmt::format("pose {}: the simulation diverged: a non-finite state", i);
+      if (!failure.empty()) break;
+      BenchSample b;
+      b.command = desired;
+      b.encoder = humanoid::encoder_reading(p.actuator, bench.motor().theta_m);
+      b.link = bench.link_angle();
+      b.gravity_torque = weight_arm * std::cos(b.link);  // the torque the gear carries at the true pose
+      out.push_back(b);
+    }
+    return out;
+  };
+  BenchResult r;
+  r.k_true = p.actuator.k;
+  r.uncompensated = sweep(0.0);
+  if (!failure.empty()) {
+    r.failure = "uncompensated sweep, " + failure;
+    return r;
+  }
+  // Least squares of error = link − encoder against τ_g: slope 1/k (the load drives θ positive).
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+  const double n = static_cast<double>(r.uncompensated.size());
+  for (const auto& b : r.uncompensated) {
+    const double x = b.gravity_torque, y = b.link - b.encoder;
+    sx += x, sy += y, sxx += x * x, sxy += x * y, syy += y * y;
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double intercept = (sy - slope * sx) / n;
+  double ss_res = 0, ss_tot = 0;
+  for (const auto& b : r.uncompensated) {
+    const double y = b.link - b.encoder, fit = intercept + slope * b.gravity_torque;
+    ss_res += (y - fit) * (y - fit);
+    ss_tot += (y - sy / n) * (y - sy / n);
+  }
+  r.k_fit = 1.0 / slope;
+  r.r_squared = 1.0 - ss_res / ss_tot;
+  if (!std::isfinite(r.k_fit) || r.k_fit <= 0) {
+    r.failure = fmt::format("no finite positive stiffness fits the sweep (k_fit = {})", r.k_fit);
+    r.k_fit = 0;
+    return r;
+  }
+  r.compensated = sweep(r.k_fit);
+  if (!failure.empty()) {
+    r.failure = "compensated sweep, " + failure;
+    return r;
+  }
+  r.min_residual_compensated = INFINITY;
+  r.max_residual_compensated = -INFINITY;
+  for (const auto& b : r.uncompensated) r.max_error_uncompensated = std::max(r.max_error_uncompensated, std::abs(b.link - b.command));
+  for (const auto& b : r.compensated) {
+    const double e = b.link - b.command;
+    r.max_error_compensated = std::max(r.max_error_compensated, std::abs(e));
+    r.min_residual_compensated = std::min(r.min_residual_compensated, e);
+    r.max_residual_compensated = std::max(r.max_residual_compensated, e);
+  }
+  // The output compensator with the fitted stiffness: the gear carries τ_g(θ) = −m g l cos θ in
+  // the convention θ_enc = θ + τ_g/k (the load pulls the link ahead of the motor).
+  using V = Eigen::Matrix<double, 1, 1>;
+  auto torque = [&](const V& q, V& tau) { tau(0) = -weight_arm * std::cos(q(0)); };
+  auto jacobian = [&](const V& q, const V&, V& G) { G(0) = weight_arm * std::sin(q(0)); };
+  for (auto* set : {&r.uncompensated, &r.compensated}) {
+    for (auto& b : *set) {
+      const auto e = compensation::solve_link_angles<1>(V::Constant(b.encoder), V::Constant(r.k_fit), torque, jacobian);
+      b.estimate_newton = e.newton(0);
+      b.estimate_conventional = e.conventional(0);
+      b.newton_iterations = e.iterations;
+      r.max_error_newton = std::max(r.max_error_newton, std::abs(b.estimate_newton - b.link));
+      r.max_error_conventional = std::max(r.max_error_conventional, std::abs(b.estimate_conventional - b.link));
+      r.max_newton_conventional = std::max(r.max_newton_conventional, std::abs(b.estimate_newton - b.estimate_conventional));
+      r.max_newton_iterations = std::max(r.max_newton_iterations, e.iterations);
+    }
+  }
+  return r;
+}
+
+}  // namespace flexgait::experiments

@@ -1,0 +1,121 @@
+#pragma once
+/// \file robot_description.hpp
+/// A robot from its description file (issue 16): the keys that name the file and map its joints,
+/// feet and IMU onto flexgait's (robot.description, robot.joints.*, robot.feet.*, robot.imu_body,
+/// robot.exclude_contacts), and what the loader reads from the file, as plain data free of any
+/// simulator (LoadedRobot). The loader (robot_loader.hpp) fills it through MuJoCo's compiler; the
+/// twin (twin_mjcf.hpp) and the controller's model (walking/robot_model.hpp) are made from it.
+///
+/// Frames: each body's pose relative to its parent as the file's compiler gives it (MuJoCo's
+/// body_pos, body_quat), inertial frames relative to the body; all joint angles zero (qpos0).
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
+#include "flexgait/robot/joints.hpp"
+
+namespace flexgait::humanoid {
+
+/// One foot: the body that carries the sole and the sole rectangle.
+struct FootMapping {
+  std::string body;                ///< body below the ankle-roll joint that carries the sole
+  std::string sole_geom = "none";  ///< a box geom of that body whose bottom face is the sole, or none
+  std::string sole_size = "none";  ///< "length width" [m] of the sole rectangle (when sole_geom is none)
+  std::string sole_center = "0 0 0";  ///< centre of the sole rectangle in the foot body's frame "x y z" [m]
+};
+
+/// The keys robot.description and the mapping of a description file onto flexgait's names.
+/// Defaults: the builtin robot's own names (the mapping an exported builtin loads back with).
+struct RobotDescriptionParams {
+  std::string description = "builtin";  ///< builtin, or a path to an MJCF (.xml) or URDF (.urdf) file
+  std::array<std::string, kJoints> joints = [] {
+    std::array<std::string, kJoints> names;
+    for (int j = 0; j < kJoints; ++j) names[j] = std::string(kJointNames[j]);
+    return names;
+  }();
+  std::array<FootMapping, 2> feet = {FootMapping{"l_foot", "l_sole"}, FootMapping{"r_foot", "r_sole"}};
+  std::string imu_body = "root";          ///< body carrying the IMU; root: the root body
+  std::string exclude_contacts = "none";  ///< "a:b,c:d": body pairs whose contacts are excluded
+
+  bool builtin() const { return description == "builtin"; }
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("robot.description", s.description,
+      {.doc = "builtin (the generated THORMANG-class robot) or a path to an MJCF (.xml) or URDF (.urdf) file"});
+    for (int j = 0; j < kJoints; ++j)
+      v("robot.joints." + std::string(kJointNames[j]), s.joints[j],
+        {.doc = "name in the description file of this hinge joint"});
+    for (int side = 0; side < 2; ++side) {
+      const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
+      v(f + ".body", s.feet[side].body, {.doc = "foot body (below the ankle-roll joint; the F/T sensor sits at its joint to its parent)"});
+      v(f + ".sole_geom", s.feet[side].sole_geom, {.doc = "box geom of the foot whose bottom face is the sole, or none"});
+      v(f + ".sole_size", s.feet[side].sole_size, {.unit = "m", .doc = "'length width' of the sole when sole_geom is none, or none"});
+      v(f + ".sole_center", s.feet[side].sole_center, {.unit = "m", .doc = "'x y z' centre of the sole in the foot body's frame (with sole_size)"});
+    }
+    v("robot.imu_body", s.imu_body, {.doc = "body carrying the IMU (root: the root body)"});
+    v("robot.exclude_contacts", s.exclude_contacts, {.doc = "'a:b,c:d' body pairs whose contacts are ignored, or none"});
+  }
+};
+
+/// What the loader read of a description file (MuJoCo's compiled numbers, full precision).
+struct LoadedJoint {
+  std::string name;
+  int mapped = -1;                      ///< flexgait joint (humanoid::Joint), −1: held rigid in the twin
+  std::array<double, 3> pos{};          ///< anchor in the body frame [m]
+  std::array<double, 3> axis{0, 0, 1};  ///< unit axis in the body frame
+  bool limited = false;
+  std::array<double, 2> range{};        ///< [rad]
+  double armature = 0, frictionloss = 0;
+};
+
+struct LoadedGeom {
+  std::string name;
+  std::string type;                     ///< MJCF type: plane, sphere, capsule, ellipsoid, cylinder, box
+  std::array<double, 3> size{};         ///< MuJoCo's size [m]
+  std::array<double, 3> pos{};
+  std::array<double, 4> quat{1, 0, 0, 0};
+  int contype = 1, conaffinity = 1, condim = 3;
+  std::array<double, 3> friction{1, 0.005, 0.0001};
+  std::array<double, 2> solref{0.02, 1};
+  std::array<double, 5> solimp{0.9, 0.95, 0.001, 0.5, 2};
+  double margin = 0, gap = 0;
+  std::array<float, 4> rgba{0.5f, 0.5f, 0.5f, 1};
+};
+
+struct LoadedBody {
+  std::string name;
+  int parent = -1;                      ///< index in LoadedRobot::bodies; −1: the root
+  std::array<double, 3> pos{};          ///< in the parent frame [m]
+  std::array<double, 4> quat{1, 0, 0, 0};
+  double mass = 0;                      ///< [kg]
+  std::array<double, 3> ipos{};         ///< centre of mass in the body frame [m]
+  std::array<double, 4> iquat{1, 0, 0, 0};  ///< principal axes of inertia in the body frame
+  std::array<double, 3> inertia{};      ///< principal moments [kg m^2]
+  std::vector<LoadedJoint> joints;      ///< hinges and slides of this body (a free joint is dropped)
+  std::vector<LoadedGeom> geoms;
+};
+
+/// The sole rectangle of one foot, in the foot body's frame.
+struct Sole {
+  int geom = -1;                        ///< index in the foot body's geoms, −1: added by the twin
+  std::array<double, 3> center{};       ///< centre of the rectangle [m]
+  double length = 0, width = 0;         ///< [m]
+};
+
+struct LoadedRobot {
+  std::string source;                   ///< the file
+  std::vector<LoadedBody> bodies;       ///< the robot's tree, parents before children; bodies[0] is the root
+  std::array<std::array<int, 2>, kJoints> joint{};  ///< each flexgait joint: (body, joint in that body); body −1: absent
+  std::array<int, 2> foot{};            ///< foot body of each side
+  std::array<Sole, 2> sole{};
+  int imu_body = 0;
+  std::vector<std::array<int, 2>> exclude;  ///< body pairs whose contacts are ignored
+
+  bool has_joint(int j) const { return joint[j][0] >= 0; }
+};
+
+}  // namespace flexgait::humanoid

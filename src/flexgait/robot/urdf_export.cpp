@@ -1,0 +1,100 @@
+#include "flexgait/robot/urdf_export.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace flexgait::humanoid {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+Vector3d vec(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+Matrix3d rotation(const std::array<double, 4>& q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix(); }
+
+/// URDF's rpy: R = Rz(yaw) Ry(pitch) Rx(roll).
+std::string rpy(const Matrix3d& R) {
+  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+  const double roll = std::atan2(R(2, 1), R(2, 2)), yaw = std::atan2(R(1, 0), R(0, 0));
+  return fmt::format("{} {} {}", roll + 0.0, pitch + 0.0, yaw + 0.0);  // no "-0"
+}
+std::string xyz(const Vector3d& v) { return fmt::format("{} {} {}", v.x(), v.y(), v.z()); }
+
+/// The anchor of a body's link frame in the body frame: its first kept joint's anchor.
+Vector3d anchor(const LoadedBody& b) {
+  for (const LoadedJoint& j : b.joints)
+    if (j.mapped >= 0) return vec(j.pos);
+  return Vector3d::Zero();
+}
+
+std::string shape(const LoadedGeom& g) {
+  if (g.type == "box") return fmt::format(R"(<box size="{} {} {}"/>)", 2 * g.size[0], 2 * g.size[1], 2 * g.size[2]);
+  if (g.type == "sphere") return fmt::format(R"(<sphere radius="{}"/>)", g.size[0]);
+  if (g.type == "cylinder" || g.type == "capsule")
+    return fmt::format(R"(<cylinder radius="{}" length="{}"/>)", g.size[0], 2 * g.size[1]);
+  return {};
+}
+
+}  // namespace
+
+std::string robot_urdf(const LoadedRobot& r) {
+  std::string out = "<?xml version=\"1.0\"?>\n<!-- written by flexgait humanoid export --format urdf -->\n<robot name=\"flexgait_robot\">\n";
+  for (std::size_t b = 0; b < r.bodies.size(); ++b) {
+    const LoadedBody& body = r.bodies[b];
+    const Vector3d o = anchor(body);
+    out += fmt::format("  <link name=\"{}\">\n", body.name);
+    if (body.mass > 0) {
+      out += fmt::format("    <inertial>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <mass value=\"{}\"/>\n", xyz(vec(body.ipos) - o),
+                         rpy(rotation(body.iquat)), body.mass);
+      out += fmt::format("      <inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/>\n    </inertial>\n",
+                         body.inertia[0], body.inertia[1], body.inertia[2]);
+    }
+    for (const LoadedGeom& g : body.geoms) {
+      const std::string s = shape(g);
+      if (s.empty()) continue;
+      out += fmt::format("    <visual>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <geometry>{}</geometry>\n    </visual>\n",
+                         xyz(vec(g.pos) - o), rpy(rotation(g.quat)), s);
+    }
+    out += "  </link>\n";
+  }
+  for (std::size_t b = 1; b < r.bodies.size(); ++b) {
+    const LoadedBody& body = r.bodies[b];
+    const LoadedBody& parent = r.bodies[static_cast<std::size_t>(body.parent)];
+    const Matrix3d R = rotation(body.quat);
+    const Vector3d p = vec(body.pos) + R * anchor(body) - anchor(parent);  // child link frame in the parent link frame
+    const LoadedJoint* joint = nullptr;
+    for (const LoadedJoint& j : body.joints)
+      if (j.mapped >= 0 && joint == nullptr) joint = &j;
+    const std::string name = joint ? joint->name : body.name + "_fixed";
+    out += fmt::format("  <joint name=\"{}\" type=\"{}\">\n    <parent link=\"{}\"/>\n    <child link=\"{}\"/>\n", name,
+                       joint ? (joint->limited ? "revolute" : "continuous") : "fixed", parent.name, body.name);
+    out += fmt::format("    <origin xyz=\"{}\" rpy=\"{}\"/>\n", xyz(p), rpy(R));
+    if (joint) {
+      out += fmt::format("    <axis xyz=\"{}\"/>\n", xyz(vec(joint->axis)));
+      if (joint->limited)
+        out += fmt::format("    <limit lower=\"{}\" upper=\"{}\" effort=\"1000\" velocity=\"100\"/>\n", joint->range[0], joint->range[1]);
+    }
+    out += "  </joint>\n";
+  }
+  out += "</robot>\n";
+  return out;
+}
+
+std::string urdf_mapping(const LoadedRobot& r) {
+  std::string out;
+  for (const LoadedBody& body : r.bodies)
+    for (const LoadedJoint& j : body.joints)
+      if (j.mapped >= 0) out += fmt::format("robot.joints.{}={}\n", kJointNames[j.mapped], j.name);
+  for (int side = 0; side < 2; ++side) {
+    const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
+    const LoadedBody& foot = r.bodies[static_cast<std::size_t>(r.foot[side])];
+    const Vector3d c = vec(r.sole[side].center) - anchor(foot);
+    out += fmt::format("{0}.body={1}\n{0}.sole_geom=none\n{0}.sole_size={2} {3}\n{0}.sole_center={4}\n", f, foot.name,
+                       r.sole[side].length, r.sole[side].width, xyz(c));
+  }
+  return out;
+}
+
+}  // namespace flexgait::humanoid

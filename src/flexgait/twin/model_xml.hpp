@@ -1,0 +1,24 @@
+#pragma once
+/// \file model_xml.hpp
+/// The twin as MJCF, written from RobotParams (spec humanoid.md, "The robot"): a free-floating
+/// pelvis, a waist yaw joint to the chest (arms and head rigid on it), two 6-joint legs, box soles.
+/// Inertias follow from the link shapes (inertiafromgeom); only the soles collide with the floor.
+/// Each actuated joint carries its gear stiffness and damping (a viewer of the exported file sees
+/// the springs; the running twin applies them itself, detail/elastic_drives.hpp). Sites: "imu" at the pelvis origin, "l_ft"/"r_ft" at the ankle axes
+/// between the ankle-roll link and the foot (the F/T sensors). Joint angles zero: legs straight.
+#include <string>
+
+#include "flexgait/robot/robot_params.hpp"
+
+namespace flexgait::humanoid {
+
+std::string humanoid_mjcf(const RobotParams& robot, const PlantParams& plant);
+
+/// The twin's document around its robot (shared by the builtin and loaded twins): compiler and
+/// physics options from `plant`, the floor (plant.terrain, terrain.hpp; friction sole_friction, contact time constant), the
+/// robot's `bodies` (MJCF body elements, indented for the worldbody), `contact` (a <contact>
+/// element or ""), and the F/T and IMU sensors on the sites l_ft, r_ft and imu.
+std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& plant,
+                          const std::string& bodies, const std::string& contact);
+
+}  // namespace flexgait::humanoid

@@ -1,0 +1,27 @@
+#pragma once
+/// \file robot_loader.hpp
+/// Reads a robot description (MJCF or URDF) through MuJoCo's compiler and resolves the mapping
+/// (robot_description.hpp) into a LoadedRobot. MuJoCo stays inside the .cpp: callers get plain data.
+///
+/// Rules: the robot's root is the body under the world that holds the mapped joints (its free
+/// joint, if any, is dropped: the twin adds one); the mapped joints are hinges; the path from the
+/// root to each foot body holds exactly six joints, the leg's six mapped ones in kinematic order;
+/// each foot has a sole (a box geom whose axes are the foot's, or a size and a centre). URDF is
+/// compiled with fusestatic="false" so that bodies on fixed joints (feet, sensor frames) stay.
+#include <string>
+
+#include "flexgait/robot/robot_description.hpp"
+
+namespace flexgait::humanoid {
+
+/// Loads the description named by `params.description` (not builtin). Throws ConfigError naming
+/// the key and the name: a missing or unreadable file, a parse error (MuJoCo's message), a mapped
+/// name not in the file, a leg with the wrong number of joints, a foot without a sole.
+LoadedRobot load_robot(const RobotDescriptionParams& params);
+
+/// Loads description text (MJCF or URDF by `format`: "xml" or "urdf") as load_robot does; `source`
+/// names it in messages.
+LoadedRobot load_robot_text(const std::string& text, const std::string& format, const std::string& source,
+                            const RobotDescriptionParams& params);
+
+}  // namespace flexgait::humanoid

@@ -1,0 +1,19 @@
+#pragma once
+/// \file twin_mjcf.hpp
+/// The twin of a loaded robot as MJCF (issue 16): the file's bodies with their inertials and
+/// geoms as MuJoCo compiled them (written at full precision, so the twin compiles to the same
+/// numbers), a free joint at the root, the mapped joints carrying the elastic gears' stiffness
+/// and damping under flexgait's joint names (the elastic drives move their spring references),
+/// unmapped joints left out (held rigid at zero), the soles named l_sole / r_sole colliding with
+/// the floor, the sites imu, l_ft, r_ft and the sensors of the builtin twin (model_xml.hpp).
+#include <string>
+
+#include "flexgait/robot/robot_description.hpp"
+#include "flexgait/robot/robot_params.hpp"
+
+namespace flexgait::humanoid {
+
+/// \param robot sole friction (robot.sole_friction); \param plant gears, physics step, contacts.
+std::string twin_mjcf(const LoadedRobot& loaded, const RobotParams& robot, const PlantParams& plant);
+
+}  // namespace flexgait::humanoid
