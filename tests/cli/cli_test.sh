@@ -83,7 +83,7 @@ expect_usage_error robustness-from "--from: not used by analysis robustness" rim
 expect_usage_error stagnation-mu "--mu: not used by analysis stagnation" rimless analysis stagnation --mu 0.3
 expect_usage_error sweep-inf-to "--to: 'inf' is not a finite number" rimless sweep --param rimless.mu --from 0.2 --to inf --count 3
 expect_usage_error sweep-bad-from "--from: key 'rimless.mu_s' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
-expect_usage_error walk-total-mass "key 'robot.total_mass' = '43.72': out of range" humanoid walk --set robot.total_mass=43.72
+expect_usage_error walk-total-mass "key 'robot.total_mass' = '42.53': out of range" humanoid walk --set robot.total_mass=42.53
 expect_usage_error mismatch-nan-scale "--scales: 'nan' is not a finite number" humanoid mismatch --scales nan
 expect_usage_error mismatch-empty-scale "--scales: '' is not a finite number" humanoid mismatch --scales 0.9,,1.1
 expect_usage_error walk-nan-fps "--fps: 'nan' is not a finite number" humanoid walk --render --fps nan
@@ -233,8 +233,8 @@ expect_usage_error walk-push-in-the-past "key 'disturbance.push.time' = '-1'" hu
 expect_usage_error walk-push-negative-duration "key 'disturbance.push.duration' = '-0.1'" humanoid walk --set disturbance.push.duration=-0.1
 expect_usage_error walk-terrain-unknown-kind "key 'terrain.kind' = 'hill'" humanoid walk --set terrain.kind=hill
 expect_usage_error walk-terrain-steep-ramp "key 'terrain.ramp.angle' = '0.5'" humanoid walk --set terrain.kind=ramp --set terrain.ramp.angle=0.5
-expect_usage_error walk-terrain-step-beyond-reach "key 'terrain.step.height' = '-0.06'" humanoid walk --set terrain.kind=step \
-  --set terrain.step.height=-0.06
+expect_usage_error walk-terrain-step-beyond-reach "key 'terrain.step.height' = '-0.09'" humanoid walk --set terrain.kind=step \
+  --set terrain.step.height=-0.09
 expect_usage_error walk-terrain-flat-rough "key 'terrain.rough.amplitude' = '0'" humanoid walk --set terrain.kind=rough \
   --set terrain.rough.amplitude=0
 

@@ -95,10 +95,10 @@ TEST(TerrainWalk, RoughFloorSameBytesTwice) {
 }
 
 TEST(TerrainWalk, StepBeyondTheLegsReachIsRefusedNamingTheKey) {
-  // Standing at 0.75 m the builtin's hip-to-ankle line is 0.5425 m of 0.6 m: it reaches 5.75 cm down.
+  // Standing at 0.723 m the builtin's hip-to-ankle line is 0.5155 m of 0.6 m: it reaches 8.45 cm down.
   try {
-    (void)walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, {"terrain.kind=step", "terrain.step.height=-0.06"}));
-    ADD_FAILURE() << "a 6 cm step down was accepted";
+    (void)walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, {"terrain.kind=step", "terrain.step.height=-0.09"}));
+    ADD_FAILURE() << "a 9 cm step down was accepted";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "terrain.step.height");
   }

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <string>
 
+#include "flexgait/robot/thormang3_inertials.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
 
@@ -57,7 +58,7 @@ TEST(HumanoidPlant, StandsTenSecondsAndTheFeetCarryTheWeight) {
   EXPECT_EQ(t.warnings, 0);
   // The F/T sensors carry everything above them: total mass minus the two feet (1 %).
   const RobotParams r;
-  const double above = (plant.total_mass() - 2 * r.m_foot) * 9.81;
+  const double above = (plant.total_mass() - 2 * thormang3_link("l_leg_foot").mass) * 9.81;
   const auto& s = plant.sensors();
   // Force on the foot from the leg, foot frame (level): z component is minus the load.
   const double carried = -(s.ft[0].force[2] + s.ft[1].force[2]);

@@ -42,7 +42,7 @@ TEST(LegKinematics, InverseOfForwardIsIdentity) {
 TEST(LegKinematics, OutOfReachIsClampedAndFlagged) {
   const LegGeometry leg = leg_geometry(humanoid::RobotParams{}, 0);
   Pose far;
-  far.p = leg.hip + Vector3d(0, 0, -(leg.thigh + leg.shank + leg.ankle_to_sole + 0.05));
+  far.p = leg.hip + leg.sole_shift + Vector3d(0, 0, -(leg.thigh + leg.shank + leg.ankle_to_sole + 0.05));
   const IkSolution ik = leg_inverse_kinematics(leg, far);
   EXPECT_EQ(ik.status, IkStatus::kOutOfReach);
   EXPECT_NEAR(ik.clamped_by, 0.05, 1e-12);
@@ -90,7 +90,7 @@ TEST(LegKinematics, NumericAgreesWithAnalyticOnTheBuiltinLeg) {
   chain.axis = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
   chain.anchor = {analytic.hip, Vector3d::Zero(), Vector3d::Zero(), Vector3d(0, 0, -analytic.thigh),
                   Vector3d(0, 0, -analytic.shank), Vector3d::Zero()};
-  chain.sole = Vector3d(0, 0, -analytic.ankle_to_sole);
+  chain.sole = Vector3d(0, 0, -analytic.ankle_to_sole) + analytic.sole_shift;  // the sole 14 mm outward
   for (int i = 0; i < 500; ++i) {
     LegAngles q = random_angles(rng);
     const Pose target = leg_forward_kinematics(analytic, q);

@@ -129,6 +129,17 @@ double compare_with_mj_rne(const RobotModel& model, Reference& ref, unsigned see
 
 RobotModel builtin() { return make_robot_model(humanoid::RobotParams{}); }
 
+/// MuJoCo stores a full inertia as its principal moments and axes (an iterative eigensolver, good
+/// to ~1e-9 relative): the model's inertias set to the ones MuJoCo simulates.
+void use_simulated_inertias(RobotModel& model, const Reference& ref) {
+  for (int i = 0; i < kBodies; ++i) {
+    const int id = mj_name2id(ref.m, mjOBJ_BODY, fmt::format("b{}", i).c_str());
+    const mjtNum* q = ref.m->body_iquat + 4 * id;
+    const Matrix3d R = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+    model.bodies[i].inertia = R * Vector3d(ref.m->body_inertia + 3 * id).asDiagonal() * R.transpose();
+  }
+}
+
 /// Joint angles uniform in ±amplitude [rad].
 JointVector random_angles(unsigned seed, double amplitude) {
   std::mt19937 rng(seed);
@@ -139,8 +150,9 @@ JointVector random_angles(unsigned seed, double amplitude) {
 }
 
 TEST(RobotModelDynamics, BuiltinRobotMatchesMjRne) {
-  const RobotModel model = builtin();
+  RobotModel model = builtin();  // THORMANG3's inertias (builtin_inertials.hpp)
   Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
+  use_simulated_inertias(model, ref);
   RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 1)));
 }
 
@@ -156,14 +168,7 @@ TEST(RobotModelDynamics, BuiltinRobotWithInertiasMatchesMjRne) {
     b.inertia = R * diagonal.asDiagonal() * R.transpose();
   }
   Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
-  // MuJoCo stores a full inertia as its principal moments and axes (an iterative eigensolver, good
-  // to ~1e-9 relative): compare on the inertias it simulates.
-  for (int i = 0; i < kBodies; ++i) {
-    const int id = mj_name2id(ref.m, mjOBJ_BODY, fmt::format("b{}", i).c_str());
-    const mjtNum* q = ref.m->body_iquat + 4 * id;
-    const Matrix3d R = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
-    model.bodies[i].inertia = R * Vector3d(ref.m->body_inertia + 3 * id).asDiagonal() * R.transpose();
-  }
+  use_simulated_inertias(model, ref);
   RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 2)));
 }
 

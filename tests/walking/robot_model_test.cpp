@@ -69,12 +69,12 @@ TEST(RobotModel, AgreesWithTheTwin) {
     const Vector3d com = center_of_mass(model, data);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(com(i), twin.d->subtree_com[3 + i], 1e-12);
     for (int side = 0; side < 2; ++side) {
-      // The sole centre: the F/T site (ankle) moved down the foot's z axis.
+      // The sole centre: the F/T site (ankle) moved down the foot's z axis and sole_offset_y outward.
       const int site = mj_name2id(twin.m, mjOBJ_SITE, side == 0 ? "l_ft" : "r_ft");
       const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(twin.d->site_xmat + 9 * site);
       const Vector3d ankle(twin.d->site_xpos + 3 * site);
       const Pose sole = sole_pose(model, data, side);
-      EXPECT_LT((sole.p - (ankle - R.col(2) * model.leg[side].ankle_to_sole)).norm(), 1e-12);
+      EXPECT_LT((sole.p - (ankle - R.col(2) * model.leg[side].ankle_to_sole + R * model.leg[side].sole_shift)).norm(), 1e-12);
       EXPECT_LT((sole.R - Matrix3d(R)).cwiseAbs().maxCoeff(), 1e-12);
       // The leg's own gravity torque against MuJoCo's: with the foot free, the pelvis held and
       // at rest, the bias force at each leg joint is the torque that holds the links below it.

@@ -13,10 +13,11 @@
 
 namespace flexgait::humanoid {
 
-/// Geometry and mass distribution. Defaults: the spec's figures (ROBOTIS's link masses, 43.7 kg,
-/// plus batteries and computers split between pelvis and chest up to total_mass).
+/// Geometry and mass distribution. Defaults: the spec's figures; the links' masses, centres of mass
+/// and inertias are THORMANG3's (builtin_inertials.hpp, 42.533 kg) plus batteries and computers
+/// split between pelvis and chest up to total_mass.
 struct RobotParams {
-  double total_mass = 57.0;        ///< [kg], >= sum of the listed links
+  double total_mass = 57.0;        ///< [kg], >= kLinksMass
   double hip_yaw_offset_y = 0.093; ///< hip yaw joint at (0, ±y, -z) from the pelvis origin [m]
   double hip_yaw_offset_z = 0.018; ///< [m]
   double hip_axes_depth = 0.093;   ///< hip roll/pitch axes below the pelvis origin [m]
@@ -25,37 +26,27 @@ struct RobotParams {
   double ankle_to_sole = 0.1145;   ///< ankle axes to the sole [m]
   double sole_length = 0.22;       ///< [m]
   double sole_width = 0.15;        ///< [m]
+  double sole_offset_y = 0.014;    ///< sole box centre outward of the ankle axis [m] (as on the real robot)
   double sole_friction = 1.0;
-  // Link masses [kg]
-  double m_hip_yaw = 0.243, m_hip_roll = 1.045, m_thigh = 3.095, m_shank = 2.401;
-  double m_ankle_pitch = 1.045, m_ankle_roll = 0.223, m_foot = 1.689;
-  double m_pelvis = 6.869, m_chest = 5.383, m_arm = 4.995, m_head = 2.0;
-  // Where the link masses sit (the twin's link shapes are centred there; the controller's own
-  // model reads the same numbers). Leg links not listed have their centre on their joint axes;
-  // thigh and shank at their midpoints; the foot at the middle of its sole plate.
-  double hip_yaw_com_z = -0.03;   ///< hip yaw link centre below the hip yaw joint [m]
-  double sole_thickness = 0.02;   ///< sole plate [m]
-  double chest_joint_z = 0.10;    ///< waist yaw joint above the pelvis origin [m]
-  double chest_com_z = 0.16;      ///< chest centre above the waist joint [m]
+  double chest_joint_z = 0.1705;   ///< waist yaw joint above the pelvis origin [m] (ROBOTIS's torso_y)
+  // The shapes the twin draws (for looks only: the masses are builtin_inertials.hpp's).
+  double sole_thickness = 0.02;   ///< sole plate [m] (it collides)
+  double chest_com_z = 0.11;      ///< chest box centre above the waist joint [m]
   double arm_y = 0.22;            ///< arms (rigid, hanging) at ±y from the waist axis [m]
-  double arm_com_z = 0.04;        ///< arm centre above the waist joint [m]
-  double head_z = 0.42;           ///< head centre above the waist joint [m]
+  double arm_com_z = 0.0;         ///< arm capsule centre above the waist joint [m]
+  double head_z = 0.27;           ///< head centre above the waist joint [m]
 
-  /// listed_mass() of the default links, the least total mass (robot.total_mass's lower bound) [kg].
-  static constexpr double kListedMass = 43.724;
-  /// Mass of the listed links (both legs, pelvis, chest, arms, head) [kg].
-  double listed_mass() const {
-    return 2 * (m_hip_yaw + m_hip_roll + m_thigh + m_shank + m_ankle_pitch + m_ankle_roll + m_foot) + m_pelvis +
-           m_chest + 2 * m_arm + m_head;
-  }
+  /// The sum of THORMANG3's links (thormang3_inertials.hpp), the least total mass [kg].
+  static constexpr double kLinksMass = 42.53350283;
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("robot.total_mass", s.total_mass,
-      {.unit = "kg", .doc = "total mass; the mass beyond the listed links goes to pelvis and chest", .bounds = closed(kListedMass, 500)});
+      {.unit = "kg", .doc = "total mass; the mass beyond THORMANG3's links (42.533 kg) goes to pelvis and chest", .bounds = closed(kLinksMass, 500)});
     v("robot.thigh", s.thigh, {.unit = "m", .doc = "hip pitch axis to knee", .bounds = left_open(0.05, 2)});
     v("robot.shank", s.shank, {.unit = "m", .doc = "knee to ankle axes", .bounds = left_open(0.05, 2)});
     v("robot.ankle_to_sole", s.ankle_to_sole, {.unit = "m", .doc = "ankle axes to the sole", .bounds = closed(0.01, 1)});
+    v("robot.sole_offset_y", s.sole_offset_y, {.unit = "m", .doc = "sole box centre outward of the ankle axis", .bounds = closed(0, 0.1)});
     v("robot.sole_friction", s.sole_friction, {.doc = "sole-floor friction coefficient", .bounds = closed(0.05, 5)});
   }
 };

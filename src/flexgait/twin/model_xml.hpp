@@ -2,7 +2,8 @@
 /// \file model_xml.hpp
 /// The twin as MJCF, written from RobotParams (spec humanoid.md, "The robot"): a free-floating
 /// pelvis, a waist yaw joint to the chest (arms and head rigid on it), two 6-joint legs, box soles.
-/// Inertias follow from the link shapes (inertiafromgeom); only the soles collide with the floor.
+/// Masses, centres of mass and inertias are THORMANG3's (builtin_inertials.hpp; the shapes are for
+/// looks); only the soles collide with the floor, each sole box robot.sole_offset_y outward of its ankle.
 /// Each actuated joint carries its gear stiffness and damping (a viewer of the exported file sees
 /// the springs; the running twin applies them itself, detail/elastic_drives.hpp). Sites: "imu" at the pelvis origin, "l_ft"/"r_ft" at the ankle axes
 /// between the ankle-roll link and the foot (the F/T sensors). Joint angles zero: legs straight.

@@ -109,7 +109,7 @@ JointVector standing_pose(const RobotParams& r, double pelvis_height) {
 TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant) {
   TwinModel t;
   t.mjcf = humanoid_mjcf(robot, plant);
-  t.sole_center = {{{0, 0, -robot.ankle_to_sole}, {0, 0, -robot.ankle_to_sole}}};
+  t.sole_center = {{{0, robot.sole_offset_y, -robot.ankle_to_sole}, {0, -robot.sole_offset_y, -robot.ankle_to_sole}}};
   return t;
 }
 

@@ -32,7 +32,7 @@ struct GroundTruth {
   std::array<double, 4> pelvis_quat{1, 0, 0, 0};
   std::array<double, 3> com{};                ///< whole-body centre of mass [m]
   std::array<double, 2> zmp{};                ///< centre of pressure of the floor contacts (x, y) [m]
-  std::array<std::array<double, 3>, 2> sole_pos{};  ///< left, right: sole centre under the ankle [m]
+  std::array<std::array<double, 3>, 2> sole_pos{};  ///< left, right: sole centre (TwinModel::sole_center) [m]
   std::array<double, 2> sole_yaw{};           ///< heading of each sole [rad]
   std::array<bool, 2> sole_contact{};         ///< the sole touches the floor
   double normal_force = 0;                    ///< total floor normal force [N]
@@ -51,7 +51,8 @@ struct TwinModel {
   std::array<std::array<double, 3>, 2> sole_center{};  ///< [m]
 };
 
-/// The builtin robot's twin (humanoid_mjcf), sole centres ankle_to_sole below the ankles.
+/// The builtin robot's twin (humanoid_mjcf), sole centres ankle_to_sole below the ankles and
+/// robot.sole_offset_y outward.
 TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant);
 
 /// The twin (MuJoCo behind a pimpl: twin/detail/ for its model and state). The model is compiled

@@ -12,6 +12,7 @@ LegGeometry leg_geometry(const humanoid::RobotParams& r, int side) {
   g.thigh = r.thigh;
   g.shank = r.shank;
   g.ankle_to_sole = r.ankle_to_sole;
+  g.sole_shift = Vector3d(0, side == 0 ? r.sole_offset_y : -r.sole_offset_y, 0);
   return g;
 }
 
@@ -22,7 +23,7 @@ Pose leg_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
   Pose sole;
   sole.R = Rh * rot_y(q[2] + q[3] + q[4]) * rot_x(q[5]);
   const Vector3d ankle = leg.hip + Rh * (rot_y(q[2]) * (leg.thigh * down) + rot_y(q[2] + q[3]) * (leg.shank * down));
-  sole.p = ankle + sole.R * (leg.ankle_to_sole * down);
+  sole.p = ankle + sole.R * (leg.ankle_to_sole * down + leg.sole_shift);
   return sole;
 }
 
@@ -40,12 +41,14 @@ IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& so
   IkSolution out;
   LegAngles& q = out.q;
   // Start from the analytic solution of the nearest analytic leg (hip at the first three anchors,
-  // thigh, shank and sole as the chain's lengths): the forward-bent branch, a few Newton steps away.
+  // thigh and shank as the chain's lengths, the sole where it is from the last anchor): the forward-bent branch, a few Newton steps away.
   LegGeometry near;
   near.hip = leg.anchor[0] + leg.anchor[1] + leg.anchor[2];
   near.thigh = leg.anchor[3].norm();
   near.shank = leg.anchor[4].norm();
-  near.ankle_to_sole = (leg.anchor[5] + leg.sole).norm();
+  const Vector3d to_sole = leg.anchor[5] + leg.sole;  // from the last joint's anchor
+  near.ankle_to_sole = -to_sole.z();
+  near.sole_shift = Vector3d(to_sole.x(), to_sole.y(), 0);
   q = leg_inverse_kinematics(near, sole).q;
   constexpr double kLambda2 = 1e-4;  // damping λ² far from the target: bounds steps near singularities
   constexpr double kMaxStep = 0.2;   // largest joint step per iteration [rad]
@@ -88,7 +91,7 @@ IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
   if (!leg.analytic) return leg_numeric_inverse_kinematics(leg, sole);
   IkSolution out;
   const double A = leg.thigh, B = leg.shank;
-  const Vector3d ankle = sole.p + sole.R * Vector3d(0, 0, leg.ankle_to_sole);
+  const Vector3d ankle = sole.p + sole.R * (Vector3d(0, 0, leg.ankle_to_sole) - leg.sole_shift);
   // The hip seen from the foot: r = R_footᵀ (p_hip − p_ankle) = Rx(−q6) v, v = (v_x, 0, v_z).
   Vector3d r = sole.R.transpose() * (leg.hip - ankle);
   double C = r.norm();

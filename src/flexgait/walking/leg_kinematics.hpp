@@ -2,7 +2,8 @@
 /// \file leg_kinematics.hpp
 /// Kinematics of one 6-DOF leg (spec humanoid.md, "The robot"): hip yaw (z), hip roll (x) and
 /// hip pitch (y) axes meet at the hip point; knee (y); ankle pitch (y) and roll (x) meet at the
-/// ankle point; the sole centre is ankle_to_sole below the ankle in the foot frame. All angles
+/// ankle point; the sole centre is ankle_to_sole below the ankle in the foot frame (shifted
+/// horizontally by sole_shift there). All angles
 /// zero: leg straight, foot level, frames aligned with the pelvis.
 ///
 ///   R_foot = Rz(q1) Rx(q2) Ry(q3 + q4 + q5) Rx(q6)
@@ -32,6 +33,9 @@ struct LegGeometry {
   double thigh = 0.3;              ///< [m]
   double shank = 0.3;              ///< [m]
   double ankle_to_sole = 0.1145;   ///< ankle axes (the F/T sensor) to the sole [m]
+  /// The sole centre's shift from straight below the ankle, foot frame (x, y; z = 0) [m] (the
+  /// builtin's: robot.sole_offset_y outward).
+  Vector3d sole_shift = Vector3d::Zero();
   /// The analytic layout above applies; otherwise the general chain below and the numeric IK.
   bool analytic = true;
   std::array<Vector3d, 6> axis{};    ///< general chain: unit joint axes at zero angles (pelvis frame)

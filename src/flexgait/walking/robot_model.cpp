@@ -1,24 +1,33 @@
 #include "flexgait/walking/robot_model.hpp"
 
+#include "flexgait/robot/builtin_inertials.hpp"
+
 namespace flexgait::walking {
 
 using humanoid::leg_first_joint;
 
+namespace {
+
+void set_inertial(RobotModel::Body& b, const humanoid::BodyInertial& in) {
+  b.mass = in.mass;
+  b.com = Vector3d(in.com[0], in.com[1], in.com[2]);
+  const auto& i = in.inertia;
+  b.inertia << i[0], i[1], i[2], i[1], i[3], i[4], i[2], i[4], i[5];
+}
+
+}  // namespace
+
 RobotModel make_robot_model(const humanoid::RobotParams& r) {
   RobotModel m;
-  const double extra = r.total_mass - r.listed_mass();  // batteries and computers, half pelvis half chest
-  auto& pelvis = m.bodies[0];
-  pelvis.mass = r.m_pelvis + 0.5 * extra;
+  // THORMANG3's inertials (the twin's, builtin_inertials.hpp): chest, arms and head rigid together.
+  const humanoid::BuiltinInertials in = humanoid::builtin_inertials(r);
+  set_inertial(m.bodies[0], in.pelvis);
   auto& chest = m.bodies[1];
   chest.parent = 0;
   chest.joint = humanoid::kWaistYaw;
   chest.axis = Vector3d::UnitZ();
   chest.offset = Vector3d(0, 0, r.chest_joint_z);
-  // Chest, arms and head are rigid together: one point mass at their common centre.
-  const double m_upper = r.m_chest + 0.5 * extra + 2 * r.m_arm + r.m_head;
-  chest.mass = m_upper;
-  chest.com = ((r.m_chest + 0.5 * extra) * Vector3d(0, 0, r.chest_com_z) + 2 * r.m_arm * Vector3d(0, 0, r.arm_com_z) +
-               r.m_head * Vector3d(0, 0, r.head_z)) / m_upper;
+  set_inertial(chest, in.chest);
   for (int side = 0; side < 2; ++side) {
     const int b0 = 2 + 7 * side, j0 = leg_first_joint(side);
     const double y = side == 0 ? r.hip_yaw_offset_y : -r.hip_yaw_offset_y;
@@ -28,19 +37,13 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
                                              Vector3d(0, 0, -(r.hip_axes_depth - r.hip_yaw_offset_z)),
                                              Vector3d::Zero(), Vector3d(0, 0, -r.thigh), Vector3d(0, 0, -r.shank),
                                              Vector3d::Zero(), Vector3d::Zero()};
-    const std::array<double, 7> masses = {r.m_hip_yaw, r.m_hip_roll, r.m_thigh, r.m_shank,
-                                          r.m_ankle_pitch, r.m_ankle_roll, r.m_foot};
-    const std::array<Vector3d, 7> coms = {Vector3d(0, 0, r.hip_yaw_com_z), Vector3d::Zero(), Vector3d(0, 0, -0.5 * r.thigh),
-                                          Vector3d(0, 0, -0.5 * r.shank), Vector3d::Zero(), Vector3d::Zero(),
-                                          Vector3d(0, 0, -(r.ankle_to_sole - 0.5 * r.sole_thickness))};
     for (int i = 0; i < 7; ++i) {
       auto& b = m.bodies[b0 + i];
       b.parent = i == 0 ? 0 : b0 + i - 1;
       b.joint = i < 6 ? j0 + i : -1;
       b.axis = axes[i];
       b.offset = offsets[i];
-      b.mass = masses[i];
-      b.com = coms[i];
+      set_inertial(b, in.leg[side][i]);
     }
     m.foot[side] = b0 + 6;
     m.leg[side] = leg_geometry(r, side);
@@ -48,7 +51,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   for (const auto& b : m.bodies) m.total_mass += b.mass;
   m.sole_length = r.sole_length;
   m.sole_width = r.sole_width;
-  m.sole_offset = {Vector3d(0, 0, -r.ankle_to_sole), Vector3d(0, 0, -r.ankle_to_sole)};
+  m.sole_offset = {Vector3d(0, r.sole_offset_y, -r.ankle_to_sole), Vector3d(0, -r.sole_offset_y, -r.ankle_to_sole)};
   fill_leg_chain(m, 0);
   fill_leg_chain(m, 1);
   return m;

@@ -2,7 +2,7 @@
 /// \file robot_model.hpp
 /// The controller's own rigid-body model of the robot (no simulator inside): the kinematic tree
 /// of the pelvis, the waist and the two legs with the links' masses at their centres — from
-/// RobotParams (the builtin robot, point masses) or from a loaded description (issue 16: each
+/// RobotParams (the builtin robot, THORMANG3's inertials: builtin_inertials.hpp) or from a loaded description (issue 16: each
 /// link the file's bodies it moves, lumped with their inertias; the rest lumped into the trunk). It gives the whole-body centre of mass, each leg's sole Jacobian and the leg
 /// links' own gravity torque — what the COM planner and the deformation model (spec eqs. 4-6 and
 /// the full form) need. Model (immutable) and Data (frames, scratch) apart; no allocation after
@@ -30,7 +30,7 @@ struct RobotModel {
     Vector3d offset = Vector3d::Zero();///< body origin in the parent frame at zero angle [m]
     double mass = 0;                   ///< [kg]
     Vector3d com = Vector3d::Zero();   ///< centre of mass in the body frame [m]
-    Matrix3d inertia = Matrix3d::Zero();  ///< about the centre of mass, body frame [kg m^2] (builtin: point masses)
+    Matrix3d inertia = Matrix3d::Zero();  ///< about the centre of mass, body frame [kg m^2]
   };
   std::array<Body, kBodies> bodies;    ///< parents before children
   std::array<int, 2> foot{};           ///< foot body of each leg
@@ -44,7 +44,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& robot);
 /// The model of a loaded description. Each leg's IK is analytic when the leg has its layout
 /// (leg_kinematics.hpp: hip yaw (z), roll (x), pitch (y) axes meeting in a point, knee (y)
 /// straight below, ankle pitch (y) and roll (x) meeting straight below the knee, the sole centre
-/// straight below the ankle; checked to 1e-9 m), numeric otherwise (leg[side].analytic, and
+/// below the ankle (a horizontal shift allowed, LegGeometry::sole_shift); checked to 1e-9 m), numeric otherwise (leg[side].analytic, and
 /// analytic_ik_mismatch says why). Throws ConfigError (robot.feet.<side>.body) when a foot's
 /// frame is not parallel to the root's at zero angles.
 RobotModel make_robot_model(const humanoid::LoadedRobot& robot);

@@ -57,7 +57,7 @@ std::string layout_mismatch(const RobotModel& m, int side) {
   if (!vertical(offset(3))) return "the knee is not straight below the hip";
   if (!vertical(offset(4)) || !close(offset(5), Vector3d::Zero()))
     return "the ankle pitch and roll axes do not meet straight below the knee";
-  if (!vertical(offset(6) + m.sole_offset[static_cast<std::size_t>(side)])) return "the sole centre is not straight below the ankle";
+  if (!((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z() < 0)) return "the sole centre is not below the ankle";
   return {};
 }
 
@@ -168,6 +168,9 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     // The F/T sensor (the foot body's origin) to the sole; for the analytic layout, the ankle to the sole.
     leg.ankle_to_sole = leg.analytic ? -(offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z()
                                      : -m.sole_offset[static_cast<std::size_t>(side)].z();
+    // For the analytic layout, the sole centre's horizontal shift from below the ankle.
+    if (leg.analytic) leg.sole_shift = Vector3d((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).x(),
+                                                (offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).y(), 0);
   }
   m.sole_length = r.sole[0].length;
   m.sole_width = r.sole[0].width;

@@ -18,7 +18,7 @@ struct WalkParams {
   double dsp_ratio = 0.2;       ///< double-support share of a step
   double turn = 0.0;            ///< heading change per step [rad] (> 0: left)
   double swing_height = 0.05;   ///< swing foot apex above the floor [m]
-  double pelvis_height = 0.75;  ///< pelvis origin above the floor [m]
+  double pelvis_height = 0.723; ///< pelvis origin above the floor [m] (ROBOTIS's walking height, spec "The robot")
   double start_time = 1.5;      ///< standing before the first step [s]
   double end_time = 2.0;        ///< standing after the last step [s]
   double preview_time = 1.6;    ///< preview horizon [s]
