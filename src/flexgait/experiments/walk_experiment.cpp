@@ -269,7 +269,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       for (int side = 0; side < 2; ++side) {
         const Eigen::Matrix3d R = walking::rot_z(g.sole_yaw[side]);
         const walking::FootContact c = walking::foot_contact(plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
-                                                             model.bodies[static_cast<std::size_t>(model.foot[side])].mass);
+                                                             model.bodies[static_cast<std::size_t>(model.foot[side])].mass,
+                                                             model.sole_offset[side].head<2>());
         if (c.normal_force <= 1.0) continue;
         moment += c.normal_force * (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset +
                                     R.topLeftCorner<2, 2>() * c.cop);

@@ -7,7 +7,9 @@
 ///
 ///   p_x = (−τ_y − d f_x) / f_z,   p_y = (τ_x − d f_y) / f_z,
 ///
-/// and the ground's torque about the sole centre is τ + (0, 0, d) × f.
+/// and the ground's torque about that point is τ + (0, 0, d) × f. A sole whose centre is shifted
+/// by s = (s_x, s_y) from below the sensor (foot frame; the builtin's 14 mm outward) has p − s and
+/// the torque about its centre, less s × f.
 #include <Eigen/Dense>
 
 #include "flexgait/robot/sensors.hpp"
@@ -22,7 +24,8 @@ struct FootContact {
 
 /// \param sole_R orientation of the sole (world), for the foot's weight
 /// \param ankle_to_sole d [m]; \param foot_mass mass below the sensor [kg]
+/// \param sole_shift s [m]: cop and torque are then about the sole centre
 FootContact foot_contact(const humanoid::ForceTorque& ft, const Eigen::Matrix3d& sole_R, double ankle_to_sole,
-                         double foot_mass);
+                         double foot_mass, const Eigen::Vector2d& sole_shift = Eigen::Vector2d::Zero());
 
 }  // namespace flexgait::walking
