@@ -108,6 +108,22 @@ std::vector<Step> steps(bool quick) {
                "Each cell is one walk of 10 steps at that step length and step time: on the left whether the twin "
                "fell, on the right its peak pelvis roll error (of a fall: up to the fall); the top row without the "
                "deformation compensators, the bottom row with both, on the same colour scale."});
+  // The largest recoverable push (issue 19): a campaign of bisections, standing and at mid single
+  // support of the 3rd of 6 steps, pd against dcm balance; quick: forward and left, with both
+  // compensators only.
+  s.push_back({"humanoid-push-recovery",
+               "Humanoid: largest recoverable push against the capture-point bound, pd against dcm balance (a campaign)",
+               {"campaign", "humanoid-push-recovery", "--set", "walk.steps=6", "--grid",
+                "push_recovery.situation=standing,walking", "--grid",
+                quick ? "push_recovery.direction=forward,left" : "push_recovery.direction=forward,backward,left,right",
+                "--grid", quick ? "control.compensation=both" : "control.compensation=off,both", "--grid",
+                "balance.mode=pd,dcm", "--plot-metrics", "fraction,recovered"},
+               "Each cell is a bisection (to 1 N s) on the impulse of a 0.1 s chest push: the largest impulse the twin "
+               "recovers without a fall, and that impulse as a fraction of the capture-point bound (the impulse an "
+               "ankle strategy can absorb at best: m sqrt(g/z_c) times the distance from the COM to the support "
+               "polygon's edge in the push's direction). Standing: pushed at 4 s; walking: at mid single support of "
+               "the 3rd step (left foot in stance; a push to the right, toward the swinging foot, is caught by the "
+               "step that lands 0.4 s later, so it can exceed the bound, which assumes no step)."});
   return s;
 }
 

@@ -93,6 +93,8 @@ expect_usage_error random-without-samples "--samples: 0 with --random axes" riml
 expect_usage_error seed-without-random "--seed: given without a --random axis" rimless-simulate --grid rimless.K=1 \
   --seed 3
 expect_usage_error no-axis "no --grid or --random axis" rimless-simulate
+expect_usage_error push-force-set "disturbance.push.force_x" humanoid-push-recovery \
+  --grid push_recovery.direction=left --set disturbance.push.force_x=10
 expect_usage_error bad-plot-metric "--plot-metrics: 'nope' is not a metric of humanoid-walk" humanoid-walk \
   --grid walk.step_length=0.1 --plot-metrics fell,nope
 if [ -n "${FLEXGAIT_BUILT_WITHOUT_MPI:-}" ]; then  # as if started by mpirun -np 2
@@ -126,6 +128,10 @@ campaign "${walk_grid[@]}" --out "$work/w2" --jobs 2
 check "walk --jobs 2: same bytes" cmp -s "$work/w1/campaign.csv" "$work/w2/campaign.csv"
 check "walk: a fall is a row with its reason" grep -q "^2,0.3,off,off,full,true,pelvis" "$work/w1/campaign.csv"
 check "walk: with compensation it walks" grep -q "^3,0.3,both,both,full,false,," "$work/w1/campaign.csv"
+campaign humanoid-push-recovery --grid push_recovery.direction=forward --set push_recovery.tolerance=30 \
+  --set push_recovery.settle_time=1.5 --out "$work/p1"
+check "push recovery: a row with the push's time, recovered, fell_at, bound ($(head -c 300 "$work/stderr"))" \
+  grep -qE "^0,forward,standing,forward,4,[0-9.]+,[0-9.]+,[0-9.]+,[0-9.]+,3,$" "$work/p1/campaign.csv"
 campaign humanoid-bench --grid plant.k_joint=500,1000 --out "$work/b1" --keep-runs
 check "bench campaign with --keep-runs: a run directory per point" test -f "$work/b1/runs/000001/summary.json"
 
