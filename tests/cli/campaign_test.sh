@@ -151,6 +151,11 @@ check "reduced.csv: a row per mu, 5 points each" \
 campaign "${random_grid[@]::${#random_grid[@]}-4}" --seed 8 --reduce sample --out "$work/d3"
 check "random draws: another seed draws other values" test \
   "$(cut -d, -f4 "$work/d1/campaign.csv")" != "$(cut -d, -f4 "$work/d3/campaign.csv")"
+campaign "${random_grid[@]::${#random_grid[@]}-4}" --seed 9 --out "$work/d1" --resume
+check "resume with another seed: refused (exit 2)" test $? -eq 2
+campaign "${random_grid[@]::${#random_grid[@]}-2}" --reduce rimless.mu --out "$work/d1" --resume
+check "resume with another --reduce: allowed, nothing recomputed" grep -q " 0 computed, 10 resumed" "$work/stdout"
+check "another --reduce: reduced.csv over mu" test "$(head -c 12 "$work/d1/reduced.csv")" = "sample,point"
 
 # kill -9 in the middle, then --resume: the same bytes; a torn last line is computed again.
 long_grid=(humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.2,0.3 --grid control.compensation=off,both)
