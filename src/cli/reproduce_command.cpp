@@ -109,13 +109,13 @@ std::vector<Step> steps(bool quick) {
                "fell, on the right its peak pelvis roll error (of a fall: up to the fall); the top row without the "
                "deformation compensators, the bottom row with both, on the same colour scale."});
   // The largest recoverable push (issue 19): a campaign of bisections, standing and at mid single
-  // support of the 3rd of 6 steps, pd against dcm balance; quick: forward and left, with both
-  // compensators only.
+  // support of the 3rd of 6 steps, pd against dcm balance; quick: forward only, with both
+  // compensators only (4 bisections).
   s.push_back({"humanoid-push-recovery",
                "Humanoid: largest recoverable push against the capture-point bound, pd against dcm balance (a campaign)",
                {"campaign", "humanoid-push-recovery", "--set", "walk.steps=6", "--grid",
                 "push_recovery.situation=standing,walking", "--grid",
-                quick ? "push_recovery.direction=forward,left" : "push_recovery.direction=forward,backward,left,right",
+                quick ? "push_recovery.direction=forward" : "push_recovery.direction=forward,backward,left,right",
                 "--grid", quick ? "control.compensation=both" : "control.compensation=off,both", "--grid",
                 "balance.mode=pd,dcm", "--plot-metrics", "fraction,recovered"},
                "Each cell is a bisection (to 1 N s) on the impulse of a 0.1 s chest push: the largest impulse the twin "
