@@ -5,6 +5,7 @@
 #include <cmath>
 #include <deque>
 #include <memory>
+#include <optional>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
@@ -21,9 +22,13 @@ struct MapCache {
   AnalysisOptions opt;
   Model model;
   std::deque<std::pair<double, std::unique_ptr<PoincareMap>>> maps;
+  /// The mode of the last evaluation that arrived at the section in another mode than it started.
+  std::optional<SectionState> arrived;
+  double arrived_q = 0;  ///< where
 
   double value(double q) const { return spec.from + q * (spec.to - spec.from); }
   Config config_at(double p) const { return sweep_point_config(base, SweepSpec{spec.param, p, p, 1}, 0); }
+  WheelParams wheel_at(double q) const { return wheel_from_config(config_at(value(q))); }
   /// The map at q, or why the parameter value is not valid.
   PoincareMap* at(double q, std::string& why) {
     for (auto& [key, map] : maps)
@@ -39,6 +44,105 @@ struct MapCache {
     return maps.back().second.get();
   }
 };
+
+/// The family of maps in q with the discrete section mode of `like`.
+numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const SectionState& like, bool exact) {
+  numerics::MapFamily family;
+  family.map = [cache, like](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
+    std::string why;
+    PoincareMap* m = cache->at(q, why);
+    if (m == nullptr) return why;
+    SectionState pt = like;
+    pt.z = z;
+    const MapStep s = m->apply(pt);
+    if (s.failure) {
+      if (s.next.z.size() > 0 && (s.next.flight != like.flight || s.next.mode != like.mode)) {
+        cache->arrived = s.next;
+        cache->arrived_q = q;
+      }
+      return s.failure;
+    }
+    o = s.next.z;
+    return std::nullopt;
+  };
+  family.label = [cache, like](const Eigen::VectorXd& z, double q) -> std::string {
+    std::string why;
+    PoincareMap* m = cache->at(q, why);
+    if (m == nullptr) return "invalid";
+    SectionState pt = like;
+    pt.z = z;
+    const MapStep s = m->apply(pt);
+    return s.failure ? "failed" : s.gait;
+  };
+  if (exact) {
+    family.state_jacobian = [cache, like](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J) -> std::optional<std::string> {
+      std::string why;
+      PoincareMap* m = cache->at(q, why);
+      if (m == nullptr) return why;
+      SectionState pt = like;
+      pt.z = z;
+      return m->jacobian(pt, J);
+    };
+  }
+  return family;
+}
+
+/// A piece of the branch in one section mode.
+struct Segment {
+  SectionState like;  ///< its mode (z: the start)
+  numerics::Branch branch;
+  std::string boundary;  ///< at its start: "section mode A -> B" (empty for the first segment)
+};
+
+/// Carries the branch across a change of the section's mode after `from` ended at its last point
+/// (mode `to` is where the map arrived). Returns the new segment's start (the new mode's end at
+/// the boundary), or why the branch ends there.
+std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& cache, const Segment& from,
+                                              const SectionState& to, bool exact, const numerics::ContinuationOptions& o,
+                                              numerics::BranchPoint& start) {
+  const numerics::BranchPoint& a = from.branch.points.back();
+  const double qa = a.p;
+  const Eigen::Index n = a.z.size();
+  if (!(a.tangent.size() == n + 1 && a.tangent(n) > 0))
+    return std::string("the branch heads back (after a fold) where the section's mode changes");
+  SectionState old = from.like;
+  old.z = a.z;
+  SectionState guess = in_mode(cache->wheel_at(qa), old, to);
+  const numerics::MapFamily g = family_in_mode(cache, to, exact);
+  // Newton in the new mode a little beyond the boundary (the end is within the difference step of it).
+  numerics::BranchPoint beyond;
+  std::string why = "no step";
+  bool found = false;
+  for (const double dq : {3e-4, 1e-3, 3e-3, 1e-2}) {
+    if (qa + dq > 1.0) break;
+    if (auto e = numerics::fixed_point_at(g, guess.z, qa + dq, o, beyond)) {
+      why = *e;
+      continue;
+    }
+    found = true;
+    break;
+  }
+  if (!found) return fmt::format("no fixed point in the new mode ({}) next to it: {}", mode_text(to), why);
+  // Back to the boundary in the new mode: the new segment's own end there.
+  numerics::ContinuationOptions back = o;
+  back.detect = false;
+  back.max_points = 200;
+  back.initial_step = std::min(o.initial_step, 0.5 * (beyond.p - qa));
+  const numerics::Branch b = numerics::continue_fixed_points(g, beyond.z, beyond.p, std::max(0.0, qa - 0.05), back);
+  if (!b.failure.empty() || b.points.empty()) return "continuing the new mode back to the boundary: " + b.failure;
+  const numerics::BranchPoint& end = b.points.back();
+  // Continuous: both ends meet (to a few difference steps in q, the states to 1e-3 of their scale).
+  const Eigen::VectorXd scale = to.scale(cache->wheel_at(end.p));
+  const double gap_q = std::abs(end.p - qa);
+  const double gap_z = (end.z - guess.z).cwiseQuotient(scale).lpNorm<Eigen::Infinity>();
+  if (gap_q > 1e-3 || gap_z > 1e-3)
+    return fmt::format("the fixed point is not continuous there: the new mode's ({}) branch ends at {} = {} with a "
+                       "state {} (scaled) away ({})",
+                       mode_text(to), cache->spec.param, format_number(cache->value(end.p)), format_number(gap_z),
+                       b.stop_reason);
+  start = end;
+  return std::nullopt;
+}
 
 }  // namespace
 
@@ -63,39 +167,12 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   const FixedPointReport start = find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section,
                                                   initial_from_config(start_config));
   out.state_names = start.point.names();
-  out.mode = start.point.flight ? "flight" : mode_name(start.point.mode);
+  out.mode = mode_text(start.point);
   if (!start.converged) {
     out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure);
     return out;
   }
-  const SectionState like = start.point;
-  numerics::MapFamily family;
-  family.map = [cache, like](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
-    std::string why;
-    PoincareMap* m = cache->at(q, why);
-    if (m == nullptr) return why;
-    return (*m)(like, z, o);
-  };
-  family.label = [cache, like](const Eigen::VectorXd& z, double q) -> std::string {
-    std::string why;
-    PoincareMap* m = cache->at(q, why);
-    if (m == nullptr) return "invalid";
-    SectionState pt = like;
-    pt.z = z;
-    const MapStep s = m->apply(pt);
-    return s.failure ? "failed" : s.gait;
-  };
-  if (start.jacobian_exact) {
-    out.exact_jacobian = true;
-    family.state_jacobian = [cache, like](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J) -> std::optional<std::string> {
-      std::string why;
-      PoincareMap* m = cache->at(q, why);
-      if (m == nullptr) return why;
-      SectionState pt = like;
-      pt.z = z;
-      return m->jacobian(pt, J);
-    };
-  }
+  out.exact_jacobian = start.jacobian_exact;
   numerics::ContinuationOptions o;
   const double width = std::abs(spec.to - spec.from);
   o.initial_step = spec.step > 0 ? spec.step / width : 0.02;
@@ -104,44 +181,127 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   o.max_points = spec.max_points;
   o.tolerance = cache->opt.newton.tolerance;
   o.fd_relative_step = cache->opt.newton.fd_relative_step;
-  o.state_scale = like.scale(w0);
+  o.state_scale = start.point.scale(w0);
   o.parameter_scale = 1;
   o.locate_tolerance = 1e-9;
   o.label_tolerance = 1e-7;  // in q: |Δp| <= 1e-7 |to - from|
-  out.branch = numerics::continue_fixed_points(family, start.point.z, 0.0, 1.0, o);
-  if (!out.branch.failure.empty()) {
-    out.failure = out.branch.failure;
-    return out;
-  }
 
-  // Rows: points and special points in the order of arclength, each with its step's quantities.
-  std::vector<std::pair<numerics::BranchPoint, std::string>> ordered;
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < out.branch.points.size(); ++i) {
-    ordered.emplace_back(out.branch.points[i], i == 0 ? "start" : "");
-    for (; k < out.branch.special.size() && out.branch.special[k].after == i; ++k) {
-      const auto& sp = out.branch.special[k];
-      std::string ev = numerics::to_string(sp.kind);
-      if (sp.kind == numerics::SpecialKind::LabelChange)
-        ev = fmt::format("gait {} -> {}", sp.label_before, sp.label_after);
-      ordered.emplace_back(sp.point, ev);
+  // Segments, one per section mode, joined where the fixed point is continuous across the change.
+  std::vector<Segment> segments;
+  SectionState like = start.point;
+  double q0 = 0;
+  std::string boundary, end_note;
+  int points = 0;
+  for (;;) {
+    cache->arrived.reset();
+    const numerics::MapFamily f = family_in_mode(cache, like, out.exact_jacobian);
+    o.state_scale = like.scale(w0);
+    o.max_points = spec.max_points - points;
+    Segment seg{like, numerics::continue_fixed_points(f, like.z, q0, 1.0, o), boundary};
+    if (!seg.branch.failure.empty()) {
+      if (segments.empty()) {
+        out.failure = seg.branch.failure;
+        return out;
+      }
+      end_note = fmt::format("the section's mode changes to {} but the new segment does not start: {}",
+                             mode_text(like), seg.branch.failure);
+      break;
     }
+    points += static_cast<int>(seg.branch.points.size());
+    segments.push_back(std::move(seg));
+    const Segment& last = segments.back();
+    // A change of the section's mode ends the segment when the map arrived in another mode next to
+    // its last point (within the parameter's difference step; earlier such failures were passed).
+    if (last.branch.reached_end || !cache->arrived || points >= spec.max_points ||
+        std::abs(cache->arrived_q - last.branch.points.back().p) > 1e-3)
+      break;
+    const SectionState to = *cache->arrived;
+    numerics::BranchPoint next;
+    if (auto e = cross_section_mode(cache, last, to, out.exact_jacobian, o, next)) {
+      end_note = fmt::format("the section's foot mode changes from {} to {} here and {}", mode_text(last.like),
+                             mode_text(to), *e);
+      break;
+    }
+    boundary = fmt::format("section mode {} -> {}", mode_text(last.like), mode_text(to));
+    like = to;
+    like.z = next.z;
+    q0 = next.p;
+  }
+  out.segments = static_cast<int>(segments.size());
+  for (const Segment& seg : segments)
+    if (seg.like.z.size() > static_cast<Eigen::Index>(out.state_names.size())) out.state_names = seg.like.names();
+
+  // The joined branch, and the rows: points and special points in the order of arclength, each
+  // with its step's quantities.
+  out.branch.period = 1;
+  double s_offset = 0;
+  struct Ordered {
+    numerics::BranchPoint point;
+    std::string event;
+    const Segment* segment;
+  };
+  std::vector<Ordered> ordered;
+  for (const Segment& seg : segments) {
+    const std::size_t offset = out.branch.points.size();
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < seg.branch.points.size(); ++i) {
+      numerics::BranchPoint pt = seg.branch.points[i];
+      pt.arclength += s_offset;
+      std::string ev = i > 0 ? "" : seg.boundary.empty() ? "start" : seg.boundary;
+      if (i == 0 && !seg.boundary.empty() && !ordered.empty() && ordered.back().point.label != pt.label)
+        ev += fmt::format(" (gait {} -> {})", ordered.back().point.label, pt.label);
+      ordered.push_back({pt, ev, &seg});
+      out.branch.points.push_back(pt);
+      for (; k < seg.branch.special.size() && seg.branch.special[k].after == i; ++k) {
+        numerics::SpecialPoint sp = seg.branch.special[k];
+        sp.after += offset;
+        sp.point.arclength += s_offset;
+        ev = numerics::to_string(sp.kind);
+        if (sp.kind == numerics::SpecialKind::LabelChange)
+          ev = fmt::format("gait {} -> {}", sp.label_before, sp.label_after);
+        ordered.push_back({sp.point, ev, &seg});
+        out.branch.special.push_back(std::move(sp));
+      }
+    }
+    s_offset = out.branch.points.back().arclength;
+  }
+  const numerics::Branch& tail = segments.back().branch;
+  out.branch.reached_end = tail.reached_end;
+  out.branch.stop_reason = tail.stop_reason;
+  if (tail.stop_reason.starts_with("a vertical branch")) {
+    // The physical reason where it is the sliding gait's: μ_k = tan φ.
+    const WheelParams w = cache->wheel_at(tail.points.back().p);
+    const SectionState& m = segments.back().like;
+    if (!m.flight && m.mode != FootMode::Stick && std::abs(w.mu_k - std::tan(w.slope)) <= 1e-8 * std::max(1.0, w.mu_k))
+      out.branch.stop_reason = fmt::format(
+          "mu_k = tan(slope) = {}: kinetic friction on the sliding foot balances gravity along the slope, so a slide "
+          "at any speed is a gait (a multiplier +1, the branch vertical) and below it the slide accelerates: no gait; {}",
+          format_number(std::tan(w.slope)), tail.stop_reason);
+  }
+  if (!end_note.empty()) {
+    out.branch.reached_end = false;
+    out.branch.stop_reason = end_note + " (" + tail.stop_reason + ")";
   }
   out.stop_reason = out.branch.reached_end
                         ? fmt::format("reached {} = {}", spec.param, format_number(spec.to))
                         : fmt::format("ended at {} = {} (q = (p - from)/(to - from) = {}): {}", spec.param,
                                       format_number(cache->value(out.branch.points.back().p)),
                                       format_number(out.branch.points.back().p), out.branch.stop_reason);
-  if (!out.branch.reached_end) ordered.back().second = "end: " + out.stop_reason;
-  for (auto& [pt, ev] : ordered) {
+  if (!out.branch.reached_end) ordered.back().event = "end: " + out.stop_reason;
+  for (auto& [pt, ev, seg] : ordered) {
     GaitBranchRow r;
     r.p = cache->value(pt.p);
     r.event = ev;
+    r.section = seg->like;
+    r.section.z = pt.z;
     std::string why;
+    const WheelParams w = cache->wheel_at(pt.p);
+    SectionState widest = segments.front().like;
+    for (const Segment& sg : segments)
+      if (sg.like.z.size() == static_cast<Eigen::Index>(out.state_names.size())) widest = sg.like;
+    r.state = in_mode(w, r.section, widest).z;
     if (PoincareMap* m = cache->at(pt.p, why)) {
-      SectionState s = like;
-      s.z = pt.z;
-      const MapStep step = m->apply(s);
+      const MapStep step = m->apply(r.section);
       if (!step.failure) {
         r.gait = step.gait;
         r.period = step.period;
@@ -167,8 +327,8 @@ std::string gait_branch_csv(const GaitBranch& b) {
   CsvWriter csv(cols);
   for (const GaitBranchRow& r : b.rows) {
     csv.cell(r.p);
-    for (Eigen::Index i = 0; i < r.point.z.size(); ++i) csv.cell(r.point.z(i));
-    csv.cell(b.mode).cell(r.period).cell(r.speed).cell(r.dissipated).cell(r.gait);
+    for (Eigen::Index i = 0; i < r.state.size(); ++i) csv.cell(r.state(i));
+    csv.cell(mode_text(r.section)).cell(r.period).cell(r.speed).cell(r.dissipated).cell(r.gait);
     for (std::size_t k = 0; k < b.state_names.size(); ++k) {
       const bool has = k < r.point.multipliers.size();
       csv.cell(has ? std::abs(r.point.multipliers[k]) : NAN).cell(has ? std::arg(r.point.multipliers[k]) : NAN);
