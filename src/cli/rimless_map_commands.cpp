@@ -50,13 +50,20 @@ std::string read_branch(const std::string& path, const std::string& param) {
   return text;
 }
 
-int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
+/// The orbit diagram's configuration, spec and --branch files, every option checked.
+struct CheckedOrbit {
+  rimless::WheelSetup setup;
+  rimless::OrbitDiagramSpec spec;
+  std::vector<std::string> branches;
+};
+
+CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
   reject_unused(cmd, {"--x", "--y", "--x-range", "--y-range", "--steps-limit", "--tolerance"},
                 "analysis orbit-diagram (only basin takes them)");
   if (cmd.count("--param") == 0) throw UsageError("--param: required by analysis orbit-diagram; allowed: a real key");
   for (const char* o : {"--from", "--to", "--count"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis orbit-diagram", o));
-  const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
   rimless::check_sweep_param(s.config.schema(), a.map.param);
   if (a.from == a.to)
     throw UsageError(fmt::format("--to: {} equals --from; allowed: a value other than --from", format_number(a.to)));
@@ -66,15 +73,38 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   rimless::check_orbit_diagram(s.config, spec);
   std::vector<std::string> branches;
   for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param));
-  check_resume(a, "orbit_points");
-  const RunDirectory dir(a.run.out);
-  dir.write_config(s.config);
+  return {std::move(s), spec, std::move(branches)};
+}
+
+int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
+  // Under mpirun the parameter values are spread over the ranks as the basin's cells are (the
+  // same checks on every rank, rank 0 alone writes files and reports).
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  std::optional<CheckedOrbit> checked;
+  std::string error;
+  try {
+    checked.emplace(checked_orbit(a, cmd));
+    if (!mpi || mpi->coordinator()) check_resume(a, "orbit_points");
+  } catch (const UsageError& e) {
+    if (!mpi) throw;
+    error = e.what();
+  }
+  if (mpi) error = mpi->first_error(error);
+  if (!error.empty()) throw UsageError(error);
+  const rimless::WheelSetup& s = checked->setup;
+  const rimless::OrbitDiagramSpec& spec = checked->spec;
+  std::optional<RunDirectory> made;
+  if (!mpi || mpi->coordinator()) {
+    made.emplace(a.run.out);
+    made->write_config(s.config);
+  }
   SweepJob job;
-  job.dir = dir.path();
+  job.dir = a.run.out;
+  job.distributor = mpi.get();
   job.name = "orbit_points";
   job.header = rimless::orbit_points_header();
   job.count = spec.sweep.count;
-  job.jobs = a.jobs;
+  job.jobs = a.jobs > 0 ? a.jobs : (mpi ? 1 : 0);
   job.resume = a.resume;
   job.signature = fmt::format("orbit-diagram {} {} {} {} {} transient {} record {}\n{}", spec.sweep.param,
                               format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count, a.section,
@@ -82,10 +112,13 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::orbit_points_row(base, spec, i); };
   const SweepOutcome out = run_sweep(job);
+  if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
+  const RunDirectory& dir = *made;
   const std::string points = read_text_file(dir.path() / "orbit_points.csv");
   dir.write("orbit.csv", rimless::orbit_csv(points));
   dir.write("summary.json", rimless::orbit_summary_json(points));
-  for (std::size_t k = 0; k < branches.size(); ++k) dir.write(fmt::format("branch_{}.csv", k + 1), branches[k]);
+  for (std::size_t k = 0; k < checked->branches.size(); ++k)
+    dir.write(fmt::format("branch_{}.csv", k + 1), checked->branches[k]);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"orbit-diagram", dir.path().string(), spec.sweep.param});
   fmt::print("orbit diagram of {} over [{}, {}], {} values x {} crossings after {} steps: {} computed, {} resumed, "
              "{:.2f} s\n", spec.sweep.param, format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count,
