@@ -87,6 +87,50 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
   return family;
 }
 
+/// The family of P^k (k = the spec's period) starting and ending in the mode of `like`. The k - 1
+/// crossings in between may arrive in any mode (a period-k orbit's section points need not share
+/// theirs), so P^k has no exact Jacobian (the variational one holds the mode): central differences.
+numerics::MapFamily family_for(const std::shared_ptr<MapCache>& cache, const SectionState& like, bool exact) {
+  const int k = cache->spec.period;
+  if (k == 1) return family_in_mode(cache, like, exact);
+  const auto steps = [cache, like, k](const Eigen::VectorXd& z, double q, SectionState& end,
+                                      std::string& gait) -> std::optional<std::string> {
+    std::string why;
+    PoincareMap* m = cache->at(q, why);
+    if (m == nullptr) return why;
+    end = like;
+    end.z = z;
+    for (int i = 0; i < k; ++i) {
+      const MapStep s = m->apply(end, false);
+      if (s.failure) return fmt::format("step {} of {}: {}", i + 1, k, *s.failure);
+      gait += (i > 0 ? " / " : "") + s.gait;
+      end = s.next;
+    }
+    return std::nullopt;
+  };
+  numerics::MapFamily family;
+  family.period = k;
+  family.map = [cache, like, steps, k](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
+    SectionState end;
+    std::string gait;
+    if (auto e = steps(z, q, end, gait)) return e;
+    if (end.flight != like.flight || end.mode != like.mode) {
+      cache->arrived = end;
+      cache->arrived_q = q;
+      return fmt::format("arrived at the section after {} steps in another mode ({} instead of {})", k, mode_text(end),
+                         mode_text(like));
+    }
+    o = end.z;
+    return std::nullopt;
+  };
+  family.label = [steps](const Eigen::VectorXd& z, double q) -> std::string {
+    SectionState end;
+    std::string gait;
+    return steps(z, q, end, gait) ? "failed" : gait;
+  };
+  return family;
+}
+
 /// A piece of the branch in one section mode.
 struct Segment {
   SectionState like;  ///< its mode (z: the start)
@@ -108,7 +152,7 @@ std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& c
   SectionState old = from.like;
   old.z = a.z;
   SectionState guess = in_mode(cache->wheel_at(qa), old, to);
-  const numerics::MapFamily g = family_in_mode(cache, to, exact);
+  const numerics::MapFamily g = family_for(cache, to, exact);
   // Newton in the new mode a little beyond the boundary (the end is within the difference step of it).
   numerics::BranchPoint beyond;
   std::string why = "no step";
@@ -144,64 +188,43 @@ std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& c
   return std::nullopt;
 }
 
-}  // namespace
-
-GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
-  check_sweep_param(base.schema(), spec.param);
-  if (!(spec.from != spec.to) || !std::isfinite(spec.from) || !std::isfinite(spec.to))
-    throw ConfigError("--to", fmt::format("the interval is empty: --from {} --to {}", spec.from, spec.to));
-  if (spec.step < 0 || spec.step > std::abs(spec.to - spec.from))
-    throw ConfigError("--step", fmt::format("--step {} is not in (0, |to - from|]", spec.step));
-  auto cache = std::make_shared<MapCache>();
-  cache->base = base;
-  cache->spec = spec;
-  const Config start_config = cache->config_at(spec.from);
-  cache->config_at(spec.to);  // throws when the end is not a valid value
-  cache->sim = simulation_from_config(start_config);
-  cache->opt = analysis_from_config(start_config);
-  cache->model = cache->sim.model;
-
-  GaitBranch out;
-  out.param = spec.param;
-  const WheelParams w0 = wheel_from_config(start_config);
-  const FixedPointReport start = find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section,
-                                                  initial_from_config(start_config));
-  out.state_names = start.point.names();
-  out.mode = mode_text(start.point);
-  if (!start.converged) {
-    out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure);
-    return out;
-  }
-  out.exact_jacobian = start.jacobian_exact;
+numerics::ContinuationOptions continuation_options(const GaitContinuationSpec& spec, const AnalysisOptions& a) {
   numerics::ContinuationOptions o;
   const double width = std::abs(spec.to - spec.from);
   o.initial_step = spec.step > 0 ? spec.step / width : 0.02;
   o.max_step = 2 * o.initial_step;
   o.min_step = 1e-9;
   o.max_points = spec.max_points;
-  o.tolerance = cache->opt.newton.tolerance;
-  o.fd_relative_step = cache->opt.newton.fd_relative_step;
-  o.state_scale = start.point.scale(w0);
+  o.tolerance = a.newton.tolerance;
+  o.fd_relative_step = a.newton.fd_relative_step;
   o.parameter_scale = 1;
   o.locate_tolerance = 1e-9;
   o.label_tolerance = 1e-7;  // in q: |Δp| <= 1e-7 |to - from|
+  return o;
+}
 
-  // Segments, one per section mode, joined where the fixed point is continuous across the change.
+void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>& segments, const std::string& end_note,
+              GaitBranch& out);
+
+/// The branch from `like` (a fixed point of P^k at q = 0) into `out`: its segments, one per section
+/// mode, joined where the fixed point is continuous across the change, and its rows.
+void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::ContinuationOptions o, GaitBranch& out) {
+  const GaitContinuationSpec& spec = cache->spec;
+  const WheelParams w0 = cache->wheel_at(0.0);
   std::vector<Segment> segments;
-  SectionState like = start.point;
   double q0 = 0;
   std::string boundary, end_note;
   int points = 0;
   for (;;) {
     cache->arrived.reset();
-    const numerics::MapFamily f = family_in_mode(cache, like, out.exact_jacobian);
+    const numerics::MapFamily f = family_for(cache, like, out.exact_jacobian);
     o.state_scale = like.scale(w0);
     o.max_points = spec.max_points - points;
     Segment seg{like, numerics::continue_fixed_points(f, like.z, q0, 1.0, o), boundary};
     if (!seg.branch.failure.empty()) {
       if (segments.empty()) {
         out.failure = seg.branch.failure;
-        return out;
+        return;
       }
       end_note = fmt::format("the section's mode changes to {} but the new segment does not start: {}",
                              mode_text(like), seg.branch.failure);
@@ -227,6 +250,14 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
     like.z = next.z;
     q0 = next.p;
   }
+  assemble(cache, segments, end_note, out);
+}
+
+/// Joins `segments` into out.branch and out.rows (points and special points in the order of
+/// arclength, each with its cycle's quantities: k applications of the map for period k).
+void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>& segments, const std::string& end_note,
+              GaitBranch& out) {
+  const GaitContinuationSpec& spec = cache->spec;
   out.segments = static_cast<int>(segments.size());
   for (const Segment& seg : segments)
     if (seg.like.z.size() > static_cast<Eigen::Index>(out.state_names.size())) out.state_names = seg.like.names();
@@ -301,19 +332,128 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
       if (sg.like.z.size() == static_cast<Eigen::Index>(out.state_names.size())) widest = sg.like;
     r.state = in_mode(w, r.section, widest).z;
     if (PoincareMap* m = cache->at(pt.p, why)) {
-      const MapStep step = m->apply(r.section);
-      if (!step.failure) {
-        r.gait = step.gait;
-        r.period = step.period;
-        r.speed = step.period > 0 ? step.distance / step.period : 0.0;
-        r.dissipated = step.dissipated;
+      SectionState at = r.section;
+      double period = 0, distance = 0, dissipated = 0;
+      std::string gait;
+      bool ok = true;
+      for (int k = 0; k < out.period && ok; ++k) {
+        const MapStep step = m->apply(at, out.period == 1);
+        ok = !step.failure;
+        period += step.period;
+        distance += step.distance;
+        dissipated += step.dissipated;
+        gait += (k > 0 ? " / " : "") + step.gait;
+        at = step.next;
+      }
+      if (ok) {
+        r.gait = gait;
+        r.period = period;
+        r.speed = period > 0 ? distance / period : 0.0;
+        r.dissipated = dissipated;
       }
     }
     r.point = std::move(pt);
     out.rows.push_back(std::move(r));
   }
+}
+
+/// The period-2k branch born at the first period doubling of `out` (Kuznetsov §10.3: the corrector
+/// on P^{2k} along the critical eigenvector), continued towards q = 1 (or back to 0 when it lies on
+/// that side), into out.switched.
+void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, const numerics::ContinuationOptions& o,
+                                     GaitBranch& out) {
+  for (const GaitBranchRow& r : out.rows) {
+    if (r.event != numerics::to_string(numerics::SpecialKind::PeriodDoubling)) continue;
+    numerics::SpecialPoint pd;
+    for (const auto& sp : out.branch.special)
+      if (sp.kind == numerics::SpecialKind::PeriodDoubling && sp.point.p == r.point.p) pd = sp;
+    const numerics::MapFamily f = family_for(cache, r.section, out.exact_jacobian);
+    GaitBranch child;
+    child.param = out.param;
+    child.period = 2 * out.period;
+    child.exact_jacobian = out.exact_jacobian;
+    child.state_names = r.section.names();
+    child.mode = mode_text(r.section);
+    numerics::ContinuationOptions oc = o;
+    oc.state_scale = r.section.scale(cache->wheel_at(r.point.p));
+    numerics::Branch b = numerics::switch_at_period_doubling(f, pd, 1.0, oc);
+    if (b.failure.empty() && b.points.size() < 3 && b.stop_reason.find("other side") != std::string::npos && pd.point.p > 0)
+      b = numerics::switch_at_period_doubling(f, pd, 0.0, oc);
+    if (!b.failure.empty()) {
+      child.failure = fmt::format("no period-{} branch at the period doubling at {} = {}: {}", child.period,
+                                  out.param, format_number(r.p), b.failure);
+    } else {
+      std::vector<Segment> one{Segment{r.section, std::move(b), ""}};
+      one.front().like.z = pd.point.z;
+      assemble(cache, one, "", child);
+      if (!child.rows.empty()) child.rows.front().event = fmt::format("period doubling of the period-{} branch", out.period);
+    }
+    out.switched.push_back(std::move(child));
+    return;
+  }
+}
+
+}  // namespace
+
+GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
+  check_sweep_param(base.schema(), spec.param);
+  if (!(spec.from != spec.to) || !std::isfinite(spec.from) || !std::isfinite(spec.to))
+    throw ConfigError("--to", fmt::format("the interval is empty: --from {} --to {}", spec.from, spec.to));
+  if (spec.step < 0 || spec.step > std::abs(spec.to - spec.from))
+    throw ConfigError("--step", fmt::format("--step {} is not in (0, |to - from|]", spec.step));
+  if (spec.period < 1 || spec.period > 64)
+    throw ConfigError("--period", fmt::format("--period {} is not an integer in [1, 64]", spec.period));
+  auto cache = std::make_shared<MapCache>();
+  cache->base = base;
+  cache->spec = spec;
+  const Config start_config = cache->config_at(spec.from);
+  cache->config_at(spec.to);  // throws when the end is not a valid value
+  cache->sim = simulation_from_config(start_config);
+  cache->opt = analysis_from_config(start_config);
+  cache->model = cache->sim.model;
+
+  GaitBranch out;
+  out.param = spec.param;
+  const WheelParams w0 = wheel_from_config(start_config);
+  out.period = spec.period;
+  numerics::ContinuationOptions o = continuation_options(spec, cache->opt);
+  SectionState like;
+  if (spec.period == 1) {
+    const FixedPointReport start = find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section,
+                                                    initial_from_config(start_config));
+    out.state_names = start.point.names();
+    out.mode = mode_text(start.point);
+    if (!start.converged) {
+      out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure);
+      return out;
+    }
+    out.exact_jacobian = start.jacobian_exact;
+    like = start.point;
+  } else {
+    // Newton on P^k from the state the transient reached (a period-1 gait is a fixed point of P^k too).
+    const AnalysisOptions& a = cache->opt;
+    if (auto e = settle_on_section(w0, map_options(cache->sim, a), cache->model, spec.section,
+                                   initial_from_config(start_config), a.transient_steps, like)) {
+      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from), *e);
+      return out;
+    }
+    out.state_names = like.names();
+    out.mode = mode_text(like);
+    out.exact_jacobian = false;  // P^k's modes in between may differ (family_for)
+    o.state_scale = like.scale(w0);
+    numerics::BranchPoint pk;
+    if (auto e = numerics::fixed_point_at(family_for(cache, like, out.exact_jacobian), like.z, 0.0, o, pk)) {
+      out.failure = fmt::format("no period-{} orbit at {} = {} from the transient's state: {}", spec.period, spec.param,
+                                format_number(spec.from), *e);
+      return out;
+    }
+    like.z = pk.z;
+  }
+  build(cache, like, o, out);
+  if (spec.switch_at_period_doubling) switch_at_first_period_doubling(cache, o, out);
   return out;
 }
+
 
 std::string gait_branch_csv(const GaitBranch& b) {
   std::vector<std::string> cols{"parameter"};

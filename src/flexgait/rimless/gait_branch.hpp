@@ -32,6 +32,8 @@ struct GaitContinuationSpec {
   double step = 0;                   ///< first step in the key's unit (0: |to - from| / 50)
   int max_points = 2000;
   Section section = Section::Touchdown;
+  int period = 1;                    ///< continue fixed points of P^period (a period-k orbit)
+  bool switch_at_period_doubling = false;  ///< also the period-2k branch born at the first period doubling
 };
 
 /// One row of branch.csv: a point of the branch or a special point on it.
@@ -55,12 +57,16 @@ struct GaitBranch {
   bool exact_jacobian = false;
   numerics::Branch branch;           ///< in q, all segments joined (z in each segment's mode)
   int segments = 1;                  ///< pieces of the branch between changes of the section's mode
+  int period = 1;                    ///< fixed points of P^period
+  std::vector<GaitBranch> switched;  ///< the period-2k branch switched to at the first period doubling
   std::vector<GaitBranchRow> rows;   ///< points and special points in the order of arclength
   std::string stop_reason;           ///< why the branch ended, in the key's unit
   std::string failure;               ///< nonempty when the start has no fixed point
 };
 
-/// The branch from the gait found at `from` (find_fixed_point from the configured initial state).
+/// The branch from the gait found at `from` (find_fixed_point from the configured initial state;
+/// for period k > 1, Newton on P^k from the state the transient reaches). A row's period, speed,
+/// dissipated energy and gait ("a / b" for the k steps) are those of the k steps.
 /// Throws ConfigError when param is not a real key, from = to, or either end is not a valid value.
 GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec);
 
