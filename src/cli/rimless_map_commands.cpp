@@ -76,28 +76,39 @@ CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
   return {std::move(s), spec, std::move(branches)};
 }
 
-int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
-  // Under mpirun the parameter values are spread over the ranks as the basin's cells are (the
-  // same checks on every rank, rank 0 alone writes files and reports).
-  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
-  std::optional<CheckedOrbit> checked;
+/// Under mpirun the ranks agree on the checks: all go on, or all exit 2 and rank 0 alone says why
+/// (mpi_distributor.hpp). `check()` returns the checked setup; the resume check is rank 0's. Then
+/// rank 0 alone makes the run directory (with config.yaml) and writes files.
+template <class Checked, class Check>
+Checked checked_on_every_rank(MpiRanks* mpi, const MapRun& a, const std::string& name, const Check& check,
+                              const Config& (*config_of)(const Checked&), std::optional<RunDirectory>& made) {
+  std::optional<Checked> checked;
   std::string error;
   try {
-    checked.emplace(checked_orbit(a, cmd));
-    if (!mpi || mpi->coordinator()) check_resume(a, "orbit_points");
+    checked.emplace(check());
+    if (mpi == nullptr || mpi->coordinator()) check_resume(a, name);
   } catch (const UsageError& e) {
-    if (!mpi) throw;
+    if (mpi == nullptr) throw;
     error = e.what();
   }
-  if (mpi) error = mpi->first_error(error);
+  if (mpi != nullptr) error = mpi->first_error(error);
   if (!error.empty()) throw UsageError(error);
-  const rimless::WheelSetup& s = checked->setup;
-  const rimless::OrbitDiagramSpec& spec = checked->spec;
-  std::optional<RunDirectory> made;
-  if (!mpi || mpi->coordinator()) {
+  if (mpi == nullptr || mpi->coordinator()) {
     made.emplace(a.run.out);
-    made->write_config(s.config);
+    made->write_config(config_of(*checked));
   }
+  return std::move(*checked);
+}
+
+int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
+  // Under mpirun the parameter values are spread over the ranks as the basin's cells are.
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  std::optional<RunDirectory> made;
+  const CheckedOrbit checked = checked_on_every_rank<CheckedOrbit>(
+      mpi.get(), a, "orbit_points", [&] { return checked_orbit(a, cmd); },
+      +[](const CheckedOrbit& c) -> const Config& { return c.setup.config; }, made);
+  const rimless::WheelSetup& s = checked.setup;
+  const rimless::OrbitDiagramSpec& spec = checked.spec;
   SweepJob job;
   job.dir = a.run.out;
   job.distributor = mpi.get();
@@ -117,8 +128,8 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   const std::string points = read_text_file(dir.path() / "orbit_points.csv");
   dir.write("orbit.csv", rimless::orbit_csv(points));
   dir.write("summary.json", rimless::orbit_summary_json(points));
-  for (std::size_t k = 0; k < checked->branches.size(); ++k)
-    dir.write(fmt::format("branch_{}.csv", k + 1), checked->branches[k]);
+  for (std::size_t k = 0; k < checked.branches.size(); ++k)
+    dir.write(fmt::format("branch_{}.csv", k + 1), checked.branches[k]);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"orbit-diagram", dir.path().string(), spec.sweep.param});
   fmt::print("orbit diagram of {} over [{}, {}], {} values x {} crossings after {} steps: {} computed, {} resumed, "
              "{:.2f} s\n", spec.sweep.param, format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count,
@@ -145,27 +156,15 @@ std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a
 }
 
 int basin(const MapRun& a, const CLI::App& cmd) {
-  // Under mpirun the cells are spread over the ranks (mpi_distributor.hpp); the ranks agree on the
-  // checks: all go on, or all exit 2 and rank 0 alone says why. Rank 0 alone writes files.
+  // Under mpirun the cells are spread over the ranks (mpi_distributor.hpp).
   const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
-  std::optional<std::pair<rimless::WheelSetup, rimless::BasinSpec>> checked;
-  std::string error;
-  try {
-    checked.emplace(checked_basin(a, cmd));
-    if (!mpi || mpi->coordinator()) check_resume(a, "basin");
-  } catch (const UsageError& e) {
-    if (!mpi) throw;
-    error = e.what();
-  }
-  if (mpi) error = mpi->first_error(error);
-  if (!error.empty()) throw UsageError(error);
-  const rimless::WheelSetup& s = checked->first;
-  const rimless::BasinSpec& spec = checked->second;
+  using Checked = std::pair<rimless::WheelSetup, rimless::BasinSpec>;
   std::optional<RunDirectory> made;
-  if (!mpi || mpi->coordinator()) {
-    made.emplace(a.run.out);
-    made->write_config(s.config);
-  }
+  const Checked checked = checked_on_every_rank<Checked>(
+      mpi.get(), a, "basin", [&] { return checked_basin(a, cmd); },
+      +[](const Checked& c) -> const Config& { return c.first.config; }, made);
+  const rimless::WheelSetup& s = checked.first;
+  const rimless::BasinSpec& spec = checked.second;
   // Every rank finds the same reference (the same configuration, deterministic Newton).
   const rimless::BasinReference ref = rimless::basin_reference(s.config, spec.section);
   SweepJob job;
