@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
@@ -82,6 +83,27 @@ TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
     ++compared[mode_text(r.section)];
   }
   for (const char* mode : {"stick", "slip-", "slip+"}) EXPECT_GE(compared[mode], 1) << mode;
+}
+
+// Over the slope the last stick phase before the landing vanishes at φ ≈ 0.2193 (the section's
+// mode stick -> slip+): the branch from 0.2 up and the one from 0.222 down both cross it and place
+// it within 1e-5 of each other (each within the parameter's difference step of the change; the
+// segment ends meet to 1e-3 of q = 0.035 wide intervals); both reach their ends.
+TEST(GaitBranchThresholds, SlopeBranchesCrossTheSectionModeChangeFromBothSides) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  std::vector<double> at;
+  for (const auto& [from, to, event] : {std::tuple{0.2, 0.2355, "section mode stick -> slip+"},
+                                        std::tuple{0.222, 0.2, "section mode slip+ -> stick"}}) {
+    const GaitBranch b = continue_gait(base, GaitContinuationSpec{.param = "rimless.slope", .from = from, .to = to});
+    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    EXPECT_TRUE(b.branch.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.segments, 2);
+    for (const auto& r : b.rows)
+      if (r.event.starts_with(event)) at.push_back(r.p);
+  }
+  ASSERT_EQ(at.size(), 2u);
+  EXPECT_NEAR(at[0], at[1], 1e-5);
+  EXPECT_NEAR(at[0], 0.2193, 1e-4);
 }
 
 }  // namespace
