@@ -28,15 +28,26 @@ PoincareMap* MapCache::at(double q, std::string& why) {
   return maps.back().second.get();
 }
 
+namespace {
+
+/// The map at q (null when q's value is not valid: `why`) and the section point in like's mode at z.
+PoincareMap* map_and_point(MapCache& cache, const SectionState& like, const Eigen::VectorXd& z, double q,
+                           SectionState& pt, std::string& why) {
+  pt = like;
+  pt.z = z;
+  return cache.at(q, why);
+}
+
+}  // namespace
+
 /// The family of maps in q with the discrete section mode of `like`.
 numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const SectionState& like, bool exact) {
   numerics::MapFamily family;
   family.map = [cache, like](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
     std::string why;
-    PoincareMap* m = cache->at(q, why);
+    SectionState pt;
+    PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
     if (m == nullptr) return why;
-    SectionState pt = like;
-    pt.z = z;
     const MapStep s = m->apply(pt);
     if (s.failure) {
       if (s.next.z.size() > 0 && (s.next.flight != like.flight || s.next.mode != like.mode)) {
@@ -50,21 +61,18 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
   };
   family.label = [cache, like](const Eigen::VectorXd& z, double q) -> std::string {
     std::string why;
-    PoincareMap* m = cache->at(q, why);
+    SectionState pt;
+    PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
     if (m == nullptr) return "invalid";
-    SectionState pt = like;
-    pt.z = z;
     const MapStep s = m->apply(pt);
     return s.failure ? "failed" : s.gait;
   };
   if (exact) {
     family.state_jacobian = [cache, like](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J) -> std::optional<std::string> {
       std::string why;
-      PoincareMap* m = cache->at(q, why);
-      if (m == nullptr) return why;
-      SectionState pt = like;
-      pt.z = z;
-      return m->jacobian(pt, J);
+      SectionState pt;
+      PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
+      return m == nullptr ? std::optional<std::string>(why) : m->jacobian(pt, J);
     };
   }
   return family;
