@@ -55,25 +55,22 @@ std::vector<Step> steps(bool quick) {
                {"rimless", "analysis", "stagnation", "--config", stagnation}});
   s.push_back({"rimless-stagnation-map", "Rimless wheel: stagnation interval against mu - tan(phi), I, C and K",
                {"rimless", "analysis", "stagnation-map", "--config", stagnation}});
-  // Issue 18: the gait continued in mu through the behaviour thresholds; the orbit diagram over the
-  // slope with the continued branches over it (the two branches meet where the touchdown section's
-  // foot mode changes, slope 0.2193 (branch ends there), which the continuation does not cross); a basin of the gait.
+  // Issue 18: the gait continued in mu through the behaviour thresholds, across the changes of the
+  // touchdown section's foot mode, to its end at mu = tan(phi); the orbit diagram over the slope
+  // with the continued branch over it (it crosses the section's mode change at slope 0.2193); a basin of the gait.
   s.push_back({"rimless-mu-continuation", "Rimless wheel: the gait continued in mu from 0.6 down (pseudo-arclength)",
-               {"rimless", "continuation", "--config", rimless, "--param", "rimless.mu", "--from", "0.6", "--to", "0.1"},
+               {"rimless", "continuation", "--config", rimless, "--param", "rimless.mu", "--from", "0.6", "--to", "0.05"},
                "The fixed point's angular velocity at the touchdown section and its largest |multiplier| against mu: "
-               "stable solid, unstable dashed, each gait in its colour, located gait changes and bifurcations "
-               "marked; the branch ends where the section's foot mode changes."});
-  s.push_back({"rimless-slope-branch-low", "Rimless wheel: the gait continued in the slope from 0.2 up",
+               "stable solid, unstable dashed, each gait in its colour, located gait changes, changes of the "
+               "section's foot mode and bifurcations marked; the branch ends at mu = tan(phi), where the sliding "
+               "gait's friction balances gravity along the slope."});
+  s.push_back({"rimless-slope-branch", "Rimless wheel: the gait continued in the slope from 0.2 up",
                {"rimless", "continuation", "--config", rimless, "--param", "rimless.slope", "--from", "0.2", "--to",
-                "0.2355"}});
-  s.push_back({"rimless-slope-branch-high", "Rimless wheel: the gait continued in the slope from 0.222 up",
-               {"rimless", "continuation", "--config", rimless, "--param", "rimless.slope", "--from", "0.222", "--to",
                 "0.2355"}});
   s.push_back({"rimless-orbit-slope", "Rimless wheel: orbit diagram over the slope, with the continued branches",
                {"rimless", "analysis", "orbit-diagram", "--config", rimless, "--param", "rimless.slope", "--from", "0.2",
                 "--to", "0.2355", "--count", quick ? "40" : "200", "--transient", quick ? "200" : "400", "--record",
-                quick ? "32" : "64", "--branch", "@root/rimless-slope-branch-low/branch.csv", "--branch",
-                "@root/rimless-slope-branch-high/branch.csv"},
+                quick ? "32" : "64", "--branch", "@root/rimless-slope-branch/branch.csv"},
                "Each dot is the angular velocity at a touchdown after the transient, coloured by the step's gait; "
                "black: the continued fixed points (solid stable, dashed unstable). Past the Neimark-Sacker point the "
                "steps spread over an invariant curve and then chaos with periodic windows; past 0.2356 the wheel "

@@ -54,6 +54,21 @@ if [ "$mode" = mpi ]; then
   check "mpirun: an error of other ranks only writes nothing" test ! -e "$work/never"
   mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
   check "mpirun: resume of a different grid refused (workers released)" grep -q "different sweep" "$work/stderr"
+  # The orbit diagram (issue 18) spreads its parameter values over the ranks: the same bytes.
+  orbit=(rimless analysis orbit-diagram --param rimless.slope --from 0.2 --to 0.2355 --count 7 --transient 30
+         --record 6 --no-plot)
+  timeout 300 "$exe" "${orbit[@]}" --jobs 1 --out "$work/o1" >/dev/null 2>&1
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$exe" "${orbit[@]}" --out "$work/om" \
+    >"$work/stdout" 2>"$work/stderr"
+  check "mpirun -np 3 orbit-diagram: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+  for f in orbit.csv orbit_points.csv summary.json; do
+    check "mpirun -np 3 orbit-diagram: $f the same bytes as 1 thread" cmp -s "$work/o1/$f" "$work/om/$f"
+  done
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$exe" "${orbit[@]}" --count 1 --out "$work/never" \
+    >"$work/stdout" 2>"$work/stderr"
+  check "mpirun orbit-diagram: a bad --count exits 2 (got $?)" test $? -eq 2
+  check "mpirun orbit-diagram: said once" test "$(grep -c "^error: --count" "$work/stderr")" -eq 1
+  check "mpirun orbit-diagram: nothing written" test ! -e "$work/never"
   echo "campaign mpi: $passed passed, $failed failed"
   [ "$failed" -eq 0 ]
   exit
