@@ -47,12 +47,28 @@ class WheelFlow final : public numerics::OdeSystem {
   }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
-    guard_values(w_, contacts_, y, g.first(n));
-    for (int k = 0; k < w_.legs; ++k)
-      if (clearing_[static_cast<std::size_t>(k)] != 0) g[static_cast<std::size_t>(kGuardsPerLeg * k)] += clearance_;
+    last_y_.assign(y.begin(), y.end());
+    last_dynamics_ = contact_dynamics(w_, contacts_, y);
+    guard_values(w_, contacts_, last_dynamics_, y, g.first(n));
+    for (int k = 0; k < w_.legs; ++k) {
+      const std::size_t i = static_cast<std::size_t>(kGuardsPerLeg * k);
+      last_heights_[static_cast<std::size_t>(k)] = g[i];  // the free feet's heights (contacts: N)
+      if (clearing_[static_cast<std::size_t>(k)] != 0) g[i] += clearance_;
+    }
     if (upright_leg_ >= 0) g[n] = std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
   }
-  void set_contacts(const ContactSet& c) { contacts_ = c; }
+  /// Whether the latest guard evaluation was at this very y in the current mode (the end of a
+  /// step): then last_dynamics() and last_height() are the numbers contact_dynamics() and
+  /// foot_height() would compute again there (the missed-event check's).
+  bool remembered(std::span<const double> y) const {
+    return last_y_.size() == y.size() && std::equal(y.begin(), y.end(), last_y_.begin());
+  }
+  const Dynamics& last_dynamics() const { return last_dynamics_; }
+  double last_height(int k) const { return last_heights_[static_cast<std::size_t>(k)]; }
+  void set_contacts(const ContactSet& c) {
+    contacts_ = c;
+    last_y_.clear();  // the remembered evaluation was of another mode
+  }
   const ContactSet& contacts() const { return contacts_; }
   void set_upright_leg(int k) { upright_leg_ = k; }
   int upright_leg() const { return upright_leg_; }
@@ -80,6 +96,11 @@ class WheelFlow final : public numerics::OdeSystem {
   double clearance_;           // [m]
   std::vector<char> clearing_;  // per leg: 1 while a foot that left has not cleared the ground
   int upright_leg_ = -1;
+  // The latest guard evaluation: its state (empty: none of this mode), dynamics, and per leg
+  // guard slot 0 before the clearance (a free foot's height).
+  std::vector<double> last_y_;
+  Dynamics last_dynamics_;
+  std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
 };
 
 }  // namespace
@@ -293,7 +314,9 @@ struct FlexibleWheelSimulator::Impl {
   // After a smooth step: the modes must still be consistent, or an event was missed.
   const char* check_consistency(std::span<const double> s, std::string& detail) const {
     const ContactSet& c = flow.contacts();
-    const Dynamics d = contact_dynamics(w, c, s);
+    const bool remembered = flow.remembered(s);  // the guards' numbers at s (the step's end)
+    Dynamics computed;
+    const Dynamics& d = remembered ? flow.last_dynamics() : (computed = contact_dynamics(w, c, s));
     if (d.failure != nullptr) return d.failure;
     const double tol_f = 1e-6 * w.m * w.g, tol_v = 1e-6 * std::sqrt(w.g * w.L0);
     for (int i = 0; i < c.count; ++i) {
@@ -309,7 +332,7 @@ struct FlexibleWheelSimulator::Impl {
     }
     for (int k = 0; k < w.legs; ++k) {
       if (c.find(k) >= 0) continue;
-      const double h = foot_height(w, k, s);
+      const double h = remembered ? flow.last_height(k) : foot_height(w, k, s);
       if (h < -1e-7 * w.L0) {
         detail = fmt::format("leg {} foot height {}", k, h);
         return "missed event: a free foot went below the ground";
