@@ -57,6 +57,19 @@ class WheelFlow final : public numerics::OdeSystem {
     }
     if (upright_leg_ >= 0) g[n] = std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
   }
+  // One guard, as guards() computes it: a free foot's touchdown guard and the upright guard
+  // alone (one cosine or sine, against the mode's dynamics and every foot for all of them).
+  double guard(double t, std::span<const double> y, int i, std::span<double> scratch) override {
+    const int n = guard_count(w_);
+    if (i == n && upright_leg_ >= 0) return std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
+    const int k = i / kGuardsPerLeg;
+    if (i >= n || i % kGuardsPerLeg != 0 || contacts_.find(k) >= 0) {
+      guards(t, y, scratch);
+      return scratch[static_cast<std::size_t>(i)];
+    }
+    const double h = foot_height(w_, k, y);
+    return clearing_[static_cast<std::size_t>(k)] != 0 ? h + clearance_ : h;
+  }
   /// Whether the latest guard evaluation was at this very y in the current mode (the end of a
   /// step): then last_dynamics() and last_height() are the numbers contact_dynamics() and
   /// foot_height() would compute again there (the missed-event check's).
