@@ -65,8 +65,8 @@ class BouncingBall final : public HybridModel {
   void work_limit_reached(WorkLimit, double, double) override { failure = "work limit"; }
   std::string describe(const HybridEvent&) const override { return "impact"; }
 
-  std::vector<double> impacts;                  // [s]
-  std::vector<std::array<double, 2>> samples;   // (t, h)
+  std::vector<double> impacts;                 // [s]
+  std::vector<std::array<double, 2>> samples;  // (t, h)
   std::string failure;
   double failure_time = 0;
 
@@ -141,6 +141,77 @@ TEST(HybridSimulation, StopsAZenoSequenceBeforeItsAccumulationPoint) {
     // postcondition); e^20 ≈ 1e-6: no watch stops a sequence of flights the integrator resolves.
     EXPECT_GT(ball.impacts.size(), 20u) << ball.failure;
   }
+}
+
+// y falls at unit speed onto its guard y = 0 and is reset to 1e-12 above it: an event every
+// 1e-12 s. Events alternate between two units (or keep one, `same_unit`).
+class Hopper final : public HybridModel {
+ public:
+  explicit Hopper(bool same_unit) : same_unit_(same_unit) {}
+  bool finished() const override { return events >= 1000; }
+  double stop_time() const override { return 10.0; }
+  bool smooth_step(double t, std::span<const double>, StepStatus status) override {
+    if (status == StepStatus::StopTime) fail(t, "time limit", "");
+    return status != StepStatus::StopTime;
+  }
+  HybridNext guards_crossed(double, std::span<const double>, std::span<const int>, const OdeIntegrator&,
+                            std::vector<HybridEvent>& out) override {
+    out.push_back({same_unit_ ? 0 : events % 2, 0});
+    ++events;
+    return HybridNext::Restart;
+  }
+  HybridNext reset(double, std::span<double> y, std::span<const HybridEvent>) override {
+    y[0] = 1e-12;
+    return HybridNext::Restart;
+  }
+  std::span<const int> directions() const override { return directions_; }
+  void fail(double, const std::string& why, const std::string&) override { failure = why; }
+  void work_limit_reached(WorkLimit, double, double) override { failure = "work limit"; }
+  std::string describe(const HybridEvent&) const override { return "hop"; }
+
+  int events = 0;
+  std::string failure;
+
+ private:
+  bool same_unit_;
+  std::array<int, 1> directions_{-1};
+};
+
+class Fall final : public OdeSystem {
+ public:
+  bool rhs(double, std::span<const double>, std::span<double> yd) override {
+    yd[0] = -1.0;
+    return true;
+  }
+  void guards(double, std::span<const double> y, std::span<double> g) override { g[0] = y[0]; }
+};
+
+void run_hopper(Hopper& hopper) {
+  Fall fall;
+  OdeOptions o;
+  o.method = OdeMethod::Dop853;
+  OdeIntegrator integ(fall, 1, o);
+  const std::array<double, 1> y0{1.0};
+  integ.restart(0.0, y0, hopper.directions());
+  HybridSimulation loop(integ, 1);
+  loop.run(hopper, HybridLimits{}, 0.0);
+}
+
+TEST(HybridSimulation, TheZenoWatchStopsKZenoCountEventsWithinItsWindow) {
+  // Events 1e-12 s apart (located to ~1e-14 s): the 64th lies 63e-12 s after the first, inside
+  // the 1e-9 s window, so the watch stops the run there, not earlier.
+  Hopper hopper(false);
+  run_hopper(hopper);
+  EXPECT_EQ(hopper.failure, "Zeno sequence: too many events in too short a time");
+  EXPECT_EQ(hopper.events, static_cast<int>(HybridSimulation::kZenoCount));
+}
+
+TEST(HybridSimulation, AnEventAgainWithinItsRepeatWindowStopsTheRun) {
+  // The same event 1e-12 s after itself (< kRepeatWindow = 1e-10 s): stopped at the second.
+  Hopper hopper(true);
+  run_hopper(hopper);
+  EXPECT_EQ(hopper.failure, "an event fired again at its own restart point");
+  EXPECT_EQ(hopper.events, 2);
 }
 
 }  // namespace

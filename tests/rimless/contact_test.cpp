@@ -40,8 +40,8 @@ TEST(LegAngle, IsLibmRemainderBitForBit) {
     // Quotients at half-integers, and a few ulps either side.
     for (int n = -50; n <= 50; ++n) {
       const double half = (n + 0.5) * P;
-      for (double x = std::nextafter(std::nextafter(half, -1e9), -1e9); x <= std::nextafter(std::nextafter(half, 1e9), 1e9);
-           x = std::nextafter(x, 1e9))
+      for (double x = std::nextafter(std::nextafter(half, -1e9), -1e9);
+           x <= std::nextafter(std::nextafter(half, 1e9), 1e9); x = std::nextafter(x, 1e9))
         expect_same(x, 0);
       expect_same(n * P, 0);  // exact multiples: remainder 0
     }

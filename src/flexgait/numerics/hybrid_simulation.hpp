@@ -42,8 +42,8 @@ enum class WorkLimit {
 };
 
 struct HybridLimits {
-  bool sample = false;        ///< hand dense-output samples to the model
-  double sample_dt = 0.0;     ///< sampling period from the start time [s]
+  bool sample = false;                                             ///< hand dense-output samples to the model
+  double sample_dt = 0.0;                                          ///< sampling period from the start time [s]
   double max_wall_time = std::numeric_limits<double>::infinity();  ///< [s] of wall clock
   double max_step_rate = std::numeric_limits<double>::infinity();  ///< integrator steps per simulated second
 };
@@ -54,7 +54,10 @@ class HybridModel {
   /// True once the run has done what it was asked (checked before every integrator step).
   virtual bool finished() const = 0;
   /// Before the first integrator step: false (after calling fail()) if the run cannot start.
-  virtual bool ready(double t) { (void)t; return true; }
+  virtual bool ready(double t) {
+    (void)t;
+    return true;
+  }
   /// The latest time the next integrator step may reach [s].
   virtual double stop_time() const = 0;
   /// A sample of the dense output at t (with HybridLimits::sample), y dim n.
@@ -95,10 +98,10 @@ class HybridModel {
 
 class HybridSimulation {
  public:
-  static constexpr long long kRateWindow = 4096;   ///< steps over which the step rate is averaged
-  static constexpr std::size_t kZenoCount = 64;    ///< this many events ...
-  static constexpr double kZenoWindow = 1e-9;      ///< ... within this time [s] are a Zeno sequence
-  static constexpr double kRepeatWindow = 1e-10;   ///< an event again within this time [s] of itself fails
+  static constexpr long long kRateWindow = 4096;  ///< steps over which the step rate is averaged
+  static constexpr std::size_t kZenoCount = 64;   ///< this many events ...
+  static constexpr double kZenoWindow = 1e-9;     ///< ... within this time [s] are a Zeno sequence
+  static constexpr double kRepeatWindow = 1e-10;  ///< an event again within this time [s] of itself fails
 
   /// \param integrator restarted by the caller at the start (t0, y0) of the run; it must
   ///   outlive this object. n: its state dimension.
@@ -110,8 +113,8 @@ class HybridSimulation {
 
  private:
   OdeIntegrator& integrator_;
-  std::vector<double> y_;        // (dim n) state at the latest step's end
-  std::vector<double> y_dense_;  // (dim n) one dense-output sample
+  std::vector<double> y_;            // (dim n) state at the latest step's end
+  std::vector<double> y_dense_;      // (dim n) one dense-output sample
   std::vector<HybridEvent> events_;  // the events of one instant
 };
 
