@@ -6,14 +6,18 @@ metric, and a discrete map per categorical one (gait, fell, converged, ...), the
 vertical. Extra axes (3-D and more) are split into one figure per combination of their values:
 campaign_<key>=<value>...png. Metrics that do not vary are left out.
 
+With --random keys (a `sample` axis) campaign.png is not drawn: a map per random draw means
+nothing; reduce over `sample` instead. With --reduced K1,K2 also reduced.png from reduced.csv (flexgait campaign --reduce), drawn the same
+way over the axes not reduced over; a chosen metric M stands there as M_fraction or M_mean.
+
 With --metrics M1,M2,... only those metrics are drawn, in that order (even if they do not vary),
 and a third axis becomes the rows of the one figure campaign.png (one row per value, a shared
 colour scale and category colours per metric, the value written in each cell of a small map), so
 its values compare at a glance: e.g. the walking envelope's `fell` and `pelvis_roll_error_max`
 with control.compensation off against both. Axes beyond the third still split the figure.
 
-Usage: plot_campaign.py RUN_DIR [--metrics M1,M2,...]   (reads RUN_DIR/campaign.csv and the axis
-keys from RUN_DIR/config.yaml's "--grid" lines)
+Usage: plot_campaign.py RUN_DIR [--metrics M1,M2,...] [--reduced K1,...]   (reads RUN_DIR/campaign.csv, the
+axis keys from RUN_DIR/config.yaml's "--grid" lines and the drawn keys from its "--random" lines)
 """
 import argparse
 import itertools
@@ -30,11 +34,12 @@ MAX_PANELS = 16  # keep a figure readable: the first categorical, then numeric m
 MAX_ANNOTATED_CELLS = 120  # write each cell's value into maps up to this size (--metrics)
 
 
-def axis_keys(run_dir):
+def header_keys(run_dir, option):
+    """The keys of config.yaml's "#   --grid KEY=..." (or --random) header lines, in order."""
     keys = []
     with open(os.path.join(run_dir, "config.yaml"), encoding="utf-8") as f:
         for line in f:
-            m = re.match(r"^#   --grid ([^=]+)=", line)
+            m = re.match(rf"^#   --{option} ([^=]+)=", line)
             if m:
                 keys.append(m.group(1))
     return keys
@@ -167,32 +172,54 @@ def compare_figure(rows, axes, by, metrics, run_dir, name, title):
     plt.close(fig)
 
 
+def reduced_metric(columns, m):
+    """The column of reduced.csv that stands for campaign metric m: its fraction or its mean."""
+    return next((c for c in (m + "_fraction", m + "_mean") if c in columns), None)
+
+
+def draw(rows, axes, metrics, chosen, run_dir, stem):
+    """STEM.png (or STEM_<key>=<value>....png per combination of the axes beyond those drawn)."""
+    by = axes[2] if chosen and len(axes) >= 3 else None
+    fixed = axes[3:] if by else axes[2:]
+    for combo in itertools.product(*[ordered(r[k] for r in rows) for k in fixed]):
+        subset = [r for r in rows if all(r[k] == v for k, v in zip(fixed, combo))]
+        suffix = "".join(f"_{k}={v}" for k, v in zip(fixed, combo))
+        title = stem + "".join(f", {k} = {v}" for k, v in zip(fixed, combo))
+        if by:
+            compare_figure(subset, axes[:2], by, chosen, run_dir, f"{stem}{suffix}.png", title)
+        else:
+            figure(subset, axes[:2], chosen or metrics, run_dir, f"{stem}{suffix}.png", title, bool(chosen))
+
+
 def main(argv):
     parser = argparse.ArgumentParser(description="Draws campaign.png beside a campaign's campaign.csv.")
     parser.add_argument("run_dir")
     parser.add_argument("--metrics", help="comma-separated metrics to draw; a third axis becomes the figure's rows")
+    parser.add_argument("--reduced", help="comma-separated axes reduced over in reduced.csv: also draw reduced.png "
+                                          "over the other axes (each chosen metric as its fraction or mean)")
     args = parser.parse_args(argv)
     rows = read_rows(os.path.join(args.run_dir, "campaign.csv"))
     if not rows:
         return 0
-    axes = axis_keys(args.run_dir)
-    metrics = [c for c in rows[0].keys() if c not in axes and c != "index"]
+    axes = header_keys(args.run_dir, "grid")
+    drawn = header_keys(args.run_dir, "random")  # drawn per sample: neither axes nor metrics
+    metrics = [c for c in rows[0].keys() if c not in axes and c not in drawn and c != "index"]
     chosen = args.metrics.split(",") if args.metrics else None
     if chosen:
         unknown = [m for m in chosen if m not in metrics]
         if unknown:
             print(f"plot_campaign.py: no metric {', '.join(unknown)} in campaign.csv", file=sys.stderr)
             return 2
-    by = axes[2] if chosen and len(axes) >= 3 else None
-    fixed = axes[3:] if by else axes[2:]
-    for combo in itertools.product(*[ordered(r[k] for r in rows) for k in fixed]):
-        subset = [r for r in rows if all(r[k] == v for k, v in zip(fixed, combo))]
-        suffix = "".join(f"_{k}={v}" for k, v in zip(fixed, combo))
-        title = "campaign" + "".join(f", {k} = {v}" for k, v in zip(fixed, combo))
-        if by:
-            compare_figure(subset, axes[:2], by, chosen, args.run_dir, f"campaign{suffix}.png", title)
-        else:
-            figure(subset, axes[:2], chosen or metrics, args.run_dir, f"campaign{suffix}.png", title, bool(chosen))
+    if not drawn:  # with random keys, a map per sample means nothing: reduce over `sample`
+        draw(rows, axes, metrics, chosen, args.run_dir, "campaign")
+    if args.reduced:
+        kept = [k for k in axes if k not in args.reduced.split(",")]
+        reduced = read_rows(os.path.join(args.run_dir, "reduced.csv"))
+        if not kept or not reduced:  # one row: nothing to map
+            return 0
+        columns = [c for c in reduced[0].keys() if c not in kept and c != "points"]
+        picked = [c for c in (reduced_metric(columns, m) for m in chosen) if c] if chosen else None
+        draw(reduced, kept, columns, picked, args.run_dir, "reduced")
     return 0
 
 

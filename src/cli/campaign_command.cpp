@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "flexgait/campaign/campaign.hpp"
+#include "flexgait/campaign/reduction.hpp"
+#include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/text.hpp"
 #include "mpi_distributor.hpp"
 #include "options.hpp"
@@ -23,7 +25,13 @@ struct CampaignArgs {
   bool resume = false;
   bool keep_runs = false;
   std::vector<std::string> plot_metrics;  ///< --plot-metrics: campaign.png shows only these
+  std::vector<std::string> reduce;        ///< --reduce: axes reduced over in reduced.csv
+  std::vector<std::string> random;        ///< --random KEY=A:B
+  int samples = 0;                        ///< --samples: draws of the --random keys
+  std::optional<std::uint64_t> seed;      ///< --seed of the draws (default 1)
 };
+
+std::string joined(const std::vector<std::string>& items) { return fmt::format("{}", fmt::join(items, ",")); }
 
 /// Throws UsageError naming the first of `metrics` that is not a column of `experiment`.
 void check_plot_metrics(const campaign::Experiment& experiment, const std::vector<std::string>& metrics) {
@@ -42,8 +50,15 @@ campaign::Campaign checked_campaign(const CampaignArgs& a) {
   check_plot_metrics(experiment, a.plot_metrics);
   std::vector<campaign::GridAxis> axes;
   for (const auto& text : a.grid) axes.push_back(campaign::parse_grid_axis(text));
+  std::vector<campaign::RandomAxis> random_axes;
+  for (const auto& text : a.random) random_axes.push_back(campaign::parse_random_axis(text));
+  if (a.seed && random_axes.empty()) throw UsageError("--seed: given without a --random axis; add one, e.g. --random KEY=A:B");
+  campaign::RandomDesign random(std::move(random_axes), a.samples, a.seed.value_or(1));
+  if (!random.empty()) axes.push_back(random.sample_axis());
   const Config base = resolve(experiment.schema, a.run);
-  return campaign::Campaign(std::move(experiment), base, campaign::Grid(std::move(axes)));
+  campaign::Grid grid(std::move(axes));
+  campaign::check_reduction(grid, a.reduce);
+  return campaign::Campaign(std::move(experiment), base, std::move(grid), std::move(random));
 }
 
 int run_campaign_command(const CampaignArgs& a) {
@@ -66,13 +81,14 @@ int run_campaign_command(const CampaignArgs& a) {
       c, {a.run.out, a.jobs > 0 ? a.jobs : (mpi ? 1 : 0), a.resume, a.keep_runs, mpi.get()});
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const auto csv = std::filesystem::path(a.run.out) / "campaign.csv";
+  const auto reduced = std::filesystem::path(a.run.out) / "reduced.csv";
+  if (!a.reduce.empty())
+    write_file_atomic(reduced, campaign::reduce_campaign_table(c.grid(), a.reduce, read_text_file(csv),
+                                                               c.random().axes().size()));
   if (a.run.plot) {
     std::vector<std::string> args{a.run.out};
-    if (!a.plot_metrics.empty()) {
-      std::string list;
-      for (const auto& m : a.plot_metrics) list += (list.empty() ? "" : ",") + m;
-      args.insert(args.end(), {"--metrics", list});
-    }
+    if (!a.plot_metrics.empty()) args.insert(args.end(), {"--metrics", joined(a.plot_metrics)});
+    if (!a.reduce.empty()) args.insert(args.end(), {"--reduced", joined(a.reduce)});
     run_plot_script("plot_campaign.py", args);
   }
   if (a.run.json) {
@@ -83,11 +99,13 @@ int run_campaign_command(const CampaignArgs& a) {
     j["resumed"] = out.resumed;
     j["seconds"] = out.seconds;
     j["csv"] = csv.string();
+    if (!a.reduce.empty()) j["reduced"] = reduced.string();
     fmt::print("{}\n", j.dump(2));
   } else {
     fmt::print("campaign of {}, {} points: {} computed, {} resumed, {:.2f} s\n", c.experiment().name, c.size(),
                out.computed, out.resumed, out.seconds);
     fmt::print("results in {}\n", csv.string());
+    if (!a.reduce.empty()) fmt::print("reduced over {} in {}\n", joined(a.reduce), reduced.string());
   }
   return 0;
 }
@@ -107,9 +125,16 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("experiment", a->experiment, "the experiment: " + names)->required();
   cmd->add_option("--grid", a->grid, "one axis: KEY=A:B:N (N values from A to B, ends included) or KEY=v1,v2,... "
                                      "(numbers or names, e.g. control.compensation=off,both); repeatable")
-      ->required()
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
+  cmd->add_option("--random", a->random,
+                  "a real key drawn uniformly from [A, B] at each of --samples samples (from --seed): KEY=A:B; "
+                  "the samples are one more axis, `sample` (the last), crossed with the --grid axes; sample s "
+                  "draws the same values at every grid point; repeatable")
+      ->type_name("KEY=A:B")
+      ->allow_extra_args(false);
+  cmd->add_option("--samples", a->samples, "the number of samples of the --random keys")->check(CLI::Range(1, 100000));
+  cmd->add_option("--seed", a->seed, "the seed of the --random draws (default 1)");
   cmd->add_option("--jobs", a->jobs, "worker threads per process (0: all cores; under mpirun 0 means 1 per rank)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
@@ -119,6 +144,12 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
                   "(one per value, shared colour scales), e.g. fell,pelvis_roll_error_max")
       ->delimiter(',')
       ->type_name("M1,M2,...");
+  cmd->add_option("--reduce", a->reduce,
+                  "also write reduced.csv: the table reduced over these axes (e.g. the seeds, or `sample` of "
+                  "--random axes), one row per value of the others: points, errors, M_fraction of each true/false "
+                  "metric (fell_fraction: a fall rate), M_mean, M_min, M_max of each numeric one; with a figure")
+      ->delimiter(',')
+      ->type_name("KEY1,KEY2,...");
   cmd->add_flag("--keep-runs", a->keep_runs, "also write each point's run files to OUT/runs/NNNNNN");
   cmd->callback([a, &action] { action = [a] { return run_campaign_command(*a); }; });
 }

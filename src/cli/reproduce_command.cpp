@@ -55,25 +55,22 @@ std::vector<Step> steps(bool quick) {
                {"rimless", "analysis", "stagnation", "--config", stagnation}});
   s.push_back({"rimless-stagnation-map", "Rimless wheel: stagnation interval against mu - tan(phi), I, C and K",
                {"rimless", "analysis", "stagnation-map", "--config", stagnation}});
-  // Issue 18: the gait continued in mu through the behaviour thresholds; the orbit diagram over the
-  // slope with the continued branches over it (the two branches meet where the touchdown section's
-  // foot mode changes, slope 0.2193 (branch ends there), which the continuation does not cross); a basin of the gait.
+  // Issue 18: the gait continued in mu through the behaviour thresholds, across the changes of the
+  // touchdown section's foot mode, to its end at mu = tan(phi); the orbit diagram over the slope
+  // with the continued branch over it (it crosses the section's mode change at slope 0.2193); a basin of the gait.
   s.push_back({"rimless-mu-continuation", "Rimless wheel: the gait continued in mu from 0.6 down (pseudo-arclength)",
-               {"rimless", "continuation", "--config", rimless, "--param", "rimless.mu", "--from", "0.6", "--to", "0.1"},
+               {"rimless", "continuation", "--config", rimless, "--param", "rimless.mu", "--from", "0.6", "--to", "0.05"},
                "The fixed point's angular velocity at the touchdown section and its largest |multiplier| against mu: "
-               "stable solid, unstable dashed, each gait in its colour, located gait changes and bifurcations "
-               "marked; the branch ends where the section's foot mode changes."});
-  s.push_back({"rimless-slope-branch-low", "Rimless wheel: the gait continued in the slope from 0.2 up",
+               "stable solid, unstable dashed, each gait in its colour, located gait changes, changes of the "
+               "section's foot mode and bifurcations marked; the branch ends at mu = tan(phi), where the sliding "
+               "gait's friction balances gravity along the slope."});
+  s.push_back({"rimless-slope-branch", "Rimless wheel: the gait continued in the slope from 0.2 up",
                {"rimless", "continuation", "--config", rimless, "--param", "rimless.slope", "--from", "0.2", "--to",
-                "0.2355"}});
-  s.push_back({"rimless-slope-branch-high", "Rimless wheel: the gait continued in the slope from 0.222 up",
-               {"rimless", "continuation", "--config", rimless, "--param", "rimless.slope", "--from", "0.222", "--to",
                 "0.2355"}});
   s.push_back({"rimless-orbit-slope", "Rimless wheel: orbit diagram over the slope, with the continued branches",
                {"rimless", "analysis", "orbit-diagram", "--config", rimless, "--param", "rimless.slope", "--from", "0.2",
                 "--to", "0.2355", "--count", quick ? "40" : "200", "--transient", quick ? "200" : "400", "--record",
-                quick ? "32" : "64", "--branch", "@root/rimless-slope-branch-low/branch.csv", "--branch",
-                "@root/rimless-slope-branch-high/branch.csv"},
+                quick ? "32" : "64", "--branch", "@root/rimless-slope-branch/branch.csv"},
                "Each dot is the angular velocity at a touchdown after the transient, coloured by the step's gait; "
                "black: the continued fixed points (solid stable, dashed unstable). Past the Neimark-Sacker point the "
                "steps spread over an invariant curve and then chaos with periodic windows; past 0.2356 the wheel "
@@ -108,6 +105,22 @@ std::vector<Step> steps(bool quick) {
                "Each cell is one walk of 10 steps at that step length and step time: on the left whether the twin "
                "fell, on the right its peak pelvis roll error (of a fall: up to the fall); the top row without the "
                "deformation compensators, the bottom row with both, on the same colour scale."});
+  // The largest recoverable push (issue 19): a campaign of bisections, standing and at mid single
+  // support of the 3rd of 6 steps, pd against dcm balance; quick: forward only, with both
+  // compensators only (4 bisections).
+  s.push_back({"humanoid-push-recovery",
+               "Humanoid: largest recoverable push against the capture-point bound, pd against dcm balance (a campaign)",
+               {"campaign", "humanoid-push-recovery", "--set", "walk.steps=6", "--grid",
+                "push_recovery.situation=standing,walking", "--grid",
+                quick ? "push_recovery.direction=forward" : "push_recovery.direction=forward,backward,left,right",
+                "--grid", quick ? "control.compensation=both" : "control.compensation=off,both", "--grid",
+                "balance.mode=pd,dcm", "--plot-metrics", "fraction,recovered"},
+               "Each cell is a bisection (to 1 N s) on the impulse of a 0.1 s chest push: the largest impulse the twin "
+               "recovers without a fall, and that impulse as a fraction of the capture-point bound (the impulse an "
+               "ankle strategy can absorb at best: m sqrt(g/z_c) times the distance from the COM to the support "
+               "polygon's edge in the push's direction). Standing: pushed at 4 s; walking: at mid single support of "
+               "the 3rd step (left foot in stance; a push to the right, toward the swinging foot, is caught by the "
+               "step that lands 0.4 s later, so it can exceed the bound, which assumes no step)."});
   return s;
 }
 

@@ -319,12 +319,16 @@ struct ContinuationArgs {
   std::string section = "touchdown";
   std::string param;
   double from = 0, to = 0, step = 0;
+  int period = 1;
+  bool switch_at_pd = false;
 };
 
 int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   rimless::GaitContinuationSpec spec{.param = a.param, .from = a.from, .to = a.to, .step = a.step};
   spec.section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+  spec.period = a.period;
+  spec.switch_at_period_doubling = a.switch_at_pd;
   const auto t0 = std::chrono::steady_clock::now();
   const rimless::GaitBranch b = rimless::continue_gait(s.config, spec);  // throws ConfigError on bad input
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -335,6 +339,18 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);
   dir.write("branch.csv", rimless::gait_branch_csv(b));
+  // The switched branch: branch_period<2k>.csv (and its figure), or why there is none.
+  std::string switched;
+  for (const auto& c : b.switched) {
+    if (!c.failure.empty()) {
+      switched = c.failure;
+      continue;
+    }
+    const std::string name = fmt::format("branch_period{}", c.period);
+    dir.write(name + ".csv", rimless::gait_branch_csv(c));
+    switched = fmt::format("{} points, {} ({})", c.branch.points.size(), c.stop_reason, name + ".csv");
+  }
+  if (a.switch_at_pd && b.switched.empty()) switched = "no period doubling on the branch";
   if (a.run.plot) run_plot_script("plot_maps.py", {"bifurcation", dir.path().string(), b.param});
   if (a.run.json) {
     nlohmann::ordered_json j;
@@ -343,6 +359,9 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
     j["reached_end"] = b.branch.reached_end;
     j["stop_reason"] = b.stop_reason;
     j["exact_jacobian"] = b.exact_jacobian;
+    j["period"] = b.period;
+    j["segments"] = b.segments;
+    if (a.switch_at_pd) j["switched"] = switched;
     j["seconds"] = seconds;
     nlohmann::ordered_json ev = nlohmann::ordered_json::array();
     for (const auto& r : b.rows)
@@ -355,6 +374,7 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
              b.branch.points.size(), seconds, b.exact_jacobian ? "exact" : "finite-difference", b.stop_reason);
   for (const auto& r : b.rows)
     if (!r.event.empty()) fmt::print("  {} = {:.10g}: {} (gait {})\n", b.param, r.p, r.event, r.gait);
+  if (a.switch_at_pd) fmt::print("period-{} branch at the first period doubling: {}\n", 2 * b.period, switched);
   fmt::print("results in {}\n", (dir.path() / "branch.csv").string());
   return 0;
 }
@@ -414,6 +434,11 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   ctc->add_option("--to", ct->to, "end value (in the key's unit)")->required();
   ctc->add_option("--step", ct->step, "first arclength step, in the key's unit (default |to - from|/50; the step "
                                       "adapts up to twice this)");
+  ctc->add_option("--period", ct->period, "continue period-K orbits: fixed points of the K-th iterate of the map, "
+                                          "Newton on it from the transient's state at --from")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  ctc->add_flag("--switch-at-pd", ct->switch_at_pd, "at the branch's first period doubling, switch to the period-2K "
+                                                     "branch born there and continue it too (branch_period2K.csv)");
   ctc->add_option("--model", ct->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
   ctc->add_option("--section", ct->section, "Poincare section of the fixed points")
       ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();

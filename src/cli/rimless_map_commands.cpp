@@ -50,13 +50,20 @@ std::string read_branch(const std::string& path, const std::string& param) {
   return text;
 }
 
-int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
+/// The orbit diagram's configuration, spec and --branch files, every option checked.
+struct CheckedOrbit {
+  rimless::WheelSetup setup;
+  rimless::OrbitDiagramSpec spec;
+  std::vector<std::string> branches;
+};
+
+CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
   reject_unused(cmd, {"--x", "--y", "--x-range", "--y-range", "--steps-limit", "--tolerance"},
                 "analysis orbit-diagram (only basin takes them)");
   if (cmd.count("--param") == 0) throw UsageError("--param: required by analysis orbit-diagram; allowed: a real key");
   for (const char* o : {"--from", "--to", "--count"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis orbit-diagram", o));
-  const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
   rimless::check_sweep_param(s.config.schema(), a.map.param);
   if (a.from == a.to)
     throw UsageError(fmt::format("--to: {} equals --from; allowed: a value other than --from", format_number(a.to)));
@@ -66,15 +73,49 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   rimless::check_orbit_diagram(s.config, spec);
   std::vector<std::string> branches;
   for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param));
-  check_resume(a, "orbit_points");
-  const RunDirectory dir(a.run.out);
-  dir.write_config(s.config);
+  return {std::move(s), spec, std::move(branches)};
+}
+
+/// Under mpirun the ranks agree on the checks: all go on, or all exit 2 and rank 0 alone says why
+/// (mpi_distributor.hpp). `check()` returns the checked setup; the resume check is rank 0's. Then
+/// rank 0 alone makes the run directory (with config.yaml) and writes files.
+template <class Checked, class Check>
+Checked checked_on_every_rank(MpiRanks* mpi, const MapRun& a, const std::string& name, const Check& check,
+                              const Config& (*config_of)(const Checked&), std::optional<RunDirectory>& made) {
+  std::optional<Checked> checked;
+  std::string error;
+  try {
+    checked.emplace(check());
+    if (mpi == nullptr || mpi->coordinator()) check_resume(a, name);
+  } catch (const UsageError& e) {
+    if (mpi == nullptr) throw;
+    error = e.what();
+  }
+  if (mpi != nullptr) error = mpi->first_error(error);
+  if (!error.empty()) throw UsageError(error);
+  if (mpi == nullptr || mpi->coordinator()) {
+    made.emplace(a.run.out);
+    made->write_config(config_of(*checked));
+  }
+  return std::move(*checked);
+}
+
+int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
+  // Under mpirun the parameter values are spread over the ranks as the basin's cells are.
+  const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
+  std::optional<RunDirectory> made;
+  const CheckedOrbit checked = checked_on_every_rank<CheckedOrbit>(
+      mpi.get(), a, "orbit_points", [&] { return checked_orbit(a, cmd); },
+      +[](const CheckedOrbit& c) -> const Config& { return c.setup.config; }, made);
+  const rimless::WheelSetup& s = checked.setup;
+  const rimless::OrbitDiagramSpec& spec = checked.spec;
   SweepJob job;
-  job.dir = dir.path();
+  job.dir = a.run.out;
+  job.distributor = mpi.get();
   job.name = "orbit_points";
   job.header = rimless::orbit_points_header();
   job.count = spec.sweep.count;
-  job.jobs = a.jobs;
+  job.jobs = a.jobs > 0 ? a.jobs : (mpi ? 1 : 0);
   job.resume = a.resume;
   job.signature = fmt::format("orbit-diagram {} {} {} {} {} transient {} record {}\n{}", spec.sweep.param,
                               format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count, a.section,
@@ -82,10 +123,13 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::orbit_points_row(base, spec, i); };
   const SweepOutcome out = run_sweep(job);
+  if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
+  const RunDirectory& dir = *made;
   const std::string points = read_text_file(dir.path() / "orbit_points.csv");
   dir.write("orbit.csv", rimless::orbit_csv(points));
   dir.write("summary.json", rimless::orbit_summary_json(points));
-  for (std::size_t k = 0; k < branches.size(); ++k) dir.write(fmt::format("branch_{}.csv", k + 1), branches[k]);
+  for (std::size_t k = 0; k < checked.branches.size(); ++k)
+    dir.write(fmt::format("branch_{}.csv", k + 1), checked.branches[k]);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"orbit-diagram", dir.path().string(), spec.sweep.param});
   fmt::print("orbit diagram of {} over [{}, {}], {} values x {} crossings after {} steps: {} computed, {} resumed, "
              "{:.2f} s\n", spec.sweep.param, format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count,
@@ -112,27 +156,15 @@ std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a
 }
 
 int basin(const MapRun& a, const CLI::App& cmd) {
-  // Under mpirun the cells are spread over the ranks (mpi_distributor.hpp); the ranks agree on the
-  // checks: all go on, or all exit 2 and rank 0 alone says why. Rank 0 alone writes files.
+  // Under mpirun the cells are spread over the ranks (mpi_distributor.hpp).
   const std::unique_ptr<MpiRanks> mpi = mpi_distributor_if_launched();
-  std::optional<std::pair<rimless::WheelSetup, rimless::BasinSpec>> checked;
-  std::string error;
-  try {
-    checked.emplace(checked_basin(a, cmd));
-    if (!mpi || mpi->coordinator()) check_resume(a, "basin");
-  } catch (const UsageError& e) {
-    if (!mpi) throw;
-    error = e.what();
-  }
-  if (mpi) error = mpi->first_error(error);
-  if (!error.empty()) throw UsageError(error);
-  const rimless::WheelSetup& s = checked->first;
-  const rimless::BasinSpec& spec = checked->second;
+  using Checked = std::pair<rimless::WheelSetup, rimless::BasinSpec>;
   std::optional<RunDirectory> made;
-  if (!mpi || mpi->coordinator()) {
-    made.emplace(a.run.out);
-    made->write_config(s.config);
-  }
+  const Checked checked = checked_on_every_rank<Checked>(
+      mpi.get(), a, "basin", [&] { return checked_basin(a, cmd); },
+      +[](const Checked& c) -> const Config& { return c.first.config; }, made);
+  const rimless::WheelSetup& s = checked.first;
+  const rimless::BasinSpec& spec = checked.second;
   // Every rank finds the same reference (the same configuration, deterministic Newton).
   const rimless::BasinReference ref = rimless::basin_reference(s.config, spec.section);
   SweepJob job;

@@ -22,6 +22,9 @@ rimless_grid=(rimless-fixed-point --set sim.model=rigid --grid rimless.mu=0.3:0.
 # Soft gears (500 Nm/rad): off falls, both walks (THORMANG3's inertials at 0.723 m walk 2 steps at 1000).
 walk_grid=(humanoid-walk --set walk.steps=2 --set plant.k_joint=500 --grid walk.step_length=0.1,0.3
            --grid control.compensation=off,both)
+# Random draws crossed with a grid axis, reduced over the draws: the rigid wheel's gait over random slopes.
+random_grid=(rimless-fixed-point --set sim.model=rigid --grid rimless.mu=0.3,0.9 --random rimless.slope=0.02:0.12
+             --random initial.omega=0.5:1.5 --samples 5 --seed 7 --reduce sample)
 
 if [ "$mode" = mpi ]; then
   campaign "${rimless_grid[@]}" --out "$work/r1" --jobs 1
@@ -33,6 +36,10 @@ if [ "$mode" = mpi ]; then
   campaign "${walk_grid[@]}" --out "$work/w1" --jobs 1
   mpi_campaign "${walk_grid[@]}" --out "$work/wm"
   check "mpirun -np 3 walk: same bytes as 1 thread" cmp -s "$work/w1/campaign.csv" "$work/wm/campaign.csv"
+  campaign "${random_grid[@]}" --out "$work/d1" --jobs 1
+  mpi_campaign "${random_grid[@]}" --out "$work/dm" --jobs 2
+  check "mpirun -np 3 random draws: same campaign.csv as 1 thread" cmp -s "$work/d1/campaign.csv" "$work/dm/campaign.csv"
+  check "mpirun -np 3 random draws: same reduced.csv as 1 thread" cmp -s "$work/d1/reduced.csv" "$work/dm/reduced.csv"
   mpi_campaign "${rimless_grid[@]}" --out "$work/never" --grid rimless.KK=1
   check "mpirun: a bad key exits 2 (got $?)" test $? -eq 2
   check "mpirun: a bad key is said once, by rank 0" test "$(grep -c "rimless.KK" "$work/stderr")" -eq 1
@@ -49,6 +56,21 @@ if [ "$mode" = mpi ]; then
   check "mpirun: an error of other ranks only writes nothing" test ! -e "$work/never"
   mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
   check "mpirun: resume of a different grid refused (workers released)" grep -q "different sweep" "$work/stderr"
+  # The orbit diagram (issue 18) spreads its parameter values over the ranks: the same bytes.
+  orbit=(rimless analysis orbit-diagram --param rimless.slope --from 0.2 --to 0.2355 --count 7 --transient 30
+         --record 6 --no-plot)
+  timeout 300 "$exe" "${orbit[@]}" --jobs 1 --out "$work/o1" >/dev/null 2>&1
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$exe" "${orbit[@]}" --out "$work/om" \
+    >"$work/stdout" 2>"$work/stderr"
+  check "mpirun -np 3 orbit-diagram: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+  for f in orbit.csv orbit_points.csv summary.json; do
+    check "mpirun -np 3 orbit-diagram: $f the same bytes as 1 thread" cmp -s "$work/o1/$f" "$work/om/$f"
+  done
+  timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$exe" "${orbit[@]}" --count 1 --out "$work/never" \
+    >"$work/stdout" 2>"$work/stderr"
+  check "mpirun orbit-diagram: a bad --count exits 2 (got $?)" test $? -eq 2
+  check "mpirun orbit-diagram: said once" test "$(grep -c "^error: --count" "$work/stderr")" -eq 1
+  check "mpirun orbit-diagram: nothing written" test ! -e "$work/never"
   echo "campaign mpi: $passed passed, $failed failed"
   [ "$failed" -eq 0 ]
   exit
@@ -77,6 +99,19 @@ expect_usage_error bad-range "ends of the range of rimless.K" rimless-simulate -
 expect_usage_error empty-value "empty value of rimless.K" rimless-simulate --grid rimless.K=1,,2
 expect_usage_error twice "rimless.K' given twice" rimless-simulate --grid rimless.K=1 --grid rimless.K=2
 expect_usage_error bad-set "rimless.KK" rimless-simulate --grid rimless.K=1 --set rimless.KK=2
+expect_usage_error bad-reduce "--reduce: 'rimless.mu' is not an axis" rimless-simulate --grid rimless.K=1 \
+  --reduce rimless.mu
+expect_usage_error bad-random "--random 'rimless.slope=0.2:0.1'" rimless-simulate --random rimless.slope=0.2:0.1 \
+  --samples 3
+expect_usage_error random-out-of-domain "--random rimless.K" rimless-simulate --random rimless.K=-5:5 --samples 3
+expect_usage_error random-and-grid "key 'rimless.K' is also a --grid axis" rimless-simulate --grid rimless.K=1 \
+  --random rimless.K=1:2 --samples 3
+expect_usage_error random-without-samples "--samples: 0 with --random axes" rimless-simulate --random rimless.K=1:2
+expect_usage_error seed-without-random "--seed: given without a --random axis" rimless-simulate --grid rimless.K=1 \
+  --seed 3
+expect_usage_error no-axis "no --grid or --random axis" rimless-simulate
+expect_usage_error push-force-set "disturbance.push.force_x" humanoid-push-recovery \
+  --grid push_recovery.direction=left --set disturbance.push.force_x=10
 expect_usage_error bad-plot-metric "--plot-metrics: 'nope' is not a metric of humanoid-walk" humanoid-walk \
   --grid walk.step_length=0.1 --plot-metrics fell,nope
 if [ -n "${FLEXGAIT_BUILT_WITHOUT_MPI:-}" ]; then  # as if started by mpirun -np 2
@@ -110,8 +145,34 @@ campaign "${walk_grid[@]}" --out "$work/w2" --jobs 2
 check "walk --jobs 2: same bytes" cmp -s "$work/w1/campaign.csv" "$work/w2/campaign.csv"
 check "walk: a fall is a row with its reason" grep -q "^2,0.3,off,off,full,true,pelvis" "$work/w1/campaign.csv"
 check "walk: with compensation it walks" grep -q "^3,0.3,both,both,full,false,," "$work/w1/campaign.csv"
+campaign humanoid-push-recovery --grid push_recovery.direction=forward --set push_recovery.tolerance=30 \
+  --set push_recovery.settle_time=1.5 --out "$work/p1"
+check "push recovery: a row with the push's time, recovered, fell_at, bound ($(head -c 300 "$work/stderr"))" \
+  grep -qE "^0,forward,standing,forward,4,[0-9.]+,[0-9.]+,[0-9.]+,[0-9.]+,3,$" "$work/p1/campaign.csv"
 campaign humanoid-bench --grid plant.k_joint=500,1000 --out "$work/b1" --keep-runs
 check "bench campaign with --keep-runs: a run directory per point" test -f "$work/b1/runs/000001/summary.json"
+
+# Random draws: the same bytes with 1 and 2 threads; sample s draws the same values at every grid
+# point; reduced.csv has a row per mu with the points of its 5 samples.
+campaign "${random_grid[@]}" --out "$work/d1" --jobs 1
+check "random draws: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+campaign "${random_grid[@]}" --out "$work/d2" --jobs 2
+check "random draws --jobs 2: same bytes" cmp -s "$work/d1/campaign.csv" "$work/d2/campaign.csv"
+check "random draws: header is index, axes, sample, the drawn keys, metrics" \
+  grep -q "^index,rimless.mu,sample,rimless.slope,initial.omega,converged," "$work/d1/campaign.csv"
+check "random draws: sample s has the same draws at mu = 0.3 and 0.9" test \
+  "$(cut -d, -f3-5 "$work/d1/campaign.csv" | sed -n 2,6p)" = "$(cut -d, -f3-5 "$work/d1/campaign.csv" | sed -n 7,11p)"
+check "random draws: config.yaml names the draws" grep -q "^#   --random rimless.slope=0.02:0.12" "$work/d1/config.yaml"
+check "reduced.csv: a row per mu, 5 points each" \
+  test "$(cut -d, -f1-2 "$work/d1/reduced.csv" | tr '\n' ' ')" = "rimless.mu,points 0.3,5 0.9,5 "
+campaign "${random_grid[@]::${#random_grid[@]}-4}" --seed 8 --reduce sample --out "$work/d3"
+check "random draws: another seed draws other values" test \
+  "$(cut -d, -f4 "$work/d1/campaign.csv")" != "$(cut -d, -f4 "$work/d3/campaign.csv")"
+campaign "${random_grid[@]::${#random_grid[@]}-4}" --seed 9 --out "$work/d1" --resume
+check "resume with another seed: refused (exit 2)" test $? -eq 2
+campaign "${random_grid[@]::${#random_grid[@]}-2}" --reduce rimless.mu --out "$work/d1" --resume
+check "resume with another --reduce: allowed, nothing recomputed" grep -q " 0 computed, 10 resumed" "$work/stdout"
+check "another --reduce: reduced.csv over mu" test "$(head -c 12 "$work/d1/reduced.csv")" = "sample,point"
 
 # kill -9 in the middle, then --resume: the same bytes; a torn last line is computed again.
 long_grid=(humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.2,0.3 --grid control.compensation=off,both)

@@ -144,7 +144,11 @@ TEST(Record, JsonLeavesOutFieldsThatDoNotApply) {
   EXPECT_EQ(off["compensation"], "input");
   m.compensation = compensation::CompensationMode::kBoth;
   m.pushed = true;  // push_impulse and capture_point_bound apply
+  m.fell = true;    // fall_time applies
+  m.failure = "a MuJoCo warning";  // failure_time applies
   const auto on = record_json(m);
+  EXPECT_FALSE(off.contains("fall_time"));
+  EXPECT_FALSE(off.contains("failure_time"));
   EXPECT_DOUBLE_EQ(on["estimate_error_share_of_deflection"].get<double>(), 0.05);
   // Every field the description lists appears when it applies, under the same key, in order.
   const auto fields = describe_record<experiments::WalkMetrics>();

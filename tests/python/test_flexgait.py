@@ -41,8 +41,12 @@ class SimulateAgainstTheCommandLine(unittest.TestCase):
         # The arrays are the columns of log.csv, bit for bit, and the last row's energy ledger closes
         # as summary.json says.
         self.assertEqual(len(log["t"]), len(rows))
-        for name in ("t", "E_total", "W_damp", "W_fric", "balance"):
-            self.assertTrue(np.array_equal(log[name], np.array([float(r[name]) for r in rows])), name)
+        self.assertEqual(list(log.keys()), list(rows[0].keys()))  # every column, in the file's order
+        for name, values in log.items():  # numbers bit for bit, text as written
+            if isinstance(values, np.ndarray):
+                self.assertTrue(np.array_equal(values, np.array([float(r[name]) for r in rows])), name)
+            else:
+                self.assertEqual(values, [r[name] for r in rows], name)
         ledger = log["E_total"][-1] + log["W_damp"][-1] + log["W_fric"][-1]
         self.assertEqual(log["balance"][-1], float(rows[-1]["balance"]))
         self.assertLess(abs(ledger - cli["energy_initial"]) / cli["energy_initial"], 1e-8)
@@ -158,6 +162,20 @@ class Humanoid(unittest.TestCase):
             self.assertEqual(len(run["log"]["t"]), len(run["joints"]["l_hip_roll_link"]))
         self.assertLess(runs["both"]["metrics"]["pelvis_roll_error_max"],
                         0.3 * runs["off"]["metrics"]["pelvis_roll_error_max"])
+
+    def test_walk_arrays_are_the_command_lines_files_to_the_last_digit(self):
+        with tempfile.TemporaryDirectory() as out:
+            subprocess.run([EXE, "humanoid", "walk", "--set", "walk.steps=1", "--out", out, "--no-plot"], check=True,
+                           stdout=subprocess.DEVNULL)
+            files = {}
+            for name in ("log", "joints"):
+                with open(os.path.join(out, name + ".csv")) as f:
+                    files[name] = list(csv.DictReader(f))
+        run = flexgait.humanoid.walk({"walk.steps": 1})
+        for name, rows in files.items():
+            self.assertEqual(list(run[name].keys()), list(rows[0].keys()), name)  # every column, in order
+            for column, values in run[name].items():
+                self.assertTrue(np.array_equal(values, np.array([float(r[column]) for r in rows])), column)
 
     def test_bench_fits_the_stiffness(self):
         b = flexgait.humanoid.bench({"bench.poses": 7})

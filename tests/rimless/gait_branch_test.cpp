@@ -74,6 +74,35 @@ TEST(GaitBranch, FlexibleWheelLocatesTheStickToSlipStickChange) {
   }
 }
 
+// Period 2 (--period 2) on a period-1 gait: the fixed points of P² there are P's own, so the branch
+// is the period-1 branch (Newton on P from each point moves it by <= 1e-8: both held to
+// ||F|| <= 1e-10, 1/(1 - 0.75) amplifying) and its multipliers are P's squared (to 1e-5: P²'s
+// Jacobian by central differences of the integrated map). No period doubling: nothing switched.
+TEST(GaitBranch, PeriodTwoOfAPeriodOneGaitIsItsBranchWithSquaredMultipliers) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  GaitContinuationSpec spec{.param = "rimless.slope", .from = 0.1, .to = 0.12, .step = 0.002};
+  spec.period = 2;
+  spec.switch_at_period_doubling = true;
+  const GaitBranch b = continue_gait(base, spec);
+  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  EXPECT_TRUE(b.branch.reached_end) << b.stop_reason;
+  EXPECT_EQ(b.period, 2);
+  EXPECT_FALSE(b.exact_jacobian);
+  EXPECT_TRUE(b.switched.empty());
+  ASSERT_GE(b.rows.size(), 5u);
+  for (const GaitBranchRow& r : b.rows) {
+    const Config c = sweep_point_config(base, SweepSpec{spec.param, r.p, r.p, 1}, 0);
+    const SimulationOptions sim = simulation_from_config(c);
+    const FixedPointReport fp = find_fixed_point_from(wheel_from_config(c), sim, analysis_from_config(c), r.section);
+    ASSERT_TRUE(fp.converged) << fp.failure;
+    EXPECT_LE((fp.point.z - r.point.z).lpNorm<Eigen::Infinity>(), 1e-8) << "slope " << r.p;
+    ASSERT_EQ(fp.multipliers.size(), r.point.multipliers.size());
+    for (std::size_t k = 0; k < fp.multipliers.size(); ++k)
+      EXPECT_NEAR(std::abs(r.point.multipliers[k]), std::norm(fp.multipliers[k]), 1e-5) << "slope " << r.p;
+    EXPECT_EQ(r.gait, "stick / stick");
+  }
+}
+
 TEST(GaitBranch, RefusesBadInput) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
   GaitContinuationSpec spec{.param = "rimless.nothing", .from = 0.05, .to = 0.1};
@@ -82,6 +111,9 @@ TEST(GaitBranch, RefusesBadInput) {
   spec.to = spec.from;
   EXPECT_THROW(continue_gait(base, spec), ConfigError);
   spec.to = 2.0;  // beyond the slope's bound π/4
+  EXPECT_THROW(continue_gait(base, spec), ConfigError);
+  spec.to = 0.1;
+  spec.period = 0;
   EXPECT_THROW(continue_gait(base, spec), ConfigError);
 }
 

@@ -65,6 +65,21 @@ py::dict csv_columns(const std::string& csv) {
   return out;
 }
 
+py::dict table_columns(Table table) {
+  py::dict out;
+  for (Table::Column& c : table.release()) {
+    if (c.kind == Table::Kind::Text) {
+      out[py::str(c.name)] = py::cast(c.text);
+      continue;
+    }
+    // The array views the vector, which the capsule owns and frees with the array.
+    auto* owned = new std::vector<double>(std::move(c.numbers));
+    const py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    out[py::str(c.name)] = py::array_t<double>(static_cast<py::ssize_t>(owned->size()), owned->data(), free_when_done);
+  }
+  return out;
+}
+
 py::object json_value(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
 
 py::dict config_dict(const Config& config) {

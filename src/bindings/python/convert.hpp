@@ -1,16 +1,18 @@
 #pragma once
 /// \file convert.hpp
 /// The bindings' conversions: a Python dict of overrides → a validated Config (the command line's
-/// rules and errors), a CSV table (as the command line writes it) → a dict of numpy arrays, a
-/// JSON text → Python objects. One source for each table: the arrays a Python user gets are the
-/// columns of the same CSV the command line writes, parsed back exactly (shortest round-trip
-/// formatting), so both agree to the last digit.
+/// rules and errors), a table → a dict of numpy arrays, a JSON text → Python objects. One source
+/// for each table: the arrays a Python user gets hold the numbers of the same rows the command
+/// line writes as CSV — from a Table (core/table.hpp) built by the writer's own row code, or from
+/// the CSV text parsed back exactly (shortest round-trip formatting) — so both agree to the last
+/// digit.
 #include <pybind11/pybind11.h>
 
 #include <optional>
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/table.hpp"
 
 namespace flexgait::python {
 
@@ -22,6 +24,10 @@ Config make_config(const Schema& schema, const py::object& overrides, const std:
 
 /// {column name: numpy float64 array} for numeric columns, {name: list of str} for the others.
 py::dict csv_columns(const std::string& csv);
+
+/// The same dict from a Table, without text: each numeric column becomes a numpy float64 array
+/// that owns the table's own vector (no copy), each text column a list of str.
+py::dict table_columns(Table table);
 
 /// json.loads(text).
 py::object json_value(const std::string& text);

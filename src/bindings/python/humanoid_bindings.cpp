@@ -37,19 +37,20 @@ py::dict walk(const py::object& config, const OptionalPath& config_file, const s
   if (compensation) overrides["control.compensation"] = *compensation;
   const Config c = make_config(experiments::walk_run_schema(), overrides, config_file);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(c);
-  std::string log, joints, footsteps, summary, timing;
+  Table log({}), joints({});
+  std::string footsteps, summary, timing;
   {
     py::gil_scoped_release release;
     const experiments::WalkResult r = experiments::run_walk(params);
-    log = experiments::walk_log_csv(r);
-    joints = experiments::walk_joints_csv(r);
+    log = experiments::walk_log_table(r);
+    joints = experiments::walk_joints_table(r);
     footsteps = experiments::walk_footsteps_csv(r);
     summary = experiments::walk_summary_json(r);
     timing = experiments::walk_timing_json(r);
   }
   py::dict out;
-  out["log"] = csv_columns(log);
-  out["joints"] = csv_columns(joints);
+  out["log"] = table_columns(std::move(log));
+  out["joints"] = table_columns(std::move(joints));
   out["footsteps"] = csv_columns(footsteps);
   out["metrics"] = json_value(summary);
   out["timing"] = json_value(timing);

@@ -33,21 +33,22 @@ rimless::Section section_of(const std::string& name) {
 py::dict simulate(const py::object& config, const OptionalPath& config_file) {
   const WheelSetup s = wheel_setup(rimless::rimless_schema(), config, config_file);
   const std::string model = s.config.choice("sim.model");
-  std::string log, events, steps, summary;
+  Table log({}), events({}), steps({});
+  std::string summary;
   {
     py::gil_scoped_release release;
     const rimless::SimulationResult r = s.sim.model == rimless::Model::Rigid
                                             ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
                                             : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
-    log = rimless::log_csv(r);
-    events = rimless::events_csv(r);
-    steps = rimless::steps_csv(r);
+    log = rimless::log_table(r);
+    events = rimless::events_table(r);
+    steps = rimless::steps_table(r);
     summary = rimless::summary_json(r, model);
   }
   py::dict out;
-  out["log"] = csv_columns(log);
-  out["events"] = csv_columns(events);
-  out["steps"] = csv_columns(steps);
+  out["log"] = table_columns(std::move(log));
+  out["events"] = table_columns(std::move(events));
+  out["steps"] = table_columns(std::move(steps));
   out["summary"] = json_value(summary);
   out["config"] = config_dict(s.config);
   return out;

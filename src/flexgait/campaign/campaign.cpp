@@ -37,11 +37,8 @@ std::string cell_text(const nlohmann::ordered_json& v, int depth = 0) {
   }
 }
 
-std::string axes_text(const Grid& grid, const std::vector<std::string>& values) {
-  std::string out;
-  for (std::size_t k = 0; k < values.size(); ++k)
-    out += fmt::format("{}{}={}", k ? ", " : "", grid.axes()[k].key, values[k]);
-  return out;
+bool is_sample_axis(const RandomDesign& random, const GridAxis& axis) {
+  return !random.empty() && axis.key == RandomDesign::kSampleAxis;
 }
 
 }  // namespace
@@ -57,13 +54,27 @@ std::string summary_cells(const std::string& summary_json, const std::vector<std
   return out;
 }
 
-Campaign::Campaign(Experiment experiment, Config base, Grid grid)
-    : experiment_(std::move(experiment)), base_(std::move(base)), grid_(std::move(grid)) {
+Campaign::Campaign(Experiment experiment, Config base, Grid grid, RandomDesign random)
+    : experiment_(std::move(experiment)), base_(std::move(base)), grid_(std::move(grid)), random_(std::move(random)) {
+  if (!random_.empty()) {
+    const auto& axes = grid_.axes();
+    if (axes.back().key != RandomDesign::kSampleAxis || axes.back().values != random_.sample_axis().values)
+      throw UsageError("campaign: the random design's sample axis must be the grid's last axis");
+    for (const RandomAxis& r : random_.axes())
+      for (const GridAxis& g : axes)
+        if (g.key == r.key) throw UsageError(fmt::format("--random: key '{}' is also a --grid axis", one_line(r.key)));
+  }
   experiment_.check(base_);
   for (const GridAxis& axis : grid_.axes())  // each value alone: the domain of its key
     for (const std::string& value : axis.values) {
+      if (is_sample_axis(random_, axis)) continue;
       Config c = base_;
       experiment_.set(c, axis.key, value, "--grid " + axis.key);
+    }
+  for (const RandomAxis& axis : random_.axes())  // each end alone: the domain of its key
+    for (const double end : {axis.low, axis.high}) {
+      Config c = base_;
+      experiment_.set(c, axis.key, format_number(end), "--random " + axis.key);
     }
   for (int i = 0; i < size(); ++i) point_config(i);  // each combination: the cross-key checks
 }
@@ -71,12 +82,22 @@ Campaign::Campaign(Experiment experiment, Config base, Grid grid)
 Config Campaign::point_config(int i) const {
   const std::vector<std::string> values = grid_.point(i);
   Config c = base_;
-  for (std::size_t k = 0; k < values.size(); ++k)
-    experiment_.set(c, grid_.axes()[k].key, values[k], "--grid " + grid_.axes()[k].key);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const GridAxis& axis = grid_.axes()[k];
+    if (is_sample_axis(random_, axis)) {
+      const int sample = std::stoi(values[k]);
+      for (std::size_t r = 0; r < random_.axes().size(); ++r) {
+        const std::string& key = random_.axes()[r].key;
+        experiment_.set(c, key, random_.value(sample, r), "--random " + key);
+      }
+    } else {
+      experiment_.set(c, axis.key, values[k], "--grid " + axis.key);
+    }
+  }
   try {
     experiment_.check(c);
   } catch (const ConfigError& e) {
-    throw ConfigError(e.key(), fmt::format("--grid point {} ({}): {}", i, axes_text(grid_, values), e.what()));
+    throw ConfigError(e.key(), fmt::format("--grid point {} ({}): {}", i, point_text(i), e.what()));
   }
   return c;
 }
@@ -86,13 +107,33 @@ double Campaign::cost(int i) const { return experiment_.cost ? experiment_.cost(
 std::string Campaign::header() const {
   std::string out;
   for (const GridAxis& axis : grid_.axes()) out += csv_field(axis.key) + ",";
+  for (const RandomAxis& axis : random_.axes()) out += csv_field(axis.key) + ",";
   for (const std::string& m : experiment_.metrics) out += csv_field(m) + ",";
   return out + "error";
 }
 
+std::vector<std::string> Campaign::point_values(int i) const {
+  std::vector<std::string> values = grid_.point(i);
+  if (!random_.empty()) {
+    const int sample = i % random_.samples();  // the sample axis is last, the fastest
+    for (std::size_t r = 0; r < random_.axes().size(); ++r) values.push_back(random_.value(sample, r));
+  }
+  return values;
+}
+
+std::string Campaign::point_text(int i) const {
+  const std::vector<std::string> values = point_values(i);
+  std::string out;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const std::size_t axes = grid_.axes().size();
+    out += fmt::format("{}{}={}", k ? ", " : "", k < axes ? grid_.axes()[k].key : random_.axes()[k - axes].key, values[k]);
+  }
+  return out;
+}
+
 std::string Campaign::row(int i, const std::filesystem::path& run_dir) const {
   std::string out;
-  for (const std::string& v : grid_.point(i)) out += csv_field(v) + ",";
+  for (const std::string& v : point_values(i)) out += csv_field(v) + ",";
   try {
     return out + summary_cells(experiment_.run(point_config(i), run_dir), experiment_.metrics) + ",";
   } catch (const std::exception& e) {  // a point that cannot run is a row with its reason
@@ -107,6 +148,8 @@ std::string Campaign::signature() const {
     for (std::size_t k = 0; k < axis.values.size(); ++k) out += (k ? "," : "") + axis.values[k];
     out += "\n";
   }
+  for (const RandomAxis& axis : random_.axes()) out += "random " + axis.given + "\n";
+  if (!random_.empty()) out += fmt::format("samples {} seed {}\n", random_.samples(), random_.seed());
   return out + "base configuration:\n" + base_.to_yaml();
 }
 
@@ -114,7 +157,12 @@ std::string Campaign::config_yaml() const {
   std::string out = fmt::format("# campaign of {} (flexgait {}): the base configuration below, and the grid\n",
                                 experiment_.name, program_build());
   for (const GridAxis& axis : grid_.axes())
-    out += fmt::format("#   --grid {}  ({} values)\n", one_line(axis.given, 1000), axis.values.size());
+    out += fmt::format("#   --grid {}  ({} values{})\n", one_line(axis.given, 1000), axis.values.size(),
+                       is_sample_axis(random_, axis) ? fmt::format(": --samples {} --seed {}", random_.samples(),
+                                                                   random_.seed())
+                                                     : "");
+  for (const RandomAxis& axis : random_.axes())
+    out += fmt::format("#   --random {}  (drawn at each sample)\n", one_line(axis.given, 1000));
   return out + base_.to_yaml();
 }
 

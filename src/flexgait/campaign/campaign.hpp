@@ -4,8 +4,9 @@
 /// each point the base configuration plus the point's keys. Every point is checked before
 /// anything runs; the points run on the sweep runner (core/sweep_runner.hpp: threads or MPI
 /// ranks, a durable partial file, resume by signature), and DIR gets
-///   campaign.csv  index, the axis values, the summary's metrics flattened (same names as the
-///                 experiment's summary), `error` (why a point could not run; empty otherwise);
+///   campaign.csv  index, the axis values, the drawn values of the --random keys (random_design.hpp),
+///                 the summary's metrics flattened (same names as the experiment's summary),
+///                 `error` (why a point could not run; empty otherwise);
 ///                 one row per point, sorted by index, the same bytes whatever the threads,
 ///                 ranks and resumes;
 ///   config.yaml   the base configuration (loadable with --config), the axes in its header;
@@ -18,6 +19,7 @@
 
 #include "flexgait/campaign/experiment_table.hpp"
 #include "flexgait/campaign/grid.hpp"
+#include "flexgait/campaign/random_design.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/sweep_runner.hpp"
 
@@ -27,17 +29,20 @@ class Campaign {
  public:
   /// Checks the base configuration and every point: each axis value alone (a ConfigError whose
   /// message starts "--grid KEY: ..."), then each point's whole configuration ("--grid point I
-  /// (KEY=V, ...): ..."). Nothing runs and nothing is written here.
-  Campaign(Experiment experiment, Config base, Grid grid);
+  /// (KEY=V, ...): ..."). Nothing runs and nothing is written here. With random keys, `grid` has
+  /// the design's sample axis last (a UsageError otherwise, or if a random key is a --grid key);
+  /// each random axis's ends are checked like a grid value ("--random KEY: ...").
+  Campaign(Experiment experiment, Config base, Grid grid, RandomDesign random = {});
 
   const Experiment& experiment() const { return experiment_; }
   const Grid& grid() const { return grid_; }
+  const RandomDesign& random() const { return random_; }
   int size() const { return grid_.size(); }
   /// The checked configuration of point i.
   Config point_config(int i) const;
   /// The estimated cost of point i (Experiment::cost; 1 without one): points run most expensive first.
   double cost(int i) const;
-  /// campaign.csv's header without "index": the axis keys, the metrics, error.
+  /// campaign.csv's header without "index": the axis keys, the random keys, the metrics, error.
   std::string header() const;
   /// Point i's cells (no index): never throws for a failing run; its message goes to `error`.
   /// `run_dir` not empty: the point's run files go there.
@@ -49,9 +54,15 @@ class Campaign {
   std::string config_yaml() const;
 
  private:
+  /// Point i's cells before the metrics: the axis values, then the drawn random values.
+  std::vector<std::string> point_values(int i) const;
+  /// "KEY=V, ..." of point i, for messages.
+  std::string point_text(int i) const;
+
   Experiment experiment_;
   Config base_;
   Grid grid_;
+  RandomDesign random_;
 };
 
 /// The summary's keys `metrics` of a JSON object's text as CSV cells (see the file comment).

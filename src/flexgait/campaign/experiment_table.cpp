@@ -9,7 +9,9 @@
 #include "flexgait/core/record.hpp"
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/bench_output.hpp"
+#include "flexgait/experiments/push_recovery.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
@@ -136,7 +138,30 @@ Experiment humanoid_bench() {
   return e;
 }
 
-std::vector<Experiment> table() { return {rimless_simulate(), rimless_fixed_point(), humanoid_walk(), humanoid_bench()}; }
+/// The largest recoverable push of one situation and direction (experiments/push_recovery.hpp):
+/// summary.json is the PushRecoveryResult record.
+Experiment humanoid_push_recovery() {
+  Experiment e{"humanoid-push-recovery", "summary.json", experiments::push_recovery_schema(), set_key, {}, {}, {}};
+  e.check = [](const Config& c) { experiments::push_recovery_from_config(c); };
+  e.metrics = record_keys<experiments::PushRecoveryResult>();
+  // About 8 runs of the simulated time each run plans.
+  e.cost = [](const Config& c) {
+    const bool standing = c.choice("push_recovery.situation") == "standing";
+    return 8 * (standing ? c.real("push_recovery.stand_time") + c.real("push_recovery.settle_time")
+                         : static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"));
+  };
+  e.run = [](const Config& c, const std::filesystem::path& run_dir) {
+    const experiments::PushRecoveryResult r = experiments::run_push_recovery(experiments::push_recovery_from_config(c));
+    std::string summary = record_json(r).dump(2) + "\n";
+    if (const auto dir = kept_run(c, run_dir)) dir->write("summary.json", summary);
+    return summary;
+  };
+  return e;
+}
+
+std::vector<Experiment> table() {
+  return {rimless_simulate(), rimless_fixed_point(), humanoid_walk(), humanoid_bench(), humanoid_push_recovery()};
+}
 
 }  // namespace
 

@@ -41,7 +41,7 @@ GridAxis parse_grid_axis(const std::string& text) {
 }
 
 Grid::Grid(std::vector<GridAxis> axes) : axes_(std::move(axes)) {
-  if (axes_.empty()) throw UsageError("campaign: no --grid axis; give at least one, e.g. --grid rimless.mu=0.2:1:9");
+  if (axes_.empty()) throw UsageError("campaign: no --grid or --random axis; give at least one, e.g. --grid rimless.mu=0.2:1:9");
   std::set<std::string> keys;
   std::int64_t n = 1;
   for (const auto& a : axes_) {

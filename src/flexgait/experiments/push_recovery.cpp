@@ -1,6 +1,10 @@
 #include "flexgait/experiments/push_recovery.hpp"
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include "flexgait/walking/footstep_plan.hpp"
 
 namespace flexgait::experiments {
 
@@ -24,6 +28,79 @@ PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d&
   }
   out.recovered = lo;
   out.fell = hi;
+  return out;
+}
+
+Eigen::Vector2d push_direction_vector(PushDirection d) {
+  switch (d) {
+    case PushDirection::kForward: return {1, 0};
+    case PushDirection::kBackward: return {-1, 0};
+    case PushDirection::kLeft: return {0, 1};
+    case PushDirection::kRight: return {0, -1};
+  }
+  throw std::logic_error("push_direction_vector: unknown direction");
+}
+
+PushRecoveryRunParams push_recovery_from_config(const Config& config) {
+  PushRecoveryRunParams p;
+  p.run = walk_run_from_config(config);
+  p.test = record_from_config<PushRecoveryParams>(config);
+  check_with_origin(config, [&] {
+    for (const char* key : {"disturbance.push.force_x", "disturbance.push.force_y", "disturbance.push.force_z",
+                            "disturbance.push.time"})
+      if (config.real(key) != 0)
+        throw ConfigError(key, std::string(key) + ": set by the push-recovery test (push_recovery.*); leave it 0");
+    if (p.run.push.duration <= 0)
+      throw ConfigError("disturbance.push.duration", "disturbance.push.duration: the push needs a duration > 0");
+    if (p.test.situation == PushSituation::kWalking && p.test.step >= p.run.walk.steps)
+      throw ConfigError("push_recovery.step", "push_recovery.step: " + std::to_string(p.test.step) +
+                                                  " must be a step before the last, below walk.steps = " +
+                                                  std::to_string(p.run.walk.steps));
+  });
+  return p;
+}
+
+double push_recovery_time(const PushRecoveryRunParams& p) {
+  if (p.test.situation == PushSituation::kStanding) return p.test.stand_time;
+  const walking::Step& s = walking::plan_footsteps(p.run.walk).steps.at(static_cast<std::size_t>(p.test.step - 1));
+  return 0.5 * (s.t_lift + s.t_land);  // mid single support
+}
+
+PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p) {
+  WalkRunParams base = p.run;
+  PushRecoveryResult out;
+  out.situation = p.test.situation;
+  out.direction = p.test.direction;
+  out.push_time = push_recovery_time(p);
+  if (p.test.situation == PushSituation::kStanding) {
+    base.walk.steps = 0;
+    base.walk.end_time = out.push_time + p.test.settle_time;
+  }
+  base.push.time = out.push_time;
+  const Eigen::Vector2d u = push_direction_vector(p.test.direction);
+  double upper = p.test.upper;
+  for (int doubling = 0;; ++doubling) {
+    try {
+      const PushRecovery r = largest_recoverable_push(base, u, upper, p.test.tolerance);
+      out.runs += r.runs;
+      out.recovered = r.recovered;
+      out.fell_at = r.fell;
+      out.bound = r.bound;
+      break;
+    } catch (const std::invalid_argument&) {  // upper recovered: a wider bracket
+      ++out.runs;
+      if (doubling == 3) {
+        out.recovered = upper;
+        out.fell_at = std::numeric_limits<double>::quiet_NaN();
+        base.push.force = {upper / base.push.duration * u.x(), upper / base.push.duration * u.y(), 0};
+        out.bound = run_walk(base).metrics.capture_point_bound;
+        ++out.runs;
+        break;
+      }
+      upper *= 2;
+    }
+  }
+  out.fraction = out.bound > 0 ? out.recovered / out.bound : std::numeric_limits<double>::quiet_NaN();
   return out;
 }
 

@@ -181,10 +181,11 @@ struct WalkMetrics {
     v("gravity_model", s.gravity_model, {.doc = "control.gravity_model of the run"});
     v("fell", s.fell, {.doc = "the robot fell (pelvis too low or tilted, a body other than a sole on the floor)"});
     v("fall_reason", s.fall_reason, {.doc = "why it fell; empty when it did not"});
-    v("fall_time", s.fall_time, {.unit = "s", .doc = "when it fell"});
+    v("fall_time", s.fall_time, {.unit = "s", .doc = "when it fell (left out when it did not)", .present = s.fell});
     v("failure", s.failure,
       {.doc = "why the simulation failed (a MuJoCo warning or a non-finite state); empty when it did not"});
-    v("failure_time", s.failure_time, {.unit = "s", .doc = "when the simulation failed"});
+    v("failure_time", s.failure_time,
+      {.unit = "s", .doc = "when the simulation failed (left out when it did not)", .present = !s.failure.empty()});
     v("steps_planned", s.steps_planned, {.doc = "footsteps in the plan"});
     v("steps_completed", s.steps_completed, {.doc = "footsteps landed"});
     v("zmp_rms_x", s.zmp_rms_x, {.unit = "m", .doc = "rms of true ZMP − reference, x"});

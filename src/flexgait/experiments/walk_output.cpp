@@ -10,9 +10,12 @@
 #include <string_view>
 
 namespace flexgait::experiments {
+namespace {
 
-std::string walk_log_csv(const WalkResult& r) {
-  CsvWriter csv({"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
+// The rows of log.csv and joints.csv, into a CsvWriter (the files) or a Table (the bindings).
+template <class Writer>
+Writer walk_log_rows(const WalkResult& r) {
+  Writer csv({"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
                  "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
                  "roll_correction", "pitch_correction", "support_margin", "roll_kin_encoder", "roll_kin_estimate", "l_sole_x", "l_sole_y", "l_sole_z",
                  "r_sole_x", "r_sole_y", "r_sole_z", "roll_true", "pitch_true", "sensor_faults", "safe_stop",
@@ -30,10 +33,11 @@ std::string walk_log_csv(const WalkResult& r) {
     csv.cell(w.dcm[0]).cell(w.dcm[1]).cell(w.dcm_ref[0]).cell(w.dcm_ref[1]).cell(w.dcm[0] - w.dcm_ref[0]).cell(w.dcm[1] - w.dcm_ref[1]);
     csv.end_row();
   }
-  return csv.str();
+  return csv;
 }
 
-std::string walk_joints_csv(const WalkResult& r) {
+template <class Writer>
+Writer walk_joints_rows(const WalkResult& r) {
   static constexpr std::array<std::string_view, 9> kFields = {
       "desired", "command", "encoder", "link", "estimate", "conventional", "torque_model", "torque_estimate", "torque_true"};
   std::vector<std::string> header{"t"};
@@ -42,7 +46,7 @@ std::string walk_joints_csv(const WalkResult& r) {
   // control.k_estimation on: each leg joint's stiffness estimate over time (issue 20).
   if (r.k_estimation)
     for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) header.push_back("k_est_" + std::string(humanoid::kJointNames[j]));
-  CsvWriter csv(header);
+  Writer csv(header);
   for (const auto& w : r.log) {
     csv.cell(w.t);
     for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) {
@@ -53,8 +57,15 @@ std::string walk_joints_csv(const WalkResult& r) {
       for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) csv.cell(w.k_estimate[j]);
     csv.end_row();
   }
-  return csv.str();
+  return csv;
 }
+
+}  // namespace
+
+std::string walk_log_csv(const WalkResult& r) { return walk_log_rows<CsvWriter>(r).str(); }
+std::string walk_joints_csv(const WalkResult& r) { return walk_joints_rows<CsvWriter>(r).str(); }
+Table walk_log_table(const WalkResult& r) { return walk_log_rows<Table>(r); }
+Table walk_joints_table(const WalkResult& r) { return walk_joints_rows<Table>(r); }
 
 std::string walk_footsteps_csv(const WalkResult& r) {
   CsvWriter csv({"kind", "step", "side", "x", "y", "yaw", "landed_x", "landed_y", "landed_yaw", "error"});

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/table.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 
 namespace flexgait::experiments {
@@ -14,6 +15,10 @@ std::string walk_log_csv(const WalkResult& result);
 /// the output compensator, and the twin's gear torque.
 std::string walk_joints_csv(const WalkResult& result);
 std::string walk_footsteps_csv(const WalkResult& result);
+/// log.csv's and joints.csv's rows as typed columns (csv() is the text above, byte for byte): for
+/// the Python bindings, whose arrays then need no text round trip.
+Table walk_log_table(const WalkResult& result);
+Table walk_joints_table(const WalkResult& result);
 /// The metrics as a JSON object (the names: fell, steps_completed, zmp_rms_x, ...).
 /// Deterministic: the same configuration gives the same bytes.
 std::string walk_summary_json(const WalkResult& result);

@@ -364,13 +364,42 @@ struct Walker {
                                 : "turned back to p = " + number(bound) + " (left the parameter interval)");
         return;
       }
+      const std::size_t folds_before = count_folds();
       if (opt.detect) detect(a, b, ds);
       branch.points.push_back(make_point(f, b, branch.points.back().arclength + ds));
+      if (count_folds() > folds_before && vertical()) {
+        stop("a vertical branch at p = " + number(b.x(n)) +
+             ": two folds at the same parameter (a continuum of fixed points there, a multiplier stays at +1)");
+        return;
+      }
       if (b.iterations <= 3) ds = std::min(1.5 * ds, opt.max_step);
       if (b.iterations >= 6) ds = std::max(0.5 * ds, opt.min_step);
       a = std::move(b);
     }
     stop("max_points (" + std::to_string(opt.max_points) + ") reached");
+  }
+
+  std::size_t count_folds() const {
+    return static_cast<std::size_t>(std::count_if(branch.special.begin(), branch.special.end(),
+                                                  [](const SpecialPoint& sp) { return sp.kind == SpecialKind::Fold; }));
+  }
+  /// The last two folds at the same parameter (to 1e-8 of max(1, |p|)), with a multiplier at +1
+  /// (to 1e-6) on the branch between them: the branch runs along a continuum of fixed points.
+  bool vertical() const {
+    const SpecialPoint* last = nullptr;
+    const SpecialPoint* before = nullptr;
+    for (const SpecialPoint& sp : branch.special) {
+      if (sp.kind != SpecialKind::Fold) continue;
+      before = last;
+      last = &sp;
+    }
+    if (before == nullptr || std::abs(last->point.p - before->point.p) > 1e-8 * std::max(1.0, std::abs(last->point.p)))
+      return false;
+    for (std::size_t i = before->after + 1; i <= last->after && i < branch.points.size(); ++i) {
+      const auto& m = branch.points[i].multipliers;
+      if (std::none_of(m.begin(), m.end(), [](auto l) { return std::abs(l - 1.0) <= 1e-6; })) return false;
+    }
+    return true;
   }
 
   /// Sets why the branch ended, keeping the notes detect() left (a special point not located).

@@ -27,6 +27,9 @@
 /// no bifurcation and is not reported). An optional label of each point (e.g. a gait's contact
 /// sequence) is watched too: where it changes, the change is located by bisection in s.
 ///
+/// A branch that turns vertical (two folds located at the same parameter, to 1e-8, with a
+/// multiplier at +1 between them: a continuum of fixed points at one parameter value) ends there.
+///
 /// Jacobians: F_z by central differences (newton.hpp) unless an exact ∂P/∂z is supplied; F_p always
 /// by central differences. Period-k orbits are fixed points of P^k (iterate()); at a period doubling
 /// the period-2 branch is switched to along the critical eigenvector (switch_at_period_doubling()).
@@ -120,8 +123,8 @@ std::optional<std::string> fixed_point_at(const MapFamily& family, const Eigen::
                                           const ContinuationOptions& options, BranchPoint& out);
 
 /// The branch through the fixed point near (z0, p0), continued towards p_end until it reaches
-/// p_end, leaves [min(p0, p_end), max(p0, p_end)] (it turned back), has max_points, or a step
-/// below min_step fails.
+/// p_end, leaves [min(p0, p_end), max(p0, p_end)] (it turned back), has max_points, turns
+/// vertical, or a step below min_step fails.
 Branch continue_fixed_points(const MapFamily& family, const Eigen::VectorXd& z0, double p0, double p_end,
                              const ContinuationOptions& options);
 

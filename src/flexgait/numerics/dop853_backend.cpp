@@ -36,6 +36,11 @@ class Dop853Backend final : public OdeBackend {
           stepper_.dense(t, y_dense_);
           evaluate_guards(t, y_dense_, g);
         }),
+        guard_value_([this](double t, int i) {
+          stepper_.dense(t, y_dense_);
+          ++guard_evals_;
+          return system_.guard(t, y_dense_, i, g_scratch_);
+        }),
         y_start_(options.sensitivities ? n_ + n_ * n_ : n_),
         y_dense_(n_),
         work_(n_),
@@ -53,6 +58,7 @@ class Dop853Backend final : public OdeBackend {
     }
     stepper_.start(t, y_start_);
     g_.resize(directions.size());
+    g_scratch_.resize(directions.size());
     if (!directions.empty()) evaluate_guards(t, y, g_);
     guards_.start(t, directions, g_);
     ++restarts_;
@@ -68,7 +74,7 @@ class Dop853Backend final : public OdeBackend {
     const double t = stepper_.time();
     if (!g_.empty()) {
       evaluate_guards(t, stepper_.state().first(n_), g_);
-      if (const auto crossing = guards_.check(t, g_, guard_values_)) {
+      if (const auto crossing = guards_.check(t, g_, guard_values_, guard_value_)) {
         if (*crossing < t) stepper_.truncate(*crossing);
         return StepStatus::Guard;
       }
@@ -127,9 +133,11 @@ class Dop853Backend final : public OdeBackend {
   Dop853 stepper_;
   GuardCrossings guards_;
   GuardCrossings::Values guard_values_;  // guard values on the dense output
+  GuardCrossings::Value guard_value_;    // one guard's value on the dense output
   std::vector<double> y_start_;          // scratch: the augmented state at a restart
   std::vector<double> y_dense_;          // scratch: y on the dense output (dim n)
   std::vector<double> g_;                // guard values at the step's end
+  std::vector<double> g_scratch_;        // scratch: all guards, for OdeSystem::guard()
   std::vector<double> work_, work2_;     // scratch for the directional differences (dim n)
   std::int64_t guard_evals_ = 0;
   std::int64_t restarts_ = 0;

@@ -59,7 +59,8 @@ void GuardCrossings::probe_unarmed(double t1, std::span<const double> g1, const 
   }
 }
 
-std::optional<double> GuardCrossings::check(double t1, std::span<const double> g1, const Values& g_at) {
+std::optional<double> GuardCrossings::check(double t1, std::span<const double> g1, const Values& g_at,
+                                            const Value& g_i_at) {
   const std::size_t n = directions_.size();
   const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(t1 - t_));
   // Guards that were 0 where watching started: activated where they have moved away from 0.
@@ -92,10 +93,7 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
     if (active_[i] == 0 || t_lo_[i] >= t1 || !crosses(directions_[i], g_lo_[i], g1[i])) continue;
     double root = t1;
     if (g1[i] != 0.0) {
-      auto g_i = [&](double t) {
-        g_at(t, scratch_);
-        return scratch_[i];
-      };
+      auto g_i = [&](double t) { return g_i_at(t, static_cast<int>(i)); };
       auto close_enough = [tol](double a, double b) { return b - a <= tol; };
       std::uintmax_t iterations = 100;
       root = boost::math::tools::toms748_solve(g_i, t_lo_[i], t1, g_lo_[i], g1[i], close_enough, iterations).second;

@@ -26,13 +26,16 @@ class GuardCrossings {
  public:
   /// g(t, out): every guard's value at t within the last step, from the interpolant (dim count()).
   using Values = std::function<void(double t, std::span<double> g)>;
+  /// g_i(t): guard i's value at t within the last step (the same number Values gives for it).
+  using Value = std::function<double(double t, int i)>;
 
   /// Starts watching at t with the guards' values g there and their crossing directions.
   void start(double t, std::span<const int> directions, std::span<const double> g);
   /// After a step to t1 with g1 = g(t1) (dim count()): the earliest crossing time in the step if a
   /// guard crossed (fired() says which; watching then restarts there), else nothing (watching
   /// moves on to t1).
-  std::optional<double> check(double t1, std::span<const double> g1, const Values& g_at);
+  /// The crossing's root is located on guard i alone (g_i_at).
+  std::optional<double> check(double t1, std::span<const double> g1, const Values& g_at, const Value& g_i_at);
   /// Per guard, after check() found a crossing: +1 crossed upward, -1 downward, 0 not crossed.
   std::span<const int> fired() const { return fired_; }
   int count() const { return static_cast<int>(directions_.size()); }

@@ -19,6 +19,13 @@ class OdeSystem {
   }
   /// Guard values g(t, y) (dim = number of guards given to the integrator's restart).
   virtual void guards(double t, std::span<const double> y, std::span<double> g) = 0;
+  /// Guard i alone, the same number guards() writes to g[i] (root finding asks for one guard at
+  /// a time; a system whose guards are costly together may compute one cheaply). `scratch` has
+  /// the dim of g. Default: all guards into scratch.
+  virtual double guard(double t, std::span<const double> y, int i, std::span<double> scratch) {
+    guards(t, y, scratch);
+    return scratch[static_cast<std::size_t>(i)];
+  }
 };
 
 }  // namespace flexgait::numerics

@@ -14,7 +14,18 @@ const char* mode_name(FootMode m) {
 }
 
 double leg_angle(const WheelParams& w, int k, double theta) {
-  return std::remainder(theta + 2.0 * w.alpha() * k, 2.0 * std::numbers::pi);
+  // remainder(x, P) = x - n P with n the integer nearest x / P, exact in floating point (libm's
+  // remainder is a slow path of the right-hand side). The candidate n, the rounded quotient
+  // rounded to an integer (adding and removing 1.5·2^52), gives r = x - n P exactly by one fused
+  // multiply-add (the exact r is representable); where |r| < P/2 that r is the remainder (the
+  // only representative below P/2), else (a quotient near a half-integer, or huge, or r = 0) libm decides.
+  constexpr double P = 2.0 * std::numbers::pi;
+  constexpr double kRound = 0x1.8p52;
+  const double x = theta + 2.0 * w.alpha() * k;
+  const double n = (x / P + kRound) - kRound;
+  const double r = std::fma(-n, P, x);
+  // (r = 0: libm gives it x's sign, the multiply-add +0.)
+  return std::abs(r) < 0.5 * P && r != 0.0 ? r : std::remainder(x, P);
 }
 
 LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double> s) {

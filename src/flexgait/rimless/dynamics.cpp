@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 
 namespace flexgait::rimless {
 
@@ -102,9 +103,23 @@ struct Assembly {
   int rows = 0;
 };
 
+// (sin φ, cos φ) of a slope, remembered for the last slope this thread asked for: every
+// right-hand side needs them and the slope changes only between runs (a pure function's memo;
+// the same values as calling sin and cos).
+struct SlopeTrig {
+  double slope = std::numeric_limits<double>::quiet_NaN();
+  double sin = 0, cos = 1;
+};
+const SlopeTrig& slope_trig(double slope) {
+  thread_local SlopeTrig memo;
+  if (!(memo.slope == slope)) memo = {slope, std::sin(slope), std::cos(slope)};
+  return memo;
+}
+
 Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<const double> q, Dynamics& d) {
   Assembly a;
-  a.F = {w.m * w.g * std::sin(w.slope), -w.m * w.g * std::cos(w.slope), 0.0};
+  const SlopeTrig& slope = slope_trig(w.slope);
+  a.F = {w.m * w.g * slope.sin, -w.m * w.g * slope.cos, 0.0};
   constexpr double wb = kStickStabilization;
   d.failure = nullptr;
   d.jammed = false;

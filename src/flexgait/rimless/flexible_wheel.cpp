@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/numerics/hybrid_simulation.hpp"
 #include "flexgait/numerics/ode_integrator.hpp"
 #include "flexgait/rimless/dynamics.hpp"
 #include "flexgait/rimless/flow.hpp"
@@ -47,12 +47,41 @@ class WheelFlow final : public numerics::OdeSystem {
   }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
-    guard_values(w_, contacts_, y, g.first(n));
-    for (int k = 0; k < w_.legs; ++k)
-      if (clearing_[static_cast<std::size_t>(k)] != 0) g[static_cast<std::size_t>(kGuardsPerLeg * k)] += clearance_;
+    last_y_.assign(y.begin(), y.end());
+    last_dynamics_ = contact_dynamics(w_, contacts_, y);
+    guard_values(w_, contacts_, last_dynamics_, y, g.first(n));
+    for (int k = 0; k < w_.legs; ++k) {
+      const std::size_t i = static_cast<std::size_t>(kGuardsPerLeg * k);
+      last_heights_[static_cast<std::size_t>(k)] = g[i];  // the free feet's heights (contacts: N)
+      if (clearing_[static_cast<std::size_t>(k)] != 0) g[i] += clearance_;
+    }
     if (upright_leg_ >= 0) g[n] = std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
   }
-  void set_contacts(const ContactSet& c) { contacts_ = c; }
+  // One guard, as guards() computes it: a free foot's touchdown guard and the upright guard
+  // alone (one cosine or sine, against the mode's dynamics and every foot for all of them).
+  double guard(double t, std::span<const double> y, int i, std::span<double> scratch) override {
+    const int n = guard_count(w_);
+    if (i == n && upright_leg_ >= 0) return std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
+    const int k = i / kGuardsPerLeg;
+    if (i >= n || i % kGuardsPerLeg != 0 || contacts_.find(k) >= 0) {
+      guards(t, y, scratch);
+      return scratch[static_cast<std::size_t>(i)];
+    }
+    const double h = foot_height(w_, k, y);
+    return clearing_[static_cast<std::size_t>(k)] != 0 ? h + clearance_ : h;
+  }
+  /// Whether the latest guard evaluation was at this very y in the current mode (the end of a
+  /// step): then last_dynamics() and last_height() are the numbers contact_dynamics() and
+  /// foot_height() would compute again there (the missed-event check's).
+  bool remembered(std::span<const double> y) const {
+    return last_y_.size() == y.size() && std::equal(y.begin(), y.end(), last_y_.begin());
+  }
+  const Dynamics& last_dynamics() const { return last_dynamics_; }
+  double last_height(int k) const { return last_heights_[static_cast<std::size_t>(k)]; }
+  void set_contacts(const ContactSet& c) {
+    contacts_ = c;
+    last_y_.clear();  // the remembered evaluation was of another mode
+  }
   const ContactSet& contacts() const { return contacts_; }
   void set_upright_leg(int k) { upright_leg_ = k; }
   int upright_leg() const { return upright_leg_; }
@@ -80,6 +109,11 @@ class WheelFlow final : public numerics::OdeSystem {
   double clearance_;           // [m]
   std::vector<char> clearing_;  // per leg: 1 while a foot that left has not cleared the ground
   int upright_leg_ = -1;
+  // The latest guard evaluation: its state (empty: none of this mode), dynamics, and per leg
+  // guard slot 0 before the clearance (a free foot's height).
+  std::vector<double> last_y_;
+  Dynamics last_dynamics_;
+  std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
 };
 
 }  // namespace
@@ -178,9 +212,9 @@ struct FlexibleWheelSimulator::Impl {
   SimulationOptions opt;
   WheelFlow flow;
   numerics::OdeIntegrator integrator;
+  numerics::HybridSimulation loop;  // the event-driven loop on `integrator`
   std::vector<int> directions;
   std::vector<double> y;       // scratch state
-  std::vector<double> y_dense; // scratch for dense output
   std::vector<double> y_minus; // scratch: the state before a reset
   std::vector<GuardEvent> events;  // scratch: the events of one instant
 
@@ -189,9 +223,9 @@ struct FlexibleWheelSimulator::Impl {
         opt(options),
         flow(w, ContactSet{}, foot_clearance(w, options)),
         integrator(flow, state_size(w), integrator_options(w, options)),
+        loop(integrator, state_size(w)),
         directions(static_cast<std::size_t>(kGuardsPerLeg * w.legs), -1),
         y(static_cast<std::size_t>(state_size(w))),
-        y_dense(static_cast<std::size_t>(state_size(w))),
         y_minus(static_cast<std::size_t>(state_size(w))) {
     events.reserve(static_cast<std::size_t>(kGuardsPerLeg * w.legs));
   }
@@ -293,7 +327,9 @@ struct FlexibleWheelSimulator::Impl {
   // After a smooth step: the modes must still be consistent, or an event was missed.
   const char* check_consistency(std::span<const double> s, std::string& detail) const {
     const ContactSet& c = flow.contacts();
-    const Dynamics d = contact_dynamics(w, c, s);
+    const bool remembered = flow.remembered(s);  // the guards' numbers at s (the step's end)
+    Dynamics computed;
+    const Dynamics& d = remembered ? flow.last_dynamics() : (computed = contact_dynamics(w, c, s));
     if (d.failure != nullptr) return d.failure;
     const double tol_f = 1e-6 * w.m * w.g, tol_v = 1e-6 * std::sqrt(w.g * w.L0);
     for (int i = 0; i < c.count; ++i) {
@@ -309,7 +345,7 @@ struct FlexibleWheelSimulator::Impl {
     }
     for (int k = 0; k < w.legs; ++k) {
       if (c.find(k) >= 0) continue;
-      const double h = foot_height(w, k, s);
+      const double h = remembered ? flow.last_height(k) : foot_height(w, k, s);
       if (h < -1e-7 * w.L0) {
         detail = fmt::format("leg {} foot height {}", k, h);
         return "missed event: a free foot went below the ground";
@@ -336,40 +372,153 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, RunSink& sink,
   return res;
 }
 
-void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, RunSink& sink, SimulationResult& res) {
+// One run of the flexible wheel as a model of the hybrid loop (numerics/hybrid_simulation.hpp).
+//
+// Its guard/reset pairs (spec rimless.md, "Events"; the guards are flow.hpp's, four per leg):
+//   touchdown   h_k = y - (L0 - δ_k) cos β_k ↓ 0        lift-off      N_k ↓ 0
+//   stick→slip  μ_s - |T_k|/N_k ↓ 0                    slip→stick    s ċ_k ↓ 0
+//   fall over   cos β_k ↓ 0                            slip jam      cos β_k - μ s sin β_k ↓ 0
+// and one reset for the events of an instant together, choose_modes() (spec "Contact modes are
+// chosen, not guessed"): the feet's modes are decided jointly, since two feet in double support
+// constrain each other. The reset checks its postcondition (check_reset()). With the upright
+// section one more guard, sin β of the next leg to pass upright ↑ 0, ends the run (no reset).
+struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   using S = StateIndex;
-  Impl& m = *impl_;
-  const WheelParams& w = m.w;
-  const numerics::OdeStats stats0 = m.integrator.stats();  // the integrator may have run before
-  if (static_cast<int>(spec.y0.size()) != state_size(w)) throw std::invalid_argument("RunSpec: wrong state size");
-  std::copy(spec.y0.begin(), spec.y0.end(), m.y.begin());
-  const int steps_wanted = spec.steps > 0 ? spec.steps : m.opt.steps;
-  const bool upright_stop = spec.stop_at == Section::Upright;
-  const bool touchdown_stop = spec.stop_at == Section::Touchdown;
-  double t = 0.0;
+  Impl& m;
+  const WheelParams& w;
+  const RunSpec& spec;
+  SectionHit* section;
+  RunSink& sink;
+  SimulationResult& res;
+  const int steps_wanted;
+  const bool upright_stop, touchdown_stop;
+  bool hit = false;
+  bool logged_any = false;
+  double last_logged_t = 0;      // [s]
+  double last_touchdown = 0.0;   // [s]
+  double translating_since = -1.0;  // [s], -1: not translating
+  double ke0 = 0;                // kinetic energy at t = 0, after the modes were chosen [J]
+  static constexpr double kTranslationHold = 1.0;  // s a rigid translation must last to end the run
+  StepTracker tracker;
+  Eigen::MatrixXd sens;          // ∂y/∂y(0), with sensitivities (n×n)
+  // At a guard crossing, before the reset:
+  ContactSet before;             // the feet on the ground
+  Eigen::MatrixXd S_minus;       // with sensitivities: ∂y/∂y(0) at the crossing
+  Eigen::VectorXd f_minus;       // the flow there
+  Eigen::RowVectorXd g_y;        // the first fired guard's gradient there
 
-  auto record_event = [&](double te, RunEvent kind, int leg) {
+  Run(Impl& impl, const RunSpec& s, SectionHit* hit_out, RunSink& out, SimulationResult& result)
+      : m(impl),
+        w(impl.w),
+        spec(s),
+        section(hit_out),
+        sink(out),
+        res(result),
+        steps_wanted(s.steps > 0 ? s.steps : impl.opt.steps),
+        upright_stop(s.stop_at == Section::Upright),
+        touchdown_stop(s.stop_at == Section::Touchdown) {}
+
+  void record_event(double te, RunEvent kind, int leg) {
     ++res.event_count;
     sink.on_event({te, kind, leg, m.flow.contacts(), {}});
-  };
-  auto fail = [&](double te, const std::string& why, const std::string& detail) {
+  }
+  void fail(double te, const std::string& why, const std::string& detail) override {
     res.failure = detail.empty() ? why : why + " (" + detail + ")";
     ++res.event_count;
     sink.on_event({te, RunEvent::Failure, -1, m.flow.contacts(), *res.failure});
-  };
-  bool logged_any = false;
-  double last_logged_t = 0;  // [s]
-  auto log_sample = [&](double ts, std::span<const double> ys) {
+  }
+  void log_sample(double ts, std::span<const double> ys) {
     sink.on_sample(m.sample(ts, ys));
     logged_any = true;
     last_logged_t = ts;
-  };
-  StepTracker tracker;
-  auto release_steps = [&]() {
+  }
+  void release_steps() {
     for (const StepRecord& st : tracker.final_steps()) sink.on_step(st);
     tracker.drop_final_steps();
-  };
+  }
 
+  // The modes at t = 0 and the first restart; false if the run ended there.
+  bool start();
+  // The result's totals at the end time t.
+  void finish(double t);
+
+  bool finished() const override { return hit || res.steps_completed >= steps_wanted; }
+  // Known before the first step: stability alone needs |λ|/6.1 steps per simulated second.
+  bool ready(double t) override {
+    if (m.opt.method == numerics::OdeMethod::Bdf || leg_fastest_mode(w) / kStabilityBoundary <= m.opt.max_step_rate)
+      return true;
+    fail(t, "work limit sim.max_step_rate exceeded from the start",
+         fmt::format("{} needs at least {:.3g} steps per simulated second for stability alone (limit {:.3g}); {}",
+                     name_of(m.opt.method), leg_fastest_mode(w) / kStabilityBoundary, m.opt.max_step_rate,
+                     stiffness_hint(w, m.opt.method)));
+    return false;
+  }
+  void work_limit_reached(numerics::WorkLimit limit, double t, double measured) override {
+    if (limit == numerics::WorkLimit::WallTime) {
+      fail(t, "wall-time limit sim.max_wall_time reached",
+           fmt::format("{} s at t = {} s after {} steps; {}", m.opt.max_wall_time, t, res.steps_completed,
+                       stiffness_hint(w, m.opt.method)));
+    } else {
+      fail(t, "work limit sim.max_step_rate reached",
+           fmt::format("{:.3g} solver steps per simulated second over the last {} (limit {:.3g}) at t = {} s after {} "
+                       "steps; {}",
+                       measured, numerics::HybridSimulation::kRateWindow, m.opt.max_step_rate, t, res.steps_completed,
+                       stiffness_hint(w, m.opt.method)));
+    }
+  }
+  double stop_time() const override { return std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time); }
+  void sample(double t, std::span<const double> y) override { log_sample(t, y); }
+  void stepped(double, std::span<const double> y) override {
+    std::copy(y.begin(), y.end(), m.y.begin());
+    m.flow.arm_cleared(m.y);
+  }
+  bool smooth_step(double t, std::span<const double>, numerics::StepStatus status) override;
+  numerics::HybridNext guards_crossed(double t, std::span<const double> y, std::span<const int> fired,
+                                      const numerics::OdeIntegrator& integrator,
+                                      std::vector<numerics::HybridEvent>& events) override;
+  // Spec rimless.md, "Events": rolled back, a landing with β > 0 while θ̇ < 0 and ẋ < 0.
+  bool admissible(double t, std::span<const double>, const numerics::HybridEvent& e) override {
+    if (static_cast<EventKind>(e.kind) != EventKind::Touchdown) return true;
+    const double beta = leg_angle(w, e.unit, m.y[S::theta]);
+    if (beta > 0 && m.y[S::thetad] < 0 && m.y[S::xd] < 0) {
+      fail(t, "rolled back: a leg behind the hub landed while the wheel moved backwards",
+           fmt::format("leg {}, beta = {}", e.unit, beta));
+      return false;
+    }
+    return true;
+  }
+  numerics::HybridNext reset(double t, std::span<double> y, std::span<const numerics::HybridEvent> events) override;
+  std::span<const int> directions() const override { return m.directions; }
+  std::span<const double> restart_sensitivities() const override {
+    if (!m.opt.sensitivities) return {};
+    return {sens.data(), static_cast<std::size_t>(sens.size())};
+  }
+  void restarted(double t, std::span<const double>) override { sink.on_restart(t, m.y, m.flow.contacts()); }
+  std::string describe(const numerics::HybridEvent& e) const override {
+    return fmt::format("leg {} {}", e.unit, event_name(static_cast<EventKind>(e.kind)));
+  }
+
+  // The section's sensitivity ∂y(t_section)/∂y(0): the saltation of the crossing time, no reset.
+  Eigen::MatrixXd section_sensitivity() const {
+    if (!m.opt.sensitivities) return Eigen::MatrixXd();
+    const Eigen::Index n = static_cast<Eigen::Index>(m.y.size());
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+    return Eigen::MatrixXd(saltation(I, f_minus, Eigen::VectorXd::Zero(n), g_y) * S_minus);
+  }
+  // The reset's postcondition (mode_selection.hpp): a foot whose lift-off, stick→slip or fall-over
+  // guard fired does not keep its mode (else the same guard fires again at the restart).
+  void check_reset(std::span<const GuardEvent> events, const ModeDecision& dec) const {
+    for (const GuardEvent& e : events) {
+      if (e.kind != EventKind::LiftOff && e.kind != EventKind::StickToSlip && e.kind != EventKind::FallOver) continue;
+      const int was = before.find(e.leg), now = dec.contacts.find(e.leg);
+      if (was >= 0 && now >= 0 && dec.contacts.mode[now] == before.mode[was])
+        throw std::logic_error(fmt::format("choose_modes kept leg {} in {} after its {} guard fired", e.leg,
+                                           mode_name(before.mode[was]), event_name(e.kind)));
+    }
+  }
+};
+
+bool FlexibleWheelSimulator::Run::start() {
   // Modes at t = 0: the pending events (a foot landing now) are handled like any event.
   for (int k = 0; k < w.legs; ++k) {
     if (spec.contacts.find(k) >= 0) continue;
@@ -381,14 +530,14 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
   m.flow.set_contacts(spec.contacts);
   m.flow.clear_all();
   const Eigen::Index n_state = static_cast<Eigen::Index>(m.y.size());
-  Eigen::MatrixXd sens = Eigen::MatrixXd::Identity(n_state, n_state);  // ∂y/∂y(0), with sensitivities
+  sens = Eigen::MatrixXd::Identity(n_state, n_state);
   if (!spec.pending.empty()) {
     const std::vector<double> y_before = m.y;
     const ModeDecision dec = choose_modes(w, spec.contacts, spec.pending, m.y);
     if (dec.failure != nullptr) {
       fail(0.0, dec.failure, dec.detail);
       res.final_state = m.y;
-      return;
+      return false;
     }
     m.flow.set_contacts(dec.contacts);
     m.flow.start_clearing(spec.contacts, spec.pending);
@@ -398,7 +547,7 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
       if (auto e = m.reset_jacobian(spec.contacts, spec.pending, dec, y_before, sens)) {
         fail(0.0, "sensitivities", *e);
         res.final_state = m.y;
-        return;
+        return false;
       }
     }
   }
@@ -412,237 +561,145 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
   }
   m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
   if (upright_stop) m.directions.push_back(+1);
-  const double e0 = mechanical_energy(w, m.flow.contacts(), m.y).total();
-  const double ke0 = kinetic_energy(w, m.y);
+  res.energy_initial = mechanical_energy(w, m.flow.contacts(), m.y).total();
+  ke0 = kinetic_energy(w, m.y);
   int stance = spec.stance_leg;  // else a foot landing at t = 0 is the stance foot of the first step
   for (const auto& e : spec.pending)
     if (stance < 0 && e.kind == EventKind::Touchdown && m.flow.contacts().find(e.leg) >= 0) stance = e.leg;
-  tracker.start(0.0, m.y[S::x], e0, m.flow.contacts(), w.legs, stance);
-  sink.on_start(e0);
+  tracker.start(0.0, m.y[S::x], res.energy_initial, m.flow.contacts(), w.legs, stance);
+  sink.on_start(res.energy_initial);
   record_event(0.0, RunEvent::Start, m.flow.contacts().count > 0 ? m.flow.contacts().leg[0] : -1);
   if (m.opt.log) log_sample(0.0, m.y);
   m.restart(0.0, m.y, sens);
   sink.on_restart(0.0, m.y, m.flow.contacts());
+  return true;
+}
 
-  double next_sample = m.opt.sample_dt;
-  long sample_index = 1;
-  double last_touchdown = 0.0;
-  GuardEvent last_event{-1, EventKind::Touchdown};
-  double last_event_time = -1.0;
-  constexpr std::size_t kZenoCount = 64;
-  std::array<double, kZenoCount> recent_events{};  // times of the latest events, a ring (Zeno watch)
-  std::size_t events_seen = 0;
-  constexpr double kZenoWindow = 1e-9;  // s
-  constexpr double kTranslationHold = 1.0;  // s a rigid translation must last to end the run
-  double translating_since = -1.0;
-
-  const auto wall0 = std::chrono::steady_clock::now();
-  long long solver_calls = 0;
-  constexpr long long kRateWindow = 4096;  // solver steps over which sim.max_step_rate is averaged
-  double window_start = t;
-  bool hit = false;
-  while (!hit && res.steps_completed < steps_wanted) {
-    ++solver_calls;
-    // Known before the first step: stability alone needs |λ|/6.1 steps per simulated second.
-    if (solver_calls == 1 && m.opt.method != numerics::OdeMethod::Bdf &&
-        leg_fastest_mode(w) / kStabilityBoundary > m.opt.max_step_rate) {
-      fail(t, "work limit sim.max_step_rate exceeded from the start",
-           fmt::format("{} needs at least {:.3g} steps per simulated second for stability alone (limit {:.3g}); {}",
-                       name_of(m.opt.method), leg_fastest_mode(w) / kStabilityBoundary, m.opt.max_step_rate,
-                       stiffness_hint(w, m.opt.method)));
-      break;
-    }
-    if (solver_calls % 256 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() > m.opt.max_wall_time) {
-      fail(t, "wall-time limit sim.max_wall_time reached",
-           fmt::format("{} s at t = {} s after {} steps; {}", m.opt.max_wall_time, t, res.steps_completed,
-                       stiffness_hint(w, m.opt.method)));
-      break;
-    }
-    if (solver_calls % kRateWindow == 0) {
-      const double rate = static_cast<double>(kRateWindow) / std::max(t - window_start, 1e-300);
-      if (rate > m.opt.max_step_rate) {
-        fail(t, "work limit sim.max_step_rate reached",
-             fmt::format("{:.3g} solver steps per simulated second over the last {} (limit {:.3g}) at t = {} s after {} "
-                         "steps; {}",
-                         rate, kRateWindow, m.opt.max_step_rate, t, res.steps_completed, stiffness_hint(w, m.opt.method)));
-        break;
-      }
-      window_start = t;
-    }
-    const double t_stop = std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time);
-    numerics::StepStatus status;
-    try {
-      status = m.integrator.step(t_stop);
-    } catch (const std::runtime_error& e) {
-      fail(t, "solver failure", e.what());
-      break;
-    }
-    t = m.integrator.time();
-    if (m.opt.log) {
-      while (next_sample < t) {
-        m.integrator.interpolate(next_sample, m.y_dense);
-        log_sample(next_sample, m.y_dense);
-        next_sample = m.opt.sample_dt * static_cast<double>(++sample_index);
-      }
-    }
-    const auto state = m.integrator.state();
-    std::copy(state.begin(), state.end(), m.y.begin());
-    m.flow.arm_cleared(m.y);
-
-    if (status != numerics::StepStatus::Guard) {
-      std::string detail;
-      if (const char* why = m.check_consistency(m.y, detail)) {
-        fail(t, why, detail);
-        break;
-      }
-      if (m.at_rest(m.y)) {
-        fail(t, "stopped: the wheel came to rest in double support", "");
-        break;
-      }
-      bool accelerating = false;
-      std::string motion;
-      const bool translation = m.is_translation(m.y, accelerating, motion);
-      // A translation is a relative equilibrium; it must hold for kTranslationHold to be named.
-      if (translation && accelerating) {
-        if (translating_since < 0) translating_since = t;
-        if (t - translating_since >= kTranslationHold) {
-          fail(t, "slid away: the wheel slides down the slope on its feet without turning, ever faster", motion);
-          break;
-        }
-      } else {
-        translating_since = -1.0;
-      }
-      if (status == numerics::StepStatus::StopTime) {
-        const std::string also = translation ? "; " + motion : "";
-        if (t >= m.opt.max_time) fail(t, "time limit sim.max_time reached", fmt::format("{} s{}", m.opt.max_time, also));
-        else fail(t, "stopped: no new leg landed within sim.max_step_time", fmt::format("{} s{}", m.opt.max_step_time, also));
-        break;
-      }
-      continue;
-    }
-
-    // A guard crossed: collect the events, choose the new modes, restart.
-    translating_since = -1.0;
-    const ContactSet before = m.flow.contacts();
-    std::vector<GuardEvent>& events = m.events;
-    events.clear();
-    const auto fired = m.integrator.guards_fired();
-    Eigen::MatrixXd S_minus;
-    Eigen::VectorXd f_minus;
-    Eigen::RowVectorXd g_y;
-    if (m.opt.sensitivities) {
-      int first = 0;
-      while (fired[static_cast<std::size_t>(first)] == 0) ++first;
-      S_minus = m.sensitivities_now();
-      f_minus = m.flow_at(before, m.y);
-      g_y = m.guard_gradient(first, m.y);
-    }
-    auto section_sensitivity = [&]() {
-      if (!m.opt.sensitivities) return Eigen::MatrixXd();
-      const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n_state, n_state);
-      return Eigen::MatrixXd(saltation(I, f_minus, Eigen::VectorXd::Zero(n_state), g_y) * S_minus);
-    };
-    if (upright_stop && fired[static_cast<std::size_t>(guard_count(w))] != 0) {
-      const int k = m.flow.upright_leg();
-      if (!(before.count == 1 && before.leg[0] == k)) {
-        fail(t, "the upright section was crossed outside single support on that leg", describe_contacts(before));
-        break;
-      }
-      if (section != nullptr) *section = {t, m.y, before, k, section_sensitivity()};
-      record_event(t, RunEvent::Section, k);
-      hit = true;
-      break;
-    }
-    for (int k = 0; k < w.legs; ++k) {
-      const int i = before.find(k);
-      for (int slot = 0; slot < kGuardsPerLeg; ++slot) {
-        if (fired[static_cast<std::size_t>(kGuardsPerLeg * k + slot)] == 0) continue;
-        events.push_back({k, guard_event(slot, i >= 0, i >= 0 ? before.mode[i] : FootMode::Stick)});
-      }
-    }
-    if (m.opt.log) log_sample(t, m.y);
-    if (touchdown_stop) {
-      for (const auto& e : events) {
-        const bool counts = tracker.is_new_leg(e.leg) ||
-                            (spec.section_includes_legs_behind && e.leg != tracker.stance_leg());
-        if (e.kind == EventKind::Touchdown && counts && !hit) {
-          if (section != nullptr) *section = {t, m.y, before, e.leg, section_sensitivity()};
-          record_event(t, RunEvent::Section, e.leg);
-          hit = true;
-        }
-      }
-      if (hit) break;
-    }
-
-    bool stop = false;
-    for (const auto& e : events) {
-      if (e.leg == last_event.leg && e.kind == last_event.kind && t - last_event_time < 1e-10) {
-        fail(t, "an event fired again at its own restart point",
-             fmt::format("leg {} {}", e.leg, event_name(e.kind)));
-        stop = true;
-      }
-      if (e.kind == EventKind::Touchdown) {
-        const double beta = leg_angle(w, e.leg, m.y[S::theta]);
-        if (beta > 0 && m.y[S::thetad] < 0 && m.y[S::xd] < 0) {
-          fail(t, "rolled back: a leg behind the hub landed while the wheel moved backwards",
-               fmt::format("leg {}, beta = {}", e.leg, beta));
-          stop = true;
-        }
-      }
-      recent_events[events_seen++ % kZenoCount] = t;
-    }
-    // The newest of the latest kZenoCount event times is the slot written last, the oldest the next.
-    if (events_seen >= kZenoCount &&
-        recent_events[(events_seen - 1) % kZenoCount] - recent_events[events_seen % kZenoCount] < kZenoWindow) {
-      fail(t, "Zeno sequence: too many events in too short a time",
-           fmt::format("{} events within {} s", kZenoCount, kZenoWindow));
-      stop = true;
-    }
-    if (stop) break;
-
-    std::copy(m.y.begin(), m.y.end(), m.y_minus.begin());
-    const std::vector<double>& y_minus = m.y_minus;
-    const ModeDecision dec = choose_modes(w, before, events, m.y);
-    if (dec.failure != nullptr) {
-      for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
-      fail(t, dec.failure, dec.detail);
-      break;
-    }
-    if (m.opt.sensitivities) {
-      Eigen::MatrixXd R;
-      if (auto e = m.reset_jacobian(before, events, dec, y_minus, R)) {
-        fail(t, "sensitivities", *e);
-        break;
-      }
-      sens = saltation(R, f_minus, m.flow_at(dec.contacts, m.y), g_y) * S_minus;
-    }
-    m.flow.set_contacts(dec.contacts);
-    m.flow.start_clearing(before, events);
-    if (dec.consistent > 1) ++res.ambiguous_choices;
-    res.jams += dec.jammed_feet;
-    if (dec.jammed_feet > 0) record_event(t, RunEvent::Jam, events.front().leg);
-    for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
-    last_event = events.back();
-    last_event_time = t;
-
-    const double energy = mechanical_energy(w, dec.contacts, m.y).total();
-    bool new_step = false;
-    for (const auto& e : events) {
-      if (e.kind == EventKind::Touchdown && tracker.is_new_leg(e.leg) && dec.contacts.find(e.leg) >= 0) {
-        tracker.touchdown(t, m.y[S::x], energy, e.leg, dec.contacts);
-        ++res.steps_completed;
-        last_touchdown = t;
-        new_step = true;
-      }
-    }
-    if (new_step) release_steps();
-    else tracker.observe(dec.contacts);
-    if (m.opt.log) log_sample(t, m.y);
-    m.restart(t, m.y, sens);
-    sink.on_restart(t, m.y, dec.contacts);
+bool FlexibleWheelSimulator::Run::smooth_step(double t, std::span<const double>, numerics::StepStatus status) {
+  std::string detail;
+  if (const char* why = m.check_consistency(m.y, detail)) {
+    fail(t, why, detail);
+    return false;
   }
+  if (m.at_rest(m.y)) {
+    fail(t, "stopped: the wheel came to rest in double support", "");
+    return false;
+  }
+  bool accelerating = false;
+  std::string motion;
+  const bool translation = m.is_translation(m.y, accelerating, motion);
+  // A translation is a relative equilibrium; it must hold for kTranslationHold to be named.
+  if (translation && accelerating) {
+    if (translating_since < 0) translating_since = t;
+    if (t - translating_since >= kTranslationHold) {
+      fail(t, "slid away: the wheel slides down the slope on its feet without turning, ever faster", motion);
+      return false;
+    }
+  } else {
+    translating_since = -1.0;
+  }
+  if (status == numerics::StepStatus::StopTime) {
+    const std::string also = translation ? "; " + motion : "";
+    if (t >= m.opt.max_time) fail(t, "time limit sim.max_time reached", fmt::format("{} s{}", m.opt.max_time, also));
+    else fail(t, "stopped: no new leg landed within sim.max_step_time", fmt::format("{} s{}", m.opt.max_step_time, also));
+    return false;
+  }
+  return true;
+}
 
+numerics::HybridNext FlexibleWheelSimulator::Run::guards_crossed(double t, std::span<const double>,
+                                                                 std::span<const int> fired,
+                                                                 const numerics::OdeIntegrator&,
+                                                                 std::vector<numerics::HybridEvent>& events) {
+  translating_since = -1.0;
+  before = m.flow.contacts();
+  m.events.clear();
+  if (m.opt.sensitivities) {
+    int first = 0;
+    while (fired[static_cast<std::size_t>(first)] == 0) ++first;
+    S_minus = m.sensitivities_now();
+    f_minus = m.flow_at(before, m.y);
+    g_y = m.guard_gradient(first, m.y);
+  }
+  if (upright_stop && fired[static_cast<std::size_t>(guard_count(w))] != 0) {
+    const int k = m.flow.upright_leg();
+    if (!(before.count == 1 && before.leg[0] == k)) {
+      fail(t, "the upright section was crossed outside single support on that leg", describe_contacts(before));
+      return numerics::HybridNext::Stop;
+    }
+    if (section != nullptr) *section = {t, m.y, before, k, section_sensitivity()};
+    record_event(t, RunEvent::Section, k);
+    hit = true;
+    return numerics::HybridNext::Stop;
+  }
+  for (int k = 0; k < w.legs; ++k) {
+    const int i = before.find(k);
+    for (int slot = 0; slot < kGuardsPerLeg; ++slot) {
+      if (fired[static_cast<std::size_t>(kGuardsPerLeg * k + slot)] == 0) continue;
+      m.events.push_back({k, guard_event(slot, i >= 0, i >= 0 ? before.mode[i] : FootMode::Stick)});
+    }
+  }
+  if (m.opt.log) log_sample(t, m.y);
+  if (touchdown_stop) {
+    for (const auto& e : m.events) {
+      const bool counts =
+          tracker.is_new_leg(e.leg) || (spec.section_includes_legs_behind && e.leg != tracker.stance_leg());
+      if (e.kind == EventKind::Touchdown && counts && !hit) {
+        if (section != nullptr) *section = {t, m.y, before, e.leg, section_sensitivity()};
+        record_event(t, RunEvent::Section, e.leg);
+        hit = true;
+      }
+    }
+    if (hit) return numerics::HybridNext::Stop;
+  }
+  for (const auto& e : m.events) events.push_back({e.leg, static_cast<int>(e.kind)});
+  return numerics::HybridNext::Restart;
+}
+
+numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<double> y,
+                                                        std::span<const numerics::HybridEvent>) {
+  const std::vector<GuardEvent>& events = m.events;
+  std::copy(m.y.begin(), m.y.end(), m.y_minus.begin());
+  const ModeDecision dec = choose_modes(w, before, events, m.y);
+  if (dec.failure != nullptr) {
+    for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
+    fail(t, dec.failure, dec.detail);
+    return numerics::HybridNext::Stop;
+  }
+  check_reset(events, dec);
+  if (m.opt.sensitivities) {
+    Eigen::MatrixXd R;
+    if (auto e = m.reset_jacobian(before, events, dec, m.y_minus, R)) {
+      fail(t, "sensitivities", *e);
+      return numerics::HybridNext::Stop;
+    }
+    sens = saltation(R, f_minus, m.flow_at(dec.contacts, m.y), g_y) * S_minus;
+  }
+  m.flow.set_contacts(dec.contacts);
+  m.flow.start_clearing(before, events);
+  if (dec.consistent > 1) ++res.ambiguous_choices;
+  res.jams += dec.jammed_feet;
+  if (dec.jammed_feet > 0) record_event(t, RunEvent::Jam, events.front().leg);
+  for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
+
+  const double energy = mechanical_energy(w, dec.contacts, m.y).total();
+  bool new_step = false;
+  for (const auto& e : events) {
+    if (e.kind == EventKind::Touchdown && tracker.is_new_leg(e.leg) && dec.contacts.find(e.leg) >= 0) {
+      tracker.touchdown(t, m.y[S::x], energy, e.leg, dec.contacts);
+      ++res.steps_completed;
+      last_touchdown = t;
+      new_step = true;
+    }
+  }
+  if (new_step) release_steps();
+  else tracker.observe(dec.contacts);
+  if (m.opt.log) log_sample(t, m.y);
+  std::copy(m.y.begin(), m.y.end(), y.begin());
+  return numerics::HybridNext::Restart;
+}
+
+void FlexibleWheelSimulator::Run::finish(double t) {
   res.t_final = t;
   res.final_state = m.y;
   res.final_contacts = m.flow.contacts();
@@ -653,7 +710,6 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
   res.gaits = tracker.gaits();
   if (!tracker.steps().empty()) res.last_step = tracker.steps().back();
   for (const StepRecord& st : tracker.steps()) sink.on_step(st);
-  res.energy_initial = e0;
   res.energy_final = mechanical_energy(w, m.flow.contacts(), m.y).total();
   res.work_damping = m.y[S::w_damp];
   res.work_friction = m.y[S::w_fric];
@@ -662,6 +718,21 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
       std::abs(res.energy_final + res.work_damping + res.work_friction - res.energy_initial) / scale;
   const double t_end = res.steps_completed > 0 ? last_touchdown : t;
   res.mean_speed = t_end > 0 ? (x_end - spec.y0[S::x]) / t_end : 0.0;
+}
+
+void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, RunSink& sink, SimulationResult& res) {
+  Impl& m = *impl_;
+  const numerics::OdeStats stats0 = m.integrator.stats();  // the integrator may have run before
+  if (static_cast<int>(spec.y0.size()) != state_size(m.w)) throw std::invalid_argument("RunSpec: wrong state size");
+  std::copy(spec.y0.begin(), spec.y0.end(), m.y.begin());
+  Run run(m, spec, section, sink, res);
+  if (!run.start()) return;
+  numerics::HybridLimits limits;
+  limits.sample = m.opt.log;
+  limits.sample_dt = m.opt.sample_dt;
+  limits.max_wall_time = m.opt.max_wall_time;
+  limits.max_step_rate = m.opt.max_step_rate;
+  run.finish(m.loop.run(run, limits, 0.0));
   const numerics::OdeStats st = m.integrator.stats();
   res.solver_steps = st.steps - stats0.steps;
   res.rhs_evals = st.rhs_evals - stats0.rhs_evals;

@@ -80,6 +80,7 @@ class FlexibleWheelSimulator {
  private:
   void run_into(const RunSpec& spec, SectionHit* section, RunSink& sink, SimulationResult& res);
   struct Impl;
+  struct Run;  // one run: the model the hybrid loop (numerics/hybrid_simulation.hpp) drives
   std::unique_ptr<Impl> impl_;
 };
 

@@ -37,8 +37,12 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
 }
 
 void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g) {
+  guard_values(w, contacts, contact_dynamics(w, contacts, y), y, g);
+}
+
+void guard_values(const WheelParams& w, const ContactSet& contacts, const Dynamics& d, std::span<const double> y,
+                  std::span<double> g) {
   std::fill(g.begin(), g.end(), 1.0);
-  const Dynamics d = contact_dynamics(w, contacts, y);
   for (int k = 0; k < w.legs; ++k) {
     double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
     const int i = contacts.find(k);

@@ -11,6 +11,7 @@
 #include <span>
 
 #include "flexgait/rimless/contact.hpp"
+#include "flexgait/rimless/dynamics.hpp"
 #include "flexgait/rimless/mode_selection.hpp"
 
 namespace flexgait::rimless {
@@ -26,6 +27,9 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
 
 /// Guard values (dim guard_count(w)) of the mode at y.
 void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g);
+/// The same with the mode's dynamics at y given (d = contact_dynamics(w, contacts, y)).
+void guard_values(const WheelParams& w, const ContactSet& contacts, const Dynamics& d, std::span<const double> y,
+                  std::span<double> g);
 
 /// The event a guard slot stands for, given whether its leg is on the ground and its mode.
 EventKind guard_event(int slot, bool on_ground, FootMode mode);

@@ -3,42 +3,226 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <deque>
 #include <memory>
+#include <optional>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/gait_branch_maps.hpp"
 #include "flexgait/rimless/sweep.hpp"
 
 namespace flexgait::rimless {
 namespace {
 
-/// Poincaré maps at the last few parameter values (a corrector step evaluates at p and p ± h_p).
-struct MapCache {
-  Config base;
-  GaitContinuationSpec spec;
-  SimulationOptions sim;
-  AnalysisOptions opt;
-  Model model;
-  std::deque<std::pair<double, std::unique_ptr<PoincareMap>>> maps;
+using detail::cross_section_mode;
+using detail::family_for;
+using detail::MapCache;
+using detail::Segment;
 
-  double value(double q) const { return spec.from + q * (spec.to - spec.from); }
-  Config config_at(double p) const { return sweep_point_config(base, SweepSpec{spec.param, p, p, 1}, 0); }
-  /// The map at q, or why the parameter value is not valid.
-  PoincareMap* at(double q, std::string& why) {
-    for (auto& [key, map] : maps)
-      if (key == q) return map.get();
-    try {
-      const Config c = config_at(value(q));
-      maps.emplace_back(q, std::make_unique<PoincareMap>(wheel_from_config(c), map_options(sim, opt), model, spec.section));
-    } catch (const ConfigError& e) {
-      why = fmt::format("{} = {} is not valid: {}", spec.param, format_number(value(q)), e.what());
-      return nullptr;
+numerics::ContinuationOptions continuation_options(const GaitContinuationSpec& spec, const AnalysisOptions& a) {
+  numerics::ContinuationOptions o;
+  const double width = std::abs(spec.to - spec.from);
+  o.initial_step = spec.step > 0 ? spec.step / width : 0.02;
+  o.max_step = 2 * o.initial_step;
+  o.min_step = 1e-9;
+  o.max_points = spec.max_points;
+  o.tolerance = a.newton.tolerance;
+  o.fd_relative_step = a.newton.fd_relative_step;
+  o.parameter_scale = 1;
+  o.locate_tolerance = 1e-9;
+  o.label_tolerance = 1e-7;  // in q: |Δp| <= 1e-7 |to - from|
+  return o;
+}
+
+void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>& segments, const std::string& end_note,
+              GaitBranch& out);
+
+/// The branch from `like` (a fixed point of P^k at q = 0) into `out`: its segments, one per section
+/// mode, joined where the fixed point is continuous across the change, and its rows.
+void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::ContinuationOptions o, GaitBranch& out) {
+  const GaitContinuationSpec& spec = cache->spec;
+  const WheelParams w0 = cache->wheel_at(0.0);
+  std::vector<Segment> segments;
+  double q0 = 0;
+  std::string boundary, end_note;
+  int points = 0;
+  for (;;) {
+    cache->arrived.reset();
+    const numerics::MapFamily f = family_for(cache, like, out.exact_jacobian);
+    o.state_scale = like.scale(w0);
+    o.max_points = spec.max_points - points;
+    Segment seg{like, numerics::continue_fixed_points(f, like.z, q0, 1.0, o), boundary};
+    if (!seg.branch.failure.empty()) {
+      if (segments.empty()) {
+        out.failure = seg.branch.failure;
+        return;
+      }
+      end_note = fmt::format("the section's mode changes to {} but the new segment does not start: {}",
+                             mode_text(like), seg.branch.failure);
+      break;
     }
-    if (maps.size() > 4) maps.pop_front();
-    return maps.back().second.get();
+    points += static_cast<int>(seg.branch.points.size());
+    segments.push_back(std::move(seg));
+    const Segment& last = segments.back();
+    // A change of the section's mode ends the segment when the map arrived in another mode next to
+    // its last point (within the parameter's difference step; earlier such failures were passed).
+    if (last.branch.reached_end || !cache->arrived || points >= spec.max_points ||
+        std::abs(cache->arrived_q - last.branch.points.back().p) > 1e-3)
+      break;
+    const SectionState to = *cache->arrived;
+    numerics::BranchPoint next;
+    if (auto e = cross_section_mode(cache, last, to, out.exact_jacobian, o, next)) {
+      end_note = fmt::format("the section's foot mode changes from {} to {} here and {}", mode_text(last.like),
+                             mode_text(to), *e);
+      break;
+    }
+    boundary = fmt::format("section mode {} -> {}", mode_text(last.like), mode_text(to));
+    like = to;
+    like.z = next.z;
+    q0 = next.p;
   }
-};
+  assemble(cache, segments, end_note, out);
+}
+
+/// Joins `segments` into out.branch and out.rows (points and special points in the order of
+/// arclength, each with its cycle's quantities: k applications of the map for period k).
+void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>& segments, const std::string& end_note,
+              GaitBranch& out) {
+  const GaitContinuationSpec& spec = cache->spec;
+  out.segments = static_cast<int>(segments.size());
+  for (const Segment& seg : segments)
+    if (seg.like.z.size() > static_cast<Eigen::Index>(out.state_names.size())) out.state_names = seg.like.names();
+
+  // The joined branch, and the rows: points and special points in the order of arclength, each
+  // with its step's quantities.
+  out.branch.period = 1;
+  double s_offset = 0;
+  struct Ordered {
+    numerics::BranchPoint point;
+    std::string event;
+    const Segment* segment;
+  };
+  std::vector<Ordered> ordered;
+  for (const Segment& seg : segments) {
+    const std::size_t offset = out.branch.points.size();
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < seg.branch.points.size(); ++i) {
+      numerics::BranchPoint pt = seg.branch.points[i];
+      pt.arclength += s_offset;
+      std::string ev = i > 0 ? "" : seg.boundary.empty() ? "start" : seg.boundary;
+      if (i == 0 && !seg.boundary.empty() && !ordered.empty() && ordered.back().point.label != pt.label)
+        ev += fmt::format(" (gait {} -> {})", ordered.back().point.label, pt.label);
+      ordered.push_back({pt, ev, &seg});
+      out.branch.points.push_back(pt);
+      for (; k < seg.branch.special.size() && seg.branch.special[k].after == i; ++k) {
+        numerics::SpecialPoint sp = seg.branch.special[k];
+        sp.after += offset;
+        sp.point.arclength += s_offset;
+        ev = numerics::to_string(sp.kind);
+        if (sp.kind == numerics::SpecialKind::LabelChange)
+          ev = fmt::format("gait {} -> {}", sp.label_before, sp.label_after);
+        ordered.push_back({sp.point, ev, &seg});
+        out.branch.special.push_back(std::move(sp));
+      }
+    }
+    s_offset = out.branch.points.back().arclength;
+  }
+  const numerics::Branch& tail = segments.back().branch;
+  out.branch.reached_end = tail.reached_end;
+  out.branch.stop_reason = tail.stop_reason;
+  if (tail.stop_reason.starts_with("a vertical branch")) {
+    // The physical reason where it is the sliding gait's: μ_k = tan φ.
+    const WheelParams w = cache->wheel_at(tail.points.back().p);
+    const SectionState& m = segments.back().like;
+    if (!m.flight && m.mode != FootMode::Stick && std::abs(w.mu_k - std::tan(w.slope)) <= 1e-8 * std::max(1.0, w.mu_k))
+      out.branch.stop_reason = fmt::format(
+          "mu_k = tan(slope) = {}: kinetic friction on the sliding foot balances gravity along the slope, so a slide "
+          "at any speed is a gait (a multiplier +1, the branch vertical) and below it the slide accelerates: no gait; {}",
+          format_number(std::tan(w.slope)), tail.stop_reason);
+  }
+  if (!end_note.empty()) {
+    out.branch.reached_end = false;
+    out.branch.stop_reason = end_note + " (" + tail.stop_reason + ")";
+  }
+  out.stop_reason = out.branch.reached_end
+                        ? fmt::format("reached {} = {}", spec.param, format_number(spec.to))
+                        : fmt::format("ended at {} = {} (q = (p - from)/(to - from) = {}): {}", spec.param,
+                                      format_number(cache->value(out.branch.points.back().p)),
+                                      format_number(out.branch.points.back().p), out.branch.stop_reason);
+  if (!out.branch.reached_end) ordered.back().event = "end: " + out.stop_reason;
+  for (auto& [pt, ev, seg] : ordered) {
+    GaitBranchRow r;
+    r.p = cache->value(pt.p);
+    r.event = ev;
+    r.section = seg->like;
+    r.section.z = pt.z;
+    std::string why;
+    const WheelParams w = cache->wheel_at(pt.p);
+    SectionState widest = segments.front().like;
+    for (const Segment& sg : segments)
+      if (sg.like.z.size() == static_cast<Eigen::Index>(out.state_names.size())) widest = sg.like;
+    r.state = in_mode(w, r.section, widest).z;
+    if (PoincareMap* m = cache->at(pt.p, why)) {
+      SectionState at = r.section;
+      double period = 0, distance = 0, dissipated = 0;
+      std::string gait;
+      bool ok = true;
+      for (int k = 0; k < out.period && ok; ++k) {
+        const MapStep step = m->apply(at, out.period == 1);
+        ok = !step.failure;
+        period += step.period;
+        distance += step.distance;
+        dissipated += step.dissipated;
+        gait += (k > 0 ? " / " : "") + step.gait;
+        at = step.next;
+      }
+      if (ok) {
+        r.gait = gait;
+        r.period = period;
+        r.speed = period > 0 ? distance / period : 0.0;
+        r.dissipated = dissipated;
+      }
+    }
+    r.point = std::move(pt);
+    out.rows.push_back(std::move(r));
+  }
+}
+
+/// The period-2k branch born at the first period doubling of `out` (Kuznetsov §10.3: the corrector
+/// on P^{2k} along the critical eigenvector), continued towards q = 1 (or back to 0 when it lies on
+/// that side), into out.switched.
+void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, const numerics::ContinuationOptions& o,
+                                     GaitBranch& out) {
+  for (const GaitBranchRow& r : out.rows) {
+    if (r.event != numerics::to_string(numerics::SpecialKind::PeriodDoubling)) continue;
+    numerics::SpecialPoint pd;
+    for (const auto& sp : out.branch.special)
+      if (sp.kind == numerics::SpecialKind::PeriodDoubling && sp.point.p == r.point.p) pd = sp;
+    const numerics::MapFamily f = family_for(cache, r.section, out.exact_jacobian);
+    GaitBranch child;
+    child.param = out.param;
+    child.period = 2 * out.period;
+    child.exact_jacobian = out.exact_jacobian;
+    child.state_names = r.section.names();
+    child.mode = mode_text(r.section);
+    numerics::ContinuationOptions oc = o;
+    oc.state_scale = r.section.scale(cache->wheel_at(r.point.p));
+    numerics::Branch b = numerics::switch_at_period_doubling(f, pd, 1.0, oc);
+    if (b.failure.empty() && b.points.size() < 3 && b.stop_reason.find("other side") != std::string::npos && pd.point.p > 0)
+      b = numerics::switch_at_period_doubling(f, pd, 0.0, oc);
+    if (!b.failure.empty()) {
+      child.failure = fmt::format("no period-{} branch at the period doubling at {} = {}: {}", child.period,
+                                  out.param, format_number(r.p), b.failure);
+    } else {
+      std::vector<Segment> one{Segment{r.section, std::move(b), ""}};
+      one.front().like.z = pd.point.z;
+      assemble(cache, one, "", child);
+      if (!child.rows.empty()) child.rows.front().event = fmt::format("period doubling of the period-{} branch", out.period);
+    }
+    out.switched.push_back(std::move(child));
+    return;
+  }
+}
 
 }  // namespace
 
@@ -48,6 +232,8 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
     throw ConfigError("--to", fmt::format("the interval is empty: --from {} --to {}", spec.from, spec.to));
   if (spec.step < 0 || spec.step > std::abs(spec.to - spec.from))
     throw ConfigError("--step", fmt::format("--step {} is not in (0, |to - from|]", spec.step));
+  if (spec.period < 1 || spec.period > 64)
+    throw ConfigError("--period", fmt::format("--period {} is not an integer in [1, 64]", spec.period));
   auto cache = std::make_shared<MapCache>();
   cache->base = base;
   cache->spec = spec;
@@ -60,100 +246,45 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   GaitBranch out;
   out.param = spec.param;
   const WheelParams w0 = wheel_from_config(start_config);
-  const FixedPointReport start = find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section,
-                                                  initial_from_config(start_config));
-  out.state_names = start.point.names();
-  out.mode = start.point.flight ? "flight" : mode_name(start.point.mode);
-  if (!start.converged) {
-    out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure);
-    return out;
-  }
-  const SectionState like = start.point;
-  numerics::MapFamily family;
-  family.map = [cache, like](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
-    std::string why;
-    PoincareMap* m = cache->at(q, why);
-    if (m == nullptr) return why;
-    return (*m)(like, z, o);
-  };
-  family.label = [cache, like](const Eigen::VectorXd& z, double q) -> std::string {
-    std::string why;
-    PoincareMap* m = cache->at(q, why);
-    if (m == nullptr) return "invalid";
-    SectionState pt = like;
-    pt.z = z;
-    const MapStep s = m->apply(pt);
-    return s.failure ? "failed" : s.gait;
-  };
-  if (start.jacobian_exact) {
-    out.exact_jacobian = true;
-    family.state_jacobian = [cache, like](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J) -> std::optional<std::string> {
-      std::string why;
-      PoincareMap* m = cache->at(q, why);
-      if (m == nullptr) return why;
-      SectionState pt = like;
-      pt.z = z;
-      return m->jacobian(pt, J);
-    };
-  }
-  numerics::ContinuationOptions o;
-  const double width = std::abs(spec.to - spec.from);
-  o.initial_step = spec.step > 0 ? spec.step / width : 0.02;
-  o.max_step = 2 * o.initial_step;
-  o.min_step = 1e-9;
-  o.max_points = spec.max_points;
-  o.tolerance = cache->opt.newton.tolerance;
-  o.fd_relative_step = cache->opt.newton.fd_relative_step;
-  o.state_scale = like.scale(w0);
-  o.parameter_scale = 1;
-  o.locate_tolerance = 1e-9;
-  o.label_tolerance = 1e-7;  // in q: |Δp| <= 1e-7 |to - from|
-  out.branch = numerics::continue_fixed_points(family, start.point.z, 0.0, 1.0, o);
-  if (!out.branch.failure.empty()) {
-    out.failure = out.branch.failure;
-    return out;
-  }
-
-  // Rows: points and special points in the order of arclength, each with its step's quantities.
-  std::vector<std::pair<numerics::BranchPoint, std::string>> ordered;
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < out.branch.points.size(); ++i) {
-    ordered.emplace_back(out.branch.points[i], i == 0 ? "start" : "");
-    for (; k < out.branch.special.size() && out.branch.special[k].after == i; ++k) {
-      const auto& sp = out.branch.special[k];
-      std::string ev = numerics::to_string(sp.kind);
-      if (sp.kind == numerics::SpecialKind::LabelChange)
-        ev = fmt::format("gait {} -> {}", sp.label_before, sp.label_after);
-      ordered.emplace_back(sp.point, ev);
+  out.period = spec.period;
+  numerics::ContinuationOptions o = continuation_options(spec, cache->opt);
+  SectionState like;
+  if (spec.period == 1) {
+    const FixedPointReport start = find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section,
+                                                    initial_from_config(start_config));
+    out.state_names = start.point.names();
+    out.mode = mode_text(start.point);
+    if (!start.converged) {
+      out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure);
+      return out;
     }
-  }
-  out.stop_reason = out.branch.reached_end
-                        ? fmt::format("reached {} = {}", spec.param, format_number(spec.to))
-                        : fmt::format("ended at {} = {} (q = (p - from)/(to - from) = {}): {}", spec.param,
-                                      format_number(cache->value(out.branch.points.back().p)),
-                                      format_number(out.branch.points.back().p), out.branch.stop_reason);
-  if (!out.branch.reached_end) ordered.back().second = "end: " + out.stop_reason;
-  for (auto& [pt, ev] : ordered) {
-    GaitBranchRow r;
-    r.p = cache->value(pt.p);
-    r.event = ev;
-    std::string why;
-    if (PoincareMap* m = cache->at(pt.p, why)) {
-      SectionState s = like;
-      s.z = pt.z;
-      const MapStep step = m->apply(s);
-      if (!step.failure) {
-        r.gait = step.gait;
-        r.period = step.period;
-        r.speed = step.period > 0 ? step.distance / step.period : 0.0;
-        r.dissipated = step.dissipated;
-      }
+    out.exact_jacobian = start.jacobian_exact;
+    like = start.point;
+  } else {
+    // Newton on P^k from the state the transient reached (a period-1 gait is a fixed point of P^k too).
+    const AnalysisOptions& a = cache->opt;
+    if (auto e = settle_on_section(w0, map_options(cache->sim, a), cache->model, spec.section,
+                                   initial_from_config(start_config), a.transient_steps, like)) {
+      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from), *e);
+      return out;
     }
-    r.point = std::move(pt);
-    out.rows.push_back(std::move(r));
+    out.state_names = like.names();
+    out.mode = mode_text(like);
+    out.exact_jacobian = false;  // P^k's modes in between may differ (family_for)
+    o.state_scale = like.scale(w0);
+    numerics::BranchPoint pk;
+    if (auto e = numerics::fixed_point_at(family_for(cache, like, out.exact_jacobian), like.z, 0.0, o, pk)) {
+      out.failure = fmt::format("no period-{} orbit at {} = {} from the transient's state: {}", spec.period, spec.param,
+                                format_number(spec.from), *e);
+      return out;
+    }
+    like.z = pk.z;
   }
+  build(cache, like, o, out);
+  if (spec.switch_at_period_doubling) switch_at_first_period_doubling(cache, o, out);
   return out;
 }
+
 
 std::string gait_branch_csv(const GaitBranch& b) {
   std::vector<std::string> cols{"parameter"};
@@ -167,8 +298,8 @@ std::string gait_branch_csv(const GaitBranch& b) {
   CsvWriter csv(cols);
   for (const GaitBranchRow& r : b.rows) {
     csv.cell(r.p);
-    for (Eigen::Index i = 0; i < r.point.z.size(); ++i) csv.cell(r.point.z(i));
-    csv.cell(b.mode).cell(r.period).cell(r.speed).cell(r.dissipated).cell(r.gait);
+    for (Eigen::Index i = 0; i < r.state.size(); ++i) csv.cell(r.state(i));
+    csv.cell(mode_text(r.section)).cell(r.period).cell(r.speed).cell(r.dissipated).cell(r.gait);
     for (std::size_t k = 0; k < b.state_names.size(); ++k) {
       const bool has = k < r.point.multipliers.size();
       csv.cell(has ? std::abs(r.point.multipliers[k]) : NAN).cell(has ? std::arg(r.point.multipliers[k]) : NAN);

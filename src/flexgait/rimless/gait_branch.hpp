@@ -7,8 +7,16 @@
 /// map has one at the start, else central differences; ∂P/∂q by central differences.
 /// The gait label (stance-foot phases over the cycle) is watched: where it changes (a non-smooth
 /// boundary: a phase appears or vanishes) the change is located by bisection. The map keeps the
-/// section's discrete mode, so the branch continues through a boundary when the fixed point stays
-/// a fixed point of the same-mode map there, and ends (with the map's reason) when it does not.
+/// section's discrete mode (the stance foot's mode just before the touchdown), so a boundary where
+/// that mode changes (e.g. a slip phase that starts ever later reaches the section: the gait
+/// slip-stick becomes slip-stick-slip and the section state stick becomes slip-) ends a segment of
+/// the branch: its last point is within the parameter's difference step of the boundary. There
+/// the branch is carried over to the new mode (cross_section_mode in gait_branch.cpp): the last
+/// point written in the new mode (in_mode), Newton on the new mode's map a little beyond, the new
+/// segment continued back until it ends at the boundary from its side; when both ends meet (the
+/// fixed point is continuous there, as at the μ thresholds between behaviours) the branch goes on
+/// from there in the new mode, and the boundary is an event "section mode A -> B"; otherwise the
+/// branch ends and says why.
 #include <string>
 #include <vector>
 
@@ -24,12 +32,16 @@ struct GaitContinuationSpec {
   double step = 0;                   ///< first step in the key's unit (0: |to - from| / 50)
   int max_points = 2000;
   Section section = Section::Touchdown;
+  int period = 1;                    ///< continue fixed points of P^period (a period-k orbit)
+  bool switch_at_period_doubling = false;  ///< also the period-2k branch born at the first period doubling
 };
 
 /// One row of branch.csv: a point of the branch or a special point on it.
 struct GaitBranchRow {
   double p = 0;                      ///< parameter value (key's unit)
   numerics::BranchPoint point;       ///< z, multipliers, stability (its p is q)
+  SectionState section;              ///< the point on the section (its mode; z as in point)
+  Eigen::VectorXd state;             ///< the point in the branch's columns (state_names)
   std::string gait;
   double period = 0;                 ///< [s]
   double speed = 0;                  ///< mean hub speed along the slope [m/s]
@@ -39,20 +51,26 @@ struct GaitBranchRow {
 
 struct GaitBranch {
   std::string param;
-  std::vector<std::string> state_names;
-  std::string mode;                  ///< the section's discrete mode along the branch
+  std::vector<std::string> state_names;  ///< the columns: the largest mode's components (a sticking
+                                         ///< point's ẋ is the one ċ = 0 gives)
+  std::string mode;                  ///< the section's discrete mode at the start
   bool exact_jacobian = false;
-  numerics::Branch branch;           ///< in q
+  numerics::Branch branch;           ///< in q, all segments joined (z in each segment's mode)
+  int segments = 1;                  ///< pieces of the branch between changes of the section's mode
+  int period = 1;                    ///< fixed points of P^period
+  std::vector<GaitBranch> switched;  ///< the period-2k branch switched to at the first period doubling
   std::vector<GaitBranchRow> rows;   ///< points and special points in the order of arclength
   std::string stop_reason;           ///< why the branch ended, in the key's unit
   std::string failure;               ///< nonempty when the start has no fixed point
 };
 
-/// The branch from the gait found at `from` (find_fixed_point from the configured initial state).
+/// The branch from the gait found at `from` (find_fixed_point from the configured initial state;
+/// for period k > 1, Newton on P^k from the state the transient reaches). A row's period, speed,
+/// dissipated energy and gait ("a / b" for the k steps) are those of the k steps.
 /// Throws ConfigError when param is not a real key, from = to, or either end is not a valid value.
 GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec);
 
-/// branch.csv: parameter, the state's components, mode, period, speed, dissipated_per_step, gait,
+/// branch.csv: parameter, the state's components (state_names), mode (of each row), period, speed, dissipated_per_step, gait,
 /// abs_lambda_k and arg_lambda_k for every multiplier (largest first), stable, residual, event.
 std::string gait_branch_csv(const GaitBranch& b);
 

@@ -23,8 +23,9 @@ const std::vector<std::string> kEventColumns{"t", "kind", "leg", "modes"};
 const std::vector<std::string> kStepColumns{"step",  "stance_leg", "t_start",      "t_end", "duration",       "x_start",
                                             "x_end", "speed",      "energy_start", "gait",  "contact_phases", "complete"};
 
-// One row of log.csv; e0 = the run's initial mechanical energy [J].
-void log_row(CsvWriter& csv, const LogSample& s, double e0) {
+// One row of log.csv; e0 = the run's initial mechanical energy [J]. Writer: CsvWriter or Table.
+template <class Writer>
+void log_row(Writer& csv, const LogSample& s, double e0) {
   csv.cell(s.t);
   for (double v : s.q) csv.cell(v);
   for (const auto& c : s.contact) {
@@ -40,37 +41,49 @@ void log_row(CsvWriter& csv, const LogSample& s, double e0) {
   csv.end_row();
 }
 
-void event_row(CsvWriter& csv, const EventRecord& e) {
+template <class Writer>
+void event_row(Writer& csv, const EventRecord& e) {
   csv.cell(e.t).cell(run_event_name(e.kind)).cell(static_cast<long long>(e.leg));
   csv.cell(e.kind == RunEvent::Failure ? e.message : describe_contacts(e.contacts)).end_row();
 }
 
-void step_row(CsvWriter& csv, const StepRecord& s) {
+template <class Writer>
+void step_row(Writer& csv, const StepRecord& s) {
   const double dt = s.t_end - s.t_start;
   csv.cell(static_cast<long long>(s.index)).cell(static_cast<long long>(s.stance_leg)).cell(s.t_start).cell(s.t_end);
   csv.cell(dt).cell(s.x_start).cell(s.x_end).cell(dt > 0 ? (s.x_end - s.x_start) / dt : 0.0).cell(s.energy_start);
   csv.cell(gait_label(s.single_support)).cell(gait_label(s.contact)).cell(s.complete ? "true" : "false").end_row();
 }
 
+template <class Writer>
+Writer log_rows(const SimulationResult& r) {
+  Writer w(log_columns());
+  for (const auto& s : r.samples) log_row(w, s, r.energy_initial);
+  return w;
+}
+
+template <class Writer>
+Writer event_rows(const SimulationResult& r) {
+  Writer w(kEventColumns);
+  for (const auto& e : r.events) event_row(w, e);
+  return w;
+}
+
+template <class Writer>
+Writer step_rows(const SimulationResult& r) {
+  Writer w(kStepColumns);
+  for (const auto& s : r.steps) step_row(w, s);
+  return w;
+}
+
 }  // namespace
 
-std::string log_csv(const SimulationResult& r) {
-  CsvWriter csv(log_columns());
-  for (const auto& s : r.samples) log_row(csv, s, r.energy_initial);
-  return csv.str();
-}
-
-std::string events_csv(const SimulationResult& r) {
-  CsvWriter csv(kEventColumns);
-  for (const auto& e : r.events) event_row(csv, e);
-  return csv.str();
-}
-
-std::string steps_csv(const SimulationResult& r) {
-  CsvWriter csv(kStepColumns);
-  for (const auto& s : r.steps) step_row(csv, s);
-  return csv.str();
-}
+std::string log_csv(const SimulationResult& r) { return log_rows<CsvWriter>(r).str(); }
+std::string events_csv(const SimulationResult& r) { return event_rows<CsvWriter>(r).str(); }
+std::string steps_csv(const SimulationResult& r) { return step_rows<CsvWriter>(r).str(); }
+Table log_table(const SimulationResult& r) { return log_rows<Table>(r); }
+Table events_table(const SimulationResult& r) { return event_rows<Table>(r); }
+Table steps_table(const SimulationResult& r) { return step_rows<Table>(r); }
 
 std::string summary_json(const SimulationResult& r, const std::string& model) {
   nlohmann::ordered_json j;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/table.hpp"
 #include "flexgait/rimless/simulation.hpp"
 
 namespace flexgait::rimless {
@@ -19,6 +20,11 @@ std::string events_csv(const SimulationResult& result);
 std::string steps_csv(const SimulationResult& result);
 /// summary.json (pretty-printed, keys in a fixed order; numbers round-trip exactly).
 std::string summary_json(const SimulationResult& result, const std::string& model);
+/// The same three tables as typed columns (their csv() is the text above, byte for byte): for
+/// the Python bindings, whose arrays then need no text round trip.
+Table log_table(const SimulationResult& result);
+Table events_table(const SimulationResult& result);
+Table steps_table(const SimulationResult& result);
 
 /// Writes the four files into `dir` (each atomically).
 void write_run(const RunDirectory& dir, const SimulationResult& result, const std::string& model);

@@ -12,8 +12,6 @@ namespace {
 
 bool sticks(const SectionState& p) { return !p.flight && p.mode == FootMode::Stick; }
 
-std::string mode_text(const SectionState& p) { return p.flight ? "flight" : mode_name(p.mode); }
-
 // Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip").
 std::string joined_label(const std::vector<Phase>& first, const std::vector<Phase>& second) {
   std::vector<Phase> all;
@@ -24,6 +22,26 @@ std::string joined_label(const std::vector<Phase>& first, const std::vector<Phas
 }
 
 }  // namespace
+
+std::string mode_text(const SectionState& p) { return p.flight ? "flight" : mode_name(p.mode); }
+
+SectionState in_mode(const WheelParams& w, const SectionState& point, const SectionState& like) {
+  using S = StateIndex;
+  SectionState out = like;
+  if (point.model == Model::Rigid || (point.flight == like.flight && point.mode == like.mode)) {
+    out.z = point.z;
+    return out;
+  }
+  const std::vector<double> y = section_run(w, point).y0;
+  const std::vector<std::string> names = like.names();
+  out.z.resize(static_cast<Eigen::Index>(names.size()));
+  out.z(0) = point.z(0);  // β (touchdown) or y (upright): the same in every mode
+  for (std::size_t i = 1; i < names.size(); ++i) {
+    const int k = names[i] == "xd" ? S::xd : names[i] == "yd" ? S::yd : S::thetad;
+    out.z(static_cast<Eigen::Index>(i)) = y[static_cast<std::size_t>(k)];
+  }
+  return out;
+}
 
 std::vector<std::string> SectionState::names() const {
   if (model == Model::Rigid) return {"thetad"};

@@ -38,6 +38,15 @@ struct SectionState {
   Eigen::VectorXd scale(const WheelParams& w) const;
 };
 
+/// "stick", "slip+", "slip-" or "flight": the section point's discrete mode.
+std::string mode_text(const SectionState& point);
+
+/// The same physical section point written in the discrete mode of `like` (its model and section):
+/// the full state of section_run(w, point) reduced to like's components, e.g. a sticking point's
+/// ẋ (fixed by ċ = 0) added to make it a slipping point's state, or ẋ dropped the other way (exact
+/// only where ċ = 0). Used to carry a fixed point across a change of the section's foot mode.
+SectionState in_mode(const WheelParams& w, const SectionState& point, const SectionState& like);
+
 /// The flexible wheel's full state at a section point, its feet on the ground, and the events
 /// pending there (the landing at a touchdown section).
 RunSpec section_run(const WheelParams& w, const SectionState& point);

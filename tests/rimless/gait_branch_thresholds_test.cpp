@@ -1,0 +1,110 @@
+// The flexible wheel's gait continued in μ from 0.6 down (issue 18): across every behaviour
+// threshold that `analysis gait-vs-friction` bisects, including the changes of the touchdown
+// section's foot mode (the branch goes on in the new mode), to where the branch truly ends.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+#include "flexgait/rimless/analyses.hpp"
+#include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/gait_branch.hpp"
+#include "flexgait/rimless/sweep.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
+
+namespace flexgait::rimless {
+namespace {
+
+/// The threshold column of gait-vs-friction's thresholds.csv, computed as the command does
+/// (100 values of μ in [0.1, 1.5], bisection to 1e-4).
+std::vector<double> friction_thresholds(const Config& base) {
+  const SweepSpec sweep{"rimless.mu", 0.1, 1.5, 100};
+  std::vector<double> mus;
+  for (int i = 0; i < sweep.count; ++i) mus.push_back(sweep.value(i));
+  const std::vector<FrictionGait> gaits = friction_gaits(base, mus, Section::Touchdown);
+  std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, 1e-4));
+  std::string line;
+  std::getline(csv, line);  // header
+  std::vector<double> out;
+  while (std::getline(csv, line)) out.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  return out;
+}
+
+// Every threshold has a special point of the branch (a gait change, a change of the section's
+// mode, or the branch's end) within 1e-4 of it (the bisection's own tolerance), and the branch's
+// fixed points are the ones Newton finds directly from the configured start at the same μ, to
+// 1e-9 (both converged to ||P(z) - z|| <= 1e-10, multipliers below 0.93: |Δz| <~ 1e-9).
+TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  const GaitContinuationSpec spec{.param = "rimless.mu", .from = 0.6, .to = 0.05};
+  const GaitBranch b = continue_gait(base, spec);
+  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  EXPECT_EQ(b.segments, 4) << b.stop_reason;
+  // The branch ends where the sliding gait's friction balances gravity along the slope.
+  EXPECT_FALSE(b.branch.reached_end);
+  EXPECT_NE(b.stop_reason.find("mu_k = tan(slope)"), std::string::npos) << b.stop_reason;
+  EXPECT_NEAR(b.rows.back().p, std::tan(0.1), 1e-9);
+
+  std::vector<std::pair<double, std::string>> events;
+  for (const auto& r : b.rows)
+    if (!r.event.empty() && r.event != "start") events.emplace_back(r.p, r.event);
+  const std::vector<double> thresholds = friction_thresholds(base);
+  ASSERT_GE(thresholds.size(), 5u);
+  for (double t : thresholds) {
+    if (t > spec.from) continue;
+    double best = INFINITY;
+    std::string which;
+    for (const auto& [p, ev] : events)
+      if (std::abs(p - t) < best) {
+        best = std::abs(p - t);
+        which = ev;
+      }
+    EXPECT_LE(best, 1e-4) << "threshold " << t << ", nearest event " << which;
+  }
+  for (const char* boundary : {"section mode stick -> slip-", "section mode slip- -> stick", "section mode stick -> slip+"})
+    EXPECT_TRUE(std::any_of(events.begin(), events.end(), [&](const auto& e) { return e.second.starts_with(boundary); }))
+        << boundary;
+
+  // Direct Newton at branch points away from the boundaries: at least one per section mode.
+  std::map<std::string, int> compared;
+  for (std::size_t i = 0; i < b.rows.size(); i += 3) {
+    const GaitBranchRow& r = b.rows[i];
+    if (!r.event.empty()) continue;
+    const Config c = sweep_point_config(base, SweepSpec{spec.param, r.p, r.p, 1}, 0);
+    const SimulationOptions sim = simulation_from_config(c);
+    const FixedPointReport fp = find_fixed_point(wheel_from_config(c), sim, analysis_from_config(c), sim.model,
+                                                 Section::Touchdown, initial_from_config(c));
+    if (!fp.converged || fp.point.flight != r.section.flight || fp.point.mode != r.section.mode) continue;
+    ASSERT_EQ(fp.point.z.size(), r.point.z.size());
+    EXPECT_LE((fp.point.z - r.point.z).lpNorm<Eigen::Infinity>(), 1e-9) << "mu = " << r.p;
+    EXPECT_EQ(fp.gait, r.gait) << "mu = " << r.p;
+    ++compared[mode_text(r.section)];
+  }
+  for (const char* mode : {"stick", "slip-", "slip+"}) EXPECT_GE(compared[mode], 1) << mode;
+}
+
+// Over the slope the last stick phase before the landing vanishes at φ ≈ 0.2193 (the section's
+// mode stick -> slip+): the branch from 0.2 up and the one from 0.222 down both cross it and place
+// it within 1e-5 of each other (each within the parameter's difference step of the change; the
+// segment ends meet to 1e-3 of q = 0.035 wide intervals); both reach their ends.
+TEST(GaitBranchThresholds, SlopeBranchesCrossTheSectionModeChangeFromBothSides) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  std::vector<double> at;
+  for (const auto& [from, to, event] : {std::tuple{0.2, 0.2355, "section mode stick -> slip+"},
+                                        std::tuple{0.222, 0.2, "section mode slip+ -> stick"}}) {
+    const GaitBranch b = continue_gait(base, GaitContinuationSpec{.param = "rimless.slope", .from = from, .to = to});
+    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    EXPECT_TRUE(b.branch.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.segments, 2);
+    for (const auto& r : b.rows)
+      if (r.event.starts_with(event)) at.push_back(r.p);
+  }
+  ASSERT_EQ(at.size(), 2u);
+  EXPECT_NEAR(at[0], at[1], 1e-5);
+  EXPECT_NEAR(at[0], 0.2193, 1e-4);
+}
+
+}  // namespace
+}  // namespace flexgait::rimless
