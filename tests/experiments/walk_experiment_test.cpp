@@ -26,10 +26,9 @@ TEST(WalkExperiment, FourStepsWithoutFalling) {
     EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time << " s, step time " << step_time;
     EXPECT_EQ(m.steps_completed, 4);
     EXPECT_EQ(m.mujoco_warnings, 0);
-    // The F/T ZMP (what the controller sees) against the contact forces: 1.5 cm rms (the sensors
-    // miss the feet's own dynamics below them; with THORMANG3's inertials, issue 16, measured
-    // 11.4 mm at 1 s/step and 12.4 mm at 3 s/step, against under 10 mm on the earlier robot).
-    EXPECT_LT(m.zmp_ft_rms_error, 0.015);
+    // The F/T ZMP (what the controller sees) against the contact forces: 1 cm rms (the sensors
+    // miss the feet's own dynamics below them).
+    EXPECT_LT(m.zmp_ft_rms_error, 0.01);
     // The true ZMP is a centre of pressure: inside the true support polygon by construction
     // (to MuJoCo's contact penetration); and the robot kept it off the edges most of the time.
     EXPECT_GT(m.support_margin_min, -1e-3);
