@@ -62,7 +62,8 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
 
 double push_recovery_time(const PushRecoveryRunParams& p) {
   if (p.test.situation == PushSituation::kStanding) return p.test.stand_time;
-  const walking::Step& s = walking::plan_footsteps(p.run.walk).steps.at(static_cast<std::size_t>(p.test.step - 1));
+  const walking::WalkPlan plan = walking::plan_footsteps(p.run.walk);
+  const walking::Step& s = plan.steps.at(static_cast<std::size_t>(p.test.step - 1));
   return 0.5 * (s.t_lift + s.t_land);  // mid single support
 }
 
