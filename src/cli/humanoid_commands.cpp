@@ -71,7 +71,7 @@ int compensation_study(const RunOptions& run) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const RunDirectory dir(run.out);
-  dir.write_config(config);
+  dir.write_config(experiments::with_derived_values(config, params));
   const auto cases = experiments::compensation_cases(params);
   const auto results = run_study(dir, cases);
   const std::string comparison = experiments::compensation_comparison_json(cases, results);
@@ -118,7 +118,7 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const RunDirectory dir(run.out);
-  dir.write_config(config);
+  dir.write_config(experiments::with_derived_values(config, params));
   const auto cases = experiments::mismatch_cases(params, scales);
   const auto results = run_study(dir, cases);
   const std::string comparison = experiments::mismatch_comparison_json(cases, results);
@@ -155,7 +155,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const RunDirectory dir(run.out);
-  dir.write_config(config);
+  dir.write_config(experiments::with_derived_values(config, params));
   if (params.loaded && !run.json)
     for (int side = 0; side < 2; ++side) {
       const std::string why = walking::analytic_ik_mismatch(*params.loaded, side);

@@ -34,10 +34,11 @@ nlohmann::ordered_json configuration_json(const Schema& schema) {
     nlohmann::ordered_json k;
     k["key"] = p.key;
     k["type"] = type_name(p.type);
-    k["default"] = p.fallback;
+    k["default"] = p.derived.empty() ? p.fallback : "auto";
     k["unit"] = p.unit;
     k["doc"] = p.doc;
     k["allowed"] = p.allowed();
+    if (!p.derived.empty()) k["derived"] = p.derived;
     if (p.type == ParamType::List) {
       nlohmann::ordered_json fields = nlohmann::ordered_json::array();
       for (const ParamSpec& f : p.item_fields)

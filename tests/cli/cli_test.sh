@@ -237,6 +237,17 @@ expect_usage_error walk-terrain-step-beyond-reach "key 'terrain.step.height' = '
   --set terrain.step.height=-0.09
 expect_usage_error walk-terrain-flat-rough "key 'terrain.rough.amplitude' = '0'" humanoid walk --set terrain.kind=rough \
   --set terrain.rough.amplitude=0
+# Walking height and step width: the robot's own unless set (auto), checked against its legs and soles.
+expect_usage_error walk-pelvis-beyond-reach "key 'walk.pelvis_height' = '0.8'" humanoid walk --set walk.pelvis_height=0.8
+expect_usage_error walk-soles-overlap "key 'walk.step_width' = '0.1'" humanoid walk --set walk.step_width=0.1
+expect_usage_error walk-height-not-auto "key 'walk.steps'" humanoid walk --set walk.steps=auto
+check "builtin walk height is written derived" grep -q "pelvis_height: 0.723" "$work/walk/config.yaml"
+"$exe" humanoid walk --config "$src/tests/humanoid/data/small_biped.yaml" --set walk.pelvis_height=auto \
+  --set walk.step_width=auto --set walk.steps=0 --set walk.start_time=0.1 --set walk.end_time=0 --out "$work/biped" \
+  --no-plot >/dev/null 2>"$work/err"
+check "second robot stands at its own height: $(cat "$work/err")" test $? -eq 0
+check "second robot's derived height in config.yaml" grep -q "pelvis_height: 0.57 " "$work/biped/config.yaml"
+check "second robot's derived step width in config.yaml" grep -q "step_width: 0.15 " "$work/biped/config.yaml"
 
 # Humanoid compensation study and stiffness mismatch (one short step each).
 "$exe" humanoid compensation --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --out "$work/comp" \

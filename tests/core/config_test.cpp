@@ -73,6 +73,34 @@ TEST(Config, ResolvedYamlRoundTripsExactly) {
   EXPECT_EQ(again.to_yaml(), c.to_yaml());
 }
 
+// A derived key (ParamSpec::derived): `auto` until set, `auto` again on request; its YAML says
+// `auto` while it is derived, so a written configuration derives it again when read back.
+TEST(Config, DerivedKeyIsAutoUntilSetAndRoundTripsAsAuto) {
+  Schema s = test_schema();
+  ParamSpec height = real_param("walk.height", "0.7", "m", "walking height", 0.1, 3);
+  height.derived = "from the robot";
+  s.add(height);
+  Config c = resolve_config(s, std::nullopt, {});
+  EXPECT_TRUE(c.derived("walk.height"));
+  EXPECT_FALSE(c.derived("model.K"));
+  EXPECT_NE(c.to_yaml().find("height: auto"), std::string::npos) << c.to_yaml();
+  const Config again = resolve_config(s, write_temp("derived.yaml", c.to_yaml()), {});
+  EXPECT_TRUE(again.derived("walk.height"));
+  EXPECT_EQ(again.to_yaml(), c.to_yaml());
+
+  c.set("walk.height", "0.65");
+  EXPECT_FALSE(c.derived("walk.height"));
+  EXPECT_EQ(c.real("walk.height"), 0.65);
+  EXPECT_NE(c.to_yaml().find("height: 0.65"), std::string::npos);
+  c.set("walk.height", "auto");
+  EXPECT_TRUE(c.derived("walk.height"));
+  EXPECT_EQ(c.origin("walk.height"), "--set");
+  EXPECT_NE(height.allowed().find("or auto (from the robot)"), std::string::npos) << height.allowed();
+
+  // A key that is not derived refuses `auto` as any other non-number.
+  EXPECT_THROW(c.set("model.K", "auto"), ConfigError);
+}
+
 TEST(Config, UnknownKeyInFileIsAnError) {
   const auto file = write_temp("typo.yaml", "model:\n  KK: 5\n");
   const ConfigError e = expect_error(file, {});

@@ -115,8 +115,10 @@ Experiment humanoid_walk() {
   // The walk's planned duration: a point costs about its simulated time (a fall ends it sooner).
   e.cost = [](const Config& c) { return static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"); };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
-    const experiments::WalkResult r = experiments::run_walk(experiments::walk_run_from_config(c));
-    if (const auto dir = kept_run(c, run_dir)) return experiments::write_walk(*dir, "", r);
+    const experiments::WalkRunParams params = experiments::walk_run_from_config(c);
+    const experiments::WalkResult r = experiments::run_walk(params);
+    if (const auto dir = kept_run(experiments::with_derived_values(c, params), run_dir))
+      return experiments::write_walk(*dir, "", r);
     return experiments::walk_summary_json(r);
   };
   return e;

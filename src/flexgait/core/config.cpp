@@ -89,6 +89,11 @@ std::string suggestion(const Schema& schema, const std::string& key) {
 }  // namespace
 
 std::string ParamSpec::allowed() const {
+  if (!derived.empty()) {
+    ParamSpec one = *this;
+    one.derived.clear();
+    return one.allowed() + ", or auto (" + derived + ")";
+  }
   if (length > 0) {
     ParamSpec one = *this;
     one.length = 0;
@@ -404,8 +409,13 @@ void Config::set(const std::string& key, const std::string& text, const std::str
                                        suggestion(schema_, key)));
   if (list && spec->type != ParamType::List)
     throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, one_line(key)));
-  values_[key] = parse_value(*spec, text, origin);
+  const bool derive = !spec->derived.empty() && text == "auto";
+  values_[key] = parse_value(*spec, derive ? spec->fallback : text, origin);
   origins_[key] = origin;
+  if (derive)
+    derived_.insert(key);
+  else
+    derived_.erase(key);
 }
 
 std::string Config::to_yaml() const {
@@ -428,9 +438,11 @@ std::string Config::to_yaml() const {
     out << YAML::Key << parts.back() << YAML::Value;
     if (spec.type == ParamType::List)
       emit_list(out, std::get<ConfigList>(values_.at(spec.key)), spec.item_fields);
+    else if (derived(spec.key))
+      out << "auto";
     else
       out << format_value(values_.at(spec.key));
-    std::string comment = spec.doc;
+    std::string comment = derived(spec.key) ? spec.doc + "; auto: " + spec.derived : spec.doc;
     if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
     if (!comment.empty()) out << YAML::Comment(comment);
   }
@@ -446,6 +458,7 @@ Config resolve_config(const Schema& schema, const std::optional<std::filesystem:
   for (const auto& spec : schema.params()) {
     cfg.values_[spec.key] = parse_value(spec, spec.fallback, "default");
     cfg.origins_[spec.key] = "default";
+    if (!spec.derived.empty()) cfg.derived_.insert(spec.key);
   }
   if (file) {
     for (const ConfigEntry& e : read_config_file(*file)) cfg.set(e.key, e.text, e.origin, e.list);

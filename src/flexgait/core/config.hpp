@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -59,6 +60,10 @@ struct ParamSpec {
   std::vector<std::string> choices;  ///< allowed values (Choice)
   std::vector<ParamSpec> item_fields;  ///< List: the fields of one item (key: the field's name)
   int length = 0;  ///< a field of a List item: 0 one value, n > 0 a list of exactly n values of `type`
+  /// Non-empty: the key's value is derived from other inputs unless set (e.g. walk.pelvis_height
+  /// from the robot); says how. Such a key also takes the value `auto` (derive it), and a
+  /// configuration writes it as `auto` while it is derived. `fallback` is then only a placeholder.
+  std::string derived;
 
   /// Human-readable domain, e.g. "a real number > 0" or "one of flexible, rigid".
   std::string allowed() const;
@@ -114,6 +119,8 @@ class Config {
   const ConfigList& list(const std::string& key) const;
   /// Where the value came from: "default", "--set", or "FILE:LINE".
   const std::string& origin(const std::string& key) const;
+  /// The key (ParamSpec::derived non-empty) is to be derived: left unset or set to `auto`.
+  bool derived(const std::string& key) const { return derived_.count(key) > 0; }
   /// Replaces a value after validation against the schema (used by sweeps).
   /// `list`: the text is a YAML list from a file (refused by a key that takes one value).
   void set(const std::string& key, const std::string& text, const std::string& origin = "--set", bool list = false);
@@ -128,6 +135,7 @@ class Config {
   Schema schema_;
   std::map<std::string, ConfigValue> values_;
   std::map<std::string, std::string> origins_;
+  std::set<std::string> derived_;  ///< keys left to their derivation (ParamSpec::derived)
 };
 
 /// Runs a cross-field check of `config`: a ConfigError it throws naming a key of `config` is

@@ -74,6 +74,7 @@ struct FieldInfo {
   std::string_view doc{};   ///< one line: what it is
   Bounds bounds{};          ///< allowed values of a parameter
   bool present = true;      ///< results: false when the field does not apply to this value (left out of JSON)
+  std::string_view derived{};  ///< a parameter derived unless set (ParamSpec::derived): how
 };
 
 namespace detail {
@@ -184,6 +185,7 @@ ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info
   p.key = std::string(key);
   p.unit = std::string(info.unit);
   p.doc = std::string(info.doc);
+  p.derived = std::string(info.derived);
   p.min = info.bounds.min;
   p.max = info.bounds.max;
   p.min_inclusive = info.bounds.min_inclusive;

@@ -37,15 +37,35 @@ bool finite_truth(const humanoid::GroundTruth& g) {
          finite(g.pelvis_quat) && finite(g.com);
 }
 
-/// A step the legs cannot take: the controller walks at walk.pelvis_height above z = 0 (it is not
-/// told of the step), so a foot landing on a step up must fold its leg by h (hip to ankle at least
-/// 5 % of thigh + shank, as standing_pose) and one reaching down a step must stretch by |h|.
-void check_step_reach(const WalkRunParams& p) {
+/// The robot's own walking height and step width where the configuration leaves them to it
+/// (walk.pelvis_height, walk.step_width: auto, the defaults; issue 16).
+void apply_stance_defaults(const Config& c, const walking::RobotModel& model, walking::WalkParams& walk) {
+  const walking::StanceDefaults d = walking::stance_defaults(model);
+  if (c.derived("walk.pelvis_height")) walk.pelvis_height = d.pelvis_height;
+  if (c.derived("walk.step_width")) walk.step_width = d.step_width;
+}
+
+/// A stance the legs cannot take: hip to ankle between 45 % and 97.5 % of thigh + shank (the
+/// builtin: pelvis 0.478–0.793 m), soles apart. And a step the legs cannot take: the controller
+/// walks at walk.pelvis_height above z = 0 (it is not told of the step), so a foot landing on a
+/// step up must fold its leg by h (hip to ankle at least 5 % of thigh + shank, as standing_pose)
+/// and one reaching down a step must stretch by |h|.
+void check_reach(const WalkRunParams& p, const walking::RobotModel& model) {
+  const walking::LegReach reach = walking::leg_reach(model);
+  const double L = reach.length, leg = walking::hip_to_ankle(reach, p.walk.pelvis_height);
+  const double lowest = reach.stretched_height - 0.55 * L, highest = reach.stretched_height - 0.025 * L;
+  if (leg < 0.45 * L || leg > 0.975 * L)
+    throw ConfigError("walk.pelvis_height",
+                      fmt::format("key 'walk.pelvis_height' = '{}': this robot's legs ({:.4f} m thigh + shank, {:.4f} m "
+                                  "stretched) stand with the pelvis from {:.4f} to {:.4f} m (hip to ankle 45-97.5 % of "
+                                  "the leg)", p.walk.pelvis_height, L, reach.stretched_height, lowest, highest));
+  if (p.walk.step_width <= model.sole_width)
+    throw ConfigError("walk.step_width", fmt::format("key 'walk.step_width' = '{}': the soles ({:.4f} m wide) would "
+                                                     "overlap; allowed: more than {:.4f} m",
+                                                     p.walk.step_width, model.sole_width, model.sole_width));
   const humanoid::TerrainParams& t = p.plant.terrain;
-  if (t.kind != humanoid::TerrainKind::kStep || p.loaded) return;  // (the builtin robot's legs; a loaded one: the key's bounds)
-  const double reach = p.robot.thigh + p.robot.shank;
-  const double leg = p.walk.pelvis_height - p.robot.hip_axes_depth - p.robot.ankle_to_sole;  // hip to ankle axes standing
-  const double up = leg - 0.05 * reach, down = reach - leg;
+  if (t.kind != humanoid::TerrainKind::kStep) return;
+  const double up = leg - 0.05 * L, down = L - leg;
   if (t.step_height > up || -t.step_height > down)
     throw ConfigError("terrain.step.height",
                       fmt::format("key 'terrain.step.height' = '{}': beyond the legs' reach at walk.pelvis_height = {} "
@@ -67,11 +87,22 @@ WalkRunParams walk_run_from_config(const Config& c) {
       p.description.description = (std::filesystem::path(origin.substr(0, colon)).parent_path() / path).string();
     check_with_origin(c, [&] {
       p.loaded = std::make_shared<const humanoid::LoadedRobot>(humanoid::load_robot(p.description));
-      (void)walking::make_robot_model(*p.loaded);  // refuses a foot the controller cannot handle
     });
   }
-  check_with_origin(c, [&] { check_step_reach(p); });
+  check_with_origin(c, [&] {
+    const walking::RobotModel model = walk_controller_model(p);  // refuses a foot the controller cannot handle
+    apply_stance_defaults(c, model, p.walk);
+    check_reach(p, model);
+  });
   return p;
+}
+
+Config with_derived_values(const Config& config, const WalkRunParams& params) {
+  Config out = config;
+  for (const auto& [key, value] : {std::pair{"walk.pelvis_height", params.walk.pelvis_height},
+                                   std::pair{"walk.step_width", params.walk.step_width}})
+    if (out.derived(key)) out.set(key, fmt::format("{}", value), "auto (from the robot)");
+  return out;
 }
 
 humanoid::TwinModel walk_twin(const WalkRunParams& params) {

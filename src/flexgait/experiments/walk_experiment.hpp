@@ -19,6 +19,7 @@
 #include "flexgait/twin/plant.hpp"
 #include "flexgait/robot/robot_description.hpp"
 #include "flexgait/robot/robot_params.hpp"
+#include "flexgait/walking/stance_defaults.hpp"
 #include "flexgait/walking/walk_params.hpp"
 #include "flexgait/walking/walking_controller.hpp"
 
@@ -66,6 +67,9 @@ inline Schema walk_run_schema() { return schema_of<WalkRunParams>(); }
 /// The run's parameters (the controller believes the twin's robot); throws ConfigError as plant_from_config
 /// and, for a description file, as humanoid::load_robot and walking::make_robot_model.
 WalkRunParams walk_run_from_config(const Config& config);
+/// `config` with the values walk_run_from_config derived from the robot (the keys left `auto`)
+/// written in, so a run directory's config.yaml replays its walk on its own.
+Config with_derived_values(const Config& config, const WalkRunParams& params);
 /// The twin of the run's robot (builtin or loaded).
 humanoid::TwinModel walk_twin(const WalkRunParams& params);
 /// The controller's model of the run's robot (its belief, controller_robot, for the builtin).

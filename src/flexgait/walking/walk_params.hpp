@@ -13,12 +13,12 @@ namespace flexgait::walking {
 struct WalkParams {
   int steps = 10;               ///< footsteps, the last one closes the feet side by side
   double step_length = 0.10;    ///< advance of each footprint over the previous one [m]
-  double step_width = 0.186;    ///< lateral distance between the feet [m]
+  double step_width = 0.186;    ///< lateral distance between the sole centres [m] (auto: stance_defaults.hpp)
   double step_time = 1.0;       ///< one step: double support then single support [s]
   double dsp_ratio = 0.2;       ///< double-support share of a step
   double turn = 0.0;            ///< heading change per step [rad] (> 0: left)
   double swing_height = 0.05;   ///< swing foot apex above the floor [m]
-  double pelvis_height = 0.723; ///< pelvis origin above the floor [m] (ROBOTIS's walking height, spec "The robot")
+  double pelvis_height = 0.723; ///< pelvis origin above the floor [m] (auto: stance_defaults.hpp; the builtin's is ROBOTIS's)
   double start_time = 1.5;      ///< standing before the first step [s]
   double end_time = 2.0;        ///< standing after the last step [s]
   double preview_time = 1.6;    ///< preview horizon [s]
@@ -30,12 +30,16 @@ struct WalkParams {
     v("walk.steps", s.steps, {.doc = "footsteps (the last closes the feet side by side)", .bounds = closed(0, 10000)});
     v("walk.step_length", s.step_length,
       {.unit = "m", .doc = "advance of each footprint over the previous", .bounds = closed(-0.3, 0.3)});
-    v("walk.step_width", s.step_width, {.unit = "m", .doc = "lateral distance between the feet", .bounds = closed(0.15, 0.4)});
+    v("walk.step_width", s.step_width,
+      {.unit = "m", .doc = "lateral distance between the sole centres", .bounds = closed(0.02, 2.0),
+       .derived = "the hip points' lateral distance, to 1 mm (the builtin: 0.186 m)"});
     v("walk.step_time", s.step_time, {.unit = "s", .doc = "one step: double then single support", .bounds = closed(0.3, 100)});
     v("walk.dsp_ratio", s.dsp_ratio, {.doc = "double-support share of a step", .bounds = left_open(0.0, 0.9)});
     v("walk.turn", s.turn, {.unit = "rad", .doc = "heading change per step (> 0: left)", .bounds = closed(-0.5, 0.5)});
     v("walk.swing_height", s.swing_height, {.unit = "m", .doc = "swing foot apex above the floor", .bounds = closed(0.0, 0.2)});
-    v("walk.pelvis_height", s.pelvis_height, {.unit = "m", .doc = "pelvis origin above the floor", .bounds = closed(0.5, 0.79)});
+    v("walk.pelvis_height", s.pelvis_height,
+      {.unit = "m", .doc = "pelvis origin above the floor", .bounds = closed(0.1, 3.0),
+       .derived = "the stretched legs' height less 14.08 % of thigh + shank, to 1 mm (the builtin: 0.723 m, ROBOTIS's)"});
     v("walk.start_time", s.start_time, {.unit = "s", .doc = "standing before the first step", .bounds = closed(0.0, 100)});
     v("walk.end_time", s.end_time, {.unit = "s", .doc = "standing after the last step", .bounds = closed(0.0, 100)});
     v("walk.preview_time", s.preview_time, {.unit = "s", .doc = "preview horizon", .bounds = closed(0.1, 5)});
