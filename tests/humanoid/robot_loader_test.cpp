@@ -14,6 +14,7 @@
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
+#include "flexgait/robot/urdf_export.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
@@ -43,8 +44,10 @@ struct Compiled {
     for (int i = 0; i < 3; ++i) d->qpos[i] = pelvis.p(i);
     const Eigen::Quaterniond quat(pelvis.R);
     d->qpos[3] = quat.w(), d->qpos[4] = quat.x(), d->qpos[5] = quat.y(), d->qpos[6] = quat.z();
-    for (int j = 0; j < kJoints; ++j)
-      d->qpos[m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str())]] = q[j];
+    for (int j = 0; j < kJoints; ++j) {
+      const int id = mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str());
+      if (id >= 0) d->qpos[m->jnt_qposadr[id]] = q[j];  // (a robot without a waist has no waist_yaw)
+    }
     mj_forward(m, d);
   }
 };
@@ -193,6 +196,29 @@ TEST(RobotLoader, SecondRobotWalks) {
     EXPECT_EQ(r.metrics.ik_clamped, 0);
     EXPECT_EQ(r.metrics.mujoco_warnings, 0);
   }
+}
+
+// A robot without a waist (robot.joints.waist_yaw: none): its trunk is rigid in the twin (no waist
+// joint, no drive) and in the controller's model (the chest joint −1 carrying the trunk's mass),
+// which still agrees with MuJoCo's to 1e-10; it walks.
+TEST(RobotLoader, RobotWithoutAWaistHasARigidTrunk) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
+  experiments::WalkRunParams walk = experiments::walk_run_from_config(
+      resolve_config(experiments::walk_run_schema(), file, {"robot.joints.waist_yaw=none", "walk.steps=4"}));
+  ASSERT_TRUE(walk.loaded);
+  EXPECT_FALSE(walk.loaded->has_joint(kWaistYaw));
+  const std::string twin = twin_mjcf(*walk.loaded, walk.robot, walk.plant);
+  EXPECT_EQ(twin.find("waist_yaw"), std::string::npos);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  EXPECT_EQ(model.bodies[1].joint, -1);
+  EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
+  EXPECT_NE(urdf_mapping(*walk.loaded).find("robot.joints.waist_yaw=none"), std::string::npos);
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_reason << r.metrics.failure;
+  EXPECT_EQ(r.metrics.steps_completed, 4);
+  EXPECT_EQ(r.metrics.mujoco_warnings, 0);
 }
 
 std::string error_key(const std::string& text, const RobotDescriptionParams& params) {

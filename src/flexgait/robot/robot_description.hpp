@@ -48,7 +48,8 @@ struct RobotDescriptionParams {
       {.doc = "builtin (the generated THORMANG-class robot) or a path to an MJCF (.xml) or URDF (.urdf) file"});
     for (int j = 0; j < kJoints; ++j)
       v("robot.joints." + std::string(kJointNames[j]), s.joints[j],
-        {.doc = "name in the description file of this hinge joint"});
+        {.doc = j == kWaistYaw ? "name in the description file of this hinge joint, or none (a trunk without a waist)"
+                               : "name in the description file of this hinge joint"});
     for (int side = 0; side < 2; ++side) {
       const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
       v(f + ".body", s.feet[side].body, {.doc = "foot body (below the ankle-roll joint; the F/T sensor sits at its joint to its parent)"});

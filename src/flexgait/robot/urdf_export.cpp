@@ -87,6 +87,7 @@ std::string urdf_mapping(const LoadedRobot& r) {
   for (const LoadedBody& body : r.bodies)
     for (const LoadedJoint& j : body.joints)
       if (j.mapped >= 0) out += fmt::format("robot.joints.{}={}\n", kJointNames[j.mapped], j.name);
+  if (!r.has_joint(kWaistYaw)) out += fmt::format("robot.joints.{}=none\n", kJointNames[kWaistYaw]);
   for (int side = 0; side < 2; ++side) {
     const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
     const LoadedBody& foot = r.bodies[static_cast<std::size_t>(r.foot[side])];

@@ -22,6 +22,13 @@ int require(const mjModel* m, mjtObj type, const std::string& name) {
   return id;
 }
 
+/// The twin's joint `j`: every leg joint is there; the waist may be absent (a rigid trunk,
+/// ElasticDrives::kAbsentJoint).
+int twin_joint(const mjModel* m, int j) {
+  const int id = mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str());
+  return j == kWaistYaw && id < 0 ? ElasticDrives::kAbsentJoint : require(m, mjOBJ_JOINT, std::string(kJointNames[j]));
+}
+
 int sensor_adr(const mjModel* m, const char* name) { return m->sensor_adr[require(m, mjOBJ_SENSOR, name)]; }
 
 /// MuJoCo's state of one model, copied with mj_copyData.
@@ -123,7 +130,7 @@ ElasticDrives make_drives(const mjModel* m, const PlantParams& params) {
   std::vector<ActuatorParams> act;
   const JointVector stiffness = params.gear_stiffness();
   for (int j = 0; j < kJoints; ++j) {
-    joints.push_back(require(m, mjOBJ_JOINT, std::string(kJointNames[j])));
+    joints.push_back(twin_joint(m, j));
     ActuatorParams a;
     a.k = stiffness[j];
     a.d = params.gear_damping;
@@ -167,9 +174,10 @@ HumanoidPlant::Impl::Impl(const TwinModel& twin, const PlantParams& plant, Terra
       drives(make_drives(m, plant)),
       state(m, static_cast<std::uint64_t>(plant.noise_seed)) {
   drives.take_springs(m);  // before anything runs; the model is const from here on
-  for (int j = 0; j < kJoints; ++j) joint_id[j] = require(m, mjOBJ_JOINT, std::string(kJointNames[j]));
+  for (int j = 0; j < kJoints; ++j) joint_id[j] = twin_joint(m, j);
   (void)require(m, mjOBJ_GEOM, "floor");
-  push_body = {1, m->jnt_bodyid[joint_id[kWaistYaw]]};  // the root body, the waist joint's body
+  // The root body, and the waist joint's body (the root itself for a trunk without a waist).
+  push_body = {1, joint_id[kWaistYaw] < 0 ? 1 : m->jnt_bodyid[joint_id[kWaistYaw]]};
   sole_geom = {require(m, mjOBJ_GEOM, "l_sole"), require(m, mjOBJ_GEOM, "r_sole")};
   ft_site = {require(m, mjOBJ_SITE, "l_ft"), require(m, mjOBJ_SITE, "r_ft")};
   ft_sensor_adr = {sensor_adr(m, "l_ft_force"), sensor_adr(m, "l_ft_torque"), sensor_adr(m, "r_ft_force"),
@@ -217,7 +225,8 @@ void HumanoidPlant::reset(const JointVector& pose) {
   st.accel_fault = FaultChannel<3>(f[kAccel], T);
   st.ahrs_fault = FaultChannel<4>(f[kAhrs], T);
   st.encoder_fault = FaultChannel<1>(f[kEncoder], T);
-  for (int j = 0; j < kJoints; ++j) d->qpos[m->jnt_qposadr[p.joint_id[j]]] = pose[j];
+  for (int j = 0; j < kJoints; ++j)
+    if (p.joint_id[j] >= 0) d->qpos[m->jnt_qposadr[p.joint_id[j]]] = pose[j];
   // Level pelvis, then lower it until the lower sole rests on the floor.
   d->qpos[0] = d->qpos[1] = 0.0;
   d->qpos[2] = 2.0;
@@ -367,6 +376,7 @@ GroundTruth HumanoidPlant::truth() const {
   GroundTruth g;
   g.t = d->time;
   for (int j = 0; j < kJoints; ++j) {
+    if (p.joint_id[j] < 0) continue;  // absent (a rigid trunk): its truth stays 0
     const double q = d->qpos[m->jnt_qposadr[p.joint_id[j]]], v = d->qvel[m->jnt_dofadr[p.joint_id[j]]];
     g.link_angle[j] = q;
     g.link_velocity[j] = v;

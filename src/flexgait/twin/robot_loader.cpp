@@ -121,8 +121,10 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
   for (int j = 0; j < kJoints; ++j) {
     const std::string key = "robot.joints." + std::string(kJointNames[j]);
     const std::string& name = params.joints[j];
-    if (j == kWaistYaw && name == "none")
-      fail(key, name, "a robot without a waist joint is not supported yet: map a hinge of the trunk");
+    if (j == kWaistYaw && name == "none") {  // a trunk without a waist: the chest is rigid on the pelvis
+      jid[j] = -1;
+      continue;
+    }
     jid[j] = mj_name2id(m, mjOBJ_JOINT, name.c_str());
     if (jid[j] < 0) fail(key, name, fmt::format("no joint of that name in {}", source));
     if (m->jnt_type[jid[j]] != mjJNT_HINGE) fail(key, name, "not a hinge (revolute) joint");

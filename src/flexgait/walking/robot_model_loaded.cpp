@@ -84,9 +84,14 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     return Vector3d(R0[static_cast<std::size_t>(body)] * vec(r.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)].axis));
   };
   m.bodies[1].parent = 0;
-  m.bodies[1].joint = humanoid::kWaistYaw;
-  m.bodies[1].axis = joint_axis(humanoid::kWaistYaw);
-  anchor[1] = joint_anchor(humanoid::kWaistYaw);
+  if (r.has_joint(humanoid::kWaistYaw)) {
+    m.bodies[1].joint = humanoid::kWaistYaw;
+    m.bodies[1].axis = joint_axis(humanoid::kWaistYaw);
+    anchor[1] = joint_anchor(humanoid::kWaistYaw);
+  } else {  // a trunk without a waist: the chest is the root's rigid part and takes its mass
+    m.bodies[1].axis = Vector3d::UnitZ();
+    anchor[1] = {0, Vector3d::Zero()};
+  }
   for (int side = 0; side < 2; ++side) {
     const int b0 = 2 + 7 * side, j0 = humanoid::leg_first_joint(side);
     for (int i = 0; i < 7; ++i) {

@@ -21,7 +21,9 @@ namespace flexgait::humanoid {
 /// The drives' configuration (immutable while running); their states live with the plant's state.
 class ElasticDrives {
  public:
-  /// \param joints MuJoCo joint ids (hinges whose damping the model holds).
+  /// A joint the robot does not have (a trunk without a waist): its drive reads 0 and acts on nothing.
+  static constexpr int kAbsentJoint = -1;
+  /// \param joints MuJoCo joint ids (hinges whose damping the model holds), or kAbsentJoint.
   ElasticDrives(const mjModel* m, std::vector<int> joints, std::vector<ActuatorParams> params);
   /// Zeroes the joints' MuJoCo stiffness: the drives apply the spring (call before running).
   void take_springs(mjModel* m) const;
