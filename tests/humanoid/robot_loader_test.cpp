@@ -300,6 +300,15 @@ TEST(RobotLoader, SoleBySizeAndCentre) {
   }
   const Compiled twin(twin_mjcf(r, RobotParams{}, PlantParams{}));
   EXPECT_GE(mj_name2id(twin.m, mjOBJ_GEOM, "l_sole"), 0);
+  // Soles that differ are refused by the controller's model, naming the right foot.
+  p.feet[1].sole_size = "0.22 0.16";
+  try {
+    (void)walking::make_robot_model(load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "b.xml", p));
+    ADD_FAILURE() << "different soles accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "robot.feet.right.body");
+    EXPECT_NE(std::string(e.what()).find("0.22 x 0.16 m"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -177,6 +177,14 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     if (leg.analytic) leg.sole_shift = Vector3d((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).x(),
                                                 (offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).y(), 0);
   }
+  // One sole rectangle for both feet (the plan's support polygons, the CoP limits): a robot
+  // whose soles differ is refused rather than walked on the left foot's numbers.
+  if (std::abs(r.sole[0].length - r.sole[1].length) > 1e-9 || std::abs(r.sole[0].width - r.sole[1].width) > 1e-9)
+    throw ConfigError("robot.feet.right.body",
+                      fmt::format("key 'robot.feet.right.body' = '{}': its sole ({} x {} m) differs from the left "
+                                  "foot's ({} x {} m); flexgait needs the same sole on both feet",
+                                  r.bodies[static_cast<std::size_t>(r.foot[1])].name, r.sole[1].length, r.sole[1].width,
+                                  r.sole[0].length, r.sole[0].width));
   m.sole_length = r.sole[0].length;
   m.sole_width = r.sole[0].width;
   return m;
