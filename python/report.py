@@ -280,12 +280,22 @@ def render_sections(env, references, files, exit_codes):
     return sections
 
 
-def figures(root, run_dir):
-    """The PNG files of a run directory, sorted by name."""
+def files_ending(root, run_dir, suffix):
+    """The files of a run directory (not its subdirectories) whose names end with suffix, sorted."""
     path = os.path.join(root, run_dir)
     if not os.path.isdir(path):
         return []
-    return sorted(f for f in os.listdir(path) if f.endswith(".png"))
+    return sorted(f for f in os.listdir(path) if f.endswith(suffix) and os.path.isfile(os.path.join(path, f)))
+
+
+def figures(root, run_dir):
+    """The PNG files of a run directory, sorted by name."""
+    return files_ending(root, run_dir, ".png")
+
+
+def videos(root, run_dir):
+    """The MP4 files of a run directory (humanoid walk --render), sorted by name."""
+    return files_ending(root, run_dir, ".mp4")
 
 
 def load_manifest(root):
@@ -303,7 +313,8 @@ def render_page(root, references_path, template_path):
     env = make_environment(os.path.dirname(os.path.abspath(template_path)))
     exit_codes = {r["dir"]: r["exit_code"] for r in manifest["runs"]}
     sections = render_sections(env, references, RunFiles(root), exit_codes)
-    runs = [{**r, "caption": r.get("caption", ""), "figures": figures(root, r["dir"])} for r in manifest["runs"]]
+    runs = [{**r, "caption": r.get("caption", ""), "figures": figures(root, r["dir"]), "videos": videos(root, r["dir"])}
+            for r in manifest["runs"]]
     template = env.get_template(os.path.basename(template_path))
     return template.render(quick=manifest["quick"], sections=sections, runs=runs)
 

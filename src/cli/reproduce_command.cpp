@@ -121,6 +121,16 @@ std::vector<Step> steps(bool quick) {
                "polygon's edge in the push's direction). Standing: pushed at 4 s; walking: at mid single support of "
                "the 3rd step (left foot in stance; a push to the right, toward the swinging foot, is caught by the "
                "step that lands 0.4 s later, so it can exceed the bound, which assumes no step)."});
+  // One push, seen (issue 19): the full variant renders the 1 s/step walk pushed outward at mid single
+  // support of its 3rd step (the example push of the issue), frames and video.mp4 (ffmpeg).
+  if (!quick)
+    s.push_back({"humanoid-push-video", "Humanoid: a 12 N s chest push at mid single support, 1.0 s/step (video)",
+                 {"humanoid", "walk", "--config", walk("walk-robotis.yaml"), "--set", "walk.steps=6", "--set",
+                  "disturbance.push.time=4.1", "--set", "disturbance.push.force_y=120", "--render"},
+                 "The twin with both compensators and pd balance, pushed at the chest with 120 N for 0.1 s (the orange "
+                 "arrow) toward the left, away from its only support, the left foot, in the middle of the 3rd step's "
+                 "single support; it recovers and walks on. The largest push it recovers there is about 14 N s "
+                 "(humanoid-push-recovery)."});
   return s;
 }
 

@@ -108,6 +108,17 @@ class RenderTest(unittest.TestCase):
         self.assertIn('<img src="run-b/plot.png"', tree.page_text())
         self.assertFalse([f for f in os.listdir(tree.root) if f.startswith(".index.html")], "temporary file left")
 
+    def test_a_rendered_walk_shows_its_video_not_its_frames(self):
+        tree = RunTree(self.tmp.name)
+        write(os.path.join(tree.root, "run-b", "video.mp4"), "not really an MP4")
+        write(os.path.join(tree.root, "run-b", "frames", "frame_00000.png"), "not really a PNG")
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        text = tree.page_text()
+        self.assertIn('<video src="run-b/video.mp4" controls', text)
+        self.assertNotIn("frame_00000.png", text)
+        self.assertEqual(page_check.page_problems(tree.page), [])
+
     def test_values_and_titles_are_escaped(self):
         summary = dict(SUMMARY, name="<script>alert(1)</script>")
         points = 'mu,gait,stable,lam\n0.1,"<script>x</script> & ""quoted""",true,0.9\n'
