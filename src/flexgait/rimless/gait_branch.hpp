@@ -34,6 +34,9 @@ struct GaitContinuationSpec {
   Section section = Section::Touchdown;
   int period = 1;                    ///< continue fixed points of P^period (a period-k orbit)
   bool switch_at_period_doubling = false;  ///< also the period-2k branch born at the first period doubling
+  /// ∂P/∂p by sensitivity (the variational equations' parameter column) where the map has an
+  /// exact Jacobian and the key is a wheel parameter; false: central differences of the map.
+  bool parameter_sensitivity = true;
 };
 
 /// One row of branch.csv: a point of the branch or a special point on it.
