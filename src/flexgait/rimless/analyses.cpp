@@ -156,9 +156,14 @@ constexpr double kContinuedBracket = 1e-4;
 FrictionGait bracket_gait(const Config& base, double mu, Section section, const FrictionGait& lo, const FrictionGait& hi) {
   if (hi.mu - lo.mu <= kContinuedBracket) {
     const bool lo_first = mu - lo.mu <= hi.mu - mu;
-    for (const FrictionGait* n : {lo_first ? &lo : &hi, lo_first ? &hi : &lo})
-      if (n->converged)
-        if (auto g = continued(base, mu, *n)) return *g;
+    // One Newton from each end (no intermediate steps: across a change of the section's mode the
+    // far end's mode has no fixed point, and more steps would not find one).
+    const Setup s = setup(with_mu(base, mu));
+    for (const FrictionGait* n : {lo_first ? &lo : &hi, lo_first ? &hi : &lo}) {
+      if (!n->converged) continue;
+      const FixedPointReport r = find_fixed_point_from(s.w, s.sim, s.opt, n->point);
+      if (r.converged) return gait_of(mu, r, fmt::format("continued from mu = {}", format_number(n->mu)));
+    }
   }
   return friction_gait(base, mu, section, {&lo, &hi});
 }
