@@ -259,7 +259,7 @@ struct FlexibleWheelSimulator::Impl {
     return o;
   }
   // Sensitivity columns: the states, then the parameter's (ParameterDirection) if any.
-  Eigen::Index columns() const { return static_cast<Eigen::Index>(y.size()) + (parameter ? 1 : 0); }
+  Eigen::Index columns() const { return static_cast<Eigen::Index>(y.size()) + (parameter && opt.sensitivities ? 1 : 0); }
   // ∂g_index/∂p at s (ParameterDirection): the mode's guard with the wheel at p ± h. The clearance
   // offset of a clearing foot and the upright guard do not depend on p.
   double guard_parameter_derivative(int index, std::span<const double> s) const {
