@@ -254,7 +254,7 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
     for (int i = 0; i < n; ++i) values.push_back(spec.value(i));
     const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, section);
     dir.write("gaits.csv", rimless::friction_gaits_csv(gaits));
-    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, section, 1e-4));
+    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, section, 1e-8));
     files = {"sweep.csv", "gaits.csv", "thresholds.csv"};
   } else if (a.name == "energy") {
     dir.write("energy.csv", rimless::single_support_energy_csv(s.config, mus({0.6, 0.105})));

@@ -156,5 +156,47 @@ TEST(OdeIntegrator, SensitivitiesOfTheOscillatorAreARotation) {
   }
 }
 
+// A parameter column (OdeOptions::parameter_columns): the oscillator of frequency ω, ẏ = ω (y₁, -y₀),
+// y(t) = (cos ωt, -sin ωt) from (1, 0), so ∂y/∂ω = -t (sin ωt, cos ωt); the state columns unchanged.
+TEST(OdeIntegrator, ParameterColumnIsTheDerivativeInTheParameter) {
+  class Tuned final : public OdeSystem {
+   public:
+    double omega = 1.3;
+    bool rhs(double, std::span<const double> y, std::span<double> yd) override {
+      yd[0] = omega * y[1];
+      yd[1] = -omega * y[0];
+      return true;
+    }
+    bool parameter_derivative(double, std::span<const double> y, int j, std::span<double> dfdp) override {
+      EXPECT_EQ(j, 0);
+      dfdp[0] = y[1];
+      dfdp[1] = -y[0];
+      return true;
+    }
+    void guards(double, std::span<const double>, std::span<double>) override {}
+  };
+  for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Bdf, OdeMethod::Dop853}) {
+    Tuned sys;
+    OdeOptions o = tight(method, true);
+    o.parameter_columns = 1;
+    OdeIntegrator integ(sys, 2, o);
+    const std::vector<double> y0{1.0, 0.0};
+    const std::vector<double> S0{1.0, 0.0, 0.0, 1.0, 0.0, 0.0};  // [I | 0], column-major
+    integ.restart(0.0, y0, std::vector<int>{}, S0);
+    const double T = 2.0;
+    while (integ.step(T) != StepStatus::StopTime) {
+    }
+    std::vector<double> S(6);
+    integ.sensitivities(S);
+    const double c = std::cos(sys.omega * T), s = std::sin(sys.omega * T);
+    // rtol 1e-12 over under half a period: 1e-9 (BDF, of lower order, to 1e-7).
+    const double tol = method == OdeMethod::Bdf ? 1e-7 : 1e-9;
+    EXPECT_NEAR(S[0], c, tol) << name_of(method);
+    EXPECT_NEAR(S[3], c, tol) << name_of(method);
+    EXPECT_NEAR(S[4], -T * s, tol) << name_of(method);
+    EXPECT_NEAR(S[5], -T * c, tol) << name_of(method);
+  }
+}
+
 }  // namespace
 }  // namespace flexgait::numerics

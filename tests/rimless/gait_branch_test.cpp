@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
@@ -71,6 +73,34 @@ TEST(GaitBranch, FlexibleWheelLocatesTheStickToSlipStickChange) {
                                                  Section::Touchdown, initial_from_config(c));
     ASSERT_TRUE(fp.converged) << fp.failure;
     EXPECT_EQ(fp.gait, gait) << "mu = " << change->p + dp;
+  }
+}
+
+// ∂P/∂p by sensitivity changes nothing but the Jacobian's source: from μ = 0.6 down to 0.35 (the
+// stick gait) and over the slope from 0.2 up to 0.215 (stick-slip-flight-slip-stick) the branch
+// with ∂P/∂p by sensitivity and the one with central differences of the map end on the same
+// fixed point (both Newton-converged to ||F|| <= 1e-10 with multipliers <= 0.93: 1e-9) with the
+// same multipliers (the same exact ∂P/∂z there: 1e-9), and the tangents there (in q, normalised)
+// agree to 1e-6 (central differences in p at rtol 1e-12 carry ~1e-7).
+TEST(GaitBranch, ParameterSensitivityLeavesTheBranchUnchanged) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  for (const auto& [param, from, to] : {std::tuple{"rimless.mu", 0.6, 0.35}, std::tuple{"rimless.slope", 0.2, 0.215}}) {
+    std::vector<GaitBranch> b;
+    for (bool sensitivity : {true, false}) {
+      GaitContinuationSpec spec{.param = param, .from = from, .to = to};
+      spec.parameter_sensitivity = sensitivity;
+      b.push_back(continue_gait(base, spec));
+      ASSERT_TRUE(b.back().failure.empty()) << b.back().failure;
+      ASSERT_TRUE(b.back().branch.reached_end) << b.back().stop_reason;
+    }
+    const GaitBranchRow &end0 = b[0].rows.back(), &end1 = b[1].rows.back();
+    EXPECT_EQ(end0.p, to);
+    EXPECT_EQ(end1.p, to);
+    EXPECT_LE((end0.point.z - end1.point.z).lpNorm<Eigen::Infinity>(), 1e-9) << param;
+    ASSERT_EQ(end0.point.multipliers.size(), end1.point.multipliers.size());
+    for (std::size_t k = 0; k < end0.point.multipliers.size(); ++k)
+      EXPECT_LE(std::abs(end0.point.multipliers[k] - end1.point.multipliers[k]), 1e-9) << param;
+    EXPECT_LE((end0.point.tangent - end1.point.tangent).lpNorm<Eigen::Infinity>(), 1e-6) << param;
   }
 }
 

@@ -18,13 +18,13 @@ namespace flexgait::rimless {
 namespace {
 
 /// The threshold column of gait-vs-friction's thresholds.csv, computed as the command does
-/// (100 values of μ in [0.1, 1.5], bisection to 1e-4).
+/// (100 values of μ in [0.1, 1.5], bisection to 1e-8).
 std::vector<double> friction_thresholds(const Config& base) {
   const SweepSpec sweep{"rimless.mu", 0.1, 1.5, 100};
   std::vector<double> mus;
   for (int i = 0; i < sweep.count; ++i) mus.push_back(sweep.value(i));
   const std::vector<FrictionGait> gaits = friction_gaits(base, mus, Section::Touchdown);
-  std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, 1e-4));
+  std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, 1e-8));
   std::string line;
   std::getline(csv, line);  // header
   std::vector<double> out;
@@ -33,9 +33,13 @@ std::vector<double> friction_thresholds(const Config& base) {
 }
 
 // Every threshold has a special point of the branch (a gait change, a change of the section's
-// mode, or the branch's end) within 1e-4 of it (the bisection's own tolerance), and the branch's
-// fixed points are the ones Newton finds directly from the configured start at the same μ, to
-// 1e-9 (both converged to ||P(z) - z|| <= 1e-10, multipliers below 0.93: |Δz| <~ 1e-9).
+// mode, or the branch's end) within 1e-6 of it: the bisection brackets it to 1e-8; the
+// continuation locates a gait change to 1e-7 of the interval (5.5e-8 in μ) and a change of the
+// section's mode to its smallest step (1e-9: with ∂P/∂p by sensitivity no evaluation leaves the
+// point, so the corrector follows the old mode's branch to the boundary); measured, the largest
+// distance is 1.7e-8. The branch's fixed points are the ones Newton finds directly from the
+// configured start at the same μ, to 1e-9 (both converged to ||P(z) - z|| <= 1e-10, multipliers
+// below 0.93: |Δz| <~ 1e-9).
 TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
   const GaitContinuationSpec spec{.param = "rimless.mu", .from = 0.6, .to = 0.05};
@@ -61,7 +65,7 @@ TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
         best = std::abs(p - t);
         which = ev;
       }
-    EXPECT_LE(best, 1e-4) << "threshold " << t << ", nearest event " << which;
+    EXPECT_LE(best, 1e-6) << "threshold " << t << ", nearest event " << which;
   }
   for (const char* boundary : {"section mode stick -> slip-", "section mode slip- -> stick", "section mode stick -> slip+"})
     EXPECT_TRUE(std::any_of(events.begin(), events.end(), [&](const auto& e) { return e.second.starts_with(boundary); }))
@@ -87,8 +91,8 @@ TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
 
 // Over the slope the last stick phase before the landing vanishes at φ ≈ 0.2193 (the section's
 // mode stick -> slip+): the branch from 0.2 up and the one from 0.222 down both cross it and place
-// it within 1e-5 of each other (each within the parameter's difference step of the change; the
-// segment ends meet to 1e-3 of q = 0.035 wide intervals); both reach their ends.
+// it within 1e-6 of each other (each segment runs to the boundary to within its smallest step,
+// 1e-9 of the interval; measured, they agree to 7e-12); both reach their ends.
 TEST(GaitBranchThresholds, SlopeBranchesCrossTheSectionModeChangeFromBothSides) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
   std::vector<double> at;
@@ -102,7 +106,7 @@ TEST(GaitBranchThresholds, SlopeBranchesCrossTheSectionModeChangeFromBothSides) 
       if (r.event.starts_with(event)) at.push_back(r.p);
   }
   ASSERT_EQ(at.size(), 2u);
-  EXPECT_NEAR(at[0], at[1], 1e-5);
+  EXPECT_NEAR(at[0], at[1], 1e-6);
   EXPECT_NEAR(at[0], 0.2193, 1e-4);
 }
 

@@ -36,6 +36,15 @@ Error linearise(const MapFamily& f, const Eigen::VectorXd& x, const Continuation
   const double p = x(n);
   J.resize(n, n + 1);
   Eigen::MatrixXd Pz;
+  if (f.jacobians) {
+    Eigen::VectorXd Pp;
+    if (auto e = f.jacobians(z, p, Pz, Pp)) return "the map's Jacobian: " + *e;
+    if (Pz.rows() != n || Pz.cols() != n || Pp.size() != n || !Pz.allFinite() || !Pp.allFinite())
+      return std::string("the map's Jacobian is not finite");
+    J.leftCols(n) = Pz - Eigen::MatrixXd::Identity(n, n);
+    J.col(n) = Pp;
+    return std::nullopt;
+  }
   if (f.state_jacobian) {
     if (auto e = f.state_jacobian(z, p, Pz)) return "the map's Jacobian: " + *e;
     if (Pz.rows() != n || Pz.cols() != n || !Pz.allFinite()) return std::string("the map's Jacobian is not finite");
@@ -441,6 +450,25 @@ MapFamily iterate(const MapFamily& f, int k) {
       for (int i = 0; i < k; ++i) {
         if (auto e = f.state_jacobian(current, p, Ji)) return "iterate " + std::to_string(i + 1) + ": " + *e;
         J = Ji * J;
+        if (i + 1 < k) {
+          if (auto e = f.map(current, p, next)) return "iterate " + std::to_string(i + 1) + ": " + *e;
+          current = next;
+        }
+      }
+      return std::nullopt;
+    };
+  }
+  if (f.jacobians) {  // ∂P^k/∂p by the chain rule: dz_{i+1}/dp = P_z(z_i) dz_i/dp + P_p(z_i)
+    g.jacobians = [f, k](const Eigen::VectorXd& z, double p, Eigen::MatrixXd& J,
+                         Eigen::VectorXd& J_p) -> std::optional<std::string> {
+      Eigen::VectorXd current = z, next, Pp;
+      Eigen::MatrixXd Pz;
+      J = Eigen::MatrixXd::Identity(z.size(), z.size());
+      J_p = Eigen::VectorXd::Zero(z.size());
+      for (int i = 0; i < k; ++i) {
+        if (auto e = f.jacobians(current, p, Pz, Pp)) return "iterate " + std::to_string(i + 1) + ": " + *e;
+        J = Pz * J;
+        J_p = Pz * J_p + Pp;
         if (i + 1 < k) {
           if (auto e = f.map(current, p, next)) return "iterate " + std::to_string(i + 1) + ": " + *e;
           current = next;

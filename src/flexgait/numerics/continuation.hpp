@@ -30,8 +30,10 @@
 /// A branch that turns vertical (two folds located at the same parameter, to 1e-8, with a
 /// multiplier at +1 between them: a continuum of fixed points at one parameter value) ends there.
 ///
-/// Jacobians: F_z by central differences (newton.hpp) unless an exact ∂P/∂z is supplied; F_p always
-/// by central differences. Period-k orbits are fixed points of P^k (iterate()); at a period doubling
+/// Jacobians: F_z by central differences (newton.hpp) unless an exact ∂P/∂z is supplied; F_p by
+/// central differences unless ∂P/∂p is supplied with it (MapFamily::jacobians: by sensitivity, so
+/// that no evaluation leaves the point: a corrector can then reach a non-smooth boundary of the
+/// map to its own step, not to the difference step). Period-k orbits are fixed points of P^k (iterate()); at a period doubling
 /// the period-2 branch is switched to along the critical eigenvector (switch_at_period_doubling()).
 #include <Eigen/Dense>
 
@@ -49,6 +51,9 @@ using ParametrisedMap =
 /// ∂P/∂z at (z, p) into J (n x n), or why not.
 using ParametrisedJacobian =
     std::function<std::optional<std::string>(const Eigen::VectorXd& z, double p, Eigen::MatrixXd& J)>;
+/// ∂P/∂z (n x n) and ∂P/∂p (n) at (z, p) together (e.g. from one variational run), or why not.
+using ParametrisedJacobians = std::function<std::optional<std::string>(const Eigen::VectorXd& z, double p,
+                                                                       Eigen::MatrixXd& J, Eigen::VectorXd& J_p)>;
 /// A discrete label of the point (z, p), e.g. a gait's contact sequence.
 using PointLabel = std::function<std::string(const Eigen::VectorXd& z, double p)>;
 
@@ -56,6 +61,7 @@ using PointLabel = std::function<std::string(const Eigen::VectorXd& z, double p)
 struct MapFamily {
   ParametrisedMap map;
   ParametrisedJacobian state_jacobian;  ///< exact ∂P/∂z; empty: central differences
+  ParametrisedJacobians jacobians;      ///< exact ∂P/∂z and ∂P/∂p; when set, used instead of both
   PointLabel label;                     ///< empty: no labels watched
   int period = 1;                       ///< this map is the period-th iterate of the underlying map
 };

@@ -25,7 +25,8 @@ struct CvodeSolver {
   SUNContext ctx = nullptr;
   void* cvode = nullptr;
   N_Vector y = nullptr;
-  N_Vector* yS = nullptr;  // sensitivity columns (n of them) when enabled
+  int columns = 0;         // sensitivity columns: n states, then OdeOptions::parameter_columns
+  N_Vector* yS = nullptr;  // sensitivity columns when enabled
   N_Vector work = nullptr; // scratch for the sensitivity right-hand side
   N_Vector work2 = nullptr;
   SUNNonlinearSolver sens_solver = nullptr;
@@ -64,9 +65,21 @@ struct CvodeSolver {
     const std::span<double> yd(N_VGetArrayPointer(ydot), static_cast<std::size_t>(self->n));
     return self->system->linearization_rhs(t, ys, yd) ? 0 : 1;
   }
-  // ∂f/∂y · s by a centered directional difference; step scaled to y and s.
-  static int sens_rhs(int, sunrealtype t, N_Vector y, N_Vector ydot, int, N_Vector s, N_Vector sdot, void* data,
+  // ∂f/∂y · s by a centered directional difference; step scaled to y and s. A parameter column
+  // (iS >= n) adds ∂f/∂p.
+  static int sens_rhs(int, sunrealtype t, N_Vector y, N_Vector ydot, int iS, N_Vector s, N_Vector sdot, void* data,
                       N_Vector, N_Vector) {
+    auto* self = static_cast<CvodeSolver*>(data);
+    if (directional_derivative(t, y, s, sdot, data) != 0) return 1;
+    if (iS < self->n) return 0;
+    const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
+    const std::span<double> fp(N_VGetArrayPointer(self->work), static_cast<std::size_t>(self->n));
+    if (!self->system->parameter_derivative(t, ys, iS - self->n, fp)) return 1;
+    N_VLinearSum(1.0, sdot, 1.0, self->work, sdot);
+    (void)ydot;
+    return 0;
+  }
+  static int directional_derivative(sunrealtype t, N_Vector y, N_Vector s, N_Vector sdot, void* data) {
     auto* self = static_cast<CvodeSolver*>(data);
     const double snorm = N_VMaxNorm(s);
     if (snorm == 0.0) {
@@ -80,7 +93,6 @@ struct CvodeSolver {
     N_VLinearSum(1.0, y, -delta, s, self->work);
     if (linearization_rhs(t, self->work, self->work2, data) != 0) return 1;
     N_VLinearSum(0.5 / delta, sdot, -0.5 / delta, self->work2, sdot);
-    (void)ydot;
     return 0;
   }
   static int guards(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
@@ -115,7 +127,7 @@ struct CvodeSolver {
     if (cvode != nullptr) CVodeFree(&cvode);
     if (nonlinear_solver != nullptr) SUNNonlinSolFree(nonlinear_solver);
     if (sens_solver != nullptr) SUNNonlinSolFree(sens_solver);
-    if (yS != nullptr) N_VDestroyVectorArray(yS, n);
+    if (yS != nullptr) N_VDestroyVectorArray(yS, columns);
     if (work != nullptr) N_VDestroy(work);
     if (work2 != nullptr) N_VDestroy(work2);
     if (linear_solver != nullptr) SUNLinSolFree(linear_solver);
@@ -177,20 +189,21 @@ CvodeBackend::CvodeBackend(OdeSystem& system, int n, const OdeOptions& options) 
   }
   m.check(CVodeSetNoInactiveRootWarn(m.cvode), "SetNoInactiveRootWarn");
   if (options.sensitivities) {
-    m.yS = N_VCloneVectorArray(n, m.y);
+    m.columns = n + options.parameter_columns;
+    m.yS = N_VCloneVectorArray(m.columns, m.y);
     m.work = N_VClone(m.y);
     m.work2 = N_VClone(m.y);
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < m.columns; ++i) {
       N_VConst(0.0, m.yS[i]);
-      N_VGetArrayPointer(m.yS[i])[i] = 1.0;
+      if (i < n) N_VGetArrayPointer(m.yS[i])[i] = 1.0;
     }
-    m.check(CVodeSensInit1(m.cvode, n, CV_STAGGERED, &CvodeSolver::sens_rhs, m.yS), "SensInit1");
+    m.check(CVodeSensInit1(m.cvode, m.columns, CV_STAGGERED, &CvodeSolver::sens_rhs, m.yS), "SensInit1");
     m.check(CVodeSensEEtolerances(m.cvode), "SensEEtolerances");
     // Sensitivities stay out of the error test (CVODES's default): the steps that resolve the
     // state resolve its linearisation; with them in, the map Jacobian cost 26x more for no accuracy.
     m.check(CVodeSetSensErrCon(m.cvode, SUNFALSE), "SetSensErrCon");
     if (options.method == OdeMethod::Adams) {
-      m.sens_solver = SUNNonlinSol_FixedPointSens(n, m.y, 0, m.ctx);
+      m.sens_solver = SUNNonlinSol_FixedPointSens(m.columns, m.y, 0, m.ctx);
       m.check(CVodeSetNonlinearSolverSensStg(m.cvode, m.sens_solver), "SetNonlinearSolverSensStg");
     }
   }
@@ -201,7 +214,7 @@ void CvodeBackend::restart(double t, std::span<const double> y, std::span<const 
   CvodeSolver& m = *impl_;
   restart_state(t, y, directions);
   if (S.empty()) return;
-  for (int j = 0; j < m.n; ++j)
+  for (int j = 0; j < m.columns; ++j)
     std::copy(S.begin() + j * m.n, S.begin() + (j + 1) * m.n, N_VGetArrayPointer(m.yS[j]));
   m.check(CVodeSensReInit(m.cvode, CV_STAGGERED, m.yS), "SensReInit");
 }
@@ -210,7 +223,7 @@ void CvodeBackend::sensitivities(std::span<double> S) const {
   CvodeSolver& m = *impl_;
   sunrealtype t = 0;
   m.check(CVodeGetSens(m.cvode, &t, m.yS), "GetSens");
-  for (int j = 0; j < m.n; ++j) {
+  for (int j = 0; j < m.columns; ++j) {
     const double* col = N_VGetArrayPointer(m.yS[j]);
     std::copy(col, col + m.n, S.begin() + j * m.n);
   }

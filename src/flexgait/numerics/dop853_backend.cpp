@@ -1,8 +1,9 @@
 /// \file dop853_backend.cpp
 /// OdeIntegrator on the DOP853 stepper (dop853.hpp) with guard location on its dense output
 /// (guard_crossings.hpp). With sensitivities the stepper carries the augmented state
-/// (y, S), S column-major n×n, Ṡ = (∂f/∂y) S by centered directional differences (as the CVODES
-/// backend), the error test on y only: the sensitivities take y's steps.
+/// (y, S), S column-major n×(n + m), Ṡ = (∂f/∂y) S (+ ∂f/∂p in the m parameter columns) by
+/// centered directional differences (as the CVODES backend), the error test on y only: the
+/// sensitivities take y's steps.
 #include <algorithm>
 #include <cmath>
 
@@ -30,8 +31,9 @@ class Dop853Backend final : public OdeBackend {
       : system_(system),
         n_(static_cast<std::size_t>(n)),
         sensitivities_(options.sensitivities),
+        columns_(static_cast<std::size_t>(n + options.parameter_columns)),
         stepper_([this](double t, std::span<const double> y, std::span<double> yd) { return rhs(t, y, yd); },
-                 options.sensitivities ? n + n * n : n, stepper_options(n, options)),
+                 static_cast<int>(options.sensitivities ? n_ + n_ * columns_ : n_), stepper_options(n, options)),
         guard_values_([this](double t, std::span<double> g) {
           stepper_.dense(t, y_dense_);
           evaluate_guards(t, y_dense_, g);
@@ -41,7 +43,7 @@ class Dop853Backend final : public OdeBackend {
           ++guard_evals_;
           return system_.guard(t, y_dense_, i, g_scratch_);
         }),
-        y_start_(options.sensitivities ? n_ + n_ * n_ : n_),
+        y_start_(options.sensitivities ? n_ + n_ * columns_ : n_),
         y_dense_(n_),
         work_(n_),
         work2_(n_) {}
@@ -108,21 +110,24 @@ class Dop853Backend final : public OdeBackend {
     if (!sensitivities_) return true;
     double y_norm = 0.0;
     for (double v : y) y_norm = std::max(y_norm, std::abs(v));
-    for (std::size_t j = 0; j < n_; ++j) {
+    for (std::size_t j = 0; j < columns_; ++j) {
       const auto s = Y.subspan(n_ * (j + 1), n_);
       const auto sd = Yd.subspan(n_ * (j + 1), n_);
       double s_norm = 0.0;
       for (double v : s) s_norm = std::max(s_norm, std::abs(v));
       if (s_norm == 0.0) {
         std::fill(sd.begin(), sd.end(), 0.0);
-        continue;
+      } else {
+        const double delta = 6e-6 * std::max(y_norm, 1.0) / s_norm;
+        for (std::size_t i = 0; i < n_; ++i) work_[i] = y[i] + delta * s[i];
+        if (!system_.linearization_rhs(t, work_, sd)) return false;
+        for (std::size_t i = 0; i < n_; ++i) work_[i] = y[i] - delta * s[i];
+        if (!system_.linearization_rhs(t, work_, work2_)) return false;
+        for (std::size_t i = 0; i < n_; ++i) sd[i] = (sd[i] - work2_[i]) * (0.5 / delta);
       }
-      const double delta = 6e-6 * std::max(y_norm, 1.0) / s_norm;
-      for (std::size_t i = 0; i < n_; ++i) work_[i] = y[i] + delta * s[i];
-      if (!system_.linearization_rhs(t, work_, sd)) return false;
-      for (std::size_t i = 0; i < n_; ++i) work_[i] = y[i] - delta * s[i];
-      if (!system_.linearization_rhs(t, work_, work2_)) return false;
-      for (std::size_t i = 0; i < n_; ++i) sd[i] = (sd[i] - work2_[i]) * (0.5 / delta);
+      if (j < n_) continue;  // a parameter column: + ∂f/∂p
+      if (!system_.parameter_derivative(t, y, static_cast<int>(j - n_), work_)) return false;
+      for (std::size_t i = 0; i < n_; ++i) sd[i] += work_[i];
     }
     return true;
   }
@@ -130,6 +135,7 @@ class Dop853Backend final : public OdeBackend {
   OdeSystem& system_;
   std::size_t n_;       // state dimension
   bool sensitivities_;  // the stepper's state is (y, S)
+  std::size_t columns_; // S's columns: n states, then OdeOptions::parameter_columns
   Dop853 stepper_;
   GuardCrossings guards_;
   GuardCrossings::Values guard_values_;  // guard values on the dense output

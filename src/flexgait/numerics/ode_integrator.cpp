@@ -10,6 +10,7 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, int n, const OdeOptions& options
     : backend_(options.method == OdeMethod::Dop853 ? make_dop853_backend(system, n, options)
                                                    : make_cvode_backend(system, n, options)),
       n_(n),
+      columns_(n + options.parameter_columns),
       sensitivities_(options.sensitivities) {}
 
 OdeIntegrator::~OdeIntegrator() = default;
@@ -23,8 +24,8 @@ void OdeIntegrator::restart(double t, std::span<const double> y, std::span<const
                             std::span<const double> S) {
   if (!sensitivities_) throw std::logic_error("OdeIntegrator: sensitivities were not enabled");
   if (static_cast<int>(y.size()) != n_) throw std::invalid_argument("OdeIntegrator::restart: wrong state size");
-  if (S.size() != static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_))
-    throw std::invalid_argument("OdeIntegrator::restart: sensitivities must be n x n");
+  if (S.size() != static_cast<std::size_t>(n_) * static_cast<std::size_t>(columns_))
+    throw std::invalid_argument("OdeIntegrator::restart: sensitivities must be n x (n + parameter_columns)");
   backend_->restart(t, y, directions, S);
 }
 

@@ -37,6 +37,10 @@ struct OdeOptions {
   /// Runge–Kutta steps on the augmented state). ∂f/∂y·s comes from centered directional
   /// differences of OdeSystem::linearization_rhs.
   bool sensitivities = false;
+  /// With sensitivities: this many parameter columns after the n state columns (S is then
+  /// n×(n + m)): column n + j follows ṡ = (∂f/∂y) s + ∂f/∂p_j (OdeSystem::parameter_derivative),
+  /// the sensitivity to a parameter treated as a state with ṗ = 0.
+  int parameter_columns = 0;
   /// Per component (empty: none), the size the relative tolerance refers to: where > 0, the
   /// error weight of component i is 1 / (rtol · error_scale[i] + atol) instead of
   /// 1 / (rtol · |y_i| + atol). For quadratures that only grow (dissipated work): measured
@@ -72,11 +76,11 @@ class OdeIntegrator {
   /// (+1 upward only, -1 downward only, 0 both). Guards that are exactly zero at t are
   /// ignored until they move away (CVODE's rule).
   void restart(double t, std::span<const double> y, std::span<const int> directions);
-  /// As restart(), with the sensitivities S = ∂y/∂y_ref at t given column-major (n×n); needs
-  /// OdeOptions::sensitivities.
+  /// As restart(), with the sensitivities S = ∂y/∂(y_ref, p) at t given column-major (n×(n + m),
+  /// m = OdeOptions::parameter_columns); needs OdeOptions::sensitivities.
   void restart(double t, std::span<const double> y, std::span<const int> directions, std::span<const double> S);
-  /// Sensitivities ∂y(time())/∂y_ref, column-major n×n (after a step; at the guard crossing
-  /// after StepStatus::Guard).
+  /// Sensitivities ∂y(time())/∂(y_ref, p), column-major n×(n + m) (after a step; at the guard
+  /// crossing after StepStatus::Guard).
   void sensitivities(std::span<double> S) const;
   /// Takes one internal step, never past t_stop. After a guard crossing the step ends at the
   /// crossing. Throws std::runtime_error with the solver's message if it fails.
@@ -94,6 +98,7 @@ class OdeIntegrator {
  private:
   std::unique_ptr<OdeBackend> backend_;
   int n_;               // state dimension
+  int columns_;         // sensitivity columns: n + OdeOptions::parameter_columns
   bool sensitivities_;  // OdeOptions::sensitivities
 };
 

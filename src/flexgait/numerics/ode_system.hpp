@@ -17,6 +17,11 @@ class OdeSystem {
   virtual bool linearization_rhs(double t, std::span<const double> y, std::span<double> ydot) {
     return rhs(t, y, ydot);
   }
+  /// ∂f/∂p_j at (t, y) for OdeOptions::parameter_columns (default: 0, f does not depend on it).
+  virtual bool parameter_derivative(double, std::span<const double>, int, std::span<double> dfdp) {
+    for (double& v : dfdp) v = 0.0;
+    return true;
+  }
   /// Guard values g(t, y) (dim = number of guards given to the integrator's restart).
   virtual void guards(double t, std::span<const double> y, std::span<double> g) = 0;
   /// Guard i alone, the same number guards() writes to g[i] (root finding asks for one guard at

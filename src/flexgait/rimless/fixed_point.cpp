@@ -4,6 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/numerics/continuation.hpp"
+
 namespace flexgait::rimless {
 
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt) {
@@ -14,13 +16,51 @@ SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOption
   return o;
 }
 
+namespace {
+
+/// Newton with the variational ∂P/∂z (numerics::fixed_point_at), which evaluates the map at its
+/// iterates only: near a boundary of the section's mode (issue 18) a central-difference step leaves
+/// the mode and the map fails there, while the fixed point is still inside it. Replaces `nr` when
+/// it converges (its Jacobian then the exact one; no history).
+void newton_with_exact_jacobian(PoincareMap& map, const SectionState& guess, const WheelParams& w,
+                                const AnalysisOptions& opt, numerics::NewtonResult& nr) {
+  Eigen::MatrixXd probe;
+  if (guess.model != Model::Flexible || map.jacobian(guess, probe)) return;  // no exact Jacobian here
+  numerics::MapFamily f;
+  f.map = [&](const Eigen::VectorXd& z, double, Eigen::VectorXd& out) { return map(guess, z, out); };
+  f.state_jacobian = [&](const Eigen::VectorXd& z, double, Eigen::MatrixXd& J) {
+    SectionState at = guess;
+    at.z = z;
+    return map.jacobian(at, J);
+  };
+  f.jacobians = [&](const Eigen::VectorXd& z, double p, Eigen::MatrixXd& J, Eigen::VectorXd& J_p) {
+    J_p = Eigen::VectorXd::Zero(z.size());  // no parameter here
+    return f.state_jacobian(z, p, J);
+  };
+  numerics::ContinuationOptions o;
+  o.tolerance = opt.newton.tolerance;
+  o.max_corrector_iterations = opt.newton.max_iterations;
+  o.state_scale = guess.scale(w);
+  numerics::BranchPoint b;
+  if (numerics::fixed_point_at(f, guess.z, 0.0, o, b)) return;
+  nr.converged = true;
+  nr.failure.clear();
+  nr.z = b.z;
+  nr.residual = b.residual;
+  nr.iterations = b.corrector_iterations;
+  nr.jacobian = b.jacobian;
+}
+
+}  // namespace
+
 FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
                                        const SectionState& guess) {
   FixedPointReport rep;
   rep.point = guess;
   PoincareMap map(w, map_options(sim, opt), guess.model, guess.section);
   const numerics::VectorMap P = [&](const Eigen::VectorXd& z, Eigen::VectorXd& out) { return map(guess, z, out); };
-  const numerics::NewtonResult nr = numerics::newton_fixed_point(P, guess.z, guess.scale(w), opt.newton);
+  numerics::NewtonResult nr = numerics::newton_fixed_point(P, guess.z, guess.scale(w), opt.newton);
+  if (!nr.converged) newton_with_exact_jacobian(map, guess, w, opt, nr);
   rep.converged = nr.converged;
   rep.failure = nr.failure;
   rep.iterations = nr.iterations;

@@ -40,11 +40,21 @@ class WheelFlow final : public numerics::OdeSystem {
   // Sensitivities: a sticking foot's anchor moves with the perturbed solution (it is where that
   // solution's foot stopped), so the Baumgarte position term vanishes on every nearby solution.
   bool linearization_rhs(double, std::span<const double> y, std::span<double> yd) override {
-    ContactSet c = contacts_;
-    for (int i = 0; i < c.count; ++i)
-      if (c.mode[i] == FootMode::Stick) c.anchor[i] = leg_kinematics(w_, c.leg[i], y).c;
-    return flow_derivative(w_, c, y, yd);
+    return flow_derivative(w_, linearization_contacts(y), y, yd);
   }
+  // ∂f/∂p of the parameter column (ParameterDirection): a central difference of the flow in p at y.
+  bool parameter_derivative(double, std::span<const double> y, int, std::span<double> dfdp) override {
+    if (parameter_ == nullptr) {
+      std::fill(dfdp.begin(), dfdp.end(), 0.0);
+      return true;
+    }
+    const ContactSet c = linearization_contacts(y);
+    plus_.resize(y.size());
+    if (!flow_derivative(parameter_->plus, c, y, plus_) || !flow_derivative(parameter_->minus, c, y, dfdp)) return false;
+    for (std::size_t i = 0; i < y.size(); ++i) dfdp[i] = (plus_[i] - dfdp[i]) / (2.0 * parameter_->step);
+    return true;
+  }
+  void set_parameter(const ParameterDirection* p) { parameter_ = p; }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
     last_y_.assign(y.begin(), y.end());
@@ -104,11 +114,23 @@ class WheelFlow final : public numerics::OdeSystem {
   void clear_all() { std::fill(clearing_.begin(), clearing_.end(), 0); }
 
  private:
+  // The mode with each sticking foot's anchor where the foot is at y (it moves with a perturbed
+  // solution: the Baumgarte position term vanishes on every nearby solution). The foot's position
+  // is kinematics alone, the same for every value of a parameter.
+  ContactSet linearization_contacts(std::span<const double> y) const {
+    ContactSet c = contacts_;
+    for (int i = 0; i < c.count; ++i)
+      if (c.mode[i] == FootMode::Stick) c.anchor[i] = leg_kinematics(w_, c.leg[i], y).c;
+    return c;
+  }
+
   const WheelParams& w_;
   ContactSet contacts_;
   double clearance_;           // [m]
   std::vector<char> clearing_;  // per leg: 1 while a foot that left has not cleared the ground
   int upright_leg_ = -1;
+  const ParameterDirection* parameter_ = nullptr;  // the sensitivities' parameter column, if any
+  std::vector<double> plus_;                       // scratch: the flow at p + h
   // The latest guard evaluation: its state (empty: none of this mode), dynamics, and per leg
   // guard slot 0 before the clearance (a free foot's height).
   std::vector<double> last_y_;
@@ -210,6 +232,7 @@ numerics::OdeOptions integrator_options(const WheelParams& w, const SimulationOp
 struct FlexibleWheelSimulator::Impl {
   WheelParams w;
   SimulationOptions opt;
+  std::optional<ParameterDirection> parameter;  // the sensitivities' parameter column, if any
   WheelFlow flow;
   numerics::OdeIntegrator integrator;
   numerics::HybridSimulation loop;  // the event-driven loop on `integrator`
@@ -218,16 +241,45 @@ struct FlexibleWheelSimulator::Impl {
   std::vector<double> y_minus; // scratch: the state before a reset
   std::vector<GuardEvent> events;  // scratch: the events of one instant
 
-  Impl(const WheelParams& wheel, const SimulationOptions& options)
+  Impl(const WheelParams& wheel, const SimulationOptions& options, std::optional<ParameterDirection> dp)
       : w(wheel),
         opt(options),
+        parameter(std::move(dp)),
         flow(w, ContactSet{}, foot_clearance(w, options)),
-        integrator(flow, state_size(w), integrator_options(w, options)),
+        integrator(flow, state_size(w), with_parameter_column(integrator_options(w, options), parameter.has_value())),
         loop(integrator, state_size(w)),
         directions(static_cast<std::size_t>(kGuardsPerLeg * w.legs), -1),
         y(static_cast<std::size_t>(state_size(w))),
         y_minus(static_cast<std::size_t>(state_size(w))) {
     events.reserve(static_cast<std::size_t>(kGuardsPerLeg * w.legs));
+    if (parameter) flow.set_parameter(&*parameter);
+  }
+  static numerics::OdeOptions with_parameter_column(numerics::OdeOptions o, bool column) {
+    o.parameter_columns = column && o.sensitivities ? 1 : 0;
+    return o;
+  }
+  // Sensitivity columns: the states, then the parameter's (ParameterDirection) if any.
+  Eigen::Index columns() const { return static_cast<Eigen::Index>(y.size()) + (parameter && opt.sensitivities ? 1 : 0); }
+  // ∂g_index/∂p at s (ParameterDirection): the mode's guard with the wheel at p ± h. The clearance
+  // offset of a clearing foot and the upright guard do not depend on p.
+  double guard_parameter_derivative(int index, std::span<const double> s) const {
+    const int n = guard_count(w);
+    if (!parameter || index >= n) return 0.0;
+    std::vector<double> up(static_cast<std::size_t>(n)), down(static_cast<std::size_t>(n));
+    guard_values(parameter->plus, flow.contacts(), s, up);
+    guard_values(parameter->minus, flow.contacts(), s, down);
+    const auto i = static_cast<std::size_t>(index);
+    return (up[i] - down[i]) / (2.0 * parameter->step);
+  }
+  // ∂(reset)/∂p at s with the mode decision held at `decided`.
+  Eigen::VectorXd reset_parameter_derivative(const ContactSet& before, const std::vector<GuardEvent>& events,
+                                             const ModeDecision& decided, std::span<const double> s) const {
+    const Eigen::Index n = static_cast<Eigen::Index>(s.size());
+    std::vector<double> up(s.begin(), s.end()), down(s.begin(), s.end());
+    apply_reset(parameter->plus, before, events, decided, up);
+    apply_reset(parameter->minus, before, events, decided, down);
+    return (Eigen::Map<const Eigen::VectorXd>(up.data(), n) - Eigen::Map<const Eigen::VectorXd>(down.data(), n)) /
+           (2.0 * parameter->step);
   }
 
   // --- linearisation across events (variational.hpp) ---
@@ -258,8 +310,8 @@ struct FlexibleWheelSimulator::Impl {
   }
   Eigen::MatrixXd sensitivities_now() const {
     const Eigen::Index n = static_cast<Eigen::Index>(y.size());
-    Eigen::MatrixXd S(n, n);
-    integrator.sensitivities(std::span<double>(S.data(), static_cast<std::size_t>(n * n)));
+    Eigen::MatrixXd S(n, columns());
+    integrator.sensitivities(std::span<double>(S.data(), static_cast<std::size_t>(S.size())));
     return S;
   }
   void restart(double t, std::span<const double> s, const Eigen::MatrixXd& S) {
@@ -356,7 +408,10 @@ struct FlexibleWheelSimulator::Impl {
 };
 
 FlexibleWheelSimulator::FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options)
-    : impl_(std::make_unique<Impl>(wheel, options)) {}
+    : impl_(std::make_unique<Impl>(wheel, options, std::nullopt)) {}
+FlexibleWheelSimulator::FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options,
+                                               const ParameterDirection& parameter)
+    : impl_(std::make_unique<Impl>(wheel, options, parameter)) {}
 FlexibleWheelSimulator::~FlexibleWheelSimulator() = default;
 
 SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, SectionHit* section) {
@@ -406,6 +461,7 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   Eigen::MatrixXd S_minus;       // with sensitivities: ∂y/∂y(0) at the crossing
   Eigen::VectorXd f_minus;       // the flow there
   Eigen::RowVectorXd g_y;        // the first fired guard's gradient there
+  double g_p = 0;                // and its derivative in the parameter (ParameterDirection)
 
   Run(Impl& impl, const RunSpec& s, SectionHit* hit_out, RunSink& out, SimulationResult& result)
       : m(impl),
@@ -503,7 +559,9 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
     if (!m.opt.sensitivities) return Eigen::MatrixXd();
     const Eigen::Index n = static_cast<Eigen::Index>(m.y.size());
     const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
-    return Eigen::MatrixXd(saltation(I, f_minus, Eigen::VectorXd::Zero(n), g_y) * S_minus);
+    Eigen::MatrixXd S = saltation(I, f_minus, Eigen::VectorXd::Zero(n), g_y) * S_minus;
+    if (m.parameter) S.col(n) -= f_minus * (g_p / g_y.dot(f_minus));  // the crossing time's shift in p
+    return S;
   }
   // The reset's postcondition (mode_selection.hpp): a foot whose lift-off, stick→slip or fall-over
   // guard fired does not keep its mode (else the same guard fires again at the restart).
@@ -530,7 +588,7 @@ bool FlexibleWheelSimulator::Run::start() {
   m.flow.set_contacts(spec.contacts);
   m.flow.clear_all();
   const Eigen::Index n_state = static_cast<Eigen::Index>(m.y.size());
-  sens = Eigen::MatrixXd::Identity(n_state, n_state);
+  sens = Eigen::MatrixXd::Identity(n_state, m.columns());  // [I | 0]
   if (!spec.pending.empty()) {
     const std::vector<double> y_before = m.y;
     const ModeDecision dec = choose_modes(w, spec.contacts, spec.pending, m.y);
@@ -544,11 +602,14 @@ bool FlexibleWheelSimulator::Run::start() {
     res.jams += dec.jammed_feet;
     // The section state lies on the landing guard by construction: no timing term, reset only.
     if (m.opt.sensitivities) {
-      if (auto e = m.reset_jacobian(spec.contacts, spec.pending, dec, y_before, sens)) {
+      Eigen::MatrixXd R;
+      if (auto e = m.reset_jacobian(spec.contacts, spec.pending, dec, y_before, R)) {
         fail(0.0, "sensitivities", *e);
         res.final_state = m.y;
         return false;
       }
+      sens.leftCols(n_state) = R;
+      if (m.parameter) sens.col(n_state) = m.reset_parameter_derivative(spec.contacts, spec.pending, dec, y_before);
     }
   }
   // The next leg to pass upright: the one with β in [-2α, 0).
@@ -620,6 +681,7 @@ numerics::HybridNext FlexibleWheelSimulator::Run::guards_crossed(double t, std::
     S_minus = m.sensitivities_now();
     f_minus = m.flow_at(before, m.y);
     g_y = m.guard_gradient(first, m.y);
+    g_p = m.guard_parameter_derivative(first, m.y);
   }
   if (upright_stop && fired[static_cast<std::size_t>(guard_count(w))] != 0) {
     const int k = m.flow.upright_leg();
@@ -673,7 +735,13 @@ numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<doub
       fail(t, "sensitivities", *e);
       return numerics::HybridNext::Stop;
     }
-    sens = saltation(R, f_minus, m.flow_at(dec.contacts, m.y), g_y) * S_minus;
+    const Eigen::VectorXd f_plus = m.flow_at(dec.contacts, m.y);
+    sens = saltation(R, f_minus, f_plus, g_y) * S_minus;
+    if (m.parameter) {  // ParameterDirection: the reset's and the event time's own dependence on p
+      const Eigen::Index n = R.rows();
+      sens.col(n) += m.reset_parameter_derivative(before, events, dec, m.y_minus) +
+                     (f_plus - R * f_minus) * (g_p / g_y.dot(f_minus));
+    }
   }
   m.flow.set_contacts(dec.contacts);
   m.flow.start_clearing(before, events);

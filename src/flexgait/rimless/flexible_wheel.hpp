@@ -48,6 +48,19 @@ struct RunSpec {
   bool section_includes_legs_behind = false;
 };
 
+/// The parameter column of the sensitivities (issue 18): the wheel at p + h and at p - h for one
+/// real parameter p. With it (and SimulationOptions::sensitivities) the variational equations
+/// carry ∂y/∂p as one more column, p treated as a state with ṗ = 0: along the flow
+/// ṡ_p = (∂f/∂y) s_p + ∂f/∂p, across an event with guard g and reset R
+///   s_p⁺ = Ξ s_p⁻ + ∂R/∂p + (f⁺ - R_y f⁻) (∂g/∂p) / (g_y f⁻)       (Ξ the saltation matrix),
+/// and at the section s_p = (I - f⁻ g_y/(g_y f⁻)) s_p⁻ - f⁻ (∂g/∂p)/(g_y f⁻). ∂f/∂p, ∂g/∂p and
+/// ∂R/∂p are central differences (· at plus - · at minus) / (2 h) of these algebraic functions at
+/// one state (the flow's costs a second right-hand side per column evaluation, no integration).
+struct ParameterDirection {
+  WheelParams plus, minus;
+  double step = 0;  ///< h, in the parameter's unit (the column is ∂y/∂p in that unit)
+};
+
 /// The state where a run crossed its stop section.
 struct SectionHit {
   double t = 0;               ///< [s]
@@ -55,7 +68,8 @@ struct SectionHit {
   ContactSet contacts;        ///< feet on the ground just before the crossing
   int leg = -1;               ///< the leg landing (touchdown) or upright (upright)
   /// With SimulationOptions::sensitivities: ∂y(t_section)/∂y(0), crossing-time correction
-  /// included (n×n); the pending events at t = 0 count as part of the map.
+  /// included (n×n; n×(n + 1) with a ParameterDirection, the last column ∂y(t_section)/∂p at
+  /// fixed y(0)); the pending events at t = 0 count as part of the map.
   Eigen::MatrixXd S;
 };
 
@@ -65,6 +79,8 @@ RunSpec default_run(const WheelParams& w, const InitialState& initial);
 class FlexibleWheelSimulator {
  public:
   FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options);
+  /// With sensitivities in a parameter as well (SectionHit::S gets its column).
+  FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options, const ParameterDirection& parameter);
   ~FlexibleWheelSimulator();
   FlexibleWheelSimulator(const FlexibleWheelSimulator&) = delete;
   FlexibleWheelSimulator& operator=(const FlexibleWheelSimulator&) = delete;

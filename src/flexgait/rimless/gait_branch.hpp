@@ -4,13 +4,16 @@
 /// point of the Poincaré map followed by pseudo-arclength continuation (numerics/continuation.hpp)
 /// in the normalised parameter q = (p - from)/(to - from) ∈ [0, 1], so that one arclength unit is
 /// the whole interval whatever the key's unit. ∂P/∂z is the exact (variational) Jacobian when the
-/// map has one at the start, else central differences; ∂P/∂q by central differences.
+/// map has one at the start, else central differences; ∂P/∂q then comes from the same variational
+/// run (the sensitivities' parameter column, flexible_wheel.hpp ParameterDirection) for a wheel
+/// key (rimless.*), else by central differences.
 /// The gait label (stance-foot phases over the cycle) is watched: where it changes (a non-smooth
 /// boundary: a phase appears or vanishes) the change is located by bisection. The map keeps the
 /// section's discrete mode (the stance foot's mode just before the touchdown), so a boundary where
 /// that mode changes (e.g. a slip phase that starts ever later reaches the section: the gait
 /// slip-stick becomes slip-stick-slip and the section state stick becomes slip-) ends a segment of
-/// the branch: its last point is within the parameter's difference step of the boundary. There
+/// the branch: its last point is within the corrector's smallest step of the boundary (∂P/∂q by
+/// sensitivity: no evaluation leaves the point; by central differences: within their step). There
 /// the branch is carried over to the new mode (cross_section_mode in gait_branch.cpp): the last
 /// point written in the new mode (in_mode), Newton on the new mode's map a little beyond, the new
 /// segment continued back until it ends at the boundary from its side; when both ends meet (the
@@ -34,6 +37,9 @@ struct GaitContinuationSpec {
   Section section = Section::Touchdown;
   int period = 1;                    ///< continue fixed points of P^period (a period-k orbit)
   bool switch_at_period_doubling = false;  ///< also the period-2k branch born at the first period doubling
+  /// ∂P/∂p by sensitivity (the variational equations' parameter column) where the map has an
+  /// exact Jacobian and the key is a wheel parameter; false: central differences of the map.
+  bool parameter_sensitivity = true;
 };
 
 /// One row of branch.csv: a point of the branch or a special point on it.

@@ -20,12 +20,26 @@ PoincareMap* MapCache::at(double q, std::string& why) {
   try {
     const Config c = config_at(value(q));
     maps.emplace_back(q, std::make_unique<PoincareMap>(wheel_from_config(c), map_options(sim, opt), model, spec.section));
+    if (const auto d = direction_at(q)) maps.back().second->set_parameter(*d);
   } catch (const ConfigError& e) {
     why = fmt::format("{} = {} is not valid: {}", spec.param, format_number(value(q)), e.what());
     return nullptr;
   }
   if (maps.size() > 4) maps.pop_front();
   return maps.back().second.get();
+}
+
+std::optional<ParameterDirection> MapCache::direction_at(double q) const {
+  // Not for a key the map's wheel does not depend on (an initial state's, a solver's).
+  if (!spec.parameter_sensitivity || !spec.param.starts_with("rimless.")) return std::nullopt;
+  const double width = std::abs(spec.to - spec.from);
+  const double hq = 6e-6 * std::max(std::abs(value(q)), width) / width;
+  try {
+    const double up = q + hq, down = q - hq;
+    return ParameterDirection{wheel_at(up), wheel_at(down), 0.5 * (up - down)};
+  } catch (const ConfigError&) {
+    return std::nullopt;  // e.g. at a bound of the key: ∂P/∂q by central differences of the map
+  }
 }
 
 namespace {
@@ -73,6 +87,24 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
       SectionState pt;
       PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
       return m == nullptr ? std::optional<std::string>(why) : m->jacobian(pt, J);
+    };
+    // ∂P/∂q by sensitivity from the same run where the map has its parameter direction;
+    // otherwise central differences of the map in q (as numerics::continuation would).
+    const numerics::ParametrisedMap map = family.map;
+    family.jacobians = [cache, like, map](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J,
+                                          Eigen::VectorXd& J_p) -> std::optional<std::string> {
+      std::string why;
+      SectionState pt;
+      PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
+      if (m == nullptr) return why;
+      if (m->has_parameter()) return m->jacobian_and_parameter_derivative(pt, J, J_p);
+      if (auto e = m->jacobian(pt, J)) return e;  // m is not used below (the cache may drop it)
+      const double h = cache->opt.newton.fd_relative_step * std::max(std::abs(q), 1.0);
+      Eigen::VectorXd up, down;
+      if (auto e = map(z, q + h, up)) return "parameter derivative: " + *e;
+      if (auto e = map(z, q - h, down)) return "parameter derivative: " + *e;
+      J_p = (up - down) / ((q + h) - (q - h));
+      return std::nullopt;
     };
   }
   return family;

@@ -32,8 +32,12 @@ struct MapCache {
   double value(double q) const { return spec.from + q * (spec.to - spec.from); }
   Config config_at(double p) const;
   WheelParams wheel_at(double q) const;
-  /// The map at q, or why the parameter value is not valid.
+  /// The map at q, or why the parameter value is not valid. A map of a wheel parameter (a
+  /// rimless.* key) carries its ParameterDirection in q (∂P/∂q by sensitivity) when q ± h are valid.
   PoincareMap* at(double q, std::string& why);
+  /// The wheel at q ± h (h ≈ ε^(1/3) relative in p), or nothing when the key is not a wheel
+  /// parameter or either value is not valid.
+  std::optional<ParameterDirection> direction_at(double q) const;
 };
 
 /// A piece of the branch in one section mode.

@@ -197,10 +197,29 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
 }
 
 std::optional<std::string> PoincareMap::jacobian(const SectionState& p, Eigen::MatrixXd& J) {
+  return linearise(p, J, nullptr);
+}
+
+void PoincareMap::set_parameter(const ParameterDirection& parameter) {
+  parameter_ = parameter;
+  sens_sim_.reset();  // made again with the parameter column
+}
+
+std::optional<std::string> PoincareMap::jacobian_and_parameter_derivative(const SectionState& p, Eigen::MatrixXd& J,
+                                                                          Eigen::VectorXd& J_p) {
+  if (!parameter_) return std::string("no parameter set");
+  return linearise(p, J, &J_p);
+}
+
+std::optional<std::string> PoincareMap::linearise(const SectionState& p, Eigen::MatrixXd& J, Eigen::VectorXd* J_p) {
   using S = StateIndex;
   if (model_ == Model::Rigid) {
     if (section_ != Section::Touchdown) return std::string("the rigid wheel's exact Jacobian is given at the touchdown section");
     J = Eigen::MatrixXd::Constant(1, 1, rigid_step_map(w_).derivative(p.z(0)));
+    if (J_p != nullptr) {
+      const double up = rigid_step_map(parameter_->plus).next(p.z(0)), down = rigid_step_map(parameter_->minus).next(p.z(0));
+      *J_p = Eigen::VectorXd::Constant(1, (up - down) / (2.0 * parameter_->step));
+    }
     return std::nullopt;
   }
   if (w_.I == 0) return std::string("no variational Jacobian for I = 0 (theta-dot is algebraic there)");
@@ -220,7 +239,8 @@ std::optional<std::string> PoincareMap::jacobian(const SectionState& p, Eigen::M
   if (!sens_sim_) {
     SimulationOptions o = options_;
     o.sensitivities = true;
-    sens_sim_ = std::make_unique<FlexibleWheelSimulator>(w_, o);
+    sens_sim_ = parameter_ ? std::make_unique<FlexibleWheelSimulator>(w_, o, *parameter_)
+                           : std::make_unique<FlexibleWheelSimulator>(w_, o);
   }
   RunSpec spec = section_run(w_, p);
   spec.stop_at = section_;
@@ -240,8 +260,19 @@ std::optional<std::string> PoincareMap::jacobian(const SectionState& p, Eigen::M
   rows.push_back(S::yd);
   rows.push_back(S::thetad);
   J.resize(d, d);
-  const Eigen::MatrixXd SY = hit.S * Yz;
+  const Eigen::MatrixXd SY = hit.S.leftCols(n) * Yz;
   for (Eigen::Index i = 0; i < d; ++i) J.row(i) = SY.row(rows[static_cast<std::size_t>(i)]);
+  if (J_p != nullptr) {
+    if (hit.S.cols() != n + 1) return std::string("the sensitivities have no parameter column");
+    // Y_p: the section reconstruction at the same z with the wheel at p ± h.
+    const RunSpec up = section_run(parameter_->plus, p), down = section_run(parameter_->minus, p);
+    Eigen::VectorXd Yp(n);
+    for (Eigen::Index r = 0; r < n; ++r)
+      Yp(r) = (up.y0[static_cast<std::size_t>(r)] - down.y0[static_cast<std::size_t>(r)]) / (2.0 * parameter_->step);
+    const Eigen::VectorXd dy = hit.S.leftCols(n) * Yp + hit.S.col(n);
+    J_p->resize(d);
+    for (Eigen::Index i = 0; i < d; ++i) (*J_p)(i) = dy(rows[static_cast<std::size_t>(i)]);
+  }
   return std::nullopt;
 }
 

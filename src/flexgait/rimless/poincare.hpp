@@ -83,6 +83,16 @@ class PoincareMap {
   /// differences (it is algebraic). Flexible wheel with I > 0, or the rigid wheel at touchdown
   /// (analytic). Returns why not, otherwise.
   std::optional<std::string> jacobian(const SectionState& point, Eigen::MatrixXd& J);
+  /// The parameter that jacobian_and_parameter_derivative() differentiates in (issue 18).
+  void set_parameter(const ParameterDirection& parameter);
+  bool has_parameter() const { return parameter_.has_value(); }
+  /// ∂P/∂z and ∂P/∂p from one variational run (after set_parameter; otherwise why not): the
+  /// sensitivities' parameter column (flexible_wheel.hpp, ParameterDirection) and the section
+  /// reconstruction's own dependence on p (y = L0 cos β at touchdown), the latter by central
+  /// differences (it is algebraic). The rigid wheel at touchdown: the closed-form step map's
+  /// central difference in p (rigid_wheel.hpp).
+  std::optional<std::string> jacobian_and_parameter_derivative(const SectionState& point, Eigen::MatrixXd& J,
+                                                               Eigen::VectorXd& J_p);
   /// The map as a VectorMap on z with the discrete part of `like` (for Newton).
   std::optional<std::string> operator()(const SectionState& like, const Eigen::VectorXd& z, Eigen::VectorXd& out);
   Model model() const { return model_; }
@@ -95,6 +105,8 @@ class PoincareMap {
   Section section_;
   std::unique_ptr<FlexibleWheelSimulator> sim_;
   std::unique_ptr<FlexibleWheelSimulator> sens_sim_;  // with sensitivities, made on first use
+  std::optional<ParameterDirection> parameter_;      // set_parameter()
+  std::optional<std::string> linearise(const SectionState& point, Eigen::MatrixXd& J, Eigen::VectorXd* J_p);
 };
 
 /// A first section point: simulate `transient_steps` from `initial` and reduce the next crossing.
