@@ -29,8 +29,13 @@ double leg_angle(const WheelParams& w, int k, double theta) {
 }
 
 LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double> s) {
-  using S = StateIndex;
   LegKinematics g;
+  leg_kinematics(w, k, s, g);
+  return g;
+}
+
+void leg_kinematics(const WheelParams& w, int k, std::span<const double> s, LegKinematics& g) {
+  using S = StateIndex;
   const double y = s[S::y], yd = s[S::yd], td = s[S::thetad];
   g.beta = leg_angle(w, k, s[S::theta]);
   g.cb = std::cos(g.beta);
@@ -47,7 +52,6 @@ LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double
   g.c = s[S::x] - y * g.tb;
   g.cdot = s[S::xd] - yd * g.tb - y * td * sec2;
   g.Adot_qdot = -2.0 * yd * td * sec2 - 2.0 * y * g.tb * td * td * sec2;
-  return g;
 }
 
 SlipLaw slip_law(const WheelParams& w, int s, double cdot) {

@@ -35,7 +35,7 @@ class WheelFlow final : public numerics::OdeSystem {
   WheelFlow(const WheelParams& w, const ContactSet& contacts, double clearance)
       : w_(w), contacts_(contacts), clearance_(clearance), clearing_(static_cast<std::size_t>(w.legs), 0) {}
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
-    return flow_derivative(w_, contacts_, y, yd);
+    return flow_derivative(w_, contacts_, y, yd, rhs_dynamics_);
   }
   // Sensitivities: a sticking foot's anchor moves with the perturbed solution (it is where that
   // solution's foot stopped), so the Baumgarte position term vanishes on every nearby solution.
@@ -43,7 +43,7 @@ class WheelFlow final : public numerics::OdeSystem {
     ContactSet c = contacts_;
     for (int i = 0; i < c.count; ++i)
       if (c.mode[i] == FootMode::Stick) c.anchor[i] = leg_kinematics(w_, c.leg[i], y).c;
-    return flow_derivative(w_, c, y, yd);
+    return flow_derivative(w_, c, y, yd, rhs_dynamics_);
   }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
@@ -113,7 +113,7 @@ class WheelFlow final : public numerics::OdeSystem {
   // guard slot 0 before the clearance (a free foot's height).
   std::vector<double> last_y_;
   Dynamics last_dynamics_;
-  std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
+  std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));  Dynamics rhs_dynamics_;  // scratch of rhs() and linearization_rhs()
 };
 
 }  // namespace

@@ -9,8 +9,14 @@ namespace flexgait::rimless {
 
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
                      std::span<double> yd) {
+  Dynamics d;
+  return flow_derivative(w, contacts, y, yd, d);
+}
+
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> yd,
+                     Dynamics& d) {
   using S = StateIndex;
-  const Dynamics d = contact_dynamics(w, contacts, y);
+  contact_dynamics(w, contacts, y, d);
   if (d.failure != nullptr) return false;
   yd[S::x] = y[S::xd];
   yd[S::y] = y[S::yd];

@@ -24,6 +24,10 @@ inline int guard_count(const WheelParams& w) { return kGuardsPerLeg * w.legs; }
 /// \return false if the mode has no consistent motion at y (e.g. a slip jam).
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
                      std::span<double> ydot);
+/// The same with the mode's dynamics at y written into `d` (contact_dynamics' in-place form): the
+/// integrator's hot path keeps one Dynamics for all its evaluations.
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
+                     std::span<double> ydot, Dynamics& d);
 
 /// Guard values (dim guard_count(w)) of the mode at y.
 void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g);
