@@ -42,18 +42,36 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
   return true;
 }
 
+LegOffsets leg_offsets(const WheelParams& w) {
+  LegOffsets o;
+  o.cos.resize(static_cast<std::size_t>(w.legs));
+  o.sin.resize(static_cast<std::size_t>(w.legs));
+  for (int k = 0; k < w.legs; ++k) {
+    const double offset = 2.0 * w.alpha() * k;
+    o.cos[static_cast<std::size_t>(k)] = std::cos(offset);
+    o.sin[static_cast<std::size_t>(k)] = std::sin(offset);
+  }
+  return o;
+}
+
 void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g) {
   guard_values(w, contacts, contact_dynamics(w, contacts, y), y, g);
 }
 
 void guard_values(const WheelParams& w, const ContactSet& contacts, const Dynamics& d, std::span<const double> y,
                   std::span<double> g) {
+  guard_values(w, leg_offsets(w), contacts, d, y, g);
+}
+
+void guard_values(const WheelParams& w, const LegOffsets& offsets, const ContactSet& contacts, const Dynamics& d,
+                  std::span<const double> y, std::span<double> g) {
   std::fill(g.begin(), g.end(), 1.0);
+  const double cos_theta = std::cos(y[StateIndex::theta]), sin_theta = std::sin(y[StateIndex::theta]);
   for (int k = 0; k < w.legs; ++k) {
     double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
     const int i = contacts.find(k);
     if (i < 0) {
-      slot[0] = foot_height(w, k, y);
+      slot[0] = free_foot_height(w, offsets, k, cos_theta, sin_theta, y);
       continue;
     }
     const ContactForce& cf = d.force[i];
