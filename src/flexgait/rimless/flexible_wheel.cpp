@@ -44,7 +44,8 @@ class WheelFlow final : public numerics::OdeSystem {
   // stage) and take its dynamics instead of computing them again.
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
     const bool ok = flow_derivative(w_, contacts_, y, yd, dynamics_[1 - last_]);
-    rhs_y_.assign(y.begin(), y.end());
+    std::copy(y.begin(), y.end(), rhs_y_.begin());
+    rhs_valid_ = true;
     return ok;
   }
   // Sensitivities: a sticking foot's anchor moves with the perturbed solution (it is where that
@@ -57,10 +58,11 @@ class WheelFlow final : public numerics::OdeSystem {
   }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
-    if (rhs_y_.size() == y.size() && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
+    if (rhs_valid_ && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
       last_ = 1 - last_;  // the right-hand side's: the numbers contact_dynamics() gives at y
       last_y_.swap(rhs_y_);
-      rhs_y_.clear();
+      rhs_y_.resize(y.size());
+      rhs_valid_ = false;
     } else {
       last_y_.assign(y.begin(), y.end());
       contact_dynamics(w_, contacts_, y, dynamics_[last_]);
@@ -99,7 +101,7 @@ class WheelFlow final : public numerics::OdeSystem {
   void set_contacts(const ContactSet& c) {
     contacts_ = c;
     last_y_.clear();  // the remembered evaluations were of another mode
-    rhs_y_.clear();
+    rhs_valid_ = false;
   }
   const ContactSet& contacts() const { return contacts_; }
   void set_upright_leg(int k) { upright_leg_ = k; }
@@ -133,9 +135,10 @@ class WheelFlow final : public numerics::OdeSystem {
   // guard slot 0 before the clearance (a free foot's height).
   std::vector<double> last_y_;
   std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
-  // The latest right-hand side's state (empty: none of this mode) and dynamics; the two
+  // The latest right-hand side's state (rhs_valid_: one of this mode) and dynamics; the two
   // Dynamics swap roles when the guards take the right-hand side's.
-  std::vector<double> rhs_y_;
+  std::vector<double> rhs_y_ = std::vector<double>(static_cast<std::size_t>(state_size(w_)));
+  bool rhs_valid_ = false;
   std::array<Dynamics, 2> dynamics_;
   int last_ = 0;  // dynamics_[last_]: the latest guard evaluation's; the other: the right-hand side's
   Dynamics linearization_dynamics_;  // scratch of linearization_rhs()

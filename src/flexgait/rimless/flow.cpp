@@ -29,14 +29,14 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
     damp += w.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
     fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, >= 0 in slip
   }
+  // Free legs relax, K δ + C δ̇ = 0; a leg on the ground keeps its slot (δ̇ = 0). Every leg's
+  // C δ̇² is added in k's order, the ground legs' exactly +0 (the sum of the free legs' alone).
   const double rate = w.C > 0 ? w.K / w.C : 0.0;
-  for (int k = 0; k < w.legs; ++k) {
-    double& dk = yd[S::free_delta + k];
-    dk = 0.0;
-    if (contacts.find(k) >= 0) continue;
-    dk = -rate * y[S::free_delta + k];  // K δ + C δ̇ = 0
-    damp += w.C * dk * dk;              // C δ̇²
-  }
+  const std::span<double> free_rate = yd.subspan(S::free_delta, static_cast<std::size_t>(w.legs));
+  const std::span<const double> free_delta = y.subspan(S::free_delta, static_cast<std::size_t>(w.legs));
+  for (std::size_t k = 0; k < free_rate.size(); ++k) free_rate[k] = -rate * free_delta[k];
+  for (int i = 0; i < contacts.count; ++i) free_rate[static_cast<std::size_t>(contacts.leg[i])] = 0.0;
+  for (const double dk : free_rate) damp += w.C * dk * dk;  // C δ̇²
   yd[S::w_damp] = damp;
   yd[S::w_fric] = fric;
   return true;
