@@ -1,10 +1,12 @@
 #include "flexgait/numerics/dop853.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "flexgait/numerics/dop853_tableau.hpp"
 
@@ -43,16 +45,44 @@ bool Dop853::eval(double t, const std::vector<double>& y, double* ydot) const {
   return f_(t, y, std::span<double>(ydot, dim_));
 }
 
-void Dop853::combine(const std::vector<double>& base, int i, double h, std::vector<double>& out) const {
-  double* __restrict o = out.data();  // never a stage: lets the compiler vectorise
-  std::copy(base.begin(), base.end(), o);
-  const auto& a = kA[static_cast<std::size_t>(i)];
-  for (int j = 0; j < i; ++j) {
-    const double ha = h * a[static_cast<std::size_t>(j)];
-    if (ha == 0.0) continue;
-    const double* __restrict kj = stage(j);
-    for (std::size_t c = 0; c < dim_; ++c) o[c] += ha * kj[c];
+namespace {
+
+// out = base + h Σ_j a_ij k_j for one row i of A, its coefficients compile-time constants: per
+// component the row's nonzero terms added in j's order in a register (the numbers of adding one
+// stage at a time to base, without storing and reloading out for every stage), the components
+// vectorised. k: stage j at k + j·n.
+template <std::size_t I, std::size_t... J>
+void combine_row(const double* __restrict base, double h, const double* __restrict k, double* __restrict out,
+                 std::size_t n, std::index_sequence<J...>) {
+  constexpr auto& a = kA[I];
+  const std::array<double, sizeof...(J) + 1> ha{h * a[J]..., 0.0};
+  for (std::size_t c = 0; c < n; ++c) {
+    double s = base[c];
+    const auto term = [&]<std::size_t j>() {
+      if constexpr (a[j] != 0.0) s += ha[j] * k[j * n + c];
+    };
+    (term.template operator()<J>(), ...);
+    (void)term;  // row 0 has no terms
+    out[c] = s;
   }
+}
+
+using CombineRow = void (*)(const double*, double, const double*, double*, std::size_t);
+template <std::size_t I>
+void combine_row(const double* base, double h, const double* k, double* out, std::size_t n) {
+  combine_row<I>(base, h, k, out, n, std::make_index_sequence<I>());
+}
+template <std::size_t... I>
+constexpr std::array<CombineRow, sizeof...(I)> combine_rows(std::index_sequence<I...>) {
+  return {&combine_row<I>...};
+}
+constexpr std::array<CombineRow, kDenseStages> kCombineRows = combine_rows(std::make_index_sequence<kDenseStages>());
+
+}  // namespace
+
+void Dop853::combine(const std::vector<double>& base, int i, double h, std::vector<double>& out) const {
+  // out is never a stage or base (the restrict pointers of combine_row)
+  kCombineRows[static_cast<std::size_t>(i)](base.data(), h, k_.data(), out.data(), dim_);
 }
 
 // dop853.f's error estimate (Hairer–Nørsett–Wanner II.10, eq. (10.17)): the 5th-order estimator

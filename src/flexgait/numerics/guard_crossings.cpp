@@ -34,10 +34,12 @@ void GuardCrossings::start(double t, std::span<const int> directions, std::span<
 void GuardCrossings::rearm(double t, std::span<const double> g) {
   t_ = t;
   first_step_ = true;
+  inactive_ = 0;
   for (std::size_t i = 0; i < g.size(); ++i) {
     g_lo_[i] = g[i];
     t_lo_[i] = t;
     active_[i] = g[i] != 0.0;
+    inactive_ += g[i] == 0.0;
   }
 }
 
@@ -64,13 +66,14 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   const std::size_t n = directions_.size();
   const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(t1 - t_));
   // Guards that were 0 where watching started: activated where they have moved away from 0.
-  if (std::find(active_.begin(), active_.end(), 0) != active_.end()) {
+  if (inactive_ > 0) {
     const double t_plus = t_ + std::max(tol, 0.1 * (t1 - t_));
     if (t_plus < t1) {
       g_at(t_plus, scratch_);
       for (std::size_t i = 0; i < n; ++i) {
         if (active_[i] == 0 && scratch_[i] != 0.0) {
           active_[i] = 1;
+          --inactive_;
           g_lo_[i] = scratch_[i];
           t_lo_[i] = t_plus;
         }
@@ -79,6 +82,7 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
     for (std::size_t i = 0; i < n; ++i) {
       if (active_[i] == 0 && g1[i] != 0.0) {  // moved away only by the step's end: no crossing yet
         active_[i] = 1;
+        --inactive_;
         g_lo_[i] = g1[i];
         t_lo_[i] = t1;
       }
@@ -104,10 +108,15 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
     }
   }
   if (first_guard < 0) {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (active_[i] == 0) continue;
-      g_lo_[i] = g1[i];
-      t_lo_[i] = t1;
+    if (inactive_ == 0) {
+      std::copy(g1.begin(), g1.end(), g_lo_.begin());
+      std::fill(t_lo_.begin(), t_lo_.end(), t1);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (active_[i] == 0) continue;
+        g_lo_[i] = g1[i];
+        t_lo_[i] = t1;
+      }
     }
     t_ = t1;
     return std::nullopt;

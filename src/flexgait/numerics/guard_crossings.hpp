@@ -54,6 +54,7 @@ class GuardCrossings {
   std::vector<double> g_lo_;     // per guard: its value where its bracket starts
   std::vector<double> t_lo_;     // per guard: where its bracket starts (t_, or later if it was 0 there)
   std::vector<char> active_;     // per guard: 0 while it has stayed exactly 0 since t_
+  std::size_t inactive_ = 0;     // guards with active_ 0
   std::vector<int> fired_;       // per guard: the last crossing's direction, or 0
   std::vector<double> scratch_;  // guard values at one time
 };

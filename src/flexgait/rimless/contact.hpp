@@ -67,6 +67,8 @@ struct LegKinematics {
   double Adot_qdot = 0;           ///< Ȧ q̇ = -2 ẏ θ̇ / cos² β - 2 y tan β θ̇² / cos² β [m/s²]
 };
 LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double> y);
+/// The same written into g (the right-hand side's hot path: no temporary to copy).
+void leg_kinematics(const WheelParams& w, int k, std::span<const double> y, LegKinematics& g);
 
 /// Height of free leg k's foot above the slope: y - (L0 - δ_k) cos β_k [m] (touchdown guard).
 double foot_height(const WheelParams& w, int k, std::span<const double> y);

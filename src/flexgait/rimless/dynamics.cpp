@@ -124,7 +124,8 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
   d.failure = nullptr;
   d.jammed = false;
   for (int i = 0; i < contacts.count; ++i) {
-    const LegKinematics& g = d.leg[i] = leg_kinematics(w, contacts.leg[i], q);
+    leg_kinematics(w, contacts.leg[i], q, d.leg[i]);
+    const LegKinematics& g = d.leg[i];
     ContactForce& cf = d.force[i];
     cf = ContactForce{};
     cf.f = g.f;
@@ -159,8 +160,14 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
 
 Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y) {
   Dynamics d;
+  contact_dynamics(w, contacts, y, d);
+  return d;
+}
+
+void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d) {
   std::array<double, 6> q{y[0], y[1], y[2], y[3], y[4], y[5]};
   d.thetad = q[StateIndex::thetad];
+  d.algebraic_thetad = false;
   Assembly a = assemble(w, contacts, q, d);
   if (w.I == 0 && a.rows == 0 && contacts.count >= 2 && d.failure == nullptr) {
     // Torque balance Q_θ(θ̇) = Q0 + (Q1 - Q0) θ̇ = 0 fixes θ̇ (see the header).
@@ -170,18 +177,18 @@ Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std:
     const double q1 = assemble(w, contacts, q, d).F[2];
     if (!(std::abs(q1 - q0) > 1e-12 * (std::abs(q0) + std::abs(q1)))) {
       d.failure = "I = 0: the torque balance does not fix the angular velocity";
-      return d;
+      return;
     }
     q[StateIndex::thetad] = d.thetad = -q0 / (q1 - q0);
     d.algebraic_thetad = true;
     a = assemble(w, contacts, q, d);
-    if (d.failure != nullptr) return d;
+    if (d.failure != nullptr) return;
     d.qdd = {a.F[0] / w.m, a.F[1] / w.m, 0.0};
   } else {
     std::array<double, kMaxContacts> lambda{};
     if (!solve_constrained(w, a.rows, a.A, a.F, a.b, d.qdd, lambda)) {
       d.failure = "no consistent motion: the constrained equations are singular (point mass, I = 0)";
-      return d;
+      return;
     }
     for (int r = 0; r < a.rows; ++r) d.force[a.stick_index[r]].T = lambda[r];
   }
@@ -189,7 +196,6 @@ Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std:
     ContactForce& cf = d.force[i];
     cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;
   }
-  return d;
 }
 
 }  // namespace flexgait::rimless

@@ -49,6 +49,9 @@ struct Dynamics {
 
 /// Dynamics of the contact set `contacts` at state y (dim state_size(w)).
 Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y);
+/// The same written into d, the right-hand side's hot path (no zeroing, no copy): every field
+/// but force[i] and leg[i] for i >= contacts.count, which keep what they held.
+void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d);
 
 /// Solves the constrained system [M -Aᵀ; A 0] [a; λ] = [F; b] with M = diag(m, m, I) and
 /// `rows` constraint rows A (each ∂c/∂q). Works for I = 0 when the system is nonsingular.

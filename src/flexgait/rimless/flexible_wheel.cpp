@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -33,14 +34,24 @@ namespace {
 class WheelFlow final : public numerics::OdeSystem {
  public:
   WheelFlow(const WheelParams& w, const ContactSet& contacts, double clearance)
-      : w_(w), contacts_(contacts), clearance_(clearance), clearing_(static_cast<std::size_t>(w.legs), 0) {}
+      : w_(w),
+        offsets_(leg_offsets(w)),
+        contacts_(contacts),
+        clearance_(clearance),
+        clearing_(static_cast<std::size_t>(w.legs), 0) {}
+  // The flow; its dynamics and state are kept until the next evaluation: the guards at a step's
+  // end are evaluated at the point of the step's last evaluation (DOP853's first-same-as-last
+  // stage) and take its dynamics instead of computing them again.
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
-    return flow_derivative(w_, contacts_, y, yd);
+    const bool ok = flow_derivative(w_, contacts_, y, yd, dynamics_[1 - last_]);
+    std::copy(y.begin(), y.end(), rhs_y_.begin());
+    rhs_valid_ = true;
+    return ok;
   }
   // Sensitivities: a sticking foot's anchor moves with the perturbed solution (it is where that
   // solution's foot stopped), so the Baumgarte position term vanishes on every nearby solution.
   bool linearization_rhs(double, std::span<const double> y, std::span<double> yd) override {
-    return flow_derivative(w_, linearization_contacts(y), y, yd);
+    return flow_derivative(w_, linearization_contacts(y), y, yd, linearization_dynamics_);
   }
   // ∂f/∂p of the parameter column (ParameterDirection): a central difference of the flow in p at y.
   bool parameter_derivative(double, std::span<const double> y, int, std::span<double> dfdp) override {
@@ -57,9 +68,16 @@ class WheelFlow final : public numerics::OdeSystem {
   void set_parameter(const ParameterDirection* p) { parameter_ = p; }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
-    last_y_.assign(y.begin(), y.end());
-    last_dynamics_ = contact_dynamics(w_, contacts_, y);
-    guard_values(w_, contacts_, last_dynamics_, y, g.first(n));
+    if (rhs_valid_ && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
+      last_ = 1 - last_;  // the right-hand side's: the numbers contact_dynamics() gives at y
+      last_y_.swap(rhs_y_);
+      rhs_y_.resize(y.size());
+      rhs_valid_ = false;
+    } else {
+      last_y_.assign(y.begin(), y.end());
+      contact_dynamics(w_, contacts_, y, dynamics_[last_]);
+    }
+    guard_values(w_, offsets_, contacts_, dynamics_[last_], y, g.first(n));
     for (int k = 0; k < w_.legs; ++k) {
       const std::size_t i = static_cast<std::size_t>(kGuardsPerLeg * k);
       last_heights_[static_cast<std::size_t>(k)] = g[i];  // the free feet's heights (contacts: N)
@@ -68,7 +86,7 @@ class WheelFlow final : public numerics::OdeSystem {
     if (upright_leg_ >= 0) g[n] = std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
   }
   // One guard, as guards() computes it: a free foot's touchdown guard and the upright guard
-  // alone (one cosine or sine, against the mode's dynamics and every foot for all of them).
+  // alone (a sine and a cosine of θ, against the mode's dynamics and every foot for all of them).
   double guard(double t, std::span<const double> y, int i, std::span<double> scratch) override {
     const int n = guard_count(w_);
     if (i == n && upright_leg_ >= 0) return std::sin(y[StateIndex::theta] + 2.0 * w_.alpha() * upright_leg_);
@@ -77,20 +95,23 @@ class WheelFlow final : public numerics::OdeSystem {
       guards(t, y, scratch);
       return scratch[static_cast<std::size_t>(i)];
     }
-    const double h = foot_height(w_, k, y);
+    const double theta = y[StateIndex::theta];
+    const double h = free_foot_height(w_, offsets_, k, std::cos(theta), std::sin(theta), y);
     return clearing_[static_cast<std::size_t>(k)] != 0 ? h + clearance_ : h;
   }
   /// Whether the latest guard evaluation was at this very y in the current mode (the end of a
-  /// step): then last_dynamics() and last_height() are the numbers contact_dynamics() and
-  /// foot_height() would compute again there (the missed-event check's).
+  /// step): then last_dynamics() is the number contact_dynamics() would compute again there and
+  /// last_height() the touchdown guard's height (free_foot_height, within 2 ulp of foot_height()),
+  /// the missed-event check's.
   bool remembered(std::span<const double> y) const {
     return last_y_.size() == y.size() && std::equal(y.begin(), y.end(), last_y_.begin());
   }
-  const Dynamics& last_dynamics() const { return last_dynamics_; }
+  const Dynamics& last_dynamics() const { return dynamics_[last_]; }
   double last_height(int k) const { return last_heights_[static_cast<std::size_t>(k)]; }
   void set_contacts(const ContactSet& c) {
     contacts_ = c;
-    last_y_.clear();  // the remembered evaluation was of another mode
+    last_y_.clear();  // the remembered evaluations were of another mode
+    rhs_valid_ = false;
   }
   const ContactSet& contacts() const { return contacts_; }
   void set_upright_leg(int k) { upright_leg_ = k; }
@@ -125,6 +146,7 @@ class WheelFlow final : public numerics::OdeSystem {
   }
 
   const WheelParams& w_;
+  LegOffsets offsets_;  // the free feet's heights by angle addition (flow.hpp)
   ContactSet contacts_;
   double clearance_;           // [m]
   std::vector<char> clearing_;  // per leg: 1 while a foot that left has not cleared the ground
@@ -134,8 +156,14 @@ class WheelFlow final : public numerics::OdeSystem {
   // The latest guard evaluation: its state (empty: none of this mode), dynamics, and per leg
   // guard slot 0 before the clearance (a free foot's height).
   std::vector<double> last_y_;
-  Dynamics last_dynamics_;
   std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
+  // The latest right-hand side's state (rhs_valid_: one of this mode) and dynamics; the two
+  // Dynamics swap roles when the guards take the right-hand side's.
+  std::vector<double> rhs_y_ = std::vector<double>(static_cast<std::size_t>(state_size(w_)));
+  bool rhs_valid_ = false;
+  std::array<Dynamics, 2> dynamics_;
+  int last_ = 0;  // dynamics_[last_]: the latest guard evaluation's; the other: the right-hand side's
+  Dynamics linearization_dynamics_;  // scratch of linearization_rhs()
 };
 
 }  // namespace

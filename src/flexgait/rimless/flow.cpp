@@ -9,8 +9,14 @@ namespace flexgait::rimless {
 
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
                      std::span<double> yd) {
+  Dynamics d;
+  return flow_derivative(w, contacts, y, yd, d);
+}
+
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> yd,
+                     Dynamics& d) {
   using S = StateIndex;
-  const Dynamics d = contact_dynamics(w, contacts, y);
+  contact_dynamics(w, contacts, y, d);
   if (d.failure != nullptr) return false;
   yd[S::x] = y[S::xd];
   yd[S::y] = y[S::yd];
@@ -23,17 +29,29 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
     damp += w.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
     fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, >= 0 in slip
   }
+  // Free legs relax, K δ + C δ̇ = 0; a leg on the ground keeps its slot (δ̇ = 0). Every leg's
+  // C δ̇² is added in k's order, the ground legs' exactly +0 (the sum of the free legs' alone).
   const double rate = w.C > 0 ? w.K / w.C : 0.0;
-  for (int k = 0; k < w.legs; ++k) {
-    double& dk = yd[S::free_delta + k];
-    dk = 0.0;
-    if (contacts.find(k) >= 0) continue;
-    dk = -rate * y[S::free_delta + k];  // K δ + C δ̇ = 0
-    damp += w.C * dk * dk;              // C δ̇²
-  }
+  const std::span<double> free_rate = yd.subspan(S::free_delta, static_cast<std::size_t>(w.legs));
+  const std::span<const double> free_delta = y.subspan(S::free_delta, static_cast<std::size_t>(w.legs));
+  for (std::size_t k = 0; k < free_rate.size(); ++k) free_rate[k] = -rate * free_delta[k];
+  for (int i = 0; i < contacts.count; ++i) free_rate[static_cast<std::size_t>(contacts.leg[i])] = 0.0;
+  for (const double dk : free_rate) damp += w.C * dk * dk;  // C δ̇²
   yd[S::w_damp] = damp;
   yd[S::w_fric] = fric;
   return true;
+}
+
+LegOffsets leg_offsets(const WheelParams& w) {
+  LegOffsets o;
+  o.cos.resize(static_cast<std::size_t>(w.legs));
+  o.sin.resize(static_cast<std::size_t>(w.legs));
+  for (int k = 0; k < w.legs; ++k) {
+    const double offset = 2.0 * w.alpha() * k;
+    o.cos[static_cast<std::size_t>(k)] = std::cos(offset);
+    o.sin[static_cast<std::size_t>(k)] = std::sin(offset);
+  }
+  return o;
 }
 
 void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> g) {
@@ -42,12 +60,18 @@ void guard_values(const WheelParams& w, const ContactSet& contacts, std::span<co
 
 void guard_values(const WheelParams& w, const ContactSet& contacts, const Dynamics& d, std::span<const double> y,
                   std::span<double> g) {
+  guard_values(w, leg_offsets(w), contacts, d, y, g);
+}
+
+void guard_values(const WheelParams& w, const LegOffsets& offsets, const ContactSet& contacts, const Dynamics& d,
+                  std::span<const double> y, std::span<double> g) {
   std::fill(g.begin(), g.end(), 1.0);
+  const double cos_theta = std::cos(y[StateIndex::theta]), sin_theta = std::sin(y[StateIndex::theta]);
   for (int k = 0; k < w.legs; ++k) {
     double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
     const int i = contacts.find(k);
     if (i < 0) {
-      slot[0] = foot_height(w, k, y);
+      slot[0] = free_foot_height(w, offsets, k, cos_theta, sin_theta, y);
       continue;
     }
     const ContactForce& cf = d.force[i];
