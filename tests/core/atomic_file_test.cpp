@@ -17,7 +17,7 @@ namespace flexgait {
 namespace {
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("flexgait_atomic_" + name);
+  const auto dir = std::filesystem::temp_directory_path() / ("flexgait_atomic_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -1,6 +1,8 @@
 // Configuration: parsing, overrides, and every error path names origin, key, value and domain.
 #include "flexgait/core/config.hpp"
 
+#include <unistd.h>  // getpid: a directory of this process alone (work trees run tests at once)
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +21,7 @@ Schema test_schema() {
 }
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("flexgait_config_test_" + name);
+  const auto path = std::filesystem::temp_directory_path() / ("flexgait_config_test_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }

@@ -1,6 +1,8 @@
 // The sweep runner: an interrupted sweep, resumed, gives the same file as one run through.
 #include "flexgait/core/sweep_runner.hpp"
 
+#include <unistd.h>  // getpid: a directory of this process alone (work trees run tests at once)
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -23,7 +25,7 @@ SweepJob job(const std::filesystem::path& dir) {
 }
 
 TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
-  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_test";
+  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   const SweepOutcome whole = run_sweep(job(base / "whole"));
   EXPECT_EQ(whole.computed, 40);
@@ -54,7 +56,7 @@ TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
 
 // Issue 17.10: --resume trusted any line of the partial file; a garbage row reached the final CSV.
 TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
-  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_garbage_test";
+  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_garbage_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   const SweepOutcome whole = run_sweep(job(base / "whole"));
   SweepJob again = job(base / "whole");
@@ -93,7 +95,7 @@ class ReverseDistributor final : public PointDistributor {
 };
 
 TEST(SweepRunner, AnyDistributorGivesTheSameFile) {
-  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_distributor_test";
+  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_distributor_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   run_sweep(job(base / "threads"));
   SweepJob reversed = job(base / "reversed");
@@ -116,7 +118,7 @@ class RecordingDistributor final : public PointDistributor {
 };
 
 TEST(SweepRunner, HandsOutTheMostExpensivePointsFirstAndWritesByIndex) {
-  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_cost_test";
+  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_cost_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   run_sweep(job(base / "plain"));
   SweepJob costly = job(base / "costly");
@@ -134,7 +136,7 @@ TEST(SweepRunner, HandsOutTheMostExpensivePointsFirstAndWritesByIndex) {
 }
 
 TEST(SweepRunner, AWorkerWritesNothingAndAFailedResumeReleasesTheWorkers) {
-  const auto base = std::filesystem::temp_directory_path() / "flexgait_sweep_worker_test";
+  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_worker_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   SweepJob worker_job = job(base / "worker");
   ReverseDistributor worker(false);

@@ -56,6 +56,23 @@ TEST(Numbers, ShortestTextReadsBackExactly) {
   EXPECT_EQ(format_number(std::numeric_limits<double>::quiet_NaN()), "nan");
 }
 
+// A CSV cell of a number is format_number's text to the byte (the writer formats into its own
+// buffer): the longest texts, signed zero, subnormals, infinities and NaN included.
+TEST(Csv, NumberCellIsFormatNumbersText) {
+  const std::vector<double> values = {0.1, -1.0 / 3.0, -2.2250738585072014e-308, 4.9e-324, -1.7976931348623157e308,
+                                      -0.0, 1e21, 123456789012345680.0, 1e-7,
+                                      std::numeric_limits<double>::infinity(),
+                                      -std::numeric_limits<double>::infinity(),
+                                      std::numeric_limits<double>::quiet_NaN()};
+  CsvWriter w({"x"});
+  std::string expected = "x\n";
+  for (const double v : values) {
+    w.cell(v).end_row();
+    expected += format_number(v) + "\n";
+  }
+  EXPECT_EQ(w.str(), expected);
+}
+
 // Issue 17.8: a value echoed in an error stays on one line, whole bytes of UTF-8, and short.
 TEST(OneLine, EscapesControlCharactersAndCutsLongText) {
   EXPECT_EQ(one_line("plain value"), "plain value");

@@ -2,6 +2,8 @@
 // refused naming `disturbance.pushes[i].field` and the file's line, the written config.yaml reading
 // back to the same run, and a walk with two pushes applying both (the plant's account and the
 // robot's momentum), same bytes twice, the single push unchanged beside an empty list.
+#include <unistd.h>  // getpid: a directory of this process alone (work trees run tests at once)
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,7 +22,7 @@ using humanoid::Push;
 using humanoid::PushBody;
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("flexgait_push_list_test_" + name);
+  const auto path = std::filesystem::temp_directory_path() / ("flexgait_push_list_test_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
@@ -77,7 +79,7 @@ TEST(PushList, SetTakesFlowYaml) {
 TEST(PushList, EachBadFieldNamedWithItsIndexAndLine) {
   const std::string head = "disturbance:\n  pushes:\n    - {time: 1, body: chest, force: [0, 1, 0], duration: 0.1}\n";
   const auto bad = [&](const std::string& item) { return refusal(head + "    - " + item + "\n"); };
-  const std::string file = "flexgait_push_list_test_bad.yaml:3";  // the list's line
+  const std::string file = "_bad.yaml:3";  // the list's line (in this process's file)
   for (const auto& [item, key, what] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"{time: -1, body: chest, force: [0, 1, 0], duration: 0.1}", "disturbance.pushes[1].time", "out of range"},
            {"{time: 1, body: head, force: [0, 1, 0], duration: 0.1}", "disturbance.pushes[1].body", "one of pelvis, chest"},

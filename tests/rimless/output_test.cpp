@@ -2,6 +2,8 @@
 // files that appear only when the run is done, and a result that does not grow with the run.
 #include "flexgait/rimless/output.hpp"
 
+#include <unistd.h>  // getpid: a directory of this process alone (work trees run tests at once)
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -18,7 +20,7 @@ using testing::measured_wheel;
 using testing::run_options;
 
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("flexgait_rimless_output_" + name);
+  const auto dir = std::filesystem::temp_directory_path() / ("flexgait_rimless_output_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   return dir;
 }

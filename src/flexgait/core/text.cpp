@@ -1,5 +1,6 @@
 #include "flexgait/core/text.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -114,7 +115,11 @@ void CsvWriter::separator() {
 
 CsvWriter& CsvWriter::cell(double v) {
   separator();
-  fmt::format_to(std::back_inserter(text_), "{}", v);
+  // The shortest round-trip text, as "{}" (format_number); compiled and into a local buffer, then
+  // appended at once: a long log is mostly this call.
+  char buffer[32];
+  const char* end = fmt::format_to(buffer, FMT_COMPILE("{}"), v);
+  text_.append(buffer, static_cast<std::size_t>(end - buffer));
   return *this;
 }
 
