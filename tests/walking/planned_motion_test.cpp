@@ -26,20 +26,23 @@ struct Fixture {
     in.swing_height = walk.swing_height;
     in.pelvis_height = walk.pelvis_height;
   }
-  /// The plan's motion at t with the COM over the stance sole's inner edge, moving and accelerating.
+  /// The plan's motion at t with the COM over the stance sole's inner edge, moving and accelerating,
+  /// from a guess 3 mm off the converged pose `centre` (as the controller's commanded pelvis is
+  /// off the plan's by the balance's foot lifts and rotations).
   PlannedMotion at(double t, double h, RobotModelData& data, Pose& centre) {
     const FeetTarget feet = feet_target(plan, walk.swing_height, t);
     const Eigen::Vector2d mid = 0.5 * (feet.sole[0].p + feet.sole[1].p).head<2>();
     in.cart = {Eigen::Vector3d(mid.x() + 0.01, 0.25, 0.6), Eigen::Vector3d(mid.y() - 0.02, -0.15, 0.9)};
     in.tilt = rot_y(0.02) * rot_x(-0.01);
-    Pose guess{Vector3d(mid.x(), mid.y(), walk.pelvis_height), Matrix3d::Identity()};
-    const PlannedMotion m = planned_motion(in, t, h, guess, data);
-    // The centre pose again (for the kinematics the motion is evaluated at).
-    centre = guess;
-    centre.R = rot_z(heading_of(feet.sole)) * in.tilt;
+    centre = Pose{Vector3d(mid.x(), mid.y(), walk.pelvis_height), rot_z(heading_of(feet.sole)) * in.tilt};
     humanoid::JointVector q{};
     std::array<IkStatus, 2> ik{};
-    solve_com_pose(model, data, Eigen::Vector2d(in.cart[0](0), in.cart[1](0)), feet.sole, centre, q, ik, 5);
+    solve_com_pose(model, data, Eigen::Vector2d(in.cart[0](0), in.cart[1](0)), feet.sole, centre, q, ik, 30);
+    Pose guess = centre;
+    guess.p += Vector3d(0.003, -0.002, 0.0);
+    const PlannedMotion m = planned_motion(in, t, h, guess, data);
+    // (the centre's kinematics again: planned_motion used `data`)
+    forward_kinematics(model, data, centre, q);
     return m;
   }
 };

@@ -7,7 +7,8 @@
 /// COM's position, velocity and acceleration), the soles of feet_target (quintic swing, C²), the
 /// pelvis at its height and the feet's mean heading. Its pose at time t + s is the IK of
 ///     c(t + s) = c + s ċ + s²/2 c̈,   soles(t + s),   yaw(t + s),
-/// with the pelvis position found so that the model's COM lies over c (solve_com_pose). The joint
+/// with the pelvis position found so that the model's COM lies over c (Newton on the pelvis's xy,
+/// the Jacobian ∂c/∂p of the centre pose by differences). The joint
 /// motion is the central difference of three such poses, s = −h, 0, h:
 ///     q̇ = (q₊ − q₋) / 2h,   q̈ = (q₊ − 2 q₀ + q₋) / h²,   the same for the pelvis,
 /// noise-free and O(h²) (the cart's jerk term, odd in s, cancels in both). The balance loops'
@@ -35,10 +36,10 @@ struct PlannedMotion {
 
 /// Pelvis position (its attitude pelvis.R given) and joint angles that put the soles at `soles`
 /// and the COM's xy at `com`: `iterations` rounds of IK and a shift of the pelvis by the COM's
-/// miss, from pelvis.p. Leaves the pose's kinematics in `data`; the waist yaw is 0.
+/// miss, from pelvis.p. With `kinematics`, leaves the pose's kinematics in `data`; the waist yaw is 0.
 void solve_com_pose(const RobotModel& model, RobotModelData& data, const Eigen::Vector2d& com,
                     const std::array<Pose, 2>& soles, Pose& pelvis, humanoid::JointVector& q,
-                    std::array<IkStatus, 2>& ik, int iterations);
+                    std::array<IkStatus, 2>& ik, int iterations, bool kinematics = true);
 
 /// The pelvis heading of two soles: the mean of their headings (as unit vectors, no wrap at ±π) [rad].
 double heading_of(const std::array<Pose, 2>& soles);
@@ -55,7 +56,7 @@ struct PlanPoseInputs {
 };
 
 /// The plan's motion at time t by central differences of step h [s] (h > 0), each pose's
-/// fixed point from `guess` (the pelvis of a nearby pose). `data` is scratch.
+/// pelvis from `guess` (the pelvis of a nearby pose, e.g. the commanded one). `data` is scratch.
 PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data);
 
 }  // namespace flexgait::walking

@@ -13,8 +13,8 @@ namespace {
 constexpr double kReplanDistance = 0.005;
 /// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
 constexpr double kLastAdjustment = 0.75;
-/// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation
-/// (< 1e-3 of the swing's accelerations), fixed-point misses divided by h² stay < 1e-4 rad/s².
+/// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
+/// < 1e-3 of the swing's accelerations (planned_motion_test).
 constexpr double kPlanStep = 0.01;
 
 /// Each component clamped to [−limit, limit].
