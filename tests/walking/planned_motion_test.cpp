@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "flexgait/walking/rotation.hpp"
 #include "flexgait/walking/walk_params.hpp"
 
@@ -17,6 +20,7 @@ struct Fixture {
   WalkParams walk;
   WalkPlan plan;
   PlanPoseInputs in;
+  Eigen::Matrix2d last_inverse = Eigen::Matrix2d::Identity();  ///< the Jacobian the last `at` used
   Fixture() {
     walk.step_time = 1.0;
     walk.turn = 0.1;  // the heading turns too
@@ -29,7 +33,7 @@ struct Fixture {
   /// The plan's motion at t with the COM over the stance sole's inner edge, moving and accelerating,
   /// from a guess 3 mm off the converged pose `centre` (as the controller's commanded pelvis is
   /// off the plan's by the balance's foot lifts and rotations).
-  PlannedMotion at(double t, double h, RobotModelData& data, Pose& centre) {
+  PlannedMotion at(double t, double h, RobotModelData& data, Pose& centre, const Eigen::Matrix2d* stale = nullptr) {
     const FeetTarget feet = feet_target(plan, walk.swing_height, t);
     const Eigen::Vector2d mid = 0.5 * (feet.sole[0].p + feet.sole[1].p).head<2>();
     in.cart = {Eigen::Vector3d(mid.x() + 0.01, 0.25, 0.6), Eigen::Vector3d(mid.y() - 0.02, -0.15, 0.9)};
@@ -40,7 +44,9 @@ struct Fixture {
     solve_com_pose(model, data, Eigen::Vector2d(in.cart[0](0), in.cart[1](0)), feet.sole, centre, q, ik, 30);
     Pose guess = centre;
     guess.p += Vector3d(0.003, -0.002, 0.0);
-    const PlannedMotion m = planned_motion(in, t, h, guess, data);
+    Eigen::Matrix2d inverse = stale ? *stale : Eigen::Matrix2d::Identity();
+    const PlannedMotion m = planned_motion(in, t, h, guess, data, inverse, stale == nullptr);
+    last_inverse = inverse;
     // (the centre's kinematics again: planned_motion used `data`)
     forward_kinematics(model, data, centre, q);
     return m;
@@ -99,6 +105,29 @@ TEST(PlannedMotion, StanceSoleRestsSwingSoleFollowsThePlanComFollowsTheCart) {
     EXPECT_NEAR(c_dot.y(), f.in.cart[1](1), 2e-4);
     EXPECT_NEAR(c_ddot.x(), f.in.cart[0](2), 2e-2);
     EXPECT_NEAR(c_ddot.y(), f.in.cart[1](2), 2e-2);
+  }
+}
+
+TEST(PlannedMotion, AJacobianFromATenthOfASecondBeforeServesAsWell) {
+  // (the controller takes it again every 0.1 s)
+  Fixture f;
+  const Step& s = f.plan.steps[2];
+  for (double u : {0.2, 0.5, 0.8}) {
+    const double t = s.t_lift + u * (s.t_land - s.t_lift);
+    RobotModelData data;
+    Pose centre;
+    f.at(t - 0.1, 0.01, data, centre);
+    const Eigen::Matrix2d old = f.last_inverse;
+    const PlannedMotion fresh = f.at(t, 0.01, data, centre);
+    const Eigen::Matrix2d now = f.last_inverse;
+    const PlannedMotion kept = f.at(t, 0.01, data, centre, &old);
+    double largest = 0, difference = 0;
+    for (int j = 0; j < humanoid::kJoints; ++j) {
+      largest = std::max(largest, std::abs(fresh.acceleration[j]));
+      difference = std::max(difference, std::abs(kept.acceleration[j] - fresh.acceleration[j]));
+    }
+    EXPECT_GT((old - now).norm(), 1e-6);  // a different Jacobian
+    EXPECT_LT(difference, 1e-3 * largest) << u;
   }
 }
 

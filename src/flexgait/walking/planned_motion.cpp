@@ -10,8 +10,9 @@ namespace {
 
 /// The pelvis is placed by Newton's method on its xy with one Jacobian ∂c/∂p (the COM's move
 /// per pelvis move, the soles held; ≈ 0.8 I, the legs' links move less than the trunk), taken at
-/// the centre pose by differences of this step [m]: two steps from a guess millimetres off leave
-/// < 1e-7 m, and what they leave varies smoothly with s (planned_motion_test).
+/// a centre pose by differences of this step [m] (and kept while it serves: it changes slowly
+/// with the legs' pose); two steps from a guess millimetres off leave < 1e-7 m, and what they
+/// leave varies smoothly with s (planned_motion_test).
 constexpr double kJacobianStep = 1e-3;
 constexpr int kNewtonSteps = 2;
 
@@ -50,11 +51,11 @@ double heading_of(const std::array<Pose, 2>& soles) {
   return std::atan2(heading.y(), heading.x());
 }
 
-PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data) {
+PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data,
+                             Eigen::Matrix2d& inverse, bool refresh) {
   std::array<Pose, 3> pelvis;
   std::array<humanoid::JointVector, 3> q;
   std::array<double, 3> yaw{};
-  Eigen::Matrix2d inverse = Eigen::Matrix2d::Identity();  // (∂c/∂p)⁻¹ of the centre pose
   for (int i : {1, 0, 2}) {  // the centre first: its Jacobian serves all three
     const double s = (i - 1) * h;
     const FeetTarget feet = feet_target(*in.plan, in.swing_height, t + s);
@@ -70,7 +71,7 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const
     q[i] = {};
     Eigen::Vector2d c;
     place(*in.model, data, feet.sole, p, q[i], &c);
-    if (i == 1) {
+    if (i == 1 && refresh) {
       Eigen::Matrix2d J;
       for (int axis = 0; axis < 2; ++axis) {
         Pose moved = p;

@@ -56,7 +56,10 @@ struct PlanPoseInputs {
 };
 
 /// The plan's motion at time t by central differences of step h [s] (h > 0), each pose's
-/// pelvis from `guess` (the pelvis of a nearby pose, e.g. the commanded one). `data` is scratch.
-PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data);
+/// pelvis from `guess` (the pelvis of a nearby pose, e.g. the commanded one). `inverse`: (∂c/∂p)⁻¹,
+/// the pelvis's Newton step per COM miss, recomputed at the centre pose when `refresh` (else used
+/// as given: from a pose of the last ~0.1 s it still converges). `data` is scratch.
+PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data,
+                             Eigen::Matrix2d& inverse, bool refresh = true);
 
 }  // namespace flexgait::walking

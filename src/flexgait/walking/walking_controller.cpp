@@ -16,6 +16,8 @@ constexpr double kLastAdjustment = 0.75;
 /// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
 /// < 1e-3 of the swing's accelerations (planned_motion_test).
 constexpr double kPlanStep = 0.01;
+/// The planned motion's COM Jacobian is taken again every this many periods (0.1 s at 4 ms).
+constexpr int kPlanJacobianPeriods = 25;
 
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
@@ -425,7 +427,9 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     in.cart = {cart_[0].x, cart_[1].x};
     in.com_offset = status_.com_shift;
     in.tilt = rot_y(d_pitch) * rot_x(d_roll);
-    status_.motion = planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_);
+    const bool refresh = motion_jacobian_age_ <= 0;
+    motion_jacobian_age_ = refresh ? kPlanJacobianPeriods : motion_jacobian_age_ - 1;
+    status_.motion = planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
   }
   status_.desired = desired_;
   return desired_;
