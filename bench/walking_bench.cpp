@@ -43,6 +43,7 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   p.split = static_cast<compensation::WeightSplit>(state.range(0));
   p.load_model = static_cast<compensation::LoadModel>(state.range(1));
   compensation::DeformationCompensator comp(c.model(), p, 0.004);
+  c.set_plan_motion(p.load_model == compensation::LoadModel::kDynamic);
   humanoid::SensorReadings s;
   for (auto& ft : s.ft) ft.force = {0, 0, -250.0};
   const long ticks = static_cast<long>(c.plan().duration / 0.004);
@@ -50,7 +51,7 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   for (auto _ : state) {
     const humanoid::JointVector& desired = c.update(s, static_cast<double>(k) * 0.004);
     const walking::ControllerStatus& st = c.status();
-    const compensation::SupportPlan plan{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0};
+    const compensation::SupportPlan plan{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0, st.motion};
     if (p.load_model != compensation::LoadModel::kGravity) comp.sense(s.ft);
     const humanoid::JointVector& command = comp.input(desired, st.pelvis.R, plan);
     const compensation::OutputEstimate& e = comp.output(command, st.pelvis.R, plan);

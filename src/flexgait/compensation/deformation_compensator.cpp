@@ -29,7 +29,6 @@ DeformationCompensator::DeformationCompensator(const walking::RobotModel& model,
       params_(params),
       period_(period),
       filter_gain_(params.load_filter_time > 0 ? 1.0 - std::exp(-period / params.load_filter_time) : 1.0),
-      acceleration_gain_(params.acceleration_filter_time > 0 ? 1.0 - std::exp(-period / params.acceleration_filter_time) : 1.0),
       stiffness_(params.stiffness()),
       talos_{{TalosHipRoll(params.talos_cutoff, params.talos_limit, period),
               TalosHipRoll(params.talos_cutoff, params.talos_limit, period)}} {}
@@ -43,26 +42,6 @@ void DeformationCompensator::sense(const std::array<humanoid::ForceTorque, 2>& f
     w.moment += a * (m - w.moment);
   }
   sensed_ = true;
-}
-
-void DeformationCompensator::differentiate_plan(const humanoid::JointVector& desired, const walking::Pose& pelvis) {
-  // Backward differences over T, the accelerations low-passed (control.acceleration_filter_time): the
-  // balance loops put sensor noise into θ_d, which a second difference amplifies by 4/T².
-  const double T = period_;
-  for (int j = 0; j < kJoints; ++j) {
-    qd_[j] = planned_samples_ >= 1 ? (desired[j] - q_prev_[j]) / T : 0.0;
-    const double qdd = planned_samples_ >= 2 ? (qd_[j] - qd_prev_[j]) / T : 0.0;
-    qdd_[j] += acceleration_gain_ * (qdd - qdd_[j]);
-  }
-  const walking::Vector3d v = planned_samples_ >= 1 ? walking::Vector3d((pelvis.p - pelvis_prev_) / T) : walking::Vector3d::Zero();
-  const walking::Vector3d a = planned_samples_ >= 2 ? walking::Vector3d((v - pelvis_velocity_) / T) : walking::Vector3d::Zero();
-  base_.velocity = v;
-  base_.acceleration += acceleration_gain_ * (a - base_.acceleration);
-  q_prev_ = desired;
-  qd_prev_ = qd_;
-  pelvis_prev_ = pelvis.p;
-  pelvis_velocity_ = v;
-  planned_samples_ = std::min(planned_samples_ + 1, 2);
 }
 
 const humanoid::JointVector& DeformationCompensator::torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
@@ -84,7 +63,10 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
   if (params_.split == WeightSplit::kCom && planned_cop_) plan_loads_ = com_loads(model_, data_, support.swinging);
   for (int side = 0; side < 2; ++side) {
     const walking::Pose& foot = data_.frame[model_.foot[side]];
-    feet_.given[side] = sensed_;
+    // A stance foot's wrench is read; a swinging foot is the model's (its reading, a few tens of
+    // newtons, disagrees with the foot's weight and planned motion by up to 40 N in the 1 s walk,
+    // which moved the swing hip pitch's torque by 25 Nm).
+    feet_.given[side] = sensed_ && !support.swinging[side];
     feet_.wrench[side] = {foot.R * ft_[side].force, foot.R * ft_[side].moment};
     if (!planned_cop_) continue;
     // The input side (a feed-forward): the plan's ground force, the weight shared as the split
@@ -101,11 +83,9 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     feet_.given[side] = true;
     feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }
-  static const humanoid::JointVector kRest{};
-  static const walking::BaseMotion kAtRest{};
-  const bool dynamic = params_.load_model == LoadModel::kDynamic;
-  walking::inverse_dynamics(model_, data_, dynamic ? base_ : kAtRest, dynamic ? qd_ : kRest, dynamic ? qdd_ : kRest,
-                            dynamics_, feet_);
+  static const walking::PlannedMotion kAtRest{};
+  const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
+  walking::inverse_dynamics(model_, data_, m.pelvis, m.velocity, m.acceleration, dynamics_, feet_);
   tau_ = dynamics_.tau;
   tau_[humanoid::kWaistYaw] = 0.0;  // the waist carries no modelled load (as in the gravity form)
   return tau_;
@@ -120,7 +100,6 @@ const humanoid::JointVector& DeformationCompensator::input(const humanoid::Joint
                                                            const walking::Matrix3d& pelvis_R,
                                                            const SupportPlan& support) {
   command_ = desired;
-  if (params_.load_model == LoadModel::kDynamic) differentiate_plan(desired, support.pelvis);
   if (params_.mode == CompensationMode::kRobotis || params_.mode == CompensationMode::kTalos) {
     apply_baseline(desired, pelvis_R, support);
     return command_;
@@ -132,6 +111,16 @@ const humanoid::JointVector& DeformationCompensator::input(const humanoid::Joint
   planned_cop_ = true;
   input_torque_ = torque(desired, pelvis_R, support);
   planned_cop_ = false;
+  if (params_.gear_damping > 0) {
+    // The Kelvin–Voigt lag of the deflection (from the static one in the first period).
+    for (int j = 0; j < kJoints; ++j) {
+      const double a = input_lagged_ ? lag_weight(j) : 1.0;
+      input_deflection_[j] = a * input_torque_[j] / stiffness_[j] + (1 - a) * input_deflection_[j];
+      command_[j] += input_deflection_[j];
+    }
+    input_lagged_ = true;
+    return command_;
+  }
   for (int j = 0; j < kJoints; ++j) command_[j] += input_torque_[j] / stiffness_[j];  // eq. 9
   return command_;
 }
@@ -153,6 +142,10 @@ void DeformationCompensator::apply_baseline(const humanoid::JointVector& desired
       command_[hip_roll] += robotis_hip_roll(support.single_support_phase, params_.robotis_hip_roll, against_sag);
     }
   }
+}
+
+double DeformationCompensator::lag_weight(int j) const {
+  return params_.gear_damping > 0 ? period_ / (period_ + params_.gear_damping / stiffness_[j]) : 1.0;
 }
 
 const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector& encoder,
@@ -188,8 +181,25 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
       G.block<kLegJoints, 1>(kLegJoints, j + kLegJoints) = difference.tail<kLegJoints>();
     }
   };
-  const LinkAngleEstimate<kLegDofs> e = solve_link_angles<kLegDofs>(legs_of(encoder), legs_of(stiffness_),
-                                                                    leg_torque, leg_jacobian, params_.newton);
+  // control.gear_damping: eq. 11 with the Kelvin–Voigt lag, k/a and θ_enc − (1 − a) δ_{n−1}.
+  const bool lagged = params_.gear_damping > 0 && output_lagged_;
+  LegVector observed = legs_of(encoder), stiffness = legs_of(stiffness_);
+  if (lagged) {
+    const LegVector previous = legs_of(output_deflection_);
+    for (int side = 0; side < 2; ++side)
+      for (int i = 0; i < kLegJoints; ++i) {
+        const int r = side * kLegJoints + i;
+        const double a = lag_weight(leg_first_joint(side) + i);
+        observed(r) -= (1 - a) * previous(r);
+        stiffness(r) /= a;
+      }
+  }
+  const LinkAngleEstimate<kLegDofs> e =
+      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton);
+  if (params_.gear_damping > 0) {
+    set_legs(output_deflection_, legs_of(encoder) - e.newton);
+    output_lagged_ = true;
+  }
   estimate_.newton = estimate_.one_step = estimate_.conventional = encoder;  // the waist carries no τ_g
   set_legs(estimate_.newton, e.newton);
   set_legs(estimate_.one_step, e.one_step);

@@ -11,6 +11,13 @@
 ///    reported beside it.
 /// k is the controller's belief (control.k_joint), apart from the plant's true stiffness.
 ///
+/// control.gear_damping d > 0 (issue 20): the gear is a Kelvin–Voigt element, τ = k δ + d δ̇, so
+/// the deflection is the torque through a first-order lag, δ = τ / (k (1 + (d/k) s)). Backward
+/// Euler over the period T, a = T / (T + d/k):  δ_n = a τ_n / k + (1 − a) δ_{n−1}. The input
+/// compensator commands θ_d + δ_n; the output compensator solves eq. 11 with it,
+///     θ_enc − (1 − a) δ_{n−1} − a τ(θ̂)/k − θ̂ = 0   (the same Newton with k/a and a shifted
+/// encoder), and keeps δ_n = θ_enc − θ̂. The first period starts from the static deflection.
+///
 /// The load (control.load_model, issue 20): `gravity` is the thesis's static model above
 /// (gravity_torque.hpp). `measured`: the output compensator's legs carry their own links' weight
 /// and, at the ankle, the wrench the F/T sensor reads (low-passed with control.load_filter_time;
@@ -18,10 +25,9 @@
 /// robot_model_dynamics with the feet's wrenches given; its Newton solves with it. The input
 /// compensator, a feed-forward, keeps the plan's loads (the full form): the F/T reading fed into
 /// the commands closes a loop of gain ≈ 1 through the gears, and the walks fall. `dynamic`: both
-/// add the legs' inertial torques of the planned motion — the desired joint angles' and the
-/// commanded pelvis's velocities and accelerations (backward differences over the control
-/// period, the accelerations low-passed with control.acceleration_filter_time) through the
-/// recursive Newton–Euler.
+/// add the legs' inertial torques of the planned motion — the plan's joint and pelvis velocities
+/// and accelerations (SupportPlan::motion, walking/planned_motion.hpp: central differences of the
+/// plan's IK, without the balance loops) through the recursive Newton–Euler.
 ///
 /// control.compensation = robotis | talos: the field's baselines (field_baselines.hpp), input side
 /// only. Allocation-free after construction.
@@ -34,6 +40,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/robot/sensors.hpp"
+#include "flexgait/walking/planned_motion.hpp"
 #include "flexgait/walking/robot_model.hpp"
 #include "flexgait/walking/robot_model_dynamics.hpp"
 
@@ -76,6 +83,7 @@ struct SupportPlan {
   Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();                       ///< reference ZMP (world) [m]
   walking::Pose pelvis;                                                    ///< commanded pelvis pose (world; load_model dynamic)
   double single_support_phase = -1;  ///< s ∈ [0, 1] from lift-off to touchdown, −1 outside single support (robotis)
+  walking::PlannedMotion motion;     ///< the plan's joint and pelvis motion (load_model dynamic; not valid: at rest)
 };
 
 struct CompensationParams {
@@ -83,6 +91,7 @@ struct CompensationParams {
   GravityForm gravity = GravityForm::kFull;
   WeightSplit split = WeightSplit::kZmpReference;
   double k_joint = 1000.0;  ///< the controller's belief of the gears' stiffness [Nm/rad], times k_scale per joint
+  double gear_damping = 0.0;  ///< the belief of the gears' damping d [Nm s/rad]; 0: the static model (the thesis)
   humanoid::JointVector k_scale = [] {  ///< factor on k_joint for each joint (not a key)
     humanoid::JointVector ones;
     ones.fill(1.0);
@@ -90,7 +99,6 @@ struct CompensationParams {
   }();
   LoadModel load_model = LoadModel::kGravity;
   double load_filter_time = 0.1;   ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
-  double acceleration_filter_time = 0.1;  ///< time constant of the planned accelerations' low-pass [s]
   KEstimation k_estimation = KEstimation::kOff;
   double k_estimation_memory = 5.0;       ///< forgetting time constant: λ = e^{−T/memory} [s]
   double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
@@ -121,8 +129,6 @@ struct CompensationParams {
               "compensators, the legs' inertial torques of the planned motion"});
     v("control.load_filter_time", s.load_filter_time,
       {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
-    v("control.acceleration_filter_time", s.acceleration_filter_time,
-      {.unit = "s", .doc = "dynamic: time constant of the planned accelerations' low-pass (0: none)", .bounds = closed(0, 1)});
     v("control.k_estimation", s.k_estimation,
       {.doc = "online stiffness identification while walking: on = estimate 1/k of each leg's roll and pitch joint "
               "groups by RLS from the stance foot's tilt seen through the encoders and the IMU; the compensators "
@@ -141,6 +147,11 @@ struct CompensationParams {
     v("control.talos_cutoff", s.talos_cutoff, {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});
     v("control.talos_limit", s.talos_limit, {.unit = "rad", .doc = "talos: hip roll correction saturation", .bounds = closed(0, 0.2)});
     v("control.k_joint", s.k_joint, {.unit = "Nm/rad", .doc = "the controller's belief of the gears' stiffness", .bounds = closed(1, 1e7)});
+    v("control.gear_damping", s.gear_damping,
+      {.unit = "Nm s/rad",
+       .doc = "the belief of the gears' damping d (Kelvin-Voigt, tau = k delta + d delta'): the deflection lags the "
+              "torque by d/k in both compensators; 0 = the static model delta = tau/k (the thesis)",
+       .bounds = closed(0, 1e5)});
     v("control.newton_max_iterations", s.newton.max_iterations,
       {.doc = "output compensator: Newton steps at most", .bounds = closed(1, 100)});
     v("control.newton_tolerance", s.newton.tolerance,
@@ -152,7 +163,7 @@ struct CompensationParams {
 };
 
 /// Keys control.compensation, control.gravity_model, control.weight_split, control.load_model,
-/// control.load_filter_time, control.acceleration_filter_time, control.robotis_hip_roll, control.talos_*, control.k_joint, control.newton_*.
+/// control.load_filter_time, control.robotis_hip_roll, control.talos_*, control.k_joint, control.newton_*.
 inline Schema compensation_schema() { return schema_of<CompensationParams>(); }
 inline CompensationParams compensation_from_config(const Config& config) {
   return record_from_config<CompensationParams>(config);
@@ -173,7 +184,7 @@ struct OutputEstimate {
 
 class DeformationCompensator {
  public:
-  /// \param period control period T [s] (the filters and the planned motion's differences)
+  /// \param period control period T [s] (the filters)
   DeformationCompensator(const walking::RobotModel& model, const CompensationParams& params, double period = 0.004);
 
   /// load_model measured/dynamic: this period's ankle F/T readings (the leg's wrench on each foot,
@@ -182,7 +193,7 @@ class DeformationCompensator {
 
   /// Eqs. 8-9: motor commands for the desired joint angles and the commanded pelvis attitude
   /// `pelvis_R` (world). With input compensation off: θ_d itself; robotis, talos: θ_d with their
-  /// hip roll offsets. Call once per period (load_model dynamic differentiates θ_d and the pelvis).
+  /// hip roll offsets. Call once per period (talos's filter).
   const humanoid::JointVector& input(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R,
                                      const SupportPlan& support);
   /// τ_g(θ_d) of the last `input` call [Nm].
@@ -202,10 +213,10 @@ class DeformationCompensator {
   const humanoid::JointVector& stiffness() const { return stiffness_; }
 
  private:
+  /// The Kelvin–Voigt lag's weight of this period's torque for joint j, a = T / (T + d/k_j) (1 without damping).
+  double lag_weight(int j) const;
   /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).
   void split_by_plan(const SupportPlan& support);
-  /// load_model dynamic: the planned joint and pelvis velocities and accelerations from this θ_d.
-  void differentiate_plan(const humanoid::JointVector& desired, const walking::Pose& pelvis);
   /// The field baselines' hip roll offsets on command_.
   void apply_baseline(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R, const SupportPlan& support);
   /// τ_g with the loads of the last split_by_plan (kZmpReference) or of this pose (kCom).
@@ -216,8 +227,10 @@ class DeformationCompensator {
   CompensationParams params_;
   double period_;
   double filter_gain_;  ///< 1 − e^{−T/τ} of control.load_filter_time
-  double acceleration_gain_;  ///< the same of control.acceleration_filter_time
   humanoid::JointVector stiffness_;  ///< params_.stiffness(), computed once [Nm/rad]
+  // control.gear_damping: the deflections of the last period (Kelvin–Voigt lag) [rad]
+  bool input_lagged_ = false, output_lagged_ = false;  ///< a previous deflection exists
+  humanoid::JointVector input_deflection_{}, output_deflection_{};
   walking::RobotModelData data_;
   FootLoads plan_loads_;  ///< the split about the reference ZMP (kZmpReference), from the plan
   humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};
@@ -228,11 +241,6 @@ class DeformationCompensator {
   std::array<walking::Wrench, 2> ft_{};      ///< low-passed F/T wrenches, foot frame
   walking::FootWrenches feet_;               ///< the same in the world for the pose being evaluated
   walking::RobotDynamicsData dynamics_;
-  // load_model dynamic: the planned motion
-  int planned_samples_ = 0;
-  humanoid::JointVector q_prev_{}, qd_{}, qd_prev_{}, qdd_{};
-  walking::Vector3d pelvis_prev_ = walking::Vector3d::Zero(), pelvis_velocity_ = walking::Vector3d::Zero();
-  walking::BaseMotion base_;
   // baselines
   std::array<TalosHipRoll, 2> talos_;
 };

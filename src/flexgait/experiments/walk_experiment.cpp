@@ -124,6 +124,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   walking::WalkingController controller(walk_controller_model(params), params.walk, params.balance, T, params.estimator,
                                         params.health);
   compensation::DeformationCompensator compensator(controller.model(), params.control, T);
+  controller.set_plan_motion(params.control.load_model == compensation::LoadModel::kDynamic);
   const bool k_estimation = params.control.k_estimation == compensation::KEstimation::kOn;
   compensation::StiffnessEstimator stiffness_estimator(controller.model(), params.control, T);
   humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
@@ -178,7 +179,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const humanoid::SensorReadings& sensors = controller.sensors();
     flags_since_log |= st.sensor_flags;
     // The thesis's Fig. 2: input compensator → robot → encoders → output compensator.
-    compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0};
+    compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0, st.motion};
     if ((st.swinging[0] || st.swinging[1]) && st.step >= 0 && st.step < static_cast<int>(controller.plan().steps.size())) {
       const walking::Step& s = controller.plan().steps[static_cast<std::size_t>(st.step)];
       plan_now.single_support_phase = std::clamp((t - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);

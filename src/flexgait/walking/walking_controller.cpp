@@ -13,6 +13,11 @@ namespace {
 constexpr double kReplanDistance = 0.005;
 /// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
 constexpr double kLastAdjustment = 0.75;
+/// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
+/// < 1e-3 of the swing's accelerations (planned_motion_test).
+constexpr double kPlanStep = 0.01;
+/// The planned motion's COM Jacobian is taken again every this many periods (0.1 s at 4 ms).
+constexpr int kPlanJacobianPeriods = 25;
 
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
@@ -66,24 +71,10 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
   for (int axis = 0; axis < 2; ++axis) cart_[axis].x = Eigen::Vector3d(p0(axis), 0, 0);
 }
 
-void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles,
-                                   const Matrix3d& pelvis_R, int iterations) {
+void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
+                                   int iterations) {
   pelvis_.R = pelvis_R;
-  for (int it = 0; it < iterations; ++it) {
-    for (int side = 0; side < 2; ++side) {
-      const Pose local{pelvis_.R.transpose() * (soles[side].p - pelvis_.p), pelvis_.R.transpose() * soles[side].R};
-      const IkSolution ik = leg_inverse_kinematics(model_.leg[side], local);
-      status_.ik[side] = ik.status;
-      for (int i = 0; i < humanoid::kLegJoints; ++i) desired_[leg_first_joint(side) + i] = ik.q[i];
-    }
-    desired_[humanoid::kWaistYaw] = 0.0;
-    if (it + 1 == iterations) break;
-    forward_kinematics(model_, data_, pelvis_, desired_);
-    const Vector3d c = center_of_mass(model_, data_);
-    pelvis_.p.x() += com.x() - c.x();
-    pelvis_.p.y() += com.y() - c.y();
-  }
-  forward_kinematics(model_, data_, pelvis_, desired_);
+  solve_com_pose(model_, data_, com, soles, pelvis_, desired_, status_.ik, iterations);
 }
 
 void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
@@ -381,8 +372,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.imu_pitch = pitch_of(attitude_);
   measure_zmp(s);
   // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
-  const Vector3d heading = feet.sole[0].R.col(0) + feet.sole[1].R.col(0);
-  const double yaw = std::atan2(heading.y(), heading.x());
+  const double yaw = heading_of(feet.sole);
   const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
   if (dcm) dcm_balance(s, feet, yaw);
   // (from walk.start_time on: the COM estimate settles while the robot first stands)
@@ -425,6 +415,22 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   }
   solve_pose(status_.com_ref + status_.com_shift, soles, rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll), 2);
   status_.pelvis = pelvis_;
+  status_.motion.valid = false;
+  if (plan_motion_) {
+    // The plan's own motion at the commanded pose's time (planned_motion.hpp): the balance's
+    // corrections as constants.
+    PlanPoseInputs in;
+    in.model = &model_;
+    in.plan = &plan_;
+    in.swing_height = walk_.swing_height;
+    in.pelvis_height = walk_.pelvis_height;
+    in.cart = {cart_[0].x, cart_[1].x};
+    in.com_offset = status_.com_shift;
+    in.tilt = rot_y(d_pitch) * rot_x(d_roll);
+    const bool refresh = motion_jacobian_age_ <= 0;
+    motion_jacobian_age_ = refresh ? kPlanJacobianPeriods : motion_jacobian_age_ - 1;
+    status_.motion = planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
+  }
   status_.desired = desired_;
   return desired_;
 }

@@ -54,6 +54,7 @@
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
+#include "flexgait/walking/planned_motion.hpp"
 #include "flexgait/walking/preview_control.hpp"
 #include "flexgait/walking/robot_model.hpp"
 #include "flexgait/walking/sensor_health.hpp"
@@ -90,6 +91,7 @@ struct ControllerStatus {
   Eigen::Vector2d dcm_ref = Eigen::Vector2d::Zero();       ///< ξ of the plan [m]
   Eigen::Vector2d zmp_command = Eigen::Vector2d::Zero();   ///< the stabiliser's ZMP command (eq. D2) [m]
   Eigen::Vector2d step_shift = Eigen::Vector2d::Zero();    ///< step adjustment: the last shift of a landing [m]
+  PlannedMotion motion;  ///< the plan's joint and pelvis motion at the commanded pose (set_plan_motion)
 };
 
 /// Why and when the controller stopped the walk.
@@ -124,6 +126,9 @@ class WalkingController {
   }
 
   const ControllerStatus& status() const { return status_; }
+  /// Also compute the plan's joint and pelvis velocities and accelerations (status().motion;
+  /// control.load_model = dynamic): three more poses' IK per update.
+  void set_plan_motion(bool on) { plan_motion_ = on; }
   /// The plan being walked (cut short by a safe stop).
   const WalkPlan& plan() const { return plan_; }
   /// The readings of the last update as the controller used them (bad values held).
@@ -193,6 +198,10 @@ class WalkingController {
   Footprint planned_landing_;     ///< its landing before adjustment
   bool recovery_step_ = false;    ///< a recovery step was inserted (standing)
   ControllerStatus status_;
+  bool plan_motion_ = false;
+  RobotModelData motion_data_;  ///< the planned motion's scratch
+  Eigen::Matrix2d motion_jacobian_inverse_ = Eigen::Matrix2d::Identity();  ///< its pelvis Newton step per COM miss
+  int motion_jacobian_age_ = 0;  ///< periods until that is taken again
 };
 
 }  // namespace flexgait::walking
