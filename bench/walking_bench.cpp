@@ -36,9 +36,15 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The thesis's Fig. 2 loop in one control period: update, input compensator (eqs. 8-9), output
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
-// Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic).
+// Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic),
+// balance (0 pd, 1 dcm with step adjustment; issue 19: ≤ 30 µs with dcm and both compensators).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
-  walking::WalkingController c(humanoid::RobotParams{}, walking::WalkParams{}, walking::BalanceParams{}, 0.004);
+  walking::BalanceParams balance;
+  if (state.range(2) == 1) {
+    balance.mode = walking::BalanceMode::kDcm;
+    balance.step_adjustment = true;
+  }
+  walking::WalkingController c(humanoid::RobotParams{}, walking::WalkParams{}, balance, 0.004);
   compensation::CompensationParams p;
   p.split = static_cast<compensation::WeightSplit>(state.range(0));
   p.load_model = static_cast<compensation::LoadModel>(state.range(1));
@@ -62,13 +68,16 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   }
   state.counters["newton_iterations"] = static_cast<double>(iterations) / static_cast<double>(std::max(1L, calls));
   state.SetLabel(std::string(state.range(0) == 0 ? "split about the COM" : "split about the reference ZMP") +
-                 ", load_model = " + std::string(name_of(p.load_model)));
+                 ", load_model = " + std::string(name_of(p.load_model)) + ", balance.mode = " +
+                 std::string(name_of(balance.mode)) + (balance.step_adjustment ? " with step adjustment" : ""));
 }
 BENCHMARK(ControllerUpdateWithCompensators)
-    ->Args({0, 0})
-    ->Args({1, 0})
-    ->Args({1, 1})
-    ->Args({1, 2})
+    ->Args({0, 0, 0})
+    ->Args({1, 0, 0})
+    ->Args({1, 1, 0})
+    ->Args({1, 2, 0})
+    ->Args({1, 0, 1})
+    ->Args({1, 2, 1})
     ->Unit(benchmark::kMicrosecond);
 
 void ClosedLoopWalk(benchmark::State& state) {
