@@ -78,28 +78,32 @@ def main(study):
         fig.suptitle("Estimated joint angles against the twin's true link angles (compensators on)")
         save_atomic(fig, study, "estimate.png")
 
-        fig, axes = plt.subplots(1, 2, figsize=(13, 5), constrained_layout=True)
+        fig, axes = plt.subplots(1, 3, figsize=(19, 5), constrained_layout=True)
+        per_joint = bool(joints) and "l_hip_roll_per_joint" in joints[0]  # (older files lack the per-joint form)
         for side, prefix in enumerate(("l_", "r_")):
             for joint in ("hip_roll", "hip_pitch", "knee", "ankle_pitch"):
                 name = prefix + joint
                 tau = column(joints, f"{name}_torque_estimate")
-                diff = [n - c for n, c in zip(column(joints, f"{name}_estimate"), column(joints, f"{name}_conventional"))]
+                conventional = column(joints, f"{name}_conventional")
+                diff = [n - c for n, c in zip(column(joints, f"{name}_estimate"), conventional)]
                 axes[0].scatter(tau, diff, s=2, label=name)
+                if per_joint:
+                    diff = [p - c for p, c in zip(column(joints, f"{name}_per_joint"), conventional)]
+                    axes[1].scatter(tau, diff, s=2, label=name)
                 err_n = [n - l for n, l in zip(column(joints, f"{name}_estimate"), column(joints, f"{name}_link"))]
-                err_c = [c - l for c, l in zip(column(joints, f"{name}_conventional"), column(joints, f"{name}_link"))]
-                axes[1].scatter(tau, err_c, s=2, color="tab:red", alpha=0.4,
+                err_c = [c - l for c, l in zip(conventional, column(joints, f"{name}_link"))]
+                axes[2].scatter(tau, err_c, s=2, color="tab:red", alpha=0.4,
                                 label="conventional − true" if side == 0 and joint == "hip_roll" else None)
-                axes[1].scatter(tau, err_n, s=2, color="tab:blue", alpha=0.4,
+                axes[2].scatter(tau, err_n, s=2, color="tab:blue", alpha=0.4,
                                 label="Newton − true" if side == 0 and joint == "hip_roll" else None)
-        axes[0].set_title("Proposed (Newton) − conventional estimate (thesis Fig. 15)")
-        axes[0].set_ylabel("[rad]")
-        axes[0].legend(fontsize=8, markerscale=4)
-        axes[1].set_title("Error of each estimate against the true link angle")
-        axes[1].set_ylabel("[rad]")
-        axes[1].legend(fontsize=8, markerscale=4)
+        axes[0].set_title("Proposed (Newton, 12 joints coupled) − conventional estimate")
+        axes[1].set_title("Per joint as the thesis (eq. 12 with ∂τ_j/∂θ_j alone) − conventional (Fig. 15)")
+        axes[2].set_title("Error of each estimate against the true link angle")
         for ax in axes:
             ax.set_xlabel("gravity torque τ_g(θ̂) of the output compensator [Nm]")
+            ax.set_ylabel("[rad]")
             ax.axhline(0, color="k", lw=0.5)
+            ax.legend(fontsize=8, markerscale=4)
         save_atomic(fig, study, "fig15_output_estimate.png")
 
 

@@ -38,6 +38,29 @@ TEST(LinkAngleNewton, SolvesTheBenchToMachinePrecisionInAtMostFiveIterations) {
     // deflection e0, |e1| <= max|τ''| e0² / (2 min(k + G)) with |τ''| <= w, |G| <= w.
     const double e0 = std::abs(encoder(0) - link);
     EXPECT_LE(std::abs(e.one_step(0) - link), w * e0 * e0 / (2 * (k - w)) + 1e-15) << link;
+    // One joint: the per-joint form is the one-step form (the same formula, other rounding).
+    EXPECT_NEAR(e.per_joint(0), e.one_step(0), 1e-15) << link;
+  }
+}
+
+// The per-joint form (the thesis's Fig. 15) is eq. 12 with G's diagonal alone, by hand on two
+// coupled joints (τ = A sin θ with a full A): θ_enc,j − τ_j(θ_enc) / (k_j + G_jj(θ_enc)), and it
+// differs from the coupled one-step form where G's off-diagonal terms act.
+TEST(LinkAngleNewton, PerJointFormIsEquationTwelveWithTheDiagonalAlone) {
+  using V = Eigen::Vector2d;
+  Eigen::Matrix2d A;
+  A << 40.0, 25.0, -15.0, 30.0;  // [Nm]
+  auto torque = [&](const V& q, V& tau) { tau = A * q.array().sin().matrix(); };
+  auto jacobian = [&](const V& q, const V&, Eigen::Matrix2d& G) { G = A * q.array().cos().matrix().asDiagonal(); };
+  const V encoder(0.3, -0.2), k(800.0, 1200.0);
+  const LinkAngleEstimate<2> e = solve_link_angles<2>(encoder, k, torque, jacobian);
+  ASSERT_TRUE(e.converged);
+  V tau;
+  torque(encoder, tau);
+  for (int j = 0; j < 2; ++j) {
+    const double by_hand = encoder(j) - tau(j) / (k(j) + A(j, j) * std::cos(encoder(j)));
+    EXPECT_NEAR(e.per_joint(j), by_hand, 1e-15) << j;
+    EXPECT_GT(std::abs(e.per_joint(j) - e.one_step(j)), 1e-5) << j;  // the coupling is real here
   }
 }
 

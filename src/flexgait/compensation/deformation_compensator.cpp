@@ -200,9 +200,10 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
     set_legs(output_deflection_, legs_of(encoder) - e.newton);
     output_lagged_ = true;
   }
-  estimate_.newton = estimate_.one_step = estimate_.conventional = encoder;  // the waist carries no τ_g
+  estimate_.newton = estimate_.one_step = estimate_.per_joint = estimate_.conventional = encoder;  // the waist: no τ_g
   set_legs(estimate_.newton, e.newton);
   set_legs(estimate_.one_step, e.one_step);
+  set_legs(estimate_.per_joint, e.per_joint);
   set_legs(estimate_.conventional, e.conventional);
   estimate_.gravity_torque = torque_at(estimate_.newton, imu_R, support);
   estimate_.iterations = e.iterations;

@@ -175,6 +175,7 @@ using LegVector = Eigen::Matrix<double, kLegDofs, 1>;       ///< left leg then r
 struct OutputEstimate {
   humanoid::JointVector newton{};        ///< θ̂ by Newton (eq. 11; the fallback if not converged) [rad]
   humanoid::JointVector one_step{};      ///< eq. 12 [rad]
+  humanoid::JointVector per_joint{};     ///< eq. 12 joint by joint, the thesis's scalar form (G's diagonal) [rad]
   humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
   humanoid::JointVector gravity_torque{};///< τ_g(θ̂) [Nm]
   int iterations = 0;

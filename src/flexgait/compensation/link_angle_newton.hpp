@@ -6,7 +6,9 @@
 /// solved by Newton's method: N'(θ) = −(I + K⁻¹ G), G = ∂τ_g/∂θ, so each step solves
 ///     (K + G) Δ = K N(θ),   θ ← θ + Δ.
 /// From θ = θ_enc the first step is the one-step form (12), θ_enc − (K + G)⁻¹ τ_g(θ_enc); the
-/// "conventional" estimate is θ_enc − K⁻¹ τ_g(θ_enc). Fixed size, no allocation (it runs in the
+/// "conventional" estimate is θ_enc − K⁻¹ τ_g(θ_enc); the per-joint form of (12), the thesis's
+/// scalar one, θ_enc,j − τ_g,j(θ_enc) / (k_j + G_jj), leaves out G's coupling between joints
+/// (Fig. 15 per joint). Fixed size, no allocation (it runs in the
 /// control loop; the Poincaré machinery's general Newton in numerics/newton allocates).
 ///
 /// Bounded: at most `max_iterations` steps; if the residual does not fall below `tolerance`, the
@@ -28,6 +30,7 @@ struct LinkAngleEstimate {
   using Vector = Eigen::Matrix<double, N, 1>;
   Vector newton = Vector::Zero();        ///< Newton's solution (or the fallback) [rad]
   Vector one_step = Vector::Zero();      ///< eq. 12 [rad]
+  Vector per_joint = Vector::Zero();     ///< eq. 12 joint by joint (G's diagonal alone) [rad]
   Vector conventional = Vector::Zero();  ///< θ_enc − τ_g(θ_enc)/k [rad]
   int iterations = 0;                    ///< Newton steps taken
   double residual = 0;                   ///< ||N(newton)||_inf [rad]
@@ -54,6 +57,7 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
   double best_residual = residual;
   for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
     jacobian(theta, tau, G);
+    if (it == 0) out.per_joint = encoder - tau.cwiseQuotient(stiffness + G.diagonal());
     Matrix A = G;
     A.diagonal() += stiffness;
     theta += A.partialPivLu().solve(stiffness.cwiseProduct(r));
@@ -68,7 +72,7 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
       best_residual = residual;
     }
   }
-  if (out.iterations == 0) out.one_step = theta;
+  if (out.iterations == 0) out.one_step = out.per_joint = theta;
   out.converged = residual <= settings.tolerance;
   if (out.converged) {
     out.newton = theta;

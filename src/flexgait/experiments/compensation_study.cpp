@@ -89,6 +89,7 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   j["one_step_error_rms"] = on.one_step_error_rms;
   j["conventional_error_rms"] = on.conventional_error_rms;
   j["newton_conventional_max"] = on.newton_conventional_max;
+  j["per_joint_conventional_max"] = on.per_joint_conventional_max;
   j["newton_iterations_max"] = on.newton_iterations_max;
   j["newton_failures"] = on.newton_failures;
   nlohmann::ordered_json fell, table = nlohmann::ordered_json::array();

@@ -160,7 +160,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const long log_every = std::max(1L, std::lround(params.log_period / T));
   const double t_walk0 = out.plan.steps.empty() ? 0.0 : out.plan.steps.front().t_begin;
   Accumulator zx, zy, zss, zft, zbelief, roll, pitch, com;
-  Accumulator deflection, estimate_error, one_step_error, conventional_error, newton_vs_conventional, link_error;
+  Accumulator deflection, estimate_error, one_step_error, conventional_error, newton_vs_conventional,
+      per_joint_vs_conventional, link_error;
   Accumulator roll_kin_encoder, roll_kin_estimate, attitude_error;
   unsigned flags_since_log = 0;
   long newton_calls = 0, newton_iterations = 0;
@@ -245,6 +246,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
           one_step_error.add(estimate->one_step[j] - before.link_angle[j]);
           conventional_error.add(estimate->conventional[j] - before.link_angle[j]);
           newton_vs_conventional.add(estimate->newton[j] - estimate->conventional[j]);
+          per_joint_vs_conventional.add(estimate->per_joint[j] - estimate->conventional[j]);
         }
       attitude_error.add(std::hypot(st.imu_roll - roll_true, st.imu_pitch - pitch_true));
       if (stance >= 0) {
@@ -371,6 +373,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       if (estimate) {
         w.estimate = estimate->newton;
         w.conventional = estimate->conventional;
+        w.per_joint = estimate->per_joint;
         w.torque_estimate = estimate->gravity_torque;
       }
       w.torque_model = compensator.input_torque();
@@ -413,6 +416,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.conventional_error_rms = conventional_error.rms();
   m.conventional_error_max = conventional_error.max;
   m.newton_conventional_max = newton_vs_conventional.max;
+  m.per_joint_conventional_max = per_joint_vs_conventional.max;
   m.link_error_rms = link_error.rms();
   m.link_error_max = link_error.max;
   m.pelvis_roll_kinematic_encoder_rms = roll_kin_encoder.rms();

@@ -98,6 +98,7 @@ struct WalkSample {
   humanoid::JointVector link{};          ///< the twin's true link angles [rad]
   humanoid::JointVector estimate{};      ///< θ̂ by Newton (eq. 11) [rad]
   humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
+  humanoid::JointVector per_joint{};     ///< eq. 12 joint by joint (the thesis's scalar form) [rad]
   humanoid::JointVector torque_model{};  ///< τ_g of the input compensator (desired pose) [Nm]
   humanoid::JointVector torque_estimate{};  ///< τ_g of the output compensator (estimated pose) [Nm]
   humanoid::JointVector torque_true{};   ///< the twin's gear torques [Nm]
@@ -153,6 +154,7 @@ struct WalkMetrics {
   double one_step_error_rms = 0;                             ///< eq. 12 − θ_link [rad]
   double conventional_error_rms = 0, conventional_error_max = 0;  ///< [rad]
   double newton_conventional_max = 0;                        ///< max |θ̂ − conventional| [rad]
+  double per_joint_conventional_max = 0;                     ///< max |per-joint eq. 12 − conventional| [rad]
   double link_error_rms = 0, link_error_max = 0;             ///< θ_link − θ_d: what input compensation removes [rad]
   double pelvis_roll_kinematic_encoder_rms = 0, pelvis_roll_kinematic_estimate_rms = 0;  ///< single support, against the IMU [rad]
   int newton_iterations_max = 0;
@@ -227,6 +229,8 @@ struct WalkMetrics {
       {.unit = "rad", .doc = "rms of θ_enc − τ_g(θ_enc)/k − θ_link", .present = estimate});
     v("conventional_error_max", s.conventional_error_max, {.unit = "rad", .doc = "max of the same", .present = estimate});
     v("newton_conventional_max", s.newton_conventional_max, {.unit = "rad", .doc = "max |θ̂ − conventional|", .present = estimate});
+    v("per_joint_conventional_max", s.per_joint_conventional_max,
+      {.unit = "rad", .doc = "max |eq. 12 joint by joint − conventional| (thesis Fig. 15 per joint)", .present = estimate});
     v("newton_iterations_max", s.newton_iterations_max, {.doc = "Newton iterations, most in one period", .present = estimate});
     v("newton_iterations_mean", s.newton_iterations_mean, {.doc = "Newton iterations per period, mean", .present = estimate});
     v("newton_failures", s.newton_failures, {.doc = "control periods Newton did not converge (fallback used)", .present = estimate});

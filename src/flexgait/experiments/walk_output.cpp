@@ -38,8 +38,10 @@ Writer walk_log_rows(const WalkResult& r) {
 
 template <class Writer>
 Writer walk_joints_rows(const WalkResult& r) {
-  static constexpr std::array<std::string_view, 9> kFields = {
-      "desired", "command", "encoder", "link", "estimate", "conventional", "torque_model", "torque_estimate", "torque_true"};
+  static constexpr std::array<std::string_view, 10> kFields = {"desired",      "command",         "encoder",
+                                                                "link",         "estimate",        "conventional",
+                                                                "per_joint",    "torque_model",    "torque_estimate",
+                                                                "torque_true"};
   std::vector<std::string> header{"t"};
   for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
     for (const auto f : kFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
@@ -51,7 +53,8 @@ Writer walk_joints_rows(const WalkResult& r) {
     csv.cell(w.t);
     for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) {
       csv.cell(w.desired[j]).cell(w.command[j]).cell(w.encoder[j]).cell(w.link[j]).cell(w.estimate[j]);
-      csv.cell(w.conventional[j]).cell(w.torque_model[j]).cell(w.torque_estimate[j]).cell(w.torque_true[j]);
+      csv.cell(w.conventional[j]).cell(w.per_joint[j]).cell(w.torque_model[j]).cell(w.torque_estimate[j]);
+      csv.cell(w.torque_true[j]);
     }
     if (r.k_estimation)
       for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) csv.cell(w.k_estimate[j]);
