@@ -28,7 +28,23 @@ std::vector<std::string> split_text(std::string_view text, char separator) {
   return out;
 }
 
-std::string format_number(double v) { return fmt::format("{}", v); }
+namespace {
+
+/// The shortest text that reads back to v ("{}"), appended: compiled, through a local buffer (a
+/// long CSV log is mostly this call).
+void append_number(std::string& out, double v) {
+  char buffer[32];
+  const char* end = fmt::format_to(buffer, FMT_COMPILE("{}"), v);
+  out.append(buffer, static_cast<std::size_t>(end - buffer));
+}
+
+}  // namespace
+
+std::string format_number(double v) {
+  std::string text;
+  append_number(text, v);
+  return text;
+}
 
 std::string one_line(std::string_view text, std::size_t max_bytes) {
   std::size_t keep = std::min(text.size(), max_bytes);
@@ -115,11 +131,7 @@ void CsvWriter::separator() {
 
 CsvWriter& CsvWriter::cell(double v) {
   separator();
-  // The shortest round-trip text, as "{}" (format_number); compiled and into a local buffer, then
-  // appended at once: a long log is mostly this call.
-  char buffer[32];
-  const char* end = fmt::format_to(buffer, FMT_COMPILE("{}"), v);
-  text_.append(buffer, static_cast<std::size_t>(end - buffer));
+  append_number(text_, v);
   return *this;
 }
 

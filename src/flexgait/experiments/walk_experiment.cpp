@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "flexgait/compensation/stiffness_estimator.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/experiments/capture_point_bound.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
@@ -101,7 +102,7 @@ Config with_derived_values(const Config& config, const WalkRunParams& params) {
   Config out = config;
   for (const auto& [key, value] : {std::pair{"walk.pelvis_height", params.walk.pelvis_height},
                                    std::pair{"walk.step_width", params.walk.step_width}})
-    if (out.derived(key)) out.set(key, fmt::format("{}", value), "auto (from the robot)");
+    if (out.derived(key)) out.set(key, format_number(value), "auto (from the robot)");
   return out;
 }
 

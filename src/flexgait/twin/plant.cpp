@@ -25,8 +25,9 @@ int require(const mjModel* m, mjtObj type, const std::string& name) {
 /// The twin's joint `j`: every leg joint is there; the waist may be absent (a rigid trunk,
 /// ElasticDrives::kAbsentJoint).
 int twin_joint(const mjModel* m, int j) {
-  const int id = mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str());
-  return j == kWaistYaw && id < 0 ? ElasticDrives::kAbsentJoint : require(m, mjOBJ_JOINT, std::string(kJointNames[j]));
+  const std::string name(kJointNames[j]);
+  if (j == kWaistYaw && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0) return ElasticDrives::kAbsentJoint;
+  return require(m, mjOBJ_JOINT, name);
 }
 
 int sensor_adr(const mjModel* m, const char* name) { return m->sensor_adr[require(m, mjOBJ_SENSOR, name)]; }
