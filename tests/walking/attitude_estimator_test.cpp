@@ -19,12 +19,13 @@ constexpr double kT = 0.004, kG = 9.81;
 
 /// Gains for the synthetic tests: faster than the walking defaults (k_P = 1 rad/s, k_I = 0.1
 /// rad/s²: poles −0.113 and −0.887 rad/s) so that a minute of data shows convergence; no
-/// alignment phase (the start-up is tested on its own).
+/// alignment phase and no levelling window (the start-up is tested on its own).
 EstimatorParams test_gains() {
   EstimatorParams p;
   p.kp = 1.0;
   p.ki = 0.1;
   p.align_time = 0;
+  p.level_time = 0;
   return p;
 }
 
@@ -149,7 +150,8 @@ TEST(AttitudeEstimator, AlignsFastThenSwitchesToTheSlowGains) {
   // The first reading taken while the body accelerates 0.5 m/s² sideways starts it 0.05 rad off;
   // at rest afterwards the alignment (k_P = align_kp = 5 rad/s, no bias integral) removes the
   // error as e^{−align_kp t} (1 s: 7e-3 of it), after which the slow gains apply.
-  EstimatorParams p;  // the defaults
+  EstimatorParams p;  // the defaults, but no levelling window: the one reading starts it
+  p.level_time = 0;
   AttitudeEstimator f{p};
   const Matrix3d R = rpy_to_matrix(0.03, -0.02, 0);
   const Vector3d first = R.transpose() * Vector3d(0, 0.5, kG);
@@ -165,6 +167,46 @@ TEST(AttitudeEstimator, AlignsFastThenSwitchesToTheSlowGains) {
   f.update(Vector3d::Zero(), &a, Vector3d::Zero(), kT);
   f.update(Vector3d(0.001, 0, 0), &a, Vector3d::Zero(), kT);
   EXPECT_NE(f.bias(), Vector3d::Zero());  // the slow gains now
+}
+
+TEST(AttitudeEstimator, LevelsOnTheFirstSteadyWindowAfterATransient) {
+  // The twin's start: for 0.1 s the body pitches at 2 rad/s and the accelerometer swings (here
+  // its direction turns 2 rad/s × T = 8 mrad per reading, beyond level_tolerance over a few
+  // readings, at |a| = g so the magnitude gate alone would take it); then it is at rest in R.
+  // The filter must wait for level_time of steady readings and start exactly at R's tilt (the
+  // mean of equal readings: round-off, 1e-12), not at the first reading (0.1 rad off).
+  EstimatorParams p;  // the defaults: level_time 0.1 s, level_tolerance 0.02 rad
+  AttitudeEstimator f{p};
+  const Matrix3d R = rpy_to_matrix(0.02, 0.05, 0);
+  const Vector3d gyro(0, 2.0, 0);
+  for (int k = 0; k < 25; ++k) {
+    const Vector3d a = at_rest(R * rpy_to_matrix(0, -0.1 + 2.0 * kT * k, 0));
+    f.update(gyro, &a, Vector3d::Zero(), kT);
+    EXPECT_FALSE(f.initialised()) << k;
+  }
+  const Vector3d a = at_rest(R);
+  const int n = static_cast<int>(std::lround(p.level_time / kT));  // readings in the window
+  for (int k = 0; k < n; ++k) {
+    EXPECT_FALSE(f.initialised()) << k;
+    f.update(Vector3d::Zero(), &a, Vector3d::Zero(), kT);
+  }
+  ASSERT_TRUE(f.initialised());
+  EXPECT_LT(tilt_error(f.attitude(), R), 1e-12);
+}
+
+TEST(AttitudeEstimator, StartsAfterAlignTimeWhenNeverSteady) {
+  // Readings that alternate ±0.05 rad in roll (beyond level_tolerance = 0.02 rad) never make a
+  // steady window: after align_time from the first reading the filter starts from the reading
+  // it has, so a walk never waits for ever.
+  EstimatorParams p;
+  AttitudeEstimator f{p};
+  const int n = static_cast<int>(std::lround(p.align_time / kT));
+  for (int k = 0; k <= n; ++k) {
+    const Vector3d a = at_rest(rpy_to_matrix(k % 2 == 0 ? 0.05 : -0.05, 0, 0));
+    f.update(Vector3d::Zero(), &a, Vector3d::Zero(), kT);
+    ASSERT_EQ(f.initialised(), k == n) << k;
+  }
+  EXPECT_NEAR(std::abs(roll_of(f.attitude())), 0.05, 1e-12);
 }
 
 TEST(AttitudeEstimator, UpdateAllocatesNothing) {

@@ -9,6 +9,39 @@ void AttitudeEstimator::reset() {
   bias_.setZero();
   initialised_ = false;
   time_ = 0;
+  level_sum_.setZero();
+  level_count_ = 0;
+  waiting_ = 0;
+}
+
+bool AttitudeEstimator::level(const Vector3d& a, double T) {
+  const double g = params_.gravity;
+  waiting_ += T;
+  const bool near_g = std::abs(a.norm() - g) <= 0.05 * g;
+  const bool along = level_count_ == 0 ||
+                     std::atan2(a.cross(level_sum_).norm(), a.dot(level_sum_)) <= params_.level_tolerance;
+  if (!(near_g && along)) {  // not steady: the window starts again (at this reading if it can)
+    level_sum_.setZero();
+    level_count_ = 0;
+    if (near_g) {
+      level_sum_ = a;
+      level_count_ = 1;
+    }
+  } else {
+    level_sum_ += a;
+    ++level_count_;
+  }
+  // The window holds level_count_ periods of readings (half a period: the round-off of Σ T).
+  const bool steady = level_count_ > 0 && level_count_ * T + 0.5 * T >= params_.level_time;
+  const bool timed_out = waiting_ > params_.align_time + 0.5 * T;
+  if (!steady && !timed_out) return false;
+  // Tilt from gravity alone: up = Rᵀ e_z = (−sin p, sin r cos p, cos r cos p) for R = Rz Ry Rx.
+  const Vector3d v = (steady ? level_sum_ : a).normalized();
+  const double roll = std::atan2(v.y(), v.z());
+  const double pitch = std::atan2(-v.x(), std::hypot(v.y(), v.z()));
+  R_ = rpy_to_matrix(roll, pitch, 0.0);
+  initialised_ = true;
+  return true;
 }
 
 void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, const Vector3d& planned_accel, double T) {
@@ -25,15 +58,11 @@ void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, cons
     if (params_.accel_compensation && initialised_) v -= R_.transpose() * planned_accel;
     const double n = v.norm();
     if (n > 0.5 * g && n < 1.5 * g) {
-      v /= n;
       if (!initialised_) {
-        // Tilt from gravity alone: up = Rᵀ e_z = (−sin p, sin r cos p, cos r cos p) for R = Rz Ry Rx.
-        const double roll = std::atan2(v.y(), v.z());
-        const double pitch = std::atan2(-v.x(), std::hypot(v.y(), v.z()));
-        R_ = rpy_to_matrix(roll, pitch, 0.0);
-        initialised_ = true;
+        level(v, T);
         return;
       }
+      v /= n;
       // Correction against the predicted attitude: (32c), then (32a)'s k_P term and (32b);
       // while aligning, a higher gain and no bias integration.
       const bool aligning = time_ + 0.5 * T < params_.align_time;  // (half a period: round-off of Σ T)

@@ -23,11 +23,17 @@
 /// rad/s (a/g attenuated ~30× at 0.5 Hz) and k_I = 0.002 rad/s² (poles −0.028 and −0.072 rad/s:
 /// the bias is learnt over about a minute).
 ///
-/// Start and alignment: the filter starts from the first accelerometer reading (tilt from
-/// gravity, yaw 0). The twin is dropped onto its soles at the start and rocks while it settles,
-/// so that first reading can be off by 0.1 rad; for align_time the filter corrects with the
-/// higher gain align_kp (time constant 1/align_kp) and does not learn the bias, then switches to
-/// k_P and k_I. The robot should stand for align_time (walk.start_time is longer by default).
+/// Start (levelling) and alignment: the filter starts from the mean accelerometer reading over a
+/// steady window of level_time — every reading within 5 % of g in magnitude and within
+/// level_tolerance of the window's mean direction — (tilt from gravity, yaw 0): the coarse
+/// levelling of an inertial unit at rest. The twin is dropped onto its elastic gears at the
+/// start and pitches at up to 2 rad/s for the first 0.1 s; a single first reading taken then was
+/// 0.26 rad off in pitch and the balance loops acted on it. Until the window is found the filter
+/// has no attitude (the controller holds the body upright); if none is found within align_time
+/// of the first reading, the next reading within [0.5 g, 1.5 g] starts it. For align_time after
+/// the start the filter corrects with the higher gain align_kp (time constant 1/align_kp) and
+/// does not learn the bias, then switches to k_P and k_I. The robot should stand for
+/// level_time + align_time (walk.start_time is longer by default).
 /// Readings whose magnitude is outside [0.5 g, 1.5 g] after compensation are not used (impacts).
 /// Allocation-free; no simulator types.
 #include "flexgait/core/record.hpp"
@@ -47,6 +53,8 @@ struct EstimatorParams {
   double ki = 0.002;                ///< k_I: gyro bias integral gain [rad/s^2]
   double align_time = 1.0;          ///< alignment after the start: gain align_kp, no bias integration [s]
   double align_kp = 5.0;            ///< k_P while aligning [rad/s]
+  double level_time = 0.1;          ///< levelling: length of the steady accelerometer window that starts the filter [s]
+  double level_tolerance = 0.02;    ///< levelling: a steady reading's largest angle to the window's mean [rad]
   bool accel_compensation = true;   ///< subtract the planned COM acceleration from the accelerometer
   double gravity = 9.81;            ///< [m/s^2]
 
@@ -60,6 +68,12 @@ struct EstimatorParams {
       {.unit = "s", .doc = "Mahony filter: alignment time after the start (gain estimator.align_kp, no bias integration)",
        .bounds = closed(0, 100)});
     v("estimator.align_kp", s.align_kp, {.unit = "rad/s", .doc = "Mahony filter: k_P while aligning", .bounds = closed(0, 100)});
+    v("estimator.level_time", s.level_time,
+      {.unit = "s", .doc = "Mahony filter: start from the mean accelerometer over a steady window this long (0: the first reading near 1 g)",
+       .bounds = closed(0, 10)});
+    v("estimator.level_tolerance", s.level_tolerance,
+      {.unit = "rad", .doc = "Mahony filter: a steady reading's largest angle to the levelling window's mean direction",
+       .bounds = closed(0, 1)});
     v("estimator.accel_compensation", s.accel_compensation,
       {.doc = "Mahony filter: subtract the planned COM acceleration from the accelerometer"});
   }
@@ -73,7 +87,7 @@ class AttitudeEstimator {
   /// or nullptr when it is unavailable (then gyro integration only); a_m the planned pelvis
   /// acceleration (world) [m/s^2]. The result is in attitude(), bias().
   void update(const Vector3d& gyro, const Vector3d* accel, const Vector3d& planned_accel, double T);
-  /// Starts again (the next reading initialises the attitude).
+  /// Starts again (the next steady window initialises the attitude).
   void reset();
 
   const Matrix3d& attitude() const { return R_; }  ///< R̂: pelvis to world
@@ -86,6 +100,14 @@ class AttitudeEstimator {
   Vector3d bias_ = Vector3d::Zero();
   bool initialised_ = false;
   double time_ = 0;  ///< since the initialisation [s]
+  // Levelling (before the initialisation).
+  Vector3d level_sum_ = Vector3d::Zero();  ///< sum of the window's readings [m/s^2]
+  int level_count_ = 0;                    ///< readings in the window
+  double waiting_ = 0;                     ///< since the first accelerometer reading [s]
+
+  /// Takes one reading a (already gated to [0.5 g, 1.5 g]) into the levelling; true when the
+  /// attitude has been initialised from it.
+  bool level(const Vector3d& a, double T);
 };
 
 }  // namespace flexgait::walking
