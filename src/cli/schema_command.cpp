@@ -43,7 +43,7 @@ nlohmann::ordered_json configuration_json(const Schema& schema) {
       nlohmann::ordered_json fields = nlohmann::ordered_json::array();
       for (const ParamSpec& f : p.item_fields)
         fields.push_back({{"name", f.key}, {"type", type_name(f.type)}, {"length", f.length}, {"unit", f.unit},
-                          {"doc", f.doc}, {"allowed", f.allowed()}});
+                          {"doc", f.doc}, {"allowed", f.allowed()}, {"optional", f.optional}});
       k["item_fields"] = std::move(fields);
     }
     keys.push_back(std::move(k));

@@ -1,7 +1,8 @@
 // A list of pushes (issue 19): disturbance.pushes read from a file and from --set, each bad field
 // refused naming `disturbance.pushes[i].field` and the file's line, the written config.yaml reading
 // back to the same run, and a walk with two pushes applying both (the plant's account and the
-// robot's momentum), same bytes twice, the single push unchanged beside an empty list.
+// robot's momentum), same bytes twice, the single push unchanged beside an empty list; a push
+// timed by the walking phase (step, phase) starting where the plan says, and its bad input.
 #include <unistd.h>  // getpid: a directory of this process alone (work trees run tests at once)
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <fstream>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/experiments/push_timing.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/twin/plant.hpp"
@@ -182,6 +184,64 @@ TEST(PushList, SinglePushAloneOrInTheListSameBytes) {
   const WalkResult a = run_walk(single), b = run_walk(listed);
   EXPECT_EQ(walk_log_csv(a), walk_log_csv(b));
   EXPECT_EQ(walk_summary_json(a), walk_summary_json(b));
+}
+
+}  // namespace
+}  // namespace flexgait::experiments
+
+namespace flexgait::experiments {
+namespace {
+
+TEST(PushList, TimedByTheWalkingPhase) {
+  // {step: 2, phase: 0.25}: the push starts a quarter into the second step's single support,
+  // t = t_lift + 0.25 (t_land − t_lift) of plan step 2 (the field's definition), and acts for its
+  // duration: every logged sample carries the force exactly while t ∈ (t*, t* + 0.05] (the
+  // log's sample at t reports the physics step that ended at t; t* is on the 1 ms grid here).
+  const std::string text =
+      "walk:\n  steps: 3\noutput:\n  log_period: 0.004\ndisturbance:\n  pushes:\n"
+      "    - {step: 2, phase: 0.25, body: pelvis, force: [0, 50, 0], duration: 0.05}\n";
+  const WalkRunParams p = from_file(text);
+  ASSERT_EQ(p.pushes.size(), 1u);
+  EXPECT_EQ(p.pushes[0].step, 2);
+  EXPECT_EQ(p.pushes[0].phase, 0.25);
+  const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
+  const walking::Step& s = plan.steps.at(1);
+  const double t_push = s.t_lift + 0.25 * (s.t_land - s.t_lift);
+  EXPECT_DOUBLE_EQ(push_start_time(p.pushes[0], plan), t_push);
+  Push by_time = p.pushes[0];
+  by_time.step = 0;
+  by_time.time = 1.25;
+  EXPECT_EQ(push_start_time(by_time, plan), 1.25);  // step 0: its own time
+  const WalkResult r = run_walk(p);
+  int on = 0;
+  for (const WalkSample& w : r.log) {
+    const bool pushing = w.t > t_push + 1e-9 && w.t < t_push + 0.05 + 1e-9;
+    EXPECT_DOUBLE_EQ(w.push_force[1], pushing ? 50.0 : 0.0) << "t = " << w.t;
+    on += pushing;
+  }
+  EXPECT_GT(on, 10);
+  EXPECT_NEAR(r.metrics.push_impulse, 50 * 0.05, 1e-9);
+
+  // Left out at their defaults when written; the written file reads back to the same times.
+  const Config c = resolve_config(walk_run_schema(), write_temp("phase.yaml", text), {});
+  const std::string yaml = c.to_yaml();
+  EXPECT_NE(yaml.find("{step: 2, phase: 0.25, body: pelvis"), std::string::npos) << yaml;
+  const WalkRunParams back = walk_run_from_config(resolve_config(walk_run_schema(), write_temp("phase2.yaml", yaml), {}));
+  EXPECT_EQ(back.pushes[0].step, 2);
+  EXPECT_EQ(back.pushes[0].time, 0.0);
+}
+
+TEST(PushList, BadWalkingPhaseRefusedNamingTheKey) {
+  const std::string head = "walk:\n  steps: 3\ndisturbance:\n  pushes:\n";
+  const auto item = [&](const std::string& fields) { return refusal(head + "    - {" + fields + "}\n"); };
+  const std::string rest = "body: chest, force: [0, 1, 0], duration: 0.1";
+  EXPECT_NE(item("step: 4, " + rest).find("'disturbance.pushes[0].step' = '4': the walk has 3 steps"), std::string::npos);
+  EXPECT_NE(item("time: 2, step: 1, " + rest).find("'disturbance.pushes[0].time'"), std::string::npos);
+  EXPECT_NE(item("step: 1, phase: 1.5, " + rest).find("'disturbance.pushes[0].phase'"), std::string::npos);
+  EXPECT_NE(item("step: -1, " + rest).find("'disturbance.pushes[0].step'"), std::string::npos);
+  EXPECT_NE(refusal("walk:\n  steps: 3\n", {"disturbance.push.step=5", "disturbance.push.force_y=10"})
+                .find("'disturbance.push.step' = '5'"),
+            std::string::npos);
 }
 
 }  // namespace

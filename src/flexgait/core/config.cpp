@@ -259,6 +259,12 @@ std::vector<std::vector<ConfigScalar>> parse_item(const ParamSpec& spec, std::si
     ParamSpec named = field;
     named.key = item_key + "." + field.key;
     const auto given = std::find_if(item.begin(), item.end(), [&](const ItemFieldText& f) { return f.name == field.key; });
+    if (given == item.end() && field.optional) {
+      if (field.length != 0) throw std::logic_error("an optional list item field holds one value");
+      named.length = 0;
+      fields.push_back({scalar_of(parse_value(named, field.fallback, origin))});
+      continue;
+    }
     if (given == item.end())
       throw ConfigError(named.key, fmt::format("{}: key '{}' missing; allowed: {}{}", origin, named.key, named.allowed(),
                                                named.unit.empty() ? "" : " (" + named.unit + ")"));
@@ -342,6 +348,7 @@ void emit_list(YAML::Emitter& out, const ConfigList& list, const std::vector<Par
     if (item.size() != item_fields.size()) throw std::logic_error("a list item does not match its fields");
     out << YAML::Flow << YAML::BeginMap;
     for (std::size_t f = 0; f < item.size(); ++f) {
+      if (item_fields[f].optional && format_value(value_of(item[f].at(0))) == item_fields[f].fallback) continue;
       out << YAML::Key << item_fields[f].key << YAML::Value;
       if (item_fields[f].length == 0) {
         out << format_value(value_of(item[f].at(0)));

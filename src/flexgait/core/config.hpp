@@ -60,6 +60,9 @@ struct ParamSpec {
   std::vector<std::string> choices;  ///< allowed values (Choice)
   std::vector<ParamSpec> item_fields;  ///< List: the fields of one item (key: the field's name)
   int length = 0;  ///< a field of a List item: 0 one value, n > 0 a list of exactly n values of `type`
+  /// A field of a List item that may be left out: it then takes `fallback`, and a configuration
+  /// leaves it out while it holds that value (one value only: length 0).
+  bool optional = false;
   /// Non-empty: the key's value is derived from other inputs unless set (e.g. walk.pelvis_height
   /// from the robot); says how. Such a key also takes the value `auto` (derive it), and a
   /// configuration writes it as `auto` while it is derived. `fallback` is then only a placeholder.

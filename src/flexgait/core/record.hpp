@@ -75,6 +75,7 @@ struct FieldInfo {
   Bounds bounds{};          ///< allowed values of a parameter
   bool present = true;      ///< results: false when the field does not apply to this value (left out of JSON)
   std::string_view derived{};  ///< a parameter derived unless set (ParamSpec::derived): how
+  bool optional = false;       ///< a field of a List item that may be left out (ParamSpec::optional)
 };
 
 namespace detail {
@@ -186,6 +187,7 @@ ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info
   p.unit = std::string(info.unit);
   p.doc = std::string(info.doc);
   p.derived = std::string(info.derived);
+  p.optional = info.optional;
   p.min = info.bounds.min;
   p.max = info.bounds.max;
   p.min_inclusive = info.bounds.min_inclusive;

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "flexgait/experiments/push_timing.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 
 namespace flexgait::experiments {
@@ -50,6 +51,9 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
                             "disturbance.push.time"})
       if (config.real(key) != 0)
         throw ConfigError(key, std::string(key) + ": set by the push-recovery test (push_recovery.*); leave it 0");
+    if (config.integer("disturbance.push.step") != 0)
+      throw ConfigError("disturbance.push.step",
+                        "disturbance.push.step: set by the push-recovery test (push_recovery.step); leave it 0");
     if (p.run.push.duration <= 0)
       throw ConfigError("disturbance.push.duration", "disturbance.push.duration: the push needs a duration > 0");
     if (p.test.situation == PushSituation::kWalking && p.test.step >= p.run.walk.steps)
@@ -60,11 +64,22 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
   return p;
 }
 
+namespace {
+
+/// The walking situation's push: disturbance.push.* at mid single support of push_recovery.step.
+humanoid::Push walking_push(const PushRecoveryRunParams& p) {
+  humanoid::Push push = p.run.push;
+  push.time = 0;
+  push.step = p.test.step;
+  push.phase = 0.5;
+  return push;
+}
+
+}  // namespace
+
 double push_recovery_time(const PushRecoveryRunParams& p) {
   if (p.test.situation == PushSituation::kStanding) return p.test.stand_time;
-  const walking::WalkPlan plan = walking::plan_footsteps(p.run.walk);
-  const walking::Step& s = plan.steps.at(static_cast<std::size_t>(p.test.step - 1));
-  return 0.5 * (s.t_lift + s.t_land);  // mid single support
+  return push_start_time(walking_push(p), walking::plan_footsteps(p.run.walk));  // mid single support
 }
 
 PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p) {
@@ -77,7 +92,8 @@ PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p) {
     base.walk.steps = 0;
     base.walk.end_time = out.push_time + p.test.settle_time;
   }
-  base.push.time = out.push_time;
+  if (p.test.situation == PushSituation::kStanding) base.push.time = out.push_time;
+  else base.push = walking_push(p);
   const Eigen::Vector2d u = push_direction_vector(p.test.direction);
   double upper = p.test.upper;
   for (int doubling = 0;; ++doubling) {

@@ -10,6 +10,7 @@
 #include "flexgait/compensation/stiffness_estimator.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/capture_point_bound.hpp"
+#include "flexgait/experiments/push_timing.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/twin/plant.hpp"
@@ -95,6 +96,12 @@ WalkRunParams walk_run_from_config(const Config& c) {
     apply_stance_defaults(c, model, p.walk);
     check_reach(p, model);
   });
+  check_with_origin(c, [&] {
+    const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
+    for (std::size_t i = 0; i < p.pushes.size(); ++i)
+      check_push_timing(p.pushes[i], plan, fmt::format("disturbance.pushes[{}].", i));
+    check_push_timing(p.push, plan, "disturbance.push.");
+  });
   return p;
 }
 
@@ -132,7 +139,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
   if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
   plant.reset(controller.initial_pose());
-  const std::vector<humanoid::Push> pushes = humanoid::all_pushes(params.pushes, params.push);
+  const std::vector<humanoid::Push> pushes =
+      timed_pushes(humanoid::all_pushes(params.pushes, params.push), controller.plan());
   plant.set_pushes(pushes);
   // The capture-point bound is taken for the earliest push (summary.json).
   const humanoid::Push first_push =

@@ -57,7 +57,7 @@ struct WalkRunParams {
     walking::EstimatorParams::visit_fields(s.estimator, v);
     walking::HealthParams::visit_fields(s.health, v);
     humanoid::Push::visit_fields(s.push, v);
-    v("disturbance.pushes", s.pushes, {.doc = "pushes on the twin, each {time [s], body, force [N, world], duration [s]}; "
+    v("disturbance.pushes", s.pushes, {.doc = "pushes on the twin, each {time [s] (or step, phase), body, force [N, world], duration [s]}; "
                                               "disturbance.push.* adds one more"});
     v("output.log_period", s.log_period, {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
   }
