@@ -114,7 +114,13 @@ TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
   p.push.force = {r.fell / p.push.duration, 0, 0};
   EXPECT_TRUE(run_walk(p).metrics.fell);
   EXPECT_GT(r.recovered, 0.5 * r.bound);
-  EXPECT_THROW(largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0), std::invalid_argument);  // 1 N s is recovered
+  EXPECT_TRUE(r.bracketed);
+  // 1 N s is recovered: an outcome (no bracket), one run, recovered = upper, no fall seen.
+  const PushRecovery narrow = largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0);
+  EXPECT_FALSE(narrow.bracketed);
+  EXPECT_EQ(narrow.runs, 1);
+  EXPECT_EQ(narrow.recovered, 1.0);
+  EXPECT_TRUE(std::isnan(narrow.fell));
 }
 
 TEST(Push, StepAdjustmentKeepsTheNominalWalk) {

@@ -38,7 +38,9 @@ TEST(FixedPoint, NoStartingPointIsANamedFailure) {
   const FixedPointReport r = search({"initial.omega=-1"});
   expect_named_failure(r);
   EXPECT_EQ(r.point.z.size(), 0);
-  EXPECT_NE(r.failure.find("no initial guess"), std::string::npos) << r.failure;
+  ASSERT_TRUE(r.transient_failure.has_value()) << r.failure;  // no initial guess: the transient rolled back
+  EXPECT_EQ(r.transient_failure->reason, FailureReason::RolledBack) << r.failure;
+  EXPECT_EQ(r.failure, "no initial guess: " + r.transient_failure->text());
 }
 
 // Issue 21.6: a finite-difference column fails half-way through the Jacobian; its multipliers were

@@ -100,7 +100,8 @@ FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions&
   if (auto e = settle_on_section(w, map_options(sim, opt), model, section, initial, opt.transient_steps, guess)) {
     FixedPointReport rep;
     rep.point = guess;
-    rep.failure = "no initial guess: " + *e;
+    rep.transient_failure = e;
+    rep.failure = e->in_stage("no initial guess").text();
     return rep;
   }
   return find_fixed_point_from(w, sim, opt, guess);

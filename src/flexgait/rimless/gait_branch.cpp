@@ -265,7 +265,7 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
     const AnalysisOptions& a = cache->opt;
     if (auto e = settle_on_section(w0, map_options(cache->sim, a), cache->model, spec.section,
                                    initial_from_config(start_config), a.transient_steps, like)) {
-      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from), *e);
+      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from), e->text());
       return out;
     }
     out.state_names = like.names();
