@@ -77,7 +77,7 @@ TEST(Push, BelowHalfTheBoundRecoveredTwiceTheBoundNot) {
   ASSERT_GT(bound, 15.0);
   ASSERT_LT(bound, 30.0);
   const WalkResult half = run_walk(standing(0.45 * bound));
-  EXPECT_FALSE(half.metrics.fell) << half.metrics.fall_reason << " at " << half.metrics.fall_time;
+  EXPECT_FALSE(half.metrics.fell) << half.metrics.fall_text() << " at " << half.metrics.fall_time;
   EXPECT_NEAR(half.metrics.push_impulse, 0.45 * bound, 1e-9 * bound);
   const WalkResult twice = run_walk(standing(2.0 * bound));
   EXPECT_TRUE(twice.metrics.fell);
@@ -97,8 +97,11 @@ TEST(Push, DcmStabiliserBelowHalfTheBoundRecoveredTwiceTheBoundNot) {
   const double bound = run_walk(standing(1.0, walking::BalanceMode::kDcm)).metrics.capture_point_bound;
   ASSERT_GT(bound, 10.0);
   const WalkMetrics half = run_walk(standing(0.45 * bound, walking::BalanceMode::kDcm)).metrics;
-  EXPECT_FALSE(half.fell) << half.fall_reason << " at " << half.fall_time;
-  EXPECT_TRUE(run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics.fell);
+  EXPECT_FALSE(half.fell) << half.fall_text() << " at " << half.fall_time;
+  const WalkMetrics twice = run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics;
+  EXPECT_TRUE(twice.fell);
+  EXPECT_TRUE(twice.fall_reason.has_value());  // a fall always has its reason
+  EXPECT_FALSE(twice.failure.has_value()) << twice.failure_text();  // a fall, not a failed simulation
 }
 
 TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
@@ -130,7 +133,7 @@ TEST(Push, StepAdjustmentKeepsTheNominalWalk) {
   p.balance.step_adjustment = true;
   p.walk.steps = 6;
   const WalkMetrics m = run_walk(p).metrics;
-  EXPECT_TRUE(m.completed()) << m.fall_reason << " at " << m.fall_time;
+  EXPECT_TRUE(m.completed()) << m.fall_text() << " at " << m.fall_time;
 }
 
 TEST(Push, SameConfigurationSameBytes) {
