@@ -9,23 +9,14 @@
 
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
+#include "../support/enum_table.hpp"
 
 namespace flexgait::experiments {
 namespace {
 
-template <class E>
-void expect_unique_round_trip() {
-  std::set<std::string_view> names;
-  for (const auto& e : enum_names(E{})) {
-    EXPECT_TRUE(names.insert(e.name).second) << e.name;
-    EXPECT_EQ(enum_from_name<E>(e.name), e.value) << e.name;
-    EXPECT_EQ(name_of(e.value), e.name);
-  }
-}
-
 TEST(WalkOutcome, NamesAreUniqueAndRoundTrip) {
-  expect_unique_round_trip<FallReason>();
-  expect_unique_round_trip<SimulationFailure>();
+  flexgait::testing::expect_enum_table_round_trips<FallReason>();
+  flexgait::testing::expect_enum_table_round_trips<SimulationFailure>();
   std::set<std::string_view> sentences;
   for (const auto& e : enum_names(FallReason{})) EXPECT_TRUE(sentences.insert(fall_sentence(e.value)).second);
 }
