@@ -107,7 +107,8 @@ int compensation_study(const RunOptions& run) {
     const bool thesis_case = i < 3;
     if (!(thesis_case && m.fell) && !m.failure) continue;
     fmt::print(stderr, "error: the {} walk {} at t = {:.2f} s: {}\n", cases[i].name, !m.failure ? "fell" : "failed",
-               !m.failure ? m.fall_time : m.failure_time, one_line(!m.failure ? m.fall_text() : m.failure_text(), 1000));
+               !m.failure ? m.fall_time : m.failure_time,
+               one_line(!m.failure ? m.fall_text() : m.failure_text(), 1000));
     return 1;
   }
   return 0;
@@ -188,8 +189,8 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   // with one line on stderr saying why, as every command's failures are.
   std::string incomplete;
   if (m.failure)
-    incomplete = fmt::format("the walk failed at t = {:.2f} s after {} of {} steps: {}", m.failure_time, m.steps_completed,
-                             m.steps_planned, one_line(m.failure_text(), 1000));
+    incomplete = fmt::format("the walk failed at t = {:.2f} s after {} of {} steps: {}", m.failure_time,
+                             m.steps_completed, m.steps_planned, one_line(m.failure_text(), 1000));
   else if (m.fell)
     incomplete = fmt::format("the robot fell at t = {:.2f} s ({}) after {} of {} steps", m.fall_time, m.fall_text(),
                              m.steps_completed, m.steps_planned);

@@ -100,7 +100,7 @@ TEST(Push, DcmStabiliserBelowHalfTheBoundRecoveredTwiceTheBoundNot) {
   EXPECT_FALSE(half.fell) << half.fall_text() << " at " << half.fall_time;
   const WalkMetrics twice = run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics;
   EXPECT_TRUE(twice.fell);
-  EXPECT_TRUE(twice.fall_reason.has_value());  // a fall always has its reason
+  EXPECT_TRUE(twice.fall_reason.has_value());                       // a fall always has its reason
   EXPECT_FALSE(twice.failure.has_value()) << twice.failure_text();  // a fall, not a failed simulation
 }
 

@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
+#include "../support/enum_table.hpp"
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
-#include "../support/enum_table.hpp"
 
 namespace flexgait::experiments {
 namespace {

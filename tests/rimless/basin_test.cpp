@@ -109,20 +109,20 @@ TEST(Basin, FailureOutcomes) {
     FailureReason reason;
     BasinOutcome outcome;
   };
-  for (const Case& c : {Case{FailureReason::FellBack, BasinOutcome::RolledBack},
-                        Case{FailureReason::RolledBack, BasinOutcome::RolledBack},
-                        Case{FailureReason::AtRest, BasinOutcome::Stopped},
-                        Case{FailureReason::NoLanding, BasinOutcome::Stopped},
-                        Case{FailureReason::SlidAway, BasinOutcome::SlidAway},
-                        Case{FailureReason::TimeLimit, BasinOutcome::TimeLimit},
-                        Case{FailureReason::SolverFailure, BasinOutcome::Failed},
-                        Case{FailureReason::InitialFootBelowGround, BasinOutcome::Failed}}) {
+  for (const Case& c :
+       {Case{FailureReason::FellBack, BasinOutcome::RolledBack},
+        Case{FailureReason::RolledBack, BasinOutcome::RolledBack}, Case{FailureReason::AtRest, BasinOutcome::Stopped},
+        Case{FailureReason::NoLanding, BasinOutcome::Stopped}, Case{FailureReason::SlidAway, BasinOutcome::SlidAway},
+        Case{FailureReason::TimeLimit, BasinOutcome::TimeLimit},
+        Case{FailureReason::SolverFailure, BasinOutcome::Failed},
+        Case{FailureReason::InitialFootBelowGround, BasinOutcome::Failed}}) {
     EXPECT_EQ(failure_outcome(Failure{c.reason, "x", {}}), c.outcome) << name_of(c.reason);
     EXPECT_EQ(failure_outcome(Failure{c.reason, {}, "transient"}), c.outcome) << name_of(c.reason);  // any stage
   }
   // basin.csv's outcome column: the table's names, in the header's order.
-  EXPECT_EQ(basin_outcomes(), (std::vector<std::string>{"converged", "other_gait", "rolled_back", "stopped", "slid_away",
-                                                        "time_limit", "failed", "step_limit", "infeasible"}));
+  EXPECT_EQ(basin_outcomes(),
+            (std::vector<std::string>{"converged", "other_gait", "rolled_back", "stopped", "slid_away", "time_limit",
+                                      "failed", "step_limit", "infeasible"}));
 }
 
 }  // namespace

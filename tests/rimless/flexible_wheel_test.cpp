@@ -45,7 +45,8 @@ TEST_P(FlexibleWheelInvariants, EnergyBalanceFrictionConeAndNoDrift) {
     // μ just above tan φ it slides on two feet without turning and stalls.
     ASSERT_TRUE(r.failure.has_value());
     const FailureReason why = r.failure->reason;
-    const bool named = why == FailureReason::AtRest || why == FailureReason::NoLanding || why == FailureReason::SlidAway;
+    const bool named =
+        why == FailureReason::AtRest || why == FailureReason::NoLanding || why == FailureReason::SlidAway;
     EXPECT_TRUE(named) << *r.failure;
   }
   EXPECT_LE(r.energy_balance_error, 1e-8);

@@ -27,7 +27,9 @@ namespace {
 using S = StateIndex;
 
 // How ModeDecision reports a failure: a reason (outcome.hpp) and its detail.
-bool ok(const ModeDecision& d) { return !d.failure.has_value(); }
+bool ok(const ModeDecision& d) {
+  return !d.failure.has_value();
+}
 std::string failure_text(const ModeDecision& d) {
   return ok(d) ? std::string() : std::string(name_of(*d.failure)) + ": " + d.detail;
 }

@@ -28,8 +28,7 @@ TEST(FailureReason, NamesAndSentencesAreUniqueAndRoundTrip) {
     EXPECT_EQ(failure_sentence(e.reason), e.sentence);
   }
   // Every value of the enum is in the table (the values are 0 .. size - 1, the last one named).
-  for (std::size_t i = 0; i < kFailureTable.size(); ++i)
-    EXPECT_NO_THROW(name_of(static_cast<FailureReason>(i))) << i;
+  for (std::size_t i = 0; i < kFailureTable.size(); ++i) EXPECT_NO_THROW(name_of(static_cast<FailureReason>(i))) << i;
   EXPECT_EQ(kFailureTable.back().reason, FailureReason::IrreducibleCrossing);
   EXPECT_EQ(static_cast<std::size_t>(FailureReason::IrreducibleCrossing) + 1, kFailureTable.size());
 }
@@ -48,7 +47,8 @@ TEST(FailureReason, TextIsStageSentenceAndDetail) {
   EXPECT_EQ((Failure{FailureReason::SlidAway, "xdot = 1 m/s", {}}).text(),
             "slid away: the wheel slides down the slope on its feet without turning, ever faster (xdot = 1 m/s)");
   // A sentence with "{}" takes the detail there.
-  EXPECT_EQ((Failure{FailureReason::InitialFootBelowGround, "3", {}}).text(), "initial state: foot 3 is below the ground");
+  EXPECT_EQ((Failure{FailureReason::InitialFootBelowGround, "3", {}}).text(),
+            "initial state: foot 3 is below the ground");
   EXPECT_EQ((Failure{FailureReason::SectionNotReached, "upright", {}}).text(), "the upright section was not reached");
   EXPECT_EQ((Failure{FailureReason::IrreducibleCrossing, "flight at the upright section", {}}).text(),
             "flight at the upright section");
@@ -93,7 +93,7 @@ TEST(FailureReason, AFootBelowTheGroundAtTheStartIsReturned) {
   const auto settled = settle_on_section(w, testing::run_options(3), Model::Flexible, Section::Touchdown, start, 2, p);
   ASSERT_TRUE(settled.has_value());
   EXPECT_EQ(settled->reason, FailureReason::InitialFootBelowGround);
-  EXPECT_EQ(settled->stage, "");  // no stage: the transient never began
+  EXPECT_EQ(settled->stage, "");                               // no stage: the transient never began
   EXPECT_EQ(failure_outcome(*settled), BasinOutcome::Failed);  // the basin names it infeasible itself
 }
 

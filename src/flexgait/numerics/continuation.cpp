@@ -344,7 +344,8 @@ struct Walker {
         why = *e;
         ds /= 2;
         if (ds < opt.min_step) {
-          stop(BranchEnd::NoStep, "no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why);
+          stop(BranchEnd::NoStep,
+               "no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why);
           return;
         }
       }
@@ -371,16 +372,19 @@ struct Walker {
         if (opt.detect) detect(a, end, s);
         branch.points.push_back(make_point(f, end, branch.points.back().arclength + s));
         branch.reached_end = bound == p_end;
-        if (branch.reached_end) stop(BranchEnd::ReachedEnd, "reached p = " + number(p_end));
-        else stop(BranchEnd::TurnedBack, "turned back to p = " + number(bound) + " (left the parameter interval)");
+        if (branch.reached_end)
+          stop(BranchEnd::ReachedEnd, "reached p = " + number(p_end));
+        else
+          stop(BranchEnd::TurnedBack, "turned back to p = " + number(bound) + " (left the parameter interval)");
         return;
       }
       const std::size_t folds_before = count_folds();
       if (opt.detect) detect(a, b, ds);
       branch.points.push_back(make_point(f, b, branch.points.back().arclength + ds));
       if (count_folds() > folds_before && vertical()) {
-        stop(BranchEnd::Vertical, "a vertical branch at p = " + number(b.x(n)) +
-             ": two folds at the same parameter (a continuum of fixed points there, a multiplier stays at +1)");
+        stop(BranchEnd::Vertical,
+             "a vertical branch at p = " + number(b.x(n)) +
+                 ": two folds at the same parameter (a continuum of fixed points there, a multiplier stays at +1)");
         return;
       }
       if (b.iterations <= 3) ds = std::min(1.5 * ds, opt.max_step);

@@ -115,7 +115,7 @@ struct SpecialPoint {
   double angle = 0;             ///< Neimark–Sacker: argument of the critical multiplier in (0, π) [rad]
   double test_value = 0;        ///< the test function at the located point
   std::string label_before, label_after;  ///< label change only
-  bool located = true;          ///< false: detected, not located (at the step's end; why in Branch::stop_reason)
+  bool located = true;  ///< false: detected, not located (at the step's end; why in Branch::stop_reason)
 };
 
 /// How a branch ended (Branch::end); Branch::stop_reason says it in words, with its numbers.
@@ -146,7 +146,7 @@ struct Branch {
   std::vector<SpecialPoint> special;  ///< in the order met
   bool reached_end = false;           ///< the branch reached p = p_end
   BranchEnd end = BranchEnd::NotStarted;  ///< how it ended
-  std::string stop_reason;            ///< why it ended (also when reached_end), then notes (a special point not located)
+  std::string stop_reason;  ///< why it ended (also when reached_end), then notes (a special point not located)
   std::string failure;                ///< nonempty when not even the start converged
 };
 

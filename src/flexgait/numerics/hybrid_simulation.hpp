@@ -44,7 +44,8 @@ enum class LoopFailure {
   Zeno,           ///< kZenoCount events within kZenoWindow
 };
 constexpr std::array<EnumName<LoopFailure>, 3> enum_names(LoopFailure) {
-  return {{{LoopFailure::Solver, "solver"}, {LoopFailure::RepeatedEvent, "repeated_event"}, {LoopFailure::Zeno, "zeno"}}};
+  return {
+      {{LoopFailure::Solver, "solver"}, {LoopFailure::RepeatedEvent, "repeated_event"}, {LoopFailure::Zeno, "zeno"}}};
 }
 
 /// The work limits the loop enforces (HybridModel::work_limit_reached() says why it stopped).

@@ -80,12 +80,17 @@ BasinReference basin_reference(const Config& base, Section section) {
 BasinOutcome failure_outcome(const Failure& failure) {
   switch (failure.reason) {
     case FailureReason::RolledBack:
-    case FailureReason::FellBack: return BasinOutcome::RolledBack;
+    case FailureReason::FellBack:
+      return BasinOutcome::RolledBack;
     case FailureReason::AtRest:
-    case FailureReason::NoLanding: return BasinOutcome::Stopped;
-    case FailureReason::SlidAway: return BasinOutcome::SlidAway;
-    case FailureReason::TimeLimit: return BasinOutcome::TimeLimit;
-    default: return BasinOutcome::Failed;
+    case FailureReason::NoLanding:
+      return BasinOutcome::Stopped;
+    case FailureReason::SlidAway:
+      return BasinOutcome::SlidAway;
+    case FailureReason::TimeLimit:
+      return BasinOutcome::TimeLimit;
+    default:
+      return BasinOutcome::Failed;
   }
 }
 
@@ -115,7 +120,8 @@ std::string basin_row(const Config& base, const BasinSpec& spec, const BasinRefe
   std::string gait;
   double distance = ref.found ? scaled_distance(w, p, ref.point) : INFINITY;
   for (int n = 1;; ++n) {
-    if (distance <= spec.tolerance) return row(BasinOutcome::Converged, gait.empty() ? ref.gait : gait, n, distance, "");
+    if (distance <= spec.tolerance)
+      return row(BasinOutcome::Converged, gait.empty() ? ref.gait : gait, n, distance, "");
     if (n == spec.steps_limit) return row(BasinOutcome::StepLimit, gait, n, distance, "");
     const MapStep s = map.apply(p, false);
     if (s.failure) return row(failure_outcome(*s.failure), gait, n, distance, s.failure->text());

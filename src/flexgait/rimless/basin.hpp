@@ -64,7 +64,17 @@ BasinReference basin_reference(const Config& base, Section section);
 ///   sim.max_step_time; slid_away; time_limit; failed — any other failure (named in `failure`);
 ///   step_limit  — none of these within steps_limit crossings;
 ///   infeasible  — the initial state cannot be simulated (a foot below the ground; in `failure`).
-enum class BasinOutcome { Converged, OtherGait, RolledBack, Stopped, SlidAway, TimeLimit, Failed, StepLimit, Infeasible };
+enum class BasinOutcome {
+  Converged,
+  OtherGait,
+  RolledBack,
+  Stopped,
+  SlidAway,
+  TimeLimit,
+  Failed,
+  StepLimit,
+  Infeasible
+};
 constexpr std::array<EnumName<BasinOutcome>, 9> enum_names(BasinOutcome) {
   return {{{BasinOutcome::Converged, "converged"},
            {BasinOutcome::OtherGait, "other_gait"},

@@ -42,7 +42,7 @@ SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOption
 /// Newton iterate, or an empty z when the transient never reached the section.
 struct FixedPointReport {
   bool converged = false;
-  std::string failure;                 ///< empty when converged; else the text of why not (files show it)
+  std::string failure;                       ///< empty when converged; else the text of why not (files show it)
   std::optional<Failure> transient_failure;  ///< why the transient gave Newton no initial guess
   int iterations = 0;
   double residual = 0;                 ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)

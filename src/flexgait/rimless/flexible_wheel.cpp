@@ -373,8 +373,7 @@ struct FlexibleWheelSimulator::Impl {
     if (c.count < 2 || kinetic_energy(w, s) >= 1e-12 * w.m * w.g * w.L0) return false;
     const Dynamics d = contact_dynamics(w, c, s);
     const double tol = 1e-6 * w.g;
-    return !d.failure && std::abs(d.qdd[0]) <= tol && std::abs(d.qdd[1]) <= tol &&
-           std::abs(d.qdd[2]) * w.L0 <= tol;
+    return !d.failure && std::abs(d.qdd[0]) <= tol && std::abs(d.qdd[1]) <= tol && std::abs(d.qdd[2]) * w.L0 <= tol;
   }
 
   // A wheel on two or more feet that all slip the same way, neither turning nor rising: a rigid
@@ -568,8 +567,7 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
     if (static_cast<EventKind>(e.kind) != EventKind::Touchdown) return true;
     const double beta = leg_angle(w, e.unit, m.y[S::theta]);
     if (beta > 0 && m.y[S::thetad] < 0 && m.y[S::xd] < 0) {
-      fail(t, FailureReason::RolledBack,
-           fmt::format("leg {}, beta = {}", e.unit, beta));
+      fail(t, FailureReason::RolledBack, fmt::format("leg {}, beta = {}", e.unit, beta));
       return false;
     }
     return true;
@@ -695,8 +693,10 @@ bool FlexibleWheelSimulator::Run::smooth_step(double t, std::span<const double>,
   }
   if (status == numerics::StepStatus::StopTime) {
     const std::string also = translation ? "; " + motion : "";
-    if (t >= m.opt.max_time) fail(t, FailureReason::TimeLimit, fmt::format("{} s{}", m.opt.max_time, also));
-    else fail(t, FailureReason::NoLanding, fmt::format("{} s{}", m.opt.max_step_time, also));
+    if (t >= m.opt.max_time)
+      fail(t, FailureReason::TimeLimit, fmt::format("{} s{}", m.opt.max_time, also));
+    else
+      fail(t, FailureReason::NoLanding, fmt::format("{} s{}", m.opt.max_step_time, also));
     return false;
   }
   return true;

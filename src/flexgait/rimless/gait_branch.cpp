@@ -135,7 +135,8 @@ void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>
     // The physical reason where it is the sliding gait's: μ_k = tan φ.
     const WheelParams w = cache->wheel_at(tail.points.back().p);
     const SectionState& m = segments.back().like;
-    if (!m.flight && m.mode != FootMode::Stick && std::abs(w.mu_k - std::tan(w.slope)) <= 1e-8 * std::max(1.0, w.mu_k)) {
+    if (!m.flight && m.mode != FootMode::Stick &&
+        std::abs(w.mu_k - std::tan(w.slope)) <= 1e-8 * std::max(1.0, w.mu_k)) {
       out.end = GaitBranchEnd::SlideBalance;
       out.branch.stop_reason = fmt::format(
           "mu_k = tan(slope) = {}: kinetic friction on the sliding foot balances gravity along the slope, so a slide "
@@ -269,7 +270,8 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
     const AnalysisOptions& a = cache->opt;
     if (auto e = settle_on_section(w0, map_options(cache->sim, a), cache->model, spec.section,
                                    initial_from_config(start_config), a.transient_steps, like)) {
-      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from), e->text());
+      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from),
+                                e->text());
       return out;
     }
     out.state_names = like.names();

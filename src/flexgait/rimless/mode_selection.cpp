@@ -383,10 +383,10 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     if (w.I == 0) {
       const bool single = n == 1;
       out.failure = current.count == 0 ? FailureReason::PointMassLanding
-                    : single             ? FailureReason::PointMassSingleSlip
-                                         : FailureReason::PointMassDoubleSupport;
+                    : single           ? FailureReason::PointMassSingleSlip
+                                       : FailureReason::PointMassDoubleSupport;
     } else if (jam_blocked) {
-out.failure = FailureReason::PainleveParadox;
+      out.failure = FailureReason::PainleveParadox;
     } else {
       out.failure = FailureReason::NoConsistentMode;
     }

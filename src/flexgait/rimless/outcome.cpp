@@ -15,9 +15,12 @@ std::string_view failure_sentence(FailureReason reason) {
 
 FailureReason loop_failure_reason(numerics::LoopFailure what) {
   switch (what) {
-    case numerics::LoopFailure::Solver: return FailureReason::SolverFailure;
-    case numerics::LoopFailure::RepeatedEvent: return FailureReason::RepeatedEvent;
-    case numerics::LoopFailure::Zeno: return FailureReason::Zeno;
+    case numerics::LoopFailure::Solver:
+      return FailureReason::SolverFailure;
+    case numerics::LoopFailure::RepeatedEvent:
+      return FailureReason::RepeatedEvent;
+    case numerics::LoopFailure::Zeno:
+      return FailureReason::Zeno;
   }
   throw std::logic_error("LoopFailure without a reason");
 }
@@ -40,8 +43,12 @@ Failure Failure::in_stage(std::string_view outer) const {
   return f;
 }
 
-std::string text_of(const std::optional<Failure>& failure) { return failure ? failure->text() : std::string(); }
+std::string text_of(const std::optional<Failure>& failure) {
+  return failure ? failure->text() : std::string();
+}
 
-std::ostream& operator<<(std::ostream& out, const Failure& failure) { return out << failure.text(); }
+std::ostream& operator<<(std::ostream& out, const Failure& failure) {
+  return out << failure.text();
+}
 
 }  // namespace flexgait::rimless

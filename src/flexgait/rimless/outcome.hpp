@@ -29,40 +29,40 @@ enum class FailureReason : std::uint8_t {
   // The start (spec rimless.md, "Events"): the initial state is not on or above the ground.
   InitialFootBelowGround,
   // Mode choice at an event (mode_selection.hpp, spec rimless.md "Contact modes").
-  Fell,                      ///< a stance leg reached |β| = π/2
-  TooManyFeet,               ///< more feet on the ground than kMaxContacts
-  JamWithoutImpulse,         ///< a Painlevé jam that no impulse inside the cone stops
-  PainleveParadox,           ///< every mode slips with D <= 0 or breaks a condition, no impulse helps
-  NoConsistentMode,          ///< no combination of foot modes is consistent (I > 0)
-  PointMassLanding,          ///< I = 0: a landing after a flight has no consistent motion
-  PointMassSingleSlip,       ///< I = 0: single-support slip snaps to the friction-cone edge
-  PointMassDoubleSupport,    ///< I = 0: no consistent mode in double support
+  Fell,                    ///< a stance leg reached |β| = π/2
+  TooManyFeet,             ///< more feet on the ground than kMaxContacts
+  JamWithoutImpulse,       ///< a Painlevé jam that no impulse inside the cone stops
+  PainleveParadox,         ///< every mode slips with D <= 0 or breaks a condition, no impulse helps
+  NoConsistentMode,        ///< no combination of foot modes is consistent (I > 0)
+  PointMassLanding,        ///< I = 0: a landing after a flight has no consistent motion
+  PointMassSingleSlip,     ///< I = 0: single-support slip snaps to the friction-cone edge
+  PointMassDoubleSupport,  ///< I = 0: no consistent mode in double support
   // Contact dynamics of one mode (dynamics.hpp).
-  SlipJam,                   ///< a slipping foot with D <= 0 (Painlevé jam)
-  PointMassTorqueBalance,    ///< I = 0: the torque balance does not fix θ̇
-  PointMassSingular,         ///< I = 0: the constrained equations are singular
+  SlipJam,                 ///< a slipping foot with D <= 0 (Painlevé jam)
+  PointMassTorqueBalance,  ///< I = 0: the torque balance does not fix θ̇
+  PointMassSingular,       ///< I = 0: the constrained equations are singular
   // Checks after a smooth step and at events (the flexible wheel).
-  MissedModeChange,          ///< the contact mode became inconsistent within one solver step
-  MissedTouchdown,           ///< a free foot went below the ground within one solver step
-  RolledBack,                ///< flexible: a leg behind the hub landed while the wheel moved backwards
-  FellBack,                  ///< rigid: the roll-back guard β + α ↓ 0 fired
-  AtRest,                    ///< came to rest in double support
-  SlidAway,                  ///< slides down the slope on its feet without turning, ever faster
-  NoLanding,                 ///< no new leg landed within sim.max_step_time
-  TimeLimit,                 ///< sim.max_time reached
+  MissedModeChange,             ///< the contact mode became inconsistent within one solver step
+  MissedTouchdown,              ///< a free foot went below the ground within one solver step
+  RolledBack,                   ///< flexible: a leg behind the hub landed while the wheel moved backwards
+  FellBack,                     ///< rigid: the roll-back guard β + α ↓ 0 fired
+  AtRest,                       ///< came to rest in double support
+  SlidAway,                     ///< slides down the slope on its feet without turning, ever faster
+  NoLanding,                    ///< no new leg landed within sim.max_step_time
+  TimeLimit,                    ///< sim.max_time reached
   UprightOutsideSingleSupport,  ///< the upright section crossed outside single support on that leg
-  Sensitivities,             ///< the reset's Jacobian could not be formed
+  Sensitivities,                ///< the reset's Jacobian could not be formed
   // The hybrid loop (numerics/hybrid_simulation.hpp).
-  SolverFailure,             ///< the integrator threw (step size underflow, ...)
-  RepeatedEvent,             ///< an event fired again at its own restart point
-  Zeno,                      ///< kZenoCount events within kZenoWindow
-  WallTime,                  ///< sim.max_wall_time of wall clock
-  StepRate,                  ///< sim.max_step_rate exceeded over a window
-  StepRateFromStart,         ///< sim.max_step_rate below what stability alone needs
+  SolverFailure,      ///< the integrator threw (step size underflow, ...)
+  RepeatedEvent,      ///< an event fired again at its own restart point
+  Zeno,               ///< kZenoCount events within kZenoWindow
+  WallTime,           ///< sim.max_wall_time of wall clock
+  StepRate,           ///< sim.max_step_rate exceeded over a window
+  StepRateFromStart,  ///< sim.max_step_rate below what stability alone needs
   // The Poincaré map (poincare.hpp).
-  SectionNotReached,         ///< the run ended without crossing the section
-  OtherMode,                 ///< arrived at the section in another discrete mode
-  IrreducibleCrossing,       ///< the crossing cannot be reduced to a section state (detail says how)
+  SectionNotReached,    ///< the run ended without crossing the section
+  OtherMode,            ///< arrived at the section in another discrete mode
+  IrreducibleCrossing,  ///< the crossing cannot be reduced to a section state (detail says how)
 };
 
 struct FailureEntry {

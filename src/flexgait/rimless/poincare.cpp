@@ -169,7 +169,8 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
     return out;
   }
   if (keep_mode && (out.next.flight != p.flight || out.next.mode != p.mode)) {
-    out.failure = Failure{FailureReason::OtherMode, fmt::format("{} instead of {}", mode_text(out.next), mode_text(p)), {}};
+    out.failure =
+        Failure{FailureReason::OtherMode, fmt::format("{} instead of {}", mode_text(out.next), mode_text(p)), {}};
     return out;
   }
   using S = StateIndex;

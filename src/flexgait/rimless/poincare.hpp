@@ -58,7 +58,7 @@ std::optional<std::string> reduce_crossing(const WheelParams& w, Section section
 
 /// One application of the map, with what happened on the way.
 struct MapStep {
-  std::optional<Failure> failure;      ///< why the next crossing was not reached
+  std::optional<Failure> failure;  ///< why the next crossing was not reached
   SectionState next;
   std::string gait;                    ///< stance-foot phases over the cycle
   double period = 0;                   ///< time between the crossings [s]

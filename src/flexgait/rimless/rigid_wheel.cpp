@@ -232,8 +232,7 @@ class RigidRun final : public numerics::HybridModel {
     if (limit == numerics::WorkLimit::WallTime)
       fail(FailureReason::WallTime, fmt::format("{} s at t = {} s", measured, t));
     else
-      fail(FailureReason::StepRate,
-           fmt::format("{:.3g} solver steps per simulated second at t = {} s", measured, t));
+      fail(FailureReason::StepRate, fmt::format("{:.3g} solver steps per simulated second at t = {} s", measured, t));
   }
   std::string describe(const numerics::HybridEvent& e) const override { return fmt::format("leg {} touchdown", e.unit); }
 
