@@ -19,6 +19,8 @@ FixedPointReport search(const std::vector<std::string>& sets) {
 void expect_named_failure(const FixedPointReport& r) {
   EXPECT_FALSE(r.converged);
   EXPECT_FALSE(r.failure.empty());
+  // One reason: the transient's (no initial guess) or Newton's.
+  EXPECT_NE(r.transient_failure.has_value(), r.newton_failure.has_value()) << r.failure;
   EXPECT_TRUE(r.multipliers.empty());
   EXPECT_TRUE(r.multipliers_fd.empty());
   EXPECT_EQ(r.jacobian.size(), 0);

@@ -10,6 +10,7 @@
 
 #include "../support/enum_table.hpp"
 #include "flexgait/numerics/hybrid_simulation.hpp"
+#include "flexgait/numerics/newton.hpp"
 #include "flexgait/rimless/basin.hpp"
 #include "flexgait/rimless/gait_branch.hpp"
 #include "flexgait/rimless/poincare.hpp"
@@ -37,6 +38,7 @@ TEST(FailureReason, NamesAndSentencesAreUniqueAndRoundTrip) {
 TEST(FailureReason, TheOtherOutcomeTablesRoundTrip) {
   flexgait::testing::expect_enum_table_round_trips<numerics::LoopFailure>();
   flexgait::testing::expect_enum_table_round_trips<numerics::BranchEnd>();
+  flexgait::testing::expect_enum_table_round_trips<numerics::NewtonFailure>();
   flexgait::testing::expect_enum_table_round_trips<BasinOutcome>();
   flexgait::testing::expect_enum_table_round_trips<GaitBranchEnd>();
   for (const auto& e : enum_names(numerics::LoopFailure{})) EXPECT_NO_THROW(loop_failure_reason(e.value)) << e.name;

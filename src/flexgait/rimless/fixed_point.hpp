@@ -44,6 +44,7 @@ struct FixedPointReport {
   bool converged = false;
   std::string failure;                       ///< empty when converged; else the text of why not (files show it)
   std::optional<Failure> transient_failure;  ///< why the transient gave Newton no initial guess
+  std::optional<numerics::NewtonFailure> newton_failure;  ///< else why Newton found no fixed point
   int iterations = 0;
   double residual = 0;                 ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)
   std::vector<numerics::NewtonIteration> history;
