@@ -105,9 +105,10 @@ int compensation_study(const RunOptions& run) {
   for (std::size_t i = 0; i < results.size(); ++i) {
     const auto& m = results[i].metrics;
     const bool thesis_case = i < 3;
-    if (!(thesis_case && m.fell) && m.failure.empty()) continue;
-    fmt::print(stderr, "error: the {} walk {} at t = {:.2f} s: {}\n", cases[i].name, m.failure.empty() ? "fell" : "failed",
-               m.failure.empty() ? m.fall_time : m.failure_time, one_line(m.failure.empty() ? m.fall_reason : m.failure, 1000));
+    if (!(thesis_case && m.fell) && !m.failure) continue;
+    fmt::print(stderr, "error: the {} walk {} at t = {:.2f} s: {}\n", cases[i].name, !m.failure ? "fell" : "failed",
+               !m.failure ? m.fall_time : m.failure_time,
+               one_line(!m.failure ? m.fall_text() : m.failure_text(), 1000));
     return 1;
   }
   return 0;
@@ -137,9 +138,9 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
   }
   for (std::size_t i = 0; i < results.size(); ++i) {  // a fall is a result here; a failed simulation is not
     const auto& m = results[i].metrics;
-    if (m.failure.empty()) continue;
+    if (!m.failure) continue;
     fmt::print(stderr, "error: the {} walk failed at t = {:.2f} s: {}\n", cases[i].name, m.failure_time,
-               one_line(m.failure, 1000));
+               one_line(m.failure_text(), 1000));
     return 1;
   }
   return 0;
@@ -187,11 +188,11 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   // A walk that did not complete (a failure, a fall, a safe stop, a step left unlanded) is exit 1
   // with one line on stderr saying why, as every command's failures are.
   std::string incomplete;
-  if (!m.failure.empty())
-    incomplete = fmt::format("the walk failed at t = {:.2f} s after {} of {} steps: {}", m.failure_time, m.steps_completed,
-                             m.steps_planned, one_line(m.failure, 1000));
+  if (m.failure)
+    incomplete = fmt::format("the walk failed at t = {:.2f} s after {} of {} steps: {}", m.failure_time,
+                             m.steps_completed, m.steps_planned, one_line(m.failure_text(), 1000));
   else if (m.fell)
-    incomplete = fmt::format("the robot fell at t = {:.2f} s ({}) after {} of {} steps", m.fall_time, m.fall_reason,
+    incomplete = fmt::format("the robot fell at t = {:.2f} s ({}) after {} of {} steps", m.fall_time, m.fall_text(),
                              m.steps_completed, m.steps_planned);
   else if (m.safe_stop)
     incomplete = fmt::format("the walk stopped safely at t = {:.2f} s after {} of {} steps: {}", m.safe_stop_time,

@@ -67,7 +67,7 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   // or the solver failed. The files are written; the reason is in summary.json's failure too.
   if (!result.failure) return 0;
   fmt::print(stderr, "error: stopped after {} of {} steps: {}\n", result.steps_completed, s.sim.steps,
-             one_line(*result.failure, 1000));
+             one_line(result.failure->text(), 1000));
   return 1;
 }
 

@@ -145,7 +145,8 @@ TEST(Record, JsonLeavesOutFieldsThatDoNotApply) {
   m.compensation = compensation::CompensationMode::kBoth;
   m.pushed = true;  // push_impulse and capture_point_bound apply
   m.fell = true;    // fall_time applies
-  m.failure = "a MuJoCo warning";  // failure_time applies
+  m.failure =
+      experiments::WalkFailure{experiments::SimulationFailure::kMuJoCoWarning, "a warning"};  // failure_time applies
   const auto on = record_json(m);
   EXPECT_FALSE(off.contains("fall_time"));
   EXPECT_FALSE(off.contains("failure_time"));

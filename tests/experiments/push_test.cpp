@@ -77,7 +77,7 @@ TEST(Push, BelowHalfTheBoundRecoveredTwiceTheBoundNot) {
   ASSERT_GT(bound, 15.0);
   ASSERT_LT(bound, 30.0);
   const WalkResult half = run_walk(standing(0.45 * bound));
-  EXPECT_FALSE(half.metrics.fell) << half.metrics.fall_reason << " at " << half.metrics.fall_time;
+  EXPECT_FALSE(half.metrics.fell) << half.metrics.fall_text() << " at " << half.metrics.fall_time;
   EXPECT_NEAR(half.metrics.push_impulse, 0.45 * bound, 1e-9 * bound);
   const WalkResult twice = run_walk(standing(2.0 * bound));
   EXPECT_TRUE(twice.metrics.fell);
@@ -97,8 +97,11 @@ TEST(Push, DcmStabiliserBelowHalfTheBoundRecoveredTwiceTheBoundNot) {
   const double bound = run_walk(standing(1.0, walking::BalanceMode::kDcm)).metrics.capture_point_bound;
   ASSERT_GT(bound, 10.0);
   const WalkMetrics half = run_walk(standing(0.45 * bound, walking::BalanceMode::kDcm)).metrics;
-  EXPECT_FALSE(half.fell) << half.fall_reason << " at " << half.fall_time;
-  EXPECT_TRUE(run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics.fell);
+  EXPECT_FALSE(half.fell) << half.fall_text() << " at " << half.fall_time;
+  const WalkMetrics twice = run_walk(standing(2.0 * bound, walking::BalanceMode::kDcm)).metrics;
+  EXPECT_TRUE(twice.fell);
+  EXPECT_TRUE(twice.fall_reason.has_value());                       // a fall always has its reason
+  EXPECT_FALSE(twice.failure.has_value()) << twice.failure_text();  // a fall, not a failed simulation
 }
 
 TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
@@ -114,7 +117,13 @@ TEST(Push, BisectionBracketsTheLargestRecoverablePush) {
   p.push.force = {r.fell / p.push.duration, 0, 0};
   EXPECT_TRUE(run_walk(p).metrics.fell);
   EXPECT_GT(r.recovered, 0.5 * r.bound);
-  EXPECT_THROW(largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0), std::invalid_argument);  // 1 N s is recovered
+  EXPECT_TRUE(r.bracketed);
+  // 1 N s is recovered: an outcome (no bracket), one run, recovered = upper, no fall seen.
+  const PushRecovery narrow = largest_recoverable_push(p, Eigen::Vector2d(1, 0), 1.0);
+  EXPECT_FALSE(narrow.bracketed);
+  EXPECT_EQ(narrow.runs, 1);
+  EXPECT_EQ(narrow.recovered, 1.0);
+  EXPECT_TRUE(std::isnan(narrow.fell));
 }
 
 TEST(Push, StepAdjustmentKeepsTheNominalWalk) {
@@ -124,7 +133,7 @@ TEST(Push, StepAdjustmentKeepsTheNominalWalk) {
   p.balance.step_adjustment = true;
   p.walk.steps = 6;
   const WalkMetrics m = run_walk(p).metrics;
-  EXPECT_TRUE(m.completed()) << m.fall_reason << " at " << m.fall_time;
+  EXPECT_TRUE(m.completed()) << m.fall_text() << " at " << m.fall_time;
 }
 
 TEST(Push, SameConfigurationSameBytes) {

@@ -25,8 +25,8 @@ TEST(TerrainWalk, StandsOnATwoDegreeRamp) {
     p.walk.steps = 0;
     p.walk.end_time = 4.0;
     const WalkMetrics m = run_walk(p).metrics;
-    EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time;
-    EXPECT_TRUE(m.failure.empty()) << m.failure;
+    EXPECT_FALSE(m.fell) << m.fall_text() << " at " << m.fall_time;
+    EXPECT_FALSE(m.failure.has_value()) << m.failure_text();
     EXPECT_EQ(m.mujoco_warnings, 0);
   }
 }
@@ -41,7 +41,7 @@ TEST(TerrainWalk, LoadedRobotWalksTheRampAndTheRoughFloor) {
     const WalkRunParams p = walk_run_from_config(resolve_config(walk_run_schema(), file, floor));
     ASSERT_TRUE(p.loaded);
     const WalkMetrics m = run_walk(p).metrics;
-    EXPECT_TRUE(m.completed()) << floor[0] << ": " << m.fall_reason << m.failure;
+    EXPECT_TRUE(m.completed()) << floor[0] << ": " << m.fall_text() << m.failure_text();
     EXPECT_EQ(m.mujoco_warnings, 0);
   }
 }
@@ -54,9 +54,9 @@ TEST(TerrainWalk, WalksOverASmallStepOrNamesTheFall) {
     p.plant.terrain.step_x = 0.25;  // the third footprint (x = 0.2, 0.22 m long) straddles the edge
     p.walk.steps = 6;
     const WalkMetrics m = run_walk(p).metrics;
-    EXPECT_TRUE(m.failure.empty()) << m.failure;
-    EXPECT_TRUE(m.completed() || (m.fell && !m.fall_reason.empty())) << "step " << h;
-    RecordProperty("step_" + std::to_string(h), m.completed() ? "walked" : m.fall_reason);
+    EXPECT_FALSE(m.failure.has_value()) << m.failure_text();
+    EXPECT_TRUE(m.completed() || (m.fell && m.fall_reason.has_value())) << "step " << h;
+    RecordProperty("step_" + std::to_string(h), m.completed() ? "walked" : m.fall_text());
   }
 }
 
@@ -72,10 +72,10 @@ TEST(TerrainWalk, KnownStepHeightsCarryTheTwinUpAStepItFallsOnUnaware) {
   p.walk.steps = 6;
   const WalkMetrics unaware = run_walk(p).metrics;
   EXPECT_TRUE(unaware.fell);
-  EXPECT_FALSE(unaware.fall_reason.empty());
+  EXPECT_TRUE(unaware.fall_reason.has_value());
   p.plant.terrain.known_heights = true;
   const WalkMetrics told = run_walk(p).metrics;
-  EXPECT_TRUE(told.completed()) << told.fall_reason << " at " << told.fall_time;
+  EXPECT_TRUE(told.completed()) << told.fall_text() << " at " << told.fall_time;
   EXPECT_EQ(told.mujoco_warnings, 0);
 }
 

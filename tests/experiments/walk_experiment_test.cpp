@@ -23,7 +23,7 @@ TEST(WalkExperiment, FourStepsWithoutFalling) {
   for (double step_time : {1.0, 3.0}) {
     const WalkResult r = run_walk(four_steps(step_time));
     const WalkMetrics& m = r.metrics;
-    EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time << " s, step time " << step_time;
+    EXPECT_FALSE(m.fell) << m.fall_text() << " at " << m.fall_time << " s, step time " << step_time;
     EXPECT_EQ(m.steps_completed, 4);
     EXPECT_EQ(m.mujoco_warnings, 0);
     // The F/T ZMP (what the controller sees) against the contact forces: 1 cm rms (the sensors
@@ -71,7 +71,7 @@ TEST(WalkExperiment, DcmStabiliserWalksFourSteps) {
   WalkRunParams p = four_steps(1.0);
   p.balance.mode = walking::BalanceMode::kDcm;
   const WalkMetrics m = run_walk(p).metrics;
-  EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time << " s";
+  EXPECT_FALSE(m.fell) << m.fall_text() << " at " << m.fall_time << " s";
   EXPECT_EQ(m.steps_completed, 4);
   EXPECT_EQ(m.mujoco_warnings, 0);
 }

@@ -26,7 +26,7 @@ TEST(WalkKEstimation, TenStepsAt3sFindTheTrueStiffnessWithin6Percent) {
   WalkRunParams p = ten_steps(3.0);
   p.control.k_estimation = compensation::KEstimation::kOn;
   const WalkResult r = run_walk(p);
-  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_reason;
+  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
   ASSERT_TRUE(r.k_estimation);
   int identified = 0;
   for (int j = 0; j < humanoid::kJoints; ++j) {

@@ -33,7 +33,7 @@ int flagged_samples(const WalkResult& r, int sensor) {
 /// The walk survived the fault: all steps, no fall, no safe stop, the fault flagged.
 void expect_survived(const WalkResult& r, int sensor) {
   const WalkMetrics& m = r.metrics;
-  EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time << " s";
+  EXPECT_FALSE(m.fell) << m.fall_text() << " at " << m.fall_time << " s";
   EXPECT_EQ(m.steps_completed, 10);
   EXPECT_FALSE(m.safe_stop) << m.safe_stop_reason;
   EXPECT_EQ(m.mujoco_warnings, 0);
@@ -90,7 +90,7 @@ TEST(WalkSensorFaults, PermanentFtFailureIsASafeStop) {
   set_fault(p, humanoid::kFtRight, FaultKind::kNan, 4.3, 1e9);
   const WalkResult r = run_walk(p);
   const WalkMetrics& m = r.metrics;
-  EXPECT_FALSE(m.fell) << m.fall_reason << " at " << m.fall_time << " s";
+  EXPECT_FALSE(m.fell) << m.fall_text() << " at " << m.fall_time << " s";
   EXPECT_EQ(m.mujoco_warnings, 0);
   ASSERT_TRUE(m.safe_stop);
   EXPECT_NEAR(m.safe_stop_time, 4.3 + p.health.hold_time, 0.0081);

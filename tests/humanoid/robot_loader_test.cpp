@@ -191,7 +191,7 @@ TEST(RobotLoader, SecondRobotWalks) {
     experiments::WalkRunParams walk = small_biped_walk();
     walk.control.mode = mode;
     const experiments::WalkResult r = experiments::run_walk(walk);
-    EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_reason << r.metrics.failure;
+    EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
     EXPECT_EQ(r.metrics.steps_completed, 10);
     EXPECT_EQ(r.metrics.ik_clamped, 0);
     EXPECT_EQ(r.metrics.mujoco_warnings, 0);
@@ -216,7 +216,7 @@ TEST(RobotLoader, RobotWithoutAWaistHasARigidTrunk) {
   EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
   EXPECT_NE(urdf_mapping(*walk.loaded).find("robot.joints.waist_yaw=none"), std::string::npos);
   const experiments::WalkResult r = experiments::run_walk(walk);
-  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_reason << r.metrics.failure;
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 4);
   EXPECT_EQ(r.metrics.mujoco_warnings, 0);
 }

@@ -61,6 +61,7 @@ TEST(Continuation, LogisticPeriodDoublingAtThreeAndItsPeriodTwoBranch) {
     const Branch b = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.55), 2.5, 3.4, opt);
     ASSERT_TRUE(b.failure.empty()) << b.failure;
     EXPECT_TRUE(b.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.end, BranchEnd::ReachedEnd) << b.stop_reason;
     EXPECT_DOUBLE_EQ(b.points.back().p, 3.4);
     expect_fixed_points(f, b, opt.tolerance);
     for (const BranchPoint& pt : b.points) {
@@ -113,7 +114,7 @@ TEST(Continuation, FoldOfTheNormalFormIsPassedAndLocated) {
   const Branch b = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.45), 0.25, -0.25, opt);
   ASSERT_TRUE(b.failure.empty()) << b.failure;
   EXPECT_FALSE(b.reached_end);
-  EXPECT_NE(b.stop_reason.find("turned back"), std::string::npos) << b.stop_reason;
+  EXPECT_EQ(b.end, BranchEnd::TurnedBack) << b.stop_reason;
   expect_fixed_points(f, b, opt.tolerance);
   for (const BranchPoint& pt : b.points) {
     EXPECT_NEAR(pt.p, pt.z(0) * pt.z(0), 1e-11);
@@ -147,6 +148,7 @@ TEST(Continuation, DelayedLogisticNeimarkSackerAtTwo) {
     const Branch b = continue_fixed_points(f, Eigen::Vector2d(0.3, 0.35), 1.5, 2.3, opt);
     ASSERT_TRUE(b.failure.empty()) << b.failure;
     EXPECT_TRUE(b.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.end, BranchEnd::ReachedEnd) << b.stop_reason;
     expect_fixed_points(f, b, opt.tolerance);
     for (const BranchPoint& pt : b.points) {
       EXPECT_NEAR(pt.z(0), 1 - 1 / pt.p, 1e-10);
@@ -213,6 +215,7 @@ TEST(Continuation, ReportsWhyItCannotStart) {
   const Branch b = continue_fixed_points(shift, Eigen::VectorXd::Zero(1), 0, 1, {});
   EXPECT_NE(b.failure.find("no fixed point"), std::string::npos) << b.failure;
   EXPECT_TRUE(b.points.empty());
+  EXPECT_EQ(b.end, BranchEnd::NotStarted);
   MapFamily failing;
   failing.map = [](const Eigen::VectorXd& z, double p, Eigen::VectorXd& out) -> std::optional<std::string> {
     if (p > 0.3) return std::string("fell over");
@@ -222,7 +225,8 @@ TEST(Continuation, ReportsWhyItCannotStart) {
   const Branch c = continue_fixed_points(failing, Eigen::VectorXd::Zero(1), 0, 1, {});
   ASSERT_TRUE(c.failure.empty()) << c.failure;
   EXPECT_FALSE(c.reached_end);
-  EXPECT_NE(c.stop_reason.find("fell over"), std::string::npos) << c.stop_reason;
+  EXPECT_EQ(c.end, BranchEnd::NoStep) << c.stop_reason;
+  EXPECT_NE(c.stop_reason.find("fell over"), std::string::npos) << c.stop_reason;  // the map's own words, passed on
   // Steps halve down to min_step at the edge, short of it by the parameter's central-difference
   // step h_p = 1e-6 (which must stay inside).
   EXPECT_NEAR(c.points.back().p, 0.3, 1.1e-6);

@@ -105,10 +105,24 @@ TEST(Basin, RefusesKeysOutsideTheInitialState) {
 }
 
 TEST(Basin, FailureOutcomes) {
-  EXPECT_EQ(failure_outcome("rolled back: the wheel fell back onto the previous leg"), "rolled_back");
-  EXPECT_EQ(failure_outcome("transient: stopped: the wheel came to rest in double support"), "stopped");
-  EXPECT_EQ(failure_outcome("slid away: ..."), "slid_away");
-  EXPECT_EQ(failure_outcome("solver failure (x)"), "failed");
+  struct Case {
+    FailureReason reason;
+    BasinOutcome outcome;
+  };
+  for (const Case& c :
+       {Case{FailureReason::FellBack, BasinOutcome::RolledBack},
+        Case{FailureReason::RolledBack, BasinOutcome::RolledBack}, Case{FailureReason::AtRest, BasinOutcome::Stopped},
+        Case{FailureReason::NoLanding, BasinOutcome::Stopped}, Case{FailureReason::SlidAway, BasinOutcome::SlidAway},
+        Case{FailureReason::TimeLimit, BasinOutcome::TimeLimit},
+        Case{FailureReason::SolverFailure, BasinOutcome::Failed},
+        Case{FailureReason::InitialFootBelowGround, BasinOutcome::Failed}}) {
+    EXPECT_EQ(failure_outcome(Failure{c.reason, "x", {}}), c.outcome) << name_of(c.reason);
+    EXPECT_EQ(failure_outcome(Failure{c.reason, {}, "transient"}), c.outcome) << name_of(c.reason);  // any stage
+  }
+  // basin.csv's outcome column: the table's names, in the header's order.
+  EXPECT_EQ(basin_outcomes(),
+            (std::vector<std::string>{"converged", "other_gait", "rolled_back", "stopped", "slid_away", "time_limit",
+                                      "failed", "step_limit", "infeasible"}));
 }
 
 }  // namespace

@@ -19,6 +19,8 @@ FixedPointReport search(const std::vector<std::string>& sets) {
 void expect_named_failure(const FixedPointReport& r) {
   EXPECT_FALSE(r.converged);
   EXPECT_FALSE(r.failure.empty());
+  // One reason: the transient's (no initial guess) or Newton's.
+  EXPECT_NE(r.transient_failure.has_value(), r.newton_failure.has_value()) << r.failure;
   EXPECT_TRUE(r.multipliers.empty());
   EXPECT_TRUE(r.multipliers_fd.empty());
   EXPECT_EQ(r.jacobian.size(), 0);
@@ -38,7 +40,9 @@ TEST(FixedPoint, NoStartingPointIsANamedFailure) {
   const FixedPointReport r = search({"initial.omega=-1"});
   expect_named_failure(r);
   EXPECT_EQ(r.point.z.size(), 0);
-  EXPECT_NE(r.failure.find("no initial guess"), std::string::npos) << r.failure;
+  ASSERT_TRUE(r.transient_failure.has_value()) << r.failure;  // no initial guess: the transient rolled back
+  EXPECT_EQ(r.transient_failure->reason, FailureReason::RolledBack) << r.failure;
+  EXPECT_EQ(r.failure, "no initial guess: " + r.transient_failure->text());
 }
 
 // Issue 21.6: a finite-difference column fails half-way through the Jacobian; its multipliers were

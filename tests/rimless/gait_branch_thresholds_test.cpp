@@ -48,7 +48,8 @@ TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
   EXPECT_EQ(b.segments, 4) << b.stop_reason;
   // The branch ends where the sliding gait's friction balances gravity along the slope.
   EXPECT_FALSE(b.branch.reached_end);
-  EXPECT_NE(b.stop_reason.find("mu_k = tan(slope)"), std::string::npos) << b.stop_reason;
+  EXPECT_EQ(b.end, GaitBranchEnd::SlideBalance) << b.stop_reason;  // mu_k = tan(slope)
+  EXPECT_EQ(b.branch.end, numerics::BranchEnd::Vertical) << b.stop_reason;
   EXPECT_NEAR(b.rows.back().p, std::tan(0.1), 1e-9);
 
   std::vector<std::pair<double, std::string>> events;

@@ -79,7 +79,8 @@ TEST(OrbitDiagram, AValueThatFallsRecordsWhy) {
   const std::vector<CsvRecord> rows = parse_csv(csv);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[1].fields[1], "");
-  EXPECT_NE(rows[1].fields[6].find("rolled back"), std::string::npos) << csv;
+  // The failure cell is the reason's text: the rigid wheel fell back onto the previous leg.
+  EXPECT_EQ(rows[1].fields[6], (Failure{FailureReason::FellBack, {}, {}}).text()) << csv;
 }
 
 TEST(OrbitDiagram, RefusesBadInput) {

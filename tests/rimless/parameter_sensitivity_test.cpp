@@ -76,7 +76,7 @@ double sensitivity_error(const WheelParams& w, SimulationOptions sim, Section se
   PoincareMap up(with(w, p, value + H), fine, Model::Flexible, section);
   PoincareMap down(with(w, p, value - H), fine, Model::Flexible, section);
   const MapStep a = up.apply(r.point), b = down.apply(r.point);
-  EXPECT_FALSE(a.failure || b.failure) << p.key << ": " << a.failure.value_or("") << b.failure.value_or("");
+  EXPECT_FALSE(a.failure || b.failure) << p.key << ": " << text_of(a.failure) << text_of(b.failure);
   if (a.failure || b.failure) return INFINITY;
   const Eigen::VectorXd reference = (a.next.z - b.next.z) / (2 * H);
   return ((J_p - reference) * std::abs(value)).cwiseQuotient(r.point.scale(w)).lpNorm<Eigen::Infinity>();

@@ -83,7 +83,8 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
     py::gil_scoped_release release;
     const rimless::Section sec = section_of(section);
     const rimless::SimulationOptions sim = rimless::map_options(s.sim, opt);
-    failure = rimless::settle_on_section(s.wheel, sim, s.sim.model, sec, s.initial, opt.transient_steps, point);
+    if (auto f = rimless::settle_on_section(s.wheel, sim, s.sim.model, sec, s.initial, opt.transient_steps, point))
+      failure = f->text();
     if (!failure && z) {
       if (z->size() != point.z.size()) failure = "z has " + std::to_string(z->size()) + " components, the section state " +
                                                  std::to_string(point.z.size());
@@ -92,7 +93,7 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
     if (!failure) {
       rimless::PoincareMap map(s.wheel, sim, s.sim.model, sec);
       step = map.apply(point, false);
-      failure = step.failure;
+      if (step.failure) failure = step.failure->text();
     }
   }
   if (failure && z && z->size() != point.z.size()) throw py::value_error(*failure);

@@ -21,7 +21,12 @@ PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d&
     if (m.pushed) out.bound = m.capture_point_bound;
     return m.fell;
   };
-  if (!falls(upper)) throw std::invalid_argument("largest_recoverable_push: the upper end is recovered");
+  if (!falls(upper)) {
+    out.bracketed = false;
+    out.recovered = upper;
+    out.fell = std::numeric_limits<double>::quiet_NaN();
+    return out;
+  }
   double lo = 0, hi = upper;
   while (hi - lo > tolerance) {
     const double mid = 0.5 * (lo + hi);
@@ -91,31 +96,30 @@ PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p) {
   if (p.test.situation == PushSituation::kStanding) {
     base.walk.steps = 0;
     base.walk.end_time = out.push_time + p.test.settle_time;
+    base.push.time = out.push_time;
+  } else {
+    base.push = walking_push(p);
   }
-  if (p.test.situation == PushSituation::kStanding) base.push.time = out.push_time;
-  else base.push = walking_push(p);
   const Eigen::Vector2d u = push_direction_vector(p.test.direction);
   double upper = p.test.upper;
   for (int doubling = 0;; ++doubling) {
-    try {
-      const PushRecovery r = largest_recoverable_push(base, u, upper, p.test.tolerance);
-      out.runs += r.runs;
+    const PushRecovery r = largest_recoverable_push(base, u, upper, p.test.tolerance);
+    out.runs += r.runs;
+    if (r.bracketed) {
       out.recovered = r.recovered;
       out.fell_at = r.fell;
       out.bound = r.bound;
       break;
-    } catch (const std::invalid_argument&) {  // upper recovered: a wider bracket
-      ++out.runs;
-      if (doubling == 3) {
-        out.recovered = upper;
-        out.fell_at = std::numeric_limits<double>::quiet_NaN();
-        base.push.force = {upper / base.push.duration * u.x(), upper / base.push.duration * u.y(), 0};
-        out.bound = run_walk(base).metrics.capture_point_bound;
-        ++out.runs;
-        break;
-      }
-      upper *= 2;
     }
+    if (doubling == 3) {  // upper still recovered after three doublings: recovered = upper, no fall seen
+      out.recovered = upper;
+      out.fell_at = std::numeric_limits<double>::quiet_NaN();
+      base.push.force = {upper / base.push.duration * u.x(), upper / base.push.duration * u.y(), 0};
+      out.bound = run_walk(base).metrics.capture_point_bound;
+      ++out.runs;
+      break;
+    }
+    upper *= 2;  // upper recovered: a wider bracket
   }
   out.fraction = out.bound > 0 ? out.recovered / out.bound : std::numeric_limits<double>::quiet_NaN();
   return out;

@@ -22,11 +22,13 @@ struct PushRecovery {
   double fell = 0;       ///< smallest impulse seen to fall [N s] (recovered < fell ≤ recovered + tolerance)
   double bound = 0;      ///< capture-point bound for the push's direction [N s]
   int runs = 0;
+  bool bracketed = true;  ///< false: `upper` itself was recovered (recovered = upper, fell = NaN)
 };
 
 /// Pushes `base.push.body` at `base.push.time` for `base.push.duration` in the horizontal
-/// `direction`, bisecting the impulse on [0, upper] to `tolerance` [N s]. Throws std::invalid_argument
-/// if upper itself is recovered (the bracket is wrong).
+/// `direction`, bisecting the impulse on [0, upper] to `tolerance` [N s]. If upper itself is
+/// recovered (an outcome: the bracket is too narrow), returns after that one run with `bracketed`
+/// false, recovered = upper and fell = NaN.
 PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d& direction, double upper,
                                       double tolerance = 1.0);
 

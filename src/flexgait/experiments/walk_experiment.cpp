@@ -270,9 +270,11 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
 
     // The simulation's own failures end the walk: MuJoCo's warnings (it has already reset an
     // unstable state or dropped contacts), or a state that is no longer finite.
-    if (g.warnings > 0) m.failure = "MuJoCo: " + plant.warnings_text();
-    else if (!finite_truth(g)) m.failure = "the simulation diverged: a non-finite state";
-    if (!m.failure.empty()) {
+    if (g.warnings > 0)
+      m.failure = WalkFailure{SimulationFailure::kMuJoCoWarning, plant.warnings_text()};
+    else if (!finite_truth(g))
+      m.failure = WalkFailure{SimulationFailure::kDiverged, {}};
+    if (m.failure) {
       m.failure_time = t_now;
       break;
     }
@@ -281,11 +283,13 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());
     // (the pelvis's height above the floor under it: terrain.hpp)
     const double floor_z = plant.terrain().height(g.pelvis_pos[0], g.pelvis_pos[1]);
-    if (g.pelvis_pos[2] - floor_z < params.walk.pelvis_height - params.fall_height) m.fall_reason = "pelvis too low";
+    if (g.pelvis_pos[2] - floor_z < params.walk.pelvis_height - params.fall_height)
+      m.fall_reason = FallReason::kPelvisTooLow;
     else if (std::abs(walking::roll_of(R)) > params.fall_tilt || std::abs(walking::pitch_of(R)) > params.fall_tilt)
-      m.fall_reason = "pelvis tilted beyond the limit";
-    else if (g.non_sole_contact) m.fall_reason = "a body other than a sole touched the floor";
-    if (!m.fall_reason.empty()) {
+      m.fall_reason = FallReason::kPelvisTilted;
+    else if (g.non_sole_contact)
+      m.fall_reason = FallReason::kNonSoleContact;
+    if (m.fall_reason) {
       m.fell = true;
       m.fall_time = t_now;
     }

@@ -10,15 +10,17 @@
 /// into it by the offset between the truth and planned initial feet.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
-#include "flexgait/twin/plant.hpp"
+#include "flexgait/experiments/walk_outcome.hpp"
 #include "flexgait/robot/robot_description.hpp"
 #include "flexgait/robot/robot_params.hpp"
+#include "flexgait/twin/plant.hpp"
 #include "flexgait/walking/stance_defaults.hpp"
 #include "flexgait/walking/walk_params.hpp"
 #include "flexgait/walking/walking_controller.hpp"
@@ -125,11 +127,11 @@ struct WalkMetrics {
   compensation::CompensationMode compensation = compensation::CompensationMode::kOff;  ///< control.compensation
   compensation::GravityForm gravity_model = compensation::GravityForm::kFull;           ///< control.gravity_model
   bool fell = false;
-  std::string fall_reason;         ///< "" when it did not fall
+  std::optional<FallReason> fall_reason;  ///< empty when it did not fall
   double fall_time = 0;            ///< [s]
-  /// Why the simulation itself failed ("" when it did not): a MuJoCo warning (an unstable or
+  /// Why the simulation itself failed (empty when it did not): a MuJoCo warning (an unstable or
   /// overfull simulation) or a non-finite state. The walk ends there; its scores cover what ran.
-  std::string failure;
+  std::optional<WalkFailure> failure;
   double failure_time = 0;         ///< [s]
   int steps_planned = 0, steps_completed = 0;
   double zmp_rms_x = 0, zmp_rms_y = 0;  ///< true ZMP − reference over the walk [m]
@@ -173,7 +175,10 @@ struct WalkMetrics {
   double capture_point_bound = 0;                            ///< the bound for the push's direction at its start [N s]
 
   /// The walk ran to its planned end: every step landed, no fall, no safe stop, no failure.
-  bool completed() const { return !fell && failure.empty() && !safe_stop && steps_completed == steps_planned; }
+  bool completed() const { return !fell && !failure && !safe_stop && steps_completed == steps_planned; }
+  /// summary.json's fall_reason ("" when it did not fall) and failure ("" when it did not).
+  std::string fall_text() const { return fall_reason ? std::string(fall_sentence(*fall_reason)) : std::string(); }
+  std::string failure_text() const { return failure ? failure->text() : std::string(); }
   /// The output compensator ran: its estimator's scores apply.
   bool has_estimate() const {
     return compensation == compensation::CompensationMode::kOutput || compensation == compensation::CompensationMode::kBoth;
@@ -186,12 +191,13 @@ struct WalkMetrics {
     v("compensation", s.compensation, {.doc = "control.compensation of the run"});
     v("gravity_model", s.gravity_model, {.doc = "control.gravity_model of the run"});
     v("fell", s.fell, {.doc = "the robot fell (pelvis too low or tilted, a body other than a sole on the floor)"});
-    v("fall_reason", s.fall_reason, {.doc = "why it fell; empty when it did not"});
+    std::string fall_reason = s.fall_text(), failure = s.failure_text();
+    v("fall_reason", fall_reason, {.doc = "why it fell; empty when it did not"});
     v("fall_time", s.fall_time, {.unit = "s", .doc = "when it fell (left out when it did not)", .present = s.fell});
-    v("failure", s.failure,
+    v("failure", failure,
       {.doc = "why the simulation failed (a MuJoCo warning or a non-finite state); empty when it did not"});
     v("failure_time", s.failure_time,
-      {.unit = "s", .doc = "when the simulation failed (left out when it did not)", .present = !s.failure.empty()});
+      {.unit = "s", .doc = "when the simulation failed (left out when it did not)", .present = s.failure.has_value()});
     v("steps_planned", s.steps_planned, {.doc = "footsteps in the plan"});
     v("steps_completed", s.steps_completed, {.doc = "footsteps landed"});
     v("zmp_rms_x", s.zmp_rms_x, {.unit = "m", .doc = "rms of true ZMP − reference, x"});

@@ -273,6 +273,7 @@ struct Walker {
       if (auto e = locate(a, ds, fa, fb, psi, at, s)) {
         at = b;  // not located: reported at the step's end, the reason in the stop note
         s = ds;
+        sp.located = false;
         branch.stop_reason += (branch.stop_reason.empty() ? "" : "; ") + to_string(kind) + " not located: " + *e;
       }
       sp.test_value = psi(at);
@@ -315,6 +316,7 @@ struct Walker {
         if (auto e = locate_label(a, ds, la, at, s, sp.label_after)) {
           at = b;
           sp.label_after = lb;
+          sp.located = false;
           branch.stop_reason += (branch.stop_reason.empty() ? "" : "; ") + std::string("label change not located: ") + *e;
         }
         sp.point = make_point(f, at, s0 + s);
@@ -342,7 +344,8 @@ struct Walker {
         why = *e;
         ds /= 2;
         if (ds < opt.min_step) {
-          stop("no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why);
+          stop(BranchEnd::NoStep,
+               "no step of " + number(opt.min_step) + " or more from p = " + number(a.x(n)) + ": " + why);
           return;
         }
       }
@@ -355,7 +358,7 @@ struct Walker {
         Solved end;
         double s = ds;
         if (auto e = locate(a, ds, psi(a), psi(b), psi, end, s)) {
-          stop("could not stop on p = " + number(bound) + ": " + *e);
+          stop(BranchEnd::NotStopped, "could not stop on p = " + number(bound) + ": " + *e);
           return;
         }
         // On the bound exactly: Newton at p = bound from the located point (kept if that fails).
@@ -369,23 +372,26 @@ struct Walker {
         if (opt.detect) detect(a, end, s);
         branch.points.push_back(make_point(f, end, branch.points.back().arclength + s));
         branch.reached_end = bound == p_end;
-        stop(branch.reached_end ? "reached p = " + number(p_end)
-                                : "turned back to p = " + number(bound) + " (left the parameter interval)");
+        if (branch.reached_end)
+          stop(BranchEnd::ReachedEnd, "reached p = " + number(p_end));
+        else
+          stop(BranchEnd::TurnedBack, "turned back to p = " + number(bound) + " (left the parameter interval)");
         return;
       }
       const std::size_t folds_before = count_folds();
       if (opt.detect) detect(a, b, ds);
       branch.points.push_back(make_point(f, b, branch.points.back().arclength + ds));
       if (count_folds() > folds_before && vertical()) {
-        stop("a vertical branch at p = " + number(b.x(n)) +
-             ": two folds at the same parameter (a continuum of fixed points there, a multiplier stays at +1)");
+        stop(BranchEnd::Vertical,
+             "a vertical branch at p = " + number(b.x(n)) +
+                 ": two folds at the same parameter (a continuum of fixed points there, a multiplier stays at +1)");
         return;
       }
       if (b.iterations <= 3) ds = std::min(1.5 * ds, opt.max_step);
       if (b.iterations >= 6) ds = std::max(0.5 * ds, opt.min_step);
       a = std::move(b);
     }
-    stop("max_points (" + std::to_string(opt.max_points) + ") reached");
+    stop(BranchEnd::MaxPoints, "max_points (" + std::to_string(opt.max_points) + ") reached");
   }
 
   std::size_t count_folds() const {
@@ -412,7 +418,8 @@ struct Walker {
   }
 
   /// Sets why the branch ended, keeping the notes detect() left (a special point not located).
-  void stop(const std::string& reason) {
+  void stop(BranchEnd end, const std::string& reason) {
+    branch.end = end;
     branch.stop_reason = branch.stop_reason.empty() ? reason : reason + "; " + branch.stop_reason;
   }
 };
@@ -562,6 +569,7 @@ Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, dou
   branch.points.push_back(make_point(g, first, ds));
   const double p0 = pd.point.p;
   if ((first.x(n) - p0) * (p_end - p0) < 0) {
+    branch.end = BranchEnd::OtherSide;
     branch.stop_reason = "the period-2 branch lies on the other side of the period doubling (p = " +
                          number(first.x(n)) + "), away from p_end";
     return branch;

@@ -37,11 +37,14 @@
 /// the period-2 branch is switched to along the critical eigenvector (switch_at_period_doubling()).
 #include <Eigen/Dense>
 
+#include <array>
 #include <complex>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "flexgait/core/enum_names.hpp"
 
 namespace flexgait::numerics {
 
@@ -112,14 +115,38 @@ struct SpecialPoint {
   double angle = 0;             ///< Neimark–Sacker: argument of the critical multiplier in (0, π) [rad]
   double test_value = 0;        ///< the test function at the located point
   std::string label_before, label_after;  ///< label change only
+  bool located = true;  ///< false: detected, not located (at the step's end; why in Branch::stop_reason)
 };
+
+/// How a branch ended (Branch::end); Branch::stop_reason says it in words, with its numbers.
+enum class BranchEnd {
+  NotStarted,  ///< not even the start converged (Branch::failure says why)
+  ReachedEnd,  ///< reached p = p_end
+  TurnedBack,  ///< left the parameter interval at the other bound
+  NoStep,      ///< no predictor-corrector step of min_step or more
+  NotStopped,  ///< the end point on the bound could not be located
+  Vertical,    ///< two folds at the same parameter with a multiplier at +1: a continuum of fixed points
+  MaxPoints,   ///< max_points reached
+  OtherSide,   ///< branch switching: the period-2 branch lies on the other side of the period doubling
+};
+constexpr std::array<EnumName<BranchEnd>, 8> enum_names(BranchEnd) {
+  return {{{BranchEnd::NotStarted, "not_started"},
+           {BranchEnd::ReachedEnd, "reached_end"},
+           {BranchEnd::TurnedBack, "turned_back"},
+           {BranchEnd::NoStep, "no_step"},
+           {BranchEnd::NotStopped, "not_stopped"},
+           {BranchEnd::Vertical, "vertical"},
+           {BranchEnd::MaxPoints, "max_points"},
+           {BranchEnd::OtherSide, "other_side"}}};
+}
 
 struct Branch {
   int period = 1;
   std::vector<BranchPoint> points;
   std::vector<SpecialPoint> special;  ///< in the order met
   bool reached_end = false;           ///< the branch reached p = p_end
-  std::string stop_reason;            ///< why it ended (also when reached_end)
+  BranchEnd end = BranchEnd::NotStarted;  ///< how it ended
+  std::string stop_reason;  ///< why it ended (also when reached_end), then notes (a special point not located)
   std::string failure;                ///< nonempty when not even the start converged
 };
 

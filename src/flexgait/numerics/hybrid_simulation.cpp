@@ -51,7 +51,7 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
     try {
       status = integ.step(model.stop_time());
     } catch (const std::runtime_error& e) {
-      model.fail(t, "solver failure", e.what());
+      model.loop_failed(LoopFailure::Solver, t, e.what());
       break;
     }
     t = integ.time();
@@ -80,7 +80,7 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
     for (const HybridEvent& e : events_) {
       // Spec rimless.md, "Events": an event must not fire again at its own restart point.
       if (e.unit == last_event.unit && e.kind == last_event.kind && t - last_event_time < kRepeatWindow) {
-        model.fail(t, "an event fired again at its own restart point", model.describe(e));
+        model.loop_failed(LoopFailure::RepeatedEvent, t, model.describe(e));
         stop = true;
       }
       if (!model.admissible(t, y_, e)) stop = true;
@@ -89,8 +89,7 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
     // The newest of the latest kZenoCount event times is the slot written last, the oldest the next.
     if (events_seen >= kZenoCount &&
         recent_events[(events_seen - 1) % kZenoCount] - recent_events[events_seen % kZenoCount] < kZenoWindow) {
-      model.fail(t, "Zeno sequence: too many events in too short a time",
-                 fmt::format("{} events within {} s", kZenoCount, kZenoWindow));
+      model.loop_failed(LoopFailure::Zeno, t, fmt::format("{} events within {} s", kZenoCount, kZenoWindow));
       stop = true;
     }
     if (stop) break;

@@ -9,7 +9,7 @@
 /// and, Drake-style, what each guard crossing means: which events fired (its named guards),
 /// whether each is admissible, and the reset that follows (each reset checks its own
 /// postcondition). The loop knows no model, no units and no configuration keys: it reports its
-/// own stops through HybridModel::fail() and HybridModel::work_limit_reached().
+/// own stops through HybridModel::loop_failed() and HybridModel::work_limit_reached().
 #include <array>
 #include <cstddef>
 #include <limits>
@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "flexgait/core/enum_names.hpp"
 #include "flexgait/numerics/ode_integrator.hpp"
 
 namespace flexgait::numerics {
@@ -34,6 +35,18 @@ enum class HybridNext {
   Continue,  ///< the flow goes on unchanged (no reset: a guard that only marks a place)
   Restart,   ///< the state was reset: the integrator restarts at the crossing
 };
+
+/// The loop's own failures (HybridModel::loop_failed() says which; the model names them in its
+/// own outcome).
+enum class LoopFailure {
+  Solver,         ///< the integrator threw (step size underflow, too much work, ...)
+  RepeatedEvent,  ///< an event fired again within kRepeatWindow of its own restart point
+  Zeno,           ///< kZenoCount events within kZenoWindow
+};
+constexpr std::array<EnumName<LoopFailure>, 3> enum_names(LoopFailure) {
+  return {
+      {{LoopFailure::Solver, "solver"}, {LoopFailure::RepeatedEvent, "repeated_event"}, {LoopFailure::Zeno, "zeno"}}};
+}
 
 /// The work limits the loop enforces (HybridModel::work_limit_reached() says why it stopped).
 enum class WorkLimit {
@@ -53,7 +66,7 @@ class HybridModel {
   virtual ~HybridModel() = default;
   /// True once the run has done what it was asked (checked before every integrator step).
   virtual bool finished() const = 0;
-  /// Before the first integrator step: false (after calling fail()) if the run cannot start.
+  /// Before the first integrator step: false (the model's outcome recorded) if the run cannot start.
   virtual bool ready(double t) {
     (void)t;
     return true;
@@ -65,14 +78,14 @@ class HybridModel {
   /// After every integrator step, guard or not, with its end state (e.g. to arm guards).
   virtual void stepped(double t, std::span<const double> y) { (void)t, (void)y; }
   /// After a step that crossed no guard (status Step or StopTime): the model's checks (missed
-  /// events, rest, time limits). false (after calling fail()) stops the run.
+  /// events, rest, time limits). false (the model's outcome recorded) stops the run.
   virtual bool smooth_step(double t, std::span<const double> y, StepStatus status) = 0;
   /// A guard crossed at t, y the state there (before any reset), fired as guards_fired(). Writes
   /// the events into `events` and returns Restart to go on with them, or Stop (a section
   /// reached, a failure named) or Continue (nothing to reset).
   virtual HybridNext guards_crossed(double t, std::span<const double> y, std::span<const int> fired,
                                     const OdeIntegrator& integrator, std::vector<HybridEvent>& events) = 0;
-  /// Whether event e at (t, y) may happen (false: after calling fail(); the loop still looks at
+  /// Whether event e at (t, y) may happen (false: the model's outcome recorded; the loop still looks at
   /// the other events of the instant, then stops).
   virtual bool admissible(double t, std::span<const double> y, const HybridEvent& e) {
     (void)t, (void)y, (void)e;
@@ -80,7 +93,7 @@ class HybridModel {
   }
   /// The reset of the events at t: writes the new state into y and returns Restart (with the new
   /// guard directions in directions() and, with sensitivities, restart_sensitivities()), or Stop
-  /// after calling fail().
+  /// with the model's outcome recorded.
   virtual HybridNext reset(double t, std::span<double> y, std::span<const HybridEvent> events) = 0;
   /// The guard directions of the current mode (+1 upward, -1 downward, 0 both).
   virtual std::span<const int> directions() const = 0;
@@ -88,8 +101,9 @@ class HybridModel {
   virtual std::span<const double> restart_sensitivities() const { return {}; }
   /// After the integrator restarted at (t, y).
   virtual void restarted(double t, std::span<const double> y) { (void)t, (void)y; }
-  /// The run stops: why (a sentence) and the detail behind it (may be empty).
-  virtual void fail(double t, const std::string& why, const std::string& detail) = 0;
+  /// The run stops at t for one of the loop's own reasons, with the detail behind it: the
+  /// solver's message (Solver), the event in words (RepeatedEvent), the count and window (Zeno).
+  virtual void loop_failed(LoopFailure what, double t, const std::string& detail) = 0;
   /// The run stops at a work limit at t; `measured` is the wall time [s] or the step rate [1/s].
   virtual void work_limit_reached(WorkLimit limit, double t, double measured) = 0;
   /// "leg 3 touchdown": an event in words (the repeated-event failure names it).

@@ -28,6 +28,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
   const Eigen::Index n = z0.size();
   Eigen::VectorXd pz(n);
   if (auto e = P(r.z, pz)) {
+    r.failure_reason = NewtonFailure::MapAtGuess;
     r.failure = "the map cannot be evaluated at the initial guess: " + *e;
     return r;
   }
@@ -37,6 +38,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
   for (int it = 0;; ++it) {
     for (Eigen::Index i = 0; i < n; ++i) h(i) = opt.fd_relative_step * std::max(std::abs(r.z(i)), scale(i));
     if (auto e = central_difference_jacobian(P, r.z, h, r.jacobian)) {
+      r.failure_reason = NewtonFailure::DifferenceStep;
       r.failure = "a finite-difference step left the basin (" + *e + ")";
       return r;
     }
@@ -46,6 +48,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
       return r;
     }
     if (it >= opt.max_iterations) {
+      r.failure_reason = NewtonFailure::NoConvergence;
       r.failure = "no convergence in " + std::to_string(opt.max_iterations) + " iterations (residual " +
                   std::to_string(r.residual) + ")";
       r.iterations = it;
@@ -57,6 +60,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
     const double jnorm = std::max(1.0, r.jacobian.lpNorm<Eigen::Infinity>());
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
     if (svd.singularValues().minCoeff() < 1e-10 * jnorm) {
+      r.failure_reason = NewtonFailure::Singular;
       r.failure = "singular Newton matrix (a multiplier equals 1): no isolated fixed point";
       r.iterations = it;
       return r;
@@ -81,6 +85,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
       lambda *= 0.5;
     }
     if (!accepted) {
+      r.failure_reason = last_error.empty() ? NewtonFailure::NoDecrease : NewtonFailure::LeftBasin;
       r.failure = last_error.empty() ? "line search failed: no decrease along the Newton direction (no root nearby)"
                                      : "left the basin: " + last_error;
       r.iterations = it;

@@ -4,11 +4,14 @@
 /// Jacobian and a backtracking line search; Floquet multipliers as the eigenvalues of ∂P/∂z.
 #include <Eigen/Dense>
 
+#include <array>
 #include <complex>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "flexgait/core/enum_names.hpp"
 
 namespace flexgait::numerics {
 
@@ -32,6 +35,25 @@ struct NewtonIteration {
   double damping = 1;    ///< line-search factor of the accepted step
 };
 
+/// Why Newton stopped without a fixed point (NewtonResult::failure_reason; `failure` says it in
+/// words, with the map's own message where there is one).
+enum class NewtonFailure {
+  MapAtGuess,      ///< the map cannot be evaluated at the initial guess
+  DifferenceStep,  ///< a finite-difference step of the Jacobian left the map's domain
+  NoConvergence,   ///< max_iterations without reaching the tolerance
+  Singular,        ///< J − I singular: a multiplier equals 1, no isolated fixed point
+  NoDecrease,      ///< the line search found no decrease along the Newton direction (no root nearby)
+  LeftBasin,       ///< every damped step left the map's domain
+};
+constexpr std::array<EnumName<NewtonFailure>, 6> enum_names(NewtonFailure) {
+  return {{{NewtonFailure::MapAtGuess, "map_at_guess"},
+           {NewtonFailure::DifferenceStep, "difference_step"},
+           {NewtonFailure::NoConvergence, "no_convergence"},
+           {NewtonFailure::Singular, "singular"},
+           {NewtonFailure::NoDecrease, "no_decrease"},
+           {NewtonFailure::LeftBasin, "left_basin"}}};
+}
+
 struct NewtonResult {
   bool converged = false;
   Eigen::VectorXd z;              ///< last iterate (the fixed point when converged)
@@ -39,7 +61,8 @@ struct NewtonResult {
   int iterations = 0;
   std::vector<NewtonIteration> history;
   Eigen::MatrixXd jacobian;       ///< ∂P/∂z at z (central differences)
-  std::string failure;            ///< why it did not converge: no root, left the basin, map failed, ...
+  std::optional<NewtonFailure> failure_reason;  ///< empty when converged
+  std::string failure;                          ///< why it did not converge, in words (the reason and its detail)
 };
 
 /// ∂P/∂z by central differences with steps h (dim z). Returns the failure of a map evaluation.

@@ -92,7 +92,7 @@ FrictionGait friction_gait(const Config& base, double mu, Section section,
     const FixedPointReport r = find_fixed_point(s.w, s.sim, o, Model::Flexible, section, s.initial);
     if (r.converged)
       return gait_of(mu, r, factor == 1 ? "start" : fmt::format("start, {} transient steps", o.transient_steps));
-    if (r.failure.starts_with("no initial guess")) break;  // the start does not walk: a longer transient won't help
+    if (r.transient_failure) break;  // the start does not walk: a longer transient won't help
   }
   for (const FrictionGait* n : neighbours)
     if (n != nullptr && n->converged)
@@ -268,7 +268,7 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
         for (; steps < max_steps; ++steps) {
           const MapStep m = map.apply(p, /*keep_mode=*/false);  // a transient may change modes
           if (m.failure) {
-            failure = *m.failure;
+            failure = m.failure->text();
             break;
           }
           p = m.next;

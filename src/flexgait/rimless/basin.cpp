@@ -77,15 +77,21 @@ BasinReference basin_reference(const Config& base, Section section) {
   return ref;
 }
 
-std::string failure_outcome(const std::string& failure) {
-  std::string_view f = failure;
-  for (std::string_view prefix : {"transient: ", "reaching the section: "})
-    if (f.starts_with(prefix)) f.remove_prefix(prefix.size());
-  if (f.starts_with("rolled back")) return "rolled_back";
-  if (f.starts_with("stopped")) return "stopped";
-  if (f.starts_with("slid away")) return "slid_away";
-  if (f.starts_with("time limit")) return "time_limit";
-  return "failed";
+BasinOutcome failure_outcome(const Failure& failure) {
+  switch (failure.reason) {
+    case FailureReason::RolledBack:
+    case FailureReason::FellBack:
+      return BasinOutcome::RolledBack;
+    case FailureReason::AtRest:
+    case FailureReason::NoLanding:
+      return BasinOutcome::Stopped;
+    case FailureReason::SlidAway:
+      return BasinOutcome::SlidAway;
+    case FailureReason::TimeLimit:
+      return BasinOutcome::TimeLimit;
+    default:
+      return BasinOutcome::Failed;
+  }
 }
 
 std::string basin_header() { return "x,y,outcome,gait,steps,distance,failure"; }
@@ -99,40 +105,37 @@ std::string basin_row(const Config& base, const BasinSpec& spec, const BasinRefe
   // The run's length is its number of steps; sim.max_time (meant for one simulate run) does not cut
   // it short. sim.max_step_time still ends a wheel that stops.
   sim.max_time = std::numeric_limits<double>::infinity();
-  const auto row = [&](const std::string& outcome, const std::string& gait, int steps, double distance,
+  const auto row = [&](BasinOutcome outcome, const std::string& gait, int steps, double distance,
                        const std::string& failure) {
-    return fmt::format("{},{},{},{},{},{},{}", format_number(spec.x.value(ix)), format_number(spec.y.value(iy)), outcome,
-                       gait, steps, format_number(distance), csv_field(failure));
+    return fmt::format("{},{},{},{},{},{},{}", format_number(spec.x.value(ix)), format_number(spec.y.value(iy)),
+                       name_of(outcome), gait, steps, format_number(distance), csv_field(failure));
   };
   SectionState p;
   // The first crossing of the section after the first step (settle_on_section simulates >= 1 step).
-  std::optional<std::string> e;
-  try {
-    e = settle_on_section(w, sim, sim.model, spec.section, initial_from_config(c), 1, p);
-  } catch (const std::invalid_argument& what) {  // e.g. a foot below the ground at the start
-    return row("infeasible", "", 0, NAN, what.what());
+  if (const auto e = settle_on_section(w, sim, sim.model, spec.section, initial_from_config(c), 1, p)) {
+    const bool infeasible = e->reason == FailureReason::InitialFootBelowGround;  // a foot below the ground
+    return row(infeasible ? BasinOutcome::Infeasible : failure_outcome(*e), "", 0, NAN, e->text());
   }
-  if (e) return row(failure_outcome(*e), "", 0, NAN, *e);
   PoincareMap map(w, sim, sim.model, spec.section);
   std::string gait;
   double distance = ref.found ? scaled_distance(w, p, ref.point) : INFINITY;
   for (int n = 1;; ++n) {
-    if (distance <= spec.tolerance) return row("converged", gait.empty() ? ref.gait : gait, n, distance, "");
-    if (n == spec.steps_limit) return row("step_limit", gait, n, distance, "");
+    if (distance <= spec.tolerance)
+      return row(BasinOutcome::Converged, gait.empty() ? ref.gait : gait, n, distance, "");
+    if (n == spec.steps_limit) return row(BasinOutcome::StepLimit, gait, n, distance, "");
     const MapStep s = map.apply(p, false);
-    if (s.failure) return row(failure_outcome(*s.failure), gait, n, distance, *s.failure);
+    if (s.failure) return row(failure_outcome(*s.failure), gait, n, distance, s.failure->text());
     const double moved = scaled_distance(w, s.next, p);
     p = s.next;
     gait = s.gait;
     distance = ref.found ? scaled_distance(w, p, ref.point) : INFINITY;
     if (moved <= 0.01 * spec.tolerance && distance > 100 * spec.tolerance)
-      return row("other_gait", gait, n + 1, distance, "");
+      return row(BasinOutcome::OtherGait, gait, n + 1, distance, "");
   }
 }
 
 const std::vector<std::string>& basin_outcomes() {
-  static const std::vector<std::string> names{"converged", "other_gait", "rolled_back", "stopped", "slid_away",
-                                              "time_limit", "failed", "step_limit", "infeasible"};
+  static const std::vector<std::string> names = enum_name_list<BasinOutcome>();
   return names;
 }
 

@@ -7,11 +7,14 @@
 /// initial state (fixed_point.hpp), found once before the grid. Cells are independent: the
 /// command line runs them on the sweep runner (all cores, resumable, the same bytes for any
 /// number of threads). sim.max_time does not limit a cell: --steps-limit does.
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/enum_names.hpp"
+#include "flexgait/rimless/outcome.hpp"
 #include "flexgait/rimless/poincare.hpp"
 
 namespace flexgait::rimless {
@@ -53,7 +56,7 @@ struct BasinReference {
 };
 BasinReference basin_reference(const Config& base, Section section);
 
-/// What became of one cell (basin.csv's outcome column):
+/// What became of one cell (basin.csv's outcome column, BasinOutcome's names):
 ///   converged   — reached the reference fixed point within the tolerance;
 ///   other_gait  — settled on another period-1 orbit (successive crossings within tolerance/100,
 ///                 farther than 100 × tolerance from the reference);
@@ -61,11 +64,34 @@ BasinReference basin_reference(const Config& base, Section section);
 ///   sim.max_step_time; slid_away; time_limit; failed — any other failure (named in `failure`);
 ///   step_limit  — none of these within steps_limit crossings;
 ///   infeasible  — the initial state cannot be simulated (a foot below the ground; in `failure`).
+enum class BasinOutcome {
+  Converged,
+  OtherGait,
+  RolledBack,
+  Stopped,
+  SlidAway,
+  TimeLimit,
+  Failed,
+  StepLimit,
+  Infeasible
+};
+constexpr std::array<EnumName<BasinOutcome>, 9> enum_names(BasinOutcome) {
+  return {{{BasinOutcome::Converged, "converged"},
+           {BasinOutcome::OtherGait, "other_gait"},
+           {BasinOutcome::RolledBack, "rolled_back"},
+           {BasinOutcome::Stopped, "stopped"},
+           {BasinOutcome::SlidAway, "slid_away"},
+           {BasinOutcome::TimeLimit, "time_limit"},
+           {BasinOutcome::Failed, "failed"},
+           {BasinOutcome::StepLimit, "step_limit"},
+           {BasinOutcome::Infeasible, "infeasible"}}};
+}
 std::string basin_header();  ///< x, y, outcome, gait, steps, distance, failure
 std::string basin_row(const Config& base, const BasinSpec& spec, const BasinReference& ref, int cell);
 
-/// The outcome class of a simulation failure's message.
-std::string failure_outcome(const std::string& failure);
+/// The outcome class of a failure on the way (whatever its stage): rolled_back, stopped, slid_away,
+/// time_limit, or failed for any other reason.
+BasinOutcome failure_outcome(const Failure& failure);
 
 /// The outcomes above, in that order.
 const std::vector<std::string>& basin_outcomes();

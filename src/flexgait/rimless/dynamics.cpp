@@ -121,7 +121,7 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
   const SlopeTrig& slope = slope_trig(w.slope);
   a.F = {w.m * w.g * slope.sin, -w.m * w.g * slope.cos, 0.0};
   constexpr double wb = kStickStabilization;
-  d.failure = nullptr;
+  d.failure.reset();
   d.jammed = false;
   for (int i = 0; i < contacts.count; ++i) {
     leg_kinematics(w, contacts.leg[i], q, d.leg[i]);
@@ -146,7 +146,7 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
       const SlipLaw law = slip_law(w, s, g.cdot);
       cf.D = slip_denominator(g, s, law.mu);
       if (!(cf.D > 0)) {
-        d.failure = "slip with a non-positive friction denominator (Painleve jam)";
+        d.failure = FailureReason::SlipJam;
         d.jammed = true;
       }
       cf.T = -s * law.mu * g.f / cf.D;
@@ -169,25 +169,25 @@ void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::spa
   d.thetad = q[StateIndex::thetad];
   d.algebraic_thetad = false;
   Assembly a = assemble(w, contacts, q, d);
-  if (w.I == 0 && a.rows == 0 && contacts.count >= 2 && d.failure == nullptr) {
+  if (w.I == 0 && a.rows == 0 && contacts.count >= 2 && !d.failure) {
     // Torque balance Q_θ(θ̇) = Q0 + (Q1 - Q0) θ̇ = 0 fixes θ̇ (see the header).
     q[StateIndex::thetad] = 0.0;
     const double q0 = assemble(w, contacts, q, d).F[2];
     q[StateIndex::thetad] = 1.0;
     const double q1 = assemble(w, contacts, q, d).F[2];
     if (!(std::abs(q1 - q0) > 1e-12 * (std::abs(q0) + std::abs(q1)))) {
-      d.failure = "I = 0: the torque balance does not fix the angular velocity";
+      d.failure = FailureReason::PointMassTorqueBalance;
       return;
     }
     q[StateIndex::thetad] = d.thetad = -q0 / (q1 - q0);
     d.algebraic_thetad = true;
     a = assemble(w, contacts, q, d);
-    if (d.failure != nullptr) return;
+    if (d.failure) return;
     d.qdd = {a.F[0] / w.m, a.F[1] / w.m, 0.0};
   } else {
     std::array<double, kMaxContacts> lambda{};
     if (!solve_constrained(w, a.rows, a.A, a.F, a.b, d.qdd, lambda)) {
-      d.failure = "no consistent motion: the constrained equations are singular (point mass, I = 0)";
+      d.failure = FailureReason::PointMassSingular;
       return;
     }
     for (int r = 0; r < a.rows; ++r) d.force[a.stick_index[r]].T = lambda[r];

@@ -19,9 +19,11 @@
 /// the fast rotation); Dynamics::thetad then differs from the state's θ̇. A single slipping foot
 /// has no consistent motion with I = 0 (spec rimless.md) and is reported.
 #include <array>
+#include <optional>
 #include <span>
 
 #include "flexgait/rimless/contact.hpp"
+#include "flexgait/rimless/outcome.hpp"
 
 namespace flexgait::rimless {
 
@@ -36,9 +38,9 @@ struct ContactForce {
 };
 
 struct Dynamics {
-  /// nullptr when the mode has a consistent motion; otherwise why not (a slip jam D <= 0,
+  /// Empty when the mode has a consistent motion; otherwise why not (a slip jam D <= 0,
   /// or a singular constrained system, which happens only for I = 0).
-  const char* failure = nullptr;
+  std::optional<FailureReason> failure;
   bool jammed = false;  ///< a slipping foot has D <= 0 (the failure is then the Painlevé jam)
   std::array<double, 3> qdd{};  ///< (ẍ, ÿ, θ̈)
   std::array<ContactForce, kMaxContacts> force{};

@@ -45,6 +45,7 @@ void newton_with_exact_jacobian(PoincareMap& map, const SectionState& guess, con
   if (numerics::fixed_point_at(f, guess.z, 0.0, o, b)) return;
   nr.converged = true;
   nr.failure.clear();
+  nr.failure_reason.reset();
   nr.z = b.z;
   nr.residual = b.residual;
   nr.iterations = b.corrector_iterations;
@@ -63,6 +64,7 @@ FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOpt
   if (!nr.converged) newton_with_exact_jacobian(map, guess, w, opt, nr);
   rep.converged = nr.converged;
   rep.failure = nr.failure;
+  if (!nr.converged) rep.newton_failure = nr.failure_reason;
   rep.iterations = nr.iterations;
   rep.residual = nr.residual;
   rep.history = nr.history;
@@ -100,7 +102,8 @@ FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions&
   if (auto e = settle_on_section(w, map_options(sim, opt), model, section, initial, opt.transient_steps, guess)) {
     FixedPointReport rep;
     rep.point = guess;
-    rep.failure = "no initial guess: " + *e;
+    rep.transient_failure = e;
+    rep.failure = e->in_stage("no initial guess").text();
     return rep;
   }
   return find_fixed_point_from(w, sim, opt, guess);

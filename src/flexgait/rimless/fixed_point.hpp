@@ -3,6 +3,7 @@
 /// Periodic gaits of the rimless wheel: a fixed point of the Poincaré map by Newton-Raphson,
 /// its Floquet multipliers (eigenvalues of the map's Jacobian) and a stability verdict.
 #include <complex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,9 @@ SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOption
 /// Newton iterate, or an empty z when the transient never reached the section.
 struct FixedPointReport {
   bool converged = false;
-  std::string failure;                 ///< empty when converged
+  std::string failure;                       ///< empty when converged; else the text of why not (files show it)
+  std::optional<Failure> transient_failure;  ///< why the transient gave Newton no initial guess
+  std::optional<numerics::NewtonFailure> newton_failure;  ///< else why Newton found no fixed point
   int iterations = 0;
   double residual = 0;                 ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)
   std::vector<numerics::NewtonIteration> history;

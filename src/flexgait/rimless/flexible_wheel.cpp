@@ -373,8 +373,7 @@ struct FlexibleWheelSimulator::Impl {
     if (c.count < 2 || kinetic_energy(w, s) >= 1e-12 * w.m * w.g * w.L0) return false;
     const Dynamics d = contact_dynamics(w, c, s);
     const double tol = 1e-6 * w.g;
-    return d.failure == nullptr && std::abs(d.qdd[0]) <= tol && std::abs(d.qdd[1]) <= tol &&
-           std::abs(d.qdd[2]) * w.L0 <= tol;
+    return !d.failure && std::abs(d.qdd[0]) <= tol && std::abs(d.qdd[1]) <= tol && std::abs(d.qdd[2]) * w.L0 <= tol;
   }
 
   // A wheel on two or more feet that all slip the same way, neither turning nor rising: a rigid
@@ -395,7 +394,7 @@ struct FlexibleWheelSimulator::Impl {
     const double v = std::sqrt(w.g * w.L0), omega = std::sqrt(w.g / w.L0), tol = 1e-6;
     if (std::abs(s[S::yd]) > tol * v || std::abs(s[S::thetad]) > tol * omega) return false;
     const Dynamics d = contact_dynamics(w, c, s);
-    if (d.failure != nullptr || std::abs(d.qdd[1]) > tol * w.g || std::abs(d.qdd[2]) > tol * w.g / w.L0) return false;
+    if (d.failure || std::abs(d.qdd[1]) > tol * w.g || std::abs(d.qdd[2]) > tol * w.g / w.L0) return false;
     std::string legs;
     for (int i = 0; i < c.count; ++i) legs += fmt::format("{}{}", i ? ", " : "", c.leg[i]);
     accelerating = dir * d.qdd[0] > 0;
@@ -405,12 +404,12 @@ struct FlexibleWheelSimulator::Impl {
   }
 
   // After a smooth step: the modes must still be consistent, or an event was missed.
-  const char* check_consistency(std::span<const double> s, std::string& detail) const {
+  std::optional<FailureReason> check_consistency(std::span<const double> s, std::string& detail) const {
     const ContactSet& c = flow.contacts();
     const bool remembered = flow.remembered(s);  // the guards' numbers at s (the step's end)
     Dynamics computed;
     const Dynamics& d = remembered ? flow.last_dynamics() : (computed = contact_dynamics(w, c, s));
-    if (d.failure != nullptr) return d.failure;
+    if (d.failure) return d.failure;
     const double tol_f = 1e-6 * w.m * w.g, tol_v = 1e-6 * std::sqrt(w.g * w.L0);
     for (int i = 0; i < c.count; ++i) {
       const ContactForce& cf = d.force[i];
@@ -420,7 +419,7 @@ struct FlexibleWheelSimulator::Impl {
       if (bad) {
         detail = fmt::format("leg {} in {}: N = {}, T = {}, cdot = {}", c.leg[i], mode_name(c.mode[i]), cf.N, cf.T,
                              d.leg[i].cdot);
-        return "missed event: the contact mode became inconsistent within one solver step";
+        return FailureReason::MissedModeChange;
       }
     }
     for (int k = 0; k < w.legs; ++k) {
@@ -428,10 +427,10 @@ struct FlexibleWheelSimulator::Impl {
       const double h = remembered ? flow.last_height(k) : foot_height(w, k, s);
       if (h < -1e-7 * w.L0) {
         detail = fmt::format("leg {} foot height {}", k, h);
-        return "missed event: a free foot went below the ground";
+        return FailureReason::MissedTouchdown;
       }
     }
-    return nullptr;
+    return std::nullopt;
   }
 };
 
@@ -506,10 +505,13 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
     ++res.event_count;
     sink.on_event({te, kind, leg, m.flow.contacts(), {}});
   }
-  void fail(double te, const std::string& why, const std::string& detail) override {
-    res.failure = detail.empty() ? why : why + " (" + detail + ")";
+  void fail(double te, FailureReason reason, std::string detail = {}) {
+    res.failure = Failure{reason, std::move(detail), {}};
     ++res.event_count;
-    sink.on_event({te, RunEvent::Failure, -1, m.flow.contacts(), *res.failure});
+    sink.on_event({te, RunEvent::Failure, -1, m.flow.contacts(), res.failure->text()});
+  }
+  void loop_failed(numerics::LoopFailure what, double te, const std::string& detail) override {
+    fail(te, loop_failure_reason(what), detail);
   }
   void log_sample(double ts, std::span<const double> ys) {
     sink.on_sample(m.sample(ts, ys));
@@ -531,7 +533,7 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   bool ready(double t) override {
     if (m.opt.method == numerics::OdeMethod::Bdf || leg_fastest_mode(w) / kStabilityBoundary <= m.opt.max_step_rate)
       return true;
-    fail(t, "work limit sim.max_step_rate exceeded from the start",
+    fail(t, FailureReason::StepRateFromStart,
          fmt::format("{} needs at least {:.3g} steps per simulated second for stability alone (limit {:.3g}); {}",
                      name_of(m.opt.method), leg_fastest_mode(w) / kStabilityBoundary, m.opt.max_step_rate,
                      stiffness_hint(w, m.opt.method)));
@@ -539,11 +541,11 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   }
   void work_limit_reached(numerics::WorkLimit limit, double t, double measured) override {
     if (limit == numerics::WorkLimit::WallTime) {
-      fail(t, "wall-time limit sim.max_wall_time reached",
+      fail(t, FailureReason::WallTime,
            fmt::format("{} s at t = {} s after {} steps; {}", m.opt.max_wall_time, t, res.steps_completed,
                        stiffness_hint(w, m.opt.method)));
     } else {
-      fail(t, "work limit sim.max_step_rate reached",
+      fail(t, FailureReason::StepRate,
            fmt::format("{:.3g} solver steps per simulated second over the last {} (limit {:.3g}) at t = {} s after {} "
                        "steps; {}",
                        measured, numerics::HybridSimulation::kRateWindow, m.opt.max_step_rate, t, res.steps_completed,
@@ -565,8 +567,7 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
     if (static_cast<EventKind>(e.kind) != EventKind::Touchdown) return true;
     const double beta = leg_angle(w, e.unit, m.y[S::theta]);
     if (beta > 0 && m.y[S::thetad] < 0 && m.y[S::xd] < 0) {
-      fail(t, "rolled back: a leg behind the hub landed while the wheel moved backwards",
-           fmt::format("leg {}, beta = {}", e.unit, beta));
+      fail(t, FailureReason::RolledBack, fmt::format("leg {}, beta = {}", e.unit, beta));
       return false;
     }
     return true;
@@ -610,8 +611,11 @@ bool FlexibleWheelSimulator::Run::start() {
     if (spec.contacts.find(k) >= 0) continue;
     bool landing = false;
     for (const auto& e : spec.pending) landing = landing || (e.leg == k && e.kind == EventKind::Touchdown);
-    if (!landing && foot_height(w, k, m.y) < -1e-12 * w.L0)
-      throw std::invalid_argument(fmt::format("initial state: foot {} is below the ground", k));
+    if (!landing && foot_height(w, k, m.y) < -1e-12 * w.L0) {  // an outcome of the start, not a broken contract
+      fail(0.0, FailureReason::InitialFootBelowGround, std::to_string(k));
+      res.final_state = m.y;
+      return false;
+    }
   }
   m.flow.set_contacts(spec.contacts);
   m.flow.clear_all();
@@ -620,8 +624,8 @@ bool FlexibleWheelSimulator::Run::start() {
   if (!spec.pending.empty()) {
     const std::vector<double> y_before = m.y;
     const ModeDecision dec = choose_modes(w, spec.contacts, spec.pending, m.y);
-    if (dec.failure != nullptr) {
-      fail(0.0, dec.failure, dec.detail);
+    if (dec.failure) {
+      fail(0.0, *dec.failure, dec.detail);
       res.final_state = m.y;
       return false;
     }
@@ -632,7 +636,7 @@ bool FlexibleWheelSimulator::Run::start() {
     if (m.opt.sensitivities) {
       Eigen::MatrixXd R;
       if (auto e = m.reset_jacobian(spec.contacts, spec.pending, dec, y_before, R)) {
-        fail(0.0, "sensitivities", *e);
+        fail(0.0, FailureReason::Sensitivities, *e);
         res.final_state = m.y;
         return false;
       }
@@ -666,12 +670,12 @@ bool FlexibleWheelSimulator::Run::start() {
 
 bool FlexibleWheelSimulator::Run::smooth_step(double t, std::span<const double>, numerics::StepStatus status) {
   std::string detail;
-  if (const char* why = m.check_consistency(m.y, detail)) {
-    fail(t, why, detail);
+  if (const auto why = m.check_consistency(m.y, detail)) {
+    fail(t, *why, detail);
     return false;
   }
   if (m.at_rest(m.y)) {
-    fail(t, "stopped: the wheel came to rest in double support", "");
+    fail(t, FailureReason::AtRest);
     return false;
   }
   bool accelerating = false;
@@ -681,7 +685,7 @@ bool FlexibleWheelSimulator::Run::smooth_step(double t, std::span<const double>,
   if (translation && accelerating) {
     if (translating_since < 0) translating_since = t;
     if (t - translating_since >= kTranslationHold) {
-      fail(t, "slid away: the wheel slides down the slope on its feet without turning, ever faster", motion);
+      fail(t, FailureReason::SlidAway, motion);
       return false;
     }
   } else {
@@ -689,8 +693,10 @@ bool FlexibleWheelSimulator::Run::smooth_step(double t, std::span<const double>,
   }
   if (status == numerics::StepStatus::StopTime) {
     const std::string also = translation ? "; " + motion : "";
-    if (t >= m.opt.max_time) fail(t, "time limit sim.max_time reached", fmt::format("{} s{}", m.opt.max_time, also));
-    else fail(t, "stopped: no new leg landed within sim.max_step_time", fmt::format("{} s{}", m.opt.max_step_time, also));
+    if (t >= m.opt.max_time)
+      fail(t, FailureReason::TimeLimit, fmt::format("{} s{}", m.opt.max_time, also));
+    else
+      fail(t, FailureReason::NoLanding, fmt::format("{} s{}", m.opt.max_step_time, also));
     return false;
   }
   return true;
@@ -714,7 +720,7 @@ numerics::HybridNext FlexibleWheelSimulator::Run::guards_crossed(double t, std::
   if (upright_stop && fired[static_cast<std::size_t>(guard_count(w))] != 0) {
     const int k = m.flow.upright_leg();
     if (!(before.count == 1 && before.leg[0] == k)) {
-      fail(t, "the upright section was crossed outside single support on that leg", describe_contacts(before));
+      fail(t, FailureReason::UprightOutsideSingleSupport, describe_contacts(before));
       return numerics::HybridNext::Stop;
     }
     if (section != nullptr) *section = {t, m.y, before, k, section_sensitivity()};
@@ -751,16 +757,16 @@ numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<doub
   const std::vector<GuardEvent>& events = m.events;
   std::copy(m.y.begin(), m.y.end(), m.y_minus.begin());
   const ModeDecision dec = choose_modes(w, before, events, m.y);
-  if (dec.failure != nullptr) {
+  if (dec.failure) {
     for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
-    fail(t, dec.failure, dec.detail);
+    fail(t, *dec.failure, dec.detail);
     return numerics::HybridNext::Stop;
   }
   check_reset(events, dec);
   if (m.opt.sensitivities) {
     Eigen::MatrixXd R;
     if (auto e = m.reset_jacobian(before, events, dec, m.y_minus, R)) {
-      fail(t, "sensitivities", *e);
+      fail(t, FailureReason::Sensitivities, *e);
       return numerics::HybridNext::Stop;
     }
     const Eigen::VectorXd f_plus = m.flow_at(dec.contacts, m.y);

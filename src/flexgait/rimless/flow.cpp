@@ -17,7 +17,7 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
                      Dynamics& d) {
   using S = StateIndex;
   contact_dynamics(w, contacts, y, d);
-  if (d.failure != nullptr) return false;
+  if (d.failure) return false;
   yd[S::x] = y[S::xd];
   yd[S::y] = y[S::yd];
   yd[S::theta] = d.thetad;  // the state's θ̇ unless the torque balance fixes it (I = 0)

@@ -129,18 +129,23 @@ void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>
   }
   const numerics::Branch& tail = segments.back().branch;
   out.branch.reached_end = tail.reached_end;
+  out.branch.end = tail.end;
   out.branch.stop_reason = tail.stop_reason;
-  if (tail.stop_reason.starts_with("a vertical branch")) {
+  if (tail.end == numerics::BranchEnd::Vertical) {
     // The physical reason where it is the sliding gait's: μ_k = tan φ.
     const WheelParams w = cache->wheel_at(tail.points.back().p);
     const SectionState& m = segments.back().like;
-    if (!m.flight && m.mode != FootMode::Stick && std::abs(w.mu_k - std::tan(w.slope)) <= 1e-8 * std::max(1.0, w.mu_k))
+    if (!m.flight && m.mode != FootMode::Stick &&
+        std::abs(w.mu_k - std::tan(w.slope)) <= 1e-8 * std::max(1.0, w.mu_k)) {
+      out.end = GaitBranchEnd::SlideBalance;
       out.branch.stop_reason = fmt::format(
           "mu_k = tan(slope) = {}: kinetic friction on the sliding foot balances gravity along the slope, so a slide "
           "at any speed is a gait (a multiplier +1, the branch vertical) and below it the slide accelerates: no gait; {}",
           format_number(std::tan(w.slope)), tail.stop_reason);
+    }
   }
   if (!end_note.empty()) {
+    out.end = GaitBranchEnd::ModeChangeNotContinued;
     out.branch.reached_end = false;
     out.branch.stop_reason = end_note + " (" + tail.stop_reason + ")";
   }
@@ -208,7 +213,7 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
     numerics::ContinuationOptions oc = o;
     oc.state_scale = r.section.scale(cache->wheel_at(r.point.p));
     numerics::Branch b = numerics::switch_at_period_doubling(f, pd, 1.0, oc);
-    if (b.failure.empty() && b.points.size() < 3 && b.stop_reason.find("other side") != std::string::npos && pd.point.p > 0)
+    if (b.failure.empty() && b.points.size() < 3 && b.end == numerics::BranchEnd::OtherSide && pd.point.p > 0)
       b = numerics::switch_at_period_doubling(f, pd, 0.0, oc);
     if (!b.failure.empty()) {
       child.failure = fmt::format("no period-{} branch at the period doubling at {} = {}: {}", child.period,
@@ -265,7 +270,8 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
     const AnalysisOptions& a = cache->opt;
     if (auto e = settle_on_section(w0, map_options(cache->sim, a), cache->model, spec.section,
                                    initial_from_config(start_config), a.transient_steps, like)) {
-      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from), *e);
+      out.failure = fmt::format("no period-{} orbit at {} = {}: {}", spec.period, spec.param, format_number(spec.from),
+                                e->text());
       return out;
     }
     out.state_names = like.names();

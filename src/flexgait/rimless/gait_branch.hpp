@@ -20,10 +20,12 @@
 /// fixed point is continuous there, as at the μ thresholds between behaviours) the branch goes on
 /// from there in the new mode, and the boundary is an event "section mode A -> B"; otherwise the
 /// branch ends and says why.
+#include <array>
 #include <string>
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/enum_names.hpp"
 #include "flexgait/numerics/continuation.hpp"
 #include "flexgait/rimless/poincare.hpp"
 
@@ -55,6 +57,18 @@ struct GaitBranchRow {
   std::string event;                 ///< "start", "end: …", a special point's kind, or empty
 };
 
+/// Why a gait branch ended where the numerics' end (branch.end) does not say it all.
+enum class GaitBranchEnd {
+  AsContinued,             ///< branch.end says it
+  SlideBalance,            ///< a vertical branch where μ_k = tan φ: a slide at any speed is a gait
+  ModeChangeNotContinued,  ///< the section's mode changes and the new segment does not start or cross
+};
+constexpr std::array<EnumName<GaitBranchEnd>, 3> enum_names(GaitBranchEnd) {
+  return {{{GaitBranchEnd::AsContinued, "as_continued"},
+           {GaitBranchEnd::SlideBalance, "slide_balance"},
+           {GaitBranchEnd::ModeChangeNotContinued, "mode_change_not_continued"}}};
+}
+
 struct GaitBranch {
   std::string param;
   std::vector<std::string> state_names;  ///< the columns: the largest mode's components (a sticking
@@ -66,6 +80,7 @@ struct GaitBranch {
   int period = 1;                    ///< fixed points of P^period
   std::vector<GaitBranch> switched;  ///< the period-2k branch switched to at the first period doubling
   std::vector<GaitBranchRow> rows;   ///< points and special points in the order of arclength
+  GaitBranchEnd end = GaitBranchEnd::AsContinued;  ///< with branch.end: how the branch ended
   std::string stop_reason;           ///< why the branch ended, in the key's unit
   std::string failure;               ///< nonempty when the start has no fixed point
 };

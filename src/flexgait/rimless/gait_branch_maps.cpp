@@ -68,7 +68,7 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
         cache->arrived = s.next;
         cache->arrived_q = q;
       }
-      return s.failure;
+      return s.failure->text();
     }
     o = s.next.z;
     return std::nullopt;
@@ -125,7 +125,7 @@ numerics::MapFamily family_for(const std::shared_ptr<MapCache>& cache, const Sec
     end.z = z;
     for (int i = 0; i < k; ++i) {
       const MapStep s = m->apply(end, false);
-      if (s.failure) return fmt::format("step {} of {}: {}", i + 1, k, *s.failure);
+      if (s.failure) return fmt::format("step {} of {}: {}", i + 1, k, s.failure->text());
       gait += (i > 0 ? " / " : "") + s.gait;
       end = s.next;
     }

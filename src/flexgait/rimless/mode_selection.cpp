@@ -7,6 +7,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <string_view>
 #include <vector>
 
 #include "flexgait/rimless/dynamics.hpp"
@@ -200,7 +201,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   if (w.I == 0) y[S::thetad] = contact_dynamics(w, current, y).thetad;  // θ̇ in force (I = 0 DAE)
   for (const auto& e : events) {
     if (e.kind == EventKind::FallOver) {
-      out.failure = "fell: a stance leg reached |beta| = pi/2";
+      out.failure = FailureReason::Fell;
       out.detail = fmt::format("leg {}", e.leg);
       return out;
     }
@@ -214,7 +215,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     if (e.kind == EventKind::Touchdown && current.find(e.leg) < 0)
       feet.push_back({e.leg, false, FootMode::Stick, 0, {}, &e});
   if (static_cast<int>(feet.size()) > kMaxContacts) {
-    out.failure = "more feet on the ground than supported";
+    out.failure = FailureReason::TooManyFeet;
     out.detail = fmt::format("{} feet; at most {}", feet.size(), kMaxContacts);
     return out;
   }
@@ -247,7 +248,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     }
     if (!done) {
       std::copy(saved.begin(), saved.end(), y.begin());
-      out.failure = "Painleve jam with no admissible impulse";
+      out.failure = FailureReason::JamWithoutImpulse;
       out.detail = fmt::format("{} jammed foot(feet), first leg {}", jam.size(), jam.front());
       return out;
     }
@@ -304,7 +305,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   // The inconsistent combinations tried and why (the failure's report, made only on failure).
   struct Tried {
     std::array<int, kMaxContacts> pick;
-    const char* why;
+    std::string_view why;
   };
   std::array<Tried, 4 * 4 * 4> tried{};  // at most four options for each of at most three feet
   std::size_t tried_count = 0;
@@ -337,9 +338,9 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       }
     }
     const Dynamics d = contact_dynamics(w, trial, yc);
-    const char* why = d.failure;
+    std::string_view why = d.failure ? failure_sentence(*d.failure) : std::string_view();
     jam_blocked = jam_blocked || d.jammed;
-    for (int i = 0; i < n && why == nullptr; ++i) {
+    for (int i = 0; i < n && why.empty(); ++i) {
       const Option o = feet[i].options[pick[i]];
       if (o == Option::Leave) {
         if (leg_kinematics(w, feet[i].leg, y).f > tol.force) why = "a leaving foot is still pressed (f > 0)";
@@ -359,7 +360,7 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
         if (slip_sign(mode_of(o)) * cddot < -tol.acceleration) why = "friction would not oppose the slip";
       }
     }
-    if (why == nullptr) {
+    if (why.empty()) {
       ++out.consistent;
       if (score < best_score) {
         best_score = score;
@@ -381,17 +382,13 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
   if (out.consistent == 0) {
     if (w.I == 0) {
       const bool single = n == 1;
-      out.failure = current.count == 0
-                        ? "I = 0: a landing after a flight has no consistent motion (the leg would have to snap to the "
-                          "friction-cone edge)"
-                    : single ? "I = 0: single-support slip has no consistent motion (the leg would snap to the "
-                               "friction-cone edge, tan(beta) = -mu_k s)"
-                             : "I = 0: no consistent contact mode in double support";
+      out.failure = current.count == 0 ? FailureReason::PointMassLanding
+                    : single           ? FailureReason::PointMassSingleSlip
+                                       : FailureReason::PointMassDoubleSupport;
     } else if (jam_blocked) {
-      out.failure = "Painleve paradox: every contact mode either slips with D <= 0 or breaks a contact condition, "
-                    "and no admissible impulse stops the jammed feet";
+      out.failure = FailureReason::PainleveParadox;
     } else {
-      out.failure = "no consistent contact mode";
+      out.failure = FailureReason::NoConsistentMode;
     }
     for (std::size_t k = 0; k < tried_count && out.detail.size() < 600; ++k) {
       for (int i = 0; i < n; ++i)

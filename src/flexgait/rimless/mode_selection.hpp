@@ -17,11 +17,13 @@
 /// tangential impulse perpendicular to its leg (no axial impulse through the massless spring),
 /// admissible exactly when that direction lies in the friction cone; its kinetic-energy loss
 /// is booked as friction work.
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "flexgait/rimless/contact.hpp"
+#include "flexgait/rimless/outcome.hpp"
 
 namespace flexgait::rimless {
 
@@ -49,8 +51,8 @@ struct ModeTolerances {
 };
 
 struct ModeDecision {
-  const char* failure = nullptr;  ///< nullptr, or why no motion can continue
-  std::string detail;             ///< the report behind a failure
+  std::optional<FailureReason> failure;  ///< empty, or why no motion can continue
+  std::string detail;                    ///< the report behind a failure
   ContactSet contacts;            ///< the feet on the ground from now on, with their modes
   int consistent = 0;             ///< how many combinations were consistent (> 1: the rule decided)
   int jammed_feet = 0;            ///< feet stopped by a jam impulse at this event

@@ -31,12 +31,10 @@ std::string orbit_points_row(const Config& base, const OrbitDiagramSpec& spec, i
   // it short. sim.max_step_time still ends a wheel that stops.
   sim.max_time = std::numeric_limits<double>::infinity();
   SectionState p;
-  std::optional<std::string> failure;
-  try {
-    failure = settle_on_section(w, sim, sim.model, spec.sweep.section, initial_from_config(c), spec.transient, p);
-  } catch (const std::invalid_argument& e) {  // e.g. a foot below the ground at the start
-    failure = std::string("infeasible initial state: ") + e.what();
-  }
+  std::optional<Failure> failure =
+      settle_on_section(w, sim, sim.model, spec.sweep.section, initial_from_config(c), spec.transient, p);
+  if (failure && failure->reason == FailureReason::InitialFootBelowGround)  // a foot below the ground at the start
+    failure = failure->in_stage("infeasible initial state");
   std::string modes, gaits, thetad, states;
   int recorded = 0;
   if (!failure) {
@@ -57,7 +55,7 @@ std::string orbit_points_row(const Config& base, const OrbitDiagramSpec& spec, i
     }
   }
   return fmt::format("{},{},{},{},{},{},{}", format_number(spec.sweep.value(i)), recorded, modes, gaits, thetad, states,
-                     csv_field(failure.value_or("")));
+                     csv_field(text_of(failure)));
 }
 
 std::string orbit_csv(const std::string& points_csv) {

@@ -137,7 +137,7 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
     const InitialState start{p.z(0), section_ == Section::Touchdown ? -w_.alpha() : 0.0};
     const SimulationResult r = simulate_rigid(w_, start, o, section_);
     if (r.failure) {
-      out.failure = *r.failure;
+      out.failure = r.failure;
       return out;
     }
     out.next.z = Eigen::VectorXd::Constant(1, r.final_state[5]);
@@ -152,28 +152,25 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
   spec.steps = 3;  // a cycle between two crossings holds one touchdown (upright) or none (touchdown)
   SectionHit hit;
   hit.leg = -1;
-  SimulationResult r;
-  try {
-    r = sim_->run(spec, &hit);
-  } catch (const std::invalid_argument& e) {  // e.g. a perturbed point with a foot below the ground
-    out.failure = std::string("infeasible section point: ") + e.what();
-    return out;
-  }
+  const SimulationResult r = sim_->run(spec, &hit);
   if (r.failure) {
-    out.failure = *r.failure;
+    // e.g. a perturbed point with a foot below the ground
+    out.failure = r.failure->reason == FailureReason::InitialFootBelowGround
+                      ? r.failure->in_stage("infeasible section point")
+                      : *r.failure;
     return out;
   }
   if (hit.leg < 0) {
-    out.failure = fmt::format("the {} section was not reached", name_of(section_));
+    out.failure = Failure{FailureReason::SectionNotReached, std::string(name_of(section_)), {}};
     return out;
   }
   if (auto e = reduce_crossing(w_, section_, hit, out.next)) {
-    out.failure = *e;
+    out.failure = Failure{FailureReason::IrreducibleCrossing, *e, {}};
     return out;
   }
   if (keep_mode && (out.next.flight != p.flight || out.next.mode != p.mode)) {
-    out.failure = fmt::format("arrived at the section in another mode ({} instead of {})", mode_text(out.next),
-                              mode_text(p));
+    out.failure =
+        Failure{FailureReason::OtherMode, fmt::format("{} instead of {}", mode_text(out.next), mode_text(p)), {}};
     return out;
   }
   using S = StateIndex;
@@ -248,12 +245,13 @@ std::optional<std::string> PoincareMap::linearise(const SectionState& p, Eigen::
   SectionHit hit;
   hit.leg = -1;
   const SimulationResult r = sens_sim_->run(spec, &hit);
-  if (r.failure) return *r.failure;
-  if (hit.leg < 0 || hit.S.size() == 0) return fmt::format("the {} section was not reached", name_of(section_));
+  if (r.failure) return r.failure->text();
+  if (hit.leg < 0 || hit.S.size() == 0)
+    return Failure{FailureReason::SectionNotReached, std::string(name_of(section_)), {}}.text();
   SectionState next;
   if (auto e = reduce_crossing(w_, section_, hit, next)) return e;
   if (next.flight != p.flight || next.mode != p.mode || next.z.size() != d)
-    return std::string("arrived at the section in another mode");
+    return Failure{FailureReason::OtherMode, {}, {}}.text();
   // Z_y: z's components are state components (β = θ + const at the touchdown section).
   std::vector<int> rows{section_ == Section::Touchdown ? S::theta : S::y};
   if (!sticks(p)) rows.push_back(S::xd);
@@ -281,14 +279,14 @@ std::optional<std::string> PoincareMap::operator()(const SectionState& like, con
   SectionState p = like;
   p.z = z;
   const MapStep s = apply(p);
-  if (s.failure) return s.failure;
+  if (s.failure) return s.failure->text();
   out = s.next.z;
   return std::nullopt;
 }
 
-std::optional<std::string> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
-                                             Section section, const InitialState& initial, int transient_steps,
-                                             SectionState& out) {
+std::optional<Failure> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
+                                         Section section, const InitialState& initial, int transient_steps,
+                                         SectionState& out) {
   SimulationOptions o = options;
   o.log = false;
   o.steps = std::max(1, transient_steps);
@@ -296,20 +294,23 @@ std::optional<std::string> settle_on_section(const WheelParams& w, const Simulat
   out.section = section;
   if (model == Model::Rigid) {
     const SimulationResult r = simulate_rigid(w, initial, o);
-    if (r.failure) return *r.failure;
+    if (r.failure) return r.failure;
     out.z = Eigen::VectorXd::Constant(1, r.final_state[5]);  // ω⁺ after the last impact
     if (section == Section::Upright) {
       SimulationOptions o2 = o;
       o2.steps = 2;
       const SimulationResult u = simulate_rigid(w, InitialState{out.z(0), -w.alpha()}, o2, Section::Upright);
-      if (u.failure) return *u.failure;
+      if (u.failure) return u.failure;
       out.z(0) = u.final_state[5];
     }
     return std::nullopt;
   }
   FlexibleWheelSimulator sim(w, o);
   const SimulationResult r = sim.run(default_run(w, initial));
-  if (r.failure) return "transient: " + *r.failure;
+  if (r.failure) {  // an infeasible start is no failure of the transient: its reason alone
+    if (r.failure->reason == FailureReason::InitialFootBelowGround) return r.failure;
+    return r.failure->in_stage("transient");
+  }
   RunSpec next;
   next.y0 = r.final_state;
   next.contacts = r.final_contacts;
@@ -318,9 +319,10 @@ std::optional<std::string> settle_on_section(const WheelParams& w, const Simulat
   next.steps = 3;
   SectionHit hit;
   const SimulationResult r2 = sim.run(next, &hit);
-  if (r2.failure) return "reaching the section: " + *r2.failure;
-  if (hit.leg < 0) return fmt::format("the {} section was not reached", name_of(section));
-  return reduce_crossing(w, section, hit, out);
+  if (r2.failure) return r2.failure->in_stage("reaching the section");
+  if (hit.leg < 0) return Failure{FailureReason::SectionNotReached, std::string(name_of(section)), {}};
+  if (auto e = reduce_crossing(w, section, hit, out)) return Failure{FailureReason::IrreducibleCrossing, *e, {}};
+  return std::nullopt;
 }
 
 }  // namespace flexgait::rimless

@@ -58,7 +58,7 @@ std::optional<std::string> reduce_crossing(const WheelParams& w, Section section
 
 /// One application of the map, with what happened on the way.
 struct MapStep {
-  std::optional<std::string> failure;  ///< why the next crossing was not reached
+  std::optional<Failure> failure;  ///< why the next crossing was not reached
   SectionState next;
   std::string gait;                    ///< stance-foot phases over the cycle
   double period = 0;                   ///< time between the crossings [s]
@@ -110,8 +110,10 @@ class PoincareMap {
 };
 
 /// A first section point: simulate `transient_steps` from `initial` and reduce the next crossing.
-std::optional<std::string> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
-                                             Section section, const InitialState& initial, int transient_steps,
-                                             SectionState& out);
+/// Returns why not: the transient's failure in stage "transient", the run to the section's in
+/// "reaching the section", an infeasible start (InitialFootBelowGround) without a stage.
+std::optional<Failure> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
+                                         Section section, const InitialState& initial, int transient_steps,
+                                         SectionState& out);
 
 }  // namespace flexgait::rimless

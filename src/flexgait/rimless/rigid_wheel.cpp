@@ -133,7 +133,7 @@ class RigidRun final : public numerics::HybridModel {
   void record_event(double te, RunEvent kind, int leg) {
     ++res_.event_count;
     contacts_.leg[0] = stance_leg();
-    sink_.on_event({te, kind, leg, contacts_, kind == RunEvent::Failure ? *res_.failure : std::string()});
+    sink_.on_event({te, kind, leg, contacts_, kind == RunEvent::Failure ? res_.failure->text() : std::string()});
   }
   void log_sample(const LogSample& s) {
     sink_.on_sample(s);
@@ -178,8 +178,7 @@ class RigidRun final : public numerics::HybridModel {
   void stepped(double, std::span<const double> y) override { y_ = {y[0], y[1]}; }
   bool smooth_step(double t, std::span<const double>, numerics::StepStatus status) override {
     if (status != numerics::StepStatus::StopTime) return true;
-    res_.failure = t >= opt_.max_time ? "time limit sim.max_time reached"
-                       : "stopped: no new leg landed within sim.max_step_time";
+    fail(t >= opt_.max_time ? FailureReason::TimeLimit : FailureReason::NoLanding);
     return false;
   }
   numerics::HybridNext guards_crossed(double t, std::span<const double>, std::span<const int> fired,
@@ -187,7 +186,7 @@ class RigidRun final : public numerics::HybridModel {
                                       std::vector<numerics::HybridEvent>& events) override {
     if (opt_.log) log_sample(sample_at(t, y_));
     if (fired[kRollback] != 0) {
-      res_.failure = "rolled back: the wheel fell back onto the previous leg";
+      fail(FailureReason::FellBack);
       return numerics::HybridNext::Stop;
     }
     if (fired[kTouchdown] == 0) {  // only the upright guard crossed
@@ -225,15 +224,15 @@ class RigidRun final : public numerics::HybridModel {
     return numerics::HybridNext::Restart;
   }
   std::span<const int> directions() const override { return kGuardDirections; }
-  void fail(double, const std::string& why, const std::string& detail) override {
-    res_.failure = detail.empty() ? why : why + " (" + detail + ")";
+  void fail(FailureReason reason, std::string detail = {}) { res_.failure = Failure{reason, std::move(detail), {}}; }
+  void loop_failed(numerics::LoopFailure what, double, const std::string& detail) override {
+    fail(loop_failure_reason(what), detail);
   }
   void work_limit_reached(numerics::WorkLimit limit, double t, double measured) override {
     if (limit == numerics::WorkLimit::WallTime)
-      fail(t, "wall-time limit sim.max_wall_time reached", fmt::format("{} s at t = {} s", measured, t));
+      fail(FailureReason::WallTime, fmt::format("{} s at t = {} s", measured, t));
     else
-      fail(t, "work limit sim.max_step_rate reached",
-           fmt::format("{:.3g} solver steps per simulated second at t = {} s", measured, t));
+      fail(FailureReason::StepRate, fmt::format("{:.3g} solver steps per simulated second at t = {} s", measured, t));
   }
   std::string describe(const numerics::HybridEvent& e) const override { return fmt::format("leg {} touchdown", e.unit); }
 

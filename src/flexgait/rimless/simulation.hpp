@@ -15,6 +15,7 @@
 #include "flexgait/rimless/energy.hpp"
 #include "flexgait/rimless/gait.hpp"
 #include "flexgait/rimless/mode_selection.hpp"
+#include "flexgait/rimless/outcome.hpp"
 
 namespace flexgait::rimless {
 
@@ -111,7 +112,7 @@ struct SimulationResult {
   std::vector<LogSample> samples;
   std::vector<EventRecord> events;
   std::vector<StepRecord> steps;
-  std::optional<std::string> failure;  ///< why the run stopped early; empty if it completed
+  std::optional<Failure> failure;      ///< why the run stopped early; empty if it completed
   int steps_completed = 0;             ///< touchdowns of new legs
   long long event_count = 0;           ///< events recorded (events.csv's rows), kept or streamed
   std::vector<std::string> gaits;      ///< the gait label of every completed step, in order
@@ -149,7 +150,9 @@ struct SimulationResult {
     std::int64_t solver_steps = s.solver_steps, rhs_evals = s.rhs_evals;
     v("solver_steps", solver_steps, {.doc = "integrator steps"});
     v("rhs_evals", rhs_evals, {.doc = "right-hand-side evaluations"});
-    v("failure", s.failure, {.doc = "why the run stopped early; null when it completed"});
+    std::optional<std::string> failure;
+    if (s.failure) failure = s.failure->text();
+    v("failure", failure, {.doc = "why the run stopped early; null when it completed"});
   }
 };
 

@@ -139,7 +139,7 @@ Stage run_stage(const WheelParams& w, const InitialState& start, const Simulatio
   StageLog log(w, opt, stance, s);
   const SimulationResult r = simulator.run(spec, log);
   if (!log.has_samples()) {
-    s.failure = r.failure.value_or("no samples");
+    s.failure = r.failure ? r.failure->text() : "no samples";
     return s;
   }
   const LogSample& last = log.last_sample();
@@ -160,7 +160,7 @@ Stage run_stage(const WheelParams& w, const InitialState& start, const Simulatio
     s.end = StageEnd::CameToRest;
   } else {
     s.end = StageEnd::Failed;
-    s.failure = r.failure.value_or("stopped without a landing");
+    s.failure = r.failure ? r.failure->text() : "stopped without a landing";
   }
   return s;
 }

@@ -59,8 +59,8 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
   for (const auto& s : r.steps)
     if (s.complete) transient_gait = gait_label(s.single_support);
 
-  std::string row = fmt::format("{},{},{},{}", format_number(spec.value(i)), transient_gait, format_number(r.mean_speed),
-                                csv_field(r.failure.value_or("")));
+  std::string row = fmt::format("{},{},{},{}", format_number(spec.value(i)), transient_gait,
+                                format_number(r.mean_speed), csv_field(text_of(r.failure)));
   const FixedPointReport fp = find_fixed_point(w, sim, opt, sim.model, spec.section, initial);
   std::string state, mult;
   double max_mult = 0;

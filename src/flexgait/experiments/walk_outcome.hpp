@@ -1,0 +1,45 @@
+#pragma once
+/// \file walk_outcome.hpp
+/// How a humanoid walk ended early, as reasons with their names (issue 13, "One outcome
+/// convention"): a fall (FallReason) or a failure of the simulation itself (WalkFailure). The
+/// text that summary.json and the console show is made from the reason (and its detail).
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "flexgait/core/enum_names.hpp"
+
+namespace flexgait::experiments {
+
+/// Why the robot counts as fallen (checked every control period, walk_experiment.cpp).
+enum class FallReason {
+  kPelvisTooLow,    ///< pelvis above the floor lower than walk.pelvis_height − fall_height
+  kPelvisTilted,    ///< |roll| or |pitch| of the pelvis beyond fall_tilt
+  kNonSoleContact,  ///< a body other than a sole touched the floor
+};
+constexpr std::array<EnumName<FallReason>, 3> enum_names(FallReason) {
+  return {{{FallReason::kPelvisTooLow, "pelvis_too_low"},
+           {FallReason::kPelvisTilted, "pelvis_tilted"},
+           {FallReason::kNonSoleContact, "non_sole_contact"}}};
+}
+/// summary.json's fall_reason: "pelvis too low", "pelvis tilted beyond the limit", "a body other
+/// than a sole touched the floor".
+std::string_view fall_sentence(FallReason reason);
+
+/// Why the simulation itself failed (the walk ends there).
+enum class SimulationFailure {
+  kMuJoCoWarning,  ///< MuJoCo warned (it reset an unstable state or dropped contacts); detail: its text
+  kDiverged,       ///< the true state is no longer finite
+};
+constexpr std::array<EnumName<SimulationFailure>, 2> enum_names(SimulationFailure) {
+  return {{{SimulationFailure::kMuJoCoWarning, "mujoco_warning"}, {SimulationFailure::kDiverged, "diverged"}}};
+}
+
+struct WalkFailure {
+  SimulationFailure reason = SimulationFailure::kDiverged;
+  std::string detail;  ///< MuJoCo's warnings (kMuJoCoWarning); empty otherwise
+  /// "MuJoCo: <warnings>" or "the simulation diverged: a non-finite state" (summary.json's failure).
+  std::string text() const;
+};
+
+}  // namespace flexgait::experiments

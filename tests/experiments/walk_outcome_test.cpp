@@ -1,0 +1,39 @@
+// The humanoid walk's outcome reasons (walk_outcome.hpp): one name table each, and the text of
+// summary.json made from the reason.
+#include "flexgait/experiments/walk_outcome.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "../support/enum_table.hpp"
+#include "flexgait/core/record_json.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+
+namespace flexgait::experiments {
+namespace {
+
+TEST(WalkOutcome, NamesAreUniqueAndRoundTrip) {
+  flexgait::testing::expect_enum_table_round_trips<FallReason>();
+  flexgait::testing::expect_enum_table_round_trips<SimulationFailure>();
+  std::set<std::string_view> sentences;
+  for (const auto& e : enum_names(FallReason{})) EXPECT_TRUE(sentences.insert(fall_sentence(e.value)).second);
+}
+
+TEST(WalkOutcome, SummaryTextComesFromTheReason) {
+  WalkMetrics m;
+  EXPECT_EQ(m.fall_text(), "");
+  EXPECT_EQ(m.failure_text(), "");
+  m.fell = true;
+  m.fall_reason = FallReason::kPelvisTilted;
+  m.failure = WalkFailure{SimulationFailure::kMuJoCoWarning, "Nan, Inf or huge value in QACC at DOF 3"};
+  const auto j = record_json(m);
+  EXPECT_EQ(j["fall_reason"], "pelvis tilted beyond the limit");
+  EXPECT_EQ(j["failure"], "MuJoCo: Nan, Inf or huge value in QACC at DOF 3");
+  EXPECT_TRUE(j.contains("failure_time"));
+  EXPECT_EQ((WalkFailure{SimulationFailure::kDiverged, {}}).text(), "the simulation diverged: a non-finite state");
+}
+
+}  // namespace
+}  // namespace flexgait::experiments
