@@ -87,7 +87,7 @@ struct BalanceParams {
   bool step_adjustment = false;     ///< move the next footstep when the DCM error leaves the sole
   double step_adjustment_limit = 0.25;  ///< |Δ| along each axis of the stance sole [m]
   double step_reach = 0.4;          ///< landing to stance sole centre, at most [m]
-  double recovery_step_time = 0.5;  ///< standing: the inserted recovery step's duration (double support walk.dsp_ratio of it) [s]
+  double recovery_step_time = 0.25; ///< standing: the capture step's duration, lift-off at once [s]
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -135,7 +135,7 @@ struct BalanceParams {
     v("balance.step_reach", s.step_reach,
       {.unit = "m", .doc = "step adjustment: largest distance from the stance sole centre to the landing", .bounds = closed(0.2, 1)});
     v("balance.recovery_step_time", s.recovery_step_time,
-      {.unit = "s", .doc = "step adjustment while standing: duration of the recovery step", .bounds = closed(0.2, 2)});
+      {.unit = "s", .doc = "step adjustment while standing: duration of the capture step (the foot lifts at once)", .bounds = closed(0.1, 2)});
   }
 };
 

@@ -13,6 +13,7 @@ namespace {
 constexpr double kReplanDistance = 0.005;
 /// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
 constexpr double kLastAdjustment = 0.75;
+constexpr double kCaptureSettle = 0.5;  ///< after a capture step the ZMP moves from the landed foot to the feet's middle in this [s]
 /// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
 /// < 1e-3 of the swing's accelerations (planned_motion_test).
 constexpr double kPlanStep = 0.01;
@@ -266,12 +267,75 @@ void WalkingController::begin_safe_stop(double t, std::size_t k) {
   }
 }
 
+void WalkingController::begin_capture_step(double t, std::size_t k, int swing, double omega, double T, double settle,
+                                           const StepLimits& limits) {
+  // (C1) the centre of pressure goes at once to the stance sole's point nearest the DCM, 2 cm
+  // inside its edges; (C2) the COM falls about it as the linear inverted pendulum from its
+  // estimated state, so the DCM reference is the measured DCM ξ₀ diverging from p,
+  // ξ(τ) = p + (ξ₀ − p) e^{ωτ}; (C3) the swing foot lifts now and lands at ξ(T), within reach.
+  // (Moving the landing with the measured DCM during the swing, as walking steps do, recovered
+  // less: 0.89–0.93 of the capture-point bound against 1.09–0.99 at T = 0.3–0.35 s.)
+  const Footprint& stance = plan_.initial[1 - swing];
+  const Eigen::Rotation2Dd heading(stance.yaw);
+  const Eigen::Vector2d centre(stance.x, stance.y), xi0 = status_.dcm;
+  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin, 0.5 * model_.sole_width - kCaptureMargin);
+  const Eigen::Vector2d p = centre + heading * (heading.inverse() * (xi0 - centre)).cwiseMax(-half).cwiseMin(half);
+  for (int a = 0; a < 2; ++a) {
+    const double c = status_.com_estimate(a);
+    cart_[a].x = Vector3d(c, com_velocity_(a), omega * omega * (c - p(a)));
+    cart_[a].error_sum = 0;
+  }
+  capture_ = {true, t + T, p};
+  Step st;
+  st.swing = swing;
+  st.t_begin = t;
+  st.t_lift = t + period_;
+  st.t_land = t + T;
+  st.from = plan_.initial[swing];
+  st.stance = stance;
+  st.to = adjusted_landing(Footprint{p.x(), p.y(), stance.yaw, stance.z}, stance, swing, xi0 - p, omega, T, limits);
+  st.to.yaw = st.from.yaw;
+  st.to.z = st.from.z;
+  status_.step_shift = Eigen::Vector2d(st.to.x - st.from.x, st.to.y - st.from.y);
+  plan_.steps.push_back(st);  // reserved at construction: no allocation
+  plan_.final[swing] = st.to;
+  plan_.final[1 - swing] = stance;
+  plan_.t_settle = st.t_land + settle;
+  // The ZMP reference: p until the landing, then from the landed foot to the middle of the feet.
+  const Eigen::Vector2d landed(st.to.x, st.to.y), mid = 0.5 * (landed + centre);
+  for (std::size_t i = k; i < ref_x_.size(); ++i) {
+    const double ti = static_cast<double>(i) * period_;
+    const double b = quintic_blend(std::clamp((ti - st.t_land) / settle, 0.0, 1.0));
+    const Eigen::Vector2d r = ti < st.t_land ? p : Eigen::Vector2d(landed + b * (mid - landed));
+    ref_x_[i] = r.x();
+    ref_y_[i] = r.y();
+  }
+}
+
+void WalkingController::propagate_capture(double t) {
+  // The linear inverted pendulum about p over one period, exactly: y = c − p,
+  // (y, ẏ) ← (y cosh ωT + ẏ/ω sinh ωT, y ω sinh ωT + ẏ cosh ωT), c̈ = ω² y (its ZMP stays p).
+  const double omega = std::sqrt(kGravity / gains_.com_height);
+  const double ch = std::cosh(omega * period_), sh = std::sinh(omega * period_);
+  for (int a = 0; a < 2; ++a) {
+    Vector3d& x = cart_[a].x;
+    const double y = x(0) - capture_.p(a), v = x(1);
+    const double y1 = y * ch + v / omega * sh;
+    x = Vector3d(capture_.p(a) + y1, y * omega * sh + v * ch, omega * omega * y1);
+  }
+  if (t + period_ >= capture_.t_land - 0.5 * period_) {  // landed: the preview controller takes over
+    capture_.active = false;
+    for (CartTable& c : cart_) c.error_sum = 0;
+  }
+}
+
 void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& feet) {
   const double omega = std::sqrt(kGravity / gains_.com_height);
   const Eigen::Vector2d e = status_.dcm - status_.dcm_ref;
   const Eigen::Vector2d half(0.5 * model_.sole_length, 0.5 * model_.sole_width);
   const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
   const auto n = static_cast<int>(plan_.steps.size());
+  if (capture_.active) return;  // a capture step's landing is set when it begins
   if (feet.step >= 0 && feet.step < n) {
     // Walking (or the recovery step): from the step's double support to three quarters of its
     // swing, the landing is the planned one moved by (S2) for the error now.
@@ -316,29 +380,16 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
     const double width = std::hypot(f[0].x - f[1].x, f[0].y - f[1].y);
     const Eigen::Vector2d beyond = dcm_error_beyond_sole(e, mid, Eigen::Vector2d(half.x(), half.y() + 0.5 * width));
     if (beyond.squaredNorm() == 0) return;
-    const double T = balance_.recovery_step_time, ds = walk_.dsp_ratio * T;
-    const double settle = std::max(ds, 0.2 * T);
+    const double T = balance_.recovery_step_time;
+    const double settle = kCaptureSettle;
     // The ZMP reference must hold the step and its settling (with the preview horizon).
     if (static_cast<std::size_t>(std::ceil((t + T + settle) / period_)) + gains_.G_p.size() + 1 >= ref_x_.size()) return;
     recovery_step_ = true;
     // The foot on the side the error leaves by steps; straight ahead or back, the less loaded one.
     const int swing = std::abs(beyond.y()) > 1e-3 ? (beyond.y() > 0 ? 0 : 1)
                                                   : (foot_contact_[0].normal_force < foot_contact_[1].normal_force ? 0 : 1);
-    Step st;
-    st.swing = swing;
-    st.t_begin = t;
-    st.t_lift = t + ds;
-    st.t_land = t + T;
-    st.from = f[swing];
-    st.stance = f[1 - swing];
-    st.to = adjusted_landing(st.from, st.stance, swing, beyond, omega, T, limits);
-    status_.step_shift = Eigen::Vector2d(st.to.x - st.from.x, st.to.y - st.from.y);
-    plan_.steps.push_back(st);  // reserved at construction: no allocation
-    plan_.final[swing] = st.to;
-    plan_.final[1 - swing] = st.stance;
-    plan_.t_settle = st.t_land + settle;
-    adjusted_step_ = 0;  // its later adjustments start from the place where the foot would stand still
-    planned_landing_ = st.from;
+    begin_capture_step(t, k, swing, omega, T, settle, limits);
+    return;
   } else {
     return;
   }
@@ -357,8 +408,12 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   check_sensors(raw, t, k);
   const humanoid::SensorReadings& s = health_.clean();
   status_.zmp_ref = Eigen::Vector2d(ref_x_[k], ref_y_[k]);
-  preview_step(gains_, cart_[0], &ref_x_[k]);
-  preview_step(gains_, cart_[1], &ref_y_[k]);
+  if (capture_.active) {
+    propagate_capture(t);
+  } else {
+    preview_step(gains_, cart_[0], &ref_x_[k]);
+    preview_step(gains_, cart_[1], &ref_y_[k]);
+  }
   status_.com_ref = Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0));
 
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);

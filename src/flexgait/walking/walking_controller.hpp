@@ -156,6 +156,12 @@ class WalkingController {
   /// the later footsteps once per step; standing (a plan without steps), inserts one recovery
   /// step. Rewrites the ZMP reference from sample k on, so the preview controller replans.
   void adjust_steps(double t, std::size_t k, const FeetTarget& feet);
+  /// Standing step adjustment: the capture step of foot `swing` lasting T [s] (C1–C3 in the
+  /// definition), its settling [s]; rewrites the ZMP reference from sample k.
+  void begin_capture_step(double t, std::size_t k, int swing, double omega, double T, double settle,
+                          const StepLimits& limits);
+  /// During a capture step: the cart follows the inverted pendulum about its centre of pressure.
+  void propagate_capture(double t);
   /// ZMP feedback: advances its filter and integral, returns the COM shift [m].
   Eigen::Vector2d zmp_feedback();
   /// Health of the readings, escalation to a safe stop and the attitude estimate.
@@ -197,6 +203,12 @@ class WalkingController {
   int adjusted_step_ = -1;        ///< the step whose landing is being adjusted
   Footprint planned_landing_;     ///< its landing before adjustment
   bool recovery_step_ = false;    ///< a recovery step was inserted (standing)
+  struct CaptureStep {
+    bool active = false;
+    double t_land = 0;                               ///< its touchdown [s]
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();     ///< its centre of pressure (world) [m]
+  } capture_;                                        ///< the standing capture step under way
+  static constexpr double kCaptureMargin = 0.02;     ///< the capture step's CoP stays this far inside the sole [m]
   ControllerStatus status_;
   bool plan_motion_ = false;
   RobotModelData motion_data_;  ///< the planned motion's scratch
