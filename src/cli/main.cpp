@@ -11,13 +11,9 @@
 #include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
-#include "flexgait/twin/mujoco_messages.hpp"
-#include "campaign_command.hpp"
-#include "humanoid_commands.hpp"
+#include "command_module.hpp"
 #include "mpi_distributor.hpp"
-#include "reproduce_command.hpp"
 #include "rimless_commands.hpp"
-#include "schema_command.hpp"
 
 namespace {
 
@@ -41,19 +37,32 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
   return "";
 }
 
+// Whether the first argument names one of the commands registered on `app` so far.
+bool names_registered_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return false;
+  for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; }))
+    if (s->check_name(argv[1])) return true;
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  flexgait::humanoid::route_mujoco_messages_to_stderr();  // no MUJOCO_LOG.TXT, nothing on stdout
   CLI::App app{"flexgait: legged locomotion with compliance (flexible-leg rimless wheel, humanoid with elastic gears)"};
   app.set_version_flag("--version", "flexgait " + flexgait::campaign::program_build());
   app.require_subcommand(1);
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);
-  flexgait::cli::add_humanoid_commands(app, action);
-  flexgait::cli::add_campaign_command(app, action);
-  flexgait::cli::add_reproduce_command(app, action);
-  flexgait::cli::add_schema_command(app, action);
+  // The commands that need MuJoCo come from a module, loaded unless the first word names one of
+  // the commands above (command_module.hpp).
+  if (!names_registered_command(app, argc, argv)) {
+    try {
+      flexgait::cli::add_module_commands(app, action);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", flexgait::one_line(e.what(), 1000));
+      return 1;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -26,6 +26,16 @@ check "--help lists rimless" grep -q rimless "$work/help"
 check "simulate --help documents --omega0 with units" grep -q "initial angular velocity (rad/s)" "$work/help2"
 "$exe" --version >"$work/version" 2>&1
 check "--version" grep -q "^flexgait [0-9]" "$work/version"
+# The commands that need MuJoCo are a module loaded on demand (src/cli/command_module.hpp): a
+# rimless command starts without MuJoCo and its libraries; --help and a humanoid command load it.
+LD_DEBUG=files "$exe" rimless simulate --help >/dev/null 2>"$work/loaded"
+check "rimless loads no MuJoCo" bash -c "! grep -q libmujoco '$work/loaded'"
+check "rimless loads no OSMesa" bash -c "! grep -q libOSMesa '$work/loaded'"
+LD_DEBUG=files "$exe" humanoid walk --help >/dev/null 2>"$work/loaded"
+check "humanoid loads MuJoCo" grep -q libmujoco "$work/loaded"
+for command in rimless humanoid campaign reproduce schema; do
+  check "--help lists $command" grep -qE "^  $command( |$)" "$work/help"
+done
 
 expect_usage_error unknown-key "rimless.KK" rimless simulate --set rimless.KK=5
 expect_usage_error out-of-range "rimless.K" rimless simulate --set rimless.K=-1

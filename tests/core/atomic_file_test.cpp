@@ -37,6 +37,17 @@ TEST(AtomicFile, WritesAndReplacesWithoutLeftovers) {
   EXPECT_EQ(count_entries(dir), 1);
 }
 
+TEST(AtomicFile, DurableWriteIsAtomicAsWell) {
+  // That it reaches the disk (fsync) cannot be observed here; its content and leftovers can.
+  const auto dir = fresh_dir("durable");
+  write_file_durable(dir / "sweep.signature", "old\n");
+  write_file_durable(dir / "sweep.signature", "new\n");
+  EXPECT_EQ(read_text_file(dir / "sweep.signature"), "new\n");
+  EXPECT_EQ(count_entries(dir), 1);
+  EXPECT_THROW(write_file_durable(dir / "missing_dir" / "x.txt", "new"), std::system_error);
+  EXPECT_EQ(count_entries(dir), 1);
+}
+
 TEST(AtomicFile, FailureLeavesTargetUntouched) {
   const auto dir = fresh_dir("fail");
   write_file_atomic(dir / "keep.txt", "intact");

@@ -48,3 +48,8 @@ execute_process(COMMAND "${WORK_DIR}/prefix/bin/flexgait" --version RESULT_VARIA
 if(rc)
   message(FATAL_ERROR "installed flexgait does not run")
 endif()
+# `schema` is one of the commands of the module that the program loads on demand (installed in lib/).
+execute_process(COMMAND "${WORK_DIR}/prefix/bin/flexgait" schema RESULT_VARIABLE rc OUTPUT_VARIABLE schema)
+if(rc OR NOT schema MATCHES "humanoid-walk")
+  message(FATAL_ERROR "installed flexgait does not find its commands' module: ${rc}")
+endif()

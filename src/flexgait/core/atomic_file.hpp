@@ -1,32 +1,50 @@
 #pragma once
 /// \file atomic_file.hpp
 /// Files that appear whole or not at all: content goes to a temporary file in the same
-/// directory, which is flushed to disk and renamed over the target (rename is atomic on POSIX).
+/// directory, which is renamed over the target (rename is atomic on POSIX).
+///
+/// Atomic is not durable. A process that is killed, crashes or stops on an error at any moment
+/// leaves the old target or the whole new one (the standard's "no half-written outputs"). Only a
+/// power cut or a kernel crash within the kernel's write-back delay (~30 s) can lose content
+/// that was renamed but not yet on disk; files that must survive that (a sweep's signature and
+/// partial rows, which a resume trusts) are written durably: Durability::Durable and
+/// append_file_durable(), which wait for the disk (fsync).
 #include <filesystem>
 #include <string>
 #include <string_view>
 
 namespace flexgait {
 
+/// What AtomicFileWriter::commit() promises besides atomicity.
+enum class Durability {
+  Atomic,   ///< rename only: whole or absent under `path` whatever happens to the process
+  Durable,  ///< also on disk when commit() returns (fsync of the file, then of its directory)
+};
+
 /// Writes `content` to `path` atomically. Throws std::system_error on failure, leaving
 /// neither a partial `path` nor a temporary file behind.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
+/// As write_file_atomic, and on disk when it returns (Durability::Durable).
+void write_file_durable(const std::filesystem::path& path, std::string_view content);
+
 /// A file written in pieces that appears whole or not at all: the pieces go to a temporary file
-/// beside `path` (".NAME.tmp-PID-XXXXXX", see temporary_owner()); commit() flushes it to disk and renames it over `path`.
+/// beside `path` (".NAME.tmp-PID-XXXXXX", see temporary_owner()); commit() renames it over `path`
+/// (after flushing it to disk if Durability::Durable).
 /// Destroyed without commit() (an exception, an early return), it removes the temporary file and
 /// `path` is untouched. A process killed mid-way leaves at most the temporary file, never a
 /// half-written `path`.
 class AtomicFileWriter {
  public:
   /// Creates the temporary file. Throws std::system_error if that fails.
-  explicit AtomicFileWriter(std::filesystem::path path);
+  explicit AtomicFileWriter(std::filesystem::path path, Durability durability = Durability::Atomic);
   ~AtomicFileWriter();
   AtomicFileWriter(const AtomicFileWriter&) = delete;
   AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
   /// Appends `content` to the temporary file. Throws std::system_error on failure.
   void append(std::string_view content);
-  /// Flushes, closes and renames the temporary file over the target (once). Throws
+  /// Closes the temporary file and renames it over the target (once; Durable: with an fsync of
+  /// the file before and of the directory after). Throws
   /// std::system_error on failure, leaving neither a partial target nor the temporary file.
   void commit();
   const std::filesystem::path& path() const { return path_; }
@@ -36,6 +54,7 @@ class AtomicFileWriter {
  private:
   void discard() noexcept;
   std::filesystem::path path_, tmp_;
+  Durability durability_;
   int fd_ = -1;
 };
 

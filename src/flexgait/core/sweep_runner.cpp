@@ -133,12 +133,13 @@ SweepOutcome run_coordinator(const SweepJob& job, PointDistributor& distributor)
                  rejected, partial.string());
   }
   if (!job.resume) std::filesystem::remove(partial);
-  write_file_atomic(signature, job.signature);
+  // Durable, as the appended rows: a resume after a power cut trusts both.
+  write_file_durable(signature, job.signature);
   // Rewrite the partial file with only complete rows, so a torn line does not linger.
   {
     std::string text;
     for (const auto& [i, cells] : rows) text += fmt::format("{},{}\n", i, cells);
-    write_file_atomic(partial, text);
+    write_file_durable(partial, text);
   }
   SweepOutcome out;
   out.resumed = static_cast<int>(rows.size());
