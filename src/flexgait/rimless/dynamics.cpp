@@ -103,22 +103,15 @@ struct Assembly {
   int rows = 0;
 };
 
-// (sin φ, cos φ) of a slope, remembered for the last slope this thread asked for: every
-// right-hand side needs them and the slope changes only between runs (a pure function's memo;
-// the same values as calling sin and cos).
-struct SlopeTrig {
-  double slope = std::numeric_limits<double>::quiet_NaN();
-  double sin = 0, cos = 1;
-};
-const SlopeTrig& slope_trig(double slope) {
-  thread_local SlopeTrig memo;
-  if (!(memo.slope == slope)) memo = {slope, std::sin(slope), std::cos(slope)};
-  return memo;
+// (sin φ, cos φ) of the slope, remembered in the workspace d (Dynamics::slope_trig).
+const Dynamics::SlopeTrig& slope_trig(double slope, Dynamics& d) {
+  if (!(d.slope_trig.slope == slope)) d.slope_trig = {slope, std::sin(slope), std::cos(slope)};
+  return d.slope_trig;
 }
 
 Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<const double> q, Dynamics& d) {
   Assembly a;
-  const SlopeTrig& slope = slope_trig(w.slope);
+  const Dynamics::SlopeTrig& slope = slope_trig(w.slope, d);
   a.F = {w.m * w.g * slope.sin, -w.m * w.g * slope.cos, 0.0};
   constexpr double wb = kStickStabilization;
   d.failure.reset();

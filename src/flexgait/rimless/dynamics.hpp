@@ -19,6 +19,7 @@
 /// the fast rotation); Dynamics::thetad then differs from the state's θ̇. A single slipping foot
 /// has no consistent motion with I = 0 (spec rimless.md) and is reported.
 #include <array>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -47,6 +48,12 @@ struct Dynamics {
   std::array<LegKinematics, kMaxContacts> leg{};
   double thetad = 0;              ///< the wheel's angular velocity in force [rad/s]
   bool algebraic_thetad = false;  ///< θ̇ fixed by the torque balance (I = 0, all feet slipping)
+  /// (sin φ, cos φ) of the slope φ this workspace last used: every right-hand side needs them and
+  /// the slope changes only between runs (the same values as calling sin and cos).
+  struct SlopeTrig {
+    double slope = std::numeric_limits<double>::quiet_NaN();
+    double sin = 0, cos = 1;
+  } slope_trig;
 };
 
 /// Dynamics of the contact set `contacts` at state y (dim state_size(w)).
