@@ -58,8 +58,6 @@ struct CheckedOrbit {
 };
 
 CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
-  reject_unused(cmd, {"--x", "--y", "--x-range", "--y-range", "--steps-limit", "--tolerance"},
-                "analysis orbit-diagram (only basin takes them)");
   if (cmd.count("--param") == 0) throw UsageError("--param: required by analysis orbit-diagram; allowed: a real key");
   for (const char* o : {"--from", "--to", "--count"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis orbit-diagram", o));
@@ -140,8 +138,6 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
 
 /// The basin's configuration and grid, every option checked.
 std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a, const CLI::App& cmd) {
-  reject_unused(cmd, {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count"},
-                "analysis basin (it takes --x-range and --y-range)");
   for (const char* o : {"--x", "--y", "--x-range", "--y-range"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis basin", o));
   rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
@@ -262,7 +258,6 @@ const std::vector<std::string>& map_option_names() {
 }
 
 int run_map_analysis(const MapRun& a, const CLI::App& cmd) {
-  reject_unused(cmd, {"--mu", "--vary"}, "analysis " + a.name);
   return a.name == "basin" ? basin(a, cmd) : orbit_diagram(a, cmd);
 }
 

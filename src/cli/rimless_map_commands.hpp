@@ -23,7 +23,7 @@ struct MapOptions {
 /// Adds the options above to the analysis subcommand.
 void add_map_options(CLI::App& analysis, MapOptions& options);
 
-/// The options of add_map_options, for the other analyses to refuse.
+/// The options of add_map_options (the analysis table says which analysis takes which).
 const std::vector<std::string>& map_option_names();
 
 /// What the analysis subcommand hands over.
@@ -38,7 +38,8 @@ struct MapRun {
   std::string section;
 };
 
-/// Runs orbit-diagram or basin; every option checked before anything is written. The basin's cells
+/// Runs orbit-diagram or basin; every option checked before anything is written (options the
+/// analysis does not take are refused by the caller, the analysis table of rimless_commands.cpp). The basin's cells
 /// are spread over the ranks when started by mpirun (like `flexgait campaign`).
 int run_map_analysis(const MapRun& a, const CLI::App& cmd);
 

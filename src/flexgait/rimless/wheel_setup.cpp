@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/stagnation.hpp"
@@ -10,7 +11,7 @@ namespace flexgait::rimless {
 
 Schema rimless_analysis_schema() {
   Schema s = rimless_schema();
-  s.merge(analysis_schema()).merge(stagnation_schema());
+  s.merge(analysis_schema()).merge(paper_analysis_schema()).merge(stagnation_schema());
   return s;
 }
 
