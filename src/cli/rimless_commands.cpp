@@ -189,7 +189,6 @@ std::vector<std::string> default_stagnation_map() {
 /// `analysis.*` keys (analyses.hpp) and stagnation.* keys.
 struct AnalysisContext {
   const AnalysisArgs& args;
-  const CLI::App& cmd;
   const WheelSetup& setup;
   const rimless::PaperAnalysisOptions& paper;
   const rimless::StagnationOptions& stagnation;
@@ -205,7 +204,7 @@ struct Analysis {
   /// Options that set a configuration key for this analysis (checked as --set checks the key).
   std::vector<std::pair<std::string, std::string>> keys{};
   std::string sweep_name{};            ///< the resumable sweep's file stem in --out ("" when not resumable)
-  bool reads_stagnation = false;     ///< reads the stagnation.* keys (checked together: stagnation_from_config)
+  bool reads_stagnation = false;       ///< reads the stagnation.* keys (checked together: stagnation_from_config)
   /// Checks beyond the keys' own, before anything is written (may be null).
   void (*check)(const AnalysisContext&) = nullptr;
   /// Computes and writes into the run directory; returns the files written.
@@ -420,7 +419,7 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   const rimless::PaperAnalysisOptions paper = rimless::paper_analysis_from_config(s.config);
   const rimless::StagnationOptions stagnation =
       entry->reads_stagnation ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
-  const AnalysisContext context{a, cmd, s, paper, stagnation,
+  const AnalysisContext context{a, s, paper, stagnation,
                                 a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown,
                                 a.vary.empty() ? default_stagnation_map() : a.vary};
   if (entry->check != nullptr) entry->check(context);

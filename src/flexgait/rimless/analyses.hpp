@@ -129,6 +129,6 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
 /// ε in `epsilons`, iterate the map up to `max_steps`; "returned" when within `return_tol`·scale.
 /// CSV: mu, component, sign, epsilon, returned, steps, failure.
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps,
-                           double return_tol = 1e-6);
+                           double return_tol);
 
 }  // namespace flexgait::rimless
