@@ -12,12 +12,11 @@ namespace flexgait::cli {
 /// The options only these two analyses take (besides --from/--to/--count, --jobs, --resume, --section).
 struct MapOptions {
   std::string param;            ///< orbit-diagram: the key varied
-  int transient = 100, record = 30;
+  std::string transient, record;  ///< orbit-diagram: as given, set as analysis.orbit.transient and .record
   std::vector<std::string> branches;  ///< orbit-diagram: branch.csv files of `rimless continuation` to overlay
   std::string x, y;             ///< basin: keys of the initial state
   std::string x_range, y_range; ///< basin: FROM:TO:COUNT
-  int steps_limit = 200;
-  double tolerance = 1e-6;
+  std::string steps_limit, tolerance;  ///< basin: as given, set as analysis.basin.steps_limit and .tolerance
 };
 
 /// Adds the options above to the analysis subcommand.

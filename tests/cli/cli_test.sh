@@ -87,6 +87,8 @@ expect_usage_error unknown-analysis "name: fly not in" rimless analysis fly
 expect_usage_error mu-list-item "--set: key 'analysis.robustness.mu[1]' = 'x': not a number" rimless analysis robustness --set "analysis.robustness.mu=[0.6,x]"
 expect_usage_error mu-list-scalar "key 'analysis.energy.mu' = '0.6': not a list in brackets" rimless analysis energy --set analysis.energy.mu=0.6
 expect_usage_error epsilon-order "key 'analysis.robustness.epsilon_max'" rimless analysis robustness --set analysis.robustness.epsilon_max=1e-4
+expect_usage_error orbit-transient "--transient: key 'analysis.orbit.transient' = '0'" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.2 --count 3 --transient 0
+expect_usage_error basin-tolerance "--tolerance: key 'analysis.basin.tolerance' = 'nan'" rimless analysis basin --x initial.omega --y initial.beta --x-range 1:2:2 --y-range -0.1:0.1:2 --tolerance nan
 expect_usage_error friction-count "--set: key 'analysis.friction.count' = '0'" rimless analysis gait-vs-friction --set analysis.friction.count=0
 "$exe" rimless analysis fixed-points --set 'analysis.fixed_points.mu=[0.2, 0.6]' --out "$work/fp2" --no-plot >/dev/null 2>&1
 check "fixed-points with a 2-point mu list: 2 rows at 0.2 and 0.6" test "$(cut -d, -f1 "$work/fp2/fixed_points.csv" | tr '\n' ' ')" = "mu 0.2 0.6 "

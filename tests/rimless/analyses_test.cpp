@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "flexgait/rimless/analyses.hpp"
+#include "flexgait/rimless/basin.hpp"
+#include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 
 namespace flexgait::rimless {
@@ -45,6 +47,16 @@ TEST(PaperAnalysisOptions, DefaultsAreTheFormerLiterals) {
   const std::vector<double> eps = robustness_epsilons(o);
   ASSERT_EQ(eps.size(), 13u);
   for (int k = 0; k <= 12; ++k) EXPECT_EQ(eps[static_cast<std::size_t>(k)], 1e-3 * std::pow(10.0, k / 4.0)) << k;
+}
+
+// orbit-diagram's and basin's lengths, formerly the defaults of their options.
+TEST(PaperAnalysisOptions, MapDefaultsAreTheFormerOptionDefaults) {
+  const Config c = configured({});
+  EXPECT_EQ(record_from_config<OrbitDiagramOptions>(c).transient, 100);
+  EXPECT_EQ(record_from_config<OrbitDiagramOptions>(c).record, 30);
+  EXPECT_EQ(record_from_config<BasinOptions>(c).steps_limit, 200);
+  EXPECT_EQ(record_from_config<BasinOptions>(c).tolerance, 1e-6);
+  EXPECT_EQ(record_from_config<OrbitDiagramOptions>(configured({"analysis.orbit.record=7"})).record, 7);
 }
 
 TEST(PaperAnalysisOptions, EpsilonGridEndsAndOnePoint) {
