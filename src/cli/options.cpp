@@ -69,11 +69,6 @@ CLI::Validator number_list(double lo, double hi) {
       fmt::format("NUMBER,... in [{}, {}]", lo, hi));
 }
 
-void reject_unused(const CLI::App& cmd, const std::vector<std::string>& options, const std::string& what) {
-  for (const auto& option : options)
-    if (cmd.count(option) > 0) throw UsageError(fmt::format("{}: not used by {}", option, what));
-}
-
 std::optional<std::filesystem::path> find_python_script(const std::string& script) {
   std::vector<std::filesystem::path> dirs;
   if (const char* env = std::getenv("FLEXGAIT_PLOT_DIR")) dirs.emplace_back(env);

@@ -41,9 +41,6 @@ std::vector<std::string> split_list(const std::string& text);
 /// CLI11 check of a comma-separated list of finite numbers in [lo, hi].
 CLI::Validator number_list(double lo, double hi);
 
-/// Throws UsageError if one of `options` was given to `cmd`: "--from: not used by <what>".
-void reject_unused(const CLI::App& cmd, const std::vector<std::string>& options, const std::string& what);
-
 /// A Python script of the CLI (python/NAME): from $FLEXGAIT_PLOT_DIR, the source tree or the
 /// installed share directory; nullopt if none has it.
 std::optional<std::filesystem::path> find_python_script(const std::string& script);

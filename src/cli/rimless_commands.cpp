@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
+#include <utility>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/core/record_json.hpp"
@@ -155,7 +157,7 @@ int sweep(const SweepArgs& a, const CLI::App& cmd) {
 struct AnalysisArgs {
   RunOptions run;
   std::string name;
-  std::string mus;  ///< as given: each checked as --set checks rimless.mu_s and mu_k
+  std::string mus;  ///< as given: a comma-separated list, set as the running analysis's analysis.*.mu
   double from = 0, to = 0;
   int count = 0;
   int jobs = 0;
@@ -183,129 +185,256 @@ std::vector<std::string> default_stagnation_map() {
           "rimless.I=0.02,rimless.mu=0.25"};
 }
 
+/// What an analysis's handler works from: the options, the checked configuration and its
+/// `analysis.*` keys (analyses.hpp) and stagnation.* keys.
+struct AnalysisContext {
+  const AnalysisArgs& args;
+  const WheelSetup& setup;
+  const rimless::PaperAnalysisOptions& paper;
+  const rimless::StagnationOptions& stagnation;
+  rimless::Section section;
+  std::vector<std::string> variations;  ///< stagnation-map: --vary, or default_stagnation_map()
+};
+
+/// One analysis of `rimless analysis NAME`.
+struct Analysis {
+  std::string name{};
+  std::string help{};                  ///< what it computes, for --help
+  std::vector<std::string> options{};  ///< the options it takes beyond --config/--set/--out/--json/--no-plot
+  /// Options that set a configuration key for this analysis (checked as --set checks the key).
+  std::vector<std::pair<std::string, std::string>> keys{};
+  std::string sweep_name{};            ///< the resumable sweep's file stem in --out ("" when not resumable)
+  bool reads_stagnation = false;       ///< reads the stagnation.* keys (checked together: stagnation_from_config)
+  /// Checks beyond the keys' own, before anything is written (may be null).
+  void (*check)(const AnalysisContext&) = nullptr;
+  /// Computes and writes into the run directory; returns the files written.
+  std::vector<std::string> (*run)(const AnalysisContext&, const RunDirectory&) = nullptr;
+  /// orbit-diagram and basin resolve and write on their own (rimless_map_commands.hpp).
+  bool map = false;
+};
+
+// Every μ of a list key is a valid friction coefficient of the wheel (mu_s = mu_k).
+void check_mus(const AnalysisContext& c, const std::string& key, const std::vector<double>& mus) {
+  for (const double mu : mus) rimless::config_at(c.setup.config, "rimless.mu", format_number(mu), c.setup.config.origin(key));
+}
+
+rimless::SweepSpec friction_range(const AnalysisContext& c) {
+  return {"rimless.mu", c.paper.friction_mu_from, c.paper.friction_mu_to, c.paper.friction_count, c.section};
+}
+
+std::vector<std::string> gait_vs_friction(const AnalysisContext& c, const RunDirectory& dir) {
+  const rimless::SweepSpec spec = friction_range(c);
+  SweepJob job;
+  job.dir = dir.path();
+  job.header = rimless::sweep_header();
+  job.count = spec.count;
+  job.jobs = c.args.jobs;
+  job.resume = c.args.resume;
+  job.signature = fmt::format("gait-vs-friction {} {} {} {}\n{}", spec.from, spec.to, spec.count, c.args.section,
+                              c.setup.config.to_yaml());
+  const Config base = c.setup.config;
+  job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
+  run_sweep(job);
+  // The periodic gait at each value (longer transients, then continuation from the neighbours'
+  // fixed points where the start finds none), and the thresholds between them by bisection.
+  std::vector<double> values;
+  for (int i = 0; i < spec.count; ++i) values.push_back(spec.value(i));
+  const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, c.section);
+  dir.write("gaits.csv", rimless::friction_gaits_csv(gaits));
+  dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, c.section, c.paper));
+  return {"sweep.csv", "gaits.csv", "thresholds.csv"};
+}
+
+std::vector<std::string> energy(const AnalysisContext& c, const RunDirectory& dir) {
+  dir.write("energy.csv", rimless::single_support_energy_csv(c.setup.config, c.paper.energy_mu));
+  return {"energy.csv"};
+}
+
+std::vector<std::string> fixed_points(const AnalysisContext& c, const RunDirectory& dir) {
+  dir.write("fixed_points.csv", rimless::behaviour_fixed_points_csv(c.setup.config, c.paper.fixed_points_mu, c.section));
+  return {"fixed_points.csv"};
+}
+
+std::vector<std::string> robustness(const AnalysisContext& c, const RunDirectory& dir) {
+  const std::vector<double> eps = rimless::robustness_epsilons(c.paper);
+  std::string text;
+  for (const double mu : c.paper.robustness_mu) {
+    const std::string part =
+        rimless::robustness_csv(c.setup.config, mu, eps, c.paper.max_steps, c.paper.return_tol);
+    text += text.empty() ? part : part.substr(part.find('\n') + 1);
+  }
+  dir.write("robustness.csv", text);
+  return {"robustness.csv"};
+}
+
+std::vector<std::string> stagnation(const AnalysisContext& c, const RunDirectory& dir) {
+  const WheelSetup& s = c.setup;
+  const rimless::StagnationScan scan = rimless::scan_stagnation(s.wheel, s.initial, s.sim, c.stagnation);
+  dir.write("stagnation.csv", rimless::stagnation_csv(scan));
+  dir.write("stagnation.json", record_json(scan.summary).dump(2) + "\n");
+  const rimless::StagnationSummary& r = scan.summary;
+  if (r.critical_found) {
+    fmt::print("critical omega0 = {:.12f} rad/s (bracket {:.3e} wide after {} bisection stages){}\n", r.omega_c,
+               r.omega_c_high - r.omega_c_low, r.bisection_steps, r.bisection_note.empty() ? "" : "; " + r.bisection_note);
+    fmt::print("{} stagnation: {:.3f} s near the vertical per decade of |omega0 - omega_c| above, {:.3f} s below "
+               "(pendulum estimates: {:.3f} s sliding, {:.3f} s sticking)\n", r.kind, r.growth_above, r.growth_below,
+               r.estimate_sliding, r.estimate_sticking);
+    fmt::print("stagnation interval (near-vertical time > {:.3f} s): omega0 in [{:.10f}, {:.10f}] rad/s\n", r.threshold,
+               r.interval_low, r.interval_high);
+  } else {
+    fmt::print("no critical omega0 in [{}, {}]: the stage's end does not flip from rolled_back to next_leg_landed\n",
+               c.stagnation.omega_from, c.stagnation.omega_to);
+  }
+  return {"stagnation.csv", "stagnation.json"};
+}
+
+std::vector<std::string> stagnation_map(const AnalysisContext& c, const RunDirectory& dir) {
+  SweepJob job;
+  job.dir = dir.path();
+  job.name = "stagnation_map";
+  job.header = rimless::stagnation_map_header();
+  job.count = static_cast<int>(c.variations.size());
+  job.jobs = c.args.jobs;
+  job.resume = c.args.resume;
+  std::string list;
+  for (const auto& v : c.variations) list += v + ";";
+  job.signature = fmt::format("stagnation-map {}\n{}", list, c.setup.config.to_yaml());
+  const Config base = c.setup.config;
+  job.row = [base, variations = c.variations](int i) {
+    return rimless::stagnation_map_row(base, variations[static_cast<std::size_t>(i)]);
+  };
+  run_sweep(job);
+  return {"stagnation_map.csv"};
+}
+
+/// The analyses: the one list of names; --help, the name check and which options each takes come from it.
+const std::vector<Analysis>& analyses() {
+  static const std::vector<Analysis> table = [] {
+    using Keys = std::vector<std::pair<std::string, std::string>>;
+    const Keys omega_grid{{"--from", "stagnation.omega_from"}, {"--to", "stagnation.omega_to"},
+                          {"--count", "stagnation.count"}};
+    return std::vector<Analysis>{
+        {.name = "gait-vs-friction",
+         .help = "behaviours and thresholds",
+         .options = {"--from", "--to", "--count", "--jobs", "--resume", "--section"},
+         .keys = {{"--from", "analysis.friction.mu_from"}, {"--to", "analysis.friction.mu_to"},
+                  {"--count", "analysis.friction.count"}},
+         .sweep_name = "sweep",
+         .check = [](const AnalysisContext& c) { rimless::check_sweep(c.setup.config, friction_range(c)); },
+         .run = gait_vs_friction},
+        {.name = "energy",
+         .help = "single support, stick against slip",
+         .options = {"--mu"},
+         .keys = {{"--mu", "analysis.energy.mu"}},
+         .check = [](const AnalysisContext& c) { check_mus(c, "analysis.energy.mu", c.paper.energy_mu); },
+         .run = energy},
+        {.name = "fixed-points",
+         .help = "the four behaviours",
+         .options = {"--mu", "--section"},
+         .keys = {{"--mu", "analysis.fixed_points.mu"}},
+         .check = [](const AnalysisContext& c) { check_mus(c, "analysis.fixed_points.mu", c.paper.fixed_points_mu); },
+         .run = fixed_points},
+        {.name = "robustness",
+         .help = "of the sliding gait",
+         .options = {"--mu"},
+         .keys = {{"--mu", "analysis.robustness.mu"}},
+         .check = [](const AnalysisContext& c) { check_mus(c, "analysis.robustness.mu", c.paper.robustness_mu); },
+         .run = robustness},
+        {.name = "stagnation",
+         .help = "paper Fig. 12: the critical omega0, the time sliding near the true vertical against "
+                 "|omega0 - omega_c|, the stagnation interval",
+         .options = {"--from", "--to", "--count"},
+         .keys = omega_grid,
+         .reads_stagnation = true,
+         .run = stagnation},
+        {.name = "stagnation-map",
+         .help = "how the interval moves with mu - tan(phi), I, C, K",
+         .options = {"--from", "--to", "--count", "--jobs", "--resume", "--vary"},
+         .keys = omega_grid,
+         .sweep_name = "stagnation_map",
+         .reads_stagnation = true,
+         .check =
+             [](const AnalysisContext& c) {
+               for (const auto& v : c.variations) rimless::stagnation_map_config(c.setup.config, v);  // each valid
+             },
+         .run = stagnation_map},
+        {.name = "orbit-diagram",
+         .help = "section values of many steps after a transient, against a parameter",
+         .options = {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count", "--jobs", "--resume",
+                     "--section"},
+         .map = true},
+        {.name = "basin",
+         .help = "a grid of initial states: which converge to the gait, which fall and why",
+         .options = {"--x", "--y", "--x-range", "--y-range", "--steps-limit", "--tolerance", "--jobs", "--resume",
+                     "--section"},
+         .map = true}};
+  }();
+  return table;
+}
+
+std::vector<std::string> analysis_names() {
+  std::vector<std::string> names;
+  for (const Analysis& a : analyses()) names.push_back(a.name);
+  return names;
+}
+
+bool takes(const Analysis& a, const std::string& option) {
+  return std::find(a.options.begin(), a.options.end(), option) != a.options.end();
+}
+
+/// An option given that `entry` does not take: "--count: not used by analysis energy (only A and B take it)".
+void reject_options_not_taken(const CLI::App& cmd, const Analysis& entry) {
+  std::vector<std::string> all{"--mu", "--from", "--to", "--count", "--jobs", "--resume", "--section", "--vary"};
+  for (const auto& o : map_option_names()) all.push_back(o);
+  for (const auto& option : all) {
+    if (cmd.count(option) == 0 || takes(entry, option)) continue;
+    std::vector<std::string> takers;
+    for (const Analysis& a : analyses())
+      if (takes(a, option)) takers.push_back(a.name);
+    std::string list;
+    for (std::size_t i = 0; i < takers.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == takers.size() ? " and " : ", ") + takers[i];
+    throw UsageError(fmt::format("{}: not used by analysis {} (only {} take{} it)", option, entry.name, list,
+                                 takers.size() == 1 ? "s" : ""));
+  }
+}
+
 int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   // Every option checked before anything is written; an option this analysis ignores is refused.
-  const std::string which = "analysis " + a.name;
-  if (a.name == "orbit-diagram" || a.name == "basin")
+  const auto& table = analyses();
+  const auto entry = std::find_if(table.begin(), table.end(), [&](const Analysis& x) { return x.name == a.name; });
+  if (entry == table.end()) throw std::logic_error("analysis " + a.name + " passed CLI11's check but is not in the table");
+  reject_options_not_taken(cmd, *entry);
+  if (entry->map)
     return run_map_analysis({a.name, a.run, a.map, a.from, a.to, a.count, a.jobs, a.resume, a.section}, cmd);
-  reject_unused(cmd, map_option_names(), which + " (only orbit-diagram and basin take it)");
-  const bool friction_sweep = a.name == "gait-vs-friction";
-  const bool stagnation_run = a.name == "stagnation" || a.name == "stagnation-map";
-  if (!friction_sweep && !stagnation_run)
-    reject_unused(cmd, {"--from", "--to", "--count"}, which + " (only gait-vs-friction and the stagnation analyses "
-                                                              "take a range)");
-  if (!friction_sweep && a.name != "stagnation-map")
-    reject_unused(cmd, {"--jobs", "--resume"}, which + " (only gait-vs-friction and stagnation-map are resumable sweeps)");
-  if (a.name != "energy" && a.name != "fixed-points" && a.name != "robustness")
-    reject_unused(cmd, {"--mu"}, which + " (only energy, fixed-points and robustness take --mu)");
-  if (a.name != "gait-vs-friction" && a.name != "fixed-points")
-    reject_unused(cmd, {"--section"}, which + " (only gait-vs-friction and fixed-points seek fixed points on a section)");
-  if (a.name != "stagnation-map") reject_unused(cmd, {"--vary"}, which + " (only stagnation-map takes --vary)");
   std::vector<ConfigEntry> extra;
-  if (stagnation_run) {  // --from/--to/--count: the coarse grid of omega0 (of each map point too)
-    add_option_value(extra, cmd, "--from", "stagnation.omega_from", format_number(a.from));
-    add_option_value(extra, cmd, "--to", "stagnation.omega_to", format_number(a.to));
-    add_option_value(extra, cmd, "--count", "stagnation.count", std::to_string(a.count));
+  for (const auto& [option, key] : entry->keys) {
+    const std::string text = option == "--mu"     ? "[" + a.mus + "]"
+                             : option == "--from" ? format_number(a.from)
+                             : option == "--to"   ? format_number(a.to)
+                                                  : std::to_string(a.count);
+    add_option_value(extra, cmd, option, key, text);
   }
   const WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run, extra));
+  const rimless::PaperAnalysisOptions paper = rimless::paper_analysis_from_config(s.config);
   const rimless::StagnationOptions stagnation =
-      stagnation_run ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
-  const std::vector<std::string> variations = a.vary.empty() ? default_stagnation_map() : a.vary;
-  if (a.name == "stagnation-map")
-    for (const auto& v : variations) rimless::stagnation_map_config(s.config, v);  // every point valid first
-  const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
-  std::vector<double> given_mus;
-  if (cmd.count("--mu") > 0)
-    for (const auto& text : split_list(a.mus))
-      given_mus.push_back(rimless::config_at(s.config, "rimless.mu", text, "--mu").real("rimless.mu_s"));
-  auto mus = [&](std::vector<double> fallback) { return given_mus.empty() ? fallback : given_mus; };
-  const rimless::SweepSpec range{"rimless.mu", cmd.count("--from") ? a.from : 0.1, cmd.count("--to") ? a.to : 1.5,
-                                 cmd.count("--count") ? a.count : 100, section};  // gait-vs-friction
-  if (friction_sweep) rimless::check_sweep(s.config, range);
+      entry->reads_stagnation ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
+  const AnalysisContext context{a, s, paper, stagnation,
+                                a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown,
+                                a.vary.empty() ? default_stagnation_map() : a.vary};
+  if (entry->check != nullptr) entry->check(context);
   // A resumed sweep must match the one in --out: check before anything is written.
-  if (a.resume && (a.name == "gait-vs-friction" || a.name == "stagnation-map")) {
+  if (a.resume && !entry->sweep_name.empty()) {
     SweepJob probe;
     probe.dir = a.run.out;
-    probe.name = a.name == "stagnation-map" ? "stagnation_map" : "sweep";
+    probe.name = entry->sweep_name;
     probe.resume = true;
     probe.signature = "?";
     if (!std::filesystem::exists(probe.dir / (probe.name + ".signature"))) check_resumable(probe);
   }
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);
-  std::vector<std::string> files;
-  if (a.name == "gait-vs-friction") {
-    const double lo = range.from, hi = range.to;
-    const int n = range.count;
-    const rimless::SweepSpec spec = range;
-    SweepJob job;
-    job.dir = dir.path();
-    job.header = rimless::sweep_header();
-    job.count = n;
-    job.jobs = a.jobs;
-    job.resume = a.resume;
-    job.signature = fmt::format("gait-vs-friction {} {} {} {}\n{}", lo, hi, n, a.section, s.config.to_yaml());
-    const Config base = s.config;
-    job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
-    run_sweep(job);
-    // The periodic gait at each value (longer transients, then continuation from the neighbours'
-    // fixed points where the start finds none), and the thresholds between them by bisection.
-    std::vector<double> values;
-    for (int i = 0; i < n; ++i) values.push_back(spec.value(i));
-    const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, section);
-    dir.write("gaits.csv", rimless::friction_gaits_csv(gaits));
-    dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, section, 1e-8));
-    files = {"sweep.csv", "gaits.csv", "thresholds.csv"};
-  } else if (a.name == "energy") {
-    dir.write("energy.csv", rimless::single_support_energy_csv(s.config, mus({0.6, 0.105})));
-    files = {"energy.csv"};
-  } else if (a.name == "fixed-points") {
-    dir.write("fixed_points.csv", rimless::behaviour_fixed_points_csv(s.config, mus({0.105, 0.13, 0.2, 0.6}), section));
-    files = {"fixed_points.csv"};
-  } else if (a.name == "robustness") {
-    std::vector<double> eps;
-    for (int k = 0; k <= 12; ++k) eps.push_back(1e-3 * std::pow(10.0, k / 4.0));
-    std::string text;
-    for (double mu : mus({0.105, 0.6})) {
-      const std::string part = rimless::robustness_csv(s.config, mu, eps, 300);
-      text += text.empty() ? part : part.substr(part.find('\n') + 1);
-    }
-    dir.write("robustness.csv", text);
-    files = {"robustness.csv"};
-  } else if (a.name == "stagnation") {
-    const rimless::StagnationScan scan = rimless::scan_stagnation(s.wheel, s.initial, s.sim, stagnation);
-    dir.write("stagnation.csv", rimless::stagnation_csv(scan));
-    dir.write("stagnation.json", record_json(scan.summary).dump(2) + "\n");
-    files = {"stagnation.csv", "stagnation.json"};
-    const rimless::StagnationSummary& r = scan.summary;
-    if (r.critical_found) {
-      fmt::print("critical omega0 = {:.12f} rad/s (bracket {:.3e} wide after {} bisection stages){}\n", r.omega_c,
-                 r.omega_c_high - r.omega_c_low, r.bisection_steps, r.bisection_note.empty() ? "" : "; " + r.bisection_note);
-      fmt::print("{} stagnation: {:.3f} s near the vertical per decade of |omega0 - omega_c| above, {:.3f} s below "
-                 "(pendulum estimates: {:.3f} s sliding, {:.3f} s sticking)\n", r.kind, r.growth_above, r.growth_below,
-                 r.estimate_sliding, r.estimate_sticking);
-      fmt::print("stagnation interval (near-vertical time > {:.3f} s): omega0 in [{:.10f}, {:.10f}] rad/s\n", r.threshold,
-                 r.interval_low, r.interval_high);
-    } else {
-      fmt::print("no critical omega0 in [{}, {}]: the stage's end does not flip from rolled_back to next_leg_landed\n",
-                 stagnation.omega_from, stagnation.omega_to);
-    }
-  } else {  // stagnation-map
-    SweepJob job;
-    job.dir = dir.path();
-    job.name = "stagnation_map";
-    job.header = rimless::stagnation_map_header();
-    job.count = static_cast<int>(variations.size());
-    job.jobs = a.jobs;
-    job.resume = a.resume;
-    std::string list;
-    for (const auto& v : variations) list += v + ";";
-    job.signature = fmt::format("stagnation-map {}\n{}", list, s.config.to_yaml());
-    const Config base = s.config;
-    job.row = [base, variations](int i) { return rimless::stagnation_map_row(base, variations[static_cast<std::size_t>(i)]); };
-    run_sweep(job);
-    files = {"stagnation_map.csv"};
-  }
+  const std::vector<std::string> files = entry->run(context, dir);
   if (a.run.plot) run_plot_script("plot_analysis.py", {a.name, dir.path().string()});
   for (const auto& f : files) fmt::print("wrote {}\n", (dir.path() / f).string());
   return 0;
@@ -445,27 +574,22 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   ctc->callback([ct, ctc, &action] { action = [ct, ctc] { return continuation(*ct, *ctc); }; });
 
   auto an = std::make_shared<AnalysisArgs>();
-  CLI::App* anc = rimless->add_subcommand(
-      "analysis", "The paper's analyses, each a CSV and a PNG: gait-vs-friction (behaviours and thresholds), energy "
-                  "(single support, stick against slip), fixed-points (the four behaviours), robustness (of the "
-                  "sliding gait), stagnation (paper Fig. 12: the critical omega0, the time sliding near the true "
-                  "vertical against |omega0 - omega_c|, the stagnation interval), stagnation-map (how the interval "
-                  "moves with mu - tan(phi), I, C, K), orbit-diagram (section values of many steps after a transient, against "
-                  "a parameter), basin (a grid of initial states: which converge to the gait, which fall and why)");
+  std::string described;
+  for (const Analysis& x : analyses()) described += (described.empty() ? "" : ", ") + x.name + " (" + x.help + ")";
+  CLI::App* anc = rimless->add_subcommand("analysis", "The paper's analyses, each a CSV and a PNG: " + described);
   add_run_options(*anc, an->run, "runs/rimless-analysis");
-  anc->add_option("name", an->name, "which analysis")
-      ->required()
-      ->check(CLI::IsMember({"gait-vs-friction", "energy", "fixed-points", "robustness", "stagnation", "stagnation-map",
-                                  "orbit-diagram", "basin"}));
+  anc->add_option("name", an->name, "which analysis")->required()->check(CLI::IsMember(analysis_names()));
   anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k), comma separated, for energy, fixed-points, "
-                                   "robustness")
+                                   "robustness (sets analysis.energy.mu, analysis.fixed_points.mu, "
+                                   "analysis.robustness.mu)")
       ->type_name("MU,...");
-  anc->add_option("--from", an->from, "first value: mu (gait-vs-friction, default 0.1) or omega0 in rad/s of the "
-                                     "stagnation grid (sets stagnation.omega_from)")
+  anc->add_option("--from", an->from, "first value: mu of gait-vs-friction (sets analysis.friction.mu_from) or "
+                                     "omega0 in rad/s of the stagnation grid (sets stagnation.omega_from)")
       ->check(finite_number());
-  anc->add_option("--to", an->to, "last value: mu (default 1.5) or omega0 in rad/s (sets stagnation.omega_to)")
+  anc->add_option("--to", an->to, "last value: mu (sets analysis.friction.mu_to) or omega0 in rad/s (sets "
+                                 "stagnation.omega_to)")
       ->check(finite_number());
-  anc->add_option("--count", an->count, "number of values (default 100 for gait-vs-friction; sets stagnation.count)")
+  anc->add_option("--count", an->count, "number of values (sets analysis.friction.count or stagnation.count)")
       ->check(CLI::Range(1, 1000000));
   anc->add_option("--jobs", an->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   anc->add_flag("--resume", an->resume, "keep the finished points of an interrupted run in --out");

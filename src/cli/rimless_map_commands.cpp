@@ -58,18 +58,20 @@ struct CheckedOrbit {
 };
 
 CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
-  reject_unused(cmd, {"--x", "--y", "--x-range", "--y-range", "--steps-limit", "--tolerance"},
-                "analysis orbit-diagram (only basin takes them)");
   if (cmd.count("--param") == 0) throw UsageError("--param: required by analysis orbit-diagram; allowed: a real key");
   for (const char* o : {"--from", "--to", "--count"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis orbit-diagram", o));
-  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  std::vector<ConfigEntry> extra;
+  add_option_value(extra, cmd, "--transient", "analysis.orbit.transient", a.map.transient);
+  add_option_value(extra, cmd, "--record", "analysis.orbit.record", a.map.record);
+  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run, extra));
+  const auto lengths = record_from_config<rimless::OrbitDiagramOptions>(s.config);
   rimless::check_sweep_param(s.config.schema(), a.map.param);
   if (a.from == a.to)
     throw UsageError(fmt::format("--to: {} equals --from; allowed: a value other than --from", format_number(a.to)));
   if (a.count < 2) throw UsageError(fmt::format("--count: {}; allowed: an integer >= 2", a.count));
-  rimless::OrbitDiagramSpec spec{{a.map.param, a.from, a.to, a.count, section_of(a.section)}, a.map.transient,
-                                 a.map.record};
+  rimless::OrbitDiagramSpec spec{{a.map.param, a.from, a.to, a.count, section_of(a.section)}, lengths.transient,
+                                 lengths.record};
   rimless::check_orbit_diagram(s.config, spec);
   std::vector<std::string> branches;
   for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param));
@@ -140,16 +142,18 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
 
 /// The basin's configuration and grid, every option checked.
 std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a, const CLI::App& cmd) {
-  reject_unused(cmd, {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count"},
-                "analysis basin (it takes --x-range and --y-range)");
   for (const char* o : {"--x", "--y", "--x-range", "--y-range"})
     if (cmd.count(o) == 0) throw UsageError(fmt::format("{}: required by analysis basin", o));
-  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run));
+  std::vector<ConfigEntry> extra;
+  add_option_value(extra, cmd, "--steps-limit", "analysis.basin.steps_limit", a.map.steps_limit);
+  add_option_value(extra, cmd, "--tolerance", "analysis.basin.tolerance", a.map.tolerance);
+  rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_analysis_schema(), a.run, extra));
+  const auto limits = record_from_config<rimless::BasinOptions>(s.config);
   rimless::BasinSpec spec;
   spec.x = rimless::parse_basin_axis("--x-range", a.map.x, a.map.x_range);
   spec.y = rimless::parse_basin_axis("--y-range", a.map.y, a.map.y_range);
-  spec.steps_limit = a.map.steps_limit;
-  spec.tolerance = a.map.tolerance;
+  spec.steps_limit = limits.steps_limit;
+  spec.tolerance = limits.tolerance;
   spec.section = section_of(a.section);
   rimless::check_basin(s.config, spec);
   return {std::move(s), spec};
@@ -236,9 +240,14 @@ int basin(const MapRun& a, const CLI::App& cmd) {
 void add_map_options(CLI::App& anc, MapOptions& o) {
   anc.add_option("--param", o.param, "orbit-diagram: real configuration key to vary (e.g. rimless.slope), or "
                                      "rimless.mu for mu_s = mu_k");
-  anc.add_option("--transient", o.transient, "orbit-diagram: steps simulated before the first recorded crossing")
-      ->capture_default_str();
-  anc.add_option("--record", o.record, "orbit-diagram: section crossings recorded at each value")->capture_default_str();
+  const rimless::OrbitDiagramOptions orbit;
+  const rimless::BasinOptions basin;
+  anc.add_option("--transient", o.transient, fmt::format("orbit-diagram: steps simulated before the first recorded "
+                                                         "crossing; sets analysis.orbit.transient ({})", orbit.transient))
+      ->type_name("INT");
+  anc.add_option("--record", o.record, fmt::format("orbit-diagram: section crossings recorded at each value; sets "
+                                                   "analysis.orbit.record ({})", orbit.record))
+      ->type_name("INT");
   anc.add_option("--branch", o.branches, "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
                                          "copied to branch_K.csv and drawn over the dots (stable solid, unstable "
                                          "dashed); repeat for more branches")
@@ -247,12 +256,14 @@ void add_map_options(CLI::App& anc, MapOptions& o) {
   anc.add_option("--y", o.y, "basin: key of the initial state on the y axis");
   anc.add_option("--x-range", o.x_range, "basin: FROM:TO:COUNT of the x key (its unit)")->type_name("A:B:N");
   anc.add_option("--y-range", o.y_range, "basin: FROM:TO:COUNT of the y key (its unit)")->type_name("A:B:N");
-  anc.add_option("--steps-limit", o.steps_limit, "basin: section crossings simulated per cell at most")
-      ->capture_default_str();
-  anc.add_option("--tolerance", o.tolerance, "basin: converged when every section-state component is within this "
-                                             "fraction of its scale (sqrt(g L0), sqrt(g/L0), alpha) of the gait's")
-      ->check(finite_number())
-      ->capture_default_str();
+  anc.add_option("--steps-limit", o.steps_limit, fmt::format("basin: section crossings simulated per cell at most; "
+                                                             "sets analysis.basin.steps_limit ({})", basin.steps_limit))
+      ->type_name("INT");
+  anc.add_option("--tolerance", o.tolerance, fmt::format("basin: converged when every section-state component is "
+                                                         "within this fraction of its scale (sqrt(g L0), sqrt(g/L0), "
+                                                         "alpha) of the gait's; sets analysis.basin.tolerance ({})",
+                                                         format_number(basin.tolerance)))
+      ->type_name("FLOAT");
 }
 
 const std::vector<std::string>& map_option_names() {
@@ -262,7 +273,6 @@ const std::vector<std::string>& map_option_names() {
 }
 
 int run_map_analysis(const MapRun& a, const CLI::App& cmd) {
-  reject_unused(cmd, {"--mu", "--vary"}, "analysis " + a.name);
   return a.name == "basin" ? basin(a, cmd) : orbit_diagram(a, cmd);
 }
 

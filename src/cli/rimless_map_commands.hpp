@@ -12,18 +12,17 @@ namespace flexgait::cli {
 /// The options only these two analyses take (besides --from/--to/--count, --jobs, --resume, --section).
 struct MapOptions {
   std::string param;            ///< orbit-diagram: the key varied
-  int transient = 100, record = 30;
+  std::string transient, record;  ///< orbit-diagram: as given, set as analysis.orbit.transient and .record
   std::vector<std::string> branches;  ///< orbit-diagram: branch.csv files of `rimless continuation` to overlay
   std::string x, y;             ///< basin: keys of the initial state
   std::string x_range, y_range; ///< basin: FROM:TO:COUNT
-  int steps_limit = 200;
-  double tolerance = 1e-6;
+  std::string steps_limit, tolerance;  ///< basin: as given, set as analysis.basin.steps_limit and .tolerance
 };
 
 /// Adds the options above to the analysis subcommand.
 void add_map_options(CLI::App& analysis, MapOptions& options);
 
-/// The options of add_map_options, for the other analyses to refuse.
+/// The options of add_map_options (the analysis table says which analysis takes which).
 const std::vector<std::string>& map_option_names();
 
 /// What the analysis subcommand hands over.
@@ -38,7 +37,8 @@ struct MapRun {
   std::string section;
 };
 
-/// Runs orbit-diagram or basin; every option checked before anything is written. The basin's cells
+/// Runs orbit-diagram or basin; every option checked before anything is written (options the
+/// analysis does not take are refused by the caller, the analysis table of rimless_commands.cpp). The basin's cells
 /// are spread over the ranks when started by mpirun (like `flexgait campaign`).
 int run_map_analysis(const MapRun& a, const CLI::App& cmd);
 

@@ -24,6 +24,7 @@ const char* type_name(ParamType type) {
     case ParamType::Choice: return "choice";
     case ParamType::Text: return "text";
     case ParamType::List: return "list";
+    case ParamType::Reals: return "list of real";
   }
   return "?";
 }

@@ -80,17 +80,31 @@ expect_usage_error omega0-nan "--omega0: key 'initial.omega' = 'nan'" rimless si
 expect_usage_error cross-check-names-set "--set: key 'rimless.mu_k'" rimless simulate --set rimless.mu_s=0.2 --set rimless.mu_k=0.3
 printf 'rimless:\n  mu_s: 0.2\n  mu_k: 0.3\n' >"$work/mu.yaml"
 expect_usage_error cross-check-names-file "mu.yaml:3: key 'rimless.mu_k'" rimless simulate --config "$work/mu.yaml"
-expect_usage_error energy-negative-mu "--mu: key 'rimless.mu_s' = '-1'" rimless analysis energy --mu -1
-expect_usage_error energy-empty-mu "--mu: key 'rimless.mu_s' = ''" rimless analysis energy --mu ''
-expect_usage_error energy-empty-mu-field "--mu: key 'rimless.mu_s' = ''" rimless analysis energy --mu 0.6,,0.2
-expect_usage_error energy-nan-mu "--mu: key 'rimless.mu_s' = 'nan'" rimless analysis energy --mu nan
-expect_usage_error friction-bad-from "--from: key 'rimless.mu_s' = '-1'" rimless analysis gait-vs-friction --from -1
+expect_usage_error energy-negative-mu "--mu: key 'analysis.energy.mu[0]' = '-1'" rimless analysis energy --mu -1
+expect_usage_error energy-empty-mu "--mu: key 'analysis.energy.mu' = '[]'" rimless analysis energy --mu ''
+expect_usage_error energy-empty-mu-field "--mu: key 'analysis.energy.mu[1]' = ''" rimless analysis energy --mu 0.6,,0.2
+expect_usage_error energy-nan-mu "--mu: key 'analysis.energy.mu[0]' = 'nan'" rimless analysis energy --mu nan
+expect_usage_error friction-bad-from "--from: key 'analysis.friction.mu_from' = '-1'" rimless analysis gait-vs-friction --from -1
 expect_usage_error friction-inf-to "--to: 'inf' is not a finite number" rimless analysis gait-vs-friction --to inf
 expect_usage_error stagnation-bad-to "--to: key 'stagnation.omega_to'" rimless analysis stagnation --to -500 --count 3
 expect_usage_error energy-resume "--resume: not used by analysis energy" rimless analysis energy --resume
 expect_usage_error energy-count "--count: not used by analysis energy" rimless analysis energy --count 3
 expect_usage_error robustness-from "--from: not used by analysis robustness" rimless analysis robustness --from 0.1
 expect_usage_error stagnation-mu "--mu: not used by analysis stagnation" rimless analysis stagnation --mu 0.3
+expect_usage_error energy-section "--section: not used by analysis energy (only gait-vs-friction, fixed-points, orbit-diagram and basin take it)" rimless analysis energy --section upright
+expect_usage_error unknown-analysis "name: fly not in" rimless analysis fly
+# The analyses' parameters are keys (analysis.*): a list of reals, each value checked (issue 13).
+expect_usage_error mu-list-item "--set: key 'analysis.robustness.mu[1]' = 'x': not a number" rimless analysis robustness --set "analysis.robustness.mu=[0.6,x]"
+expect_usage_error mu-list-scalar "key 'analysis.energy.mu' = '0.6': not a list in brackets" rimless analysis energy --set analysis.energy.mu=0.6
+expect_usage_error epsilon-order "key 'analysis.robustness.epsilon_max'" rimless analysis robustness --set analysis.robustness.epsilon_max=1e-4
+expect_usage_error orbit-transient "--transient: key 'analysis.orbit.transient' = '0'" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.2 --count 3 --transient 0
+expect_usage_error basin-tolerance "--tolerance: key 'analysis.basin.tolerance' = 'nan'" rimless analysis basin --x initial.omega --y initial.beta --x-range 1:2:2 --y-range -0.1:0.1:2 --tolerance nan
+expect_usage_error friction-count "--set: key 'analysis.friction.count' = '0'" rimless analysis gait-vs-friction --set analysis.friction.count=0
+"$exe" rimless analysis fixed-points --set 'analysis.fixed_points.mu=[0.2, 0.6]' --out "$work/fp2" --no-plot >/dev/null 2>&1
+check "fixed-points with a 2-point mu list: 2 rows at 0.2 and 0.6" test "$(cut -d, -f1 "$work/fp2/fixed_points.csv" | tr '\n' ' ')" = "mu 0.2 0.6 "
+check "config.yaml holds the list" grep -q "mu: \[0.2, 0.6\]" "$work/fp2/config.yaml"
+"$exe" rimless analysis fixed-points --mu 0.2,0.6 --out "$work/fp2mu" --no-plot >/dev/null 2>&1
+check "--mu sets the same key: same bytes" cmp -s "$work/fp2/fixed_points.csv" "$work/fp2mu/fixed_points.csv"
 expect_usage_error sweep-inf-to "--to: 'inf' is not a finite number" rimless sweep --param rimless.mu --from 0.2 --to inf --count 3
 expect_usage_error sweep-bad-from "--from: key 'rimless.mu_s' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
 expect_usage_error walk-total-mass "key 'robot.total_mass' = '42.53': out of range" humanoid walk --set robot.total_mass=42.53

@@ -17,14 +17,15 @@
 namespace flexgait::rimless {
 namespace {
 
-/// The threshold column of gait-vs-friction's thresholds.csv, computed as the command does
-/// (100 values of μ in [0.1, 1.5], bisection to 1e-8).
+/// The threshold column of gait-vs-friction's thresholds.csv, computed as the command does with its
+/// analysis.friction.* keys (100 values of μ in [0.1, 1.5], bisection to 1e-8).
 std::vector<double> friction_thresholds(const Config& base) {
-  const SweepSpec sweep{"rimless.mu", 0.1, 1.5, 100};
+  const PaperAnalysisOptions o = paper_analysis_from_config(base);
+  const SweepSpec sweep{"rimless.mu", o.friction_mu_from, o.friction_mu_to, o.friction_count};
   std::vector<double> mus;
   for (int i = 0; i < sweep.count; ++i) mus.push_back(sweep.value(i));
   const std::vector<FrictionGait> gaits = friction_gaits(base, mus, Section::Touchdown);
-  std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, 1e-8));
+  std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, o));
   std::string line;
   std::getline(csv, line);  // header
   std::vector<double> out;

@@ -92,6 +92,7 @@ py::dict config_dict(const Config& config) {
       case ParamType::Choice: out[py::str(p.key)] = config.choice(p.key); break;
       case ParamType::Text: out[py::str(p.key)] = config.text(p.key); break;
       case ParamType::List: out[py::str(p.key)] = format_value(config.list(p.key), p.item_fields); break;  // flow YAML
+      case ParamType::Reals: out[py::str(p.key)] = py::cast(config.reals(p.key)); break;
     }
   }
   return out;

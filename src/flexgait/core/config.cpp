@@ -102,6 +102,11 @@ std::string ParamSpec::allowed() const {
   switch (type) {
     case ParamType::List:
       return "a list of mappings, each with the fields " + field_names(*this);
+    case ParamType::Reals: {
+      ParamSpec one = *this;
+      one.type = ParamType::Real;
+      return "a list [a, b, ...] of one or more values, each " + one.allowed();
+    }
     case ParamType::Boolean:
       return "true or false";
     case ParamType::Text:
@@ -232,7 +237,8 @@ namespace {
 ConfigScalar scalar_of(const ConfigValue& value) {
   return std::visit(
       [](const auto& v) -> ConfigScalar {
-        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, ConfigList>)
+        using V = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<V, ConfigList> || std::is_same_v<V, std::vector<double>>)
           throw std::logic_error("a list item's field holds a list value");
         else
           return v;
@@ -289,10 +295,38 @@ std::vector<std::vector<ConfigScalar>> parse_item(const ParamSpec& spec, std::si
   return fields;
 }
 
+// The text without the blanks at either end.
+std::string_view trimmed(std::string_view text) {
+  const auto blank = [](char c) { return c == ' ' || c == '\t'; };
+  while (!text.empty() && blank(text.front())) text.remove_prefix(1);
+  while (!text.empty() && blank(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+// A Reals value: flow YAML `[a, b, ...]` of plain numbers, one or more, each checked as a Real
+// under the key `key[i]`.
+std::vector<double> parse_reals(const ParamSpec& spec, const std::string& text, const std::string& origin) {
+  const std::string_view all = trimmed(text);
+  if (all.size() < 2 || all.front() != '[' || all.back() != ']')
+    throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a list in brackets", &spec));
+  const std::string_view inner = trimmed(all.substr(1, all.size() - 2));
+  if (inner.empty()) throw ConfigError(spec.key, error_text(origin, spec.key, text, "an empty list", &spec));
+  ParamSpec item = spec;
+  item.type = ParamType::Real;
+  std::vector<double> values;
+  for (const std::string& field : split_text(inner, ',')) {
+    item.key = fmt::format("{}[{}]", spec.key, values.size());
+    values.push_back(std::get<double>(parse_value(item, std::string(trimmed(field)), origin)));
+  }
+  return values;
+}
+
 }  // namespace
 
 ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const std::string& origin) {
   switch (spec.type) {
+    case ParamType::Reals:
+      return parse_reals(spec, text, origin);
     case ParamType::List: {
       std::vector<std::vector<ItemFieldText>> items;
       try {
@@ -382,6 +416,11 @@ std::string format_value(const ConfigValue& value, const std::vector<ParamSpec>&
     std::string operator()(bool v) const { return v ? "true" : "false"; }
     std::string operator()(const std::string& v) const { return v; }
     std::string operator()(const ConfigList&) const { return {}; }  // (above)
+    std::string operator()(const std::vector<double>& v) const {
+      std::string s = "[";
+      for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + (*this)(v[i]);
+      return s + "]";
+    }
   };
   return std::visit(Visitor{}, value);
 }
@@ -407,6 +446,9 @@ const std::string& Config::text(const std::string& key) const {
 const ConfigList& Config::list(const std::string& key) const {
   return std::get<ConfigList>(value(key, ParamType::List));
 }
+const std::vector<double>& Config::reals(const std::string& key) const {
+  return std::get<std::vector<double>>(value(key, ParamType::Reals));
+}
 const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
 
 void Config::set(const std::string& key, const std::string& text, const std::string& origin, bool list) {
@@ -414,7 +456,7 @@ void Config::set(const std::string& key, const std::string& text, const std::str
   if (spec == nullptr)
     throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}'){}", origin, one_line(key), one_line(text),
                                        suggestion(schema_, key)));
-  if (list && spec->type != ParamType::List)
+  if (list && spec->type != ParamType::List && spec->type != ParamType::Reals)
     throw ConfigError(key, fmt::format("{}: key '{}' must be a single value, not a list", origin, one_line(key)));
   const bool derive = !spec->derived.empty() && text == "auto";
   values_[key] = parse_value(*spec, derive ? spec->fallback : text, origin);
@@ -443,12 +485,17 @@ std::string Config::to_yaml() const {
       open.push_back(parts[i]);
     }
     out << YAML::Key << parts.back() << YAML::Value;
-    if (spec.type == ParamType::List)
+    if (spec.type == ParamType::List) {
       emit_list(out, std::get<ConfigList>(values_.at(spec.key)), spec.item_fields);
-    else if (derived(spec.key))
+    } else if (spec.type == ParamType::Reals) {
+      out << YAML::Flow << YAML::BeginSeq;
+      for (const double v : std::get<std::vector<double>>(values_.at(spec.key))) out << format_value(v);
+      out << YAML::EndSeq;
+    } else if (derived(spec.key)) {
       out << "auto";
-    else
+    } else {
       out << format_value(values_.at(spec.key));
+    }
     std::string comment = derived(spec.key) ? spec.doc + "; auto: " + spec.derived : spec.doc;
     if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
     if (!comment.empty()) out << YAML::Comment(comment);

@@ -43,8 +43,9 @@ class ConfigError : public UsageError {
 
 /// List: a list of structured items (e.g. disturbance.pushes), each a mapping of the fields
 /// `ParamSpec::item_fields`, every field given; written as YAML (a block list in a file, flow
-/// YAML such as `[{time: 1, force: [0, 9, 0]}]` after --set).
-enum class ParamType { Real, Integer, Boolean, Choice, Text, List };
+/// YAML such as `[{time: 1, force: [0, 9, 0]}]` after --set). Reals: a list of one or more real
+/// numbers, each in [min, max] (`[0.105, 0.6]` in a file and after --set).
+enum class ParamType { Real, Integer, Boolean, Choice, Text, List, Reals };
 
 /// One documented configuration parameter.
 struct ParamSpec {
@@ -53,8 +54,8 @@ struct ParamSpec {
   std::string fallback;  ///< default value, as written in YAML
   std::string unit;      ///< SI unit, "" for dimensionless
   std::string doc;       ///< one line: what it is
-  double min = -std::numeric_limits<double>::infinity();  ///< lower bound (Real, Integer)
-  double max = std::numeric_limits<double>::infinity();   ///< upper bound (Real, Integer)
+  double min = -std::numeric_limits<double>::infinity();  ///< lower bound (Real, Integer, each of Reals)
+  double max = std::numeric_limits<double>::infinity();   ///< upper bound (Real, Integer, each of Reals)
   bool min_inclusive = true;
   bool max_inclusive = true;
   std::vector<std::string> choices;  ///< allowed values (Choice)
@@ -101,7 +102,7 @@ struct ConfigList {
   std::vector<std::vector<std::vector<ConfigScalar>>> items;
   bool operator==(const ConfigList&) const = default;
 };
-using ConfigValue = std::variant<double, std::int64_t, bool, std::string, ConfigList>;
+using ConfigValue = std::variant<double, std::int64_t, bool, std::string, ConfigList, std::vector<double>>;
 
 /// One value with its dotted key, its text and where it comes from ("FILE:LINE", "--steps").
 struct ConfigEntry {
@@ -120,12 +121,13 @@ class Config {
   const std::string& choice(const std::string& key) const;
   const std::string& text(const std::string& key) const;
   const ConfigList& list(const std::string& key) const;
+  const std::vector<double>& reals(const std::string& key) const;
   /// Where the value came from: "default", "--set", or "FILE:LINE".
   const std::string& origin(const std::string& key) const;
   /// The key (ParamSpec::derived non-empty) is to be derived: left unset or set to `auto`.
   bool derived(const std::string& key) const { return derived_.count(key) > 0; }
   /// Replaces a value after validation against the schema (used by sweeps).
-  /// `list`: the text is a YAML list from a file (refused by a key that takes one value).
+  /// `list`: the text is a YAML list from a file (refused by a key that takes one value: not List or Reals).
   void set(const std::string& key, const std::string& text, const std::string& origin = "--set", bool list = false);
   /// The resolved configuration as nested YAML, keys in schema order; round-trips through load.
   std::string to_yaml() const;

@@ -20,7 +20,8 @@
 ///
 /// Field types: double, int, std::int64_t, bool, an enum with a name table (enum_names.hpp),
 /// std::string (a parameter of type text: a name or a path) and, for results only, std::optional<std::string> (null when empty) and
-/// std::vector<std::string>; and a list of structured items, std::vector<Item> (a parameter of type
+/// std::vector<std::string>; std::vector<double> (a parameter of type reals: one or more numbers,
+/// each within the bounds); and a list of structured items, std::vector<Item> (a parameter of type
 /// list), where Item declares its fields with short names in
 ///
 ///     template <class Self, class Visitor>
@@ -208,6 +209,9 @@ ParamSpec param_spec(std::string_view key, const T& value, const FieldInfo& info
   } else if constexpr (std::is_same_v<T, std::string>) {
     p.type = ParamType::Text;
     p.fallback = value;
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    p.type = ParamType::Reals;
+    p.fallback = format_value(value);
   } else if constexpr (IsItemList<T>::value) {
     p.type = ParamType::List;
     p.item_fields = item_fields_of<typename T::value_type>();
@@ -243,6 +247,8 @@ struct ConfigReader {
       member = config.real(k);
     } else if constexpr (std::is_same_v<T, std::string>) {
       member = config.text(k);
+    } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+      member = config.reals(k);
     } else if constexpr (IsItemList<T>::value) {
       member.clear();
       for (const auto& fields : config.list(k).items) {
@@ -278,7 +284,7 @@ R record_from_config(const Config& config, R base = R{}) {
 /// One field of a record as `schema.json` describes it.
 struct FieldDescription {
   std::string key;
-  std::string type;  ///< real, integer, boolean, choice, text, list
+  std::string type;  ///< real, integer, boolean, choice, text, list, list of real
   std::string unit;
   std::string doc;
   std::vector<std::string> choices;  ///< for choice
@@ -306,6 +312,8 @@ struct Describer {
       d.type = "text or null";
     } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
       d.type = "list of text";
+    } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+      d.type = "list of real";
     } else if constexpr (IsItemList<T>::value) {
       d.type = "list";
     } else {

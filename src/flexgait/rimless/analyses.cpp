@@ -49,6 +49,26 @@ std::string state_text(const Eigen::VectorXd& z) {
 
 }  // namespace
 
+PaperAnalysisOptions paper_analysis_from_config(const Config& config) {
+  const PaperAnalysisOptions o = record_from_config<PaperAnalysisOptions>(config);
+  check_with_origin(config, [&] {
+    if (o.epsilon_max < o.epsilon_min)
+      throw ConfigError("analysis.robustness.epsilon_max",
+                        fmt::format("key 'analysis.robustness.epsilon_max' = '{}': below analysis.robustness."
+                                    "epsilon_min = {}; allowed: a value >= it", format_number(o.epsilon_max),
+                                    format_number(o.epsilon_min)));
+  });
+  return o;
+}
+
+std::vector<double> robustness_epsilons(const PaperAnalysisOptions& o) {
+  std::vector<double> eps;
+  const int n = o.epsilon_count;
+  const double decades = std::log10(o.epsilon_max) - std::log10(o.epsilon_min);
+  for (int k = 0; k < n; ++k) eps.push_back(n == 1 ? o.epsilon_min : o.epsilon_min * std::pow(10.0, k * decades / (n - 1)));
+  return eps;
+}
+
 namespace {
 
 FrictionGait gait_of(double mu, const FixedPointReport& r, std::string source) {
@@ -147,14 +167,13 @@ std::string friction_gaits_csv(const std::vector<FrictionGait>& gaits) {
 
 namespace {
 
-// Below this bracket width the gait at a midpoint is the one continued from the bracket's ends
-// (the nearer first), the start's own (with its transients) only when neither continues: within
-// it the start finds what continuation does, at a fraction of the cost.
-constexpr double kContinuedBracket = 1e-4;
-
-// The gait at mu inside the bracket [lo, hi].
-FrictionGait bracket_gait(const Config& base, double mu, Section section, const FrictionGait& lo, const FrictionGait& hi) {
-  if (hi.mu - lo.mu <= kContinuedBracket) {
+// The gait at mu inside the bracket [lo, hi]. Below a bracket width of `continued_bracket` it is the
+// one continued from the bracket's ends (the nearer first), the start's own (with its transients)
+// only when neither continues: within it the start finds what continuation does, at a fraction of
+// the cost.
+FrictionGait bracket_gait(const Config& base, double mu, Section section, const FrictionGait& lo, const FrictionGait& hi,
+                          double continued_bracket) {
+  if (hi.mu - lo.mu <= continued_bracket) {
     const bool lo_first = mu - lo.mu <= hi.mu - mu;
     // One Newton from each end (no intermediate steps: across a change of the section's mode the
     // far end's mode has no fixed point, and more steps would not find one).
@@ -171,17 +190,17 @@ FrictionGait bracket_gait(const Config& base, double mu, Section section, const 
 // Thresholds between lo (gait a) and hi (gait b) by bisection, each midpoint continued from the
 // bracket's ends; a third gait found in between splits the bracket and both halves are refined
 // (behaviour windows narrower than the sweep's spacing are found this way).
-void refine_threshold(const Config& base, Section section, double tolerance, FrictionGait lo, FrictionGait hi,
-                      int depth, CsvWriter& csv) {
-  while (hi.mu - lo.mu > tolerance) {
-    FrictionGait mid = bracket_gait(base, 0.5 * (lo.mu + hi.mu), section, lo, hi);
+void refine_threshold(const Config& base, Section section, const PaperAnalysisOptions& o, FrictionGait lo,
+                      FrictionGait hi, int depth, CsvWriter& csv) {
+  while (hi.mu - lo.mu > o.threshold_tol) {
+    FrictionGait mid = bracket_gait(base, 0.5 * (lo.mu + hi.mu), section, lo, hi, o.continued_bracket);
     if (mid.gait == lo.gait) {
       lo = std::move(mid);
     } else if (mid.gait == hi.gait) {
       hi = std::move(mid);
     } else if (depth > 0) {
-      refine_threshold(base, section, tolerance, lo, mid, depth - 1, csv);
-      refine_threshold(base, section, tolerance, mid, hi, depth - 1, csv);
+      refine_threshold(base, section, o, lo, mid, depth - 1, csv);
+      refine_threshold(base, section, o, mid, hi, depth - 1, csv);
       return;
     } else {
       break;
@@ -193,11 +212,11 @@ void refine_threshold(const Config& base, Section section, double tolerance, Fri
 }  // namespace
 
 std::string friction_thresholds_csv(const Config& base, const std::vector<FrictionGait>& gaits, Section section,
-                                    double tolerance) {
+                                    const PaperAnalysisOptions& options) {
   CsvWriter csv({"mu_low", "mu_high", "gait_below", "gait_above", "threshold"});
   for (std::size_t i = 0; i + 1 < gaits.size(); ++i) {
     if (gaits[i].gait == gaits[i + 1].gait) continue;
-    refine_threshold(base, section, tolerance, gaits[i], gaits[i + 1], 4, csv);
+    refine_threshold(base, section, options, gaits[i], gaits[i + 1], options.split_depth, csv);
   }
   return csv.str();
 }
@@ -246,7 +265,8 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
   return csv.str();
 }
 
-std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps) {
+std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps,
+                           double return_tol) {
   CsvWriter csv({"mu", "component", "sign", "epsilon", "returned", "steps", "failure"});
   const Setup s = setup(with_mu(base, mu));
   const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, Section::Touchdown, s.initial);
@@ -273,7 +293,7 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
           }
           p = m.next;
           const bool same_mode = p.flight == r.point.flight && p.mode == r.point.mode;
-          if (same_mode && ((p.z - r.point.z).cwiseQuotient(scale)).lpNorm<Eigen::Infinity>() < 1e-6) {
+          if (same_mode && ((p.z - r.point.z).cwiseQuotient(scale)).lpNorm<Eigen::Infinity>() < return_tol) {
             returned = true;
             ++steps;
             break;

@@ -14,10 +14,28 @@
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/rimless/outcome.hpp"
 #include "flexgait/rimless/poincare.hpp"
 
 namespace flexgait::rimless {
+
+/// The cells' limits (keys analysis.basin.*; --steps-limit and --tolerance set them).
+struct BasinOptions {
+  int steps_limit = 200;    ///< section crossings simulated per cell at most
+  double tolerance = 1e-6;  ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance (scale: SectionState::scale)
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("analysis.basin.steps_limit", s.steps_limit,
+      {.doc = "basin: section crossings simulated per cell at most (--steps-limit)", .bounds = closed(1, 100000000)});
+    v("analysis.basin.tolerance", s.tolerance,
+      {.doc = "basin: converged when every section-state component is within this fraction of its scale "
+              "(sqrt(g L0), sqrt(g/L0), alpha) of the gait's (--tolerance)",
+       .bounds = positive()});
+  }
+};
+inline Schema basin_schema() { return schema_of<BasinOptions>(); }
 
 /// One axis of the grid: `count` values of `key` from `from` to `to`, ends included.
 struct BasinAxis {
@@ -30,8 +48,8 @@ struct BasinAxis {
 
 struct BasinSpec {
   BasinAxis x, y;
-  int steps_limit = 200;     ///< section crossings simulated per cell at most
-  double tolerance = 1e-6;   ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance (scale: SectionState::scale)
+  int steps_limit = BasinOptions{}.steps_limit;  ///< section crossings simulated per cell at most
+  double tolerance = BasinOptions{}.tolerance;   ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance
   Section section = Section::Touchdown;
   int cells() const { return x.count * y.count; }
 };

@@ -10,14 +10,31 @@
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/rimless/sweep.hpp"
 
 namespace flexgait::rimless {
 
+/// The diagram's lengths (keys analysis.orbit.*; --transient and --record set them).
+struct OrbitDiagramOptions {
+  int transient = 100;  ///< steps simulated from the initial state before the first recorded crossing
+  int record = 30;      ///< section crossings recorded at each value
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("analysis.orbit.transient", s.transient,
+      {.doc = "orbit-diagram: steps simulated before the first recorded crossing (--transient)",
+       .bounds = closed(1, 100000000)});
+    v("analysis.orbit.record", s.record,
+      {.doc = "orbit-diagram: section crossings recorded at each value (--record)", .bounds = closed(1, 1000000)});
+  }
+};
+inline Schema orbit_diagram_schema() { return schema_of<OrbitDiagramOptions>(); }
+
 struct OrbitDiagramSpec {
   SweepSpec sweep;     ///< the key, its values (from, to, count) and the section
-  int transient = 100; ///< steps simulated from the initial state before the first recorded crossing
-  int record = 30;     ///< section crossings recorded at each value
+  int transient = OrbitDiagramOptions{}.transient;  ///< steps simulated before the first recorded crossing
+  int record = OrbitDiagramOptions{}.record;        ///< section crossings recorded at each value
 };
 
 /// Throws ConfigError (naming --transient or --record) unless transient >= 1 and record >= 1.

@@ -2,6 +2,9 @@
 
 #include <utility>
 
+#include "flexgait/rimless/analyses.hpp"
+#include "flexgait/rimless/basin.hpp"
+#include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/stagnation.hpp"
@@ -10,7 +13,8 @@ namespace flexgait::rimless {
 
 Schema rimless_analysis_schema() {
   Schema s = rimless_schema();
-  s.merge(analysis_schema()).merge(stagnation_schema());
+  s.merge(analysis_schema()).merge(paper_analysis_schema()).merge(orbit_diagram_schema()).merge(basin_schema());
+  s.merge(stagnation_schema());
   return s;
 }
 

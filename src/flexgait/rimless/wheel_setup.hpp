@@ -8,7 +8,8 @@
 
 namespace flexgait::rimless {
 
-/// Keys of the analysis commands: rimless.*, initial.*, sim.*, analysis.* and stagnation.*.
+/// Keys of the analysis commands: rimless.*, initial.*, sim.*, analysis.* (the fixed-point search's and
+/// the paper's analyses', analyses.hpp) and stagnation.*.
 Schema rimless_analysis_schema();
 
 struct WheelSetup {
