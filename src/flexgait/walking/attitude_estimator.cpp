@@ -14,7 +14,7 @@ void AttitudeEstimator::reset() {
   waiting_ = 0;
 }
 
-bool AttitudeEstimator::level(const Vector3d& a, double T) {
+void AttitudeEstimator::level(const Vector3d& a, double T) {
   const double g = params_.gravity;
   waiting_ += T;
   const bool near_g = std::abs(a.norm() - g) <= 0.05 * g;
@@ -34,14 +34,13 @@ bool AttitudeEstimator::level(const Vector3d& a, double T) {
   // The window holds level_count_ periods of readings (half a period: the round-off of Σ T).
   const bool steady = level_count_ > 0 && level_count_ * T + 0.5 * T >= params_.level_time;
   const bool timed_out = waiting_ > params_.align_time + 0.5 * T;
-  if (!steady && !timed_out) return false;
+  if (!steady && !timed_out) return;
   // Tilt from gravity alone: up = Rᵀ e_z = (−sin p, sin r cos p, cos r cos p) for R = Rz Ry Rx.
   const Vector3d v = (steady ? level_sum_ : a).normalized();
   const double roll = std::atan2(v.y(), v.z());
   const double pitch = std::atan2(-v.x(), std::hypot(v.y(), v.z()));
   R_ = rpy_to_matrix(roll, pitch, 0.0);
   initialised_ = true;
-  return true;
 }
 
 void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, const Vector3d& planned_accel, double T) {

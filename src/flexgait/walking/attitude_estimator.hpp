@@ -105,9 +105,9 @@ class AttitudeEstimator {
   int level_count_ = 0;                    ///< readings in the window
   double waiting_ = 0;                     ///< since the first accelerometer reading [s]
 
-  /// Takes one reading a (already gated to [0.5 g, 1.5 g]) into the levelling; true when the
-  /// attitude has been initialised from it.
-  bool level(const Vector3d& a, double T);
+  /// Takes one reading a (already gated to [0.5 g, 1.5 g]) into the levelling; initialises the
+  /// attitude once the window is steady (or the wait timed out).
+  void level(const Vector3d& a, double T);
 };
 
 }  // namespace flexgait::walking

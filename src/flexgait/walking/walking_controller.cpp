@@ -285,7 +285,7 @@ void WalkingController::begin_capture_step(double t, std::size_t k, int swing, d
     cart_[a].x = Vector3d(c, com_velocity_(a), omega * omega * (c - p(a)));
     cart_[a].error_sum = 0;
   }
-  capture_ = {true, t + T, p};
+  capture_ = {true, p};
   Step st;
   st.swing = swing;
   st.t_begin = t;
@@ -323,19 +323,20 @@ void WalkingController::propagate_capture(double t) {
     const double y1 = y * ch + v / omega * sh;
     x = Vector3d(capture_.p(a) + y1, y * omega * sh + v * ch, omega * omega * y1);
   }
-  if (t + period_ >= capture_.t_land - 0.5 * period_) {  // landed: the preview controller takes over
+  // Landed (the capture step is the plan's only step): the preview controller takes over.
+  if (t + period_ >= plan_.steps.back().t_land - 0.5 * period_) {
     capture_.active = false;
     for (CartTable& c : cart_) c.error_sum = 0;
   }
 }
 
 void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& feet) {
+  if (capture_.active) return;  // a capture step's landing is set when it begins
   const double omega = std::sqrt(kGravity / gains_.com_height);
   const Eigen::Vector2d e = status_.dcm - status_.dcm_ref;
   const Eigen::Vector2d half(0.5 * model_.sole_length, 0.5 * model_.sole_width);
   const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
   const auto n = static_cast<int>(plan_.steps.size());
-  if (capture_.active) return;  // a capture step's landing is set when it begins
   if (feet.step >= 0 && feet.step < n) {
     // Walking (or the recovery step): from the step's double support to three quarters of its
     // swing, the landing is the planned one moved by (S2) for the error now.

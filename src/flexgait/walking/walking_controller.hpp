@@ -205,7 +205,6 @@ class WalkingController {
   bool recovery_step_ = false;    ///< a recovery step was inserted (standing)
   struct CaptureStep {
     bool active = false;
-    double t_land = 0;                               ///< its touchdown [s]
     Eigen::Vector2d p = Eigen::Vector2d::Zero();     ///< its centre of pressure (world) [m]
   } capture_;                                        ///< the standing capture step under way
   static constexpr double kCaptureMargin = 0.02;     ///< the capture step's CoP stays this far inside the sole [m]
