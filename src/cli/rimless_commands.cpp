@@ -205,17 +205,22 @@ struct Analysis {
   std::vector<std::pair<std::string, std::string>> keys{};
   std::string sweep_name{};            ///< the resumable sweep's file stem in --out ("" when not resumable)
   bool reads_stagnation = false;       ///< reads the stagnation.* keys (checked together: stagnation_from_config)
-  /// Checks beyond the keys' own, before anything is written (may be null).
-  void (*check)(const AnalysisContext&) = nullptr;
+  /// Checks beyond the keys' own, before anything is written (may be null); given this entry, so
+  /// that a check reads its keys from `keys`.
+  void (*check)(const AnalysisContext&, const Analysis&) = nullptr;
   /// Computes and writes into the run directory; returns the files written.
   std::vector<std::string> (*run)(const AnalysisContext&, const RunDirectory&) = nullptr;
   /// orbit-diagram and basin resolve and write on their own (rimless_map_commands.hpp).
   bool map = false;
 };
 
-// Every μ of a list key is a valid friction coefficient of the wheel (mu_s = mu_k).
-void check_mus(const AnalysisContext& c, const std::string& key, const std::vector<double>& mus) {
-  for (const double mu : mus) rimless::config_at(c.setup.config, "rimless.mu", format_number(mu), c.setup.config.origin(key));
+// Every μ of the entry's --mu key is a valid friction coefficient of the wheel (mu_s = mu_k).
+void check_mus(const AnalysisContext& c, const Analysis& entry) {
+  const auto mu = std::find_if(entry.keys.begin(), entry.keys.end(), [](const auto& k) { return k.first == "--mu"; });
+  if (mu == entry.keys.end()) throw std::logic_error("analysis " + entry.name + " checks --mu but has no key for it");
+  const std::string& key = mu->second;
+  for (const double value : c.setup.config.reals(key))
+    rimless::config_at(c.setup.config, "rimless.mu", format_number(value), c.setup.config.origin(key));
 }
 
 rimless::SweepSpec friction_range(const AnalysisContext& c) {
@@ -239,7 +244,7 @@ std::vector<std::string> gait_vs_friction(const AnalysisContext& c, const RunDir
   // fixed points where the start finds none), and the thresholds between them by bisection.
   std::vector<double> values;
   for (int i = 0; i < spec.count; ++i) values.push_back(spec.value(i));
-  const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, c.section);
+  const std::vector<rimless::FrictionGait> gaits = rimless::friction_gaits(base, values, c.section, c.paper);
   dir.write("gaits.csv", rimless::friction_gaits_csv(gaits));
   dir.write("thresholds.csv", rimless::friction_thresholds_csv(base, gaits, c.section, c.paper));
   return {"sweep.csv", "gaits.csv", "thresholds.csv"};
@@ -320,25 +325,25 @@ const std::vector<Analysis>& analyses() {
          .keys = {{"--from", "analysis.friction.mu_from"}, {"--to", "analysis.friction.mu_to"},
                   {"--count", "analysis.friction.count"}},
          .sweep_name = "sweep",
-         .check = [](const AnalysisContext& c) { rimless::check_sweep(c.setup.config, friction_range(c)); },
+         .check = [](const AnalysisContext& c, const Analysis&) { rimless::check_sweep(c.setup.config, friction_range(c)); },
          .run = gait_vs_friction},
         {.name = "energy",
          .help = "single support, stick against slip",
          .options = {"--mu"},
          .keys = {{"--mu", "analysis.energy.mu"}},
-         .check = [](const AnalysisContext& c) { check_mus(c, "analysis.energy.mu", c.paper.energy_mu); },
+         .check = check_mus,
          .run = energy},
         {.name = "fixed-points",
          .help = "the four behaviours",
          .options = {"--mu", "--section"},
          .keys = {{"--mu", "analysis.fixed_points.mu"}},
-         .check = [](const AnalysisContext& c) { check_mus(c, "analysis.fixed_points.mu", c.paper.fixed_points_mu); },
+         .check = check_mus,
          .run = fixed_points},
         {.name = "robustness",
          .help = "of the sliding gait",
          .options = {"--mu"},
          .keys = {{"--mu", "analysis.robustness.mu"}},
-         .check = [](const AnalysisContext& c) { check_mus(c, "analysis.robustness.mu", c.paper.robustness_mu); },
+         .check = check_mus,
          .run = robustness},
         {.name = "stagnation",
          .help = "paper Fig. 12: the critical omega0, the time sliding near the true vertical against "
@@ -354,7 +359,7 @@ const std::vector<Analysis>& analyses() {
          .sweep_name = "stagnation_map",
          .reads_stagnation = true,
          .check =
-             [](const AnalysisContext& c) {
+             [](const AnalysisContext& c, const Analysis&) {
                for (const auto& v : c.variations) rimless::stagnation_map_config(c.setup.config, v);  // each valid
              },
          .run = stagnation_map},
@@ -422,7 +427,7 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   const AnalysisContext context{a, s, paper, stagnation,
                                 a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown,
                                 a.vary.empty() ? default_stagnation_map() : a.vary};
-  if (entry->check != nullptr) entry->check(context);
+  if (entry->check != nullptr) entry->check(context, *entry);
   // A resumed sweep must match the one in --out: check before anything is written.
   if (a.resume && !entry->sweep_name.empty()) {
     SweepJob probe;

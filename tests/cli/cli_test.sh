@@ -395,5 +395,12 @@ expect_usage_error basin-beta "initial.beta" rimless analysis basin --x initial.
 expect_usage_error basin-from "--from" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:3 --from 1
 # ---- end of the issue 18 block ----
 
+# ---- issue 13 leftovers (helper-lit): the analyses' remaining literals are keys ----
+expect_usage_error friction-factor-fraction "--set: key 'analysis.friction.transient_factors' = '2.5'" \
+  rimless analysis gait-vs-friction --set "analysis.friction.transient_factors=[1,2.5]"
+expect_usage_error friction-steps-zero "key 'analysis.friction.continuation_steps[0]' = '0'" \
+  rimless analysis gait-vs-friction --set "analysis.friction.continuation_steps=[0]"
+# ---- end of the helper-lit block ----
+
 echo "$passed passed, $failed failed"
 test "$failed" -eq 0

@@ -37,6 +37,8 @@ TEST(PaperAnalysisOptions, DefaultsAreTheFormerLiterals) {
   EXPECT_EQ(o.threshold_tol, 1e-8);
   EXPECT_EQ(o.continued_bracket, 1e-4);
   EXPECT_EQ(o.split_depth, 4);
+  EXPECT_EQ(o.transient_factors, (std::vector<double>{1, 3, 9}));
+  EXPECT_EQ(o.continuation_steps, (std::vector<double>{1, 4, 16}));
   EXPECT_EQ(o.energy_mu, (std::vector<double>{0.6, 0.105}));
   EXPECT_EQ(o.fixed_points_mu, (std::vector<double>{0.105, 0.13, 0.2, 0.6}));
   EXPECT_EQ(o.robustness_mu, (std::vector<double>{0.105, 0.6}));
@@ -83,6 +85,46 @@ TEST(PaperAnalysisOptions, EpsilonMaxBelowMinNamesTheKey) {
     EXPECT_NE(std::string(e.what()).find("--set: key 'analysis.robustness.epsilon_max' = '0.0001'"), std::string::npos)
         << e.what();
   }
+}
+
+// A factor or a step count is a whole number: 2.5 is refused naming its key.
+TEST(PaperAnalysisOptions, FractionalCountNamesTheKey) {
+  for (const std::string key : {"analysis.friction.transient_factors", "analysis.friction.continuation_steps"}) {
+    try {
+      paper_analysis_from_config(configured({key + "=[1, 2.5]"}));
+      ADD_FAILURE() << "no ConfigError for " << key;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.key(), key);
+      EXPECT_NE(std::string(e.what()).find("'2.5'"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(paper_analysis_from_config(configured({"analysis.friction.transient_factors=[2, 5]"})).transient_factors,
+            (std::vector<double>{2, 5}));
+}
+
+// The energy analysis logs one periodic step: its rows end within the fixed point's period (the
+// run stops at the next touchdown), and its last row is close to it (the step's single support ends
+// with the touchdown or a short double support before it).
+TEST(PaperAnalysisOptions, EnergyLogIsOneStep) {
+  const Config c = configured({});
+  const std::string csv = single_support_energy_csv(c, {0.6});
+  ASSERT_GT(rows(csv), 10u) << csv;
+  std::istringstream in(csv);
+  std::string line, last;
+  while (std::getline(in, line)) last = line;
+  std::vector<std::string> cells;
+  for (std::size_t from = 0, comma = 0; comma != std::string::npos; from = comma + 1) {
+    comma = last.find(',', from);
+    cells.push_back(last.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
+  }
+  ASSERT_EQ(cells.size(), 7u) << last;
+  const double t_last = std::stod(cells[3]);  // mu, gait, phase, t
+  const Config at = configured({"rimless.mu_s=0.6", "rimless.mu_k=0.6"});
+  const FixedPointReport r = find_fixed_point(wheel_from_config(at), simulation_from_config(at), analysis_from_config(at),
+                                              Model::Flexible, Section::Touchdown, initial_from_config(at));
+  ASSERT_TRUE(r.converged) << r.failure;
+  EXPECT_LE(t_last, r.period);
+  EXPECT_GT(t_last, 0.5 * r.period);
 }
 
 // A two-point μ list gives two rows of fixed_points.csv, at those μ.

@@ -24,7 +24,7 @@ std::vector<double> friction_thresholds(const Config& base) {
   const SweepSpec sweep{"rimless.mu", o.friction_mu_from, o.friction_mu_to, o.friction_count};
   std::vector<double> mus;
   for (int i = 0; i < sweep.count; ++i) mus.push_back(sweep.value(i));
-  const std::vector<FrictionGait> gaits = friction_gaits(base, mus, Section::Touchdown);
+  const std::vector<FrictionGait> gaits = friction_gaits(base, mus, Section::Touchdown, o);
   std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, o));
   std::string line;
   std::getline(csv, line);  // header

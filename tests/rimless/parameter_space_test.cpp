@@ -168,14 +168,20 @@ TEST(ParameterSpace, FixedPointSectionIsTheNextLegNotABounce) {
 // after a longer transient, the second continued from a neighbour's.
 TEST(ParameterSpace, GaitAgainstFrictionFindsTheFixedPointThatExists) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
-  const FrictionGait transient = friction_gait(base, 0.1085, Section::Touchdown);
+  const PaperAnalysisOptions o = paper_analysis_from_config(base);
+  const FrictionGait transient = friction_gait(base, 0.1085, Section::Touchdown, o);
   EXPECT_TRUE(transient.converged) << transient.gait;
   EXPECT_EQ(transient.gait, "slip");
-  const FrictionGait neighbour = friction_gait(base, 0.104, Section::Touchdown);
+  EXPECT_TRUE(transient.source.starts_with("start, ")) << transient.source;  // a longer transient found it
+  // analysis.friction.transient_factors = [1]: the configured transient alone, which does not reach it.
+  PaperAnalysisOptions short_transient = o;
+  short_transient.transient_factors = {1};
+  EXPECT_FALSE(friction_gait(base, 0.1085, Section::Touchdown, short_transient).converged);
+  const FrictionGait neighbour = friction_gait(base, 0.104, Section::Touchdown, o);
   ASSERT_TRUE(neighbour.converged) << neighbour.gait;
-  const FrictionGait alone = friction_gait(base, 0.102, Section::Touchdown);
+  const FrictionGait alone = friction_gait(base, 0.102, Section::Touchdown, o);
   EXPECT_FALSE(alone.converged) << "the start from omega0 = 1.4 reaches it now: " << alone.source;
-  const FrictionGait continued = friction_gait(base, 0.102, Section::Touchdown, {&neighbour});
+  const FrictionGait continued = friction_gait(base, 0.102, Section::Touchdown, o, {&neighbour});
   ASSERT_TRUE(continued.converged) << continued.gait;
   EXPECT_TRUE(continued.stable);
   EXPECT_NEAR(continued.max_multiplier, 0.917, 5e-3);

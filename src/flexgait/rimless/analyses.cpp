@@ -49,9 +49,22 @@ std::string state_text(const Eigen::VectorXd& z) {
 
 }  // namespace
 
+namespace {
+
+// Each value of a reals key is a whole number (the key's bounds hold already).
+void check_whole(const std::string& key, const std::vector<double>& values) {
+  for (const double v : values)
+    if (v != std::floor(v))
+      throw ConfigError(key, fmt::format("key '{}' = '{}': allowed: whole numbers", key, format_number(v)));
+}
+
+}  // namespace
+
 PaperAnalysisOptions paper_analysis_from_config(const Config& config) {
   const PaperAnalysisOptions o = record_from_config<PaperAnalysisOptions>(config);
   check_with_origin(config, [&] {
+    check_whole("analysis.friction.transient_factors", o.transient_factors);
+    check_whole("analysis.friction.continuation_steps", o.continuation_steps);
     if (o.epsilon_max < o.epsilon_min)
       throw ConfigError("analysis.robustness.epsilon_max",
                         fmt::format("key 'analysis.robustness.epsilon_max' = '{}': below analysis.robustness."
@@ -84,9 +97,11 @@ FrictionGait gait_of(double mu, const FixedPointReport& r, std::string source) {
 }
 
 // Natural-parameter continuation: Newton at μ_k = μ_0 + (μ - μ_0) k / n, k = 1..n, each from the
-// previous fixed point.
-std::optional<FrictionGait> continued(const Config& base, double mu, const FrictionGait& from) {
-  for (int n : {1, 4, 16}) {
+// previous fixed point, for each n of `steps` in turn.
+std::optional<FrictionGait> continued(const Config& base, double mu, const FrictionGait& from,
+                                      const std::vector<double>& steps) {
+  for (const double steps_n : steps) {
+    const int n = static_cast<int>(steps_n);
     SectionState p = from.point;
     FixedPointReport r;
     for (int k = 1; k <= n; ++k) {
@@ -102,11 +117,11 @@ std::optional<FrictionGait> continued(const Config& base, double mu, const Frict
 
 }  // namespace
 
-FrictionGait friction_gait(const Config& base, double mu, Section section,
+FrictionGait friction_gait(const Config& base, double mu, Section section, const PaperAnalysisOptions& options,
                            const std::vector<const FrictionGait*>& neighbours) {
   const Setup s = setup(with_mu(base, mu));
-  std::string transient_failure;
-  for (int factor : {1, 3, 9}) {
+  for (const double factor_value : options.transient_factors) {
+    const int factor = static_cast<int>(factor_value);
     AnalysisOptions o = s.opt;
     o.transient_steps = std::max(1, s.opt.transient_steps) * factor;
     const FixedPointReport r = find_fixed_point(s.w, s.sim, o, Model::Flexible, section, s.initial);
@@ -116,7 +131,7 @@ FrictionGait friction_gait(const Config& base, double mu, Section section,
   }
   for (const FrictionGait* n : neighbours)
     if (n != nullptr && n->converged)
-      if (auto g = continued(base, mu, *n)) return *g;
+      if (auto g = continued(base, mu, *n, options.continuation_steps)) return *g;
   FrictionGait g;
   g.mu = mu;
   g.source = "start";
@@ -134,9 +149,10 @@ FrictionGait friction_gait(const Config& base, double mu, Section section,
   return g;
 }
 
-std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<double>& mus, Section section) {
+std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<double>& mus, Section section,
+                                         const PaperAnalysisOptions& options) {
   std::vector<FrictionGait> out;
-  for (double mu : mus) out.push_back(friction_gait(base, mu, section));
+  for (double mu : mus) out.push_back(friction_gait(base, mu, section, options));
   // Second pass, in order: a point with no fixed point is continued from its nearest converged
   // neighbours (nearer first; the left one on a tie).
   const int n = static_cast<int>(out.size());
@@ -148,7 +164,7 @@ std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<d
         if (j >= 0 && j < n && out[static_cast<std::size_t>(j)].converged) near.push_back(&out[static_cast<std::size_t>(j)]);
     }
     for (const FrictionGait* nb : near) {
-      if (auto g = continued(base, out[static_cast<std::size_t>(i)].mu, *nb)) {
+      if (auto g = continued(base, out[static_cast<std::size_t>(i)].mu, *nb, options.continuation_steps)) {
         out[static_cast<std::size_t>(i)] = *g;
         break;
       }
@@ -172,8 +188,8 @@ namespace {
 // only when neither continues: within it the start finds what continuation does, at a fraction of
 // the cost.
 FrictionGait bracket_gait(const Config& base, double mu, Section section, const FrictionGait& lo, const FrictionGait& hi,
-                          double continued_bracket) {
-  if (hi.mu - lo.mu <= continued_bracket) {
+                          const PaperAnalysisOptions& options) {
+  if (hi.mu - lo.mu <= options.continued_bracket) {
     const bool lo_first = mu - lo.mu <= hi.mu - mu;
     // One Newton from each end (no intermediate steps: across a change of the section's mode the
     // far end's mode has no fixed point, and more steps would not find one).
@@ -184,7 +200,7 @@ FrictionGait bracket_gait(const Config& base, double mu, Section section, const 
       if (r.converged) return gait_of(mu, r, fmt::format("continued from mu = {}", format_number(n->mu)));
     }
   }
-  return friction_gait(base, mu, section, {&lo, &hi});
+  return friction_gait(base, mu, section, options, {&lo, &hi});
 }
 
 // Thresholds between lo (gait a) and hi (gait b) by bisection, each midpoint continued from the
@@ -193,7 +209,7 @@ FrictionGait bracket_gait(const Config& base, double mu, Section section, const 
 void refine_threshold(const Config& base, Section section, const PaperAnalysisOptions& o, FrictionGait lo,
                       FrictionGait hi, int depth, CsvWriter& csv) {
   while (hi.mu - lo.mu > o.threshold_tol) {
-    FrictionGait mid = bracket_gait(base, 0.5 * (lo.mu + hi.mu), section, lo, hi, o.continued_bracket);
+    FrictionGait mid = bracket_gait(base, 0.5 * (lo.mu + hi.mu), section, lo, hi, o);
     if (mid.gait == lo.gait) {
       lo = std::move(mid);
     } else if (mid.gait == hi.gait) {
@@ -233,8 +249,7 @@ std::string single_support_energy_csv(const Config& base, const std::vector<doub
     o.atol = s.opt.atol;
     FlexibleWheelSimulator sim(s.w, o);
     RunSpec spec = section_run(s.w, r.point);
-    spec.stop_at = Section::Touchdown;
-    spec.steps = 3;
+    spec.stop_at = Section::Touchdown;  // one step: the run ends at the next touchdown (RunSpec::steps unused)
     const SimulationResult run = sim.run(spec);
     if (run.samples.empty()) continue;
     const int stance = s.w.legs - 1;  // the leg landing at the section

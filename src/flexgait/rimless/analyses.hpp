@@ -27,6 +27,10 @@ struct PaperAnalysisOptions {
   double threshold_tol = 1e-8;      ///< gait-vs-friction: bisection of a threshold stops at this bracket width in μ
   double continued_bracket = 1e-4;  ///< gait-vs-friction: narrower brackets continue a midpoint from their ends first
   int split_depth = 4;              ///< gait-vs-friction: nested splits of a bracket by a third behaviour, at most
+  /// gait-vs-friction: Newton from the start after analysis.transient_steps times each factor, in turn
+  std::vector<double> transient_factors{1, 3, 9};
+  /// gait-vs-friction: natural-parameter continuation from a neighbour in each number of equal steps of μ, in turn
+  std::vector<double> continuation_steps{1, 4, 16};
   std::vector<double> energy_mu{0.6, 0.105};               ///< energy: μ of each periodic step logged
   std::vector<double> fixed_points_mu{0.105, 0.13, 0.2, 0.6};  ///< fixed-points: μ of each row
   std::vector<double> robustness_mu{0.105, 0.6};           ///< robustness: μ of each fixed point perturbed
@@ -55,6 +59,14 @@ struct PaperAnalysisOptions {
     v("analysis.friction.split_depth", s.split_depth,
       {.doc = "gait-vs-friction: a third behaviour inside a bracket splits it, nested at most this deep",
        .bounds = closed(0, 64)});
+    v("analysis.friction.transient_factors", s.transient_factors,
+      {.doc = "gait-vs-friction: Newton from the start after analysis.transient_steps times each factor in turn, "
+              "while the transient's mode still changes (whole numbers)",
+       .bounds = closed(1, 1000)});
+    v("analysis.friction.continuation_steps", s.continuation_steps,
+      {.doc = "gait-vs-friction: where the start finds no fixed point, continuation in mu from a neighbour's in each "
+              "number of equal steps in turn (whole numbers)",
+       .bounds = closed(1, 10000)});
     v("analysis.energy.mu", s.energy_mu,
       {.doc = "energy: mu = mu_s = mu_k of each periodic step logged (--mu)", .bounds = non_negative()});
     v("analysis.fixed_points.mu", s.fixed_points_mu,
@@ -76,7 +88,8 @@ struct PaperAnalysisOptions {
   }
 };
 inline Schema paper_analysis_schema() { return schema_of<PaperAnalysisOptions>(); }
-/// The options of a resolved configuration; throws ConfigError (key named) if epsilon_max < epsilon_min.
+/// The options of a resolved configuration; throws ConfigError (key named) if epsilon_max < epsilon_min
+/// or a factor or step count is not a whole number.
 PaperAnalysisOptions paper_analysis_from_config(const Config& config);
 
 /// The robustness perturbations ε_k = ε_min 10^(k log10(ε_max/ε_min)/(n − 1)), k = 0..n−1 (ε_min alone
@@ -95,16 +108,18 @@ struct FrictionGait {
   SectionState point;          ///< the fixed point (when converged)
 };
 
-/// The gait at μ: Newton from the configured start after analysis.transient_steps, then after
-/// 3 and 9 times as many while the transient's mode is still changing (Newton keeps the section's
-/// mode); failing that, natural-parameter continuation from the first converged neighbour in
-/// `neighbours` (in 1, 4 or 16 equal steps of μ). "(no fixed point)" only when all of these fail.
-FrictionGait friction_gait(const Config& base, double mu, Section section,
+/// The gait at μ: Newton from the configured start after analysis.transient_steps times each of
+/// `options.transient_factors` (1, 3, 9) in turn while the transient's mode is still changing (Newton
+/// keeps the section's mode); failing that, natural-parameter continuation from the first converged
+/// neighbour in `neighbours` (in each of `options.continuation_steps`, 1, 4 or 16, equal steps of μ).
+/// "(no fixed point)" only when all of these fail.
+FrictionGait friction_gait(const Config& base, double mu, Section section, const PaperAnalysisOptions& options,
                            const std::vector<const FrictionGait*>& neighbours = {});
 
 /// friction_gait at every μ of `mus` (ascending), then once more, continued from the nearest
 /// converged neighbour, at every point that found no fixed point.
-std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<double>& mus, Section section);
+std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<double>& mus, Section section,
+                                         const PaperAnalysisOptions& options);
 
 /// CSV: mu, gait, converged, stable, max_multiplier, source.
 std::string friction_gaits_csv(const std::vector<FrictionGait>& gaits);
