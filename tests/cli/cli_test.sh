@@ -400,6 +400,10 @@ expect_usage_error friction-factor-fraction "--set: key 'analysis.friction.trans
   rimless analysis gait-vs-friction --set "analysis.friction.transient_factors=[1,2.5]"
 expect_usage_error friction-steps-zero "key 'analysis.friction.continuation_steps[0]' = '0'" \
   rimless analysis gait-vs-friction --set "analysis.friction.continuation_steps=[0]"
+expect_usage_error stagnation-kind-fraction "key 'stagnation.kind_fraction' = '-1'" rimless analysis stagnation \
+  --config "$src/configs/rimless-stagnation.yaml" --set stagnation.kind_fraction=-1
+expect_usage_error stagnation-fit-offset "key 'stagnation.fit_offset' = '0'" rimless analysis stagnation \
+  --config "$src/configs/rimless-stagnation.yaml" --set stagnation.fit_offset=0
 # ---- end of the helper-lit block ----
 
 echo "$passed passed, $failed failed"

@@ -123,6 +123,33 @@ TEST(Stagnation, SlidingTimeGrowsLogarithmicallyTowardTheCriticalVelocity) {
     }
 }
 
+// The fit's and the classification's keys (issue 13): the defaults are the former literals; a fit
+// window below every scan offset fits nothing (growth 0, kind none); a kind fraction above the
+// measured growth (~1x the estimate, previous test) names no kind while the growth stays.
+TEST(Stagnation, FitWindowAndKindFractionAreKeys) {
+  const StagnationOptions defaults;
+  EXPECT_EQ(defaults.fit_offset, 1e-3);
+  EXPECT_EQ(defaults.kind_fraction, 0.25);
+  EXPECT_EQ(defaults.rest_energy, 1e-9);
+  StagnationOptions opt = bracket(0.52, 0.54);
+  opt.offset_max = 1e-1;
+  opt.offset_min = 1e-4;
+  opt.per_decade = 1;
+  opt.fit_offset = 1e-5;
+  const StagnationSummary none = scan_stagnation(sliding_wheel(), start(0), sim(), opt).summary;
+  ASSERT_TRUE(none.critical_found);
+  EXPECT_EQ(none.growth_above, 0.0);
+  EXPECT_EQ(none.growth_below, 0.0);
+  EXPECT_EQ(none.kind, "none");
+  opt.fit_offset = defaults.fit_offset;
+  opt.kind_fraction = 10;
+  const StagnationSummary strict = scan_stagnation(sliding_wheel(), start(0), sim(), opt).summary;
+  EXPECT_GT(strict.growth_above, 0.5 * strict.estimate_sliding);
+  EXPECT_EQ(strict.kind, "none");
+  opt.kind_fraction = defaults.kind_fraction;
+  EXPECT_EQ(scan_stagnation(sliding_wheel(), start(0), sim(), opt).summary.kind, "sliding");
+}
+
 // omega_c is a property of the wheel, not of the integrator: rtol 1e-10 → 1e-12 moves it by less
 // than 1e-8 (the issue's check; a tolerance-driven timing error of the landing that decides the
 // outcome scales with rtol, and the saddle's sensitivity amplifies nothing at the outcome's flip).

@@ -156,7 +156,7 @@ Stage run_stage(const WheelParams& w, const InitialState& start, const Simulatio
     if (s.end == StageEnd::Failed) s.failure = fmt::format("leg {} landed, neither neighbour of the stance leg", leg);
   } else if (r.t_final >= opt.time_limit) {
     s.end = std::abs(s.beta_end + w.slope) < opt.window ? StageEnd::Stagnated : StageEnd::TimeLimit;
-  } else if (s.kinetic_end < 1e-9 * w.m * w.g * w.L0) {
+  } else if (s.kinetic_end < opt.rest_energy * w.m * w.g * w.L0) {
     s.end = StageEnd::CameToRest;
   } else {
     s.end = StageEnd::Failed;
@@ -195,8 +195,6 @@ double interval_bound(const std::vector<double>& offsets, const std::vector<Stag
   }
   return 0.0;
 }
-
-constexpr double kFitOffset = 1e-3;  // growth fitted over d <= 1e-3, where T is linear in log d
 
 }  // namespace
 
@@ -277,12 +275,12 @@ StagnationScan scan_stagnation(const WheelParams& w, const InitialState& start, 
     for (const Stage* s : {&scan.above[j], &scan.below[j]}) {
       sum.slide_near = std::max(sum.slide_near, s->slide_near_vertical);
       sum.near_time_max = std::max(sum.near_time_max, s->near_vertical());
-      if (scan.offsets[j] > kFitOffset * (1 + 1e-9)) continue;
+      if (scan.offsets[j] > opt.fit_offset * (1 + 1e-9)) continue;  // 1e-9: the grid's round-off
       x.push_back(x_j);
       slide.push_back(s->slide_near_vertical);
       stick.push_back(s->stick_near_vertical);
     }
-    if (scan.offsets[j] > kFitOffset * (1 + 1e-9)) continue;
+    if (scan.offsets[j] > opt.fit_offset * (1 + 1e-9)) continue;  // 1e-9: the grid's round-off
     xa.push_back(x_j);
     ya.push_back(scan.above[j].near_vertical());
     xb.push_back(x_j);
@@ -294,7 +292,7 @@ StagnationScan scan_stagnation(const WheelParams& w, const InitialState& start, 
   sum.growth_stick = slope_of(x, stick);
   const double growth = std::max(sum.growth_slide, sum.growth_stick);
   // A stagnation grows by a sizeable fraction of the pendulum estimate per decade; below that it is noise.
-  if (growth > 0.25 * sum.estimate_sliding) sum.kind = sum.growth_slide >= sum.growth_stick ? "sliding" : "sticking";
+  if (growth > opt.kind_fraction * sum.estimate_sliding) sum.kind = sum.growth_slide >= sum.growth_stick ? "sliding" : "sticking";
   return scan;
 }
 

@@ -11,7 +11,7 @@
 /// (on or before the vertical) with θ̇ = ω0, and follow the wheel until
 ///   - the next leg (ahead, leg N−1) lands: the wheel passed the vertical (`next_leg_landed`);
 ///   - the leg behind (leg 1) lands: the wheel fell back (`rolled_back`);
-///   - the wheel comes to rest (`came_to_rest`);
+///   - the wheel comes to rest (`came_to_rest`: kinetic energy below `rest_energy` m g L0);
 ///   - `stagnation.time_limit` is reached with the stance leg inside the window: a stagnation
 ///     (`stagnated`, a result, not an error), or outside it (`time_limit`);
 ///   - the simulation stops for another reason (`failed`, its message kept).
@@ -36,8 +36,9 @@
 /// (slip + stick in the window) at ω_c + offset_max (the wheel passes the vertical briskly) is
 /// its *typical* value; the stagnation interval is where T exceeds `factor` times it, its bounds
 /// interpolated linearly in log10 d between the two scan offsets around the threshold. The growth
-/// per decade is the least-squares slope of T against log10(1/d) over d ≤ 1e-3 (the asymptotic
-/// regime), per side.
+/// per decade is the least-squares slope of T against log10(1/d) over d ≤ `fit_offset` (1e-3: the
+/// asymptotic regime), per side; the larger of its slip and stick parts names the kind when it
+/// exceeds `kind_fraction` (0.25) of the sliding estimate.
 #include <string>
 #include <vector>
 
@@ -59,6 +60,9 @@ struct StagnationOptions {
   double offset_min = 1e-9;    ///< smallest |ω0 − ω_c| of the log scan [rad/s]
   int per_decade = 2;          ///< offsets per decade of the log scan
   double factor = 5.0;         ///< the interval: near-vertical time > factor × its typical value
+  double fit_offset = 1e-3;    ///< the growth per decade is fitted over offsets d <= this [rad/s]
+  double kind_fraction = 0.25; ///< a growth above this × the sliding estimate names a kind, else "none"
+  double rest_energy = 1e-9;   ///< came to rest: kinetic energy below this × m g L0 at the end
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -80,6 +84,14 @@ struct StagnationOptions {
     v("stagnation.per_decade", s.per_decade, {.doc = "log scan: offsets per decade", .bounds = closed(1, 100)});
     v("stagnation.factor", s.factor,
       {.doc = "stagnation interval: near-vertical time above this multiple of its typical value", .bounds = above(1)});
+    v("stagnation.fit_offset", s.fit_offset,
+      {.unit = "rad/s", .doc = "growth per decade: least-squares fit over the scan's offsets |omega0 - omega_c| <= this "
+                               "(the asymptotic regime)", .bounds = open(0, 10)});
+    v("stagnation.kind_fraction", s.kind_fraction,
+      {.doc = "kind: the larger growth (slip or stick) names it when above this fraction of the sliding pendulum "
+              "estimate, else none (noise)", .bounds = non_negative()});
+    v("stagnation.rest_energy", s.rest_energy,
+      {.doc = "a stage that stops with kinetic energy below this fraction of m g L0 came to rest", .bounds = open(0, 1)});
   }
 };
 inline Schema stagnation_schema() { return schema_of<StagnationOptions>(); }
@@ -141,7 +153,7 @@ struct StagnationSummary {
   double threshold = 0;         ///< factor × typical_time [s]
   double interval_low = 0, interval_high = 0;  ///< the stagnation interval of ω0 [rad/s]
   double interval_width = 0;    ///< [rad/s]
-  double growth_above = 0;      ///< d(near-vertical time)/d log10(1/d), ω0 > ω_c [s per decade]
+  double growth_above = 0;      ///< d(near-vertical time)/d log10(1/d), ω0 > ω_c, d <= fit_offset [s per decade]
   double growth_below = 0;      ///< the same, ω0 < ω_c [s per decade]
   double growth_slide = 0;      ///< slip part of it, both sides pooled [s per decade]
   double growth_stick = 0;      ///< stick part of it, both sides pooled [s per decade]
@@ -174,9 +186,9 @@ struct StagnationSummary {
     v("interval_high", s.interval_high, {.unit = "rad/s", .doc = "stagnation interval: upper bound", .present = c});
     v("interval_width", s.interval_width, {.unit = "rad/s", .doc = "stagnation interval: width", .present = c});
     v("growth_above", s.growth_above,
-      {.unit = "s", .doc = "near-vertical time per decade of omega0 - omega_c (above), d <= 1e-3", .present = c});
+      {.unit = "s", .doc = "near-vertical time per decade of omega0 - omega_c (above), d <= stagnation.fit_offset", .present = c});
     v("growth_below", s.growth_below,
-      {.unit = "s", .doc = "near-vertical time per decade of omega_c - omega0 (below), d <= 1e-3", .present = c});
+      {.unit = "s", .doc = "near-vertical time per decade of omega_c - omega0 (below), d <= stagnation.fit_offset", .present = c});
     v("growth_slide", s.growth_slide, {.unit = "s", .doc = "slip part of the growth per decade", .present = c});
     v("growth_stick", s.growth_stick, {.unit = "s", .doc = "stick part of the growth per decade", .present = c});
     v("kind", s.kind, {.doc = "sliding, sticking or none: which part of the near-vertical time grows"});
