@@ -463,6 +463,7 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   spec.section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
   spec.period = a.period;
   spec.switch_at_period_doubling = a.switch_at_pd;
+  spec.tuning = rimless::gait_continuation_from_config(s.config);
   const auto t0 = std::chrono::steady_clock::now();
   const rimless::GaitBranch b = rimless::continue_gait(s.config, spec);  // throws ConfigError on bad input
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -566,8 +567,9 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
                                         "for mu_s = mu_k")->required();
   ctc->add_option("--from", ct->from, "start value, where the first fixed point is found (in the key's unit)")->required();
   ctc->add_option("--to", ct->to, "end value (in the key's unit)")->required();
-  ctc->add_option("--step", ct->step, "first arclength step, in the key's unit (default |to - from|/50; the step "
-                                      "adapts up to twice this)");
+  ctc->add_option("--step", ct->step, "first arclength step, in the key's unit (default |to - from| times "
+                                      "analysis.continuation.initial_step, 1/50; the step adapts up to "
+                                      "analysis.continuation.max_step_factor, 2, times this)");
   ctc->add_option("--period", ct->period, "continue period-K orbits: fixed points of the K-th iterate of the map, "
                                           "Newton on it from the transient's state at --from")
       ->check(CLI::Range(1, 64))->capture_default_str();

@@ -404,6 +404,10 @@ expect_usage_error stagnation-kind-fraction "key 'stagnation.kind_fraction' = '-
   --config "$src/configs/rimless-stagnation.yaml" --set stagnation.kind_fraction=-1
 expect_usage_error stagnation-fit-offset "key 'stagnation.fit_offset' = '0'" rimless analysis stagnation \
   --config "$src/configs/rimless-stagnation.yaml" --set stagnation.fit_offset=0
+expect_usage_error continuation-min-step "key 'analysis.continuation.min_step' = '0'" \
+  rimless continuation --model rigid --param rimless.slope --from 0.05 --to 0.15 --set analysis.continuation.min_step=0
+expect_usage_error continuation-min-step-order "key 'analysis.continuation.min_step' = '0.5'" \
+  rimless continuation --model rigid --param rimless.slope --from 0.05 --to 0.15 --set analysis.continuation.min_step=0.5
 # ---- end of the helper-lit block ----
 
 echo "$passed passed, $failed failed"

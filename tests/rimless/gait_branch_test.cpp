@@ -134,6 +134,45 @@ TEST(GaitBranch, PeriodTwoOfAPeriodOneGaitIsItsBranchWithSquaredMultipliers) {
   }
 }
 
+// The continuation's tuning keys (issue 13): the defaults are the former literals; a larger first
+// step (no --step) takes fewer points to the same end, the same closed-form branch; min_step above
+// the first step is refused naming its key.
+TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.I=0.01"});
+  const GaitContinuationOptions t = gait_continuation_from_config(base);
+  EXPECT_EQ(t.initial_step, 0.02);
+  EXPECT_EQ(t.max_step_factor, 2.0);
+  EXPECT_EQ(t.min_step, 1e-9);
+  EXPECT_EQ(t.locate_tolerance, 1e-9);
+  EXPECT_EQ(t.label_tolerance, 1e-7);
+  EXPECT_EQ(t.parameter_step, 6e-6);
+  EXPECT_EQ(t.mode_change_distance, 1e-3);
+  EXPECT_EQ(t.mode_probes, (std::vector<double>{3e-4, 1e-3, 3e-3, 1e-2}));
+  EXPECT_EQ(t.back_distance, 0.05);
+  EXPECT_EQ(t.back_max_points, 200);
+  EXPECT_EQ(t.join_tolerance, 1e-3);
+  GaitContinuationSpec spec{.param = "rimless.slope", .from = 0.05, .to = 0.15};
+  spec.tuning = t;
+  const GaitBranch small = continue_gait(base, spec);
+  spec.tuning = gait_continuation_from_config(
+      resolve_config(rimless_analysis_schema(), std::nullopt,
+                     {"sim.model=rigid", "rimless.I=0.01", "analysis.continuation.initial_step=0.1"}));
+  EXPECT_EQ(spec.tuning.initial_step, 0.1);
+  const GaitBranch large = continue_gait(base, spec);
+  ASSERT_TRUE(small.branch.reached_end && large.branch.reached_end) << small.stop_reason << large.stop_reason;
+  EXPECT_LT(large.branch.points.size(), small.branch.points.size());
+  // Both on the closed-form branch at the end (the same check as the first test, 1e-9).
+  EXPECT_NEAR(large.rows.back().state(large.rows.back().state.size() - 1),
+              small.rows.back().state(small.rows.back().state.size() - 1), 1e-9);
+  try {
+    gait_continuation_from_config(resolve_config(rimless_analysis_schema(), std::nullopt,
+                                                 {"analysis.continuation.min_step=0.5"}));
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "analysis.continuation.min_step");
+  }
+}
+
 TEST(GaitBranch, RefusesBadInput) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
   GaitContinuationSpec spec{.param = "rimless.nothing", .from = 0.05, .to = 0.1};

@@ -112,5 +112,20 @@ TEST(GaitBranchThresholds, SlopeBranchesCrossTheSectionModeChangeFromBothSides) 
   EXPECT_NEAR(at[0], 0.2193, 1e-4);
 }
 
+// analysis.continuation.join_tolerance (issue 13): the two modes' ends at φ ≈ 0.2193 meet to the
+// correctors' tolerance (||F|| <= 1e-10), not to 1e-13: held to that, the branch is not carried
+// over and ends at the boundary, saying so.
+TEST(GaitBranchThresholds, JoinToleranceDecidesTheCrossing) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  GaitContinuationSpec spec{.param = "rimless.slope", .from = 0.2, .to = 0.2355};
+  spec.tuning.join_tolerance = 1e-13;
+  const GaitBranch b = continue_gait(base, spec);
+  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  EXPECT_FALSE(b.branch.reached_end);
+  EXPECT_EQ(b.segments, 1);
+  EXPECT_EQ(b.end, GaitBranchEnd::ModeChangeNotContinued) << b.stop_reason;
+  EXPECT_NEAR(b.rows.back().p, 0.2193, 1e-4);
+}
+
 }  // namespace
 }  // namespace flexgait::rimless

@@ -20,17 +20,18 @@ using detail::MapCache;
 using detail::Segment;
 
 numerics::ContinuationOptions continuation_options(const GaitContinuationSpec& spec, const AnalysisOptions& a) {
+  const GaitContinuationOptions& t = spec.tuning;
   numerics::ContinuationOptions o;
   const double width = std::abs(spec.to - spec.from);
-  o.initial_step = spec.step > 0 ? spec.step / width : 0.02;
-  o.max_step = 2 * o.initial_step;
-  o.min_step = 1e-9;
+  o.initial_step = spec.step > 0 ? spec.step / width : t.initial_step;
+  o.max_step = t.max_step_factor * o.initial_step;
+  o.min_step = t.min_step;
   o.max_points = spec.max_points;
   o.tolerance = a.newton.tolerance;
   o.fd_relative_step = a.newton.fd_relative_step;
   o.parameter_scale = 1;
-  o.locate_tolerance = 1e-9;
-  o.label_tolerance = 1e-7;  // in q: |Δp| <= 1e-7 |to - from|
+  o.locate_tolerance = t.locate_tolerance;
+  o.label_tolerance = t.label_tolerance;  // in q: |Δp| <= label_tolerance |to - from|
   return o;
 }
 
@@ -67,7 +68,7 @@ void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::
     // A change of the section's mode ends the segment when the map arrived in another mode next to
     // its last point (within the parameter's difference step; earlier such failures were passed).
     if (last.branch.reached_end || !cache->arrived || points >= spec.max_points ||
-        std::abs(cache->arrived_q - last.branch.points.back().p) > 1e-3)
+        std::abs(cache->arrived_q - last.branch.points.back().p) > spec.tuning.mode_change_distance)
       break;
     const SectionState to = *cache->arrived;
     numerics::BranchPoint next;
@@ -230,6 +231,18 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
 }
 
 }  // namespace
+
+GaitContinuationOptions gait_continuation_from_config(const Config& config) {
+  const GaitContinuationOptions o = record_from_config<GaitContinuationOptions>(config);
+  check_with_origin(config, [&] {
+    if (o.min_step > o.initial_step)
+      throw ConfigError("analysis.continuation.min_step",
+                        fmt::format("key 'analysis.continuation.min_step' = '{}': above analysis.continuation."
+                                    "initial_step = {}; allowed: a value <= it", format_number(o.min_step),
+                                    format_number(o.initial_step)));
+  });
+  return o;
+}
 
 GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   check_sweep_param(base.schema(), spec.param);

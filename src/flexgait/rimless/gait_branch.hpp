@@ -26,10 +26,74 @@
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/core/record.hpp"
 #include "flexgait/numerics/continuation.hpp"
 #include "flexgait/rimless/poincare.hpp"
 
 namespace flexgait::rimless {
+
+/// The continuation's tuning, keys `analysis.continuation.*` (`rimless continuation`), in the
+/// normalised parameter q = (p - from)/(to - from): the defaults are the values it always used.
+/// Guards against round-off (a division by zero, a grid's last bit) stay literals.
+struct GaitContinuationOptions {
+  double initial_step = 0.02;       ///< first arclength step without --step (0.02: 50 steps over the interval)
+  double max_step_factor = 2;       ///< the step adapts up to this × the first
+  double min_step = 1e-9;           ///< the branch ends where a step this small fails; a segment's end at a
+                                    ///< change of the section's mode is within it of the boundary
+  double locate_tolerance = 1e-9;   ///< folds, period doublings, Neimark-Sacker points located to this in q
+  double label_tolerance = 1e-7;    ///< gait changes located to this in q
+  double parameter_step = 6e-6;     ///< ∂P/∂p by sensitivity: the wheel at p ± this × max(|p|, |to - from|)
+  double mode_change_distance = 1e-3;  ///< a segment ends at a change of the section's mode when the map
+                                       ///< arrived in the other mode within this (in q) of its last point
+  std::vector<double> mode_probes{3e-4, 1e-3, 3e-3, 1e-2};  ///< Newton in the new mode this far (in q) beyond
+                                                            ///< the boundary, each in turn
+  double back_distance = 0.05;      ///< the new mode's branch is continued back to the boundary, at most this behind it
+  int back_max_points = 200;        ///< ... in at most this many points
+  double join_tolerance = 1e-3;     ///< both ends meet: in q, and in the state scaled by its typical size
+
+  template <class Self, class Visit>
+  static void visit_fields(Self& s, Visit& v) {
+    v("analysis.continuation.initial_step", s.initial_step,
+      {.doc = "continuation: first arclength step as a fraction of |to - from| when --step is not given",
+       .bounds = left_open(0, 1)});
+    v("analysis.continuation.max_step_factor", s.max_step_factor,
+      {.doc = "continuation: the step adapts up to this multiple of the first", .bounds = closed(1, 1e6)});
+    v("analysis.continuation.min_step", s.min_step,
+      {.doc = "continuation: the branch ends where a step this small (fraction of |to - from|) fails; a change of "
+              "the section's mode is reached to it",
+       .bounds = open(0, 1)});
+    v("analysis.continuation.locate_tolerance", s.locate_tolerance,
+      {.doc = "continuation: folds, period doublings and Neimark-Sacker points located to this fraction of "
+              "|to - from|",
+       .bounds = open(0, 1)});
+    v("analysis.continuation.label_tolerance", s.label_tolerance,
+      {.doc = "continuation: gait changes located to this fraction of |to - from|", .bounds = open(0, 1)});
+    v("analysis.continuation.parameter_step", s.parameter_step,
+      {.doc = "continuation: dP/dp by sensitivity from the wheel at p +- this x max(|p|, |to - from|)",
+       .bounds = open(0, 0.1)});
+    v("analysis.continuation.mode_change_distance", s.mode_change_distance,
+      {.doc = "continuation: a segment ends at a change of the section's mode when the map arrived in the other mode "
+              "within this fraction of |to - from| of its last point",
+       .bounds = open(0, 1)});
+    v("analysis.continuation.mode_probes", s.mode_probes,
+      {.doc = "continuation: at a change of the section's mode, Newton in the new mode this far beyond the boundary "
+              "(fractions of |to - from|), each in turn",
+       .bounds = left_open(0, 1)});
+    v("analysis.continuation.back_distance", s.back_distance,
+      {.doc = "continuation: the new mode's branch is continued back to the boundary, at most this fraction of "
+              "|to - from| behind it",
+       .bounds = closed(0, 1)});
+    v("analysis.continuation.back_max_points", s.back_max_points,
+      {.doc = "continuation: points of that backward branch, at most", .bounds = closed(2, 1000000)});
+    v("analysis.continuation.join_tolerance", s.join_tolerance,
+      {.doc = "continuation: the two modes' branches join when their ends meet to this, in q and in the scaled "
+              "state",
+       .bounds = open(0, 1)});
+  }
+};
+inline Schema gait_continuation_schema() { return schema_of<GaitContinuationOptions>(); }
+/// The tuning of a resolved configuration; throws ConfigError (key named) if min_step exceeds initial_step.
+GaitContinuationOptions gait_continuation_from_config(const Config& config);
 
 struct GaitContinuationSpec {
   std::string param;                 ///< a real configuration key, or "rimless.mu" (μ_s = μ_k)
@@ -42,6 +106,7 @@ struct GaitContinuationSpec {
   /// ∂P/∂p by sensitivity (the variational equations' parameter column) where the map has an
   /// exact Jacobian and the key is a wheel parameter; false: central differences of the map.
   bool parameter_sensitivity = true;
+  GaitContinuationOptions tuning{};  ///< analysis.continuation.* (gait_continuation_from_config)
 };
 
 /// One row of branch.csv: a point of the branch or a special point on it.

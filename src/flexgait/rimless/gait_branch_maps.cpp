@@ -33,7 +33,7 @@ std::optional<ParameterDirection> MapCache::direction_at(double q) const {
   // Not for a key the map's wheel does not depend on (an initial state's, a solver's).
   if (!spec.parameter_sensitivity || !spec.param.starts_with("rimless.")) return std::nullopt;
   const double width = std::abs(spec.to - spec.from);
-  const double hq = 6e-6 * std::max(std::abs(value(q)), width) / width;
+  const double hq = spec.tuning.parameter_step * std::max(std::abs(value(q)), width) / width;
   try {
     const double up = q + hq, down = q - hq;
     return ParameterDirection{wheel_at(up), wheel_at(down), 0.5 * (up - down)};
@@ -174,7 +174,8 @@ std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& c
   numerics::BranchPoint beyond;
   std::string why = "no step";
   bool found = false;
-  for (const double dq : {3e-4, 1e-3, 3e-3, 1e-2}) {
+  const GaitContinuationOptions& tuning = cache->spec.tuning;
+  for (const double dq : tuning.mode_probes) {
     if (qa + dq > 1.0) break;
     if (auto e = numerics::fixed_point_at(g, guess.z, qa + dq, o, beyond)) {
       why = *e;
@@ -187,16 +188,17 @@ std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& c
   // Back to the boundary in the new mode: the new segment's own end there.
   numerics::ContinuationOptions back = o;
   back.detect = false;
-  back.max_points = 200;
+  back.max_points = tuning.back_max_points;
   back.initial_step = std::min(o.initial_step, 0.5 * (beyond.p - qa));
-  const numerics::Branch b = numerics::continue_fixed_points(g, beyond.z, beyond.p, std::max(0.0, qa - 0.05), back);
+  const numerics::Branch b =
+      numerics::continue_fixed_points(g, beyond.z, beyond.p, std::max(0.0, qa - tuning.back_distance), back);
   if (!b.failure.empty() || b.points.empty()) return "continuing the new mode back to the boundary: " + b.failure;
   const numerics::BranchPoint& end = b.points.back();
-  // Continuous: both ends meet (to a few difference steps in q, the states to 1e-3 of their scale).
+  // Continuous: both ends meet (to join_tolerance, a few difference steps, in q and in the scaled states).
   const Eigen::VectorXd scale = to.scale(cache->wheel_at(end.p));
   const double gap_q = std::abs(end.p - qa);
   const double gap_z = (end.z - guess.z).cwiseQuotient(scale).lpNorm<Eigen::Infinity>();
-  if (gap_q > 1e-3 || gap_z > 1e-3)
+  if (gap_q > tuning.join_tolerance || gap_z > tuning.join_tolerance)
     return fmt::format("the fixed point is not continuous there: the new mode's ({}) branch ends at {} = {} with a "
                        "state {} (scaled) away ({})",
                        mode_text(to), cache->spec.param, format_number(cache->value(end.p)), format_number(gap_z),

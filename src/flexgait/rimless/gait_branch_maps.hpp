@@ -35,7 +35,7 @@ struct MapCache {
   /// The map at q, or why the parameter value is not valid. A map of a wheel parameter (a
   /// rimless.* key) carries its ParameterDirection in q (∂P/∂q by sensitivity) when q ± h are valid.
   PoincareMap* at(double q, std::string& why);
-  /// The wheel at q ± h (h ≈ ε^(1/3) relative in p), or nothing when the key is not a wheel
+  /// The wheel at q ± h (h = analysis.continuation.parameter_step ≈ ε^(1/3) relative in p), or nothing when the key is not a wheel
   /// parameter or either value is not valid.
   std::optional<ParameterDirection> direction_at(double q) const;
 };

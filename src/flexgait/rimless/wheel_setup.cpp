@@ -7,6 +7,7 @@
 #include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/gait_branch.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 
 namespace flexgait::rimless {
@@ -14,6 +15,7 @@ namespace flexgait::rimless {
 Schema rimless_analysis_schema() {
   Schema s = rimless_schema();
   s.merge(analysis_schema()).merge(paper_analysis_schema()).merge(orbit_diagram_schema()).merge(basin_schema());
+  s.merge(gait_continuation_schema());  // analysis.* together: config.yaml has one analysis: block
   s.merge(stagnation_schema());
   return s;
 }
