@@ -100,7 +100,7 @@ int fixed_point(const FixedPointArgs& a, const CLI::App& cmd) {
   if (a.run.json) fmt::print("{}", json);
   if (!rep.converged) {  // a named failure: exit 1, the report (state and multipliers null) kept
     fmt::print(stderr, "error: no fixed point ({} wheel, {} section): {}; report in {}\n", s.config.choice("sim.model"),
-               a.section, one_line(rep.failure, 1000), (dir.path() / "fixed_point.json").string());
+               a.section, one_line(rep.failure(), 1000), (dir.path() / "fixed_point.json").string());
     return 1;
   }
   if (a.run.json) return 0;

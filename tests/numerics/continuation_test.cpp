@@ -59,7 +59,7 @@ TEST(Continuation, LogisticPeriodDoublingAtThreeAndItsPeriodTwoBranch) {
     const MapFamily f = logistic(exact);
     ContinuationOptions opt;
     const Branch b = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.55), 2.5, 3.4, opt);
-    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    ASSERT_FALSE(b.start_failure) << b.failure();
     EXPECT_TRUE(b.reached_end) << b.stop_reason;
     EXPECT_EQ(b.end, BranchEnd::ReachedEnd) << b.stop_reason;
     EXPECT_DOUBLE_EQ(b.points.back().p, 3.4);
@@ -77,7 +77,7 @@ TEST(Continuation, LogisticPeriodDoublingAtThreeAndItsPeriodTwoBranch) {
 
     const MapFamily f2 = iterate(f, 2);
     const Branch b2 = switch_at_period_doubling(f, pd, 3.5, opt);
-    ASSERT_TRUE(b2.failure.empty()) << b2.failure;
+    ASSERT_FALSE(b2.start_failure) << b2.failure();
     EXPECT_EQ(b2.period, 2);
     EXPECT_TRUE(b2.reached_end) << b2.stop_reason;
     expect_fixed_points(f2, b2, opt.tolerance);
@@ -112,7 +112,7 @@ TEST(Continuation, FoldOfTheNormalFormIsPassedAndLocated) {
   };
   ContinuationOptions opt;
   const Branch b = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.45), 0.25, -0.25, opt);
-  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  ASSERT_FALSE(b.start_failure) << b.failure();
   EXPECT_FALSE(b.reached_end);
   EXPECT_EQ(b.end, BranchEnd::TurnedBack) << b.stop_reason;
   expect_fixed_points(f, b, opt.tolerance);
@@ -146,7 +146,7 @@ TEST(Continuation, DelayedLogisticNeimarkSackerAtTwo) {
       };
     ContinuationOptions opt;
     const Branch b = continue_fixed_points(f, Eigen::Vector2d(0.3, 0.35), 1.5, 2.3, opt);
-    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    ASSERT_FALSE(b.start_failure) << b.failure();
     EXPECT_TRUE(b.reached_end) << b.stop_reason;
     EXPECT_EQ(b.end, BranchEnd::ReachedEnd) << b.stop_reason;
     expect_fixed_points(f, b, opt.tolerance);
@@ -170,7 +170,7 @@ TEST(Continuation, TranscriticalBranchPoint) {
     return std::nullopt;
   };
   const Branch b = continue_fixed_points(f, Eigen::VectorXd::Zero(1), -0.47, 0.5, {});
-  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  ASSERT_FALSE(b.start_failure) << b.failure();
   EXPECT_TRUE(b.reached_end) << b.stop_reason;
   ASSERT_EQ(kinds(b), std::vector<SpecialKind>{SpecialKind::BranchPoint}) << b.stop_reason;
   EXPECT_NEAR(b.special[0].point.p, 0, kLocated);
@@ -183,7 +183,7 @@ TEST(Continuation, LabelChangesAreLocatedByBisection) {
   MapFamily f = logistic(false);
   f.label = [](const Eigen::VectorXd& z, double) { return z(0) < 0.7 ? std::string("low") : std::string("high"); };
   const Branch b = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.6), 2.5, 3.4, {});
-  ASSERT_TRUE(b.failure.empty()) << b.failure;
+  ASSERT_FALSE(b.start_failure) << b.failure();
   ASSERT_EQ(kinds(b), (std::vector<SpecialKind>{SpecialKind::PeriodDoubling, SpecialKind::LabelChange}));
   const SpecialPoint& change = b.special[1];
   EXPECT_EQ(change.label_before, "low");
@@ -205,15 +205,18 @@ TEST(Continuation, PeriodKOrbitsByNewtonOnTheIterate) {
 
 TEST(Continuation, ReportsWhyItCannotStart) {
   const MapFamily f = logistic(false);
-  EXPECT_NE(continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.5), 2.0, 2.0, {}).failure.find("empty"),
-            std::string::npos);
+  const Branch empty = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 0.5), 2.0, 2.0, {});
+  EXPECT_EQ(empty.start_failure, StartFailure::EmptyInterval);
+  EXPECT_EQ(empty.end, BranchEnd::NotStarted);
+  EXPECT_EQ(empty.failure(), "the parameter interval is empty (from 2 to 2)");  // the words of before
   MapFamily shift;
   shift.map = [](const Eigen::VectorXd& z, double p, Eigen::VectorXd& out) -> std::optional<std::string> {
     out = z.array() + 1 + p * p;  // no fixed point anywhere
     return std::nullopt;
   };
   const Branch b = continue_fixed_points(shift, Eigen::VectorXd::Zero(1), 0, 1, {});
-  EXPECT_NE(b.failure.find("no fixed point"), std::string::npos) << b.failure;
+  EXPECT_EQ(b.start_failure, StartFailure::NoFixedPoint) << b.failure();
+  EXPECT_TRUE(b.failure().starts_with("no fixed point at p = 0 from the initial guess: ")) << b.failure();
   EXPECT_TRUE(b.points.empty());
   EXPECT_EQ(b.end, BranchEnd::NotStarted);
   MapFamily failing;
@@ -223,7 +226,7 @@ TEST(Continuation, ReportsWhyItCannotStart) {
     return std::nullopt;
   };
   const Branch c = continue_fixed_points(failing, Eigen::VectorXd::Zero(1), 0, 1, {});
-  ASSERT_TRUE(c.failure.empty()) << c.failure;
+  ASSERT_FALSE(c.start_failure) << c.failure();
   EXPECT_FALSE(c.reached_end);
   EXPECT_EQ(c.end, BranchEnd::NoStep) << c.stop_reason;
   EXPECT_NE(c.stop_reason.find("fell over"), std::string::npos) << c.stop_reason;  // the map's own words, passed on

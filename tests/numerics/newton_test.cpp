@@ -19,7 +19,7 @@ TEST(Newton, AffineMapFixedPointJacobianAndMultipliers) {
   NewtonOptions tight;
   tight.tolerance = 1e-13;
   const NewtonResult r = newton_fixed_point(P, Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), tight);
-  ASSERT_TRUE(r.converged) << r.failure;
+  ASSERT_TRUE(r.converged) << r.failure();
   const Eigen::Vector3d exact = (Eigen::Matrix3d::Identity() - A).lu().solve(b);
   EXPECT_LE((r.z - exact).lpNorm<Eigen::Infinity>(), 1e-12);
   EXPECT_LE(r.iterations, 2);  // exact Jacobian up to round-off: one step
@@ -53,7 +53,10 @@ TEST(Newton, ReportsMapsWithoutFixedPoints) {
   };
   const NewtonResult r = newton_fixed_point(shift, Eigen::VectorXd::Zero(2), Eigen::VectorXd::Ones(2));
   EXPECT_FALSE(r.converged);
-  EXPECT_EQ(r.failure_reason, NewtonFailure::Singular) << r.failure;
+  EXPECT_EQ(r.failure_reason, NewtonFailure::Singular) << r.failure();
+  EXPECT_EQ(r.failure_detail, "");
+  // The words files show, made from the reason (issue 13: the bytes of before).
+  EXPECT_EQ(r.failure(), "singular Newton matrix (a multiplier equals 1): no isolated fixed point");
 
   const VectorMap partial = [](const Eigen::VectorXd& z, Eigen::VectorXd& out) -> std::optional<std::string> {
     if (z(0) > 0.5) return std::string("fell over");
@@ -62,8 +65,24 @@ TEST(Newton, ReportsMapsWithoutFixedPoints) {
   };
   const NewtonResult r2 = newton_fixed_point(partial, Eigen::VectorXd::Constant(1, 0.1), Eigen::VectorXd::Ones(1));
   EXPECT_FALSE(r2.converged);
-  EXPECT_EQ(r2.failure_reason, NewtonFailure::LeftBasin) << r2.failure;
-  EXPECT_NE(r2.failure.find("fell over"), std::string::npos) << r2.failure;  // the map's own words, passed on
+  EXPECT_EQ(r2.failure_reason, NewtonFailure::LeftBasin) << r2.failure();
+  EXPECT_EQ(r2.failure_detail, "fell over");  // the map's own words, passed on
+  EXPECT_EQ(r2.failure(), "left the basin: fell over");
+}
+
+// Every reason has a sentence, a name and its words; a converged result has none.
+TEST(Newton, FailureWordsComeFromTheReasonTable) {
+  for (const NewtonFailureEntry& e : kNewtonFailureTable) {
+    EXPECT_EQ(name_of(e.reason), e.name);
+    EXPECT_FALSE(newton_failure_text(e.reason, "x").empty());
+  }
+  EXPECT_EQ(newton_failure_text(NewtonFailure::NoConvergence, "30 iterations (residual 0.000001)"),
+            "no convergence in 30 iterations (residual 0.000001)");
+  EXPECT_EQ(newton_failure_text(NewtonFailure::DifferenceStep, "Jacobian column 0: fell"),
+            "a finite-difference step left the basin (Jacobian column 0: fell)");
+  EXPECT_EQ(sentence_with_detail("no detail here", "d"), "no detail here (d)");
+  EXPECT_EQ(sentence_with_detail("no detail here", ""), "no detail here");
+  EXPECT_EQ(NewtonResult{}.failure(), "");
 }
 
 }  // namespace

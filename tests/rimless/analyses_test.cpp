@@ -122,7 +122,7 @@ TEST(PaperAnalysisOptions, EnergyLogIsOneStep) {
   const Config at = configured({"rimless.mu_s=0.6", "rimless.mu_k=0.6"});
   const FixedPointReport r = find_fixed_point(wheel_from_config(at), simulation_from_config(at), analysis_from_config(at),
                                               Model::Flexible, Section::Touchdown, initial_from_config(at));
-  ASSERT_TRUE(r.converged) << r.failure;
+  ASSERT_TRUE(r.converged) << r.failure();
   EXPECT_LE(t_last, r.period);
   EXPECT_GT(t_last, 0.5 * r.period);
 }

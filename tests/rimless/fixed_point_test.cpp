@@ -18,9 +18,9 @@ FixedPointReport search(const std::vector<std::string>& sets) {
 
 void expect_named_failure(const FixedPointReport& r) {
   EXPECT_FALSE(r.converged);
-  EXPECT_FALSE(r.failure.empty());
+  EXPECT_FALSE(r.failure().empty());
   // One reason: the transient's (no initial guess) or Newton's.
-  EXPECT_NE(r.transient_failure.has_value(), r.newton_failure.has_value()) << r.failure;
+  EXPECT_NE(r.transient_failure.has_value(), r.newton_failure.has_value()) << r.failure();
   EXPECT_TRUE(r.multipliers.empty());
   EXPECT_TRUE(r.multipliers_fd.empty());
   EXPECT_EQ(r.jacobian.size(), 0);
@@ -30,7 +30,7 @@ void expect_named_failure(const FixedPointReport& r) {
   const auto j = nlohmann::json::parse(fixed_point_json(r));
   for (const char* key : {"state", "multipliers", "multipliers_fd", "gait", "period", "speed", "dissipated_per_cycle"})
     EXPECT_TRUE(j[key].is_null()) << key;
-  EXPECT_EQ(j["failure"].get<std::string>(), r.failure);
+  EXPECT_EQ(j["failure"].get<std::string>(), r.failure());
 }
 
 // Issue 17.1: the transient never reaches the section, so Newton gets no starting point (the wheel
@@ -40,9 +40,9 @@ TEST(FixedPoint, NoStartingPointIsANamedFailure) {
   const FixedPointReport r = search({"initial.omega=-1"});
   expect_named_failure(r);
   EXPECT_EQ(r.point.z.size(), 0);
-  ASSERT_TRUE(r.transient_failure.has_value()) << r.failure;  // no initial guess: the transient rolled back
-  EXPECT_EQ(r.transient_failure->reason, FailureReason::RolledBack) << r.failure;
-  EXPECT_EQ(r.failure, "no initial guess: " + r.transient_failure->text());
+  ASSERT_TRUE(r.transient_failure.has_value()) << r.failure();  // no initial guess: the transient rolled back
+  EXPECT_EQ(r.transient_failure->reason, FailureReason::RolledBack) << r.failure();
+  EXPECT_EQ(r.failure(), "no initial guess: " + r.transient_failure->text());
 }
 
 // Issue 21.6: a finite-difference column fails half-way through the Jacobian; its multipliers were

@@ -71,7 +71,7 @@ TEST(GaitBranch, FlexibleWheelLocatesTheStickToSlipStickChange) {
     const SimulationOptions sim = simulation_from_config(c);
     const FixedPointReport fp = find_fixed_point(wheel_from_config(c), sim, analysis_from_config(c), sim.model,
                                                  Section::Touchdown, initial_from_config(c));
-    ASSERT_TRUE(fp.converged) << fp.failure;
+    ASSERT_TRUE(fp.converged) << fp.failure();
     EXPECT_EQ(fp.gait, gait) << "mu = " << change->p + dp;
   }
 }
@@ -125,7 +125,7 @@ TEST(GaitBranch, PeriodTwoOfAPeriodOneGaitIsItsBranchWithSquaredMultipliers) {
     const Config c = sweep_point_config(base, SweepSpec{spec.param, r.p, r.p, 1}, 0);
     const SimulationOptions sim = simulation_from_config(c);
     const FixedPointReport fp = find_fixed_point_from(wheel_from_config(c), sim, analysis_from_config(c), r.section);
-    ASSERT_TRUE(fp.converged) << fp.failure;
+    ASSERT_TRUE(fp.converged) << fp.failure();
     EXPECT_LE((fp.point.z - r.point.z).lpNorm<Eigen::Infinity>(), 1e-8) << "slope " << r.p;
     ASSERT_EQ(fp.multipliers.size(), r.point.multipliers.size());
     for (std::size_t k = 0; k < fp.multipliers.size(); ++k)

@@ -55,7 +55,7 @@ TEST(OrbitDiagram, FlexibleWheelRecordsNewtonsFixedPoint) {
     const SimulationOptions sim = simulation_from_config(c);
     const FixedPointReport fp = find_fixed_point(wheel_from_config(c), sim, analysis_from_config(c), sim.model,
                                                  Section::Touchdown, initial_from_config(c));
-    ASSERT_TRUE(fp.converged) << fp.failure;
+    ASSERT_TRUE(fp.converged) << fp.failure();
     ASSERT_TRUE(fp.stable);
     const std::vector<std::string> z = split_text(f[5], ';');
     ASSERT_EQ(z.size(), static_cast<std::size_t>(fp.point.z.size())) << rows[r].text;

@@ -53,7 +53,7 @@ const std::vector<Parameter>& parameters() {
 double sensitivity_error(const WheelParams& w, SimulationOptions sim, Section section, const Parameter& p,
                          double H_relative = 3e-5) {
   const FixedPointReport r = find_fixed_point(w, sim, AnalysisOptions{}, Model::Flexible, section, {});
-  EXPECT_TRUE(r.converged) << r.failure;
+  EXPECT_TRUE(r.converged) << r.failure();
   if (!r.converged) return INFINITY;
   const double value = std::string(p.key) == "rimless.mu" ? w.mu_k : p.field(const_cast<WheelParams&>(w));
   SimulationOptions map_opt = sim;

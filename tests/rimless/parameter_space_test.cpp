@@ -156,7 +156,7 @@ TEST(ParameterSpace, FixedPointSectionIsTheNextLegNotABounce) {
   SimulationOptions sim;
   AnalysisOptions opt;
   const FixedPointReport rep = find_fixed_point(w, sim, opt, Model::Flexible, Section::Touchdown, InitialState{1.5395});
-  ASSERT_TRUE(rep.converged) << rep.failure;
+  ASSERT_TRUE(rep.converged) << rep.failure();
   EXPECT_FALSE(rep.point.flight);
   EXPECT_NEAR(rep.point.z(rep.point.z.size() - 1), 1.872458, 1e-6);  // θ̇, the last section coordinate
   EXPECT_TRUE(rep.stable);

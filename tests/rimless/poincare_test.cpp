@@ -23,7 +23,7 @@ TEST(Poincare, RigidWheelFixedPointIsAnalytic) {
     const RigidStepMap exact = rigid_step_map(w);
     const FixedPointReport r =
         find_fixed_point(w, testing::run_options(1), analysis(), Model::Rigid, Section::Touchdown, InitialState{});
-    ASSERT_TRUE(r.converged) << r.failure;
+    ASSERT_TRUE(r.converged) << r.failure();
     EXPECT_NEAR(r.point.z(0), exact.fixed_point(), 1e-9) << legs << " legs";
     ASSERT_EQ(r.multipliers.size(), 1u);
     EXPECT_NEAR(r.multipliers[0].real(), std::pow(std::cos(2 * w.alpha()), 2), 1e-9) << legs << " legs";
@@ -46,7 +46,7 @@ TEST_P(FlexibleFixedPoint, MapsToItselfAndAttractsPerturbations) {
   const WheelParams w = testing::measured_wheel(GetParam().mu);
   const SimulationOptions sim = testing::run_options(1);
   const FixedPointReport r = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, InitialState{});
-  ASSERT_TRUE(r.converged) << r.failure;
+  ASSERT_TRUE(r.converged) << r.failure();
   EXPECT_EQ(r.gait, GetParam().label);
   SimulationOptions map_opt = sim;  // exactly the map Newton solved on
   map_opt.rtol = analysis().rtol;
@@ -88,7 +88,7 @@ TEST(Poincare, VariationalJacobianMatchesFiniteDifferences) {
       const WheelParams w = testing::measured_wheel(mu);
       const SimulationOptions sim = testing::run_options(1);
       const auto r = find_fixed_point(w, sim, analysis(), Model::Flexible, section, {});
-      ASSERT_TRUE(r.converged) << r.failure;
+      ASSERT_TRUE(r.converged) << r.failure();
       ASSERT_TRUE(r.jacobian_exact) << r.jacobian_note;
       SimulationOptions map_opt = sim;
       map_opt.rtol = 1e-13;
@@ -114,7 +114,7 @@ TEST(Poincare, Dop853FixedPointsAndJacobiansAgreeWithAdams) {
     const auto adams = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, {});
     sim.method = numerics::OdeMethod::Dop853;
     const auto dop = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, {});
-    ASSERT_TRUE(adams.converged && dop.converged) << adams.failure << dop.failure;
+    ASSERT_TRUE(adams.converged && dop.converged) << adams.failure() << dop.failure();
     ASSERT_TRUE(dop.jacobian_exact) << dop.jacobian_note;
     EXPECT_EQ(adams.gait, dop.gait);
     EXPECT_LE((adams.point.z - dop.point.z).lpNorm<Eigen::Infinity>(), 1e-8) << "mu = " << mu;
@@ -131,7 +131,7 @@ TEST(Poincare, MultipliersDoNotDependOnTheSection) {
     const WheelParams w = testing::measured_wheel(mu);
     const auto td = find_fixed_point(w, testing::run_options(1), analysis(), Model::Flexible, Section::Touchdown, {});
     const auto up = find_fixed_point(w, testing::run_options(1), analysis(), Model::Flexible, Section::Upright, {});
-    ASSERT_TRUE(td.converged && up.converged) << td.failure << up.failure;
+    ASSERT_TRUE(td.converged && up.converged) << td.failure() << up.failure();
     // Central differences at rtol 1e-12: the dominant multiplier agrees to 1e-6.
     EXPECT_NEAR(std::abs(td.multipliers[0]), std::abs(up.multipliers[0]), 1e-6) << "mu = " << mu;
     EXPECT_NEAR(td.period, up.period, 1e-9);
@@ -154,7 +154,7 @@ TEST(Poincare, ReportsWhenThereIsNoFixedPoint) {
   const WheelParams w = testing::measured_wheel(0.05);
   const auto r = find_fixed_point(w, testing::run_options(1), analysis(), Model::Flexible, Section::Touchdown, {});
   EXPECT_FALSE(r.converged);
-  EXPECT_FALSE(r.failure.empty());
+  EXPECT_FALSE(r.failure().empty());
 }
 
 }  // namespace

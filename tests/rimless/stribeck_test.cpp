@@ -199,7 +199,7 @@ TEST_P(StribeckFixedPoint, MapsToItselfAndJacobianMatchesCentralDifferences) {
   InitialState start;
   start.omega = 1.5;
   const FixedPointReport r = find_fixed_point(w, sim, analysis(), Model::Flexible, Section::Touchdown, start);
-  ASSERT_TRUE(r.converged) << describe(law) << ": " << r.failure;
+  ASSERT_TRUE(r.converged) << describe(law) << ": " << r.failure();
   EXPECT_EQ(r.gait, gait) << describe(law);
   SimulationOptions map_opt = map_options(sim, analysis());
   PoincareMap map(w, map_opt, Model::Flexible, Section::Touchdown);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "flexgait/numerics/newton.hpp"
 
@@ -498,13 +499,21 @@ std::optional<std::string> fixed_point_at(const MapFamily& f, const Eigen::Vecto
   return std::nullopt;
 }
 
+std::string Branch::failure() const {
+  if (!start_failure) return {};
+  for (const StartFailureEntry& e : kStartFailureTable)
+    if (e.reason == *start_failure) return sentence_with_detail(e.sentence, start_detail);
+  throw std::logic_error("StartFailure without a sentence");
+}
+
 Branch continue_fixed_points(const MapFamily& f, const Eigen::VectorXd& z0, double p0, double p_end,
                              const ContinuationOptions& opt) {
   Branch branch;
   branch.period = f.period;
   const Eigen::Index n = z0.size();
   if (!(p_end != p0) || !std::isfinite(p0) || !std::isfinite(p_end)) {
-    branch.failure = "the parameter interval is empty (from " + number(p0) + " to " + number(p_end) + ")";
+    branch.start_failure = StartFailure::EmptyInterval;
+    branch.start_detail = "from " + number(p0) + " to " + number(p_end);
     return branch;
   }
   Eigen::VectorXd x0(n + 1);
@@ -513,7 +522,8 @@ Branch continue_fixed_points(const MapFamily& f, const Eigen::VectorXd& z0, doub
   const Eigen::VectorXd towards = (p_end > p0 ? 1.0 : -1.0) * parameter_direction(n);
   Solved start;
   if (auto e = correct(f, x0, towards, 0.0, opt, start)) {
-    branch.failure = "no fixed point at p = " + number(p0) + " from the initial guess: " + *e;
+    branch.start_failure = StartFailure::NoFixedPoint;
+    branch.start_detail = number(p0) + " from the initial guess: " + *e;
     return branch;
   }
   branch.points.push_back(make_point(f, start, 0.0));
@@ -528,11 +538,12 @@ Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, dou
   Branch branch;
   branch.period = g.period;
   if (pd.kind != SpecialKind::PeriodDoubling || pd.eigenvector.size() != pd.point.z.size()) {
-    branch.failure = "branch switching needs a period doubling with its eigenvector";
+    branch.start_failure = StartFailure::NoPeriodDoubling;
     return branch;
   }
   if (!(p_end != pd.point.p)) {
-    branch.failure = "the parameter interval is empty (p_end is the period doubling's parameter)";
+    branch.start_failure = StartFailure::EmptyInterval;
+    branch.start_detail = "p_end is the period doubling's parameter";
     return branch;
   }
   const Eigen::Index n = pd.point.z.size();
@@ -542,7 +553,8 @@ Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, dou
   // The period-doubling point itself, a fixed point of P² (the branch's root).
   Solved root;
   if (auto e = correct(g, x_pd, t_switch, 0.0, opt, root)) {
-    branch.failure = "the period-doubling point is not a fixed point of P²: " + *e;
+    branch.start_failure = StartFailure::PeriodDoublingNotFixed;
+    branch.start_detail = *e;
     return branch;
   }
   Solved first;
@@ -560,7 +572,8 @@ Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, dou
     why = *e;
     ds /= 2;
     if (ds < opt.min_step) {
-      branch.failure = "no period-2 point next to the period doubling at p = " + number(pd.point.p) + ": " + why;
+      branch.start_failure = StartFailure::NoPeriodTwoPoint;
+      branch.start_detail = number(pd.point.p) + ": " + why;
       return branch;
     }
   }

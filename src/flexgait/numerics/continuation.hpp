@@ -42,6 +42,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "flexgait/core/enum_names.hpp"
@@ -120,7 +121,7 @@ struct SpecialPoint {
 
 /// How a branch ended (Branch::end); Branch::stop_reason says it in words, with its numbers.
 enum class BranchEnd {
-  NotStarted,  ///< not even the start converged (Branch::failure says why)
+  NotStarted,  ///< not even the start converged (Branch::start_failure says why)
   ReachedEnd,  ///< reached p = p_end
   TurnedBack,  ///< left the parameter interval at the other bound
   NoStep,      ///< no predictor-corrector step of min_step or more
@@ -140,6 +141,38 @@ constexpr std::array<EnumName<BranchEnd>, 8> enum_names(BranchEnd) {
            {BranchEnd::OtherSide, "other_side"}}};
 }
 
+/// Why a branch did not start (Branch::start_failure, with Branch::start_detail; Branch::failure()
+/// says it in words: the sentence with the detail in place of "{}", as newton.hpp's reasons).
+enum class StartFailure {
+  EmptyInterval,           ///< p_end = p0 (detail: the interval)
+  NoFixedPoint,            ///< the corrector found no fixed point at p0 (detail: p0, the corrector's words)
+  NoPeriodDoubling,        ///< branch switching was given no period doubling with its eigenvector
+  PeriodDoublingNotFixed,  ///< the period-doubling point is not a fixed point of P² (detail: why)
+  NoPeriodTwoPoint,        ///< no period-2 point next to the period doubling down to min_step (detail: p, why)
+};
+
+struct StartFailureEntry {
+  StartFailure reason;
+  std::string_view name;      ///< snake_case, for JSON and tests
+  std::string_view sentence;  ///< the text ("{}": where the detail goes)
+};
+
+inline constexpr std::array<StartFailureEntry, 5> kStartFailureTable{{
+    {StartFailure::EmptyInterval, "empty_interval", "the parameter interval is empty ({})"},
+    {StartFailure::NoFixedPoint, "no_fixed_point", "no fixed point at p = {}"},
+    {StartFailure::NoPeriodDoubling, "no_period_doubling", "branch switching needs a period doubling with its eigenvector"},
+    {StartFailure::PeriodDoublingNotFixed, "period_doubling_not_fixed",
+     "the period-doubling point is not a fixed point of P²: {}"},
+    {StartFailure::NoPeriodTwoPoint, "no_period_two_point", "no period-2 point next to the period doubling at p = {}"},
+}};
+
+constexpr std::array<EnumName<StartFailure>, kStartFailureTable.size()> enum_names(StartFailure) {
+  std::array<EnumName<StartFailure>, kStartFailureTable.size()> out{};
+  for (std::size_t i = 0; i < kStartFailureTable.size(); ++i)
+    out[i] = {kStartFailureTable[i].reason, kStartFailureTable[i].name};
+  return out;
+}
+
 struct Branch {
   int period = 1;
   std::vector<BranchPoint> points;
@@ -147,7 +180,11 @@ struct Branch {
   bool reached_end = false;           ///< the branch reached p = p_end
   BranchEnd end = BranchEnd::NotStarted;  ///< how it ended
   std::string stop_reason;  ///< why it ended (also when reached_end), then notes (a special point not located)
-  std::string failure;                ///< nonempty when not even the start converged
+  std::optional<StartFailure> start_failure;  ///< set when not even the start converged (end = NotStarted)
+  std::string start_detail;                   ///< its detail
+
+  /// Why the branch did not start, in words; "" when it started.
+  std::string failure() const;
 };
 
 /// Newton on F(z, p) = 0 at fixed p from z0 (the corrector (C2) with t₀ = e_p, Δs = 0): a fixed

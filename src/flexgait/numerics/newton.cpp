@@ -2,8 +2,41 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 namespace flexgait::numerics {
+
+std::string sentence_with_detail(std::string_view sentence, std::string_view detail) {
+  std::string text;
+  if (const auto at = sentence.find("{}"); at != std::string_view::npos) {
+    text.append(sentence.substr(0, at)).append(detail).append(sentence.substr(at + 2));
+  } else {
+    text = sentence;
+    if (!detail.empty()) text.append(" (").append(detail).append(")");
+  }
+  return text;
+}
+
+std::string newton_failure_text(NewtonFailure reason, std::string_view detail) {
+  for (const NewtonFailureEntry& e : kNewtonFailureTable)
+    if (e.reason == reason) return sentence_with_detail(e.sentence, detail);
+  throw std::logic_error("NewtonFailure without a sentence");
+}
+
+std::string NewtonResult::failure() const {
+  return failure_reason ? newton_failure_text(*failure_reason, failure_detail) : std::string();
+}
+
+namespace {
+
+// Stops `r` with `reason` and its detail.
+void fail(NewtonResult& r, NewtonFailure reason, std::string detail = {}) {
+  r.failure_reason = reason;
+  r.failure_detail = std::move(detail);
+}
+
+}  // namespace
 
 std::optional<std::string> central_difference_jacobian(const VectorMap& P, const Eigen::VectorXd& z,
                                                        const Eigen::VectorXd& h, Eigen::MatrixXd& J) {
@@ -28,8 +61,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
   const Eigen::Index n = z0.size();
   Eigen::VectorXd pz(n);
   if (auto e = P(r.z, pz)) {
-    r.failure_reason = NewtonFailure::MapAtGuess;
-    r.failure = "the map cannot be evaluated at the initial guess: " + *e;
+    fail(r, NewtonFailure::MapAtGuess, *e);
     return r;
   }
   Eigen::VectorXd F = pz - r.z;
@@ -38,8 +70,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
   for (int it = 0;; ++it) {
     for (Eigen::Index i = 0; i < n; ++i) h(i) = opt.fd_relative_step * std::max(std::abs(r.z(i)), scale(i));
     if (auto e = central_difference_jacobian(P, r.z, h, r.jacobian)) {
-      r.failure_reason = NewtonFailure::DifferenceStep;
-      r.failure = "a finite-difference step left the basin (" + *e + ")";
+      fail(r, NewtonFailure::DifferenceStep, *e);
       return r;
     }
     if (r.residual <= opt.tolerance) {
@@ -48,9 +79,8 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
       return r;
     }
     if (it >= opt.max_iterations) {
-      r.failure_reason = NewtonFailure::NoConvergence;
-      r.failure = "no convergence in " + std::to_string(opt.max_iterations) + " iterations (residual " +
-                  std::to_string(r.residual) + ")";
+      fail(r, NewtonFailure::NoConvergence,
+           std::to_string(opt.max_iterations) + " iterations (residual " + std::to_string(r.residual) + ")");
       r.iterations = it;
       return r;
     }
@@ -60,8 +90,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
     const double jnorm = std::max(1.0, r.jacobian.lpNorm<Eigen::Infinity>());
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
     if (svd.singularValues().minCoeff() < 1e-10 * jnorm) {
-      r.failure_reason = NewtonFailure::Singular;
-      r.failure = "singular Newton matrix (a multiplier equals 1): no isolated fixed point";
+      fail(r, NewtonFailure::Singular);
       r.iterations = it;
       return r;
     }
@@ -85,9 +114,7 @@ NewtonResult newton_fixed_point(const VectorMap& P, const Eigen::VectorXd& z0, c
       lambda *= 0.5;
     }
     if (!accepted) {
-      r.failure_reason = last_error.empty() ? NewtonFailure::NoDecrease : NewtonFailure::LeftBasin;
-      r.failure = last_error.empty() ? "line search failed: no decrease along the Newton direction (no root nearby)"
-                                     : "left the basin: " + last_error;
+      fail(r, last_error.empty() ? NewtonFailure::NoDecrease : NewtonFailure::LeftBasin, last_error);
       r.iterations = it;
       return r;
     }

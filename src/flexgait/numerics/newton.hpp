@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "flexgait/core/enum_names.hpp"
@@ -35,24 +36,47 @@ struct NewtonIteration {
   double damping = 1;    ///< line-search factor of the accepted step
 };
 
-/// Why Newton stopped without a fixed point (NewtonResult::failure_reason; `failure` says it in
-/// words, with the map's own message where there is one).
+/// Why Newton stopped without a fixed point (NewtonResult::failure_reason, with failure_detail;
+/// failure() says it in words: the reason's sentence, the detail in place of "{}", or after it in
+/// parentheses when the sentence has no "{}"; issue 13, "One outcome convention").
 enum class NewtonFailure {
-  MapAtGuess,      ///< the map cannot be evaluated at the initial guess
-  DifferenceStep,  ///< a finite-difference step of the Jacobian left the map's domain
-  NoConvergence,   ///< max_iterations without reaching the tolerance
+  MapAtGuess,      ///< the map cannot be evaluated at the initial guess (detail: the map's message)
+  DifferenceStep,  ///< a finite-difference step of the Jacobian left the map's domain (detail: which column, why)
+  NoConvergence,   ///< max_iterations without reaching the tolerance (detail: the iterations and the residual)
   Singular,        ///< J − I singular: a multiplier equals 1, no isolated fixed point
   NoDecrease,      ///< the line search found no decrease along the Newton direction (no root nearby)
-  LeftBasin,       ///< every damped step left the map's domain
+  LeftBasin,       ///< every damped step left the map's domain (detail: the map's last message)
 };
-constexpr std::array<EnumName<NewtonFailure>, 6> enum_names(NewtonFailure) {
-  return {{{NewtonFailure::MapAtGuess, "map_at_guess"},
-           {NewtonFailure::DifferenceStep, "difference_step"},
-           {NewtonFailure::NoConvergence, "no_convergence"},
-           {NewtonFailure::Singular, "singular"},
-           {NewtonFailure::NoDecrease, "no_decrease"},
-           {NewtonFailure::LeftBasin, "left_basin"}}};
+
+struct NewtonFailureEntry {
+  NewtonFailure reason;
+  std::string_view name;      ///< snake_case, for JSON and tests
+  std::string_view sentence;  ///< the text files show ("{}": where the detail goes)
+};
+
+inline constexpr std::array<NewtonFailureEntry, 6> kNewtonFailureTable{{
+    {NewtonFailure::MapAtGuess, "map_at_guess", "the map cannot be evaluated at the initial guess: {}"},
+    {NewtonFailure::DifferenceStep, "difference_step", "a finite-difference step left the basin ({})"},
+    {NewtonFailure::NoConvergence, "no_convergence", "no convergence in {}"},
+    {NewtonFailure::Singular, "singular", "singular Newton matrix (a multiplier equals 1): no isolated fixed point"},
+    {NewtonFailure::NoDecrease, "no_decrease",
+     "line search failed: no decrease along the Newton direction (no root nearby)"},
+    {NewtonFailure::LeftBasin, "left_basin", "left the basin: {}"},
+}};
+
+constexpr std::array<EnumName<NewtonFailure>, kNewtonFailureTable.size()> enum_names(NewtonFailure) {
+  std::array<EnumName<NewtonFailure>, kNewtonFailureTable.size()> out{};
+  for (std::size_t i = 0; i < kNewtonFailureTable.size(); ++i)
+    out[i] = {kNewtonFailureTable[i].reason, kNewtonFailureTable[i].name};
+  return out;
 }
+
+/// `sentence` with `detail` in place of its "{}", or followed by " (detail)" when it has none and
+/// the detail is not empty: how a reason and its detail are shown (numerics' reasons).
+std::string sentence_with_detail(std::string_view sentence, std::string_view detail);
+
+/// The words of a Newton failure (kNewtonFailureTable's sentence with the detail).
+std::string newton_failure_text(NewtonFailure reason, std::string_view detail);
 
 struct NewtonResult {
   bool converged = false;
@@ -62,7 +86,10 @@ struct NewtonResult {
   std::vector<NewtonIteration> history;
   Eigen::MatrixXd jacobian;       ///< ∂P/∂z at z (central differences)
   std::optional<NewtonFailure> failure_reason;  ///< empty when converged
-  std::string failure;                          ///< why it did not converge, in words (the reason and its detail)
+  std::string failure_detail;                   ///< the numbers or the map's message behind the reason
+
+  /// Why it did not converge, in words ("" when it did): newton_failure_text(reason, detail).
+  std::string failure() const;
 };
 
 /// ∂P/∂z by central differences with steps h (dim z). Returns the failure of a map evaluation.

@@ -275,7 +275,7 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
     const std::string m = multipliers_text(r, largest);
     csv.cell(mu).cell(r.gait).cell(r.converged ? "true" : "false").cell(r.point.flight ? "flight" : mode_name(r.point.mode));
     csv.cell(state_text(r.point.z)).cell(largest).cell(m).cell(r.stable ? "true" : "false").cell(r.period);
-    csv.cell(r.speed).cell(r.dissipated).cell(r.failure).end_row();
+    csv.cell(r.speed).cell(r.dissipated).cell(r.failure()).end_row();
   }
   return csv.str();
 }

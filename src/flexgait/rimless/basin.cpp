@@ -68,7 +68,7 @@ BasinReference basin_reference(const Config& base, Section section) {
       find_fixed_point(w, sim, analysis_from_config(base), sim.model, section, initial_from_config(base));
   BasinReference ref;
   ref.found = fp.converged;
-  ref.failure = fp.failure;
+  ref.failure = fp.failure();
   if (!fp.converged) return ref;
   ref.point = fp.point;
   ref.gait = fp.gait;

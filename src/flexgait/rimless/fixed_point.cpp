@@ -44,7 +44,7 @@ void newton_with_exact_jacobian(PoincareMap& map, const SectionState& guess, con
   numerics::BranchPoint b;
   if (numerics::fixed_point_at(f, guess.z, 0.0, o, b)) return;
   nr.converged = true;
-  nr.failure.clear();
+  nr.failure_detail.clear();
   nr.failure_reason.reset();
   nr.z = b.z;
   nr.residual = b.residual;
@@ -53,6 +53,12 @@ void newton_with_exact_jacobian(PoincareMap& map, const SectionState& guess, con
 }
 
 }  // namespace
+
+std::string FixedPointReport::failure() const {
+  if (transient_failure) return transient_failure->in_stage("no initial guess").text();
+  if (newton_failure) return numerics::newton_failure_text(*newton_failure, newton_failure_detail);
+  return {};
+}
 
 FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
                                        const SectionState& guess) {
@@ -63,8 +69,10 @@ FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOpt
   numerics::NewtonResult nr = numerics::newton_fixed_point(P, guess.z, guess.scale(w), opt.newton);
   if (!nr.converged) newton_with_exact_jacobian(map, guess, w, opt, nr);
   rep.converged = nr.converged;
-  rep.failure = nr.failure;
-  if (!nr.converged) rep.newton_failure = nr.failure_reason;
+  if (!nr.converged) {
+    rep.newton_failure = nr.failure_reason;
+    rep.newton_failure_detail = nr.failure_detail;
+  }
   rep.iterations = nr.iterations;
   rep.residual = nr.residual;
   rep.history = nr.history;
@@ -103,7 +111,6 @@ FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions&
     FixedPointReport rep;
     rep.point = guess;
     rep.transient_failure = e;
-    rep.failure = e->in_stage("no initial guess").text();
     return rep;
   }
   return find_fixed_point_from(w, sim, opt, guess);
@@ -142,7 +149,8 @@ std::string fixed_point_json(const FixedPointReport& r) {
   for (const auto& h : r.history)
     hist.push_back({{"iteration", h.iteration}, {"residual", h.residual}, {"step", h.step_norm}, {"damping", h.damping}});
   j["history"] = hist;
-  j["failure"] = r.failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(r.failure);
+  const std::string failure = r.failure();
+  j["failure"] = failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(failure);
   return j.dump(2) + "\n";
 }
 

@@ -37,14 +37,14 @@ inline AnalysisOptions analysis_from_config(const Config& config) { return recor
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt);
 
 /// The outcome of a fixed-point search. Every member has a defined value in every outcome: when
-/// the search failed (`converged` false, `failure` says why) the Jacobians and multipliers are
+/// the search failed (`converged` false, `failure()` says why) the Jacobians and multipliers are
 /// empty and gait, period, speed and dissipated keep their zero defaults; `point` holds the last
 /// Newton iterate, or an empty z when the transient never reached the section.
 struct FixedPointReport {
   bool converged = false;
-  std::string failure;                       ///< empty when converged; else the text of why not (files show it)
   std::optional<Failure> transient_failure;  ///< why the transient gave Newton no initial guess
   std::optional<numerics::NewtonFailure> newton_failure;  ///< else why Newton found no fixed point
+  std::string newton_failure_detail;         ///< ... and its detail (NewtonResult::failure_detail)
   int iterations = 0;
   double residual = 0;                 ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)
   std::vector<numerics::NewtonIteration> history;
@@ -61,6 +61,10 @@ struct FixedPointReport {
   double period = 0;                   ///< [s]
   double speed = 0;                    ///< mean hub speed along the slope [m/s]
   double dissipated = 0;               ///< energy dissipated per cycle [J]
+
+  /// "" when converged; else why not, as files show it: "no initial guess: " and the transient's
+  /// failure, or Newton's (numerics::newton_failure_text).
+  std::string failure() const;
 };
 
 /// Settles on the section from `initial`, then runs Newton from there.

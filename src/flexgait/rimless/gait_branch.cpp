@@ -53,13 +53,13 @@ void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::
     o.state_scale = like.scale(w0);
     o.max_points = spec.max_points - points;
     Segment seg{like, numerics::continue_fixed_points(f, like.z, q0, 1.0, o), boundary};
-    if (!seg.branch.failure.empty()) {
+    if (seg.branch.start_failure) {
       if (segments.empty()) {
-        out.failure = seg.branch.failure;
+        out.failure = seg.branch.failure();
         return;
       }
       end_note = fmt::format("the section's mode changes to {} but the new segment does not start: {}",
-                             mode_text(like), seg.branch.failure);
+                             mode_text(like), seg.branch.failure());
       break;
     }
     points += static_cast<int>(seg.branch.points.size());
@@ -214,11 +214,11 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
     numerics::ContinuationOptions oc = o;
     oc.state_scale = r.section.scale(cache->wheel_at(r.point.p));
     numerics::Branch b = numerics::switch_at_period_doubling(f, pd, 1.0, oc);
-    if (b.failure.empty() && b.points.size() < 3 && b.end == numerics::BranchEnd::OtherSide && pd.point.p > 0)
+    if (!b.start_failure && b.points.size() < 3 && b.end == numerics::BranchEnd::OtherSide && pd.point.p > 0)
       b = numerics::switch_at_period_doubling(f, pd, 0.0, oc);
-    if (!b.failure.empty()) {
+    if (b.start_failure) {
       child.failure = fmt::format("no period-{} branch at the period doubling at {} = {}: {}", child.period,
-                                  out.param, format_number(r.p), b.failure);
+                                  out.param, format_number(r.p), b.failure());
     } else {
       std::vector<Segment> one{Segment{r.section, std::move(b), ""}};
       one.front().like.z = pd.point.z;
@@ -273,7 +273,7 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
     out.state_names = start.point.names();
     out.mode = mode_text(start.point);
     if (!start.converged) {
-      out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure);
+      out.failure = fmt::format("no fixed point at {} = {}: {}", spec.param, format_number(spec.from), start.failure());
       return out;
     }
     out.exact_jacobian = start.jacobian_exact;

@@ -192,7 +192,7 @@ std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& c
   back.initial_step = std::min(o.initial_step, 0.5 * (beyond.p - qa));
   const numerics::Branch b =
       numerics::continue_fixed_points(g, beyond.z, beyond.p, std::max(0.0, qa - tuning.back_distance), back);
-  if (!b.failure.empty() || b.points.empty()) return "continuing the new mode back to the boundary: " + b.failure;
+  if (b.start_failure || b.points.empty()) return "continuing the new mode back to the boundary: " + b.failure();
   const numerics::BranchPoint& end = b.points.back();
   // Continuous: both ends meet (to join_tolerance, a few difference steps, in q and in the scaled states).
   const Eigen::VectorXd scale = to.scale(cache->wheel_at(end.p));

@@ -73,7 +73,7 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
   row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", fp.converged ? "true" : "false",
                      fp.point.flight ? "flight" : mode_name(fp.point.mode), state, mult, format_number(max_mult),
                      fp.stable ? "true" : "false", fp.gait, format_number(fp.period), format_number(fp.speed),
-                     format_number(fp.dissipated), format_number(fp.residual), fp.iterations, csv_field(fp.failure));
+                     format_number(fp.dissipated), format_number(fp.residual), fp.iterations, csv_field(fp.failure()));
   return row;
 }
 
