@@ -72,7 +72,7 @@ TEST(Newton, ReportsMapsWithoutFixedPoints) {
 
 // Every reason has a sentence, a name and its words; a converged result has none.
 TEST(Newton, FailureWordsComeFromTheReasonTable) {
-  for (const NewtonFailureEntry& e : kNewtonFailureTable) {
+  for (const ReasonEntry<NewtonFailure>& e : kNewtonFailureTable) {
     EXPECT_EQ(name_of(e.reason), e.name);
     EXPECT_FALSE(newton_failure_text(e.reason, "x").empty());
   }

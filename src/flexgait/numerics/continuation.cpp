@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
 
 #include "flexgait/numerics/newton.hpp"
 
@@ -500,10 +499,7 @@ std::optional<std::string> fixed_point_at(const MapFamily& f, const Eigen::Vecto
 }
 
 std::string Branch::failure() const {
-  if (!start_failure) return {};
-  for (const StartFailureEntry& e : kStartFailureTable)
-    if (e.reason == *start_failure) return sentence_with_detail(e.sentence, start_detail);
-  throw std::logic_error("StartFailure without a sentence");
+  return start_failure ? reason_text(kStartFailureTable, *start_failure, start_detail) : std::string();
 }
 
 Branch continue_fixed_points(const MapFamily& f, const Eigen::VectorXd& z0, double p0, double p_end,

@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/numerics/reason_table.hpp"
 
 namespace flexgait::numerics {
 
@@ -142,7 +143,7 @@ constexpr std::array<EnumName<BranchEnd>, 8> enum_names(BranchEnd) {
 }
 
 /// Why a branch did not start (Branch::start_failure, with Branch::start_detail; Branch::failure()
-/// says it in words: the sentence with the detail in place of "{}", as newton.hpp's reasons).
+/// says it in words, reason_table.hpp).
 enum class StartFailure {
   EmptyInterval,           ///< p_end = p0 (detail: the interval)
   NoFixedPoint,            ///< the corrector found no fixed point at p0 (detail: p0, the corrector's words)
@@ -151,13 +152,7 @@ enum class StartFailure {
   NoPeriodTwoPoint,        ///< no period-2 point next to the period doubling down to min_step (detail: p, why)
 };
 
-struct StartFailureEntry {
-  StartFailure reason;
-  std::string_view name;      ///< snake_case, for JSON and tests
-  std::string_view sentence;  ///< the text ("{}": where the detail goes)
-};
-
-inline constexpr std::array<StartFailureEntry, 5> kStartFailureTable{{
+inline constexpr std::array<ReasonEntry<StartFailure>, 5> kStartFailureTable{{
     {StartFailure::EmptyInterval, "empty_interval", "the parameter interval is empty ({})"},
     {StartFailure::NoFixedPoint, "no_fixed_point", "no fixed point at p = {}"},
     {StartFailure::NoPeriodDoubling, "no_period_doubling", "branch switching needs a period doubling with its eigenvector"},
@@ -165,12 +160,8 @@ inline constexpr std::array<StartFailureEntry, 5> kStartFailureTable{{
      "the period-doubling point is not a fixed point of P²: {}"},
     {StartFailure::NoPeriodTwoPoint, "no_period_two_point", "no period-2 point next to the period doubling at p = {}"},
 }};
-
 constexpr std::array<EnumName<StartFailure>, kStartFailureTable.size()> enum_names(StartFailure) {
-  std::array<EnumName<StartFailure>, kStartFailureTable.size()> out{};
-  for (std::size_t i = 0; i < kStartFailureTable.size(); ++i)
-    out[i] = {kStartFailureTable[i].reason, kStartFailureTable[i].name};
-  return out;
+  return reason_names(kStartFailureTable);
 }
 
 struct Branch {

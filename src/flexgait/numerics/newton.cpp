@@ -2,26 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 #include <utility>
 
 namespace flexgait::numerics {
 
-std::string sentence_with_detail(std::string_view sentence, std::string_view detail) {
-  std::string text;
-  if (const auto at = sentence.find("{}"); at != std::string_view::npos) {
-    text.append(sentence.substr(0, at)).append(detail).append(sentence.substr(at + 2));
-  } else {
-    text = sentence;
-    if (!detail.empty()) text.append(" (").append(detail).append(")");
-  }
-  return text;
-}
-
 std::string newton_failure_text(NewtonFailure reason, std::string_view detail) {
-  for (const NewtonFailureEntry& e : kNewtonFailureTable)
-    if (e.reason == reason) return sentence_with_detail(e.sentence, detail);
-  throw std::logic_error("NewtonFailure without a sentence");
+  return reason_text(kNewtonFailureTable, reason, detail);
 }
 
 std::string NewtonResult::failure() const {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/numerics/reason_table.hpp"
 
 namespace flexgait::numerics {
 
@@ -37,8 +38,7 @@ struct NewtonIteration {
 };
 
 /// Why Newton stopped without a fixed point (NewtonResult::failure_reason, with failure_detail;
-/// failure() says it in words: the reason's sentence, the detail in place of "{}", or after it in
-/// parentheses when the sentence has no "{}"; issue 13, "One outcome convention").
+/// failure() says it in words, reason_table.hpp).
 enum class NewtonFailure {
   MapAtGuess,      ///< the map cannot be evaluated at the initial guess (detail: the map's message)
   DifferenceStep,  ///< a finite-difference step of the Jacobian left the map's domain (detail: which column, why)
@@ -48,13 +48,7 @@ enum class NewtonFailure {
   LeftBasin,       ///< every damped step left the map's domain (detail: the map's last message)
 };
 
-struct NewtonFailureEntry {
-  NewtonFailure reason;
-  std::string_view name;      ///< snake_case, for JSON and tests
-  std::string_view sentence;  ///< the text files show ("{}": where the detail goes)
-};
-
-inline constexpr std::array<NewtonFailureEntry, 6> kNewtonFailureTable{{
+inline constexpr std::array<ReasonEntry<NewtonFailure>, 6> kNewtonFailureTable{{
     {NewtonFailure::MapAtGuess, "map_at_guess", "the map cannot be evaluated at the initial guess: {}"},
     {NewtonFailure::DifferenceStep, "difference_step", "a finite-difference step left the basin ({})"},
     {NewtonFailure::NoConvergence, "no_convergence", "no convergence in {}"},
@@ -63,17 +57,9 @@ inline constexpr std::array<NewtonFailureEntry, 6> kNewtonFailureTable{{
      "line search failed: no decrease along the Newton direction (no root nearby)"},
     {NewtonFailure::LeftBasin, "left_basin", "left the basin: {}"},
 }};
-
 constexpr std::array<EnumName<NewtonFailure>, kNewtonFailureTable.size()> enum_names(NewtonFailure) {
-  std::array<EnumName<NewtonFailure>, kNewtonFailureTable.size()> out{};
-  for (std::size_t i = 0; i < kNewtonFailureTable.size(); ++i)
-    out[i] = {kNewtonFailureTable[i].reason, kNewtonFailureTable[i].name};
-  return out;
+  return reason_names(kNewtonFailureTable);
 }
-
-/// `sentence` with `detail` in place of its "{}", or followed by " (detail)" when it has none and
-/// the detail is not empty: how a reason and its detail are shown (numerics' reasons).
-std::string sentence_with_detail(std::string_view sentence, std::string_view detail);
 
 /// The words of a Newton failure (kNewtonFailureTable's sentence with the detail).
 std::string newton_failure_text(NewtonFailure reason, std::string_view detail);

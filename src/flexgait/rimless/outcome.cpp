@@ -7,11 +7,7 @@
 
 namespace flexgait::rimless {
 
-std::string_view failure_sentence(FailureReason reason) {
-  for (const FailureEntry& e : kFailureTable)
-    if (e.reason == reason) return e.sentence;
-  throw std::logic_error("FailureReason without a sentence");
-}
+std::string_view failure_sentence(FailureReason reason) { return numerics::reason_sentence(kFailureTable, reason); }
 
 FailureReason loop_failure_reason(numerics::LoopFailure what) {
   switch (what) {
@@ -26,14 +22,7 @@ FailureReason loop_failure_reason(numerics::LoopFailure what) {
 }
 
 std::string Failure::text() const {
-  const std::string_view sentence = failure_sentence(reason);
-  std::string body;
-  if (const auto at = sentence.find("{}"); at != std::string_view::npos) {
-    body.append(sentence.substr(0, at)).append(detail).append(sentence.substr(at + 2));
-  } else {
-    body = sentence;
-    if (!detail.empty()) body.append(" (").append(detail).append(")");
-  }
+  const std::string body = numerics::reason_text(kFailureTable, reason, detail);
   return stage.empty() ? body : stage + ": " + body;
 }
 

@@ -18,6 +18,7 @@
 #include <string_view>
 
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/numerics/reason_table.hpp"
 
 namespace flexgait::numerics {
 enum class LoopFailure;  // hybrid_simulation.hpp
@@ -65,11 +66,8 @@ enum class FailureReason : std::uint8_t {
   IrreducibleCrossing,  ///< the crossing cannot be reduced to a section state (detail says how)
 };
 
-struct FailureEntry {
-  FailureReason reason;
-  std::string_view name;      ///< snake_case, for JSON and tests
-  std::string_view sentence;  ///< the text files show ("{}": where the detail goes)
-};
+/// {reason, "name" (snake_case, for JSON and tests), "sentence" (the text files show; "{}": where the detail goes)}.
+using FailureEntry = numerics::ReasonEntry<FailureReason>;
 
 inline constexpr std::array<FailureEntry, 31> kFailureTable{{
     {FailureReason::InitialFootBelowGround, "initial_foot_below_ground", "initial state: foot {} is below the ground"},
@@ -119,9 +117,7 @@ inline constexpr std::array<FailureEntry, 31> kFailureTable{{
 }};
 
 constexpr std::array<EnumName<FailureReason>, kFailureTable.size()> enum_names(FailureReason) {
-  std::array<EnumName<FailureReason>, kFailureTable.size()> out{};
-  for (std::size_t i = 0; i < kFailureTable.size(); ++i) out[i] = {kFailureTable[i].reason, kFailureTable[i].name};
-  return out;
+  return numerics::reason_names(kFailureTable);
 }
 
 /// The reason's sentence (as files show it, "{}" where a detail goes); std::logic_error if missing.
