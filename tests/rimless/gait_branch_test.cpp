@@ -140,6 +140,7 @@ TEST(GaitBranch, PeriodTwoOfAPeriodOneGaitIsItsBranchWithSquaredMultipliers) {
 TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.I=0.01"});
   const GaitContinuationOptions t = gait_continuation_from_config(base);
+  EXPECT_EQ(t.max_points, 2000);
   EXPECT_EQ(t.initial_step, 0.02);
   EXPECT_EQ(t.max_step_factor, 2.0);
   EXPECT_EQ(t.min_step, 1e-9);
@@ -164,6 +165,12 @@ TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {
   // Both on the closed-form branch at the end (the same check as the first test, 1e-9).
   EXPECT_NEAR(large.rows.back().state(large.rows.back().state.size() - 1),
               small.rows.back().state(small.rows.back().state.size() - 1), 1e-9);
+  // max_points = 3: the branch stops after three points, short of the end, and says so.
+  spec.tuning.max_points = 3;
+  const GaitBranch few = continue_gait(base, spec);
+  EXPECT_EQ(few.branch.points.size(), 3u);
+  EXPECT_FALSE(few.branch.reached_end);
+  EXPECT_EQ(few.branch.end, numerics::BranchEnd::MaxPoints) << few.stop_reason;
   try {
     gait_continuation_from_config(resolve_config(rimless_analysis_schema(), std::nullopt,
                                                  {"analysis.continuation.min_step=0.5"}));

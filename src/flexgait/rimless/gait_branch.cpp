@@ -26,7 +26,7 @@ numerics::ContinuationOptions continuation_options(const GaitContinuationSpec& s
   o.initial_step = spec.step > 0 ? spec.step / width : t.initial_step;
   o.max_step = t.max_step_factor * o.initial_step;
   o.min_step = t.min_step;
-  o.max_points = spec.max_points;
+  o.max_points = t.max_points;
   o.tolerance = a.newton.tolerance;
   o.fd_relative_step = a.newton.fd_relative_step;
   o.parameter_scale = 1;
@@ -51,7 +51,7 @@ void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::
     cache->arrived.reset();
     const numerics::MapFamily f = family_for(cache, like, out.exact_jacobian);
     o.state_scale = like.scale(w0);
-    o.max_points = spec.max_points - points;
+    o.max_points = spec.tuning.max_points - points;
     Segment seg{like, numerics::continue_fixed_points(f, like.z, q0, 1.0, o), boundary};
     if (seg.branch.start_failure) {
       if (segments.empty()) {
@@ -67,7 +67,7 @@ void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::
     const Segment& last = segments.back();
     // A change of the section's mode ends the segment when the map arrived in another mode next to
     // its last point (within the parameter's difference step; earlier such failures were passed).
-    if (last.branch.reached_end || !cache->arrived || points >= spec.max_points ||
+    if (last.branch.reached_end || !cache->arrived || points >= spec.tuning.max_points ||
         std::abs(cache->arrived_q - last.branch.points.back().p) > spec.tuning.mode_change_distance)
       break;
     const SectionState to = *cache->arrived;

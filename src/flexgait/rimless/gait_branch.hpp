@@ -36,6 +36,7 @@ namespace flexgait::rimless {
 /// normalised parameter q = (p - from)/(to - from): the defaults are the values it always used.
 /// Guards against round-off (a division by zero, a grid's last bit) stay literals.
 struct GaitContinuationOptions {
+  int max_points = 2000;            ///< points on the branch, all segments together, at most
   double initial_step = 0.02;       ///< first arclength step without --step (0.02: 50 steps over the interval)
   double max_step_factor = 2;       ///< the step adapts up to this × the first
   double min_step = 1e-9;           ///< the branch ends where a step this small fails; a segment's end at a
@@ -53,6 +54,8 @@ struct GaitContinuationOptions {
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
+    v("analysis.continuation.max_points", s.max_points,
+      {.doc = "continuation: points on the branch (all its segments), at most", .bounds = closed(2, 10000000)});
     v("analysis.continuation.initial_step", s.initial_step,
       {.doc = "continuation: first arclength step as a fraction of |to - from| when --step is not given",
        .bounds = left_open(0, 1)});
@@ -99,7 +102,6 @@ struct GaitContinuationSpec {
   std::string param;                 ///< a real configuration key, or "rimless.mu" (μ_s = μ_k)
   double from = 0, to = 0;           ///< the interval, in the key's unit; the start at `from`
   double step = 0;                   ///< first step in the key's unit (0: |to - from| / 50)
-  int max_points = 2000;
   Section section = Section::Touchdown;
   int period = 1;                    ///< continue fixed points of P^period (a period-k orbit)
   bool switch_at_period_doubling = false;  ///< also the period-2k branch born at the first period doubling
