@@ -17,6 +17,7 @@
 #include "flexgait/robot/urdf_export.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "compiled_model.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -25,32 +26,11 @@ using walking::Matrix3d;
 using walking::Pose;
 using walking::RobotModel;
 using walking::Vector3d;
+using testing::Compiled;
 
 LoadedRobot builtin_loaded() {
   return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
 }
-
-struct Compiled {
-  mjModel* m;
-  mjData* d;
-  explicit Compiled(const std::string& xml) : m(load_mjcf(xml)), d(mj_makeData(m)) {}
-  ~Compiled() {
-    mj_deleteData(d);
-    mj_deleteModel(m);
-  }
-  int dof(int joint) const { return m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[joint]).c_str())]; }
-  void set(const Pose& pelvis, const JointVector& q) {
-    mj_resetData(m, d);
-    for (int i = 0; i < 3; ++i) d->qpos[i] = pelvis.p(i);
-    const Eigen::Quaterniond quat(pelvis.R);
-    d->qpos[3] = quat.w(), d->qpos[4] = quat.x(), d->qpos[5] = quat.y(), d->qpos[6] = quat.z();
-    for (int j = 0; j < kJoints; ++j) {
-      const int id = mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str());
-      if (id >= 0) d->qpos[m->jnt_qposadr[id]] = q[j];  // (a robot without a waist has no waist_yaw)
-    }
-    mj_forward(m, d);
-  }
-};
 
 // The builtin's MJCF loaded back: the same controller model as the builtin's own (built from
 // RobotParams by other arithmetic: link centres that MuJoCo computes from the geoms differ by
@@ -83,42 +63,6 @@ TEST(RobotLoader, BuiltinLoadedBackGivesTheSameControllerModel) {
 // The twin made from the loaded builtin compiles to the builtin twin's numbers, bit for bit:
 // the loader writes MuJoCo's compiled values at full precision (what makes a reloaded export walk
 // as the builtin does).
-TEST(RobotLoader, TwinOfTheLoadedBuiltinCompilesToTheSameNumbers) {
-  const PlantParams p;
-  const Compiled a(humanoid_mjcf(RobotParams{}, p));
-  const Compiled b(twin_mjcf(builtin_loaded(), RobotParams{}, p));
-  ASSERT_EQ(a.m->nbody, b.m->nbody);
-  ASSERT_EQ(a.m->njnt, b.m->njnt);
-  ASSERT_EQ(a.m->ngeom, b.m->ngeom);
-  ASSERT_EQ(a.m->nsensor, b.m->nsensor);
-  auto same = [](const mjtNum* x, const mjtNum* y, int n, const char* what) {
-    for (int i = 0; i < n; ++i) EXPECT_EQ(x[i], y[i]) << what << "[" << i << "]";
-  };
-  same(a.m->body_pos, b.m->body_pos, 3 * a.m->nbody, "body_pos");
-  same(a.m->body_quat, b.m->body_quat, 4 * a.m->nbody, "body_quat");
-  same(a.m->body_mass, b.m->body_mass, a.m->nbody, "body_mass");
-  same(a.m->body_ipos, b.m->body_ipos, 3 * a.m->nbody, "body_ipos");
-  same(a.m->body_iquat, b.m->body_iquat, 4 * a.m->nbody, "body_iquat");
-  same(a.m->body_inertia, b.m->body_inertia, 3 * a.m->nbody, "body_inertia");
-  same(a.m->jnt_pos, b.m->jnt_pos, 3 * a.m->njnt, "jnt_pos");
-  same(a.m->jnt_axis, b.m->jnt_axis, 3 * a.m->njnt, "jnt_axis");
-  same(a.m->jnt_stiffness, b.m->jnt_stiffness, a.m->njnt, "jnt_stiffness");
-  same(a.m->dof_damping, b.m->dof_damping, a.m->nv, "dof_damping");
-  same(a.m->dof_armature, b.m->dof_armature, a.m->nv, "dof_armature");
-  same(a.m->geom_size, b.m->geom_size, 3 * a.m->ngeom, "geom_size");
-  same(a.m->geom_pos, b.m->geom_pos, 3 * a.m->ngeom, "geom_pos");
-  same(a.m->geom_quat, b.m->geom_quat, 4 * a.m->ngeom, "geom_quat");
-  same(a.m->geom_friction, b.m->geom_friction, 3 * a.m->ngeom, "geom_friction");
-  same(a.m->geom_solref, b.m->geom_solref, mjNREF * a.m->ngeom, "geom_solref");
-  same(a.m->geom_solimp, b.m->geom_solimp, mjNIMP * a.m->ngeom, "geom_solimp");
-  for (int g = 0; g < a.m->ngeom; ++g) {
-    EXPECT_EQ(a.m->geom_contype[g], b.m->geom_contype[g]) << g;
-    EXPECT_EQ(a.m->geom_conaffinity[g], b.m->geom_conaffinity[g]) << g;
-    EXPECT_EQ(a.m->geom_type[g], b.m->geom_type[g]) << g;
-  }
-  same(a.m->site_pos, b.m->site_pos, 3 * a.m->nsite, "site_pos");
-}
-
 // The controller's model of a loaded robot against MuJoCo's own model of the same twin: COM,
 // sole poses, leg Jacobians (mj_jac at the sole centre) and the legs' gravity torques (qfrc_bias
 // at rest). Both are exact rigid-body kinematics up to rounding: 1e-10.
