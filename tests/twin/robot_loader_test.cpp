@@ -17,6 +17,7 @@
 #include "flexgait/robot/urdf_export.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "../walking/model_agreement.hpp"
 #include "compiled_model.hpp"
 
 namespace flexgait::humanoid {
@@ -27,106 +28,11 @@ using walking::Pose;
 using walking::RobotModel;
 using walking::Vector3d;
 using testing::Compiled;
+using testing::expect_model_agrees_with_mujoco;
+using testing::small_biped_walk;
 
 LoadedRobot builtin_loaded() {
   return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
-}
-
-// The builtin's MJCF loaded back: the same controller model as the builtin's own (built from
-// RobotParams by other arithmetic: link centres that MuJoCo computes from the geoms differ by
-// rounding, 1e-15 m; 1e-12 leaves room).
-TEST(RobotLoader, BuiltinLoadedBackGivesTheSameControllerModel) {
-  const RobotModel a = walking::make_robot_model(RobotParams{});
-  const RobotModel b = walking::make_robot_model(builtin_loaded());
-  EXPECT_NEAR(a.total_mass, b.total_mass, 1e-12);
-  for (int k = 0; k < walking::kBodies; ++k) {
-    const auto& x = a.bodies[static_cast<std::size_t>(k)];
-    const auto& y = b.bodies[static_cast<std::size_t>(k)];
-    EXPECT_EQ(x.parent, y.parent) << k;
-    EXPECT_EQ(x.joint, y.joint) << k;
-    EXPECT_LT((x.axis - y.axis).norm(), 1e-12) << k;
-    EXPECT_LT((x.offset - y.offset).norm(), 1e-12) << k;
-    EXPECT_NEAR(x.mass, y.mass, 1e-12) << k;
-    EXPECT_LT((x.com - y.com).norm(), 1e-12) << k;
-  }
-  for (int side = 0; side < 2; ++side) {
-    EXPECT_LT((a.leg[side].hip - b.leg[side].hip).norm(), 1e-12);
-    EXPECT_NEAR(a.leg[side].thigh, b.leg[side].thigh, 1e-12);
-    EXPECT_NEAR(a.leg[side].shank, b.leg[side].shank, 1e-12);
-    EXPECT_NEAR(a.leg[side].ankle_to_sole, b.leg[side].ankle_to_sole, 1e-12);
-    EXPECT_LT((a.sole_offset[side] - b.sole_offset[side]).norm(), 1e-12);
-  }
-  EXPECT_NEAR(a.sole_length, b.sole_length, 1e-15);
-  EXPECT_NEAR(a.sole_width, b.sole_width, 1e-15);
-}
-
-// The twin made from the loaded builtin compiles to the builtin twin's numbers, bit for bit:
-// the loader writes MuJoCo's compiled values at full precision (what makes a reloaded export walk
-// as the builtin does).
-// The controller's model of a loaded robot against MuJoCo's own model of the same twin: COM,
-// sole poses, leg Jacobians (mj_jac at the sole centre) and the legs' gravity torques (qfrc_bias
-// at rest). Both are exact rigid-body kinematics up to rounding: 1e-10.
-void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
-  const RobotModel model = walking::make_robot_model(loaded);
-  walking::RobotModelData data;
-  Compiled twin(twin_mjcf(loaded, RobotParams{}, PlantParams{}));
-  EXPECT_NEAR(model.total_mass, twin.m->body_subtreemass[0], 1e-10);
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> a(-0.5, 0.5), small(-0.3, 0.3);
-  std::vector<mjtNum> jacp(static_cast<std::size_t>(3 * twin.m->nv)), jacr(static_cast<std::size_t>(3 * twin.m->nv));
-  for (int trial = 0; trial < 30; ++trial) {
-    const Pose pelvis{Vector3d(small(rng), small(rng), 0.8 + small(rng)), walking::rpy_to_matrix(small(rng), small(rng), small(rng))};
-    JointVector q;
-    for (auto& v : q) v = a(rng);
-    walking::forward_kinematics(model, data, pelvis, q);
-    twin.set(pelvis, q);
-    const Vector3d com = walking::center_of_mass(model, data);
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(com(i), twin.d->subtree_com[3 + i], 1e-10);
-    for (int side = 0; side < 2; ++side) {
-      const int geom = mj_name2id(twin.m, mjOBJ_GEOM, side == 0 ? "l_sole" : "r_sole");
-      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(twin.d->geom_xmat + 9 * geom);
-      const Vector3d bottom = Vector3d(twin.d->geom_xpos + 3 * geom) - R.col(2) * twin.m->geom_size[3 * geom + 2];
-      const Pose sole = walking::sole_pose(model, data, side);
-      EXPECT_LT((sole.p - bottom).norm(), 1e-10);
-      EXPECT_LT((sole.R - Matrix3d(R)).cwiseAbs().maxCoeff(), 1e-10);
-      const walking::LegJacobian J = walking::leg_jacobian(model, data, side, sole.p);
-      mj_jac(twin.m, twin.d, jacp.data(), jacr.data(), sole.p.data(), twin.m->geom_bodyid[geom]);
-      const walking::LegTorque g = walking::leg_gravity_torque(model, data, side);
-      for (int i = 0; i < kLegJoints; ++i) {
-        const int dof = twin.dof(leg_first_joint(side) + i);
-        for (int r = 0; r < 3; ++r) {
-          EXPECT_NEAR(J(r, i), jacp[static_cast<std::size_t>(r * twin.m->nv + dof)], 1e-10);
-          EXPECT_NEAR(J(3 + r, i), jacr[static_cast<std::size_t>(r * twin.m->nv + dof)], 1e-10);
-        }
-        EXPECT_NEAR(g(i), twin.d->qfrc_bias[dof], 1e-10);
-      }
-    }
-  }
-}
-
-TEST(RobotLoader, ControllerModelAgreesWithMuJoCo) { expect_model_agrees_with_mujoco(builtin_loaded()); }
-
-/// The second robot's walk (tests/humanoid/data/small_biped.yaml: the robot small_biped.xml with
-/// its own names and an offset hip pitch axis, 10 steps at 1 s/step); its description path is
-/// relative to the YAML file.
-experiments::WalkRunParams small_biped_walk() {
-  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
-  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
-  return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, {}));
-}
-
-TEST(RobotLoader, SecondRobotModelAgreesWithMuJoCo) {
-  const experiments::WalkRunParams walk = small_biped_walk();
-  ASSERT_TRUE(walk.loaded);
-  const LoadedRobot& loaded = *walk.loaded;
-  expect_model_agrees_with_mujoco(loaded);
-  const RobotModel model = walking::make_robot_model(loaded);
-  EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
-  for (int side = 0; side < 2; ++side) {
-    EXPECT_FALSE(model.leg[side].analytic);  // the offset hip pitch axis
-    EXPECT_EQ(walking::analytic_ik_mismatch(loaded, side), "the hip yaw, roll and pitch axes do not meet in a point");
-  }
-  EXPECT_TRUE(walking::make_robot_model(builtin_loaded()).leg[0].analytic);
 }
 
 // The second robot walks 10 steps at 1 s/step with and without compensation (numeric leg IK).

@@ -19,6 +19,9 @@ LoadedRobot builtin_loaded() {
   return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
 }
 
+// The twin made from the loaded builtin compiles to the builtin twin's numbers, bit for bit:
+// the loader writes MuJoCo's compiled values at full precision (what makes a reloaded export walk
+// as the builtin does).
 TEST(TwinMjcf, TwinOfTheLoadedBuiltinCompilesToTheSameNumbers) {
   const PlantParams p;
   const Compiled a(humanoid_mjcf(RobotParams{}, p));
