@@ -6,24 +6,20 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "flexgait/core/text.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
 
 namespace flexgait::experiments {
 namespace {
 
+// The cells of each line of a CSV text without quoted fields.
 std::vector<std::vector<std::string>> rows(const std::string& csv) {
   std::vector<std::vector<std::string>> out;
-  std::istringstream in(csv);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::istringstream l(line);
-    for (std::string c; std::getline(l, c, ',');) cells.push_back(c);
-    out.push_back(cells);
-  }
+  for (const std::string& line : split_text(csv, '\n'))
+    if (!line.empty()) out.push_back(split_text(line, ','));
   return out;
 }
 

@@ -10,19 +10,19 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 
 namespace flexgait::experiments {
 namespace {
 
+// The lines of a file's text (each ends in '\n').
 std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
+  std::vector<std::string> out = split_text(text, '\n');
+  out.pop_back();
   return out;
 }
 

@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "flexgait/core/text.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 
@@ -18,14 +18,6 @@ namespace {
 
 Config configured(const std::vector<std::string>& sets) {
   return resolve_config(rimless_analysis_schema(), std::nullopt, sets);
-}
-
-std::vector<std::string> cells(const std::string& row) {
-  std::vector<std::string> out;
-  std::istringstream in(row);
-  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
-  if (!row.empty() && row.back() == ',') out.emplace_back();
-  return out;
 }
 
 TEST(Sweep, PointsRunFromToInclusiveAndOnePointIsFrom) {
@@ -77,9 +69,9 @@ TEST(Sweep, CheckSweepNamesTheOffendingEnd) {
 TEST(Sweep, RigidRowHasMcGeersFixedPoint) {
   const Config base = configured({"sim.model=rigid", "rimless.I=0"});
   const SweepSpec spec{.param = "rimless.slope", .from = 0.08, .to = 0.12, .count = 2};
-  const auto header = cells(sweep_header());
+  const auto header = split_text(sweep_header(), ',');
   for (int i = 0; i < spec.count; ++i) {
-    const auto row = cells(sweep_row(base, spec, i));
+    const auto row = split_text(sweep_row(base, spec, i), ',');
     ASSERT_EQ(row.size(), header.size()) << sweep_row(base, spec, i);
     auto column = [&](const std::string& name) {
       for (std::size_t k = 0; k < header.size(); ++k)
