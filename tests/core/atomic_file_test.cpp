@@ -11,17 +11,12 @@
 #include <optional>
 #include <stdexcept>
 
-#include "flexgait/core/run_directory.hpp"
+#include "temp_dirs.hpp"
 
 namespace flexgait {
 namespace {
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("flexgait_atomic_" + std::to_string(::getpid()) + "_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using testing::fresh_dir;
 
 int count_entries(const std::filesystem::path& dir) {
   int n = 0;
@@ -92,47 +87,6 @@ TEST(AtomicFileWriter, AbandonedWriteLeavesNothing) {
   }  // destroyed without commit: an exception unwound the run
   EXPECT_FALSE(std::filesystem::exists(dir / "log.csv"));
   EXPECT_EQ(count_entries(dir), 0);
-}
-
-TEST(RunDirectory, CreatesNestedDirectoryAndRejectsAFile) {
-  const auto dir = fresh_dir("rundir");
-  RunDirectory run(dir / "x" / "y");
-  run.write("summary.json", "{}\n");
-  EXPECT_EQ(read_text_file(dir / "x" / "y" / "summary.json"), "{}\n");
-  write_file_atomic(dir / "plain", "file");
-  EXPECT_THROW(RunDirectory(dir / "plain"), UsageError);  // a bad --out is bad usage: exit 2
-}
-
-TEST(RunDirectory, CompleteOnlyWhenItsScopeEndsNormally) {
-  const auto dir = fresh_dir("complete");
-  {
-    RunDirectory run(dir / "ok");
-    run.write("summary.json", "{}\n");
-    EXPECT_FALSE(run_directory_complete(run.path()));  // still being written
-  }
-  EXPECT_TRUE(run_directory_complete(dir / "ok"));
-  {
-    RunDirectory again(dir / "ok");  // written again: not complete until it is done
-    EXPECT_FALSE(run_directory_complete(dir / "ok"));
-  }
-  EXPECT_TRUE(run_directory_complete(dir / "ok"));
-  try {
-    RunDirectory run(dir / "failed");
-    run.write("config.yaml", "a: 1\n");
-    throw std::runtime_error("the run failed");
-  } catch (const std::runtime_error&) {
-  }
-  EXPECT_FALSE(run_directory_complete(dir / "failed"));
-  EXPECT_TRUE(std::filesystem::exists(dir / "failed" / "config.yaml"));
-}
-
-TEST(RunDirectory, MovedFromMarksNothing) {
-  const auto dir = fresh_dir("moved");
-  auto make = [&] { return std::optional<RunDirectory>(RunDirectory(dir / "run")); };
-  std::optional<RunDirectory> run = make();
-  EXPECT_FALSE(run_directory_complete(dir / "run"));  // the moved-from temporary wrote nothing
-  run.reset();
-  EXPECT_TRUE(run_directory_complete(dir / "run"));
 }
 
 TEST(Temporaries, OwnerIsParsedFromTheNamingScheme) {

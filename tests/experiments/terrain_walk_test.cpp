@@ -31,6 +31,24 @@ TEST(TerrainWalk, StandsOnATwoDegreeRamp) {
   }
 }
 
+TEST(TerrainWalk, ToldTheFloorTheTwinWalksAFiveDegreeRampDownTenSteps) {
+  // Blind, the soles land level on the slope and the twin falls after 3 steps (measured); told the
+  // floor, the soles are commanded flat on it (heights and slope) and it walks all 10 steps at
+  // 1 s/step, crossing the ramp's convex crease under its third footprint.
+  WalkRunParams p;
+  p.plant.terrain.kind = TerrainKind::kRamp;
+  p.plant.terrain.ramp_angle = -5 * std::numbers::pi / 180;
+  p.plant.terrain.ramp_start = 0.2;
+  p.walk.steps = 10;
+  p.walk.step_time = 1.0;
+  const WalkMetrics blind = run_walk(p).metrics;
+  EXPECT_TRUE(blind.fell);
+  p.plant.terrain.known_heights = true;
+  const WalkMetrics told = run_walk(p).metrics;
+  EXPECT_TRUE(told.completed()) << told.fall_text() << " at " << told.fall_time;
+  EXPECT_EQ(told.mujoco_warnings, 0);
+}
+
 TEST(TerrainWalk, LoadedRobotWalksTheRampAndTheRoughFloor) {
   // The second robot (issue 16) gets the same floor through the shared twin document.
   const char* data = std::getenv("FLEXGAIT_TEST_DATA");

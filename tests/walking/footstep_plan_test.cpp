@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "flexgait/walking/ground_slope.hpp"
+
 namespace flexgait::walking {
 namespace {
 
@@ -58,6 +60,27 @@ TEST(FootstepPlan, SwingFootRisesToItsHeightAndLandsWhereplanned) {
   EXPECT_NEAR(landed.sole[s.swing].p.x(), s.to.x, 1e-12);
   EXPECT_NEAR(landed.sole[s.swing].p.y(), s.to.y, 1e-12);
   EXPECT_NEAR(landed.sole[s.swing].p.z(), 0.0, 1e-12);
+}
+
+TEST(FootstepPlan, ToldTheFloorTheSolesLieOnItsSlopeAndBlendBetweenSlopesInTheSwing) {
+  // A 5° ramp down from x = 0.15 m: the footprints at x = 0.2, 0.3 get its height and gradient
+  // (central differences of a linear function: exact to rounding, 1e-12), the one at 0.1 stays
+  // level; the swing from level to slope passes through the blended gradient.
+  WalkParams w;
+  w.steps = 3;
+  WalkPlan plan = plan_footsteps(w);
+  const double g = -std::tan(0.0873), x0 = 0.15;
+  set_footprint_heights(plan, [&](double x, double) { return x < x0 ? 0.0 : (x - x0) * g; });
+  const Step& s = plan.steps[1];  // from x = 0 to 0.2, over the ramp's start
+  EXPECT_NEAR(s.to.z, (s.to.x - x0) * g, 1e-12);
+  EXPECT_NEAR(s.to.slope.x(), g, 1e-12);
+  EXPECT_EQ(s.from.slope, Eigen::Vector2d::Zero());
+  const FeetTarget landed = feet_target(plan, w.swing_height, s.t_land);
+  EXPECT_NEAR(landed.sole[s.swing].R(2, 0), -std::sin(0.0873), 1e-12);  // toe down: R_y(α)
+  const double t_mid = 0.5 * (s.t_lift + s.t_land);
+  const FeetTarget mid = feet_target(plan, w.swing_height, t_mid);
+  const double b = quintic_blend(0.5);
+  EXPECT_NEAR(ground_gradient_of(mid.sole[s.swing].R).x(), b * g, 1e-12);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "flexgait/walking/footstep_plan.hpp"
 
+#include "flexgait/walking/ground_slope.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -12,7 +14,7 @@ Eigen::Vector2d blend(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double
   return a + quintic_blend(s) * (b - a);
 }
 
-Pose pose_of(const Footprint& f) { return {Vector3d(f.x, f.y, f.z), rot_z(f.yaw)}; }
+Pose pose_of(const Footprint& f) { return {Vector3d(f.x, f.y, f.z), sole_attitude(f.slope, f.yaw)}; }
 
 // The step whose interval holds t, for t within the walk (steps are contiguous and equally long).
 std::size_t step_at(const WalkPlan& plan, double t) {
@@ -108,7 +110,7 @@ FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t) {
   out.floor_z = 0.5 * (base + s.stance.z);
   Pose p;
   p.p = Vector3d(s.from.x + b * (s.to.x - s.from.x), s.from.y + b * (s.to.y - s.from.y), base + z);
-  p.R = rot_z(s.from.yaw + b * (s.to.yaw - s.from.yaw));
+  p.R = sole_attitude(s.from.slope + b * (s.to.slope - s.from.slope), s.from.yaw + b * (s.to.yaw - s.from.yaw));
   out.sole[s.swing] = p;
   out.swinging[s.swing] = u > 0 && u < 1;
   return out;

@@ -21,6 +21,9 @@ struct Footprint {
   double x = 0, y = 0;  ///< sole centre on the floor [m]
   double yaw = 0;       ///< [rad]
   double z = 0;         ///< floor height under it [m]: 0 unless the controller is told the floor (know_floor)
+  /// The floor's gradient (dz/dx, dz/dy) under its centre: zero unless the controller is told the
+  /// floor; the sole is then commanded flat on that plane (ground_slope.hpp (G2)).
+  Eigen::Vector2d slope = Eigen::Vector2d::Zero();
 };
 
 struct Step {
@@ -54,13 +57,19 @@ struct FeetTarget {
   double floor_z = 0;  ///< mean floor height under the feet (the swing foot's blended, without its arc) [m]
 };
 /// With footprint heights (Footprint::z) the swing blends from.z to to.z and its arc rises
-/// swing_height above the higher of the two.
+/// swing_height above the higher of the two; with footprint slopes the sole's attitude blends
+/// between theirs.
 FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t);
 
-/// Sets every footprint's z to height(x, y) [m] (a controller told the floor's heights).
+/// Sets every footprint's z to height(x, y) [m] and its slope to the height's gradient there, by
+/// central differences of ±1 mm (a controller told the floor).
 template <class Height>
 void set_footprint_heights(WalkPlan& plan, const Height& height) {
-  auto set = [&](Footprint& f) { f.z = height(f.x, f.y); };
+  constexpr double h = 1e-3;  // [m]
+  auto set = [&](Footprint& f) {
+    f.z = height(f.x, f.y);
+    f.slope = Eigen::Vector2d(height(f.x + h, f.y) - height(f.x - h, f.y), height(f.x, f.y + h) - height(f.x, f.y - h)) / (2 * h);
+  };
   for (Footprint& f : plan.initial) set(f);
   for (Footprint& f : plan.final) set(f);
   for (Step& s : plan.steps) {

@@ -469,7 +469,20 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
     soles[side].p.z() += foot_lift_[side];
   }
-  solve_pose(status_.com_ref + status_.com_shift, soles, rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll), 2);
+  const Matrix3d pelvis_command = rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll);
+  if (capture_.active) {
+    // The capture step's swing foot is aimed from the pelvis as the IMU finds it: its target turns
+    // about the pelvis by R_command R_estimatedᵀ, so the leg's command puts the foot at its world
+    // target. (A chest push pitches the torso 0.1–0.2 rad during the step; aimed from the commanded
+    // pelvis, the foot then lands 0.1 m behind its target: measured, 0.045 m against 0.17 m.)
+    const Matrix3d C = pelvis_command * (rot_z(yaw) * rot_y(status_.imu_pitch) * rot_x(status_.imu_roll)).transpose();
+    for (int side = 0; side < 2; ++side) {
+      if (!feet.swinging[side]) continue;
+      soles[side].p = pelvis_.p + C * (soles[side].p - pelvis_.p);
+      soles[side].R = C * soles[side].R;
+    }
+  }
+  solve_pose(status_.com_ref + status_.com_shift, soles, pelvis_command, 2);
   status_.pelvis = pelvis_;
   status_.motion.valid = false;
   if (plan_motion_) {

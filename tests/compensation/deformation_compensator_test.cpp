@@ -1,4 +1,6 @@
-// The output compensator (spec eqs. 10-13): Newton's method recovers the link angles that the
+// The deformation compensator (compensation/deformation_compensator.hpp; its gear damping, loads,
+// field baselines and the twin's statics have test files of their own). The output compensator
+// (spec eqs. 10-13): Newton's method recovers the link angles that the
 // encoders imply through the deformation model to 1e-12 rad in at most 5 iterations, on the
 // single-joint bench (τ_g = −m g l cos θ) and on both legs; the one-step form (12) is second
 // order in the deflection; a bounded, non-converged solve says so and falls back; and the

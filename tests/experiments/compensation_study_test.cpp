@@ -1,0 +1,78 @@
+// The thesis's walking experiments as sets of walks (experiments/compensation_study.hpp): the
+// compensation study's seven cases differ from the base in their compensation alone; the mismatch
+// study scales the twin's true stiffness and pairs off with both; the comparison's headline cuts
+// are 1 − on/off of the cases' metrics.
+#include "flexgait/experiments/compensation_study.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace flexgait::experiments {
+namespace {
+
+using compensation::CompensationMode;
+using compensation::GravityForm;
+using compensation::LoadModel;
+
+TEST(CompensationStudy, CasesDifferInTheirCompensationAlone) {
+  WalkRunParams base;
+  base.walk.steps = 7;
+  base.plant.k_joint = 1234.0;
+  const auto cases = compensation_cases(base);
+  struct Expected {
+    const char* name;
+    CompensationMode mode;
+    LoadModel load;
+  };
+  const Expected expected[] = {{"off", CompensationMode::kOff, LoadModel::kGravity},
+                               {"both", CompensationMode::kBoth, LoadModel::kGravity},
+                               {"both-thesis-form", CompensationMode::kBoth, LoadModel::kGravity},
+                               {"robotis", CompensationMode::kRobotis, LoadModel::kGravity},
+                               {"talos", CompensationMode::kTalos, LoadModel::kGravity},
+                               {"both-measured", CompensationMode::kBoth, LoadModel::kMeasured},
+                               {"both-dynamic", CompensationMode::kBoth, LoadModel::kDynamic}};
+  ASSERT_EQ(cases.size(), std::size(expected));
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(cases[i].name, expected[i].name);
+    EXPECT_EQ(cases[i].params.control.mode, expected[i].mode) << cases[i].name;
+    EXPECT_EQ(cases[i].params.control.load_model, expected[i].load) << cases[i].name;
+    EXPECT_EQ(cases[i].params.walk.steps, 7) << cases[i].name;
+    EXPECT_EQ(cases[i].params.plant.k_joint, 1234.0) << cases[i].name;
+  }
+  EXPECT_EQ(cases[1].params.control.gravity, GravityForm::kFull);
+  EXPECT_EQ(cases[2].params.control.gravity, GravityForm::kThesis);
+}
+
+TEST(CompensationStudy, MismatchScalesTheTrueStiffnessOnly) {
+  WalkRunParams base;
+  base.plant.k_joint = 1000.0;
+  const auto cases = mismatch_cases(base, {0.5, 1.25});
+  ASSERT_EQ(cases.size(), 4u);
+  EXPECT_EQ(cases[0].name, "k050-off");
+  EXPECT_EQ(cases[1].name, "k050-both");
+  EXPECT_EQ(cases[3].name, "k125-both");
+  EXPECT_EQ(cases[0].params.plant.k_joint, 500.0);
+  EXPECT_EQ(cases[3].params.plant.k_joint, 1250.0);
+  EXPECT_EQ(cases[3].params.control.k_joint, base.control.k_joint);  // the belief stays
+  EXPECT_EQ(cases[0].params.control.mode, CompensationMode::kOff);
+  EXPECT_EQ(cases[1].params.control.mode, CompensationMode::kBoth);
+}
+
+TEST(CompensationStudy, ComparisonCutsAreOneMinusOnOverOff) {
+  const auto cases = compensation_cases(WalkRunParams{});
+  std::vector<WalkResult> results(cases.size());
+  results[0].metrics.pelvis_roll_error_max = 0.05;   // off
+  results[1].metrics.pelvis_roll_error_max = 0.004;  // both
+  results[0].metrics.zmp_single_support_rms_y = 0.02;
+  results[1].metrics.zmp_single_support_rms_y = 0.015;
+  const nlohmann::json j = nlohmann::json::parse(compensation_comparison_json(cases, results));
+  EXPECT_NEAR(j["pelvis_roll_error_max_cut"].get<double>(), 1 - 0.004 / 0.05, 1e-15);
+  EXPECT_NEAR(j["zmp_single_support_rms_y_cut"].get<double>(), 1 - 0.015 / 0.02, 1e-15);
+  EXPECT_EQ(j["pelvis_roll_error_max_off"], 0.05);
+}
+
+}  // namespace
+}  // namespace flexgait::experiments

@@ -1,0 +1,143 @@
+// GuardCrossings (numerics/guard_crossings.hpp) on analytic guard functions g(t), standing in for an
+// integrator's interpolant: CVODE's crossing rules, the root located to its tolerance, and the
+// first-step probe for a guard that crosses and returns within one step.
+#include "flexgait/numerics/guard_crossings.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+namespace flexgait::numerics {
+namespace {
+
+using Guard = std::function<double(double)>;
+
+// Drives GuardCrossings over one step [t0, t1] of the guards gs (started at t0).
+class Watch {
+ public:
+  explicit Watch(std::vector<Guard> guards) : gs(std::move(guards)) {}
+  std::vector<Guard> gs;
+  GuardCrossings crossings;
+
+  std::vector<double> at(double t) const {
+    std::vector<double> g;
+    for (const auto& f : gs) g.push_back(f(t));
+    return g;
+  }
+  void start(double t0, std::vector<int> directions) { crossings.start(t0, directions, at(t0)); }
+  std::optional<double> check(double t1) {
+    const auto g1 = at(t1);
+    return crossings.check(
+        t1, g1,
+        [this](double t, std::span<double> g) {
+          for (std::size_t i = 0; i < gs.size(); ++i) g[i] = gs[i](t);
+        },
+        [this](double t, int i) { return gs[static_cast<std::size_t>(i)](t); });
+  }
+};
+
+// CVODE's root tolerance over the step [t0, t1] (guard_crossings.cpp): 100·u·(|t1| + |h|).
+double root_tolerance(double t0, double t1) {
+  return 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t1) + std::abs(t1 - t0));
+}
+
+TEST(GuardCrossings, LocatesTheRootToCvodesToleranceOnTheCrossedSide) {
+  Watch w({[](double t) { return std::cos(t) - 0.5; }});
+  w.start(0.0, {0});
+  const auto root = w.check(2.0);
+  ASSERT_TRUE(root.has_value());
+  // TOMS 748 stops when its bracket is shorter than the tolerance and returns the bracket's end on
+  // the side the guard has crossed to: within the tolerance of π/3, and g ≤ 0 there.
+  EXPECT_NEAR(*root, std::numbers::pi / 3, root_tolerance(0.0, 2.0));
+  EXPECT_LE(std::cos(*root) - 0.5, 0.0);
+  EXPECT_EQ(w.crossings.fired()[0], -1);
+}
+
+TEST(GuardCrossings, DirectionLetsOnlyItsCrossingsThrough) {
+  // g = t − 0.5 rises through 0 at 0.5: direction −1 ignores it, +1 and 0 report it upward.
+  for (int direction : {-1, 0, +1}) {
+    Watch w({[](double t) { return t - 0.5; }});
+    w.start(0.0, {direction});
+    const auto root = w.check(1.0);
+    if (direction == -1) {
+      EXPECT_FALSE(root.has_value());
+    } else {
+      ASSERT_TRUE(root.has_value()) << direction;
+      EXPECT_NEAR(*root, 0.5, root_tolerance(0.0, 1.0));
+      EXPECT_EQ(w.crossings.fired()[0], +1);
+    }
+  }
+}
+
+TEST(GuardCrossings, EarliestGuardFiresAloneAndTheLaterOneInTheNextCheck) {
+  Watch w({[](double t) { return 0.7 - t; }, [](double t) { return t - 0.3; }});
+  w.start(0.0, {0, 0});
+  const auto first = w.check(1.0);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_NEAR(*first, 0.3, root_tolerance(0.0, 1.0));
+  EXPECT_EQ(w.crossings.fired()[0], 0);
+  EXPECT_EQ(w.crossings.fired()[1], +1);
+  // Watching restarted at the crossing: the same step's end now gives the later guard (downward).
+  const auto second = w.check(1.0);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_NEAR(*second, 0.7, root_tolerance(0.3, 1.0));
+  EXPECT_EQ(w.crossings.fired()[0], -1);
+  EXPECT_EQ(w.crossings.fired()[1], 0);
+  EXPECT_FALSE(w.check(2.0).has_value());
+}
+
+TEST(GuardCrossings, ExactZeroAtTheStepsEndIsACrossingThere) {
+  Watch w({[](double t) { return 1.0 - t; }});
+  w.start(0.0, {0});
+  const auto root = w.check(1.0);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_EQ(*root, 1.0);
+  EXPECT_EQ(w.crossings.fired()[0], -1);
+}
+
+TEST(GuardCrossings, GuardZeroAtTheStartIsInactiveUntilItMovesAway) {
+  // g = t (t − 0.5): 0 at the start (no crossing there), negative, then up through 0 at 0.5.
+  Watch w({[](double t) { return t * (t - 0.5); }});
+  w.start(0.0, {0});
+  const auto root = w.check(1.0);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, 0.5, root_tolerance(0.0, 1.0));
+  EXPECT_EQ(w.crossings.fired()[0], +1);
+  // g = t: 0 at the start and moving away: no crossing at all.
+  Watch away({[](double t) { return t; }});
+  away.start(0.0, {0});
+  EXPECT_FALSE(away.check(1.0).has_value());
+}
+
+TEST(GuardCrossings, FirstStepProbeFindsAHumpThatLaterStepsDoNotSee) {
+  // Direction −1, g = −(t − 0.2)(t − 0.3): below 0 at both ends of [0, 1], above 0 on (0.2, 0.3).
+  // The first step after a start probes at 1/2, 1/4, …: 0.25 is above 0, so the downward
+  // crossing at 0.3 is found.
+  const Guard hump = [](double t) { return -(t - 0.2) * (t - 0.3); };
+  Watch w({hump});
+  w.start(0.0, {-1});
+  const auto root = w.check(1.0);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, 0.3, root_tolerance(0.0, 1.0));
+  EXPECT_EQ(w.crossings.fired()[0], -1);
+  // The same hump shifted into a later step ([1, 2]) is CVODE's blind spot: both ends below 0.
+  Watch later({[&hump](double t) { return hump(t - 1.0); }});
+  later.start(0.0, {-1});
+  EXPECT_FALSE(later.check(1.0).has_value());
+  EXPECT_FALSE(later.check(2.0).has_value());
+}
+
+TEST(GuardCrossings, StartRejectsMismatchedSizes) {
+  GuardCrossings c;
+  const std::vector<int> directions{0, 0};
+  const std::vector<double> g{1.0};
+  EXPECT_THROW(c.start(0.0, directions, g), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace flexgait::numerics
