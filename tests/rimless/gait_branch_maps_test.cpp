@@ -73,7 +73,7 @@ TEST(GaitBranchMaps, RigidFamilyMapsMcGeersFixedPointToItself) {
   const double q = 0.25;
   const WheelParams w = cache->wheel_at(q);
   const FixedPointReport fp = find_fixed_point(w, cache->sim, cache->opt, Model::Rigid, Section::Touchdown, InitialState{});
-  ASSERT_TRUE(fp.converged) << fp.failure;
+  ASSERT_TRUE(fp.converged) << fp.failure();
   const numerics::MapFamily family = family_in_mode(cache, fp.point, false);
   Eigen::VectorXd out;
   const auto failure = family.map(fp.point.z, q, out);
