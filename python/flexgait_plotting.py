@@ -9,7 +9,6 @@ RUN_DIR or its parent, as `flexgait reproduce` writes it) or, without one, the o
 `flexgait` on the PATH). tests/python/plot_schema_test.py reads the same calls statically.
 """
 import csv
-import fnmatch
 import json
 import os
 import shutil
@@ -18,12 +17,9 @@ import subprocess
 import matplotlib
 
 from atomic_write import temporary_beside
+from flexgait_schema import SchemaError
 
 matplotlib.use("Agg")
-
-
-class SchemaError(Exception):
-    """A script asked for a column or field that schema.json does not declare, or a file lacks it."""
 
 
 _schemas = {}
@@ -62,19 +58,26 @@ class TableFile:
         return len(self.rows)
 
 
-def read_table(run_dir, name, command):
-    """RUN_DIR/NAME, a CSV file written by `flexgait COMMAND` (schema.json's "COMMAND: NAME")."""
+def _declaration(run_dir, section, key):
+    """(source, the entry of schema section SECTION, "tables" or "results", for KEY)."""
     source, schema = load_schema(run_dir)
-    key = f"{command}: {name}"
-    tables = schema.get("tables", {})
-    if key not in tables:
-        raise SchemaError(f"{source} declares no table '{key}' (tables: {', '.join(tables)})")
+    entries = schema.get(section, {})
+    if key not in entries:
+        raise SchemaError(f"{source} declares no {section} entry '{key}' ({section}: {', '.join(entries)})")
+    return source, entries[key]
+
+
+def read_table(run_dir, name, command, as_file=None):
+    """RUN_DIR/NAME, a CSV file written by `flexgait COMMAND` (schema.json's "COMMAND: NAME", or
+    "COMMAND: AS_FILE" for a file named by a pattern, e.g. branch_K.csv for branch_1.csv)."""
+    key = f"{command}: {as_file or name}"
+    source, entry = _declaration(run_dir, "tables", key)
     path = os.path.join(run_dir, name)
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
         rows = list(reader)
         header = list(reader.fieldnames or [])
-    return TableFile(path, key, tables[key]["columns"], source, rows, header)
+    return TableFile(path, key, entry["columns"], source, rows, header)
 
 
 def read_table_if_present(run_dir, name, command):
@@ -96,7 +99,8 @@ def has_column(table, name):
 def _present(table, name):
     _declared(table, name)
     if name not in table.header:
-        raise SchemaError(f"{table.path}: no column '{name}' in the file (declared for '{table.key}' in {table.source})")
+        raise SchemaError(f"{table.path}: no column '{name}' in the file "
+                          f"(declared for '{table.key}' in {table.source})")
 
 
 def column(table, name, cast=float):
@@ -113,20 +117,20 @@ def cell(table, row, name, cast=str):
 
 def read_summary(run_dir, name, command):
     """RUN_DIR/NAME, a JSON file written by `flexgait COMMAND` (schema.json's results "COMMAND: NAME")."""
-    source, schema = load_schema(run_dir)
     key = f"{command}: {name}"
-    results = schema.get("results", {})
-    if key not in results:
-        raise SchemaError(f"{source} declares no result '{key}' (results: {', '.join(results)})")
+    source, entry = _declaration(run_dir, "results", key)
     path = os.path.join(run_dir, name)
     with open(path) as f:
         document = json.load(f)
-    return SummaryFile(path, key, [fl["key"] for fl in results[key]["fields"]], source, document)
+    return SummaryFile(path, key, entry["fields"], source, document)
 
 
 class SummaryFile:
-    def __init__(self, path, key, declared, source, document):
-        self.path, self.key, self.declared, self.source, self.document = path, key, declared, source, document
+    """A JSON object (a summary, or one item of a list in it) with its declared fields."""
+
+    def __init__(self, path, key, fields, source, document):
+        self.path, self.key, self.fields, self.source, self.document = path, key, fields, source, document
+        self.declared = [f["key"] for f in fields]
 
 
 def field(summary, name):
@@ -138,18 +142,15 @@ def field(summary, name):
     return summary.document[name]
 
 
-def declared_names(schema, key):
-    """Every column or field name declared for "COMMAND: FILE" (for the static check)."""
-    if key in schema.get("tables", {}):
-        return list(schema["tables"][key]["columns"])
-    if key in schema.get("results", {}):
-        return [f["key"] for f in schema["results"][key]["fields"]]
-    raise SchemaError(f"schema declares no table or result '{key}'")
-
-
-def matches(pattern, names):
-    """Whether a name (or an f-string's pattern, '*' for each placeholder) names a declared one."""
-    return any(fnmatch.fnmatchcase(n, pattern) for n in names)
+def items(summary, name):
+    """The objects of the list field NAME of a summary, each read with field() against its
+    declared item fields."""
+    value = field(summary, name)
+    spec = next(f for f in summary.fields if f["key"] == name)
+    if "item_fields" not in spec or not isinstance(value, list):
+        raise SchemaError(f"{summary.path}: field '{name}' is not declared as a list of objects in {summary.source}")
+    return [SummaryFile(summary.path, f"{summary.key} {name}[]", spec["item_fields"], summary.source, item)
+            for item in value]
 
 
 def read_rows(path):
