@@ -244,6 +244,32 @@ def self_check(schema):
     return [f"self-check: the check did not report: {e}" for e in expected if not any(e in p for p in problems)]
 
 
+def runtime_check():
+    """The accessors at run time: a column the schema beside the run does not declare, and a declared
+    one the file lacks, each fail naming the file and the column."""
+    import tempfile
+    import flexgait_plotting as fp
+    problems = []
+    with tempfile.TemporaryDirectory() as d:
+        run = os.path.join(d, "run")
+        os.mkdir(run)
+        with open(os.path.join(d, "schema.json"), "w") as f:
+            json.dump({"tables": {"humanoid walk: log.csv": {"columns": ["t", "com_x"]}}}, f)
+        with open(os.path.join(run, "log.csv"), "w") as f:
+            f.write("t\n0.5\n")
+        table = fp.read_table(run, "log.csv", "humanoid walk")
+        if fp.column(table, "t") != [0.5]:
+            problems.append("runtime check: column() did not read the column")
+        for name, expected in (("com_y", "column 'com_y' is not declared"), ("com_x", "no column 'com_x' in the file")):
+            try:
+                fp.column(table, name)
+                problems.append(f"runtime check: column(table, '{name}') did not fail")
+            except SchemaError as e:
+                if expected not in str(e) or "log.csv" not in str(e):
+                    problems.append(f"runtime check: column(table, '{name}') failed with '{e}'")
+    return problems
+
+
 def main(argv):
     if len(argv) != 3:
         sys.exit(__doc__)
@@ -253,7 +279,7 @@ def main(argv):
     missing = [s for s in scripts if not os.path.exists(s)]
     problems, checked = check(schema, [s for s in scripts if s not in missing])
     problems += [f"{s}: no such script" for s in missing]
-    problems += self_check(schema)
+    problems += self_check(schema) + runtime_check()
     report_problems, report_checked, report_unchecked = check_report(
         schema, os.path.join(os.path.dirname(os.path.abspath(python_dir)), "data", "report", "references.yaml"))
     problems += report_problems
