@@ -50,6 +50,7 @@ class TableFile:
     def __init__(self, path, key, declared, source, rows, header):
         self.path, self.key, self.declared, self.source = path, key, declared, source
         self.rows, self.header = rows, header
+        self.present = set()  # names already checked (cell() is called once per row)
 
     def __iter__(self):
         return iter(self.rows)
@@ -97,10 +98,13 @@ def has_column(table, name):
 
 
 def _present(table, name):
+    if name in table.present:
+        return
     _declared(table, name)
     if name not in table.header:
         raise SchemaError(f"{table.path}: no column '{name}' in the file "
                           f"(declared for '{table.key}' in {table.source})")
+    table.present.add(name)
 
 
 def column(table, name, cast=float):
