@@ -195,7 +195,7 @@ void WalkingController::check_sensors(const humanoid::SensorReadings& raw, doubl
     ft_failed_ = ft_failed_ || i == kFtLeft || i == kFtRight;
     imu_failed_ = imu_failed_ || i == kGyro || i == kAccel || i == kAhrs;
     if (!safe_stop_.active && health_.params().safe_stop) {
-      safe_stop_.sensor = i;
+      safe_stop_.sensor = static_cast<SensorId>(i);
       safe_stop_.fault = health_.fault(i);
       begin_safe_stop(t, k);
     }

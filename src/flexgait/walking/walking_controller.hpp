@@ -98,7 +98,7 @@ struct ControllerStatus {
 /// Why and when the controller stopped the walk.
 struct SafeStop {
   bool active = false;
-  int sensor = -1;                            ///< humanoid::SensorId that failed
+  humanoid::SensorId sensor = humanoid::kSensors;  ///< the sensor that failed (kSensors: none)
   SignalFault fault = SignalFault::kOk;       ///< its fault when it failed
   double t = 0;                               ///< [s]
   int steps_kept = 0;                         ///< steps of the plan still taken
