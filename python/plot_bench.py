@@ -4,21 +4,20 @@ after compensation.
 
 Usage: plot_bench.py RUN_DIR   (reads bench.csv; writes bench.png atomically)
 """
-import os
 import sys
 
-from flexgait_plotting import read_rows, save_atomic
+from flexgait_plotting import cell, read_table, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main(run_dir):
-    rows = read_rows(os.path.join(run_dir, "bench.csv"))
+    rows = read_table(run_dir, "bench.csv", "humanoid bench")
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), constrained_layout=True)
     for ax, comp, title in ((axes[0], "false", "(a) uncompensated"), (axes[1], "true", "(b) compensated")):
-        sel = [r for r in rows if r["compensated"] == comp]
-        tau = [float(r["gravity_torque"]) for r in sel]
-        ax.plot(tau, [float(r["error_link_minus_encoder"]) for r in sel], "o", label="link - encoder")
-        ax.plot(tau, [float(r["error_link_minus_command"]) for r in sel], "x", label="link - desired")
+        sel = [r for r in rows if cell(rows, r, "compensated") == comp]
+        tau = [cell(rows, r, "gravity_torque", float) for r in sel]
+        ax.plot(tau, [cell(rows, r, "error_link_minus_encoder", float) for r in sel], "o", label="link - encoder")
+        ax.plot(tau, [cell(rows, r, "error_link_minus_command", float) for r in sel], "x", label="link - desired")
         ax.axhline(0, color="k", lw=0.6)
         ax.set_xlabel("gravity torque [Nm]")
         ax.set_ylabel("angle error [rad]")

@@ -11,7 +11,7 @@ Reads STUDY_DIR/{off,both,both-thesis-form}/{log,joints}.csv and writes, atomica
 import os
 import sys
 
-from flexgait_plotting import read_rows, save_atomic
+from flexgait_plotting import column, has_column, read_table_if_present, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 CASES = (("off", "without compensator", "tab:red"), ("both", "with compensators (full form)", "tab:blue"),
@@ -19,17 +19,9 @@ CASES = (("off", "without compensator", "tab:red"), ("both", "with compensators 
 LEG_JOINTS = ("hip_yaw", "hip_roll", "hip_pitch", "knee", "ankle_pitch", "ankle_roll")
 
 
-def column(rows, name):
-    return [float(r[name]) for r in rows]
-
-
-def load(study, case, name):
-    path = os.path.join(study, case, name)
-    return read_rows(path) if os.path.exists(path) else None
-
-
 def main(study):
-    logs = {c: load(study, c, "log.csv") for c, _, _ in CASES}
+    # Each case is a `humanoid walk` run in its own directory.
+    logs = {c: read_table_if_present(os.path.join(study, c), "log.csv", "humanoid walk") for c, _, _ in CASES}
 
     fig, axes = plt.subplots(2, 1, figsize=(12, 7), sharex=True, constrained_layout=True)
     for ax, angle in zip(axes, ("roll", "pitch")):
@@ -57,7 +49,7 @@ def main(study):
     axes[1].set_xlabel("t [s]")
     save_atomic(fig, study, "fig14_zmp.png")
 
-    joints = load(study, "both", "joints.csv")
+    joints = read_table_if_present(os.path.join(study, "both"), "joints.csv", "humanoid walk")
     if joints:
         t = column(joints, "t")
         fig, axes = plt.subplots(2, 2, figsize=(13, 7), sharex=True, constrained_layout=True)
@@ -79,7 +71,7 @@ def main(study):
         save_atomic(fig, study, "estimate.png")
 
         fig, axes = plt.subplots(1, 3, figsize=(19, 5), constrained_layout=True)
-        per_joint = bool(joints) and "l_hip_roll_per_joint" in joints[0]  # (older files lack the per-joint form)
+        per_joint = bool(joints) and has_column(joints, "l_hip_roll_per_joint")  # (older files lack the per-joint form)
         for side, prefix in enumerate(("l_", "r_")):
             for joint in ("hip_roll", "hip_pitch", "knee", "ankle_pitch"):
                 name = prefix + joint

@@ -8,7 +8,7 @@ import math
 import os
 import sys
 
-from flexgait_plotting import read_rows, save_atomic
+from flexgait_plotting import cell, read_table, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
@@ -26,25 +26,25 @@ def draw_branch(ax, rows, column, label_gaits=True, gait_colours=None):
     """Draws `column` of branch.csv rows against the parameter: stable solid, unstable dashed, each run of
     one gait in its colour; special points (the event column) marked."""
     gait_colours = {} if gait_colours is None else gait_colours
-    pts = [r for r in rows if not r["event"] or not r["event"].startswith("end")]
+    pts = [r for r in rows if not cell(rows, r, "event") or not cell(rows, r, "event").startswith("end")]
     segment = []
 
     def flush():
         if len(segment) < 2:
             return
         # the run's own rows: not segment[0] (the previous run's end) nor segment[-1] (a located end)
-        own = next((r for r in segment[1:] if not r["event"]), segment[-1])
-        gait, stable = own["gait"], own["stable"] == "true"
+        own = next((r for r in segment[1:] if not cell(rows, r, "event")), segment[-1])
+        gait, stable = cell(rows, own, "gait"), cell(rows, own, "stable") == "true"
         colour = gait_colours.setdefault(gait, COLOURS[len(gait_colours) % len(COLOURS)])
-        ax.plot([_float(r["parameter"]) for r in segment], [_float(r[column]) for r in segment],
+        ax.plot([_float(cell(rows, r, "parameter")) for r in segment], [_float(cell(rows, r, column)) for r in segment],
                 "-" if stable else "--", color=colour, lw=1.6)
 
     for r in pts:
-        key = (r["gait"], r["stable"])
-        if segment and (segment[-1]["gait"], segment[-1]["stable"]) != key:
+        key = (cell(rows, r, "gait"), cell(rows, r, "stable"))
+        if segment and (cell(rows, segment[-1], "gait"), cell(rows, segment[-1], "stable")) != key:
             # The segments touch: at the located special point when r is one (the old run ends there),
             # else at the old run's last point.
-            if r["event"]:
+            if cell(rows, r, "event"):
                 segment.append(r)
                 flush()
                 segment = []
@@ -60,15 +60,15 @@ def draw_branch(ax, rows, column, label_gaits=True, gait_colours=None):
         ax.plot([], [], "k-", label="stable")
         ax.plot([], [], "k--", label="unstable")
     for r in rows:
-        ev = r["event"]
+        ev = cell(rows, r, "event")
         if ev and ev not in ("start",) and not ev.startswith("end"):
-            ax.plot(_float(r["parameter"]), _float(r[column]), "kD", ms=6, mfc="none")
-            ax.annotate(ev, (_float(r["parameter"]), _float(r[column])), fontsize=7, xytext=(4, 4),
-                        textcoords="offset points")
+            point = (_float(cell(rows, r, "parameter")), _float(cell(rows, r, column)))
+            ax.plot(*point, "kD", ms=6, mfc="none")
+            ax.annotate(ev, point, fontsize=7, xytext=(4, 4), textcoords="offset points")
 
 
 def bifurcation(run_dir, param="parameter"):
-    rows = read_rows(os.path.join(run_dir, "branch.csv"))
+    rows = read_table(run_dir, "branch.csv", "rimless continuation")
     fig, axes = plt.subplots(2, 1, figsize=(9, 8), sharex=True, constrained_layout=True)
     colours = {}
     draw_branch(axes[0], rows, "thetad", True, colours)
@@ -83,18 +83,20 @@ def bifurcation(run_dir, param="parameter"):
 
 
 def orbit_diagram(run_dir, param="parameter"):
-    rows = [r for r in read_rows(os.path.join(run_dir, "orbit.csv")) if r["step"]]
+    orbit = read_table(run_dir, "orbit.csv", "rimless analysis orbit-diagram")
+    rows = [r for r in orbit if cell(orbit, r, "step")]
     fig, ax = plt.subplots(figsize=(9, 6), constrained_layout=True)
-    gaits = sorted({r["gait"] for r in rows})
+    gaits = sorted({cell(orbit, r, "gait") for r in rows})
     colours = {}
     for g in gaits:
-        sel = [r for r in rows if r["gait"] == g]
+        sel = [r for r in rows if cell(orbit, r, "gait") == g]
         colours[g] = COLOURS[len(colours) % len(COLOURS)]
-        ax.plot([float(r["parameter"]) for r in sel], [float(r["thetad"]) for r in sel], ".", ms=2.5,
-                color=colours[g], label=f"steps of gait {g}")
+        ax.plot([cell(orbit, r, "parameter", float) for r in sel], [cell(orbit, r, "thetad", float) for r in sel], ".",
+                ms=2.5, color=colours[g], label=f"steps of gait {g}")
     branches = sorted(f for f in os.listdir(run_dir) if f.startswith("branch_") and f.endswith(".csv"))
     for name in branches:
-        draw_branch(ax, read_rows(os.path.join(run_dir, name)), "thetad", False, {g: "k" for g in gaits})
+        branch = read_table(run_dir, name, "rimless analysis orbit-diagram", as_file="branch_K.csv")
+        draw_branch(ax, branch, "thetad", False, {g: "k" for g in gaits})
     if branches:
         ax.plot([], [], "k-", label="continued branch, stable")
         ax.plot([], [], "k--", label="continued branch, unstable")
@@ -113,22 +115,23 @@ OUTCOME_COLOURS = {"converged": "tab:green", "other_gait": "tab:blue", "step_lim
 def basin(run_dir):
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
-    rows = read_rows(os.path.join(run_dir, "basin.csv"))
+    rows = read_table(run_dir, "basin.csv", "rimless analysis basin")
+    # summary.json of the basin is not in `flexgait schema` yet (rimless_map_commands.cpp builds it by hand).
     with open(os.path.join(run_dir, "summary.json")) as f:
         summary = json.load(f)
     nx, ny = summary["x"]["count"], summary["y"]["count"]
     names = list(OUTCOME_COLOURS)
     grid = [[0] * nx for _ in range(ny)]
     for r in rows:
-        i = int(r["index"])
-        grid[i // nx][i % nx] = names.index(r["outcome"])
+        i = cell(rows, r, "index", int)
+        grid[i // nx][i % nx] = names.index(cell(rows, r, "outcome"))
     fig, ax = plt.subplots(figsize=(8, 6.5), constrained_layout=True)
     x, y = summary["x"], summary["y"]
     dx, dy = (x["to"] - x["from"]) / (nx - 1), (y["to"] - y["from"]) / (ny - 1)
     ax.imshow(grid, origin="lower", aspect="auto", interpolation="nearest",
               cmap=ListedColormap([OUTCOME_COLOURS[n] for n in names]), vmin=-0.5, vmax=len(names) - 0.5,
               extent=(x["from"] - dx / 2, x["to"] + dx / 2, y["from"] - dy / 2, y["to"] + dy / 2))
-    present = sorted({r["outcome"] for r in rows}, key=names.index)
+    present = sorted({cell(rows, r, "outcome") for r in rows}, key=names.index)
     ax.legend(handles=[Patch(facecolor=OUTCOME_COLOURS[n], edgecolor="k", lw=0.3,
                              label=f"{n} ({summary['outcomes'][n]})") for n in present],
               fontsize=8, loc="upper right")

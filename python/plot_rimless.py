@@ -6,17 +6,13 @@ Usage: plot_rimless.py RUN_DIR   (reads log.csv, steps.csv; writes rimless.png a
 import os
 import sys
 
-from flexgait_plotting import read_rows, save_atomic
+from flexgait_plotting import cell, column, read_table, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def column(rows, key, cast=float):
-    return [cast(r[key]) for r in rows]
-
-
 def main(run_dir):
-    log = read_rows(os.path.join(run_dir, "log.csv"))
-    steps = read_rows(os.path.join(run_dir, "steps.csv"))
+    log = read_table(run_dir, "log.csv", "rimless simulate")
+    steps = read_table(run_dir, "steps.csv", "rimless simulate")
     t = column(log, "t")
     fig, axes = plt.subplots(4, 1, figsize=(10, 12), constrained_layout=True)
 
@@ -28,18 +24,18 @@ def main(run_dir):
 
     ax = axes[1]
     colours = {"stick": "tab:green", "slip+": "tab:red", "slip-": "tab:orange"}
-    legs = sorted({int(r[f"leg{i}"]) for r in log for i in (1, 2, 3) if int(r[f"leg{i}"]) >= 0})
+    legs = sorted({cell(log, r, f"leg{i}", int) for r in log for i in (1, 2, 3) if cell(log, r, f"leg{i}", int) >= 0})
     # Contiguous intervals of (leg, phase), drawn as bars.
     intervals = {}
     for i in (1, 2, 3):
         start = None
-        for r0, r1 in zip(log[:-1], log[1:]):
-            key = (int(r0[f"leg{i}"]), r0[f"phase{i}"])
+        for r0, r1 in zip(log.rows[:-1], log.rows[1:]):
+            key = (cell(log, r0, f"leg{i}", int), cell(log, r0, f"phase{i}"))
             if start is None or key != start[0]:
-                start = (key, float(r0["t"]))
-            if key[0] >= 0 and (int(r1[f"leg{i}"]), r1[f"phase{i}"]) != key or r1 is log[-1]:
+                start = (key, cell(log, r0, "t", float))
+            if key[0] >= 0 and (cell(log, r1, f"leg{i}", int), cell(log, r1, f"phase{i}")) != key or r1 is log.rows[-1]:
                 if key[0] >= 0:
-                    intervals.setdefault(key, []).append((start[1], float(r1["t"]) - start[1]))
+                    intervals.setdefault(key, []).append((start[1], cell(log, r1, "t", float) - start[1]))
                 start = None
     for (leg, phase), spans in intervals.items():
         ax.broken_barh(spans, (leg - 0.3, 0.6), color=colours[phase])
@@ -49,7 +45,7 @@ def main(run_dir):
     ax.set_ylabel("leg on the ground")
     ax.set_xlabel("t [s]")
     ax.legend(loc="upper right", ncol=3)
-    gaits = [s["gait"] for s in steps if s["complete"] == "true"]
+    gaits = [cell(steps, s, "gait") for s in steps if cell(steps, s, "complete") == "true"]
     ax.set_title("Foot phases; step gaits: " + (" ".join(gaits[-6:]) if gaits else "-"))
 
     ax = axes[2]

@@ -3,20 +3,20 @@
 
 Usage: plot_sweep.py RUN_DIR PARAM   (reads RUN_DIR/sweep.csv; writes RUN_DIR/sweep.png atomically)
 """
-import os
 import sys
 
-from flexgait_plotting import read_rows, save_atomic
+from flexgait_plotting import cell, read_table, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 GAIT_ORDER = ["slip", "slip-stick-slip", "slip-stick", "stick-slip", "stick"]
 
 
 def main(run_dir, param):
-    rows = read_rows(os.path.join(run_dir, "sweep.csv"))
-    x = [float(r["value"]) for r in rows]
-    ok = [r["converged"] == "true" for r in rows]
-    gaits = [r["gait"] if r["converged"] == "true" else (r["transient_gait"] or "none") for r in rows]
+    # (gait-vs-friction writes the same sweep.csv: the same columns)
+    rows = read_table(run_dir, "sweep.csv", "rimless sweep")
+    x = [cell(rows, r, "value", float) for r in rows]
+    ok = [cell(rows, r, "converged") == "true" for r in rows]
+    gaits = [cell(rows, r, "gait") if c else (cell(rows, r, "transient_gait") or "none") for r, c in zip(rows, ok)]
     order = GAIT_ORDER + sorted({g for g in gaits if g not in GAIT_ORDER})
     fig, axes = plt.subplots(4, 1, figsize=(9, 11), sharex=True, constrained_layout=True)
     ax = axes[0]
@@ -30,14 +30,15 @@ def main(run_dir, param):
     ax.legend(loc="best")
     ax = axes[1]
     xs = [xi for xi, c in zip(x, ok) if c]
-    ax.plot(xs, [float(r["max_multiplier"]) for r in rows if r["converged"] == "true"], "o-")
+    found = [r for r, c in zip(rows, ok) if c]
+    ax.plot(xs, [cell(rows, r, "max_multiplier", float) for r in found], "o-")
     ax.axhline(1.0, color="k", lw=0.8, ls="--")
     ax.set_ylabel("largest |multiplier|")
     ax = axes[2]
-    ax.plot(xs, [float(r["speed"]) for r in rows if r["converged"] == "true"], "o-")
+    ax.plot(xs, [cell(rows, r, "speed", float) for r in found], "o-")
     ax.set_ylabel("speed on the orbit [m/s]")
     ax = axes[3]
-    ax.plot(xs, [float(r["dissipated_per_cycle"]) for r in rows if r["converged"] == "true"], "o-")
+    ax.plot(xs, [cell(rows, r, "dissipated_per_cycle", float) for r in found], "o-")
     ax.set_ylabel("energy per step [J]")
     ax.set_xlabel(param)
     save_atomic(fig, run_dir, "sweep.png")

@@ -5,16 +5,11 @@ Usage: plot_walk.py RUN_DIR   (reads log.csv and footsteps.csv; writes walk.png 
 with control.k_estimation on, also k_estimate.png from joints.csv's k_est_ columns)
 """
 import math
-import os
 import sys
 
-from flexgait_plotting import read_rows, save_atomic
+from flexgait_plotting import cell, column, has_column, read_table, read_table_if_present, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Polygon  # noqa: E402
-
-
-def column(rows, name):
-    return [float(r[name]) for r in rows]
 
 
 def sole_outline(x, y, yaw, length=0.22, width=0.15):
@@ -25,12 +20,12 @@ def sole_outline(x, y, yaw, length=0.22, width=0.15):
 
 def push_intervals(rows, t):
     """[(start, end)] of each run of logged samples carrying a push force (one per push apart)."""
-    if not rows or "push_force_x" not in rows[0]:
+    if not len(rows) or not has_column(rows, "push_force_x"):
         return []
     out = []
     was_on = False
     for ti, r in zip(t, rows):
-        on = any(float(r[f"push_force_{a}"]) != 0.0 for a in "xyz")
+        on = any(cell(rows, r, f"push_force_{a}", float) != 0.0 for a in "xyz")
         if on and not was_on:
             out.append([ti, ti])
         elif on:
@@ -40,8 +35,8 @@ def push_intervals(rows, t):
 
 
 def main(run_dir):
-    rows = read_rows(os.path.join(run_dir, "log.csv"))
-    steps = read_rows(os.path.join(run_dir, "footsteps.csv"))
+    rows = read_table(run_dir, "log.csv", "humanoid walk")
+    steps = read_table(run_dir, "footsteps.csv", "humanoid walk")
     t = column(rows, "t")
     fig, axes = plt.subplots(2, 2, figsize=(13, 8), constrained_layout=True)
     for i, push in enumerate(push_intervals(rows, t)):
@@ -68,11 +63,12 @@ def main(run_dir):
     ax.legend(fontsize=8)
     ax = axes[1][1]
     for r in steps:
-        planned = sole_outline(float(r["x"]), float(r["y"]), float(r["yaw"]))
-        colour = "tab:blue" if r["side"] == "left" else "tab:red"
+        planned = sole_outline(cell(steps, r, "x", float), cell(steps, r, "y", float), cell(steps, r, "yaw", float))
+        colour = "tab:blue" if cell(steps, r, "side") == "left" else "tab:red"
         ax.add_patch(Polygon(planned, closed=True, fill=False, ls="--", ec=colour, lw=0.8))
-        if r["landed_x"] != "":
-            landed = sole_outline(float(r["landed_x"]), float(r["landed_y"]), float(r["landed_yaw"]))
+        if cell(steps, r, "landed_x") != "":
+            landed = sole_outline(cell(steps, r, "landed_x", float), cell(steps, r, "landed_y", float),
+                                  cell(steps, r, "landed_yaw", float))
             ax.add_patch(Polygon(landed, closed=True, fill=True, alpha=0.25, fc=colour, ec=colour))
     ax.plot(column(rows, "zmp_true_x"), column(rows, "zmp_true_y"), lw=0.6, color="k", label="ZMP (true)")
     ax.plot(column(rows, "com_x"), column(rows, "com_y"), lw=0.8, color="tab:green", label="COM (true)")
@@ -88,11 +84,8 @@ def main(run_dir):
 
 def plot_k_estimate(run_dir):
     """The stiffness estimate over time, one line per leg and joint group (issue 20)."""
-    path = os.path.join(run_dir, "joints.csv")
-    if not os.path.exists(path):
-        return
-    rows = read_rows(path)
-    if not rows or "k_est_l_knee" not in rows[0]:
+    rows = read_table_if_present(run_dir, "joints.csv", "humanoid walk")
+    if not rows or not has_column(rows, "k_est_l_knee"):
         return
     fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
     t = column(rows, "t")
@@ -101,7 +94,7 @@ def plot_k_estimate(run_dir):
         ax.plot(t, column(rows, f"k_est_{joint}"), lw=0.9, label=label)
     ax.set_xlabel("t [s]")
     ax.set_ylabel("k estimate [Nm/rad]")
-    final = [float(rows[-1][f"k_est_{j}"]) for j in ("l_hip_roll", "l_knee", "r_hip_roll", "r_knee")]
+    final = [cell(rows, rows.rows[-1], f"k_est_{j}", float) for j in ("l_hip_roll", "l_knee", "r_hip_roll", "r_knee")]
     ax.set_ylim(0, 2.5 * max(final))  # (the first samples, barely excited, swing to the bounds)
     ax.set_title("gear stiffness identified while walking (control.k_estimation)")
     ax.legend(fontsize=8)

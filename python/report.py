@@ -10,7 +10,8 @@ value and its source) and renders data/report/index.html.j2 with Jinja2 (autoesc
 RUN_ROOT/index.html, through a temporary file and a rename.
 
 Our numbers are read only from files the flexgait commands write (summary.json, comparison.json,
-CSV files; CSV by the csv module). A missing file, key or column, or a value of the wrong type,
+CSV files; CSV by the csv module). A missing file, key or column, a key or column that
+RUN_ROOT/schema.json does not declare for the run's command, or a value of the wrong type,
 fails the report: every such error is printed to stderr, naming the run, the file and the key,
 and the exit code is 1. Only when the run itself failed (a non-zero exit code in
 reproduce.json) is its row shown as "no result" instead.
@@ -26,6 +27,7 @@ import markupsafe
 import yaml
 
 from atomic_write import write_text_atomic
+from flexgait_schema import SchemaError, declared_names, names_asked
 
 DATA_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "data", "report")
 ROW_FIELDS = {"id", "section", "run", "values", "label", "ours", "reference", "source"}
@@ -82,6 +84,23 @@ class RunFiles:
     def __init__(self, root):
         self.root = root
         self.parsed = {}
+        # schema.json (written by `flexgait reproduce` beside the runs): the names each run's
+        # command declares; None without it (a hand-made tree).
+        self.schema = self._parse("schema.json") if os.path.exists(os.path.join(root, "schema.json")) else None
+
+    def check_declared(self, run, spec, where):
+        """ReportError when schema.json declares the run's file but not a name the spec reads."""
+        command = (self.schema or {}).get("reproduce", {}).get(run)
+        if command is None:
+            return
+        key = f"{command}: {spec['file']}"
+        try:
+            names = declared_names(self.schema, key)
+        except SchemaError:
+            return  # a file the schema does not list yet
+        missing = [n for n in names_asked(spec) if n not in names]
+        if missing:
+            raise ReportError(f"{where}: {', '.join(missing)} not declared for '{key}' in schema.json")
 
     def load(self, run, name):
         relative = f"{run}/{name}"
@@ -140,6 +159,7 @@ def read_value(files, run, spec):
     """One row value as its spec says: a JSON value, or records from a JSON array or a CSV file."""
     name = spec["file"]
     where = f"{run}/{name}"
+    files.check_declared(run, spec, where)
     content = files.load(run, name)
     if name.endswith(".csv"):
         missing = [c for c in spec["columns"] if c not in content["columns"]]

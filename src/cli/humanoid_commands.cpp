@@ -44,8 +44,8 @@ int bench(const RunOptions& run) {
                r.max_error_compensated);
     fmt::print("results in {}\n", dir.path().string());
   }
-  if (r.failure.empty()) return 0;
-  fmt::print(stderr, "error: the stiffness bench failed: {}\n", one_line(r.failure, 1000));
+  if (!r.failure) return 0;
+  fmt::print(stderr, "error: the stiffness bench failed: {}\n", one_line(r.failure->text(), 1000));
   return 1;
 }
 
@@ -196,7 +196,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
                              m.steps_completed, m.steps_planned);
   else if (m.safe_stop)
     incomplete = fmt::format("the walk stopped safely at t = {:.2f} s after {} of {} steps: {}", m.safe_stop_time,
-                             m.steps_completed, m.steps_planned, m.safe_stop_reason);
+                             m.steps_completed, m.steps_planned, m.safe_stop_text());
   else if (!m.completed())
     incomplete = fmt::format("the walk landed {} of {} steps", m.steps_completed, m.steps_planned);
   if (run.json) {

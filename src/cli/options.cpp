@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <limits>
+#include <system_error>
 
 #include "flexgait/core/text.hpp"
 
@@ -79,6 +82,11 @@ std::optional<std::filesystem::path> find_python_script(const std::string& scrip
 }
 
 int run_python_script(const std::filesystem::path& script, const std::vector<std::string>& args) {
+  // The scripts check the names they read against `flexgait schema` (python/flexgait_plotting.py):
+  // this program, unless the caller named another.
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) setenv("FLEXGAIT_EXE", self.c_str(), 0);
   std::vector<std::string> argv{"/usr/bin/python3", script.string()};
   argv.insert(argv.end(), args.begin(), args.end());
   return run_process(argv);

@@ -134,6 +134,23 @@ std::vector<Step> steps(bool quick) {
   return s;
 }
 
+}  // namespace
+
+std::vector<ReproduceRun> reproduce_runs() {
+  std::vector<ReproduceRun> out;
+  for (const Step& step : steps(false)) {
+    std::string command;
+    for (const auto& a : step.args) {
+      if (a.starts_with("-")) break;
+      command += (command.empty() ? "" : " ") + a;
+    }
+    out.push_back({step.dir, command});
+  }
+  return out;
+}
+
+namespace {
+
 /// The command line of a step as the report shows it: configuration files by their names only.
 std::string shown_command(const Step& step) {
   std::string command = "flexgait";

@@ -10,7 +10,9 @@ namespace flexgait::cli {
 
 /// The document `flexgait schema` prints and `reproduce` writes as schema.json:
 /// {"configurations": {command: [{key, type, default, unit, doc, allowed}, ...]},
-///  "results": {file: {"fields": [{key, type, unit, doc[, choices]}, ...]}}}.
+///  "results": {file: {"fields": [{key, type, unit, doc[, choices]}, ...]}},
+///  "tables": {"command: file.csv": {doc, columns: [name, ...][, present_when: {condition: [name, ...]}]}},
+///  "reproduce": {run directory: command}} (the runs of `flexgait reproduce`, for the report).
 std::string schema_document();
 
 void add_schema_command(CLI::App& app, std::function<int()>& action);

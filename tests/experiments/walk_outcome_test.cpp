@@ -35,5 +35,17 @@ TEST(WalkOutcome, SummaryTextComesFromTheReason) {
   EXPECT_EQ((WalkFailure{SimulationFailure::kDiverged, {}}).text(), "the simulation diverged: a non-finite state");
 }
 
+// summary.json's safe_stop_reason is made from the sensor, its fault and the cut plan.
+TEST(WalkOutcome, SafeStopTextComesFromTheReason) {
+  WalkMetrics m;
+  EXPECT_EQ(record_json(m)["safe_stop_reason"], "");
+  m.safe_stop = true;
+  m.safe_stop_reason = SafeStopReason{humanoid::kFtRight, walking::SignalFault::kNan, 0.3, 3, 10};
+  EXPECT_EQ(record_json(m)["safe_stop_reason"],
+            "sensor ft_right nan for longer than health.hold_time = 0.3 s; walk cut to 3 of 10 steps");
+  m.safe_stop_reason = SafeStopReason{humanoid::kGyro, walking::SignalFault::kStale, 0.05, 0, 4};
+  EXPECT_EQ(m.safe_stop_text(), "sensor gyro stale for longer than health.hold_time = 0.05 s; walk cut to 0 of 4 steps");
+}
+
 }  // namespace
 }  // namespace flexgait::experiments

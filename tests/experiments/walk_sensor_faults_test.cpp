@@ -35,7 +35,8 @@ void expect_survived(const WalkResult& r, int sensor) {
   const WalkMetrics& m = r.metrics;
   EXPECT_FALSE(m.fell) << m.fall_text() << " at " << m.fall_time << " s";
   EXPECT_EQ(m.steps_completed, 10);
-  EXPECT_FALSE(m.safe_stop) << m.safe_stop_reason;
+  EXPECT_FALSE(m.safe_stop) << m.safe_stop_text();
+  EXPECT_FALSE(m.safe_stop_reason.has_value());
   EXPECT_EQ(m.mujoco_warnings, 0);
   EXPECT_EQ(m.sensor_fault_episodes, 1);
   ASSERT_EQ(m.sensor_faults.size(), 1U);
@@ -94,7 +95,9 @@ TEST(WalkSensorFaults, PermanentFtFailureIsASafeStop) {
   EXPECT_EQ(m.mujoco_warnings, 0);
   ASSERT_TRUE(m.safe_stop);
   EXPECT_NEAR(m.safe_stop_time, 4.3 + p.health.hold_time, 0.0081);
-  EXPECT_NE(m.safe_stop_reason.find("ft_right nan"), std::string::npos) << m.safe_stop_reason;
+  ASSERT_TRUE(m.safe_stop_reason.has_value());
+  EXPECT_EQ(m.safe_stop_reason->sensor, humanoid::kFtRight);
+  EXPECT_EQ(m.safe_stop_reason->fault, walking::SignalFault::kNan);
   // At 4.6 s step 3 (4.5–5.5 s) is in double support (lift-off at 4.7 s): it is dropped, so three
   // steps were taken; the robot then stands to the planned end of the walk.
   EXPECT_EQ(m.steps_completed, 3);

@@ -164,7 +164,7 @@ SweepOutcome run_coordinator(const SweepJob& job, PointDistributor& distributor)
     progress.show(out.resumed + out.computed);
   });
   appender.finish();
-  std::string text = "index," + job.header + "\n";
+  std::string text = sweep_file_header(job.header) + "\n";
   for (const auto& [i, cells] : rows) text += fmt::format("{},{}\n", i, cells);
   write_file_atomic(final_csv, text);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -42,6 +42,9 @@ struct SweepOutcome {
   double seconds = 0;
 };
 
+/// The header of a sweep's final CSV file: an index column, then the job's header.
+inline std::string sweep_file_header(const std::string& job_header) { return "index," + job_header; }
+
 /// Throws UsageError if `job.resume` is set but its directory holds no sweep with the
 /// same signature. Call it before writing anything.
 void check_resumable(const SweepJob& job);

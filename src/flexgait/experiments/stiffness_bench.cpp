@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "flexgait/compensation/link_angle_newton.hpp"
+#include "flexgait/experiments/walk_outcome.hpp"
 #include "flexgait/twin/actuator_rig.hpp"
 
 namespace flexgait::experiments {
@@ -18,11 +20,25 @@ BenchParams bench_from_config(const Config& c) {
   return p;
 }
 
+std::string BenchFailure::text() const {
+  const char* sweep_name = sweep == BenchSweep::kUncompensated ? "uncompensated" : "compensated";
+  switch (reason) {
+    case BenchFailureReason::kMuJoCoWarning:
+      return fmt::format("{} sweep, pose {}: {}", sweep_name, pose,
+                         WalkFailure{SimulationFailure::kMuJoCoWarning, detail}.text());
+    case BenchFailureReason::kDiverged:
+      return fmt::format("{} sweep, pose {}: {}", sweep_name, pose, WalkFailure{SimulationFailure::kDiverged, {}}.text());
+    case BenchFailureReason::kNoFit:
+      return fmt::format("no finite positive stiffness fits the sweep (k_fit = {})", detail);
+  }
+  throw std::logic_error("BenchFailureReason without a text");
+}
+
 BenchResult run_stiffness_bench(const BenchParams& p) {
   const humanoid::ActuatorRigParams rig{p.actuator, p.arm_length, p.load_mass, p.physics_dt};
   const double weight_arm = p.load_mass * 9.81 * p.arm_length;  // m g l [Nm]
-  std::string failure;  // the first sweep's failure ends the bench
-  auto sweep = [&](double k_comp) {
+  std::optional<BenchFailure> failure;  // the first sweep's failure ends the bench
+  auto sweep = [&](BenchSweep which, double k_comp) {
     humanoid::ActuatorRig bench(rig, p.angle_min);
     std::vector<BenchSample> out;
     const int settle = static_cast<int>(std::lround(p.settle_time / p.physics_dt));
@@ -31,10 +47,11 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
       // Input compensator (eq. 9) with the bench's gravity model: the arm sags by τ_g / k.
       const double command = k_comp > 0 ? desired - weight_arm * std::cos(desired) / k_comp : desired;
       for (int s = 0; s < settle && bench.warnings() == 0; ++s) bench.step(command);
-      if (bench.warnings() > 0) failure = fmt::format("pose {}: MuJoCo: {}", i, bench.warnings_text());
+      if (bench.warnings() > 0)
+        failure = BenchFailure{BenchFailureReason::kMuJoCoWarning, bench.warnings_text(), which, i};
       else if (!std::isfinite(bench.link_angle()) || !std::isfinite(bench.motor().theta_m))
-        failure = fmt::format("pose {}: the simulation diverged: a non-finite state", i);
-      if (!failure.empty()) break;
+        failure = BenchFailure{BenchFailureReason::kDiverged, {}, which, i};
+      if (failure) break;
       BenchSample b;
       b.command = desired;
       b.encoder = humanoid::encoder_reading(p.actuator, bench.motor().theta_m);
@@ -46,9 +63,9 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
   };
   BenchResult r;
   r.k_true = p.actuator.k;
-  r.uncompensated = sweep(0.0);
-  if (!failure.empty()) {
-    r.failure = "uncompensated sweep, " + failure;
+  r.uncompensated = sweep(BenchSweep::kUncompensated, 0.0);
+  if (failure) {
+    r.failure = failure;
     return r;
   }
   // Least squares of error = link − encoder against τ_g: slope 1/k (the load drives θ positive).
@@ -69,13 +86,13 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
   r.k_fit = 1.0 / slope;
   r.r_squared = 1.0 - ss_res / ss_tot;
   if (!std::isfinite(r.k_fit) || r.k_fit <= 0) {
-    r.failure = fmt::format("no finite positive stiffness fits the sweep (k_fit = {})", r.k_fit);
+    r.failure = BenchFailure{BenchFailureReason::kNoFit, fmt::format("{}", r.k_fit)};
     r.k_fit = 0;
     return r;
   }
-  r.compensated = sweep(r.k_fit);
-  if (!failure.empty()) {
-    r.failure = "compensated sweep, " + failure;
+  r.compensated = sweep(BenchSweep::kCompensated, r.k_fit);
+  if (failure) {
+    r.failure = failure;
     return r;
   }
   r.min_residual_compensated = INFINITY;

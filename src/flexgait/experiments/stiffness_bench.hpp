@@ -4,10 +4,14 @@
 /// load arm, swept through poses. At each pose the angle error (true link angle − encoder) is
 /// logged against the gravity torque m g l cos θ estimated from the encoder; a linear fit gives
 /// k_joint; the sweep is repeated with the command compensated by τ_g(θ_d) / k_fit (eqs. 8-9).
+#include <array>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/enum_names.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/twin/elastic_actuator.hpp"
 
@@ -64,6 +68,32 @@ struct BenchSample {
   int newton_iterations = 0;
 };
 
+/// Why the bench ended early (issue 13, "One outcome convention": a reason plus its detail).
+enum class BenchFailureReason : std::uint8_t {
+  kMuJoCoWarning,  ///< MuJoCo warned in a sweep; detail: its text
+  kDiverged,       ///< a sweep's state is no longer finite
+  kNoFit,          ///< no finite positive stiffness fits the uncompensated sweep; detail: the k_fit
+};
+constexpr std::array<EnumName<BenchFailureReason>, 3> enum_names(BenchFailureReason) {
+  return {{{BenchFailureReason::kMuJoCoWarning, "mujoco_warning"},
+           {BenchFailureReason::kDiverged, "diverged"},
+           {BenchFailureReason::kNoFit, "no_fit"}}};
+}
+
+/// The sweep a failure happened in.
+enum class BenchSweep : std::uint8_t { kUncompensated, kCompensated };
+
+struct BenchFailure {
+  BenchFailureReason reason = BenchFailureReason::kDiverged;
+  std::string detail;  ///< MuJoCo's warnings (kMuJoCoWarning), the fitted k (kNoFit); empty otherwise
+  BenchSweep sweep = BenchSweep::kUncompensated;  ///< where (kMuJoCoWarning, kDiverged)
+  int pose = 0;                                   ///< the pose of that sweep (kMuJoCoWarning, kDiverged)
+  /// summary.json's failure: "uncompensated sweep, pose 3: MuJoCo: <warnings>", "compensated
+  /// sweep, pose 0: the simulation diverged: a non-finite state", "no finite positive stiffness
+  /// fits the sweep (k_fit = -12)".
+  std::string text() const;
+};
+
 /// The bench's sweeps and scores (`summary.json`, in the order of visit_fields).
 struct BenchResult {
   std::vector<BenchSample> uncompensated, compensated;
@@ -76,12 +106,14 @@ struct BenchResult {
   double max_error_newton = 0, max_error_conventional = 0;  ///< max |estimate − link| over both sweeps [rad]
   double max_newton_conventional = 0;                       ///< max |Newton − conventional| [rad]
   int max_newton_iterations = 0;
-  /// Why the bench failed ("" when it did not): a MuJoCo warning or a non-finite state in a
+  /// Why the bench failed (none when it did not): a MuJoCo warning or a non-finite state in a
   /// sweep, or no finite fit. The scores after the failed part are left at zero.
-  std::string failure;
+  std::optional<BenchFailure> failure;
 
   /// (k_fit − k_true) / k_true.
   double k_fit_error() const { return (k_fit - k_true) / k_true; }
+  /// summary.json's failure ("" when it did not fail).
+  std::string failure_text() const { return failure ? failure->text() : std::string(); }
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -99,7 +131,8 @@ struct BenchResult {
       {.unit = "rad", .doc = "max |conventional estimate − link|"});
     v("newton_conventional_max", s.max_newton_conventional, {.unit = "rad", .doc = "max |Newton − conventional|"});
     v("newton_iterations_max", s.max_newton_iterations, {.doc = "Newton iterations at most, one pose"});
-    v("failure", s.failure, {.doc = "why the bench failed (a MuJoCo warning, a non-finite state or fit); empty when it did not"});
+    std::string failure = s.failure_text();
+    v("failure", failure, {.doc = "why the bench failed (a MuJoCo warning, a non-finite state or fit); empty when it did not"});
   }
 };
 

@@ -448,9 +448,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   m.safe_stop = stop.active;
   if (stop.active) {
     m.safe_stop_time = stop.t;
-    m.safe_stop_reason = fmt::format("sensor {} {} for longer than health.hold_time = {} s; walk cut to {} of {} steps",
-                                     humanoid::kSensorNames[stop.sensor], name_of(stop.fault), params.health.hold_time,
-                                     stop.steps_kept, out.plan.steps.size());
+    m.safe_stop_reason = SafeStopReason{stop.sensor, stop.fault, params.health.hold_time, stop.steps_kept,
+                                        static_cast<int>(out.plan.steps.size())};
   }
   m.com_error_rms = com.rms();
   m.com_error_max = com.max;

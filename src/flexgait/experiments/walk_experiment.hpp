@@ -168,7 +168,7 @@ struct WalkMetrics {
   double sensor_fault_time = 0;                              ///< total time sensors were bad (summed over sensors) [s]
   std::vector<std::string> sensor_faults;                    ///< "<sensor>: <episodes> x, <time> s" for each flagged sensor
   bool safe_stop = false;                                    ///< the controller stopped the walk for a failed sensor
-  std::string safe_stop_reason;                              ///< "" without a safe stop
+  std::optional<SafeStopReason> safe_stop_reason;            ///< none without a safe stop
   double safe_stop_time = 0;                                 ///< [s]
   bool pushed = false;                                       ///< a push was configured (disturbance.push.*)
   double push_impulse = 0;                                   ///< |applied push impulse| [N s]
@@ -179,6 +179,8 @@ struct WalkMetrics {
   /// summary.json's fall_reason ("" when it did not fall) and failure ("" when it did not).
   std::string fall_text() const { return fall_reason ? std::string(fall_sentence(*fall_reason)) : std::string(); }
   std::string failure_text() const { return failure ? failure->text() : std::string(); }
+  /// summary.json's safe_stop_reason ("" without a safe stop).
+  std::string safe_stop_text() const { return safe_stop_reason ? safe_stop_reason->text() : std::string(); }
   /// The output compensator ran: its estimator's scores apply.
   bool has_estimate() const {
     return compensation == compensation::CompensationMode::kOutput || compensation == compensation::CompensationMode::kBoth;
@@ -248,7 +250,8 @@ struct WalkMetrics {
     v("sensor_fault_time", s.sensor_fault_time, {.unit = "s", .doc = "time sensors were bad, summed over sensors"});
     v("sensor_faults", s.sensor_faults, {.doc = "each flagged sensor: episodes and time bad"});
     v("safe_stop", s.safe_stop, {.doc = "the controller stopped the walk because a sensor stayed bad"});
-    v("safe_stop_reason", s.safe_stop_reason, {.doc = "which sensor failed, how, when; empty without a safe stop"});
+    std::string safe_stop_reason = s.safe_stop_text();
+    v("safe_stop_reason", safe_stop_reason, {.doc = "which sensor failed, how, when; empty without a safe stop"});
     v("safe_stop_time", s.safe_stop_time, {.unit = "s", .doc = "when the safe stop began"});
     v("push_impulse", s.push_impulse, {.unit = "N s", .doc = "magnitude of the push impulse applied", .present = s.pushed});
     v("capture_point_bound", s.capture_point_bound,

@@ -1,5 +1,7 @@
 #include "flexgait/experiments/walk_outcome.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 namespace flexgait::experiments {
@@ -14,6 +16,11 @@ std::string_view fall_sentence(FallReason reason) {
       return "a body other than a sole touched the floor";
   }
   throw std::logic_error("FallReason without a sentence");
+}
+
+std::string SafeStopReason::text() const {
+  return fmt::format("sensor {} {} for longer than health.hold_time = {} s; walk cut to {} of {} steps",
+                     humanoid::kSensorNames[sensor], name_of(fault), hold_time, steps_kept, steps_planned);
 }
 
 std::string WalkFailure::text() const {

@@ -8,6 +8,8 @@
 #include <string_view>
 
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/robot/sensor_faults.hpp"
+#include "flexgait/walking/sensor_health.hpp"
 
 namespace flexgait::experiments {
 
@@ -39,6 +41,19 @@ struct WalkFailure {
   SimulationFailure reason = SimulationFailure::kDiverged;
   std::string detail;  ///< MuJoCo's warnings (kMuJoCoWarning); empty otherwise
   /// "MuJoCo: <warnings>" or "the simulation diverged: a non-finite state" (summary.json's failure).
+  std::string text() const;
+};
+
+/// Why the controller stopped the walk safely (walking::SafeStop): a sensor it uses stayed bad for
+/// longer than health.hold_time; the plan was cut at the next double support.
+struct SafeStopReason {
+  humanoid::SensorId sensor = humanoid::kSensors;  ///< the sensor that failed
+  walking::SignalFault fault = walking::SignalFault::kOk;  ///< how it failed (nan, stale, stuck)
+  double hold_time = 0;   ///< health.hold_time [s]
+  int steps_kept = 0;     ///< steps of the plan still taken
+  int steps_planned = 0;  ///< steps of the plan
+  /// summary.json's safe_stop_reason: "sensor ft_right nan for longer than health.hold_time =
+  /// 0.3 s; walk cut to 3 of 10 steps".
   std::string text() const;
 };
 

@@ -47,6 +47,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
       dcm_(DcmGains{balance.dcm_kp, balance.dcm_ki, balance.dcm_integral_limit}),
       estimator_params_(estimator),
       estimator_(estimator),
+      tilt_(TiltObserverGains{estimator.tilt_alpha, estimator.tilt_beta, estimator.tilt_gamma, estimator.gravity}),
       health_(health, period) {
   if (!(period > 0)) throw std::invalid_argument("WalkingController: the period must be positive");
   plan_ = plan_footsteps(walk_);
@@ -185,7 +186,8 @@ void WalkingController::check_sensors(const humanoid::SensorReadings& raw, doubl
   using namespace humanoid;
   health_.check(raw, t);
   const SensorReadings& s = health_.clean();
-  const bool mahony = estimator_params_.source == AttitudeSource::kMahony;
+  // (source tilt: the Mahony filter runs beside the tilt observer, which starts from its levelling)
+  const bool mahony = estimator_params_.source != AttitudeSource::kAhrs;
   // The sensors this controller uses; the first of them to fail stops the walk.
   const std::array<bool, kSensors> used = {true, true, true, mahony, !mahony, true};
   for (int i = 0; i < kSensors; ++i) {
@@ -193,7 +195,7 @@ void WalkingController::check_sensors(const humanoid::SensorReadings& raw, doubl
     ft_failed_ = ft_failed_ || i == kFtLeft || i == kFtRight;
     imu_failed_ = imu_failed_ || i == kGyro || i == kAccel || i == kAhrs;
     if (!safe_stop_.active && health_.params().safe_stop) {
-      safe_stop_.sensor = i;
+      safe_stop_.sensor = static_cast<SensorId>(i);
       safe_stop_.fault = health_.fault(i);
       begin_safe_stop(t, k);
     }
@@ -214,13 +216,50 @@ void WalkingController::check_sensors(const humanoid::SensorReadings& raw, doubl
       const Vector3d accel(s.imu.accel[0], s.imu.accel[1], s.imu.accel[2]);
       const Vector3d planned(cart_[0].x(2), cart_[1].x(2), 0.0);  // the COM's acceleration now
       estimator_.update(gyro, health_.bad(kAccel) ? nullptr : &accel, planned, period_);
+      if (estimator_params_.source == AttitudeSource::kTilt) update_tilt(s, gyro, health_.bad(kAccel) ? nullptr : &accel);
     }
     attitude_ = estimator_.attitude();
+    if (tilt_.started()) {
+      const Eigen::Vector2d roll_pitch = roll_pitch_of_tilt(tilt_.tilt());
+      attitude_ = rpy_to_matrix(roll_pitch(0), roll_pitch(1), yaw_of(attitude_));  // (yaw: the gyro's)
+    }
   } else {
     bool finite = true;
     for (double q : s.imu.quat) finite = finite && std::isfinite(q);
     if (finite) attitude_ = quat_to_matrix(s.imu.quat.data());  // else: never a good one yet, keep
   }
+}
+
+void WalkingController::update_tilt(const humanoid::SensorReadings& s, const Vector3d& gyro, const Vector3d* accel) {
+  // (T2): each loaded sole centre, placed in the pelvis (IMU) frame by the encoders, is an anchor
+  // at rest; their velocities are averaged with the F/T loads as weights.
+  forward_kinematics(model_, tilt_data_, Pose{}, s.encoder);
+  const Vector3d omega = gyro - estimator_.bias();
+  Vector3d y_v = Vector3d::Zero();
+  double weight = 0;
+  for (int side = 0; side < 2; ++side) {
+    const Vector3d p = sole_pose(model_, tilt_data_, side).p;
+    const double f = foot_contact_[side].normal_force;
+    if (anchors_known_ && f > balance_.contact_force) {
+      y_v -= f * (omega.cross(p) + (p - anchor_[side]) / period_);
+      weight += f;
+    }
+    anchor_[side] = p;
+  }
+  anchors_known_ = true;
+  if (!estimator_.initialised()) return;
+  if (weight > 0) y_v /= weight;
+  const Vector3d up = estimator_.attitude().transpose() * Vector3d::UnitZ();
+  if (!tilt_.started()) {
+    tilt_.reset(weight > 0 ? y_v : Vector3d::Zero(), up);  // from the Mahony filter's levelling
+    return;
+  }
+  // Without the accelerometer: the specific force of a body at rest along the tilt.
+  const Vector3d y_a = accel != nullptr ? *accel : Vector3d(estimator_params_.gravity * tilt_.tilt());
+  if (weight > 0)
+    tilt_.update(y_v, y_a, omega, period_);
+  else
+    tilt_.update(y_a, omega, period_);
 }
 
 void WalkingController::begin_safe_stop(double t, std::size_t k) {

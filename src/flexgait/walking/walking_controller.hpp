@@ -59,6 +59,7 @@
 #include "flexgait/walking/robot_model.hpp"
 #include "flexgait/walking/sensor_health.hpp"
 #include "flexgait/walking/step_adjustment.hpp"
+#include "flexgait/walking/tilt_observer.hpp"
 #include "flexgait/walking/walk_params.hpp"
 
 namespace flexgait::walking {
@@ -97,7 +98,7 @@ struct ControllerStatus {
 /// Why and when the controller stopped the walk.
 struct SafeStop {
   bool active = false;
-  int sensor = -1;                            ///< humanoid::SensorId that failed
+  humanoid::SensorId sensor = humanoid::kSensors;  ///< the sensor that failed (kSensors: none)
   SignalFault fault = SignalFault::kOk;       ///< its fault when it failed
   double t = 0;                               ///< [s]
   int steps_kept = 0;                         ///< steps of the plan still taken
@@ -152,6 +153,9 @@ class WalkingController {
   void update_foot_lift(const FeetTarget& feet, const Eigen::Vector2d& zmp);
   /// The DCM stabiliser: COM estimate, ZMP command, foot rotations toward its centres of pressure.
   void dcm_balance(const humanoid::SensorReadings& sensors, const FeetTarget& feet, double yaw);
+  /// estimator.source tilt: one period of the tilt observer (tilt_observer.hpp) on the gyro (less
+  /// the Mahony filter's bias), the accelerometer (nullptr: bad) and the loaded soles' kinematics.
+  void update_tilt(const humanoid::SensorReadings& sensors, const Vector3d& gyro, const Vector3d* accel);
   /// Step adjustment (step_adjustment.hpp): while walking, moves the current step's landing and
   /// the later footsteps once per step; standing (a plan without steps), inserts one recovery
   /// step. Rewrites the ZMP reference from sample k on, so the preview controller replans.
@@ -193,6 +197,10 @@ class WalkingController {
   std::array<Eigen::Vector2d, 2> zmp_filtered_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}; ///< the measured ZMP, low-passed [m]
   EstimatorParams estimator_params_;
   AttitudeEstimator estimator_;
+  TiltObserver tilt_;                          ///< estimator.source tilt
+  RobotModelData tilt_data_;                   ///< its leg kinematics
+  std::array<Vector3d, 2> anchor_{Vector3d::Zero(), Vector3d::Zero()};  ///< each sole centre, pelvis frame, last period [m]
+  bool anchors_known_ = false;
   SensorHealth health_;
   Matrix3d attitude_ = Matrix3d::Identity();
   bool ft_live_ = true;     ///< both F/T sensors good this period
