@@ -159,5 +159,17 @@ TEST(Record, JsonLeavesOutFieldsThatDoNotApply) {
   for (const auto& [key, value] : on.items()) EXPECT_EQ(key, fields[i++].key);
 }
 
+TEST(Record, FieldKeyNamesAMemberByItsDeclaredKey) {
+  // field_key finds the member among the record's fields by address, so it agrees with the
+  // schema's key for every field, nested records included; a member not declared is refused.
+  using experiments::WalkMetrics;
+  using experiments::WalkRunParams;
+  EXPECT_EQ(field_key(&WalkMetrics::pelvis_roll_error_max), "pelvis_roll_error_max");
+  EXPECT_EQ(field_key(&WalkMetrics::fell), "fell");
+  EXPECT_EQ(field_key(&walking::BalanceParams::step_adjustment), "balance.step_adjustment");
+  EXPECT_EQ(field_key(&walking::EstimatorParams::source), "estimator.source");
+  EXPECT_THROW(field_key(&walking::EstimatorParams::gravity), std::logic_error);  // not a key
+}
+
 }  // namespace
 }  // namespace flexgait

@@ -152,31 +152,25 @@ ParamSpec integer_param(std::string key, std::string fallback, std::string doc, 
   return p;
 }
 
-ParamSpec choice_param(std::string key, std::string fallback, std::string doc, std::vector<std::string> choices) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Choice;
-  p.fallback = std::move(fallback);
-  p.doc = std::move(doc);
-  p.choices = std::move(choices);
-  return p;
-}
-
-ParamSpec boolean_param(std::string key, std::string fallback, std::string doc) {
-  ParamSpec p;
-  p.key = std::move(key);
-  p.type = ParamType::Boolean;
-  p.fallback = std::move(fallback);
-  p.doc = std::move(doc);
-  return p;
-}
-
 ParamSpec text_param(std::string key, std::string fallback, std::string doc) {
   ParamSpec p;
   p.key = std::move(key);
   p.type = ParamType::Text;
   p.fallback = std::move(fallback);
   p.doc = std::move(doc);
+  return p;
+}
+
+ParamSpec choice_param(std::string key, std::string fallback, std::string doc, std::vector<std::string> choices) {
+  ParamSpec p = text_param(std::move(key), std::move(fallback), std::move(doc));
+  p.type = ParamType::Choice;
+  p.choices = std::move(choices);
+  return p;
+}
+
+ParamSpec boolean_param(std::string key, std::string fallback, std::string doc) {
+  ParamSpec p = text_param(std::move(key), std::move(fallback), std::move(doc));
+  p.type = ParamType::Boolean;
   return p;
 }
 

@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -324,6 +325,31 @@ struct Describer {
 };
 
 }  // namespace detail
+
+namespace detail {
+
+struct KeyFinder {
+  const void* target;
+  std::string key;
+  template <class T>
+  void operator()(std::string_view k, const T& field, const FieldInfo&) {
+    if (static_cast<const void*>(&field) == target) key = k;
+  }
+};
+
+}  // namespace detail
+
+/// The key record R declares for its data member `member` (R::visit_fields): code that names a
+/// field through its member, e.g. field_key(&WalkMetrics::fell) == "fell", cannot misspell it.
+/// Throws std::logic_error when the member is not a declared field (a programming error).
+template <class R, class T>
+std::string field_key(T R::*member) {
+  const R r{};
+  detail::KeyFinder find{&(r.*member), {}};
+  R::visit_fields(r, find);
+  if (find.key.empty()) throw std::logic_error("field_key: the member is not a declared field of its record");
+  return find.key;
+}
 
 /// Every field a record can hold (whether or not a given value holds it), in declaration order.
 template <class R>

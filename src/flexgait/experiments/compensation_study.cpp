@@ -32,6 +32,31 @@ const WalkResult& result_of(const std::vector<StudyCase>& cases, const std::vect
 /// 1 − on/off: the share of an error that compensation removes.
 double cut(double off, double on) { return off > 0 ? 1.0 - on / off : 0.0; }
 
+/// A metric compared between cases: KEY_off, KEY_on, then KEY_cut and KEY_thesis_form when asked,
+/// KEY the metric's own key in WalkMetrics (declared once there).
+struct Compared {
+  double WalkMetrics::*metric;
+  bool with_cut = false;
+  bool with_thesis_form = false;
+};
+
+void add_compared(nlohmann::ordered_json& j, const Compared& c, const WalkMetrics& off, const WalkMetrics& on,
+                  const WalkMetrics* thesis = nullptr) {
+  const std::string key = field_key(c.metric);
+  j[key + "_off"] = off.*c.metric;
+  j[key + "_on"] = on.*c.metric;
+  if (c.with_cut) j[key + "_cut"] = cut(off.*c.metric, on.*c.metric);
+  if (c.with_thesis_form && thesis != nullptr) j[key + "_thesis_form"] = thesis->*c.metric;
+}
+
+/// The same member of off and on as KEY_off, KEY_on.
+template <class T>
+void add_off_on(nlohmann::ordered_json& j, T WalkMetrics::*metric, const WalkMetrics& off, const WalkMetrics& on) {
+  const std::string key = field_key(metric);
+  j[key + "_off"] = off.*metric;
+  j[key + "_on"] = on.*metric;
+}
+
 }  // namespace
 
 std::vector<StudyCase> compensation_cases(const WalkRunParams& base) {
@@ -67,22 +92,10 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   j["k_joint_true"] = cases.front().params.plant.gear_stiffness()[humanoid::kLeftHipRoll];
   j["k_joint_belief"] = cases.front().params.control.stiffness()[humanoid::kLeftHipRoll];
   j["weight_split"] = std::string(name_of(cases.front().params.control.split));
-  j["pelvis_roll_error_max_off"] = off.pelvis_roll_error_max;
-  j["pelvis_roll_error_max_on"] = on.pelvis_roll_error_max;
-  j["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, on.pelvis_roll_error_max);
-  j["pelvis_roll_error_max_thesis_form"] = thesis.pelvis_roll_error_max;
-  j["pelvis_pitch_error_max_off"] = off.pelvis_pitch_error_max;
-  j["pelvis_pitch_error_max_on"] = on.pelvis_pitch_error_max;
-  j["zmp_single_support_rms_y_off"] = off.zmp_single_support_rms_y;
-  j["zmp_single_support_rms_y_on"] = on.zmp_single_support_rms_y;
-  j["zmp_single_support_rms_y_cut"] = cut(off.zmp_single_support_rms_y, on.zmp_single_support_rms_y);
-  j["zmp_rms_x_off"] = off.zmp_rms_x;
-  j["zmp_rms_x_on"] = on.zmp_rms_x;
-  j["landing_error_mean_off"] = off.landing_error_mean;
-  j["landing_error_mean_on"] = on.landing_error_mean;
-  j["link_error_rms_off"] = off.link_error_rms;
-  j["link_error_rms_on"] = on.link_error_rms;
-  j["link_error_rms_thesis_form"] = thesis.link_error_rms;
+  for (const Compared& c : {Compared{&WalkMetrics::pelvis_roll_error_max, true, true}, Compared{&WalkMetrics::pelvis_pitch_error_max},
+                            Compared{&WalkMetrics::zmp_single_support_rms_y, true}, Compared{&WalkMetrics::zmp_rms_x},
+                            Compared{&WalkMetrics::landing_error_mean}, Compared{&WalkMetrics::link_error_rms, false, true}})
+    add_compared(j, c, off, on, &thesis);
   j["deflection_rms"] = on.deflection_rms;
   j["estimate_error_rms"] = on.estimate_error_rms;
   j["estimate_error_share_of_deflection"] = on.deflection_rms > 0 ? on.estimate_error_rms / on.deflection_rms : 0.0;
@@ -130,17 +143,12 @@ std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const 
     nlohmann::ordered_json r;
     r["k_joint_true"] = p.plant.gear_stiffness()[humanoid::kLeftHipRoll];
     r["k_joint_belief"] = p.control.stiffness()[humanoid::kLeftHipRoll];
-    r["fell_off"] = off.fell;
-    r["fell_on"] = on.fell;
-    r["steps_off"] = off.steps_completed;
+    add_off_on(r, &WalkMetrics::fell, off, on);
+    r["steps_off"] = off.steps_completed;  // (the key predates WalkMetrics' steps_completed)
     r["steps_on"] = on.steps_completed;
-    r["pelvis_roll_error_max_off"] = off.pelvis_roll_error_max;
-    r["pelvis_roll_error_max_on"] = on.pelvis_roll_error_max;
-    r["pelvis_roll_error_max_cut"] = cut(off.pelvis_roll_error_max, on.pelvis_roll_error_max);
-    r["zmp_single_support_rms_y_off"] = off.zmp_single_support_rms_y;
-    r["zmp_single_support_rms_y_on"] = on.zmp_single_support_rms_y;
-    r["link_error_rms_off"] = off.link_error_rms;
-    r["link_error_rms_on"] = on.link_error_rms;
+    for (const Compared& c : {Compared{&WalkMetrics::pelvis_roll_error_max, true}, Compared{&WalkMetrics::zmp_single_support_rms_y},
+                              Compared{&WalkMetrics::link_error_rms}})
+      add_compared(r, c, off, on);
     rows.push_back(r);
   }
   nlohmann::ordered_json j;
