@@ -10,7 +10,7 @@ import subprocess
 import sys
 
 from atomic_write import write_text_atomic
-from flexgait_plotting import cell, field, read_rows, read_summary, read_table, save_atomic
+from flexgait_plotting import cell, field, read_summary, read_table, save_atomic
 import plot_maps
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -63,15 +63,15 @@ def fixed_points(run_dir):
 
 
 def robustness(run_dir):
-    # robustness.csv is not in `flexgait schema` yet (its writer finds a fixed point before its header).
-    data = read_rows(os.path.join(run_dir, "robustness.csv"))
+    data = read_table(run_dir, "robustness.csv", "rimless analysis robustness")
     fig, ax = plt.subplots(figsize=(9, 6), constrained_layout=True)
-    keys = sorted({(r["mu"], r["component"], r["sign"]) for r in data}, key=lambda k: (float(k[0]), k[1], k[2]))
+    key_of = lambda r: (cell(data, r, "mu"), cell(data, r, "component"), cell(data, r, "sign"))  # noqa: E731
+    keys = sorted({key_of(r) for r in data}, key=lambda k: (float(k[0]), k[1], k[2]))
     for i, k in enumerate(keys):
-        sel = [r for r in data if (r["mu"], r["component"], r["sign"]) == k]
-        for r in sel:
-            ax.plot(float(r["epsilon"]), i, "o" if r["returned"] == "true" else "x",
-                    color="tab:green" if r["returned"] == "true" else "tab:red")
+        for r in (r for r in data if key_of(r) == k):
+            returned = cell(data, r, "returned") == "true"
+            ax.plot(cell(data, r, "epsilon", float), i, "o" if returned else "x",
+                    color="tab:green" if returned else "tab:red")
     ax.set_yticks(range(len(keys)))
     ax.set_yticklabels([f"mu={k[0]} {k[1]} {'+' if k[2] == '1' else '-'}" for k in keys])
     ax.set_xscale("log")

@@ -3,12 +3,11 @@ continued branch (flexgait rimless analysis orbit-diagram | basin, flexgait riml
 
 Usage: plot_maps.py bifurcation RUN_DIR [PARAM]   (RUN_DIR/branch.csv -> RUN_DIR/branch.png)
 The orbit diagram and the basin are drawn through plot_analysis.py."""
-import json
 import math
 import os
 import sys
 
-from flexgait_plotting import cell, read_table, save_atomic
+from flexgait_plotting import cell, field, read_summary, read_table, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
@@ -116,31 +115,29 @@ def basin(run_dir):
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
     rows = read_table(run_dir, "basin.csv", "rimless analysis basin")
-    # summary.json of the basin is not in `flexgait schema` yet (rimless_map_commands.cpp builds it by hand).
-    with open(os.path.join(run_dir, "summary.json")) as f:
-        summary = json.load(f)
-    nx, ny = summary["x"]["count"], summary["y"]["count"]
+    summary = read_summary(run_dir, "summary.json", "rimless analysis basin")
+    x, y = field(summary, "x"), field(summary, "y")
+    nx, ny = x["count"], y["count"]
     names = list(OUTCOME_COLOURS)
     grid = [[0] * nx for _ in range(ny)]
     for r in rows:
         i = cell(rows, r, "index", int)
         grid[i // nx][i % nx] = names.index(cell(rows, r, "outcome"))
     fig, ax = plt.subplots(figsize=(8, 6.5), constrained_layout=True)
-    x, y = summary["x"], summary["y"]
     dx, dy = (x["to"] - x["from"]) / (nx - 1), (y["to"] - y["from"]) / (ny - 1)
     ax.imshow(grid, origin="lower", aspect="auto", interpolation="nearest",
               cmap=ListedColormap([OUTCOME_COLOURS[n] for n in names]), vmin=-0.5, vmax=len(names) - 0.5,
               extent=(x["from"] - dx / 2, x["to"] + dx / 2, y["from"] - dy / 2, y["to"] + dy / 2))
     present = sorted({cell(rows, r, "outcome") for r in rows}, key=names.index)
     ax.legend(handles=[Patch(facecolor=OUTCOME_COLOURS[n], edgecolor="k", lw=0.3,
-                             label=f"{n} ({summary['outcomes'][n]})") for n in present],
+                             label=f"{n} ({field(summary, 'outcomes')[n]})") for n in present],
               fontsize=8, loc="upper right")
     ax.set_xlabel(x["key"])
     ax.set_ylabel(y["key"])
-    ref = summary["reference"]
+    ref = field(summary, "reference")
     gait = ref["gait"] if ref["found"] else "none found"
-    ax.set_title(f"Basin of the '{gait}' gait: {summary['basin_fraction']:.3f} of the grid, "
-                 f"area {summary['basin_area']:.4g} {summary['area_unit']}")
+    ax.set_title(f"Basin of the '{gait}' gait: {field(summary, 'basin_fraction'):.3f} of the grid, "
+                 f"area {field(summary, 'basin_area'):.4g} {field(summary, 'area_unit')}")
     save_atomic(fig, run_dir, "basin.png")
 
 

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -189,48 +188,17 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;
   const auto counts = rimless::basin_counts(read_text_file(dir.path() / "basin.csv"));
-  const int converged = counts.at("converged");
-  const double fraction = static_cast<double>(converged) / spec.cells();
-  const double cell_area = std::abs(spec.x.spacing() * spec.y.spacing());
-  nlohmann::ordered_json j;
-  j["x"] = {{"key", spec.x.key}, {"from", spec.x.from}, {"to", spec.x.to}, {"count", spec.x.count}};
-  j["y"] = {{"key", spec.y.key}, {"from", spec.y.from}, {"to", spec.y.to}, {"count", spec.y.count}};
-  j["section"] = a.section;
-  j["steps_limit"] = spec.steps_limit;
-  j["tolerance"] = spec.tolerance;
-  nlohmann::ordered_json r;
-  r["found"] = ref.found;
-  if (ref.found) {
-    nlohmann::ordered_json st;
-    const auto names = ref.point.names();
-    for (Eigen::Index k = 0; k < ref.point.z.size(); ++k) st[names.at(static_cast<std::size_t>(k))] = ref.point.z(k);
-    r["state"] = st;
-    r["mode"] = ref.point.flight ? "flight" : rimless::mode_name(ref.point.mode);
-    r["gait"] = ref.gait;
-    r["stable"] = ref.stable;
-    r["max_multiplier"] = ref.max_multiplier;
-  } else {
-    r["failure"] = ref.failure;
-  }
-  j["reference"] = r;
-  nlohmann::ordered_json outcomes;
-  for (const auto& name : rimless::basin_outcomes()) outcomes[name] = counts.at(name);
-  j["outcomes"] = outcomes;
-  j["cells"] = spec.cells();
-  j["basin_fraction"] = fraction;
-  // Each grid point stands for one cell of the grid spacing's size.
-  j["cell_area"] = cell_area;
-  j["basin_area"] = converged * cell_area;
-  j["area_unit"] = fmt::format("({}) x ({})", s.config.schema().find(spec.x.key)->unit,
-                               s.config.schema().find(spec.y.key)->unit);
-  dir.write("summary.json", j.dump(2) + "\n");
+  const std::string area_unit = fmt::format("({}) x ({})", s.config.schema().find(spec.x.key)->unit,
+                                            s.config.schema().find(spec.y.key)->unit);
+  dir.write("summary.json", rimless::basin_summary_json(spec, a.section, ref, counts, area_unit));
+  const rimless::BasinSize size = rimless::basin_size(spec, counts);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"basin", dir.path().string()});
   if (!ref.found)
     fmt::print(stderr, "warning: no reference gait (Newton from the configured initial state: {}); no cell can "
                        "converge\n", one_line(ref.failure, 300));
   fmt::print("basin over {} x {} ({} cells): {} converged to the '{}' gait ({:.4f} of the grid, area {:.6g} {}), "
-             "{} computed, {} resumed, {:.2f} s\n", spec.x.key, spec.y.key, spec.cells(), converged, ref.gait, fraction,
-             converged * cell_area, j["area_unit"].get<std::string>(), out.computed, out.resumed, out.seconds);
+             "{} computed, {} resumed, {:.2f} s\n", spec.x.key, spec.y.key, spec.cells(), size.converged, ref.gait,
+             size.fraction, size.area(), area_unit, out.computed, out.resumed, out.seconds);
   fmt::print("wrote {}\n", (dir.path() / "basin.csv").string());
   return 0;
 }

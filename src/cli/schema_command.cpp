@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string_view>
@@ -146,6 +147,8 @@ void add_rimless_analysis_tables(nlohmann::ordered_json& t) {
       table_json(header_of(rimless::single_support_energy_csv(base, {})), "one row per logged sample of each mu");
   t["rimless analysis fixed-points: fixed_points.csv"] = table_json(
       header_of(rimless::behaviour_fixed_points_csv(base, {}, rimless::Section::Touchdown)), "one row per mu");
+  t["rimless analysis robustness: robustness.csv"] =
+      table_json(rimless::robustness_csv_columns(), "one row per perturbed component, sign and epsilon of each mu");
   t["rimless analysis stagnation: stagnation.csv"] =
       table_json(header_of(rimless::stagnation_csv(rimless::StagnationScan{})), "one row per stage");
   t["rimless analysis stagnation-map: stagnation_map.csv"] =
@@ -198,6 +201,19 @@ void add_study_results(nlohmann::ordered_json& results) {
       experiments::mismatch_comparison_json(mismatch, std::vector<experiments::WalkResult>(mismatch.size())));
 }
 
+/// summary.json of the basin and of the orbit diagram, from their writers on an empty map.
+void add_map_results(nlohmann::ordered_json& results) {
+  rimless::BasinSpec basin;
+  basin.x = {"initial.omega", 0, 1, 2};
+  basin.y = {"initial.beta", 0, 1, 2};
+  std::map<std::string, int> none;
+  for (const std::string& outcome : rimless::basin_outcomes()) none[outcome] = 0;
+  results["rimless analysis basin: summary.json"] =
+      written_fields_json(rimless::basin_summary_json(basin, "touchdown", rimless::BasinReference{}, none, ""));
+  results["rimless analysis orbit-diagram: summary.json"] =
+      written_fields_json(rimless::orbit_summary_json(sweep_file_header(rimless::orbit_points_header()) + "\n"));
+}
+
 nlohmann::ordered_json tables_json() {
   nlohmann::ordered_json t;
   const rimless::SimulationResult rimless_run;
@@ -232,6 +248,7 @@ std::string schema_document() {
   doc["results"]["humanoid walk: summary.json"] = record_schema_json<experiments::WalkMetrics>();
   doc["results"]["humanoid bench: summary.json"] = record_schema_json<experiments::BenchResult>();
   add_study_results(doc["results"]);
+  add_map_results(doc["results"]);
   doc["tables"] = tables_json();
   nlohmann::ordered_json runs = nlohmann::ordered_json::object();
   for (const ReproduceRun& r : reproduce_runs()) runs[r.dir] = r.command;

@@ -280,9 +280,14 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
   return csv.str();
 }
 
+const std::vector<std::string>& robustness_csv_columns() {
+  static const std::vector<std::string> columns{"mu", "component", "sign", "epsilon", "returned", "steps", "failure"};
+  return columns;
+}
+
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps,
                            double return_tol) {
-  CsvWriter csv({"mu", "component", "sign", "epsilon", "returned", "steps", "failure"});
+  CsvWriter csv(robustness_csv_columns());
   const Setup s = setup(with_mu(base, mu));
   const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, Section::Touchdown, s.initial);
   if (!r.converged) return csv.str();

@@ -143,6 +143,8 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
 /// Analysis 4: from the fixed point at μ, perturb each reduced-state component by ±ε·scale for
 /// ε in `epsilons`, iterate the map up to `max_steps`; "returned" when within `return_tol`·scale.
 /// CSV: mu, component, sign, epsilon, returned, steps, failure.
+/// The columns of robustness.csv (robustness_csv writes them; `flexgait schema` lists them).
+const std::vector<std::string>& robustness_csv_columns();
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps,
                            double return_tol);
 

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -145,6 +147,49 @@ std::map<std::string, int> basin_counts(const std::string& basin_csv) {
   const std::vector<CsvRecord> records = parse_csv(basin_csv);
   for (std::size_t r = 1; r < records.size(); ++r) ++counts[records[r].fields.at(3)];  // index, x, y, outcome
   return counts;
+}
+
+BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& counts) {
+  BasinSize b;
+  b.converged = counts.at("converged");
+  b.fraction = static_cast<double>(b.converged) / spec.cells();
+  b.cell_area = std::abs(spec.x.spacing() * spec.y.spacing());
+  return b;
+}
+
+std::string basin_summary_json(const BasinSpec& spec, const std::string& section, const BasinReference& ref,
+                               const std::map<std::string, int>& counts, const std::string& area_unit) {
+  const BasinSize size = basin_size(spec, counts);
+  nlohmann::ordered_json j;
+  j["x"] = {{"key", spec.x.key}, {"from", spec.x.from}, {"to", spec.x.to}, {"count", spec.x.count}};
+  j["y"] = {{"key", spec.y.key}, {"from", spec.y.from}, {"to", spec.y.to}, {"count", spec.y.count}};
+  j["section"] = section;
+  j["steps_limit"] = spec.steps_limit;
+  j["tolerance"] = spec.tolerance;
+  nlohmann::ordered_json r;
+  r["found"] = ref.found;
+  if (ref.found) {
+    nlohmann::ordered_json st;
+    const auto names = ref.point.names();
+    for (Eigen::Index k = 0; k < ref.point.z.size(); ++k) st[names.at(static_cast<std::size_t>(k))] = ref.point.z(k);
+    r["state"] = st;
+    r["mode"] = ref.point.flight ? "flight" : mode_name(ref.point.mode);
+    r["gait"] = ref.gait;
+    r["stable"] = ref.stable;
+    r["max_multiplier"] = ref.max_multiplier;
+  } else {
+    r["failure"] = ref.failure;
+  }
+  j["reference"] = r;
+  nlohmann::ordered_json outcomes;
+  for (const auto& name : basin_outcomes()) outcomes[name] = counts.at(name);
+  j["outcomes"] = outcomes;
+  j["cells"] = spec.cells();
+  j["basin_fraction"] = size.fraction;
+  j["cell_area"] = size.cell_area;
+  j["basin_area"] = size.area();
+  j["area_unit"] = area_unit;
+  return j.dump(2) + "\n";
 }
 
 }  // namespace flexgait::rimless

@@ -118,4 +118,22 @@ const std::vector<std::string>& basin_outcomes();
 /// when no cell has it.
 std::map<std::string, int> basin_counts(const std::string& basin_csv);
 
+/// The basin's size from its counts: converged cells, their fraction of the grid, one cell's area
+/// (one grid spacing by the other; each grid point stands for one cell) and the basin's area.
+struct BasinSize {
+  int converged = 0;
+  double fraction = 0;
+  double cell_area = 0;
+  double area() const { return converged * cell_area; }
+};
+BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& counts);
+
+/// summary.json of the basin: the axes (`x`, `y`: key, from, to, count), `section`, `steps_limit`,
+/// `tolerance`, the `reference` gait (found; state, mode, gait, stable, max_multiplier, or its
+/// failure), the `outcomes` counted (basin_counts), `cells`, `basin_fraction` (converged cells over
+/// all), `cell_area` (one grid spacing by the other), `basin_area` (converged cells × cell_area) in
+/// `area_unit`.
+std::string basin_summary_json(const BasinSpec& spec, const std::string& section, const BasinReference& ref,
+                               const std::map<std::string, int>& counts, const std::string& area_unit);
+
 }  // namespace flexgait::rimless
