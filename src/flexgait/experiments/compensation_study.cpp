@@ -32,8 +32,16 @@ const WalkResult& result_of(const std::vector<StudyCase>& cases, const std::vect
 /// 1 − on/off: the share of an error that compensation removes.
 double cut(double off, double on) { return off > 0 ? 1.0 - on / off : 0.0; }
 
-/// A metric compared between cases: KEY_off, KEY_on, then KEY_cut and KEY_thesis_form when asked,
-/// KEY the metric's own key in WalkMetrics (declared once there).
+/// The same member of off and on as KEY_off, KEY_on, KEY the member's own key in WalkMetrics
+/// (declared once there).
+template <class T>
+void add_off_on(nlohmann::ordered_json& j, T WalkMetrics::*metric, const WalkMetrics& off, const WalkMetrics& on) {
+  const std::string key = field_key(metric);
+  j[key + "_off"] = off.*metric;
+  j[key + "_on"] = on.*metric;
+}
+
+/// A metric compared between cases: KEY_off, KEY_on, then KEY_cut and KEY_thesis_form when asked.
 struct Compared {
   double WalkMetrics::*metric;
   bool with_cut = false;
@@ -42,19 +50,10 @@ struct Compared {
 
 void add_compared(nlohmann::ordered_json& j, const Compared& c, const WalkMetrics& off, const WalkMetrics& on,
                   const WalkMetrics* thesis = nullptr) {
+  add_off_on(j, c.metric, off, on);
   const std::string key = field_key(c.metric);
-  j[key + "_off"] = off.*c.metric;
-  j[key + "_on"] = on.*c.metric;
   if (c.with_cut) j[key + "_cut"] = cut(off.*c.metric, on.*c.metric);
   if (c.with_thesis_form && thesis != nullptr) j[key + "_thesis_form"] = thesis->*c.metric;
-}
-
-/// The same member of off and on as KEY_off, KEY_on.
-template <class T>
-void add_off_on(nlohmann::ordered_json& j, T WalkMetrics::*metric, const WalkMetrics& off, const WalkMetrics& on) {
-  const std::string key = field_key(metric);
-  j[key + "_off"] = off.*metric;
-  j[key + "_on"] = on.*metric;
 }
 
 }  // namespace

@@ -25,24 +25,24 @@
 
 namespace flexgait::walking {
 
+/// The gains (their defaults and why: EstimatorParams, estimator.tilt_*).
 struct TiltObserverGains {
-  double alpha = 50.0;  ///< α: velocity correction [1/s]
-  double beta = 0.2;    ///< β: tilt correction from the velocity error [1/s] (attitude_estimator.hpp: why so low)
-  double gamma = 15.0;  ///< γ: pull of x̂2 toward x̂2′ [1/s]
-  double gravity = 9.81;  ///< g0 [m/s^2]
+  double alpha;    ///< α: velocity correction [1/s]
+  double beta;     ///< β: tilt correction from the velocity error [1/s]
+  double gamma;    ///< γ: pull of x̂2 toward x̂2′ [1/s]
+  double gravity;  ///< g0 [m/s^2]
 };
 
 class TiltObserver {
  public:
-  explicit TiltObserver(const TiltObserverGains& gains = {}) : gains_(gains) {}
+  explicit TiltObserver(const TiltObserverGains& gains) : gains_(gains) {}
 
   /// Starts from the velocity x1 [m/s] and the tilt x2 (unit) in the IMU frame.
   void reset(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2);
   /// One period dt [s] of (T3) with the velocity y_v [m/s] (T2), the specific force y_a [m/s^2]
-  /// and the gyro ω [rad/s], all in the IMU frame.
+  /// and the gyro ω [rad/s], all in the IMU frame. Without a velocity measurement (no foot on the
+  /// ground) pass y_v = velocity(): no velocity correction.
   void update(const Eigen::Vector3d& y_v, const Eigen::Vector3d& y_a, const Eigen::Vector3d& omega, double dt);
-  /// One period without a velocity measurement (no foot on the ground): y_v = x̂1.
-  void update(const Eigen::Vector3d& y_a, const Eigen::Vector3d& omega, double dt) { update(x1_, y_a, omega, dt); }
 
   bool started() const { return started_; }
   const Eigen::Vector3d& velocity() const { return x1_; }  ///< x̂1 [m/s]

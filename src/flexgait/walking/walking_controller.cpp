@@ -139,7 +139,7 @@ Eigen::Vector2d WalkingController::zmp_feedback() {
 void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const FeetTarget& feet, double yaw) {
   // The COM by kinematics: the encoders' pose under the estimated pelvis attitude, placed so that
   // the loaded soles sit where the plan put them (their offsets weighted by the F/T loads).
-  const Pose pelvis{Vector3d::Zero(), rot_z(yaw) * rot_y(status_.imu_pitch) * rot_x(status_.imu_roll)};
+  const Pose pelvis{Vector3d::Zero(), rpy_to_matrix(status_.imu_roll, status_.imu_pitch, yaw)};
   forward_kinematics(model_, estimate_data_, pelvis, s.encoder);
   Vector3d anchor = Vector3d::Zero();
   double weight = 0;
@@ -256,10 +256,7 @@ void WalkingController::update_tilt(const humanoid::SensorReadings& s, const Vec
   }
   // Without the accelerometer: the specific force of a body at rest along the tilt.
   const Vector3d y_a = accel != nullptr ? *accel : Vector3d(estimator_params_.gravity * tilt_.tilt());
-  if (weight > 0)
-    tilt_.update(y_v, y_a, omega, period_);
-  else
-    tilt_.update(y_a, omega, period_);
+  tilt_.update(weight > 0 ? y_v : tilt_.velocity(), y_a, omega, period_);
 }
 
 void WalkingController::begin_safe_stop(double t, std::size_t k) {
@@ -508,13 +505,13 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
     soles[side].p.z() += foot_lift_[side];
   }
-  const Matrix3d pelvis_command = rot_z(yaw) * rot_y(d_pitch) * rot_x(d_roll);
+  const Matrix3d pelvis_command = rpy_to_matrix(d_roll, d_pitch, yaw);
   if (capture_.active) {
     // The capture step's swing foot is aimed from the pelvis as the IMU finds it: its target turns
     // about the pelvis by R_command R_estimatedᵀ, so the leg's command puts the foot at its world
     // target. (A chest push pitches the torso 0.1–0.2 rad during the step; aimed from the commanded
     // pelvis, the foot then lands 0.1 m behind its target: measured, 0.045 m against 0.17 m.)
-    const Matrix3d C = pelvis_command * (rot_z(yaw) * rot_y(status_.imu_pitch) * rot_x(status_.imu_roll)).transpose();
+    const Matrix3d C = pelvis_command * rpy_to_matrix(status_.imu_roll, status_.imu_pitch, yaw).transpose();
     for (int side = 0; side < 2; ++side) {
       if (!feet.swinging[side]) continue;
       soles[side].p = pelvis_.p + C * (soles[side].p - pelvis_.p);
