@@ -100,6 +100,10 @@ struct CompensationParams {
   LoadModel load_model = LoadModel::kGravity;
   double load_filter_time = 0.1;   ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
   KEstimation k_estimation = KEstimation::kOff;
+  /// The controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the
+  /// encoders plus the output compensator's last deflection estimate θ̂ − θ_enc (spec (1): the
+  /// estimated joint angles and the IMU give the real pose); false: the encoders alone.
+  bool compensated_feedback = false;
   double k_estimation_memory = 5.0;       ///< forgetting time constant: λ = e^{−T/memory} [s]
   double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
   double k_estimation_noise = 0.002;      ///< standard deviation of the foot-tilt observation [rad]
@@ -130,6 +134,9 @@ struct CompensationParams {
               "compensators, the legs' inertial torques of the planned motion"});
     v("control.load_filter_time", s.load_filter_time,
       {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
+    v("control.compensated_feedback", s.compensated_feedback,
+      {.doc = "the controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the encoders "
+              "plus the output compensator's last deflection estimate (needs compensation output or both)"});
     v("control.k_estimation", s.k_estimation,
       {.doc = "online stiffness identification while walking: on = estimate 1/k of each leg's roll and pitch joint "
               "groups by RLS from the stance foot's tilt seen through the encoders and the IMU; the compensators "

@@ -96,6 +96,10 @@ WalkRunParams walk_run_from_config(const Config& c) {
     apply_stance_defaults(c, model, p.walk);
     check_reach(p, model);
   });
+  if (p.control.compensated_feedback && !p.control.output())
+    throw ConfigError("control.compensated_feedback",
+                      "key 'control.compensated_feedback' = 'true' needs the output compensator's estimate; allowed "
+                      "with control.compensation output or both");
   check_with_origin(c, [&] {
     const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
     for (std::size_t i = 0; i < p.pushes.size(); ++i)
@@ -181,12 +185,22 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   std::vector<walking::Pose> support;
   support.reserve(2);
 
+  // control.compensated_feedback: the output compensator's last deflection estimate θ̂ − θ_enc,
+  // added to the encoders the controller reads (the gears move little in one period).
+  humanoid::JointVector deflection_estimate{};
+  humanoid::SensorReadings readings;
   for (long k = 0; k < ticks; ++k) {
     const double t = k * T;
-    const humanoid::JointVector& desired = controller.update(plant.sensors(), t);
+    readings = plant.sensors();
+    if (params.control.compensated_feedback)
+      for (int j = 0; j < humanoid::kJoints; ++j) readings.encoder[j] += deflection_estimate[j];
+    const humanoid::JointVector& desired = controller.update(readings, t);
     const walking::ControllerStatus& st = controller.status();
-    // The readings as the controller used them (bad values held by its health check).
-    const humanoid::SensorReadings& sensors = controller.sensors();
+    // The readings as the controller used them (bad values held by its health check), with the
+    // encoders' own values.
+    humanoid::SensorReadings sensors = controller.sensors();
+    if (params.control.compensated_feedback)
+      for (int j = 0; j < humanoid::kJoints; ++j) sensors.encoder[j] -= deflection_estimate[j];
     flags_since_log |= st.sensor_flags;
     // The thesis's Fig. 2: input compensator → robot → encoders → output compensator.
     compensation::SupportPlan plan_now{st.swinging, st.sole, st.zmp_ref, st.pelvis, -1.0, st.motion};
@@ -198,6 +212,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
     const compensation::OutputEstimate* estimate =
         params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;
+    if (estimate && params.control.compensated_feedback)
+      for (int j = 0; j < humanoid::kJoints; ++j) deflection_estimate[j] = estimate->newton[j] - sensors.encoder[j];
     if (k_estimation) {
       // Online stiffness identification (issue 20): the torque the output compensator solved with.
       const humanoid::JointVector& tau =
