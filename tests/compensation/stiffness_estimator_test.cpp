@@ -2,7 +2,8 @@
 // known k in the number of samples its covariance predicts (σ/sqrt(Σ τ²)), tracks a change, and
 // ignores non-finite data; the stiffness estimator, fed a flat-footed stance whose encoders read
 // θ_link + τ/k, finds k per leg and joint group, stays bounded and positive under bad data, and
-// keeps its estimate (counting the period) on a NaN or a stale F/T reading.
+// keeps its estimate (counting the period) on a NaN or a stale F/T reading; the gyro's attitude
+// (control.k_estimation_attitude_time) removes an attitude error that follows the torque.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,6 +22,7 @@ using walking::Matrix3d;
 
 constexpr double kPeriod = 0.004;  // [s]
 constexpr double kTrue = 1250.0, kBelief = 1000.0;  // [Nm/rad]
+const walking::Vector3d kStill = walking::Vector3d::Zero();  // the gyro of a pelvis at rest [rad/s]
 
 /// n samples of δ = τ/k + v, |τ| uniform in [20, 60] Nm with random sign, v ~ N(0, σ²).
 struct Synthetic {
@@ -93,9 +95,10 @@ CompensationParams estimation_params() {
   return p;
 }
 
-TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt) {
-  const Stance s;
-  StiffnessEstimator e(s.model, estimation_params(), kPeriod);
+/// 500 periods of the still stance with random torques in [−40, 40] Nm, the encoders reading θ_link + τ/k and
+/// the controller's attitude attitude(k, τ); the gyro reads a pelvis at rest.
+template <class Attitude>
+void feed_random_torques(StiffnessEstimator& e, const Stance& s, const Attitude& attitude) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> torque(-40.0, 40.0);
   JointVector tau{}, encoder{};
@@ -104,8 +107,14 @@ TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt)
       tau[j] = torque(rng);
       encoder[j] = s.q[j] + tau[j] / kTrue;  // θ_enc = θ_link + τ/k
     }
-    e.update(k * kPeriod, encoder, Matrix3d::Identity(), tau, readings(s, k * kPeriod), s.plan(), true);
+    e.update(k * kPeriod, encoder, attitude(k, tau), kStill, tau, readings(s, k * kPeriod), s.plan(), true);
   }
+}
+
+TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt) {
+  const Stance s;
+  StiffnessEstimator e(s.model, estimation_params(), kPeriod);
+  feed_random_torques(e, s, [](int, const JointVector&) { return Matrix3d::Identity(); });
   EXPECT_GT(e.samples(), 950);  // (a few random torques fall below control.k_estimation_min_torque)
   for (int side = 0; side < 2; ++side)
     for (int i = 0; i < humanoid::kLegJoints; ++i) {
@@ -123,28 +132,49 @@ TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt)
   EXPECT_TRUE(e.confident(1, StiffnessEstimator::kPitch));
 }
 
+// control.k_estimation_attitude_time: an attitude estimate whose roll error follows the left hip roll's torque
+// (as an observer that reads the legs' kinematics partly takes the deflection for the pelvis's tilt) biases the
+// left roll group; the gyro's attitude (the pelvis at rest: zero rate), pulled to that estimate over a time much
+// longer than the run, does not.
+TEST(StiffnessEstimator, TheGyrosAttitudeRemovesAnAttitudeErrorThatFollowsTheTorque) {
+  const Stance s;
+  auto run = [&](double attitude_time) {
+    CompensationParams p = estimation_params();
+    p.k_estimation_attitude_time = attitude_time;
+    StiffnessEstimator e(s.model, p, kPeriod);
+    // A roll error of 2e-4 rad/Nm × τ (≤ 0.008 rad, a quarter of the hip roll's deflection), none at the start.
+    feed_random_torques(e, s, [](int k, const JointVector& tau) {
+      return walking::rot_x(k == 0 ? 0.0 : 2e-4 * tau[humanoid::kLeftHipRoll]);
+    });
+    return e.estimate()[humanoid::kLeftHipRoll];
+  };
+  EXPECT_GT(std::abs(run(0.0) - kTrue), 0.05 * kTrue);  // the controller's attitude: biased
+  // 2 s of data against t_a = 10⁴ s: the pull carries ≈ 2e-4 of the error; 2 % as in the flat-foot test above.
+  EXPECT_NEAR(run(1e4), kTrue, 0.02 * kTrue);
+}
+
 TEST(StiffnessEstimator, BadDataKeepsTheEstimateAndAdversarialDataStaysBoundedAndPositive) {
   const Stance s;
   StiffnessEstimator e(s.model, estimation_params(), kPeriod);
   JointVector tau{}, encoder = s.q;
   tau.fill(30.0);
   for (int j = 0; j < kJoints; ++j) encoder[j] += tau[j] / kTrue;
-  for (int k = 0; k < 100; ++k) e.update(k * kPeriod, encoder, Matrix3d::Identity(), tau, readings(s, k * kPeriod), s.plan(), true);
+  for (int k = 0; k < 100; ++k) e.update(k * kPeriod, encoder, Matrix3d::Identity(), kStill, tau, readings(s, k * kPeriod), s.plan(), true);
   const JointVector before = e.estimate();
   const double t = 100 * kPeriod;
   JointVector nan_encoder = encoder;
   nan_encoder[humanoid::kLeftKnee] = NAN;
   auto nan_ft = readings(s, t);
   nan_ft[1].force[2] = NAN;
-  EXPECT_EQ(e.update(t, nan_encoder, Matrix3d::Identity(), tau, readings(s, t), s.plan(), true), 0);
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, nan_ft, s.plan(), true), 0);
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, readings(s, t - 0.1), s.plan(), true), 0);  // stale
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), tau, readings(s, t), s.plan(), false), 0);       // flagged
+  EXPECT_EQ(e.update(t, nan_encoder, Matrix3d::Identity(), kStill, tau, readings(s, t), s.plan(), true), 0);
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, nan_ft, s.plan(), true), 0);
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t - 0.1), s.plan(), true), 0);  // stale
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t), s.plan(), false), 0);       // flagged
   EXPECT_EQ(e.bad_data(), 4);
   EXPECT_EQ(e.estimate(), before);
   // Encoders bent the wrong way, far: the estimate hits its bound, k stays positive.
   for (int j = 0; j < kJoints; ++j) encoder[j] = s.q[j] - 0.3 * tau[j] / kTrue;
-  for (int k = 0; k < 2000; ++k) e.update(t + k * kPeriod, encoder, Matrix3d::Identity(), tau, readings(s, t + k * kPeriod), s.plan(), true);
+  for (int k = 0; k < 2000; ++k) e.update(t + k * kPeriod, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t + k * kPeriod), s.plan(), true);
   for (int j = 0; j < kJoints; ++j) {
     EXPECT_GT(e.estimate()[j], 0.0);
     EXPECT_GE(e.estimate()[j], kBelief / 10 - 1e-9);

@@ -104,6 +104,7 @@ struct CompensationParams {
   double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
   double k_estimation_noise = 0.002;      ///< standard deviation of the foot-tilt observation [rad]
   double k_estimation_confidence = 0.05;  ///< relative standard deviation below which the compensators use the estimate
+  double k_estimation_attitude_time = 0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
   double robotis_hip_roll = 0.017; ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
   double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
   double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
@@ -142,6 +143,11 @@ struct CompensationParams {
     v("control.k_estimation_confidence", s.k_estimation_confidence,
       {.doc = "k_estimation: the compensators use a group's estimate once its relative standard deviation is at most this",
        .bounds = closed(1e-6, 1)});
+    v("control.k_estimation_attitude_time", s.k_estimation_attitude_time,
+      {.unit = "s",
+       .doc = "k_estimation: the pelvis attitude the identification uses is the gyro's turn pulled towards the "
+              "controller's estimate with this time constant (0 = the controller's estimate itself)",
+       .bounds = closed(0, 1e6)});
     v("control.robotis_hip_roll", s.robotis_hip_roll,
       {.unit = "rad", .doc = "robotis: stance hip roll feed-forward at mid single support", .bounds = closed(0, 0.2)});
     v("control.talos_cutoff", s.talos_cutoff, {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});

@@ -18,6 +18,7 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
     : model_(model),
       params_(params),
       noise_variance_(params.k_estimation_noise * params.k_estimation_noise),
+      period_(period),
       belief_(params.stiffness()),
       estimate_(belief_),
       stiffness_(belief_) {
@@ -66,10 +67,24 @@ void StiffnessEstimator::publish(int side) {
   }
 }
 
+void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro) {
+  const double time = params_.k_estimation_attitude_time;
+  if (time <= 0 || !attitude_started_) {
+    attitude_ = imu_R;
+    attitude_started_ = true;
+    return;
+  }
+  const double turn = gyro.norm() * period_;
+  if (turn > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn, gyro.normalized()).toRotationMatrix();
+  const Eigen::AngleAxisd error(walking::Matrix3d(imu_R * attitude_.transpose()));
+  attitude_ = Eigen::AngleAxisd(error.angle() * std::min(1.0, period_ / time), error.axis()).toRotationMatrix() * attitude_;
+  attitude_ = Eigen::Quaterniond(attitude_).normalized().toRotationMatrix();  // (round-off)
+}
+
 int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
-                               const humanoid::JointVector& torque, const std::array<humanoid::ForceTorque, 2>& ft,
-                               const SupportPlan& support, bool sensors_ok) {
-  bool finite = imu_R.allFinite();
+                               const walking::Vector3d& gyro, const humanoid::JointVector& torque,
+                               const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support, bool sensors_ok) {
+  bool finite = imu_R.allFinite() && gyro.allFinite();
   for (int j = 0; j < humanoid::kJoints; ++j) finite = finite && std::isfinite(encoder[j]) && std::isfinite(torque[j]);
   for (int side = 0; side < 2; ++side)
     for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(ft[side].force[a]) && std::isfinite(ft[side].torque[a]);
@@ -78,8 +93,9 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     ++bad_data_;
     return 0;
   }
+  follow_attitude(imu_R, gyro);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
-  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), imu_R}, encoder);
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), attitude_}, encoder);
   const double weight = model_.total_mass * walking::kGravity;
   int used = 0;
   for (int side = 0; side < 2; ++side) {

@@ -25,6 +25,11 @@
 /// its relative standard deviation sqrt(P_gg)/c_g ≤ control.k_estimation_confidence (P the RLS
 /// covariance with prior (c₀)² and measurement variance control.k_estimation_noise²); from then
 /// on stiffness() gives 1/c_g for its joints (the last confident value if confidence lapses).
+/// The pelvis attitude the chain starts from: the controller's estimate (control.k_estimation_attitude_time = 0),
+/// or the gyro's turn pulled towards that estimate with time constant t_a, so the estimate's errors at the gait's
+/// frequencies — correlated with the deflections, the dominant error of the identification — are filtered out:
+///     R ← exp([e]× min(1, T/t_a)) R exp([ω_gyro]× T),  e the rotation vector of R_imu Rᵀ.
+/// It trusts the gyro over t_a: a gyro bias b tilts it by ≈ b t_a.
 /// Allocation-free after construction; free of the simulator.
 #include <array>
 
@@ -40,10 +45,11 @@ class StiffnessEstimator {
 
   StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period);
 
-  /// One control period. \param t now [s] (the F/T stamps' staleness); \param torque the modelled
+  /// One control period. \param t now [s] (the F/T stamps' staleness); \param imu_R the controller's pelvis
+  /// attitude (world); \param gyro the IMU's angular rate (pelvis frame) [rad/s]; \param torque the modelled
   /// gear torque of every joint [Nm]; \param sensors_ok false when the controller's sensor check
   /// flags a sensor this period. Returns how many feet gave a sample.
-  int update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
+  int update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro,
              const humanoid::JointVector& torque, const std::array<humanoid::ForceTorque, 2>& ft,
              const SupportPlan& support, bool sensors_ok);
 
@@ -62,14 +68,18 @@ class StiffnessEstimator {
 
  private:
   void publish(int side);
+  void follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro);
 
   walking::RobotModel model_;
   CompensationParams params_;
   double noise_variance_;
+  double period_;  ///< [s]
   humanoid::JointVector belief_, estimate_, stiffness_;
   std::array<Group, humanoid::kJoints> group_{};
   std::array<std::array<double, kGroups>, 2> c_min_{}, c_max_{};
   std::array<ForgettingRls<kGroups>, 2> rls_;
+  walking::Matrix3d attitude_ = walking::Matrix3d::Identity();  ///< the identification's pelvis attitude (world)
+  bool attitude_started_ = false;
   std::array<std::array<bool, kGroups>, 2> confident_{};
   walking::RobotModelData data_;
   long samples_ = 0, bad_data_ = 0;

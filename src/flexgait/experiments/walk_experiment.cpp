@@ -202,7 +202,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       // Online stiffness identification (issue 20): the torque the output compensator solved with.
       const humanoid::JointVector& tau =
           estimate ? estimate->gravity_torque : compensator.torque(sensors.encoder, controller.attitude(), plan_now);
-      stiffness_estimator.update(t, sensors.encoder, controller.attitude(), tau, sensors.ft, plan_now, st.sensor_flags == 0);
+      const walking::Vector3d gyro(sensors.imu.gyro[0], sensors.imu.gyro[1], sensors.imu.gyro[2]);
+      stiffness_estimator.update(t, sensors.encoder, controller.attitude(), gyro, tau, sensors.ft, plan_now, st.sensor_flags == 0);
       compensator.set_stiffness(stiffness_estimator.stiffness());
     }
     const humanoid::GroundTruth before = plant.truth();  // the state the sensors read

@@ -28,8 +28,9 @@
 /// balance.com_bias_time (the COM's and the ZMP's means agree over any stretch the robot ends as
 /// it began; the encoders miss the gear deflections' centimetres) — its velocity by a filtered difference; the ZMP
 /// command from ξ = c + ċ/ω against the plan's ξ_ref is distributed to the feet (load shares
-/// along the line between the soles, the remainder as a centre of pressure under each loaded
-/// sole, clamped to the sole) and each loaded foot's rotation follows its torque error about the
+/// along the line between the soles — by the command while standing where the robot began, by
+/// the ZMP reference once the plan steps (load_split_point) — the remainder as a centre of
+/// pressure under each loaded sole, clamped to the sole) and each loaded foot's rotation follows its torque error about the
 /// sole centre with the CoP admittance A (Caron et al. 2019): δ̇ = A (τ − τ_d), clamped.
 ///
 /// Sensors (issue 17, item 13): every reading passes SensorHealth first (NaN, stale, stuck →
@@ -149,6 +150,8 @@ class WalkingController {
   void solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
                   int iterations);
   void measure_zmp(const humanoid::SensorReadings& sensors);
+  /// Where the load split between the feet follows (foot force control and the dcm distribution) [m].
+  Eigen::Vector2d load_split_point() const;
   /// Foot force control: updates foot_lift_ from the feet's loads against their shares.
   /// (the loads' shares follow `zmp` between the soles)
   void update_foot_lift(const FeetTarget& feet, const Eigen::Vector2d& zmp);
