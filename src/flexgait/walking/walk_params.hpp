@@ -88,6 +88,10 @@ struct BalanceParams {
   double step_adjustment_limit = 0.25;  ///< |Δ| along each axis of the stance sole [m]
   double step_reach = 0.4;          ///< landing to stance sole centre, at most [m]
   double recovery_step_time = 0.25; ///< standing: the capture step's duration, lift-off at once [s]
+  // Landing orientation control (landing_adaptation.hpp; both modes).
+  double landing_admittance = 0.0;  ///< A: sole tilt rate per Nm of ground torque after touchdown [rad/(N m s)]; 0: off
+  double landing_window = 0.1;      ///< how long after touchdown the sole follows the torque [s]
+  double landing_tilt_limit = 0.15; ///< clamp of the adapted sole tilt per axis [rad]
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -136,6 +140,13 @@ struct BalanceParams {
       {.unit = "m", .doc = "step adjustment: largest distance from the stance sole centre to the landing", .bounds = closed(0.2, 1)});
     v("balance.recovery_step_time", s.recovery_step_time,
       {.unit = "s", .doc = "step adjustment while standing: duration of the capture step (the foot lifts at once)", .bounds = closed(0.1, 2)});
+    v("balance.landing_admittance", s.landing_admittance,
+      {.unit = "rad/(N m s)", .doc = "landing orientation control: sole tilt rate per Nm of ground torque after touchdown (0: off)",
+       .bounds = closed(0, 1)});
+    v("balance.landing_window", s.landing_window,
+      {.unit = "s", .doc = "landing orientation control: how long after touchdown the sole follows the torque", .bounds = closed(0, 10)});
+    v("balance.landing_tilt_limit", s.landing_tilt_limit,
+      {.unit = "rad", .doc = "landing orientation control: clamp of the adapted sole tilt per axis", .bounds = closed(0, 0.4)});
   }
 };
 

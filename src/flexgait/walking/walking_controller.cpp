@@ -44,6 +44,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
       balance_(balance),
       period_(period),
       model_(model),
+      landing_(LandingGains{balance.landing_admittance, balance.landing_window, balance.landing_tilt_limit}),
       dcm_(DcmGains{balance.dcm_kp, balance.dcm_ki, balance.dcm_integral_limit}),
       estimator_params_(estimator),
       estimator_(estimator),
@@ -476,6 +477,9 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.imu_roll = roll_of(attitude_);
   status_.imu_pitch = pitch_of(attitude_);
   measure_zmp(s);
+  for (int side = 0; side < 2; ++side)
+    landing_.update(side, t, period_, feet.swinging[side] || !balance_.enabled, status_.contact[side], foot_contact_[side].torque,
+                    ft_live_);
   // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
   const double yaw = heading_of(feet.sole);
   const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
@@ -513,8 +517,9 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   const Eigen::Vector2d sway =
       balance_.enabled ? Eigen::Vector2d(imu_fade_ * balance_.ankle_gyro_gain * gyro_filtered_) : Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
-    const Eigen::Vector2d r =
+    Eigen::Vector2d r =
         clamp_abs(foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway), balance_.ankle_limit);
+    if (balance_.landing_admittance > 0) r += landing_.tilt(side);  // (landing_adaptation.hpp)
     soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
     soles[side].p.z() += foot_lift_[side];
   }

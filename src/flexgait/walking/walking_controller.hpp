@@ -58,6 +58,7 @@
 #include "flexgait/walking/planned_motion.hpp"
 #include "flexgait/walking/preview_control.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/landing_adaptation.hpp"
 #include "flexgait/walking/sensor_health.hpp"
 #include "flexgait/walking/step_adjustment.hpp"
 #include "flexgait/walking/tilt_observer.hpp"
@@ -189,6 +190,7 @@ class WalkingController {
   humanoid::JointVector desired_{}, initial_pose_{};
   std::array<Eigen::Vector2d, 2> foot_rotation_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
   std::array<double, 2> foot_lift_{};
+  LandingAdaptation landing_;                  ///< each sole's tilt adapted to the floor at touchdown
   std::array<FootContact, 2> foot_contact_{};  ///< each foot's ground wrench from its F/T sensor
   DcmStabiliser dcm_;
   RobotModelData estimate_data_;               ///< the COM estimate's kinematics
