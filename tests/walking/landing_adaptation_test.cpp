@@ -1,6 +1,7 @@
-// Landing orientation control (walking/landing_adaptation.hpp): off it never tilts a sole; after a
-// touchdown the tilt integrates (L1) exactly for the window, is held after it and while the F/T
-// readings are bad, is clamped per axis, and returns to level while the foot swings.
+// Landing orientation control (walking/landing_adaptation.hpp): off it never tilts a sole; the
+// stance the robot starts in opens no window; after a touchdown from a swing the tilt integrates
+// (L1) exactly for the window, is held after it and while the F/T readings are bad, is clamped per
+// axis, and returns to level while the foot swings.
 #include "flexgait/walking/landing_adaptation.hpp"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,13 @@ TEST(LandingAdaptation, OffItNeverTilts) {
   EXPECT_EQ(a.tilt(0), Eigen::Vector2d::Zero());
 }
 
+TEST(LandingAdaptation, TheStanceItStartsInOpensNoWindow) {
+  // Loaded from t = 0 with a torque (the twin settling onto its soles): not a landing, no tilt.
+  LandingAdaptation a(LandingGains{0.01, 0.2, 0.15, 0.1});
+  for (int k = 0; k < 100; ++k) a.update(0, k * kPeriod, kPeriod, false, true, Eigen::Vector2d(20, -30), true);
+  EXPECT_EQ(a.tilt(0), Eigen::Vector2d::Zero());
+}
+
 TEST(LandingAdaptation, IntegratesTheTorqueForTheWindowFromTouchdownThenHolds) {
   const LandingGains g{0.01, 0.2, 0.15, 0.1};
   LandingAdaptation a(g);
@@ -25,8 +33,8 @@ TEST(LandingAdaptation, IntegratesTheTorqueForTheWindowFromTouchdownThenHolds) {
   int periods_in_window = 0;
   for (int k = 0; k < 200; ++k) {
     const double t = k * kPeriod;
-    const bool contact = t >= 0.1;  // touches down at 0.1 s: nothing before
-    a.update(1, t, kPeriod, false, contact, torque, true);
+    const bool contact = t >= 0.1;  // swings, touches down at 0.1 s: nothing before
+    a.update(1, t, kPeriod, !contact, contact, torque, true);
     if (contact && t - 0.1 < g.window - 1e-9) ++periods_in_window;
     if (!contact) {
       EXPECT_EQ(a.tilt(1), Eigen::Vector2d::Zero());
@@ -41,6 +49,7 @@ TEST(LandingAdaptation, IntegratesTheTorqueForTheWindowFromTouchdownThenHolds) {
 
 TEST(LandingAdaptation, ClampsEachAxisAndHoldsWhileTheReadingsAreBad) {
   LandingAdaptation a(LandingGains{0.1, 1.0, 0.05, 0.1});
+  a.update(0, -kPeriod, kPeriod, true, false, Eigen::Vector2d::Zero(), true);  // a swing, then the landing at 0
   for (int k = 0; k < 100; ++k) a.update(0, k * kPeriod, kPeriod, false, true, Eigen::Vector2d(100, -1), true);
   EXPECT_DOUBLE_EQ(a.tilt(0).x(), 0.05);  // 10 rad/s against a 0.05 rad clamp
   const double y = a.tilt(0).y();         // −0.1 rad/s × 0.4 s = −0.04 rad: inside
@@ -52,6 +61,7 @@ TEST(LandingAdaptation, ClampsEachAxisAndHoldsWhileTheReadingsAreBad) {
 TEST(LandingAdaptation, ReturnsToLevelInTheAirAndAdaptsAgainAtTheNextTouchdown) {
   const LandingGains g{0.01, 0.1, 0.15, 0.1};
   LandingAdaptation a(g);
+  a.update(0, -kPeriod, kPeriod, true, false, Eigen::Vector2d::Zero(), true);  // a swing, then the landing at 0
   for (int k = 0; k < 50; ++k) a.update(0, k * kPeriod, kPeriod, false, true, Eigen::Vector2d(5, 5), true);
   const double held = a.tilt(0).x();
   ASSERT_GT(held, 0.0);

@@ -3,8 +3,10 @@
 /// Landing orientation control (Kim, Park & Oh 2007, KHR-2's "landing orientation controller";
 /// issue 19, the rough floor). A rigid sole commanded level on a bumpy floor rests on one bump or
 /// one edge: its centre of pressure is pinned there and the balance loop loses the foot. For a
-/// window after each touchdown (and at the start, the first stance) the sole's commanded roll and
-/// pitch follow the ground's torque about its centre like a limp ankle,
+/// window after each touchdown — a foot that swung and lands; not the stance the robot starts in,
+/// where the torques are the twin settling onto its soles (adapted to them and held, the dcm twin
+/// standing with step adjustment on flat ground rocked heel to toe and fell at 2.4 s) — the sole's
+/// commanded roll and pitch follow the ground's torque about its centre like a limp ankle,
 ///
 ///   δ̇ = A τ,   |δ_x|, |δ_y| ≤ δ_max,                                         (L1)
 ///
@@ -16,6 +18,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <limits>
 
 namespace flexgait::walking {
 
@@ -42,8 +45,9 @@ class LandingAdaptation {
  private:
   LandingGains gains_;
   std::array<Eigen::Vector2d, 2> tilt_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
-  std::array<bool, 2> landed_{};            ///< touched down since the last swing
-  std::array<double, 2> touchdown_{};       ///< when [s]
+  std::array<bool, 2> landed_{true, true};  ///< touched down since the last swing (standing at the start)
+  std::array<double, 2> touchdown_{-std::numeric_limits<double>::infinity(),
+                                   -std::numeric_limits<double>::infinity()};  ///< when [s]
 };
 
 }  // namespace flexgait::walking
