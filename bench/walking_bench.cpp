@@ -37,7 +37,8 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // The thesis's Fig. 2 loop in one control period: update, input compensator (eqs. 8-9), output
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
 // Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic),
-// balance (0 pd, 1 dcm with step adjustment; issue 19: ≤ 30 µs with dcm and both compensators).
+// balance (0 pd, 1 dcm with step adjustment; issue 19: ≤ 30 µs with dcm and both compensators),
+// compensation::NewtonJacobian (0 each iterate, 1 reused).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
   walking::BalanceParams balance;
   if (state.range(2) == 1) {
@@ -48,6 +49,7 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   compensation::CompensationParams p;
   p.split = static_cast<compensation::WeightSplit>(state.range(0));
   p.load_model = static_cast<compensation::LoadModel>(state.range(1));
+  p.newton.jacobian = static_cast<compensation::NewtonJacobian>(state.range(3));
   compensation::DeformationCompensator comp(c.model(), p, 0.004);
   c.set_plan_motion(p.load_model == compensation::LoadModel::kDynamic);
   humanoid::SensorReadings s;
@@ -69,15 +71,20 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   state.counters["newton_iterations"] = static_cast<double>(iterations) / static_cast<double>(std::max(1L, calls));
   state.SetLabel(std::string(state.range(0) == 0 ? "split about the COM" : "split about the reference ZMP") +
                  ", load_model = " + std::string(name_of(p.load_model)) + ", balance.mode = " +
-                 std::string(name_of(balance.mode)) + (balance.step_adjustment ? " with step adjustment" : ""));
+                 std::string(name_of(balance.mode)) + (balance.step_adjustment ? " with step adjustment" : "") +
+                 ", newton_jacobian = " + std::string(name_of(p.newton.jacobian)));
 }
 BENCHMARK(ControllerUpdateWithCompensators)
-    ->Args({0, 0, 0})
-    ->Args({1, 0, 0})
-    ->Args({1, 1, 0})
-    ->Args({1, 2, 0})
-    ->Args({1, 0, 1})
-    ->Args({1, 2, 1})
+    ->Args({0, 0, 0, 0})
+    ->Args({1, 0, 0, 0})
+    ->Args({1, 1, 0, 0})
+    ->Args({1, 2, 0, 0})
+    ->Args({1, 0, 1, 0})
+    ->Args({1, 2, 1, 0})
+    ->Args({1, 0, 0, 1})
+    ->Args({1, 2, 0, 1})
+    ->Args({1, 0, 1, 1})
+    ->Args({1, 2, 1, 1})
     ->Unit(benchmark::kMicrosecond);
 
 void ClosedLoopWalk(benchmark::State& state) {
