@@ -3,7 +3,9 @@
 // ignores non-finite data; the stiffness estimator, fed a flat-footed stance whose encoders read
 // θ_link + τ/k, finds k per leg and joint group, stays bounded and positive under bad data, and
 // keeps its estimate (counting the period) on a NaN or a stale F/T reading; the gyro's attitude
-// (control.k_estimation_attitude_time) removes an attitude error that follows the torque.
+// (control.k_estimation_attitude_time) removes an attitude error that follows the torque; the stance offsets
+// (control.k_estimation_stance_offset) remove an attitude error constant over each stance; the calibration at
+// rest (control.k_estimation_gyro_rest) finds a gyro's bias while the pelvis turns slowly.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +24,11 @@ using walking::Matrix3d;
 
 constexpr double kPeriod = 0.004;  // [s]
 constexpr double kTrue = 1250.0, kBelief = 1000.0;  // [Nm/rad]
-const walking::Vector3d kStill = walking::Vector3d::Zero();  // the gyro of a pelvis at rest [rad/s]
+const humanoid::Imu kStill = [] {  // the IMU of a pelvis at rest, level: zero rate, +g up
+  humanoid::Imu imu;
+  imu.accel = {0.0, 0.0, 9.81};
+  return imu;
+}();
 
 /// n samples of δ = τ/k + v, |τ| uniform in [20, 60] Nm with random sign, v ~ N(0, σ²).
 struct Synthetic {
@@ -151,6 +157,78 @@ TEST(StiffnessEstimator, TheGyrosAttitudeRemovesAnAttitudeErrorThatFollowsTheTor
   EXPECT_GT(std::abs(run(0.0) - kTrue), 0.05 * kTrue);  // the controller's attitude: biased
   // 2 s of data against t_a = 10⁴ s: the pull carries ≈ 2e-4 of the error; 2 % as in the flat-foot test above.
   EXPECT_NEAR(run(1e4), kTrue, 0.02 * kTrue);
+}
+
+// control.k_estimation_stance_offset: torques of one sign, as a stance's load (uniform in [10, 50] Nm), and an
+// attitude error that drifts from stance to stance (a gyro's drift, held constant within each stance: 1 mrad
+// more about x and y after each swing, against ≈ 24 mrad of deflection tilt per joint): without the offsets the
+// estimate is biased; with them each stance's tilt changes alone inform 1/k.
+TEST(StiffnessEstimator, StanceOffsetsRemoveAnAttitudeErrorConstantOverEachStance) {
+  const Stance s;
+  auto run = [&](bool offsets) {
+    CompensationParams p = estimation_params();
+    p.k_estimation_stance_offset = offsets;
+    StiffnessEstimator e(s.model, p, kPeriod);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> torque(10.0, 50.0);
+    JointVector tau{}, encoder{};
+    long k = 0;
+    for (int stance = 0; stance < 8; ++stance) {
+      SupportPlan swing = s.plan();
+      swing.swinging = {true, true};  // one period of swing between stances: no sample, the offsets start anew
+      e.update(k * kPeriod, s.q, Matrix3d::Identity(), kStill, tau, readings(s, k * kPeriod), swing, true);
+      ++k;
+      const Matrix3d error = walking::rot_x(0.001 * stance) * walking::rot_y(-0.001 * stance);
+      for (int i = 0; i < 250; ++i, ++k) {
+        for (int j = 0; j < kJoints; ++j) {
+          tau[j] = torque(rng);
+          encoder[j] = s.q[j] + tau[j] / kTrue;
+        }
+        e.update(k * kPeriod, encoder, error, kStill, tau, readings(s, k * kPeriod), s.plan(), true);
+      }
+    }
+    double worst = 0;
+    for (int j = 0; j < kJoints; ++j)
+      if (e.group(j) != StiffnessEstimator::kNone) worst = std::max(worst, std::abs(e.estimate()[j] / kTrue - 1));
+    return worst;
+  };
+  EXPECT_GT(run(false), 0.05) << "without the offsets";
+  // 2 %: the linearisation of the tilt (the flat-foot test above); the offsets cost the constant part of the
+  // torques' information, the varying part (±20 Nm over 2000 samples) is plenty.
+  EXPECT_LT(run(true), 0.02);
+}
+
+// control.k_estimation_gyro_rest: a gyro with bias b on a pelvis that turns slowly about x (ω = 3e-4 rad/s, as
+// the twin follows its observer's drift in the start stance) at 0.01 rad of roll; the accelerometer reads
+// gravity in the pelvis frame. b̂ = mean(ω_gyro) − u̇ × u recovers b; the mean alone would be off by ω.
+TEST(StiffnessEstimator, TheCalibrationAtRestFindsTheGyrosBiasWhileThePelvisTurnsSlowly) {
+  const Stance s;
+  CompensationParams p = estimation_params();
+  p.k_estimation_gyro_rest = 1.0;
+  const double rest_end = 1.2, turn_rate = 3e-4;  // [s], [rad/s]
+  StiffnessEstimator e(s.model, p, kPeriod, rest_end);
+  const walking::Vector3d bias(0.001, -0.002, 0.0005), gravity(0, 0, 9.81);
+  JointVector tau{};
+  tau.fill(30.0);
+  JointVector encoder = s.q;
+  for (int j = 0; j < kJoints; ++j) encoder[j] += tau[j] / kTrue;
+  long k = 0;
+  for (; k * kPeriod < rest_end + 2 * kPeriod; ++k) {
+    const double t = k * kPeriod;
+    const Matrix3d R = walking::rot_x(0.01 + turn_rate * t);
+    humanoid::Imu imu;
+    const walking::Vector3d gyro = walking::Vector3d(turn_rate, 0, 0) + bias, accel = R.transpose() * gravity;
+    for (int i = 0; i < 3; ++i) imu.gyro[i] = gyro[i], imu.accel[i] = accel[i];
+    const int used = e.update(t, encoder, R, imu, tau, readings(s, t), s.plan(), true);
+    if (t < rest_end) {
+      EXPECT_EQ(used, 0) << "no sample before the calibration";
+    }
+  }
+  EXPECT_GT(e.samples(), 0);
+  // The line fit of u(t) is exact to the curvature of a turn of 3e-4 rad: ~1e-8 rad/s.
+  EXPECT_NEAR(e.gyro_bias().x(), bias.x(), 1e-7);
+  EXPECT_NEAR(e.gyro_bias().y(), bias.y(), 1e-7);
+  EXPECT_NEAR(e.gyro_bias().z(), bias.z(), 1e-12);
 }
 
 TEST(StiffnessEstimator, BadDataKeepsTheEstimateAndAdversarialDataStaysBoundedAndPositive) {
