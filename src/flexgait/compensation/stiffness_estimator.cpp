@@ -86,17 +86,32 @@ void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const w
   attitude_ = Eigen::Quaterniond(attitude_).normalized().toRotationMatrix();  // (round-off)
 }
 
+walking::Matrix3d StiffnessEstimator::soles_in_pelvis(const humanoid::JointVector& encoder, const humanoid::JointVector& torque) {
+  humanoid::JointVector q = encoder;
+  for (int j = 0; j < humanoid::kJoints; ++j) q[j] -= torque[j] / belief_[j];  // the link angles (the belief)
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()}, q);
+  // The two soles' mean: the normalised sum of their quaternions (same hemisphere).
+  const Eigen::Quaterniond left(walking::Matrix3d(walking::sole_pose(model_, data_, 0).R));
+  Eigen::Quaterniond right(walking::Matrix3d(walking::sole_pose(model_, data_, 1).R));
+  if (left.dot(right) < 0) right.coeffs() *= -1;
+  return Eigen::Quaterniond(left.coeffs() + right.coeffs()).normalized().toRotationMatrix();
+}
+
 bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro,
-                                           const walking::Vector3d& accel) {
+                                           const walking::Vector3d& accel, const humanoid::JointVector& encoder,
+                                           const humanoid::JointVector& torque) {
   if (calibrated_) return true;
   if (t < rest_end_) {
     if (t >= rest_end_ - params_.k_estimation_gyro_rest - 0.5 * period_ && accel.norm() > 0) {
       const double s = t - rest_end_;  // (≤ 0: small numbers)
       const walking::Vector3d up = accel.normalized();
+      if (rest_.n == 0) rest_.soles_first = soles_in_pelvis(encoder, torque);
+      rest_.soles_last = soles_in_pelvis(encoder, torque);
+      if (rest_.n > 0) rest_.gyro += rest_.last_gyro;  // the gyro's turn from the first reading to this one
+      rest_.last_gyro = gyro;
       rest_.n += 1;
       rest_.t += s;
       rest_.tt += s * s;
-      rest_.gyro += gyro;
       rest_.up += up;
       rest_.t_up += s * up;
     }
@@ -106,18 +121,21 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   attitude_started_ = true;
   attitude_ = imu_R;
   if (rest_.n < 2) return true;
-  // The static alignment. The pelvis's up u = Rᵀ e_z (the accelerometer's direction, +g up at rest), fitted by
-  // a line u(s) = u₀ + u̇ s over the window (s = t − its end): a robot "at rest" still turns slowly (the twin
-  // follows its observer's drift at ~3e-4 rad/s with a biased gyro), and u̇ = u × ω gives that turn's tilting
-  // part, ω⊥ = u̇ × u. So b̂ = mean(ω_gyro) − ω⊥ (about the vertical: the mean); the attitude starts from u₀,
-  // the controller's yaw.
-  const double n = rest_.n, mean_t = rest_.t / n;
-  const double spread = rest_.tt - n * mean_t * mean_t;
+  // The static alignment. A robot "at rest" still turns slowly (the twin follows its observer's drift, ~1e-4
+  // rad/s), so b̂ = (the gyro's turn − the pelvis's turn through the legs) / the window: with both soles flat and
+  // still, the pelvis's attitude is R_sole R_ps(q)ᵀ, its turn R_ps,first R_ps,lastᵀ (pelvis frame). (The
+  // accelerometer's direction would show the turn as well, but also the pelvis's slow horizontal acceleration:
+  // on the twin it gave b̂ 9e-5 rad/s off against 4e-5 through the legs.)
+  const double n = rest_.n, window = (n - 1) * period_;
+  const Eigen::AngleAxisd legs(walking::Matrix3d(rest_.soles_first * rest_.soles_last.transpose()));
+  gyro_bias_ = (rest_.gyro * period_ - legs.angle() * legs.axis()) / window;
+  // The tilt: the pelvis's up u = Rᵀ e_z (the accelerometer's direction, +g up at rest), a line u(s) = u₀ + u̇ s
+  // fitted over the window (s = t − its end), at the end; the yaw the controller's.
+  const double mean_t = rest_.t / n, spread = rest_.tt - n * mean_t * mean_t;
   const walking::Vector3d mean_up = rest_.up / n;
   const walking::Vector3d up_rate = spread > 0 ? walking::Vector3d((rest_.t_up - mean_t * rest_.up) / spread)
                                                : walking::Vector3d::Zero();
   const walking::Vector3d up_end = (mean_up - up_rate * mean_t).normalized();
-  gyro_bias_ = rest_.gyro / n - up_rate.cross(up_end);
   const walking::Vector3d up_now = imu_R.transpose() * walking::Vector3d::UnitZ();
   attitude_ = imu_R * walking::Matrix3d(Eigen::Quaterniond::FromTwoVectors(up_end, up_now));  // R u_end = e_z
   return true;
@@ -136,7 +154,7 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     ++bad_data_;
     return 0;
   }
-  if (!calibrate_at_rest(t, imu_R, gyro, accel)) return 0;
+  if (!calibrate_at_rest(t, imu_R, gyro, accel, encoder, torque)) return 0;
   follow_attitude(imu_R, gyro);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), attitude_}, encoder);

@@ -32,10 +32,10 @@
 /// It trusts the gyro over t_a: a gyro bias b tilts it by ≈ b t_a. So a real robot's gyro is calibrated first
 /// (control.k_estimation_gyro_rest = t_r > 0) by the static alignment of an inertial unit: standing still in the
 /// start stance over t_r, until the COM starts to move (walk.preview_time before the first step), the gyro's
-/// mean, less the slow turn the accelerometer's direction shows (u̇ × u, u = Rᵀ e_z the pelvis's up), is its
+/// turn less the pelvis's turn seen through the legs (both soles flat and still; encoders − τ/k) over t_r is its
 /// bias b̂, removed from every later reading (ω_gyro − b̂ above), and the attitude starts from the accelerometer's
-/// up at the window's end (the controller's yaw; the minimal turn of the controller's estimate that makes
-/// Rᵀ e_z = u). No sample is taken before. Left: the bias's walk
+/// up u = Rᵀ e_z at the window's end (the controller's yaw; the minimal turn of the controller's estimate that
+/// makes Rᵀ e_z = u). No sample is taken before. Left: the bias's walk
 /// since then, σ_w √t, tilting the attitude by ≈ σ_w t^{3/2}/√3 (t ≪ t_a), and the accelerometer's bias a_b:
 /// ≈ a_b/g. A constant tilt error matters: the pitch groups' regressor is nearly constant in a walk.
 /// Allocation-free after construction; free of the simulator.
@@ -83,9 +83,12 @@ class StiffnessEstimator {
  private:
   void publish(int side);
   void follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro);
-  /// control.k_estimation_gyro_rest: sums the gyro and the accelerometer over the rest window; at its end, the
-  /// static alignment (the bias, the attitude). False while it is still to come (no samples then).
-  bool calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro, const walking::Vector3d& accel);
+  /// control.k_estimation_gyro_rest: sums the gyro, the accelerometer and the legs' turn over the rest window;
+  /// at its end, the static alignment (the bias, the attitude). False while it is still to come (no samples then).
+  bool calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro, const walking::Vector3d& accel,
+                         const humanoid::JointVector& encoder, const humanoid::JointVector& torque);
+  /// The mean of the two soles' attitudes in the pelvis frame, through the link angles θ_enc − τ/k (the belief).
+  walking::Matrix3d soles_in_pelvis(const humanoid::JointVector& encoder, const humanoid::JointVector& torque);
 
   walking::RobotModel model_;
   CompensationParams params_;
@@ -101,9 +104,13 @@ class StiffnessEstimator {
   double rest_end_;  ///< [s]
   bool calibrated_;
   walking::Vector3d gyro_bias_ = walking::Vector3d::Zero();  ///< [rad/s]
-  struct RestSums {  ///< over the rest window, s = t − its end [s]: n, Σs, Σs², Σω_gyro, Σu, Σ s u (u the unit up)
+  /// Over the rest window, s = t − its end [s]: n, Σs, Σs², Σω_gyro (all but the last reading), Σu, Σ s u (u the
+  /// accelerometer's unit up), the last gyro reading, the soles' attitude in the pelvis frame first and last.
+  struct RestSums {
     double n = 0, t = 0, tt = 0;
     walking::Vector3d gyro = walking::Vector3d::Zero(), up = walking::Vector3d::Zero(), t_up = walking::Vector3d::Zero();
+    walking::Vector3d last_gyro = walking::Vector3d::Zero();
+    walking::Matrix3d soles_first = walking::Matrix3d::Identity(), soles_last = walking::Matrix3d::Identity();
   } rest_;
   std::array<std::array<bool, kGroups>, 2> confident_{};
   walking::RobotModelData data_;
