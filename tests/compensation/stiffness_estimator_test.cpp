@@ -101,6 +101,14 @@ CompensationParams estimation_params() {
   return p;
 }
 
+/// An estimator of estimation_params() with change(params) applied; rest_end: the end of the gyro's calibration [s].
+template <class Change>
+StiffnessEstimator estimator(const Stance& s, const Change& change, double rest_end = 0.0) {
+  CompensationParams p = estimation_params();
+  change(p);
+  return StiffnessEstimator(s.model, p, kPeriod, rest_end);
+}
+
 /// 500 periods of the still stance with random torques in [−40, 40] Nm, the encoders reading θ_link + τ/k and
 /// the controller's attitude attitude(k, τ); the gyro reads a pelvis at rest.
 template <class Attitude>
@@ -145,9 +153,7 @@ TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt)
 TEST(StiffnessEstimator, TheGyrosAttitudeRemovesAnAttitudeErrorThatFollowsTheTorque) {
   const Stance s;
   auto run = [&](double attitude_time) {
-    CompensationParams p = estimation_params();
-    p.k_estimation_attitude_time = attitude_time;
-    StiffnessEstimator e(s.model, p, kPeriod);
+    StiffnessEstimator e = estimator(s, [&](CompensationParams& p) { p.k_estimation_attitude_time = attitude_time; });
     // A roll error of 2e-4 rad/Nm × τ (≤ 0.008 rad, a quarter of the hip roll's deflection), none at the start.
     feed_random_torques(e, s, [](int k, const JointVector& tau) {
       return walking::rot_x(k == 0 ? 0.0 : 2e-4 * tau[humanoid::kLeftHipRoll]);
@@ -166,9 +172,7 @@ TEST(StiffnessEstimator, TheGyrosAttitudeRemovesAnAttitudeErrorThatFollowsTheTor
 TEST(StiffnessEstimator, StanceOffsetsRemoveAnAttitudeErrorConstantOverEachStance) {
   const Stance s;
   auto run = [&](bool offsets) {
-    CompensationParams p = estimation_params();
-    p.k_estimation_stance_offset = offsets;
-    StiffnessEstimator e(s.model, p, kPeriod);
+    StiffnessEstimator e = estimator(s, [&](CompensationParams& p) { p.k_estimation_stance_offset = offsets; });
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> torque(10.0, 50.0);
     JointVector tau{}, encoder{};
@@ -203,10 +207,8 @@ TEST(StiffnessEstimator, StanceOffsetsRemoveAnAttitudeErrorConstantOverEachStanc
 // turn. b̂ = (the gyro's turn − the legs' turn) / the window recovers b; the mean alone would be off by ω.
 TEST(StiffnessEstimator, TheCalibrationAtRestFindsTheGyrosBiasWhileThePelvisTurnsSlowly) {
   const Stance s;
-  CompensationParams p = estimation_params();
-  p.k_estimation_gyro_rest = 1.0;
   const double rest_end = 1.2, turn_rate = 3e-4;  // [s], [rad/s]
-  StiffnessEstimator e(s.model, p, kPeriod, rest_end);
+  StiffnessEstimator e = estimator(s, [](CompensationParams& p) { p.k_estimation_gyro_rest = 1.0; }, rest_end);
   const walking::Vector3d bias(0.001, -0.002, 0.0005), gravity(0, 0, 9.81);
   // The soles in the upright pelvis's frame; the pelvis turns about its origin, the soles stay.
   walking::RobotModelData data;
