@@ -39,7 +39,8 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
 // Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic),
 // balance (0 pd, 1 dcm with step adjustment; issue 19: ≤ 30 µs with dcm and both compensators),
-// k estimation (1: control.k_estimation on, with the stance offsets, after the update; issue 20).
+// compensation::NewtonJacobian (0 each iterate, 1 reused), k estimation (1: control.k_estimation on, with
+// the stance offsets, after the update; issue 20).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
   walking::BalanceParams balance;
   if (state.range(2) == 1) {
@@ -50,10 +51,11 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   compensation::CompensationParams p;
   p.split = static_cast<compensation::WeightSplit>(state.range(0));
   p.load_model = static_cast<compensation::LoadModel>(state.range(1));
+  p.newton.jacobian = static_cast<compensation::NewtonJacobian>(state.range(3));
   p.k_estimation_stance_offset = true;
   compensation::DeformationCompensator comp(c.model(), p, 0.004);
   compensation::StiffnessEstimator estimator(c.model(), p, 0.004);
-  const bool estimate_k = state.range(3) == 1;
+  const bool estimate_k = state.range(4) == 1;
   c.set_plan_motion(p.load_model == compensation::LoadModel::kDynamic);
   humanoid::SensorReadings s;
   for (auto& ft : s.ft) ft.force = {0, 0, -250.0};
@@ -80,17 +82,22 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   state.SetLabel(std::string(state.range(0) == 0 ? "split about the COM" : "split about the reference ZMP") +
                  ", load_model = " + std::string(name_of(p.load_model)) + ", balance.mode = " +
                  std::string(name_of(balance.mode)) + (balance.step_adjustment ? " with step adjustment" : "") +
+                 ", newton_jacobian = " + std::string(name_of(p.newton.jacobian)) +
                  (estimate_k ? ", k_estimation on" : ""));
 }
 BENCHMARK(ControllerUpdateWithCompensators)
-    ->Args({0, 0, 0, 0})
-    ->Args({1, 0, 0, 0})
-    ->Args({1, 1, 0, 0})
-    ->Args({1, 2, 0, 0})
-    ->Args({1, 0, 1, 0})
-    ->Args({1, 2, 1, 0})
-    ->Args({1, 2, 0, 1})
-    ->Args({1, 2, 1, 1})
+    ->Args({0, 0, 0, 0, 0})
+    ->Args({1, 0, 0, 0, 0})
+    ->Args({1, 1, 0, 0, 0})
+    ->Args({1, 2, 0, 0, 0})
+    ->Args({1, 0, 1, 0, 0})
+    ->Args({1, 2, 1, 0, 0})
+    ->Args({1, 0, 0, 1, 0})
+    ->Args({1, 2, 0, 1, 0})
+    ->Args({1, 0, 1, 1, 0})
+    ->Args({1, 2, 1, 1, 0})
+    ->Args({1, 2, 0, 1, 1})
+    ->Args({1, 2, 1, 1, 1})
     ->Unit(benchmark::kMicrosecond);
 
 void ClosedLoopWalk(benchmark::State& state) {

@@ -63,7 +63,7 @@ TEST(WalkExperiment, CompensationCutsThePelvisRollErrorAndEstimatesTheLinks) {
   // The output compensator: every period converged, and its estimate is several times closer to
   // the true link angles than the encoders are.
   EXPECT_EQ(on.newton_failures, 0);
-  EXPECT_LE(on.newton_iterations_max, 5);
+  EXPECT_LE(on.newton_iterations_max, 8);  // G reused (control.newton_jacobian): linear convergence
   EXPECT_LT(on.estimate_error_rms, 0.25 * on.deflection_rms);
 }
 

@@ -72,6 +72,10 @@ constexpr std::array<EnumName<KEstimation>, 2> enum_names(KEstimation) {
 /// thesis), or the controller's reference ZMP (where the ground force acts in a dynamic gait; it
 /// moves onto the stance sole by the end of double support, so the split is continuous at lift-off).
 enum class WeightSplit { kCom, kZmpReference };
+constexpr std::array<EnumName<NewtonJacobian>, 2> enum_names(NewtonJacobian) {
+  return {{{NewtonJacobian::kEachIteration, "each"}, {NewtonJacobian::kReused, "reused"}}};
+}
+
 constexpr std::array<EnumName<WeightSplit>, 2> enum_names(WeightSplit) {
   return {{{WeightSplit::kCom, "com"}, {WeightSplit::kZmpReference, "zmp"}}};
 }
@@ -180,6 +184,9 @@ struct CompensationParams {
       {.doc = "output compensator: Newton steps at most", .bounds = closed(1, 100)});
     v("control.newton_tolerance", s.newton.tolerance,
       {.unit = "rad", .doc = "output compensator: converged when |N(theta)| <= this", .bounds = closed(1e-15, 1e-3)});
+    v("control.newton_jacobian", s.newton.jacobian,
+      {.doc = "output compensator: G = dtau/dtheta formed at each Newton iterate (each), or reused while a step cuts "
+              "the residual a hundredfold (reused: the chord method)"});
   }
 
   bool input() const { return mode == CompensationMode::kInput || mode == CompensationMode::kBoth; }

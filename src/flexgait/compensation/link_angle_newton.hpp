@@ -20,9 +20,18 @@
 
 namespace flexgait::compensation {
 
+/// How often G is formed: at every iterate (Newton's method, quadratic convergence), or kept
+/// while it serves (the chord method with a refresh: a step reuses the last G and its
+/// factorisation, converging linearly at the rate ||(K + G)⁻¹ ΔG||, ΔG the change of G since it
+/// was formed; G is formed again at the next iterate once a step cut the residual by less than
+/// kChordContraction).
+enum class NewtonJacobian { kEachIteration, kReused };
+inline constexpr double kChordContraction = 0.01;
+
 struct NewtonSettings {
   int max_iterations = 10;
   double tolerance = 1e-12;  ///< on ||N(θ)||_inf [rad]
+  NewtonJacobian jacobian = NewtonJacobian::kReused;
 };
 
 template <int N>
@@ -55,16 +64,23 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
   double residual = r.template lpNorm<Eigen::Infinity>();
   Vector best = theta;
   double best_residual = residual;
+  Eigen::PartialPivLU<Matrix> lu(Matrix::Identity().eval());  // (formed at the first step; set so no path reads it unset)
+  bool refresh = true;
   for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
-    jacobian(theta, tau, G);
-    if (it == 0) out.per_joint = encoder - tau.cwiseQuotient(stiffness + G.diagonal());
-    Matrix A = G;
-    A.diagonal() += stiffness;
-    theta += A.partialPivLu().solve(stiffness.cwiseProduct(r));
+    if (refresh || settings.jacobian == NewtonJacobian::kEachIteration) {
+      jacobian(theta, tau, G);
+      if (it == 0) out.per_joint = encoder - tau.cwiseQuotient(stiffness + G.diagonal());
+      Matrix A = G;
+      A.diagonal() += stiffness;
+      lu.compute(A);
+    }
+    theta += lu.solve(stiffness.cwiseProduct(r));
     if (it == 0) out.one_step = theta;
     torque(theta, tau);
     r = encoder - compliance.cwiseProduct(tau) - theta;
+    const double previous = residual;
     residual = r.template lpNorm<Eigen::Infinity>();
+    refresh = !(residual <= kChordContraction * previous);
     out.iterations = it + 1;
     if (!std::isfinite(residual)) break;
     if (residual < best_residual) {
