@@ -138,8 +138,9 @@ TEST(Push, StepAdjustmentKeepsTheNominalWalk) {
 
 TEST(Push, CaptureStepRecoversBeyondTheAnkleStrategy) {
   // Standing, dcm, a chest push forward of one capture-point bound: the ankles alone recover
-  // 0.86 of it (fall), the capture step (step adjustment: the foot lifts at once and lands where
-  // the DCM diverging from the stance sole's edge will be) recovers 1.49 of it (measured by
+  // 0.86 of it (fall), the capture step (step adjustment: the foot lifts at once — the stance leg
+  // carries the load — and lands where the DCM diverging from the stance sole's edge will be)
+  // recovers 1.49 of it (measured by
   // `flexgait campaign humanoid-push-recovery`, 1 N s bisection). The stepped foot ends ahead of
   // the other, within reach and not across it.
   WalkRunParams p = standing(1.0, walking::BalanceMode::kDcm);
@@ -171,6 +172,41 @@ TEST(Push, CaptureStepRecoversBeyondTheAnkleStrategy) {
   }
   const double mean = sum / n;
   EXPECT_LT(std::sqrt(std::max(0.0, sum2 / n - mean * mean)), 0.01);
+}
+
+TEST(Push, BackwardCaptureStepWaitsForTheStanceLeg) {
+  // Standing, dcm, a chest push backward of 1.3 capture-point bounds (31 N s). On one leg with the
+  // centre of pressure at its heel, the bent stance knee would need 120–160 N m while the push
+  // acts (stance_load.hpp (L1)), beyond its 100 N m servo: lifting at once (capture_torque_limit
+  // 0, the step before issue 19's fix), the knee gives way and the robot falls (1.12 of the bound
+  // was the most recovered). Waiting on both feet until the stance leg can carry the load, the
+  // foot lifts as the push ends and the step recovers (1.51 of the bound, `flexgait campaign
+  // humanoid-push-recovery`). The stepped foot ends behind the other, within reach, not across it.
+  WalkRunParams p = standing(1.0, walking::BalanceMode::kDcm);
+  p.push.body = PushBody::kChest;
+  p.push.force = {-1.0 / p.push.duration, 0, 0};
+  const double bound = run_walk(p).metrics.capture_point_bound;
+  p.push.force = {-1.3 * bound / p.push.duration, 0, 0};
+  p.balance.step_adjustment = true;
+  const auto lift_off = [](const WalkResult& r) {  // the first sample of the capture step
+    for (const WalkSample& w : r.log)
+      if (w.step >= 0) return w.t;
+    return std::nan("");
+  };
+  const double push_end = p.push.time + p.push.duration;
+  const WalkResult waited = run_walk(p);
+  EXPECT_FALSE(waited.metrics.fell) << waited.metrics.fall_text() << " at " << waited.metrics.fall_time;
+  EXPECT_GE(lift_off(waited), push_end - 1e-9);  // measured 2.104 s
+  const auto& sole = waited.log.back().sole;
+  const int back = sole[0][0] < sole[1][0] ? 0 : 1;
+  const double behind = sole[1 - back][0] - sole[back][0], across = std::abs(sole[0][1] - sole[1][1]);
+  EXPECT_GT(behind, 0.05);
+  EXPECT_LE(std::hypot(behind, across), p.balance.step_reach);
+  EXPECT_GE(across, walk_controller_model(p).sole_width);
+  p.balance.capture_torque_limit = 0;  // lift at once
+  const WalkResult at_once = run_walk(p);
+  EXPECT_TRUE(at_once.metrics.fell);
+  EXPECT_LT(lift_off(at_once), push_end);  // measured 2.064 s
 }
 
 TEST(Push, SameConfigurationSameBytes) {

@@ -11,6 +11,7 @@ FootContact foot_contact(const humanoid::ForceTorque& ft, const Eigen::Matrix3d&
   const Eigen::Vector3d tau = -Eigen::Vector3d(ft.torque.data());
   FootContact c;
   c.normal_force = f.z();
+  c.force = f;
   if (f.z() > 1e-9) c.cop = Eigen::Vector2d((-tau.y() - d * f.x()) / f.z(), (tau.x() - d * f.y()) / f.z());
   c.torque = Eigen::Vector2d(tau.x() - d * f.y(), tau.y() + d * f.x());
   if (s.x() != 0 || s.y() != 0) {  // about the sole centre (no arithmetic for an unshifted sole: same bits)

@@ -87,7 +87,10 @@ struct BalanceParams {
   bool step_adjustment = false;     ///< move the next footstep when the DCM error leaves the sole
   double step_adjustment_limit = 0.25;  ///< |Δ| along each axis of the stance sole [m]
   double step_reach = 0.4;          ///< landing to stance sole centre, at most [m]
-  double recovery_step_time = 0.25; ///< standing: the capture step's duration, lift-off at once [s]
+  double recovery_step_time = 0.25; ///< standing: the capture step's duration from lift-off [s]
+  /// Standing: the capture step's foot lifts once the stance leg alone could carry the measured
+  /// ground force within this joint torque (stance_load.hpp; the twin's servos: plant.torque_limit) [N m]; 0: at once.
+  double capture_torque_limit = 100.0;
   // Landing orientation control (landing_adaptation.hpp; both modes).
   double landing_admittance = 0.0;  ///< A: sole tilt rate per Nm of ground torque after touchdown [rad/(N m s)]; 0: off
   double landing_window = 0.1;      ///< how long after touchdown the sole follows the torque [s]
@@ -140,6 +143,9 @@ struct BalanceParams {
       {.unit = "m", .doc = "step adjustment: largest distance from the stance sole centre to the landing", .bounds = closed(0.2, 1)});
     v("balance.recovery_step_time", s.recovery_step_time,
       {.unit = "s", .doc = "step adjustment while standing: duration of the capture step (the foot lifts at once)", .bounds = closed(0.1, 2)});
+    v("balance.capture_torque_limit", s.capture_torque_limit,
+      {.unit = "N m", .doc = "step adjustment while standing: the capture step's foot lifts once the stance leg alone could carry the measured ground force within this joint torque (at the latest after balance.recovery_step_time; 0: at once)",
+       .bounds = closed(0, 1e4)});
     v("balance.landing_admittance", s.landing_admittance,
       {.unit = "rad/(N m s)", .doc = "landing orientation control: sole tilt rate per Nm of ground torque after touchdown (0: off)",
        .bounds = closed(0, 1)});

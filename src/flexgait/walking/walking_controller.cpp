@@ -1,6 +1,7 @@
 #include "flexgait/walking/walking_controller.hpp"
 
 #include "flexgait/walking/foot_wrench.hpp"
+#include "flexgait/walking/stance_load.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,11 @@ constexpr double kReplanDistance = 0.005;
 /// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
 constexpr double kLastAdjustment = 0.75;
 constexpr double kCaptureSettle = 0.5;  ///< after a capture step the ZMP moves from the landed foot to the feet's middle in this [s]
+/// Once the stance leg could not carry the load alone, the capture step's foot lifts after the
+/// load has been within its joints' limit this long [s]: three periods, a few of the contact's
+/// (plant.contact_time_constant 5 ms) and the servos' (30 Hz) time constants, over which the
+/// vertical load rings during a push.
+constexpr double kCaptureLiftHold = 0.012;
 /// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
 /// < 1e-3 of the swing's accelerations (planned_motion_test).
 constexpr double kPlanStep = 0.01;
@@ -22,6 +28,12 @@ constexpr int kPlanJacobianPeriods = 25;
 
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
+
+/// The point of the box of half-extents `half` (along and across `yaw`) about `centre` nearest `x` [m].
+Eigen::Vector2d nearest_in_box(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector2d& half, const Eigen::Vector2d& x) {
+  const Eigen::Rotation2Dd heading(yaw);
+  return centre + heading * (heading.inverse() * (x - centre)).cwiseMax(-half).cwiseMin(half);
+}
 
 /// Where p projects on the segment right → left, as the left foot's share in [0, 1] (½ for coincident feet).
 double left_share(const Eigen::Vector2d& left, const Eigen::Vector2d& right, const Eigen::Vector2d& p) {
@@ -113,7 +125,7 @@ Eigen::Vector2d WalkingController::load_split_point() const {
   // 0.036 m rms), and the largest lateral push walking at 1 s/step is 7.0–41.4 N s against
   // 10.2–42.2 by the reference.
   const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
-  return dcm && plan_.steps.empty() ? status_.zmp_command : status_.zmp_ref;
+  return dcm && plan_.steps.empty() && !capture_.active ? status_.zmp_command : status_.zmp_ref;
 }
 
 void WalkingController::update_foot_lift(const FeetTarget& feet, const Eigen::Vector2d& zmp) {
@@ -317,28 +329,82 @@ void WalkingController::begin_safe_stop(double t, std::size_t k) {
   }
 }
 
-void WalkingController::begin_capture_step(double t, std::size_t k, int swing, double omega, double T, double settle,
-                                           const StepLimits& limits) {
-  // (C1) the centre of pressure goes at once to the stance sole's point nearest the DCM, 2 cm
-  // inside its edges; (C2) the COM falls about it as the linear inverted pendulum from its
-  // estimated state, so the DCM reference is the measured DCM ξ₀ diverging from p,
-  // ξ(τ) = p + (ξ₀ − p) e^{ωτ}; (C3) the swing foot lifts now and lands at ξ(T), within reach.
-  // (Moving the landing with the measured DCM during the swing, as walking steps do, recovered
-  // less: 0.89–0.93 of the capture-point bound against 1.09–0.99 at T = 0.3–0.35 s.)
-  const Footprint& stance = plan_.initial[1 - swing];
-  const Eigen::Rotation2Dd heading(stance.yaw);
-  const Eigen::Vector2d centre(stance.x, stance.y), xi0 = status_.dcm;
-  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin, 0.5 * model_.sole_width - kCaptureMargin);
-  const Eigen::Vector2d p = centre + heading * (heading.inverse() * (xi0 - centre)).cwiseMax(-half).cwiseMin(half);
+void WalkingController::begin_capture_transfer(double t, std::size_t k, int swing, double omega) {
+  // (C0) Both feet stay down while the stance leg could not carry the load alone: the centre of
+  // pressure at the point of the feet's box (2 cm inside its edges) nearest the DCM, the COM
+  // falling about it as the linear inverted pendulum from its estimated state. (Measured, issue 19:
+  // lifting at once, 40 ms into a 0.1 s backward chest push, the stance knee needed 150–160 N m;
+  // its 100 N m servo gave way, the knee bent 0.12 rad, the pelvis sank 2.6 cm and pitched back
+  // 0.25 rad, the swing foot touched down 4.7 cm short; with a 150 N m servo the step recovered
+  // 1.51 of the capture-point bound backward against 1.12.)
+  const std::array<Footprint, 2>& f = plan_.initial;
+  const Eigen::Vector2d mid(0.5 * (f[0].x + f[1].x), 0.5 * (f[0].y + f[1].y));
+  const double width = std::hypot(f[0].x - f[1].x, f[0].y - f[1].y);
+  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin, 0.5 * (model_.sole_width + width) - kCaptureMargin);
+  const Eigen::Vector2d p = nearest_in_box(mid, f[1 - swing].yaw, half, status_.dcm);
   for (int a = 0; a < 2; ++a) {
     const double c = status_.com_estimate(a);
     cart_[a].x = Vector3d(c, com_velocity_(a), omega * omega * (c - p(a)));
     cart_[a].error_sum = 0;
   }
-  capture_ = {true, p};
+  capture_ = {true, true, swing, t, p, static_cast<int>(std::ceil(kCaptureLiftHold / period_ - 1e-9)) - 1};
+  for (std::size_t i = k; i < ref_x_.size(); ++i) {
+    ref_x_[i] = p.x();
+    ref_y_[i] = p.y();
+  }
+}
+
+bool WalkingController::capture_lift_due(double t) {
+  if (!(balance_.capture_torque_limit > 0) || !ft_live_) return true;
+  if (t - capture_.t_begin >= balance_.recovery_step_time) return true;
+  // (L1): the ground force on both soles (F/T, estimated attitude) through the capture step's
+  // centre of pressure on the stance sole (C1), carried by the stance leg alone. Its size is
+  // the robot's weight: the vertical load rings with the contact while a push acts (measured
+  // 350–1030 N, even airborne, against 560 N), its line — the push's trace — is what changes.
+  const int stance = 1 - capture_.swing;
+  Vector3d force = Vector3d::Zero();
+  for (int side = 0; side < 2; ++side) force += sole_pose(model_, estimate_data_, side).R * foot_contact_[side].force;
+  bool feasible = force.z() > balance_.contact_force;
+  if (feasible) {
+    const Footprint& f = plan_.initial[stance];
+    const Eigen::Vector2d p = capture_cop(stance, status_.dcm);
+    const Vector3d point = sole_pose(model_, estimate_data_, stance).p + Vector3d(p.x() - f.x, p.y() - f.y, 0);
+    const LegTorque tau =
+        stance_joint_torques(model_, estimate_data_, stance, force * (model_.total_mass * kGravity / force.z()), point);
+    feasible = tau.cwiseAbs().maxCoeff() <= balance_.capture_torque_limit;
+  }
+  // Within the limit at once: lift now; once beyond it, lift after kCaptureLiftHold within it.
+  const int hold = static_cast<int>(std::ceil(kCaptureLiftHold / period_ - 1e-9));
+  capture_.feasible_periods = feasible ? capture_.feasible_periods + 1 : 0;
+  return capture_.feasible_periods >= hold;
+}
+
+Eigen::Vector2d WalkingController::capture_cop(int stance, const Eigen::Vector2d& xi) const {
+  const Footprint& f = plan_.initial[stance];
+  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin, 0.5 * model_.sole_width - kCaptureMargin);
+  return nearest_in_box(Eigen::Vector2d(f.x, f.y), f.yaw, half, xi);
+}
+
+void WalkingController::begin_capture_step(double t, std::size_t k, double omega, double T, double settle,
+                                           const StepLimits& limits) {
+  // (C1) the centre of pressure goes at once to the stance sole's point nearest the DCM, 2 cm
+  // inside its edges; (C2) the COM falls about it as the linear inverted pendulum from its
+  // reference state (the estimated one when (C0) lifts at once), so the DCM reference is ξ₀
+  // diverging from p, ξ(τ) = p + (ξ₀ − p) e^{ωτ}; (C3) the swing foot lifts now and lands at ξ(T),
+  // within reach.
+  // (Moving the landing with the measured DCM during the swing, as walking steps do, recovered
+  // less: 0.89–0.93 of the capture-point bound against 1.09–0.99 at T = 0.3–0.35 s.)
+  const int swing = capture_.swing;
+  const Footprint& stance = plan_.initial[1 - swing];
+  const Eigen::Vector2d xi0 = dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)),
+                                     Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
+  const Eigen::Vector2d centre(stance.x, stance.y), p = capture_cop(1 - swing, xi0);
+  for (int a = 0; a < 2; ++a) cart_[a].x(2) = omega * omega * (cart_[a].x(0) - p(a));
+  capture_.transfer = false;
+  capture_.p = p;
   Step st;
   st.swing = swing;
-  st.t_begin = t;
+  st.t_begin = capture_.t_begin;
   st.t_lift = t + period_;
   st.t_land = t + T;
   st.from = plan_.initial[swing];
@@ -374,18 +440,21 @@ void WalkingController::propagate_capture(double t) {
     x = Vector3d(capture_.p(a) + y1, y * omega * sh + v * ch, omega * omega * y1);
   }
   // Landed (the capture step is the plan's only step): the preview controller takes over.
-  if (t + period_ >= plan_.steps.back().t_land - 0.5 * period_) {
+  if (!capture_.transfer && t + period_ >= plan_.steps.back().t_land - 0.5 * period_) {
     capture_.active = false;
     for (CartTable& c : cart_) c.error_sum = 0;
   }
 }
 
 void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& feet) {
-  if (capture_.active) return;  // a capture step's landing is set when it begins
   const double omega = std::sqrt(kGravity / gains_.com_height);
+  const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
+  if (capture_.active) {  // a capture step's landing is set when its foot lifts
+    if (capture_.transfer && capture_lift_due(t)) begin_capture_step(t, k, omega, balance_.recovery_step_time, kCaptureSettle, limits);
+    return;
+  }
   const Eigen::Vector2d e = status_.dcm - status_.dcm_ref;
   const Eigen::Vector2d half(0.5 * model_.sole_length, 0.5 * model_.sole_width);
-  const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
   const auto n = static_cast<int>(plan_.steps.size());
   if (feet.step >= 0 && feet.step < n) {
     // Walking (or the recovery step): from the step's double support to three quarters of its
@@ -433,13 +502,14 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
     if (beyond.squaredNorm() == 0) return;
     const double T = balance_.recovery_step_time;
     const double settle = kCaptureSettle;
-    // The ZMP reference must hold the step and its settling (with the preview horizon).
-    if (static_cast<std::size_t>(std::ceil((t + T + settle) / period_)) + gains_.G_p.size() + 1 >= ref_x_.size()) return;
+    // The ZMP reference must hold the transfer, the step and its settling (with the preview horizon).
+    if (static_cast<std::size_t>(std::ceil((t + 2 * T + settle) / period_)) + gains_.G_p.size() + 1 >= ref_x_.size()) return;
     recovery_step_ = true;
     // The foot on the side the error leaves by steps; straight ahead or back, the less loaded one.
     const int swing = std::abs(beyond.y()) > 1e-3 ? (beyond.y() > 0 ? 0 : 1)
                                                   : (foot_contact_[0].normal_force < foot_contact_[1].normal_force ? 0 : 1);
-    begin_capture_step(t, k, swing, omega, T, settle, limits);
+    begin_capture_transfer(t, k, swing, omega);
+    if (capture_lift_due(t)) begin_capture_step(t, k, omega, T, settle, limits);
     return;
   } else {
     return;

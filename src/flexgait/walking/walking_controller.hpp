@@ -164,10 +164,19 @@ class WalkingController {
   /// the later footsteps once per step; standing (a plan without steps), inserts one recovery
   /// step. Rewrites the ZMP reference from sample k on, so the preview controller replans.
   void adjust_steps(double t, std::size_t k, const FeetTarget& feet);
-  /// Standing step adjustment: the capture step of foot `swing` lasting T [s] (C1–C3 in the
-  /// definition), its settling [s]; rewrites the ZMP reference from sample k.
-  void begin_capture_step(double t, std::size_t k, int swing, double omega, double T, double settle,
-                          const StepLimits& limits);
+  /// Standing step adjustment, (C0): the capture point has left the feet; both stay down, the
+  /// centre of pressure at the feet's edge nearest the DCM, until the stance leg can carry the load
+  /// (capture_lift_due). Rewrites the ZMP reference from sample k.
+  void begin_capture_transfer(double t, std::size_t k, int swing, double omega);
+  /// (C0) ends: the stance leg alone could carry the measured ground force through the capture
+  /// step's centre of pressure within balance.capture_torque_limit (stance_load.hpp (L1)), or the
+  /// transfer has lasted balance.recovery_step_time.
+  bool capture_lift_due(double t);
+  /// (C1): the point of the `stance` sole, 2 cm inside its edges, nearest the DCM `xi` (world) [m].
+  Eigen::Vector2d capture_cop(int stance, const Eigen::Vector2d& xi) const;
+  /// The capture step of foot capture_.swing lasting T [s] from now (C1–C3 in the definition), its
+  /// settling [s]; rewrites the ZMP reference from sample k.
+  void begin_capture_step(double t, std::size_t k, double omega, double T, double settle, const StepLimits& limits);
   /// During a capture step: the cart follows the inverted pendulum about its centre of pressure.
   void propagate_capture(double t);
   /// ZMP feedback: advances its filter and integral, returns the COM shift [m].
@@ -218,7 +227,11 @@ class WalkingController {
   bool recovery_step_ = false;    ///< a recovery step was inserted (standing)
   struct CaptureStep {
     bool active = false;
+    bool transfer = false;                           ///< both feet still down (the weight transfer before lift-off)
+    int swing = 0;                                   ///< the stepping foot
+    double t_begin = 0;                              ///< when the capture point left the feet [s]
     Eigen::Vector2d p = Eigen::Vector2d::Zero();     ///< its centre of pressure (world) [m]
+    int feasible_periods = 0;                        ///< (C0): periods in a row the stance leg could carry the load
   } capture_;                                        ///< the standing capture step under way
   static constexpr double kCaptureMargin = 0.02;     ///< the capture step's CoP stays this far inside the sole [m]
   ControllerStatus status_;
