@@ -7,6 +7,7 @@
 #include <string>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
+#include "flexgait/compensation/stiffness_estimator.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/walking/walking_controller.hpp"
 
@@ -38,7 +39,8 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
 // Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic),
 // balance (0 pd, 1 dcm with step adjustment; issue 19: ≤ 30 µs with dcm and both compensators),
-// compensation::NewtonJacobian (0 each iterate, 1 reused).
+// compensation::NewtonJacobian (0 each iterate, 1 reused), k estimation (1: control.k_estimation on, with
+// the stance offsets, after the update; issue 20).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
   walking::BalanceParams balance;
   if (state.range(2) == 1) {
@@ -50,7 +52,10 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   p.split = static_cast<compensation::WeightSplit>(state.range(0));
   p.load_model = static_cast<compensation::LoadModel>(state.range(1));
   p.newton.jacobian = static_cast<compensation::NewtonJacobian>(state.range(3));
+  p.k_estimation_stance_offset = true;
   compensation::DeformationCompensator comp(c.model(), p, 0.004);
+  compensation::StiffnessEstimator estimator(c.model(), p, 0.004);
+  const bool estimate_k = state.range(4) == 1;
   c.set_plan_motion(p.load_model == compensation::LoadModel::kDynamic);
   humanoid::SensorReadings s;
   for (auto& ft : s.ft) ft.force = {0, 0, -250.0};
@@ -64,6 +69,11 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
     const humanoid::JointVector& command = comp.input(desired, st.pelvis.R, plan);
     const compensation::OutputEstimate& e = comp.output(command, st.pelvis.R, plan);
     benchmark::DoNotOptimize(e.newton.data());
+    if (estimate_k) {
+      for (auto& ft : s.ft) ft.stamp = static_cast<double>(k) * 0.004;
+      estimator.update(static_cast<double>(k) * 0.004, command, st.pelvis.R, s.imu, e.gravity_torque, s.ft, plan, true);
+      benchmark::DoNotOptimize(estimator.estimate().data());
+    }
     iterations += e.iterations;
     ++calls;
     if (++k == ticks) k = 0;
@@ -72,19 +82,22 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   state.SetLabel(std::string(state.range(0) == 0 ? "split about the COM" : "split about the reference ZMP") +
                  ", load_model = " + std::string(name_of(p.load_model)) + ", balance.mode = " +
                  std::string(name_of(balance.mode)) + (balance.step_adjustment ? " with step adjustment" : "") +
-                 ", newton_jacobian = " + std::string(name_of(p.newton.jacobian)));
+                 ", newton_jacobian = " + std::string(name_of(p.newton.jacobian)) +
+                 (estimate_k ? ", k_estimation on" : ""));
 }
 BENCHMARK(ControllerUpdateWithCompensators)
-    ->Args({0, 0, 0, 0})
-    ->Args({1, 0, 0, 0})
-    ->Args({1, 1, 0, 0})
-    ->Args({1, 2, 0, 0})
-    ->Args({1, 0, 1, 0})
-    ->Args({1, 2, 1, 0})
-    ->Args({1, 0, 0, 1})
-    ->Args({1, 2, 0, 1})
-    ->Args({1, 0, 1, 1})
-    ->Args({1, 2, 1, 1})
+    ->Args({0, 0, 0, 0, 0})
+    ->Args({1, 0, 0, 0, 0})
+    ->Args({1, 1, 0, 0, 0})
+    ->Args({1, 2, 0, 0, 0})
+    ->Args({1, 0, 1, 0, 0})
+    ->Args({1, 2, 1, 0, 0})
+    ->Args({1, 0, 0, 1, 0})
+    ->Args({1, 2, 0, 1, 0})
+    ->Args({1, 0, 1, 1, 0})
+    ->Args({1, 2, 1, 1, 0})
+    ->Args({1, 2, 0, 1, 1})
+    ->Args({1, 2, 1, 1, 1})
     ->Unit(benchmark::kMicrosecond);
 
 void ClosedLoopWalk(benchmark::State& state) {

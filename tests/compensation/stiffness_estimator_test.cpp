@@ -3,7 +3,9 @@
 // ignores non-finite data; the stiffness estimator, fed a flat-footed stance whose encoders read
 // θ_link + τ/k, finds k per leg and joint group, stays bounded and positive under bad data, and
 // keeps its estimate (counting the period) on a NaN or a stale F/T reading; the gyro's attitude
-// (control.k_estimation_attitude_time) removes an attitude error that follows the torque.
+// (control.k_estimation_attitude_time) removes an attitude error that follows the torque; the stance offsets
+// (control.k_estimation_stance_offset) remove an attitude error constant over each stance; the calibration at
+// rest (control.k_estimation_gyro_rest) finds a gyro's bias while the pelvis turns slowly on still legs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +24,11 @@ using walking::Matrix3d;
 
 constexpr double kPeriod = 0.004;  // [s]
 constexpr double kTrue = 1250.0, kBelief = 1000.0;  // [Nm/rad]
-const walking::Vector3d kStill = walking::Vector3d::Zero();  // the gyro of a pelvis at rest [rad/s]
+const humanoid::Imu kStill = [] {  // the IMU of a pelvis at rest, level: zero rate, +g up
+  humanoid::Imu imu;
+  imu.accel = {0.0, 0.0, 9.81};
+  return imu;
+}();
 
 /// n samples of δ = τ/k + v, |τ| uniform in [20, 60] Nm with random sign, v ~ N(0, σ²).
 struct Synthetic {
@@ -95,6 +101,14 @@ CompensationParams estimation_params() {
   return p;
 }
 
+/// An estimator of estimation_params() with change(params) applied; rest_end: the end of the gyro's calibration [s].
+template <class Change>
+StiffnessEstimator estimator(const Stance& s, const Change& change, double rest_end = 0.0) {
+  CompensationParams p = estimation_params();
+  change(p);
+  return StiffnessEstimator(s.model, p, kPeriod, rest_end);
+}
+
 /// 500 periods of the still stance with random torques in [−40, 40] Nm, the encoders reading θ_link + τ/k and
 /// the controller's attitude attitude(k, τ); the gyro reads a pelvis at rest.
 template <class Attitude>
@@ -139,9 +153,7 @@ TEST(StiffnessEstimator, FindsEachLegsRollAndPitchStiffnessFromTheFlatFootsTilt)
 TEST(StiffnessEstimator, TheGyrosAttitudeRemovesAnAttitudeErrorThatFollowsTheTorque) {
   const Stance s;
   auto run = [&](double attitude_time) {
-    CompensationParams p = estimation_params();
-    p.k_estimation_attitude_time = attitude_time;
-    StiffnessEstimator e(s.model, p, kPeriod);
+    StiffnessEstimator e = estimator(s, [&](CompensationParams& p) { p.k_estimation_attitude_time = attitude_time; });
     // A roll error of 2e-4 rad/Nm × τ (≤ 0.008 rad, a quarter of the hip roll's deflection), none at the start.
     feed_random_torques(e, s, [](int k, const JointVector& tau) {
       return walking::rot_x(k == 0 ? 0.0 : 2e-4 * tau[humanoid::kLeftHipRoll]);
@@ -151,6 +163,82 @@ TEST(StiffnessEstimator, TheGyrosAttitudeRemovesAnAttitudeErrorThatFollowsTheTor
   EXPECT_GT(std::abs(run(0.0) - kTrue), 0.05 * kTrue);  // the controller's attitude: biased
   // 2 s of data against t_a = 10⁴ s: the pull carries ≈ 2e-4 of the error; 2 % as in the flat-foot test above.
   EXPECT_NEAR(run(1e4), kTrue, 0.02 * kTrue);
+}
+
+// control.k_estimation_stance_offset: torques of one sign, as a stance's load (uniform in [10, 50] Nm), and an
+// attitude error that drifts from stance to stance (a gyro's drift, held constant within each stance: 1 mrad
+// more about x and y after each swing, against ≈ 24 mrad of deflection tilt per joint): without the offsets the
+// estimate is biased; with them each stance's tilt changes alone inform 1/k.
+TEST(StiffnessEstimator, StanceOffsetsRemoveAnAttitudeErrorConstantOverEachStance) {
+  const Stance s;
+  auto run = [&](bool offsets) {
+    StiffnessEstimator e = estimator(s, [&](CompensationParams& p) { p.k_estimation_stance_offset = offsets; });
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> torque(10.0, 50.0);
+    JointVector tau{}, encoder{};
+    long k = 0;
+    for (int stance = 0; stance < 8; ++stance) {
+      SupportPlan swing = s.plan();
+      swing.swinging = {true, true};  // one period of swing between stances: no sample, the offsets start anew
+      e.update(k * kPeriod, s.q, Matrix3d::Identity(), kStill, tau, readings(s, k * kPeriod), swing, true);
+      ++k;
+      const Matrix3d error = walking::rot_x(0.001 * stance) * walking::rot_y(-0.001 * stance);
+      for (int i = 0; i < 250; ++i, ++k) {
+        for (int j = 0; j < kJoints; ++j) {
+          tau[j] = torque(rng);
+          encoder[j] = s.q[j] + tau[j] / kTrue;
+        }
+        e.update(k * kPeriod, encoder, error, kStill, tau, readings(s, k * kPeriod), s.plan(), true);
+      }
+    }
+    double worst = 0;
+    for (int j = 0; j < kJoints; ++j)
+      if (e.group(j) != StiffnessEstimator::kNone) worst = std::max(worst, std::abs(e.estimate()[j] / kTrue - 1));
+    return worst;
+  };
+  EXPECT_GT(run(false), 0.05) << "without the offsets";
+  // 2 %: the linearisation of the tilt (the flat-foot test above); the offsets cost the constant part of the
+  // torques' information, the varying part (±20 Nm over 2000 samples) is plenty.
+  EXPECT_LT(run(true), 0.02);
+}
+
+// control.k_estimation_gyro_rest: a gyro with bias b on a pelvis that turns slowly about x (ω = 3e-4 rad/s, as
+// the twin follows its observer's drift in the start stance) over flat, still soles: the legs' encoders show the
+// turn. b̂ = (the gyro's turn − the legs' turn) / the window recovers b; the mean alone would be off by ω.
+TEST(StiffnessEstimator, TheCalibrationAtRestFindsTheGyrosBiasWhileThePelvisTurnsSlowly) {
+  const Stance s;
+  const double rest_end = 1.2, turn_rate = 3e-4;  // [s], [rad/s]
+  StiffnessEstimator e = estimator(s, [](CompensationParams& p) { p.k_estimation_gyro_rest = 1.0; }, rest_end);
+  const walking::Vector3d bias(0.001, -0.002, 0.0005), gravity(0, 0, 9.81);
+  // The soles in the upright pelvis's frame; the pelvis turns about its origin, the soles stay.
+  walking::RobotModelData data;
+  walking::forward_kinematics(s.model, data, walking::Pose{walking::Vector3d::Zero(), Matrix3d::Identity()}, s.q);
+  const std::array<walking::Pose, 2> soles = {walking::sole_pose(s.model, data, 0), walking::sole_pose(s.model, data, 1)};
+  JointVector tau{};
+  tau.fill(30.0);
+  long k = 0;
+  for (; k * kPeriod < rest_end + 2 * kPeriod; ++k) {
+    const double t = k * kPeriod;
+    const Matrix3d R = walking::rot_x(0.01 + turn_rate * t);
+    JointVector encoder{};
+    for (int side = 0; side < 2; ++side) {
+      const walking::IkSolution ik =
+          walking::leg_inverse_kinematics(s.model.leg[side], walking::Pose{R.transpose() * soles[side].p, R.transpose() * soles[side].R});
+      for (int i = 0; i < humanoid::kLegJoints; ++i) encoder[humanoid::leg_first_joint(side) + i] = ik.q[i] + tau[i] / kBelief;
+    }
+    humanoid::Imu imu;
+    const walking::Vector3d gyro = walking::Vector3d(turn_rate, 0, 0) + bias, accel = R.transpose() * gravity;
+    for (int i = 0; i < 3; ++i) imu.gyro[i] = gyro[i], imu.accel[i] = accel[i];
+    const int used = e.update(t, encoder, R, imu, tau, readings(s, t), s.plan(), true);
+    if (t < rest_end) {
+      EXPECT_EQ(used, 0) << "no sample before the calibration";
+    }
+  }
+  // The gyro's turn summed by rectangles of a constant rate and the legs' turn: exact to round-off and to the
+  // IK's tolerance (the turn is 3e-4 rad over 1 s: 1e-9 rad of error is 1e-9 rad/s).
+  EXPECT_NEAR(e.gyro_bias().x(), bias.x(), 1e-8);
+  EXPECT_NEAR(e.gyro_bias().y(), bias.y(), 1e-8);
+  EXPECT_NEAR(e.gyro_bias().z(), bias.z(), 1e-8);
 }
 
 TEST(StiffnessEstimator, BadDataKeepsTheEstimateAndAdversarialDataStaysBoundedAndPositive) {

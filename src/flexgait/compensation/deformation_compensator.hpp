@@ -113,6 +113,8 @@ struct CompensationParams {
   double k_estimation_noise = 0.002;      ///< standard deviation of the foot-tilt observation [rad]
   double k_estimation_confidence = 0.05;  ///< relative standard deviation below which the compensators use the estimate
   double k_estimation_attitude_time = 0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
+  bool k_estimation_stance_offset = false;  ///< each stance's tilt has an unknown offset of its own (estimated beside 1/k)
+  double k_estimation_gyro_rest = 0.0;  ///< the gyro bias is its mean over this long at rest before the first step; 0: none [s]
   double robotis_hip_roll = 0.017; ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
   double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
   double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
@@ -159,6 +161,15 @@ struct CompensationParams {
        .doc = "k_estimation: the pelvis attitude the identification uses is the gyro's turn pulled towards the "
               "controller's estimate with this time constant (0 = the controller's estimate itself)",
        .bounds = closed(0, 1e6)});
+    v("control.k_estimation_stance_offset", s.k_estimation_stance_offset,
+      {.doc = "k_estimation: each stance foot's tilt carries an unknown constant offset, estimated beside 1/k and "
+              "started anew at each stance (the attitude's slow errors, the gyro's drift, cancel; only the tilt's "
+              "changes within a stance inform 1/k)"});
+    v("control.k_estimation_gyro_rest", s.k_estimation_gyro_rest,
+      {.unit = "s",
+       .doc = "k_estimation: the identification's gyro bias is the gyro's mean over this long at rest, just before the "
+              "first step (at most walk.start_time); no samples before it; 0 = no calibration",
+       .bounds = closed(0, 100)});
     v("control.robotis_hip_roll", s.robotis_hip_roll,
       {.unit = "rad", .doc = "robotis: stance hip roll feed-forward at mid single support", .bounds = closed(0, 0.2)});
     v("control.talos_cutoff", s.talos_cutoff, {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});

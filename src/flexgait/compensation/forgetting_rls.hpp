@@ -27,6 +27,14 @@ class ForgettingRls {
   /// Once per sample time, before that time's measurements.
   void forget() { P_ /= lambda_; }
 
+  /// Parameter i forgets what it was: no correlation with the others, prior variance `variance` (a nuisance
+  /// parameter that starts anew, e.g. an offset per stance).
+  void restart(int i, double variance) {
+    P_.row(i).setZero();
+    P_.col(i).setZero();
+    P_(i, i) = variance;
+  }
+
   /// One scalar measurement y = hᵀx + v, var(v) = r > 0. Non-finite h, y or r: no change, false.
   bool update(const Vector& h, double y, double r) {
     if (!h.allFinite() || !std::isfinite(y) || !(r > 0) || !std::isfinite(r)) return false;

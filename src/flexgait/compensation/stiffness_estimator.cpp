@@ -12,16 +12,20 @@ constexpr double kStaleAge = 0.05;        // an F/T reading older than this is s
 constexpr double kFirmWeightShare = 0.25; // firm support: normal force ≥ this × the weight
 constexpr double kFirmCopShare = 0.3;     // ... and |CoP − sole centre| ≤ this × the sole's length, width
 constexpr double kBoundFactor = 10.0;     // c ∈ [c₀/10, 10 c₀]
+constexpr double kOffsetStd = 0.05;       // prior std of a stance's tilt offset (stance_offset) [rad]
 }  // namespace
 
-StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period)
+StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period,
+                                       double rest_end)
     : model_(model),
       params_(params),
       noise_variance_(params.k_estimation_noise * params.k_estimation_noise),
       period_(period),
       belief_(params.stiffness()),
       estimate_(belief_),
-      stiffness_(belief_) {
+      stiffness_(belief_),
+      rest_end_(rest_end),
+      calibrated_(params.k_estimation_gyro_rest <= 0) {
   group_.fill(kNone);
   const double lambda = std::exp(-period / params.k_estimation_memory);
   for (int side = 0; side < 2; ++side) {
@@ -33,8 +37,8 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
       if (a.z() >= a.x() && a.z() >= a.y()) continue;
       group_[j] = a.x() >= a.y() ? kRoll : kPitch;
     }
-    ForgettingRls<kGroups>::Vector c0;
-    ForgettingRls<kGroups>::Matrix P0 = ForgettingRls<kGroups>::Matrix::Zero();
+    ForgettingRls<kStates>::Vector c0 = ForgettingRls<kStates>::Vector::Zero();  // (the offsets: 0)
+    ForgettingRls<kStates>::Matrix P0 = ForgettingRls<kStates>::Matrix::Zero();  // (offsets off: variance 0, stay 0)
     for (int g = 0; g < kGroups; ++g) {
       double sum = 0;
       int n = 0;
@@ -48,7 +52,7 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
       c_min_[side][g] = c0[g] / kBoundFactor;
       c_max_[side][g] = c0[g] * kBoundFactor;
     }
-    rls_[side] = ForgettingRls<kGroups>(c0, P0, lambda);
+    rls_[side] = ForgettingRls<kStates>(c0, P0, lambda);
   }
 }
 
@@ -74,17 +78,74 @@ void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const w
     attitude_started_ = true;
     return;
   }
-  const double turn = gyro.norm() * period_;
-  if (turn > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn, gyro.normalized()).toRotationMatrix();
+  const walking::Vector3d rate = gyro - gyro_bias_;
+  const double turn = rate.norm() * period_;
+  if (turn > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn, rate.normalized()).toRotationMatrix();
   const Eigen::AngleAxisd error(walking::Matrix3d(imu_R * attitude_.transpose()));
   attitude_ = Eigen::AngleAxisd(error.angle() * std::min(1.0, period_ / time), error.axis()).toRotationMatrix() * attitude_;
   attitude_ = Eigen::Quaterniond(attitude_).normalized().toRotationMatrix();  // (round-off)
 }
 
+walking::Matrix3d StiffnessEstimator::soles_in_pelvis(const humanoid::JointVector& encoder, const humanoid::JointVector& torque) {
+  humanoid::JointVector q = encoder;
+  for (int j = 0; j < humanoid::kJoints; ++j) q[j] -= torque[j] / belief_[j];  // the link angles (the belief)
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()}, q);
+  // The two soles' mean: the normalised sum of their quaternions (same hemisphere).
+  const Eigen::Quaterniond left(walking::Matrix3d(walking::sole_pose(model_, data_, 0).R));
+  Eigen::Quaterniond right(walking::Matrix3d(walking::sole_pose(model_, data_, 1).R));
+  if (left.dot(right) < 0) right.coeffs() *= -1;
+  return Eigen::Quaterniond(left.coeffs() + right.coeffs()).normalized().toRotationMatrix();
+}
+
+bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro,
+                                           const walking::Vector3d& accel, const humanoid::JointVector& encoder,
+                                           const humanoid::JointVector& torque) {
+  if (calibrated_) return true;
+  if (t < rest_end_) {
+    if (t >= rest_end_ - params_.k_estimation_gyro_rest - 0.5 * period_ && accel.norm() > 0) {
+      const double s = t - rest_end_;  // (≤ 0: small numbers)
+      const walking::Vector3d up = accel.normalized();
+      if (rest_.n == 0) rest_.soles_first = soles_in_pelvis(encoder, torque);
+      rest_.soles_last = soles_in_pelvis(encoder, torque);
+      if (rest_.n > 0) rest_.gyro += rest_.last_gyro;  // the gyro's turn from the first reading to this one
+      rest_.last_gyro = gyro;
+      rest_.n += 1;
+      rest_.t += s;
+      rest_.tt += s * s;
+      rest_.up += up;
+      rest_.t_up += s * up;
+    }
+    return false;
+  }
+  calibrated_ = true;
+  attitude_started_ = true;
+  attitude_ = imu_R;
+  if (rest_.n < 2) return true;
+  // The static alignment. A robot "at rest" still turns slowly (the twin follows its observer's drift, ~1e-4
+  // rad/s), so b̂ = (the gyro's turn − the pelvis's turn through the legs) / the window: with both soles flat and
+  // still, the pelvis's attitude is R_sole R_ps(q)ᵀ, its turn R_ps,first R_ps,lastᵀ (pelvis frame). (The
+  // accelerometer's direction would show the turn as well, but also the pelvis's slow horizontal acceleration:
+  // on the twin it gave b̂ 9e-5 rad/s off against 4e-5 through the legs.)
+  const double n = rest_.n, window = (n - 1) * period_;
+  const Eigen::AngleAxisd legs(walking::Matrix3d(rest_.soles_first * rest_.soles_last.transpose()));
+  gyro_bias_ = (rest_.gyro * period_ - legs.angle() * legs.axis()) / window;
+  // The tilt: the pelvis's up u = Rᵀ e_z (the accelerometer's direction, +g up at rest), a line u(s) = u₀ + u̇ s
+  // fitted over the window (s = t − its end), at the end; the yaw the controller's.
+  const double mean_t = rest_.t / n, spread = rest_.tt - n * mean_t * mean_t;
+  const walking::Vector3d mean_up = rest_.up / n;
+  const walking::Vector3d up_rate = spread > 0 ? walking::Vector3d((rest_.t_up - mean_t * rest_.up) / spread)
+                                               : walking::Vector3d::Zero();
+  const walking::Vector3d up_end = (mean_up - up_rate * mean_t).normalized();
+  const walking::Vector3d up_now = imu_R.transpose() * walking::Vector3d::UnitZ();
+  attitude_ = imu_R * walking::Matrix3d(Eigen::Quaterniond::FromTwoVectors(up_end, up_now));  // R u_end = e_z
+  return true;
+}
+
 int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
-                               const walking::Vector3d& gyro, const humanoid::JointVector& torque,
+                               const humanoid::Imu& imu, const humanoid::JointVector& torque,
                                const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support, bool sensors_ok) {
-  bool finite = imu_R.allFinite() && gyro.allFinite();
+  const walking::Vector3d gyro(imu.gyro[0], imu.gyro[1], imu.gyro[2]), accel(imu.accel[0], imu.accel[1], imu.accel[2]);
+  bool finite = imu_R.allFinite() && gyro.allFinite() && accel.allFinite();
   for (int j = 0; j < humanoid::kJoints; ++j) finite = finite && std::isfinite(encoder[j]) && std::isfinite(torque[j]);
   for (int side = 0; side < 2; ++side)
     for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(ft[side].force[a]) && std::isfinite(ft[side].torque[a]);
@@ -93,13 +154,17 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     ++bad_data_;
     return 0;
   }
+  if (!calibrate_at_rest(t, imu_R, gyro, accel, encoder, torque)) return 0;
   follow_attitude(imu_R, gyro);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), attitude_}, encoder);
   const double weight = model_.total_mass * walking::kGravity;
   int used = 0;
   for (int side = 0; side < 2; ++side) {
-    if (support.swinging[side]) continue;
+    if (support.swinging[side]) {
+      new_stance_[side] = true;
+      continue;
+    }
     const walking::FootContact c = walking::foot_contact(ft[side], support.soles[side].R, model_.leg[side].ankle_to_sole,
                                                          model_.bodies[static_cast<std::size_t>(model_.foot[side])].mass);
     const Eigen::Vector2d cop = c.cop - model_.sole_offset[side].head<2>();
@@ -117,7 +182,17 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     }
     if (H.norm() < params_.k_estimation_min_torque) continue;
     const Eigen::Vector2d omega(-sole.R(1, 2), sole.R(0, 2));  // the foot's tilt through the chain
-    for (int r = 0; r < 2; ++r) rls_[side].update(H.row(r).transpose(), omega[r], noise_variance_);
+    if (params_.k_estimation_stance_offset && (new_stance_[side] || rls_[side].P()(kGroups, kGroups) == 0)) {
+      // A new stance: its tilt offset (the attitude's slow error, the sole's seat) starts anew.
+      for (int r = 0; r < 2; ++r) rls_[side].restart(kGroups + r, kOffsetStd * kOffsetStd);
+      new_stance_[side] = false;
+    }
+    for (int r = 0; r < 2; ++r) {
+      ForgettingRls<kStates>::Vector h = ForgettingRls<kStates>::Vector::Zero();
+      h.head<kGroups>() = H.row(r).transpose();
+      h[kGroups + r] = 1.0;  // ω = H c + e
+      rls_[side].update(h, omega[r], noise_variance_);
+    }
     auto& x = rls_[side].x();
     for (int g = 0; g < kGroups; ++g) x[g] = std::clamp(x[g], c_min_[side][g], c_max_[side][g]);
     publish(side);

@@ -29,7 +29,15 @@
 /// or the gyro's turn pulled towards that estimate with time constant t_a, so the estimate's errors at the gait's
 /// frequencies — correlated with the deflections, the dominant error of the identification — are filtered out:
 ///     R ← exp([e]× min(1, T/t_a)) R exp([ω_gyro]× T),  e the rotation vector of R_imu Rᵀ.
-/// It trusts the gyro over t_a: a gyro bias b tilts it by ≈ b t_a.
+/// It trusts the gyro over t_a: a gyro bias b tilts it by ≈ b t_a. So a real robot's gyro is calibrated first
+/// (control.k_estimation_gyro_rest = t_r > 0) by the static alignment of an inertial unit: standing still in the
+/// start stance over t_r, until the COM starts to move (walk.preview_time before the first step), the gyro's
+/// turn less the pelvis's turn seen through the legs (both soles flat and still; encoders − τ/k) over t_r is its
+/// bias b̂, removed from every later reading (ω_gyro − b̂ above), and the attitude starts from the accelerometer's
+/// up u = Rᵀ e_z at the window's end (the controller's yaw; the minimal turn of the controller's estimate that
+/// makes Rᵀ e_z = u). No sample is taken before. Left: the bias's walk
+/// since then, σ_w √t, tilting the attitude by ≈ σ_w t^{3/2}/√3 (t ≪ t_a), and the accelerometer's bias a_b:
+/// ≈ a_b/g. A constant tilt error matters: the pitch groups' regressor is nearly constant in a walk.
 /// Allocation-free after construction; free of the simulator.
 #include <array>
 
@@ -41,15 +49,19 @@ namespace flexgait::compensation {
 class StiffnessEstimator {
  public:
   static constexpr int kGroups = 2;  ///< per leg: roll, pitch
+  static constexpr int kStates = kGroups + 2;  ///< per leg: the groups' 1/k, then the stance's tilt offset (x, y)
   enum Group { kNone = -1, kRoll = 0, kPitch = 1 };
 
-  StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period);
+  /// \param rest_end when the robot leaves its start stance (the first step begins) [s]: the end of the gyro's
+  /// calibration window (control.k_estimation_gyro_rest).
+  StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period, double rest_end = 0.0);
 
   /// One control period. \param t now [s] (the F/T stamps' staleness); \param imu_R the controller's pelvis
-  /// attitude (world); \param gyro the IMU's angular rate (pelvis frame) [rad/s]; \param torque the modelled
+  /// attitude (world); \param imu the IMU's readings (its gyro's rate [rad/s], and its accelerometer [m/s²] for the
+  /// calibration at rest; pelvis frame); \param torque the modelled
   /// gear torque of every joint [Nm]; \param sensors_ok false when the controller's sensor check
   /// flags a sensor this period. Returns how many feet gave a sample.
-  int update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro,
+  int update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R, const humanoid::Imu& imu,
              const humanoid::JointVector& torque, const std::array<humanoid::ForceTorque, 2>& ft,
              const SupportPlan& support, bool sensors_ok);
 
@@ -65,10 +77,18 @@ class StiffnessEstimator {
   double relative_std(int side, Group g) const;
   long samples() const { return samples_; }     ///< foot samples used
   long bad_data() const { return bad_data_; }   ///< periods skipped for bad data
+  /// The gyro bias found at rest (pelvis frame) [rad/s]; zero before or without the calibration.
+  const walking::Vector3d& gyro_bias() const { return gyro_bias_; }
 
  private:
   void publish(int side);
   void follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro);
+  /// control.k_estimation_gyro_rest: sums the gyro, the accelerometer and the legs' turn over the rest window;
+  /// at its end, the static alignment (the bias, the attitude). False while it is still to come (no samples then).
+  bool calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro, const walking::Vector3d& accel,
+                         const humanoid::JointVector& encoder, const humanoid::JointVector& torque);
+  /// The mean of the two soles' attitudes in the pelvis frame, through the link angles θ_enc − τ/k (the belief).
+  walking::Matrix3d soles_in_pelvis(const humanoid::JointVector& encoder, const humanoid::JointVector& torque);
 
   walking::RobotModel model_;
   CompensationParams params_;
@@ -77,9 +97,21 @@ class StiffnessEstimator {
   humanoid::JointVector belief_, estimate_, stiffness_;
   std::array<Group, humanoid::kJoints> group_{};
   std::array<std::array<double, kGroups>, 2> c_min_{}, c_max_{};
-  std::array<ForgettingRls<kGroups>, 2> rls_;
+  std::array<ForgettingRls<kStates>, 2> rls_;
+  std::array<bool, 2> new_stance_{};  ///< the foot has swung since its last sample (the offset starts anew)
   walking::Matrix3d attitude_ = walking::Matrix3d::Identity();  ///< the identification's pelvis attitude (world)
   bool attitude_started_ = false;
+  double rest_end_;  ///< [s]
+  bool calibrated_;
+  walking::Vector3d gyro_bias_ = walking::Vector3d::Zero();  ///< [rad/s]
+  /// Over the rest window, s = t − its end [s]: n, Σs, Σs², Σω_gyro (all but the last reading), Σu, Σ s u (u the
+  /// accelerometer's unit up), the last gyro reading, the soles' attitude in the pelvis frame first and last.
+  struct RestSums {
+    double n = 0, t = 0, tt = 0;
+    walking::Vector3d gyro = walking::Vector3d::Zero(), up = walking::Vector3d::Zero(), t_up = walking::Vector3d::Zero();
+    walking::Vector3d last_gyro = walking::Vector3d::Zero();
+    walking::Matrix3d soles_first = walking::Matrix3d::Identity(), soles_last = walking::Matrix3d::Identity();
+  } rest_;
   std::array<std::array<bool, kGroups>, 2> confident_{};
   walking::RobotModelData data_;
   long samples_ = 0, bad_data_ = 0;

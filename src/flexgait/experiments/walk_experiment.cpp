@@ -100,6 +100,12 @@ WalkRunParams walk_run_from_config(const Config& c) {
     throw ConfigError("control.compensated_feedback",
                       "key 'control.compensated_feedback' = 'true' needs the output compensator's estimate; allowed "
                       "with control.compensation output or both");
+  if (p.control.k_estimation_gyro_rest > 0 && p.control.k_estimation_gyro_rest > p.walk.start_time - p.walk.preview_time)
+    throw ConfigError("control.k_estimation_gyro_rest",
+                      fmt::format("key 'control.k_estimation_gyro_rest' = '{}' is longer than the still start stance (the "
+                                  "COM moves from walk.preview_time before the first step); allowed: 0 to walk.start_time "
+                                  "- walk.preview_time = {:.6g} s (lengthen walk.start_time)",
+                                  p.control.k_estimation_gyro_rest, p.walk.start_time - p.walk.preview_time));
   check_with_origin(c, [&] {
     const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
     for (std::size_t i = 0; i < p.pushes.size(); ++i)
@@ -138,7 +144,11 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   compensation::DeformationCompensator compensator(controller.model(), params.control, T);
   controller.set_plan_motion(params.control.load_model == compensation::LoadModel::kDynamic);
   const bool k_estimation = params.control.k_estimation == compensation::KEstimation::kOn;
-  compensation::StiffnessEstimator stiffness_estimator(controller.model(), params.control, T);
+  // (the start stance is still until the preview sees the first step: the end of the gyro's calibration at rest)
+  compensation::StiffnessEstimator stiffness_estimator(
+      controller.model(), params.control, T,
+      controller.plan().steps.empty() ? controller.plan().duration
+                                      : controller.plan().steps.front().t_begin - params.walk.preview_time);
   humanoid::HumanoidPlant plant(walk_twin(params), params.plant);
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
   if (params.plant.terrain.known_heights) controller.know_floor([&](double x, double y) { return plant.terrain().height(x, y); });
@@ -218,8 +228,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       // Online stiffness identification (issue 20): the torque the output compensator solved with.
       const humanoid::JointVector& tau =
           estimate ? estimate->gravity_torque : compensator.torque(sensors.encoder, controller.attitude(), plan_now);
-      const walking::Vector3d gyro(sensors.imu.gyro[0], sensors.imu.gyro[1], sensors.imu.gyro[2]);
-      stiffness_estimator.update(t, sensors.encoder, controller.attitude(), gyro, tau, sensors.ft, plan_now, st.sensor_flags == 0);
+      stiffness_estimator.update(t, sensors.encoder, controller.attitude(), sensors.imu, tau, sensors.ft, plan_now, st.sensor_flags == 0);
       compensator.set_stiffness(stiffness_estimator.stiffness());
     }
     const humanoid::GroundTruth before = plant.truth();  // the state the sensors read
