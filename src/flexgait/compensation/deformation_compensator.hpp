@@ -68,14 +68,15 @@ constexpr std::array<EnumName<KEstimation>, 2> enum_names(KEstimation) {
   return {{{KEstimation::kOff, "off"}, {KEstimation::kOn, "on"}}};
 }
 
-/// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
-/// thesis), or the controller's reference ZMP (where the ground force acts in a dynamic gait; it
-/// moves onto the stance sole by the end of double support, so the split is continuous at lift-off).
-enum class WeightSplit { kCom, kZmpReference };
+/// The output compensator's Newton: G formed at each iterate, or reused (link_angle_newton.hpp).
 constexpr std::array<EnumName<NewtonJacobian>, 2> enum_names(NewtonJacobian) {
   return {{{NewtonJacobian::kEachIteration, "each"}, {NewtonJacobian::kReused, "reused"}}};
 }
 
+/// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
+/// thesis), or the controller's reference ZMP (where the ground force acts in a dynamic gait; it
+/// moves onto the stance sole by the end of double support, so the split is continuous at lift-off).
+enum class WeightSplit { kCom, kZmpReference };
 constexpr std::array<EnumName<WeightSplit>, 2> enum_names(WeightSplit) {
   return {{{WeightSplit::kCom, "com"}, {WeightSplit::kZmpReference, "zmp"}}};
 }
@@ -114,7 +115,7 @@ struct CompensationParams {
   double k_estimation_confidence = 0.05;  ///< relative standard deviation below which the compensators use the estimate
   double k_estimation_attitude_time = 0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
   bool k_estimation_stance_offset = false;  ///< each stance's tilt has an unknown offset of its own (estimated beside 1/k)
-  double k_estimation_gyro_rest = 0.0;  ///< the gyro bias is its mean over this long at rest before the first step; 0: none [s]
+  double k_estimation_gyro_rest = 0.0;  ///< the gyro is calibrated over this long at rest before the COM moves; 0: none [s]
   double robotis_hip_roll = 0.017; ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
   double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
   double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
@@ -167,8 +168,9 @@ struct CompensationParams {
               "changes within a stance inform 1/k)"});
     v("control.k_estimation_gyro_rest", s.k_estimation_gyro_rest,
       {.unit = "s",
-       .doc = "k_estimation: the identification's gyro bias is the gyro's mean over this long at rest, just before the "
-              "first step (at most walk.start_time); no samples before it; 0 = no calibration",
+       .doc = "k_estimation: the gyro is calibrated over this long at rest before the COM starts to move (its bias: "
+              "the gyro's turn less the pelvis's turn through the legs; at most walk.start_time - walk.preview_time); "
+              "no samples before it; 0 = no calibration",
        .bounds = closed(0, 100)});
     v("control.robotis_hip_roll", s.robotis_hip_roll,
       {.unit = "rad", .doc = "robotis: stance hip roll feed-forward at mid single support", .bounds = closed(0, 0.2)});

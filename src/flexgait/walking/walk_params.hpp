@@ -142,7 +142,7 @@ struct BalanceParams {
     v("balance.step_reach", s.step_reach,
       {.unit = "m", .doc = "step adjustment: largest distance from the stance sole centre to the landing", .bounds = closed(0.2, 1)});
     v("balance.recovery_step_time", s.recovery_step_time,
-      {.unit = "s", .doc = "step adjustment while standing: duration of the capture step (the foot lifts at once)", .bounds = closed(0.1, 2)});
+      {.unit = "s", .doc = "step adjustment while standing: duration of the capture step from lift-off", .bounds = closed(0.1, 2)});
     v("balance.capture_torque_limit", s.capture_torque_limit,
       {.unit = "N m", .doc = "step adjustment while standing: the capture step's foot lifts once the stance leg alone could carry the measured ground force within this joint torque (at the latest after balance.recovery_step_time; 0: at once)",
        .bounds = closed(0, 1e4)});
