@@ -141,7 +141,7 @@ TEST(Push, CaptureStepRecoversBeyondTheAnkleStrategy) {
   // 0.86 of it (fall), the capture step (step adjustment: the foot lifts at once — the stance leg
   // carries the load — and lands where the DCM diverging from the stance sole's edge will be)
   // recovers 1.49 of it (measured by
-  // `flexgait campaign humanoid-push-recovery`, 1 N s bisection). The stepped foot ends ahead of
+  // `flexgait campaign humanoid-push-recovery`, 1 N s bisection; 1.51 to 0.05 N s). The stepped foot ends ahead of
   // the other, within reach and not across it.
   WalkRunParams p = standing(1.0, walking::BalanceMode::kDcm);
   p.push.body = PushBody::kChest;
