@@ -20,6 +20,8 @@ constexpr double kCaptureSettle = 0.5;  ///< after a capture step the ZMP moves 
 /// (plant.contact_time_constant 5 ms) and the servos' (30 Hz) time constants, over which the
 /// vertical load rings during a push.
 constexpr double kCaptureLiftHold = 0.012;
+/// kCaptureLiftHold in control periods (whole ones, at least the time).
+int capture_lift_hold_periods(double period) { return static_cast<int>(std::ceil(kCaptureLiftHold / period - 1e-9)); }
 /// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
 /// < 1e-3 of the swing's accelerations (planned_motion_test).
 constexpr double kPlanStep = 0.01;
@@ -347,7 +349,7 @@ void WalkingController::begin_capture_transfer(double t, std::size_t k, int swin
     cart_[a].x = Vector3d(c, com_velocity_(a), omega * omega * (c - p(a)));
     cart_[a].error_sum = 0;
   }
-  capture_ = {true, true, swing, t, p, static_cast<int>(std::ceil(kCaptureLiftHold / period_ - 1e-9)) - 1};
+  capture_ = {true, true, swing, t, p, capture_lift_hold_periods(period_) - 1};
   for (std::size_t i = k; i < ref_x_.size(); ++i) {
     ref_x_[i] = p.x();
     ref_y_[i] = p.y();
@@ -374,9 +376,8 @@ bool WalkingController::capture_lift_due(double t) {
     feasible = tau.cwiseAbs().maxCoeff() <= balance_.capture_torque_limit;
   }
   // Within the limit at once: lift now; once beyond it, lift after kCaptureLiftHold within it.
-  const int hold = static_cast<int>(std::ceil(kCaptureLiftHold / period_ - 1e-9));
   capture_.feasible_periods = feasible ? capture_.feasible_periods + 1 : 0;
-  return capture_.feasible_periods >= hold;
+  return capture_.feasible_periods >= capture_lift_hold_periods(period_);
 }
 
 Eigen::Vector2d WalkingController::capture_cop(int stance, const Eigen::Vector2d& xi) const {
