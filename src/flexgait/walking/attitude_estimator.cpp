@@ -1,5 +1,6 @@
 #include "flexgait/walking/attitude_estimator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace flexgait::walking {
@@ -12,11 +13,13 @@ void AttitudeEstimator::reset() {
   level_sum_.setZero();
   level_count_ = 0;
   waiting_ = 0;
+  wait_sum_.setZero();
 }
 
 void AttitudeEstimator::level(const Vector3d& a, double T) {
   const double g = params_.gravity;
   waiting_ += T;
+  wait_sum_ += a;
   const bool near_g = std::abs(a.norm() - g) <= 0.05 * g;
   const bool along = level_count_ == 0 ||
                      std::atan2(a.cross(level_sum_).norm(), a.dot(level_sum_)) <= params_.level_tolerance;
@@ -36,11 +39,12 @@ void AttitudeEstimator::level(const Vector3d& a, double T) {
   const bool timed_out = waiting_ > params_.align_time + 0.5 * T;
   if (!steady && !timed_out) return;
   // Tilt from gravity alone: up = Rᵀ e_z = (−sin p, sin r cos p, cos r cos p) for R = Rz Ry Rx.
-  const Vector3d v = (steady ? level_sum_ : a).normalized();
+  const Vector3d v = (steady ? level_sum_ : wait_sum_).normalized();
   const double roll = std::atan2(v.y(), v.z());
   const double pitch = std::atan2(-v.x(), std::hypot(v.y(), v.z()));
   R_ = rpy_to_matrix(roll, pitch, 0.0);
   initialised_ = true;
+  if (!steady) time_ = params_.align_time;  // the wait's mean is already aligned: no high-gain phase
 }
 
 void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, const Vector3d& planned_accel, double T) {
@@ -64,6 +68,10 @@ void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, cons
       v /= n;
       // Correction against the predicted attitude: (32c), then (32a)'s k_P term and (32b);
       // while aligning, a higher gain and no bias integration.
+      // The alignment ends early, for good, once the plan accelerates the pelvis: the
+      // accelerometer then measures the motion as well as gravity, and at align_kp it would take
+      // the gap between the planned and the real acceleration for tilt.
+      if (planned_accel.head<2>().norm() > params_.align_accel) time_ = std::max(time_, params_.align_time);
       const bool aligning = time_ + 0.5 * T < params_.align_time;  // (half a period: round-off of Σ T)
       const Vector3d omega_mes = v.cross(R_.transpose() * Vector3d::UnitZ());
       turn((aligning ? params_.align_kp : params_.kp) * omega_mes, T);
