@@ -242,6 +242,9 @@ for key in fell steps_completed zmp_rms_x zmp_rms_y pelvis_roll_error_max pelvis
 done
 check "walk did not fall" grep -q '"fell": false' "$work/walk.json"
 for f in log.csv footsteps.csv summary.json config.yaml; do check "walk writes $f" test -s "$work/walk/$f"; done
+"$exe" humanoid walk --config "$src/configs/walk-rough.yaml" --set terrain.rough.seed=2 --out "$work/rough" --no-plot \
+  >/dev/null 2>"$work/err"
+check "walk-rough.yaml walks 10 steps on the 1 cm floor of seed 2: $(cat "$work/err")" test $? -eq 0
 expect_usage_error walk-bad-step-time "walk.step_time" humanoid walk --set walk.step_time=0
 expect_usage_error walk-typo "walk.steps" humanoid walk --set walk.stepz=3
 for f in joints.csv timing.json; do check "walk writes $f" test -s "$work/walk/$f"; done
