@@ -29,7 +29,8 @@ random_grid=(rimless-fixed-point --set sim.model=rigid --grid rimless.mu=0.3,0.9
 if [ "$mode" = mpi ]; then
   campaign "${rimless_grid[@]}" --out "$work/r1" --jobs 1
   mpi_campaign "${rimless_grid[@]}" --out "$work/rm"
-  check "mpirun -np 3 rimless: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+  rc=$?
+  check "mpirun -np 3 rimless: exit 0 ($(head -c 1000 "$work/stderr"))" test "$rc" -eq 0
   check "mpirun -np 3 rimless: same bytes as 1 thread" cmp -s "$work/r1/campaign.csv" "$work/rm/campaign.csv"
   mpi_campaign "${rimless_grid[@]}" --out "$work/rm2" --jobs 2
   check "mpirun -np 3 --jobs 2 rimless: same bytes as 1 thread" cmp -s "$work/r1/campaign.csv" "$work/rm2/campaign.csv"
@@ -62,7 +63,8 @@ if [ "$mode" = mpi ]; then
   timeout 300 "$exe" "${orbit[@]}" --jobs 1 --out "$work/o1" >/dev/null 2>&1
   timeout 300 "$mpirun" --allow-run-as-root --oversubscribe -np 3 "$exe" "${orbit[@]}" --out "$work/om" \
     >"$work/stdout" 2>"$work/stderr"
-  check "mpirun -np 3 orbit-diagram: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+  rc=$?
+  check "mpirun -np 3 orbit-diagram: exit 0 ($(head -c 1000 "$work/stderr"))" test "$rc" -eq 0
   for f in orbit.csv orbit_points.csv summary.json; do
     check "mpirun -np 3 orbit-diagram: $f the same bytes as 1 thread" cmp -s "$work/o1/$f" "$work/om/$f"
   done
@@ -155,7 +157,8 @@ check "bench campaign with --keep-runs: a run directory per point" test -f "$wor
 # Random draws: the same bytes with 1 and 2 threads; sample s draws the same values at every grid
 # point; reduced.csv has a row per mu with the points of its 5 samples.
 campaign "${random_grid[@]}" --out "$work/d1" --jobs 1
-check "random draws: exit 0 ($(head -c 1000 "$work/stderr"))" test $? -eq 0
+rc=$?
+check "random draws: exit 0 ($(head -c 1000 "$work/stderr"))" test "$rc" -eq 0
 campaign "${random_grid[@]}" --out "$work/d2" --jobs 2
 check "random draws --jobs 2: same bytes" cmp -s "$work/d1/campaign.csv" "$work/d2/campaign.csv"
 check "random draws: header is index, axes, sample, the drawn keys, metrics" \

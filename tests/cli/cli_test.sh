@@ -121,7 +121,8 @@ for cmd in "rimless simulate" "rimless fixed-point" "humanoid bench"; do
 done
 expect_usage_error no-subcommand "flexgait rimless --help" rimless
 "$exe" rimless simulate --steps 3 --omega0 1.4 --out "$work/run1" --no-plot --json >"$work/summary.out" 2>"$work/err"
-check "simulate exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?  # (before $(cat) in the message resets $?)
+check "simulate exits 0: $(cat "$work/err")" test "$rc" -eq 0
 for f in config.yaml log.csv events.csv steps.csv summary.json; do check "run writes $f" test -s "$work/run1/$f"; done
 check "--json prints the summary" cmp -s "$work/summary.out" "$work/run1/summary.json"
 for key in steps gaits mean_speed energy_initial energy_final work_damping work_friction energy_balance_error failure; do
@@ -140,7 +141,8 @@ if /usr/bin/python3 -c "import matplotlib" 2>/dev/null; then
 fi
 # Fixed points and sweeps.
 "$exe" rimless fixed-point --out "$work/fp" --json --no-plot >"$work/fp.json" 2>"$work/err"
-check "fixed-point exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "fixed-point exits 0: $(cat "$work/err")" test "$rc" -eq 0
 for key in converged iterations residual state multipliers stable gait; do
   check "fixed-point JSON has $key" grep -q "\"$key\"" "$work/fp.json"
 done
@@ -184,13 +186,15 @@ check "the resumed sweep's directory is marked complete" test -f "$work/sweep_ki
 expect_usage_error resume-other-sweep "--resume" rimless sweep --param rimless.mu --from 0.3 --to 0.6 --count 6 --resume
 for name in fixed-points energy; do
   "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
-  check "analysis $name exits 0: $(cat "$work/err")" test $? -eq 0
+  rc=$?
+  check "analysis $name exits 0: $(cat "$work/err")" test "$rc" -eq 0
 done
 # Stagnation: a small scan (4 grid points bracketing omega_c, offsets 1e-1 .. 1e-3 on both sides).
 stag=(rimless analysis stagnation --config "$src/configs/rimless-stagnation.yaml" --count 4 --from 0.5 --to 0.56
       --set stagnation.offset_min=1e-3 --set stagnation.per_decade=1 --no-plot)
 "$exe" "${stag[@]}" --out "$work/an_stag" >/dev/null 2>"$work/err"
-check "analysis stagnation exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "analysis stagnation exits 0: $(cat "$work/err")" test "$rc" -eq 0
 check "stagnation writes 4 grid points and 6 scan points" test "$(wc -l <"$work/an_stag/stagnation.csv")" -eq 11
 check "stagnation finds omega_c" grep -q '"omega_c": 0.53038867' "$work/an_stag/stagnation.json"
 "$exe" "${stag[@]}" --out "$work/an_stag2" >/dev/null 2>&1
@@ -199,7 +203,8 @@ check "stagnation summary: same bytes twice" cmp -s "$work/an_stag/stagnation.js
 map=(rimless analysis stagnation-map --config "$src/configs/rimless-stagnation.yaml" --count 3 --from 0.4 --to 0.6
      --set stagnation.offset_min=1e-2 --vary rimless.C=20 --vary rimless.K=2000,rimless.C=40 --no-plot)
 "$exe" "${map[@]}" --jobs 1 --out "$work/an_map1" >/dev/null 2>"$work/err"
-check "stagnation-map exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "stagnation-map exits 0: $(cat "$work/err")" test "$rc" -eq 0
 "$exe" "${map[@]}" --jobs 2 --out "$work/an_map2" >/dev/null 2>&1
 check "stagnation-map: same bytes with 1 and 2 jobs" cmp -s "$work/an_map1/stagnation_map.csv" "$work/an_map2/stagnation_map.csv"
 expect_usage_error stagnation-start-past-vertical initial.beta rimless analysis stagnation --set initial.beta=0
@@ -215,7 +220,8 @@ expect_usage_error stagnation-map-value rimless.I rimless analysis stagnation-ma
 # Continuation of the gait (issue 18): the rigid wheel over the slope, same bytes twice; bad input.
 cont=(rimless continuation --model rigid --param rimless.slope --from 0.05 --to 0.15 --no-plot)
 "$exe" "${cont[@]}" --out "$work/cont1" >/dev/null 2>"$work/err"
-check "continuation exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "continuation exits 0: $(cat "$work/err")" test "$rc" -eq 0
 check "continuation: branch.csv columns" test "$(head -1 "$work/cont1/branch.csv")" = \
   "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event"
 check "continuation reaches the end" grep -q "^0.15," "$work/cont1/branch.csv"
@@ -226,7 +232,8 @@ expect_usage_error continuation-empty-interval "--to" rimless continuation --par
 
 # Humanoid stiffness bench.
 "$exe" humanoid bench --out "$work/bench" --json --no-plot >"$work/bench.json" 2>"$work/err"
-check "humanoid bench exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "humanoid bench exits 0: $(cat "$work/err")" test "$rc" -eq 0
 for key in k_fit r_squared max_error_uncompensated max_error_compensated; do
   check "bench summary has $key" grep -q "\"$key\"" "$work/bench.json"
 done
@@ -235,7 +242,8 @@ expect_usage_error bench-bad-k "plant.k_joint" humanoid bench --set plant.k_join
 # Humanoid walk.
 "$exe" humanoid walk --config "$src/configs/walk-robotis.yaml" --set walk.steps=2 --out "$work/walk" --json \
   --no-plot >"$work/walk.json" 2>"$work/err"
-check "humanoid walk exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "humanoid walk exits 0: $(cat "$work/err")" test "$rc" -eq 0
 for key in fell steps_completed zmp_rms_x zmp_rms_y pelvis_roll_error_max pelvis_pitch_error_max \
            pelvis_roll_error_rms landing_error_max com_error_rms; do
   check "walk summary has $key" grep -q "\"$key\"" "$work/walk.json"
@@ -244,7 +252,8 @@ check "walk did not fall" grep -q '"fell": false' "$work/walk.json"
 for f in log.csv footsteps.csv summary.json config.yaml; do check "walk writes $f" test -s "$work/walk/$f"; done
 "$exe" humanoid walk --config "$src/configs/walk-rough.yaml" --set terrain.rough.seed=2 --out "$work/rough" --no-plot \
   >/dev/null 2>"$work/err"
-check "walk-rough.yaml walks 10 steps on the 1 cm floor of seed 2: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "walk-rough.yaml walks 10 steps on the 1 cm floor of seed 2: $(cat "$work/err")" test "$rc" -eq 0
 expect_usage_error walk-bad-step-time "walk.step_time" humanoid walk --set walk.step_time=0
 expect_usage_error walk-typo "walk.steps" humanoid walk --set walk.stepz=3
 for f in joints.csv timing.json; do check "walk writes $f" test -s "$work/walk/$f"; done
@@ -274,14 +283,16 @@ check "builtin walk height is written derived" grep -q "pelvis_height: 0.723" "$
 "$exe" humanoid walk --config "$src/tests/humanoid/data/small_biped.yaml" --set walk.pelvis_height=auto \
   --set walk.step_width=auto --set walk.steps=0 --set walk.start_time=0.1 --set walk.end_time=0 --out "$work/biped" \
   --no-plot >/dev/null 2>"$work/err"
-check "second robot stands at its own height: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "second robot stands at its own height: $(cat "$work/err")" test "$rc" -eq 0
 check "second robot's derived height in config.yaml" grep -q "pelvis_height: 0.57 " "$work/biped/config.yaml"
 check "second robot's derived step width in config.yaml" grep -q "step_width: 0.15 " "$work/biped/config.yaml"
 
 # Humanoid compensation study and stiffness mismatch (one short step each).
 "$exe" humanoid compensation --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --out "$work/comp" \
   --json --no-plot >"$work/comp.json" 2>"$work/err"
-check "humanoid compensation exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "humanoid compensation exits 0: $(cat "$work/err")" test "$rc" -eq 0
 for d in off both both-thesis-form; do check "compensation writes $d/summary.json" test -s "$work/comp/$d/summary.json"; done
 for key in pelvis_roll_error_max_off pelvis_roll_error_max_on pelvis_roll_error_max_cut estimate_error_share_of_deflection \
            newton_conventional_max; do
@@ -289,7 +300,8 @@ for key in pelvis_roll_error_max_off pelvis_roll_error_max_on pelvis_roll_error_
 done
 "$exe" humanoid mismatch --config "$src/configs/walk-robotis.yaml" --set walk.steps=1 --scales 0.9,1.1 \
   --out "$work/mismatch" --no-plot >"$work/out" 2>"$work/err"
-check "humanoid mismatch exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "humanoid mismatch exits 0: $(cat "$work/err")" test "$rc" -eq 0
 check "mismatch has two rows" test "$(grep -c k_joint_true "$work/mismatch/comparison.json")" -eq 2
 for d in k090-off k090-both k110-off k110-both; do check "mismatch writes $d" test -s "$work/mismatch/$d/summary.json"; done
 expect_usage_error mismatch-bad-scale "scales" humanoid mismatch --scales 0
@@ -329,7 +341,8 @@ check "a stiff damper ends before its first step, exit 1 (got $?)" test $? -eq 1
 check "it names the work limit and bdf: $(cat "$work/err")" \
   grep -q "sim.max_step_rate exceeded from the start.*stability.*solver.method=bdf" "$work/err"
 timeout 60 "$exe" rimless simulate --set rimless.C=1e9 --set solver.method=bdf --no-plot --out "$work/stiff3" >/dev/null 2>"$work/err"
-check "with bdf the same stiff damper walks its 20 steps: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "with bdf the same stiff damper walks its 20 steps: $(cat "$work/err")" test "$rc" -eq 0
 check "a run that ended for a reason is still complete (its files are written)" test -f "$work/stiff2/complete"
 
 # The complete marker: a run killed mid-way has none (and its temporaries are removed when the
@@ -356,7 +369,8 @@ check "and the killed writer's temporaries are gone: $(ls -a "$work/killed" | tr
 orbit=(rimless analysis orbit-diagram --set sim.model=rigid --param rimless.slope --from 0.05 --to 0.2 --count 4
        --transient 60 --record 5 --no-plot)
 timeout 120 "$exe" "${orbit[@]}" --jobs 1 --out "$work/orbit1" >/dev/null 2>"$work/err"
-check "orbit-diagram exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "orbit-diagram exits 0: $(cat "$work/err")" test "$rc" -eq 0
 timeout 120 "$exe" "${orbit[@]}" --jobs 2 --out "$work/orbit2" >/dev/null 2>&1
 check "orbit-diagram: same bytes for 1 and 2 threads" cmp -s "$work/orbit1/orbit.csv" "$work/orbit2/orbit.csv"
 check "orbit-diagram: orbit.csv columns" test "$(head -1 "$work/orbit1/orbit.csv")" = \
@@ -381,7 +395,8 @@ expect_usage_error orbit-basin-option "--x-range" rimless analysis orbit-diagram
 basin=(rimless analysis basin --set sim.model=rigid --x initial.omega --y initial.beta --x-range -1:2.5:8
        --y-range -0.25:0.25:5 --no-plot)
 timeout 120 "$exe" "${basin[@]}" --jobs 1 --out "$work/basin1" >/dev/null 2>"$work/err"
-check "basin exits 0: $(cat "$work/err")" test $? -eq 0
+rc=$?
+check "basin exits 0: $(cat "$work/err")" test "$rc" -eq 0
 timeout 120 "$exe" "${basin[@]}" --jobs 2 --out "$work/basin2" >/dev/null 2>&1
 check "basin: same bytes for 1 and 2 threads" cmp -s "$work/basin1/basin.csv" "$work/basin2/basin.csv"
 check "basin: 40 cells" test "$(tail -n +2 "$work/basin1/basin.csv" | wc -l)" -eq 40

@@ -198,10 +198,10 @@ TEST(AttitudeEstimator, StartsAfterAlignTimeWhenNeverSteadyFromTheMeanOfTheWait)
   // Readings that alternate ±0.05 rad in roll (beyond level_tolerance = 0.02 rad) never make a
   // steady window: after align_time from the first reading the filter starts, so a walk never
   // waits for ever. It starts from the mean of the readings of the wait (the twin's sway damping
-  // rocks it at ~4 Hz before walking; one reading was then up to 0.06 rad off), so here within
-  // 0.05 rad / (n + 1) of level (the odd reading out), exactly the mean's tilt to round-off; and
-  // the wait having been the averaging, without the high-gain alignment: the next reading 0.05 rad
-  // off turns it at k_P, not align_kp.
+  // rocks it at ~4 Hz before walking; one reading was then up to 0.06 rad off): exactly the mean's
+  // tilt to round-off, here atan(tan 0.05 / (n + 1)) from level (the odd reading out; 1 % above
+  // 0.05 / (n + 1) covers the tangent); and, the wait having been the averaging, without the
+  // high-gain alignment: the next reading 0.05 rad off turns it at k_P, not align_kp.
   EstimatorParams p;
   AttitudeEstimator f{p};
   const int n = static_cast<int>(std::lround(p.align_time / kT));
@@ -217,14 +217,16 @@ TEST(AttitudeEstimator, StartsAfterAlignTimeWhenNeverSteadyFromTheMeanOfTheWait)
   EXPECT_LT(std::abs(roll0), 0.05 / (n + 1) * 1.01);
   const Vector3d a = at_rest(rpy_to_matrix(0.05, 0, 0));
   f.update(Vector3d::Zero(), &a, Vector3d::Zero(), kT);
-  // One period of (32a) at k_P: a turn of k_P T sin(0.05 − roll0) (1e-9: the bias term is k_I T² smaller).
-  EXPECT_NEAR(roll_of(f.attitude()) - roll0, p.kp * kT * std::sin(0.05 - roll0), 1e-9);
+  // One period of (32a) at k_P (the bias is still zero: it is learnt after the turn): a turn of
+  // k_P T sin(0.05 − roll0), to round-off (align_kp would turn it 50 times as far).
+  EXPECT_NEAR(roll_of(f.attitude()) - roll0, p.kp * kT * std::sin(0.05 - roll0), 1e-15);
 }
 
 TEST(AttitudeEstimator, EndsTheAlignmentOnceThePlanAccelerates) {
-  // Started 0.05 rad off; 0.2 s at rest aligning at align_kp; then the plan accelerates the body
-  // 0.3 m/s² sideways (> align_accel = 0.2), which the accelerometer also sees. From that reading
-  // on it is the filter whose alignment lasted exactly those 0.2 s, to the last bit.
+  // Started 0.05 rad off; 0.2 s aligning at align_kp while the plan accelerates the body 0.15 m/s²
+  // forward (below align_accel = 0.2: still aligning); then 0.3 m/s² sideways, which the
+  // accelerometer also sees, then at rest again. From the first 0.3 m/s² reading on it is, to the
+  // last bit, the filter whose alignment lasted exactly those 0.2 s: the alignment ended for good.
   EstimatorParams p;
   p.level_time = 0;  // the first reading starts it
   EstimatorParams q = p;
@@ -233,11 +235,15 @@ TEST(AttitudeEstimator, EndsTheAlignmentOnceThePlanAccelerates) {
   AttitudeEstimator early{p}, timed{q};
   const Matrix3d R = rpy_to_matrix(0.03, -0.02, 0);
   const Vector3d first = R.transpose() * Vector3d(0, 0.5, kG);
-  const Vector3d still = at_rest(R), planned(0, 0.3, 0), moving = R.transpose() * (planned + Vector3d(0, 0, kG));
+  const Vector3d slow(0.15, 0, 0), planned(0, 0.3, 0);
+  const Vector3d creeping = R.transpose() * (slow + Vector3d(0, 0, kG)), moving = R.transpose() * (planned + Vector3d(0, 0, kG));
+  const Vector3d still = at_rest(R);
   for (AttitudeEstimator* f : {&early, &timed}) {
     f->update(Vector3d::Zero(), &first, Vector3d::Zero(), kT);
-    for (int k = 0; k < 50; ++k) f->update(Vector3d(0, 0, 1e-3), &still, Vector3d::Zero(), kT);
+    for (int k = 0; k < 50; ++k) f->update(Vector3d(0, 0, 1e-3), &creeping, slow, kT);
+    EXPECT_EQ(f->bias(), Vector3d::Zero());  // aligning: no bias learnt
     for (int k = 0; k < 100; ++k) f->update(Vector3d(1e-3, 0, 0), &moving, planned, kT);
+    for (int k = 0; k < 100; ++k) f->update(Vector3d(1e-3, 0, 0), &still, Vector3d::Zero(), kT);
   }
   EXPECT_EQ(early.attitude(), timed.attitude());
   EXPECT_EQ(early.bias(), timed.bias());
@@ -247,7 +253,7 @@ TEST(AttitudeEstimator, EndsTheAlignmentOnceThePlanAccelerates) {
   d.align_accel = 1e9;
   AttitudeEstimator aligning{d};
   aligning.update(Vector3d::Zero(), &first, Vector3d::Zero(), kT);
-  for (int k = 0; k < 50; ++k) aligning.update(Vector3d(0, 0, 1e-3), &still, Vector3d::Zero(), kT);
+  for (int k = 0; k < 50; ++k) aligning.update(Vector3d(0, 0, 1e-3), &creeping, slow, kT);
   aligning.update(Vector3d(1e-3, 0, 0), &moving, planned, kT);
   EXPECT_EQ(aligning.bias(), Vector3d::Zero());
 }

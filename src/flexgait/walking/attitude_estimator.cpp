@@ -16,10 +16,12 @@ void AttitudeEstimator::reset() {
   wait_sum_.setZero();
 }
 
-void AttitudeEstimator::level(const Vector3d& a, double T) {
+void AttitudeEstimator::level(const Vector3d& a, const Vector3d& planned_accel, double T) {
   const double g = params_.gravity;
   waiting_ += T;
-  wait_sum_ += a;
+  // (the plan's acceleration out as the filter does once running, with the attitude unknown yet
+  // taken level: the error is the tilt times it, second order)
+  wait_sum_ += a - planned_accel;
   const bool near_g = std::abs(a.norm() - g) <= 0.05 * g;
   const bool along = level_count_ == 0 ||
                      std::atan2(a.cross(level_sum_).norm(), a.dot(level_sum_)) <= params_.level_tolerance;
@@ -62,13 +64,13 @@ void AttitudeEstimator::update(const Vector3d& gyro, const Vector3d* accel, cons
     const double n = v.norm();
     if (n > 0.5 * g && n < 1.5 * g) {
       if (!initialised_) {
-        level(v, T);
+        level(v, planned_accel, T);
         return;
       }
       v /= n;
       // Correction against the predicted attitude: (32c), then (32a)'s k_P term and (32b);
       // while aligning, a higher gain and no bias integration.
-      // The alignment ends early, for good, once the plan accelerates the pelvis: the
+      // The alignment ends early, for good, once the plan accelerates the COM: the
       // accelerometer then measures the motion as well as gravity, and at align_kp it would take
       // the gap between the planned and the real acceleration for tilt.
       if (planned_accel.head<2>().norm() > params_.align_accel) time_ = std::max(time_, params_.align_time);

@@ -36,7 +36,8 @@
 /// and, that wait having been the averaging, without the alignment below. For align_time after
 /// a steady start the filter corrects with the higher gain align_kp (time constant 1/align_kp)
 /// and does not learn the bias, then switches to k_P and k_I. The alignment also ends, for good,
-/// at the first reading whose planned horizontal acceleration exceeds align_accel: at align_kp
+/// at the first reading whose planned horizontal acceleration a_m (the plan's COM acceleration)
+/// exceeds align_accel: at align_kp
 /// it would take the gap between the planned and the real acceleration for tilt within 0.2 s
 /// (measured: an alignment over the first step left 0.06 rad of error that k_P then kept for
 /// the whole walk). The robot should stand for level_time + align_time (walk.start_time is
@@ -90,7 +91,7 @@ struct EstimatorParams {
        .bounds = closed(0, 100)});
     v("estimator.align_kp", s.align_kp, {.unit = "rad/s", .doc = "Mahony filter: k_P while aligning", .bounds = closed(0, 100)});
     v("estimator.align_accel", s.align_accel,
-      {.unit = "m/s^2", .doc = "Mahony filter: the alignment ends early once the planned horizontal pelvis acceleration exceeds this",
+      {.unit = "m/s^2", .doc = "Mahony filter: the alignment ends early once the planned horizontal COM acceleration exceeds this",
        .bounds = closed(0, 100)});
     v("estimator.level_time", s.level_time,
       {.unit = "s", .doc = "Mahony filter: start from the mean accelerometer over a steady window this long (0: the first reading near 1 g)",
@@ -126,7 +127,7 @@ class AttitudeEstimator {
   Matrix3d R_ = Matrix3d::Identity();
   Vector3d bias_ = Vector3d::Zero();
   bool initialised_ = false;
-  double time_ = 0;  ///< since the initialisation [s]
+  double time_ = 0;  ///< since the initialisation, or align_time from when the alignment ended early [s]
   // Levelling (before the initialisation).
   Vector3d level_sum_ = Vector3d::Zero();  ///< sum of the window's readings [m/s^2]
   int level_count_ = 0;                    ///< readings in the window
@@ -134,8 +135,8 @@ class AttitudeEstimator {
   Vector3d wait_sum_ = Vector3d::Zero();   ///< sum of the readings since then [m/s^2]
 
   /// Takes one reading a (already gated to [0.5 g, 1.5 g]) into the levelling; initialises the
-  /// attitude once the window is steady (or the wait timed out).
-  void level(const Vector3d& a, double T);
+  /// attitude once the window is steady (or the wait timed out: from the mean of a − planned_accel).
+  void level(const Vector3d& a, const Vector3d& planned_accel, double T);
 };
 
 }  // namespace flexgait::walking
