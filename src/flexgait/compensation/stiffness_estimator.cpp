@@ -106,7 +106,8 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
       const double s = t - rest_end_;  // (≤ 0: small numbers)
       const walking::Vector3d up = accel.normalized();
       if (rest_.n == 0) rest_.soles_first = soles_in_pelvis(encoder, torque);
-      rest_.soles_last = soles_in_pelvis(encoder, torque);
+      rest_.encoder_last = encoder;
+      rest_.torque_last = torque;
       if (rest_.n > 0) rest_.gyro += rest_.last_gyro;  // the gyro's turn from the first reading to this one
       rest_.last_gyro = gyro;
       rest_.n += 1;
@@ -127,7 +128,8 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   // accelerometer's direction would show the turn as well, but also the pelvis's slow horizontal acceleration:
   // on the twin it gave b̂ 9e-5 rad/s off against 4e-5 through the legs.)
   const double n = rest_.n, window = (n - 1) * period_;
-  const Eigen::AngleAxisd legs(walking::Matrix3d(rest_.soles_first * rest_.soles_last.transpose()));
+  const walking::Matrix3d soles_last = soles_in_pelvis(rest_.encoder_last, rest_.torque_last);
+  const Eigen::AngleAxisd legs(walking::Matrix3d(rest_.soles_first * soles_last.transpose()));
   gyro_bias_ = (rest_.gyro * period_ - legs.angle() * legs.axis()) / window;
   // The tilt: the pelvis's up u = Rᵀ e_z (the accelerometer's direction, +g up at rest), a line u(s) = u₀ + u̇ s
   // fitted over the window (s = t − its end), at the end; the yaw the controller's.

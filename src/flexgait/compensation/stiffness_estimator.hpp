@@ -110,7 +110,8 @@ class StiffnessEstimator {
     double n = 0, t = 0, tt = 0;
     walking::Vector3d gyro = walking::Vector3d::Zero(), up = walking::Vector3d::Zero(), t_up = walking::Vector3d::Zero();
     walking::Vector3d last_gyro = walking::Vector3d::Zero();
-    walking::Matrix3d soles_first = walking::Matrix3d::Identity(), soles_last = walking::Matrix3d::Identity();
+    walking::Matrix3d soles_first = walking::Matrix3d::Identity();   ///< soles_in_pelvis at the window's first sample
+    humanoid::JointVector encoder_last{}, torque_last{};               ///< its last sample's (soles_in_pelvis at the end)
   } rest_;
   std::array<std::array<bool, kGroups>, 2> confident_{};
   walking::RobotModelData data_;

@@ -37,11 +37,10 @@
 /// a steady start the filter corrects with the higher gain align_kp (time constant 1/align_kp)
 /// and does not learn the bias, then switches to k_P and k_I. The alignment also ends, for good,
 /// at the first reading whose planned horizontal acceleration a_m (the plan's COM acceleration)
-/// exceeds align_accel: at align_kp
-/// it would take the gap between the planned and the real acceleration for tilt within 0.2 s
-/// (measured: an alignment over the first step left 0.06 rad of error that k_P then kept for
-/// the whole walk). The robot should stand for level_time + align_time (walk.start_time is
-/// longer by default).
+/// exceeds align_accel: at align_kp it would take the gap between the planned and the real
+/// acceleration for tilt within 0.2 s (measured: an alignment over the first step left 0.06 rad
+/// of error that k_P then kept for the whole walk). The robot should stand for level_time +
+/// align_time (walk.start_time is longer by default).
 /// Readings whose magnitude is outside [0.5 g, 1.5 g] after compensation are not used (impacts).
 /// Allocation-free; no simulator types.
 #include "flexgait/core/record.hpp"
