@@ -277,6 +277,8 @@ expect_usage_error walk-terrain-flat-rough "key 'terrain.rough.amplitude' = '0'"
 expect_usage_error walk-pelvis-beyond-reach "key 'walk.pelvis_height' = '0.8'" humanoid walk --set walk.pelvis_height=0.8
 expect_usage_error walk-soles-overlap "key 'walk.step_width' = '0.1'" humanoid walk --set walk.step_width=0.1
 expect_usage_error compensated-feedback-needs-output "key 'control.compensated_feedback' = 'true' needs the output" humanoid walk --set control.compensated_feedback=true --set control.compensation=input
+expect_usage_error horizontal-force-needs-dynamic "key 'control.plan_horizontal_force' = '0.5' needs the plan's motion" humanoid walk --set control.plan_horizontal_force=0.5 --set control.load_model=measured
+expect_usage_error horizontal-force-bounds "control.plan_horizontal_force" humanoid walk --set control.plan_horizontal_force=1.5 --set control.load_model=dynamic
 expect_usage_error gyro-rest-longer-than-the-still-stance "key 'control.k_estimation_gyro_rest' = '1' is longer than the still start stance" humanoid walk --set control.k_estimation_gyro_rest=1
 expect_usage_error walk-height-not-auto "key 'walk.steps'" humanoid walk --set walk.steps=auto
 check "builtin walk height is written derived" grep -q "pelvis_height: 0.723" "$work/walk/config.yaml"

@@ -148,5 +148,48 @@ TEST(LoadModel, DynamicAtRestIsMeasured) {
   for (int j = 0; j < kJoints; ++j) EXPECT_EQ(dynamic.input_torque()[j], measured.input_torque()[j]) << j;
 }
 
+TEST(LoadModel, PlanHorizontalForceAddsMinusJacobianTransposeOfItsShareAtTheCentreOfPressure) {
+  // control.plan_horizontal_force f: the input side's ground force on a stance foot gains
+  // share · M · f · c̈_xy at the split's centre of pressure, so each joint's torque gains
+  // −Jᵀ(cop) (share M f c̈_x, share M f c̈_y, 0) (eq. 4's virtual work) and nothing else; linear in f.
+  // Left foot in single support, the reference ZMP off its centre, so the point is not the sole's.
+  const Stance s;
+  SupportPlan plan = s.plan();
+  plan.swinging = {false, true};
+  plan.zmp_ref = s.soles[0].p.head<2>() + Eigen::Vector2d(0.02, -0.01);
+  plan.pelvis = Pose{Vector3d(0, 0, 0.72), Matrix3d::Identity()};
+  plan.motion.com_acceleration = Vector3d(0.3, -0.6, 0.0);  // [m/s²]
+  plan.motion.valid = true;
+  JointVector torque[3];
+  const double shares[3] = {0.0, 0.5, 1.0};
+  for (int i = 0; i < 3; ++i) {
+    CompensationParams p = params(LoadModel::kDynamic);
+    p.plan_horizontal_force = shares[i];
+    DeformationCompensator c(s.model, p, kPeriod);
+    c.sense(s.readings());
+    c.input(s.q, Matrix3d::Identity(), plan);
+    torque[i] = c.input_torque();
+  }
+  walking::RobotModelData data;
+  walking::forward_kinematics(s.model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, s.q);
+  const FootLoads loads = support_loads(plan.zmp_ref, plan.soles, plan.swinging, s.model.sole_length, s.model.sole_width);
+  ASSERT_EQ(loads.share[0], 1.0);
+  const Pose sole = walking::sole_pose(s.model, data, 0);
+  const Vector3d cop = sole.p + sole.R * Vector3d(loads.cop[0].x(), loads.cop[0].y(), 0);
+  ASSERT_GT((cop - sole.p).norm(), 0.01);
+  const Vector3d force(s.model.total_mass * 0.3, s.model.total_mass * -0.6, 0.0);  // f = 1 [N]
+  const walking::LegJacobian J = walking::leg_jacobian(s.model, data, 0, cop);
+  const walking::LegTorque expected = -J.topRows<3>().transpose() * force;
+  for (int i = 0; i < humanoid::kLegJoints; ++i) {
+    const int j = humanoid::leg_first_joint(0) + i;
+    // 1e-9 Nm: rounding of sums of O(100) Nm
+    EXPECT_NEAR(torque[2][j] - torque[0][j], expected(i), 1e-9) << j;
+    EXPECT_NEAR(torque[1][j] - torque[0][j], 0.5 * expected(i), 1e-9) << j;
+    const int r = humanoid::leg_first_joint(1) + i;  // the swing leg carries no ground force
+    EXPECT_EQ(torque[2][r], torque[0][r]) << r;
+  }
+  EXPECT_GT(std::abs(expected(1)), 10.0);  // the stance hip roll's share is not negligible
+}
+
 }  // namespace
 }  // namespace flexgait::compensation

@@ -1,5 +1,5 @@
 // The thesis's walking experiments as sets of walks (experiments/compensation_study.hpp): the
-// compensation study's seven cases differ from the base in their compensation alone; the mismatch
+// compensation study's eight cases differ from the base in their compensation alone; the mismatch
 // study scales the twin's true stiffness and pairs off with both; the comparison's headline cuts
 // are 1 − on/off of the cases' metrics.
 #include "flexgait/experiments/compensation_study.hpp"
@@ -33,7 +33,8 @@ TEST(CompensationStudy, CasesDifferInTheirCompensationAlone) {
                                {"robotis", CompensationMode::kRobotis, LoadModel::kGravity},
                                {"talos", CompensationMode::kTalos, LoadModel::kGravity},
                                {"both-measured", CompensationMode::kBoth, LoadModel::kMeasured},
-                               {"both-dynamic", CompensationMode::kBoth, LoadModel::kDynamic}};
+                               {"both-dynamic", CompensationMode::kBoth, LoadModel::kDynamic},
+                               {"both-dynamic-horizontal", CompensationMode::kBoth, LoadModel::kDynamic}};
   ASSERT_EQ(cases.size(), std::size(expected));
   for (std::size_t i = 0; i < cases.size(); ++i) {
     EXPECT_EQ(cases[i].name, expected[i].name);
@@ -44,6 +45,8 @@ TEST(CompensationStudy, CasesDifferInTheirCompensationAlone) {
   }
   EXPECT_EQ(cases[1].params.control.gravity, GravityForm::kFull);
   EXPECT_EQ(cases[2].params.control.gravity, GravityForm::kThesis);
+  for (std::size_t i = 0; i + 1 < cases.size(); ++i) EXPECT_EQ(cases[i].params.control.plan_horizontal_force, 0.0) << cases[i].name;
+  EXPECT_EQ(cases.back().params.control.plan_horizontal_force, 0.5);
 }
 
 TEST(CompensationStudy, MismatchScalesTheTrueStiffnessOnly) {

@@ -27,7 +27,12 @@
 /// the commands closes a loop of gain ≈ 1 through the gears, and the walks fall. `dynamic`: both
 /// add the legs' inertial torques of the planned motion — the plan's joint and pelvis velocities
 /// and accelerations (SupportPlan::motion, walking/planned_motion.hpp: central differences of the
-/// plan's IK, without the balance loops) through the recursive Newton–Euler.
+/// plan's IK, without the balance loops) through the recursive Newton–Euler. With
+/// control.plan_horizontal_force f > 0 the input side's ground force on each stance foot is
+///     F = share · M (f c̈_x, f c̈_y, g)   at the split's centre of pressure,
+/// c̈ the preview controller's cart-table acceleration: the plan's ground force leans along the line
+/// from the ZMP to the COM (f = 1), which the vertical weight alone leaves out — at 1 s/step it is
+/// ~15 Nm of the stance hip roll's ~50 Nm in mid single support.
 ///
 /// control.compensation = robotis | talos: the field's baselines (field_baselines.hpp), input side
 /// only. Allocation-free after construction.
@@ -104,6 +109,9 @@ struct CompensationParams {
   }();
   LoadModel load_model = LoadModel::kGravity;
   double load_filter_time = 0.1;   ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
+  /// dynamic: the share f of the plan's horizontal ground force M c̈ (the cart-table's c̈) that the
+  /// input compensator's stance feet carry beside the weight [-]; 0: the weight alone.
+  double plan_horizontal_force = 0.0;
   KEstimation k_estimation = KEstimation::kOff;
   /// The controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the
   /// encoders plus the output compensator's last deflection estimate θ̂ − θ_enc (spec (1): the
@@ -141,6 +149,11 @@ struct CompensationParams {
               "compensators, the legs' inertial torques of the planned motion"});
     v("control.load_filter_time", s.load_filter_time,
       {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
+    v("control.plan_horizontal_force", s.plan_horizontal_force,
+      {.doc = "dynamic: share of the plan's horizontal ground force M c'' (the preview controller's COM acceleration) "
+              "in the input compensator's foot loads, shared as the weight; 0 = the weight alone, 1 = the whole "
+              "force (right in open loop, overshoots in closed loop: README)",
+       .bounds = closed(0, 1)});
     v("control.compensated_feedback", s.compensated_feedback,
       {.doc = "the controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the encoders "
               "plus the output compensator's last deflection estimate (needs compensation output or both)"});

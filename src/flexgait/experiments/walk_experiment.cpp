@@ -100,6 +100,11 @@ WalkRunParams walk_run_from_config(const Config& c) {
     throw ConfigError("control.compensated_feedback",
                       "key 'control.compensated_feedback' = 'true' needs the output compensator's estimate; allowed "
                       "with control.compensation output or both");
+  if (p.control.plan_horizontal_force > 0 && p.control.load_model != compensation::LoadModel::kDynamic)
+    throw ConfigError("control.plan_horizontal_force",
+                      fmt::format("key 'control.plan_horizontal_force' = '{}' needs the plan's motion; allowed with "
+                                  "control.load_model dynamic (else 0)",
+                                  p.control.plan_horizontal_force));
   if (p.control.k_estimation_gyro_rest > 0 && p.control.k_estimation_gyro_rest > p.walk.start_time - p.walk.preview_time)
     throw ConfigError("control.k_estimation_gyro_rest",
                       fmt::format("key 'control.k_estimation_gyro_rest' = '{}' is longer than the still start stance (the "
