@@ -74,9 +74,9 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     // closes a loop of gain ≈ 1 through the gears (a flat foot's ankle torque is k times the
     // command's change; in double support the feet's loads follow the legs' lengths), and the 1 s
     // walk falls. Nor M (g + a) with a the commanded pelvis's acceleration: that doubles the
-    // 1 s walk's peak roll error (the commanded pose carries the balance loops' noise). With
-    // control.plan_horizontal_force f, the plan's own horizontal force f M c̈ (the cart-table's c̈,
-    // smooth), shared as the weight.
+    // 1 s walk's peak roll error, as the whole of the plan's own horizontal force M c̈ does
+    // (README). With control.plan_horizontal_force f, f M c̈ (the cart-table's c̈, smooth), shared
+    // as the weight.
     const auto& b = model_.bodies[static_cast<std::size_t>(model_.foot[side])];
     const walking::Vector3d weight(0, 0, -b.mass * walking::kGravity);
     const double load = plan_loads_.share[side] * model_.total_mass;
