@@ -13,23 +13,18 @@ namespace {
 using compensation::CompensationMode;
 using compensation::GravityForm;
 
-WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form,
-                   compensation::LoadModel load = compensation::LoadModel::kGravity) {
-  WalkRunParams p = base;
-  p.control.mode = mode;
-  p.control.gravity = form;
-  p.control.load_model = load;
-  p.control.plan_horizontal_force = 0.0;
-  return p;
-}
-
 /// control.plan_horizontal_force of the study's case both-dynamic-horizontal: half the plan's
 /// horizontal ground force, the closed-loop best measured at 0.8-3 s/step (README: the whole force
 /// is right in open loop and overshoots in closed loop).
 constexpr double kStudyHorizontalForce = 0.5;
 
-WalkRunParams with_horizontal_force(WalkRunParams p) {
-  p.control.plan_horizontal_force = kStudyHorizontalForce;
+WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form,
+                   compensation::LoadModel load = compensation::LoadModel::kGravity, double horizontal_force = 0.0) {
+  WalkRunParams p = base;
+  p.control.mode = mode;
+  p.control.gravity = form;
+  p.control.load_model = load;
+  p.control.plan_horizontal_force = horizontal_force;
   return p;
 }
 
@@ -78,7 +73,8 @@ std::vector<StudyCase> compensation_cases(const WalkRunParams& base) {
           {"talos", with(base, CompensationMode::kTalos, GravityForm::kFull)},
           {"both-measured", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kMeasured)},
           {"both-dynamic", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic)},
-          {"both-dynamic-horizontal", with_horizontal_force(with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic))}};
+          {"both-dynamic-horizontal",
+           with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic, kStudyHorizontalForce)}};
 }
 
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales) {
