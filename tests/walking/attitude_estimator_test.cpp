@@ -229,6 +229,7 @@ TEST(AttitudeEstimator, EndsTheAlignmentOnceThePlanAccelerates) {
   // last bit, the filter whose alignment lasted exactly those 0.2 s: the alignment ended for good.
   EstimatorParams p;
   p.level_time = 0;  // the first reading starts it
+  p.align_accel = 0.2;
   EstimatorParams q = p;
   q.align_accel = 1e9;  // never ends early...
   q.align_time = 0.2;   // ...but ends after 50 periods

@@ -60,11 +60,16 @@ struct EstimatorParams {
   double ki = 0.002;                ///< k_I: gyro bias integral gain [rad/s^2]
   double align_time = 1.0;          ///< alignment after the start: gain align_kp, no bias integration [s]
   double align_kp = 5.0;            ///< k_P while aligning [rad/s]
-  /// The alignment ends early once the planned horizontal acceleration exceeds this [m/s^2].
-  /// 0.2: the default walk's alignment (0.25–1.25 s, planned acceleration ≤ 0.17 m/s²) is not
-  /// cut; 0.05 would cut it at 0.95 s and measured no better (attitude error rms 0.0133 against
-  /// 0.0127 rad, configs/walk-robotis.yaml).
-  double align_accel = 0.2;
+  /// The alignment ends early once the planned horizontal acceleration exceeds this [m/s^2]:
+  /// once the plan moves at all. The compliant twin does not follow the plan's acceleration
+  /// while the weight shifts before the first step: over 1.2–1.3 s of configs/walk-robotis.yaml
+  /// the plan's COM accelerates +0.17 m/s² sideways and the pelvis accelerates −0.11 (the
+  /// accelerometer's −0.08 less gravity's share through the true roll); at align_kp that gap is
+  /// tilt within 0.2 s (the estimate was 0.015 rad off when the alignment ended at 1.25 s, and
+  /// k_P kept most of it for the walk). 0.01 ends the default walk's alignment at 0.49 s: attitude
+  /// error rms 0.0086 → 0.0028 rad at 1 s/step and 0.0054 → 0.0044 at 3 s/step (both
+  /// compensators, dynamic loads, f = 0.5, lag). The earlier 0.2 did not cut that alignment.
+  double align_accel = 0.01;
   double level_time = 0.1;          ///< levelling: length of the steady accelerometer window that starts the filter [s]
   double level_tolerance = 0.02;    ///< levelling: a steady reading's largest angle to the window's mean [rad]
   bool accel_compensation = true;   ///< subtract the planned COM acceleration from the accelerometer
