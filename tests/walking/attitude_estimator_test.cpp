@@ -175,7 +175,7 @@ TEST(AttitudeEstimator, LevelsOnTheFirstSteadyWindowAfterATransient) {
   // readings, at |a| = g so the magnitude gate alone would take it); then it is at rest in R.
   // The filter must wait for level_time of steady readings and start exactly at R's tilt (the
   // mean of equal readings: round-off, 1e-12), not at the first reading (0.1 rad off).
-  EstimatorParams p;  // the defaults: level_time 0.1 s, level_tolerance 0.02 rad
+  EstimatorParams p;  // the defaults: level_time 0.3 s, level_tolerance 0.02 rad
   AttitudeEstimator f{p};
   const Matrix3d R = rpy_to_matrix(0.02, 0.05, 0);
   const Vector3d gyro(0, 2.0, 0);
@@ -192,6 +192,33 @@ TEST(AttitudeEstimator, LevelsOnTheFirstSteadyWindowAfterATransient) {
   }
   ASSERT_TRUE(f.initialised());
   EXPECT_LT(tilt_error(f.attitude(), R), 1e-12);
+}
+
+TEST(AttitudeEstimator, TheLevellingWindowSpansASwayPeriodSoHalfASwingIsNotRest) {
+  // The standing twin sways at 3.8 Hz (balance.ankle_gyro_gain 0.15); every reading here stays
+  // within level_tolerance of the others (roll A sin(2π f t), A = 0.009 rad: spread 0.018 < 0.02),
+  // so the first window passes for rest. Its mean is A (1 − cos 2π f L) / (2π f L) from level for
+  // a window of L: 0.05 A over the default 0.3 s (1.14 periods), 0.72 A over 0.1 s (0.38 of one).
+  const double A = 0.009, f_sway = 3.8;
+  auto start_error = [&](double level_time) {
+    EstimatorParams p;
+    p.level_time = level_time;
+    AttitudeEstimator e{p};
+    for (int k = 0; !e.initialised() && k < 1000; ++k) {
+      const double roll = A * std::sin(2 * M_PI * f_sway * kT * k);
+      const Vector3d a = at_rest(rpy_to_matrix(roll, 0, 0));
+      e.update(Vector3d(2 * M_PI * f_sway * A * std::cos(2 * M_PI * f_sway * kT * k), 0, 0), &a, Vector3d::Zero(), kT);
+    }
+    EXPECT_TRUE(e.initialised());
+    return std::abs(roll_of(e.attitude()));
+  };
+  const double L = EstimatorParams{}.level_time;
+  EXPECT_GE(L * f_sway, 1.0);
+  const double mean = A * (1 - std::cos(2 * M_PI * f_sway * L)) / (2 * M_PI * f_sway * L);
+  // (the window's mean over n readings against the integral's: within 5 % of A)
+  EXPECT_NEAR(start_error(L), mean, 0.05 * A);
+  EXPECT_LT(start_error(L), 0.15 * A);
+  EXPECT_GT(start_error(0.1), 0.6 * A);  // half a swing passes for rest
 }
 
 TEST(AttitudeEstimator, StartsAfterAlignTimeWhenNeverSteadyFromTheMeanOfTheWait) {

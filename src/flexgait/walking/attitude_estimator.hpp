@@ -70,7 +70,15 @@ struct EstimatorParams {
   /// error rms 0.0086 → 0.0028 rad at 1 s/step and 0.0054 → 0.0044 at 3 s/step (both
   /// compensators, dynamic loads, f = 0.5, lag). The earlier 0.2 did not cut that alignment.
   double align_accel = 0.01;
-  double level_time = 0.1;          ///< levelling: length of the steady accelerometer window that starts the filter [s]
+  /// Levelling: length of the steady accelerometer window that starts the filter [s]. At least
+  /// one period of the standing twin's sway, so that half a swing does not pass for rest: with
+  /// balance.ankle_gyro_gain 0.15 it sways at 3.8 Hz (0.26 s) and a 0.1 s window on one rough
+  /// floor (configs/walk-rough.yaml, seed 13) started 0.03–0.04 rad off, which the alignment
+  /// had corrected until it ended with the plan's first motion. 0.3: over that floor set (seeds
+  /// 1–48) 5 fell and the attitude error's median was 0.0146 rad; 0.1 (with align_accel 0.01):
+  /// 8 and 0.0157; the earlier 0.1 with align_accel 0.2: 5 and 0.0173. Flat walks: unchanged to
+  /// 1e-4 rad.
+  double level_time = 0.3;
   double level_tolerance = 0.02;    ///< levelling: a steady reading's largest angle to the window's mean [rad]
   bool accel_compensation = true;   ///< subtract the planned COM acceleration from the accelerometer
   double gravity = 9.81;            ///< [m/s^2]
