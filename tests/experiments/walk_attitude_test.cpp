@@ -2,12 +2,12 @@
 // - The Mahony filter's high-gain alignment ends once the plan moves (estimator.align_accel): the
 //   compliant twin does not follow the plan's acceleration while the weight shifts before the
 //   first step, and an alignment that ran on through it took that gap for tilt, which k_P then
-//   kept for the walk (attitude_estimator.hpp). Measured: 0.0085 rad rms against 0.0127 with the
-//   earlier threshold 0.2 m/s², which let the alignment run to its end at 1.25 s (0.66 of it).
+//   kept for the walk (attitude_estimator.hpp). Measured: 0.0085 rad rms against 0.0140 with the
+//   earlier threshold 0.2 m/s², which let the alignment run to its end at 1.25 s (0.61 of it).
 // - The kinematic–inertial tilt observer (tilt_observer.hpp) measures the pelvis's velocity through
 //   the stance leg, so that rocking is not tilt to it: with the long alignment its error is at
-//   most 0.7 of the filter's (measured 0.49 of it), and it hardly depends on the filter it starts
-//   from. See the RecordProperty values.
+//   most 0.7 of the filter's (measured 0.34 of it), and it hardly depends on the filter it starts
+//   from (0.0047 against 0.0048 rad). See the RecordProperty values.
 #include <gtest/gtest.h>
 
 #include <string>
