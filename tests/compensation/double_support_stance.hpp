@@ -57,4 +57,11 @@ struct Stance {
   }
 };
 
+/// The stance's F/T readings, measured at time t (their stamps).
+inline std::array<humanoid::ForceTorque, 2> readings(const Stance& s, double t) {
+  std::array<humanoid::ForceTorque, 2> ft = s.readings();
+  ft[0].stamp = ft[1].stamp = t;
+  return ft;
+}
+
 }  // namespace flexgait::compensation::fixtures

@@ -84,14 +84,9 @@ TEST(ForgettingRls, ForgettingTracksAChangeAndNonFiniteDataChangesNothing) {
   EXPECT_EQ(rls.P(), P);
 }
 
+using fixtures::readings;
 using fixtures::Stance;
 
-/// The stance's F/T readings, measured at time t.
-std::array<humanoid::ForceTorque, 2> readings(const Stance& s, double t) {
-  std::array<humanoid::ForceTorque, 2> ft = s.readings();
-  ft[0].stamp = ft[1].stamp = t;
-  return ft;
-}
 
 CompensationParams estimation_params() {
   CompensationParams p;

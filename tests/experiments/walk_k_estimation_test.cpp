@@ -97,6 +97,42 @@ TEST(WalkKEstimation, ACalibratedDriftingGyroFindsTheStiffnessWithin5PercentAt1s
   expect_drifting_gyro_within(1.0, false, 0.05);
 }
 
+// control.k_estimation = calibrate (chain_stiffness_calibration.hpp) on the twin: the 90 s calibration of
+// configs/calibrate-stiffness.yaml, the true stiffness 1250 Nm/rad × 1.2 at the hip rolls and knees and × 0.8
+// at the hip pitches, ankle pitches and ankle rolls; the belief starts at 1000. Measured (README): the hips and
+// knees within 5.7 %, the ankles within 8.7 % (the right ankle roll: its torque moves least in double support).
+// The bounds: 8 % and 12 %. (That the belief holds until the calibration ends: chain_stiffness_calibration_test.)
+TEST(WalkKEstimation, TheCalibrationStanceFindsEachJointWithin12Percent) {
+  WalkRunParams p;
+  p.walk.steps = 0;
+  p.walk.calibration.time = 90.0;
+  p.walk.start_time = 94.0;
+  p.walk.end_time = 0.5;
+  p.plant.k_joint = 1250.0;
+  p.control.k_joint = 1000.0;
+  p.control.k_estimation = compensation::KEstimation::kCalibrate;
+  p.control.load_model = compensation::LoadModel::kMeasured;
+  p.control.load_filter_time = 0.01;
+  for (int side = 0; side < 2; ++side) {
+    const int f = humanoid::leg_first_joint(side);
+    p.plant.k_scale[f + 1] = p.plant.k_scale[f + 3] = 1.2;
+    p.plant.k_scale[f + 2] = p.plant.k_scale[f + 4] = p.plant.k_scale[f + 5] = 0.8;
+  }
+  const WalkResult r = run_walk(p);
+  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
+  ASSERT_TRUE(r.k_estimation);
+  int identified = 0;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    if (!r.k_identified[j]) continue;
+    ++identified;
+    const double truth = 1250.0 * p.plant.k_scale[j];
+    const bool ankle = (j - humanoid::leg_first_joint(j < humanoid::kRightHipYaw ? 0 : 1)) >= 4;
+    RecordProperty("k_" + std::string(humanoid::kJointNames[j]), std::to_string(r.k_estimate[j]));
+    EXPECT_NEAR(r.k_estimate[j], truth, (ankle ? 0.12 : 0.08) * truth) << humanoid::kJointNames[j];
+  }
+  EXPECT_EQ(identified, 10);
+}
+
 TEST(WalkKEstimation, OffWritesNoEstimate) {
   WalkRunParams p = ten_steps(3.0);
   p.walk.steps = 1;

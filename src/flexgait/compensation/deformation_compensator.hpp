@@ -68,9 +68,10 @@ constexpr std::array<EnumName<LoadModel>, 3> enum_names(LoadModel) {
 }
 
 /// Online stiffness identification while walking (issue 20, stiffness_estimator.hpp).
-enum class KEstimation { kOff, kOn };
-constexpr std::array<EnumName<KEstimation>, 2> enum_names(KEstimation) {
-  return {{{KEstimation::kOff, "off"}, {KEstimation::kOn, "on"}}};
+/// calibrate: each leg joint's k from the calibration in the start stance (chain_stiffness_calibration.hpp).
+enum class KEstimation { kOff, kOn, kCalibrate };
+constexpr std::array<EnumName<KEstimation>, 3> enum_names(KEstimation) {
+  return {{{KEstimation::kOff, "off"}, {KEstimation::kOn, "on"}, {KEstimation::kCalibrate, "calibrate"}}};
 }
 
 /// The output compensator's Newton: G formed at each iterate, or reused (link_angle_newton.hpp).
@@ -160,9 +161,11 @@ struct CompensationParams {
     v("control.k_estimation", s.k_estimation,
       {.doc = "online stiffness identification while walking: on = estimate 1/k of each leg's roll and pitch joint "
               "groups by RLS from the stance foot's tilt seen through the encoders and the IMU; the compensators "
-              "use a group's estimate once confident"});
+              "use a group's estimate once confident; calibrate = estimate 1/k of each leg roll and pitch joint in the "
+              "start stance's calibration (calibration.*) from the two flat soles' relative tilt through the encoders, "
+              "used once confident and kept while walking"});
     v("control.k_estimation_memory", s.k_estimation_memory,
-      {.unit = "s", .doc = "k_estimation: forgetting time constant of the RLS", .bounds = closed(0.01, 1e6)});
+      {.unit = "s", .doc = "k_estimation on: forgetting time constant of the RLS (calibrate: none)", .bounds = closed(0.01, 1e6)});
     v("control.k_estimation_min_torque", s.k_estimation_min_torque,
       {.unit = "Nm", .doc = "k_estimation: a sample is used when its torque regressor is at least this", .bounds = closed(0, 1e4)});
     v("control.k_estimation_noise", s.k_estimation_noise,

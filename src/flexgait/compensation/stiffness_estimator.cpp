@@ -15,6 +15,24 @@ constexpr double kBoundFactor = 10.0;     // c ∈ [c₀/10, 10 c₀]
 constexpr double kOffsetStd = 0.05;       // prior std of a stance's tilt offset (stance_offset) [rad]
 }  // namespace
 
+bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+                              const std::array<humanoid::ForceTorque, 2>& ft) {
+  bool finite = true;
+  for (int j = 0; j < humanoid::kJoints; ++j) finite = finite && std::isfinite(encoder[j]) && std::isfinite(torque[j]);
+  for (int side = 0; side < 2; ++side)
+    for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(ft[side].force[a]) && std::isfinite(ft[side].torque[a]);
+  return finite && t - ft[0].stamp <= kStaleAge && t - ft[1].stamp <= kStaleAge;
+}
+
+bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R, int side,
+                  double min_share) {
+  const walking::FootContact c = walking::foot_contact(ft, sole_R, model.leg[side].ankle_to_sole,
+                                                       model.bodies[static_cast<std::size_t>(model.foot[side])].mass);
+  const Eigen::Vector2d cop = c.cop - model.sole_offset[side].head<2>();
+  return c.normal_force >= min_share * model.total_mass * walking::kGravity &&
+         std::abs(cop.x()) <= kFirmCopShare * model.sole_length && std::abs(cop.y()) <= kFirmCopShare * model.sole_width;
+}
+
 StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period,
                                        double rest_end)
     : model_(model),
@@ -147,12 +165,8 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
                                const humanoid::Imu& imu, const humanoid::JointVector& torque,
                                const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support, bool sensors_ok) {
   const walking::Vector3d gyro(imu.gyro[0], imu.gyro[1], imu.gyro[2]), accel(imu.accel[0], imu.accel[1], imu.accel[2]);
-  bool finite = imu_R.allFinite() && gyro.allFinite() && accel.allFinite();
-  for (int j = 0; j < humanoid::kJoints; ++j) finite = finite && std::isfinite(encoder[j]) && std::isfinite(torque[j]);
-  for (int side = 0; side < 2; ++side)
-    for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(ft[side].force[a]) && std::isfinite(ft[side].torque[a]);
-  const bool stale = t - ft[0].stamp > kStaleAge || t - ft[1].stamp > kStaleAge;
-  if (!finite || stale || !sensors_ok) {
+  const bool imu_finite = imu_R.allFinite() && gyro.allFinite() && accel.allFinite();
+  if (!imu_finite || !identification_inputs_ok(t, encoder, torque, ft) || !sensors_ok) {
     ++bad_data_;
     return 0;
   }
@@ -160,19 +174,13 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
   follow_attitude(imu_R, gyro);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), attitude_}, encoder);
-  const double weight = model_.total_mass * walking::kGravity;
   int used = 0;
   for (int side = 0; side < 2; ++side) {
     if (support.swinging[side]) {
       new_stance_[side] = true;
       continue;
     }
-    const walking::FootContact c = walking::foot_contact(ft[side], support.soles[side].R, model_.leg[side].ankle_to_sole,
-                                                         model_.bodies[static_cast<std::size_t>(model_.foot[side])].mass);
-    const Eigen::Vector2d cop = c.cop - model_.sole_offset[side].head<2>();
-    if (c.normal_force < kFirmWeightShare * weight || std::abs(cop.x()) > kFirmCopShare * model_.sole_length ||
-        std::abs(cop.y()) > kFirmCopShare * model_.sole_width)
-      continue;
+    if (!firm_support(model_, ft[side], support.soles[side].R, side, kFirmWeightShare)) continue;
     const walking::Pose sole = walking::sole_pose(model_, data_, side);
     const walking::LegJacobian J = walking::leg_jacobian(model_, data_, side, sole.p);
     // The regressors: H(:, g) = Σ_{i∈g} (a_i)_xy τ_i.

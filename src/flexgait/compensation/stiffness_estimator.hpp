@@ -46,6 +46,16 @@
 
 namespace flexgait::compensation {
 
+/// The identification's bad-data rule (also chain_stiffness_calibration.hpp): every encoder, torque and F/T
+/// value finite and both F/T readings at most 50 ms old at t [s].
+bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+                              const std::array<humanoid::ForceTorque, 2>& ft);
+
+/// A sole in firm support by its F/T sensor: normal force ≥ min_share × the robot's weight and the centre of
+/// pressure within the middle 60 % of the sole's length and width. \param sole_R the sole's planned attitude.
+bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R, int side,
+                  double min_share);
+
 class StiffnessEstimator {
  public:
   static constexpr int kGroups = 2;  ///< per leg: roll, pitch

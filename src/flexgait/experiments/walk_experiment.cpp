@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <cmath>
 
+#include "flexgait/compensation/chain_stiffness_calibration.hpp"
 #include "flexgait/compensation/stiffness_estimator.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/capture_point_bound.hpp"
@@ -105,12 +106,32 @@ WalkRunParams walk_run_from_config(const Config& c) {
                       fmt::format("key 'control.plan_horizontal_force' = '{}' needs the plan's motion; allowed with "
                                   "control.load_model dynamic (else 0)",
                                   p.control.plan_horizontal_force));
-  if (p.control.k_estimation_gyro_rest > 0 && p.control.k_estimation_gyro_rest > p.walk.start_time - p.walk.preview_time)
+  const walking::CalibrationMotion& calibration = p.walk.calibration;
+  if (calibration.time > 0 && calibration.end() > p.walk.start_time - p.walk.preview_time)
+    throw ConfigError("calibration.time",
+                      fmt::format("key 'calibration.time' = '{}' does not end before the COM moves to the first step "
+                                  "(walk.preview_time before it); allowed: 0 to walk.start_time - walk.preview_time - "
+                                  "calibration.start = {:.6g} s (lengthen walk.start_time)",
+                                  calibration.time, p.walk.start_time - p.walk.preview_time - calibration.start));
+  if (p.control.k_estimation == compensation::KEstimation::kCalibrate &&
+      p.control.load_model == compensation::LoadModel::kGravity)
+    throw ConfigError("control.k_estimation",
+                      "key 'control.k_estimation' = 'calibrate' needs each foot's measured load (the weight split "
+                      "misplaces the ankles' torques by tens of percent); allowed with control.load_model measured or "
+                      "dynamic");
+  if (p.control.k_estimation == compensation::KEstimation::kCalibrate && !(calibration.time > 0))
+    throw ConfigError("control.k_estimation",
+                      "key 'control.k_estimation' = 'calibrate' needs the calibration in the start stance; allowed "
+                      "with calibration.time > 0 (configs/calibrate-stiffness.yaml)");
+  // (the gyro's rest: the still start stance, after the calibration's motion)
+  const double still = p.walk.start_time - p.walk.preview_time - calibration.end();
+  if (p.control.k_estimation_gyro_rest > 0 && p.control.k_estimation_gyro_rest > still)
     throw ConfigError("control.k_estimation_gyro_rest",
                       fmt::format("key 'control.k_estimation_gyro_rest' = '{}' is longer than the still start stance (the "
-                                  "COM moves from walk.preview_time before the first step); allowed: 0 to walk.start_time "
-                                  "- walk.preview_time = {:.6g} s (lengthen walk.start_time)",
-                                  p.control.k_estimation_gyro_rest, p.walk.start_time - p.walk.preview_time));
+                                  "COM moves from walk.preview_time before the first step, and the calibration's motion "
+                                  "ends at calibration.start + calibration.time); allowed: 0 to {:.6g} s (lengthen "
+                                  "walk.start_time)",
+                                  p.control.k_estimation_gyro_rest, still));
   check_with_origin(c, [&] {
     const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
     for (std::size_t i = 0; i < p.pushes.size(); ++i)
@@ -149,6 +170,9 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   compensation::DeformationCompensator compensator(controller.model(), params.control, T);
   controller.set_plan_motion(params.control.load_model == compensation::LoadModel::kDynamic);
   const bool k_estimation = params.control.k_estimation == compensation::KEstimation::kOn;
+  const bool k_calibration = params.control.k_estimation == compensation::KEstimation::kCalibrate;
+  compensation::ChainStiffnessCalibration chain_calibration(controller.model(), params.control, T, params.walk.calibration.start,
+                                                            params.walk.calibration.end());
   // (the start stance is still until the preview sees the first step: the end of the gyro's calibration at rest)
   compensation::StiffnessEstimator stiffness_estimator(
       controller.model(), params.control, T,
@@ -229,12 +253,18 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
         params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;
     if (estimate && params.control.compensated_feedback)
       for (int j = 0; j < humanoid::kJoints; ++j) deflection_estimate[j] = estimate->newton[j] - sensors.encoder[j];
-    if (k_estimation) {
-      // Online stiffness identification (issue 20): the torque the output compensator solved with.
+    if (k_estimation || k_calibration) {
+      // Stiffness identification (issue 20): the torque the output compensator solved with.
       const humanoid::JointVector& tau =
           estimate ? estimate->gravity_torque : compensator.torque(sensors.encoder, controller.attitude(), plan_now);
-      stiffness_estimator.update(t, sensors.encoder, controller.attitude(), sensors.imu, tau, sensors.ft, plan_now, st.sensor_flags == 0);
-      compensator.set_stiffness(stiffness_estimator.stiffness());
+      if (k_estimation) {
+        stiffness_estimator.update(t, sensors.encoder, controller.attitude(), sensors.imu, tau, sensors.ft, plan_now,
+                                   st.sensor_flags == 0);
+        compensator.set_stiffness(stiffness_estimator.stiffness());
+      } else {
+        chain_calibration.update(t, sensors.encoder, tau, sensors.ft, plan_now, st.sensor_flags == 0);
+        compensator.set_stiffness(chain_calibration.stiffness());
+      }
     }
     const humanoid::GroundTruth before = plant.truth();  // the state the sensors read
     const Eigen::Matrix3d R_before = walking::quat_to_matrix(before.pelvis_quat.data());
@@ -423,6 +453,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.torque_model = compensator.input_torque();
       w.torque_true = before.gear_torque;
       if (k_estimation) w.k_estimate = stiffness_estimator.estimate();
+      if (k_calibration) w.k_estimate = chain_calibration.estimate();
       w.roll_kin_encoder = roll_enc;
       w.roll_kin_estimate = roll_est;
       w.push_force = g.push_force;
@@ -495,6 +526,11 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     out.k_estimate = stiffness_estimator.estimate();
     for (int j = 0; j < humanoid::kJoints; ++j)
       out.k_identified[j] = stiffness_estimator.group(j) != compensation::StiffnessEstimator::kNone;
+  }
+  if (k_calibration) {
+    out.k_estimation = true;
+    out.k_estimate = chain_calibration.estimate();
+    for (int j = 0; j < humanoid::kJoints; ++j) out.k_identified[j] = chain_calibration.identified(j);
   }
   return out;
 }

@@ -38,6 +38,24 @@ struct Pose {
 /// R = Rz(yaw) Ry(pitch) Rx(roll).
 inline Matrix3d rpy_to_matrix(double roll, double pitch, double yaw) { return rot_z(yaw) * rot_y(pitch) * rot_x(roll); }
 /// Roll and pitch of R = Rz(yaw) Ry(pitch) Rx(roll) (|pitch| < π/2) [rad].
+/// The rotation vector φ = θ a of R (SO(3)'s log), |φ| ≤ π.
+inline Vector3d rotation_vector(const Matrix3d& R) {
+  const Eigen::AngleAxisd a(R);
+  return a.angle() * a.axis();
+}
+
+/// The inverse of SO(3)'s left Jacobian at φ: log(exp([δ]×) exp([φ]×)) = φ + J_l⁻¹(φ) δ + O(δ²),
+///     J_l⁻¹(φ) = I − ½[φ]× + (1/θ² − (1 + cos θ)/(2 θ sin θ)) [φ]×²,  θ = |φ| < π
+/// (the bracket's series 1/12 + θ²/720 below θ = 1e-4).
+inline Matrix3d left_jacobian_inverse(const Vector3d& phi) {
+  const double theta = phi.norm();
+  Matrix3d W;
+  W << 0, -phi.z(), phi.y(), phi.z(), 0, -phi.x(), -phi.y(), phi.x(), 0;
+  const double b = theta < 1e-4 ? 1.0 / 12.0 + theta * theta / 720.0
+                                 : 1.0 / (theta * theta) - (1 + std::cos(theta)) / (2 * theta * std::sin(theta));
+  return Matrix3d::Identity() - 0.5 * W + b * W * W;
+}
+
 inline double roll_of(const Matrix3d& R) { return std::atan2(R(2, 1), R(2, 2)); }
 inline double pitch_of(const Matrix3d& R) { return std::asin(std::clamp(-R(2, 0), -1.0, 1.0)); }
 inline double yaw_of(const Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }

@@ -7,6 +7,7 @@
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
+#include "flexgait/walking/calibration_motion.hpp"
 
 namespace flexgait::walking {
 
@@ -24,6 +25,7 @@ struct WalkParams {
   double preview_time = 1.6;    ///< preview horizon [s]
   double preview_q = 1.0;       ///< weight of the ZMP error (integral form) [1/m^2]
   double preview_r = 1e-6;      ///< weight of the jerk increment [s^6/m^2]
+  CalibrationMotion calibration;  ///< a stiffness calibration in the start stance (keys calibration.*)
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -45,6 +47,7 @@ struct WalkParams {
     v("walk.preview_time", s.preview_time, {.unit = "s", .doc = "preview horizon", .bounds = closed(0.1, 5)});
     v("walk.preview_q", s.preview_q, {.unit = "1/m^2", .doc = "weight of the integrated ZMP error", .bounds = left_open(0, 1e6)});
     v("walk.preview_r", s.preview_r, {.unit = "s^6/m^2", .doc = "weight of the jerk increment", .bounds = left_open(0, 1e6)});
+    CalibrationMotion::visit_fields(s.calibration, v);
   }
 };
 

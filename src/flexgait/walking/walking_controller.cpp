@@ -79,9 +79,11 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
   ref_x_.resize(samples);
   ref_y_.resize(samples);
   for (std::size_t k = 0; k < samples; ++k) {
+    // (the stiffness calibration moves the COM through the ZMP reference: calibration_motion.hpp)
+    const CalibrationOffset c = calibration_offset(walk_.calibration, static_cast<double>(k) * period_);
     const Eigen::Vector2d p = zmp_reference(plan_, static_cast<double>(k) * period_);
-    ref_x_[k] = p.x();
-    ref_y_[k] = p.y();
+    ref_x_[k] = p.x() + c.com_x;
+    ref_y_[k] = p.y() + c.com_y;
   }
   const Eigen::Vector2d p0 = zmp_reference(plan_, 0.0);
   zmp_filtered_ = {p0, p0};
@@ -539,7 +541,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.com_ref = Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0));
 
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, t + period_);
-  pelvis_.p.z() = walk_.pelvis_height + feet.floor_z;  // (floor_z = 0 unless know_floor)
+  const CalibrationOffset calibration = calibration_offset(walk_.calibration, t + period_);
+  pelvis_.p.z() = walk_.pelvis_height + feet.floor_z + calibration.pelvis_z;  // (floor_z = 0 unless know_floor)
   status_.step = feet.step;
   status_.sole = feet.sole;
   status_.swinging = feet.swinging;
@@ -591,10 +594,11 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     Eigen::Vector2d r =
         clamp_abs(foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway), balance_.ankle_limit);
     if (balance_.landing_admittance > 0) r += landing_.tilt(side);  // (landing_adaptation.hpp)
+    r.x() += calibration.sole_roll[side];
     soles[side].R = soles[side].R * rot_y(r(1)) * rot_x(r(0));
     soles[side].p.z() += foot_lift_[side];
   }
-  const Matrix3d pelvis_command = rpy_to_matrix(d_roll, d_pitch, yaw);
+  const Matrix3d pelvis_command = rpy_to_matrix(d_roll, d_pitch + calibration.pelvis_pitch, yaw);
   if (capture_.active) {
     // The capture step's swing foot is aimed from the pelvis as the IMU finds it: its target turns
     // about the pelvis by R_command R_estimatedᵀ, so the leg's command puts the foot at its world
@@ -617,10 +621,10 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     in.model = &model_;
     in.plan = &plan_;
     in.swing_height = walk_.swing_height;
-    in.pelvis_height = walk_.pelvis_height;
+    in.pelvis_height = walk_.pelvis_height + calibration.pelvis_z;
     in.cart = {cart_[0].x, cart_[1].x};
     in.com_offset = status_.com_shift;
-    in.tilt = rot_y(d_pitch) * rot_x(d_roll);
+    in.tilt = rot_y(d_pitch + calibration.pelvis_pitch) * rot_x(d_roll);
     const bool refresh = motion_jacobian_age_ <= 0;
     motion_jacobian_age_ = refresh ? kPlanJacobianPeriods : motion_jacobian_age_ - 1;
     status_.motion = planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);

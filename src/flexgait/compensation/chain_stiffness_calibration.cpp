@@ -1,0 +1,116 @@
+#include "flexgait/compensation/chain_stiffness_calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "flexgait/compensation/stiffness_estimator.hpp"
+#include "flexgait/walking/rotation.hpp"
+
+namespace flexgait::compensation {
+
+namespace {
+constexpr double kMinWeightShare = 0.05;  // a sole in support carries at least this share of the weight
+constexpr double kBoundFactor = 10.0;     // c ∈ [c₀/10, 10 c₀]
+constexpr double kOffsetStd = 0.05;       // prior std of y₀'s roll and pitch [rad]
+}  // namespace
+
+ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& model, const CompensationParams& params,
+                                                     double period, double begin, double end)
+    : model_(model),
+      params_(params),
+      period_(period),
+      noise_variance_(params.k_estimation_noise * params.k_estimation_noise),
+      begin_(begin),
+      end_(end),
+      belief_(params.stiffness()),
+      estimate_(belief_),
+      stiffness_(belief_) {
+  state_.fill(-1);
+  InformationLeastSquares<kStates>::Vector x0, P0;  // (unused states: variance 0, held at 0)
+  x0.setZero();
+  P0.setZero();
+  int n = 0;
+  for (const auto& body : model_.bodies) {
+    const int j = body.joint;
+    const bool leg = (j >= humanoid::leg_first_joint(0) && j < humanoid::leg_first_joint(0) + humanoid::kLegJoints) ||
+                     (j >= humanoid::leg_first_joint(1) && j < humanoid::leg_first_joint(1) + humanoid::kLegJoints);
+    const walking::Vector3d a = body.axis.cwiseAbs();
+    if (!leg || (a.z() >= a.x() && a.z() >= a.y())) continue;  // (a yaw joint: not seen)
+    state_[j] = n;
+    x0[n] = 1.0 / belief_[j];
+    P0[n] = x0[n] * x0[n];  // prior: 100 % relative standard deviation
+    c_min_[n] = x0[n] / kBoundFactor;
+    c_max_[n] = x0[n] * kBoundFactor;
+    ++n;
+  }
+  for (int r = 0; r < 2; ++r) P0[kMaxJoints + r] = kOffsetStd * kOffsetStd;
+  fit_ = InformationLeastSquares<kStates>(x0, P0);
+}
+
+double ChainStiffnessCalibration::relative_std(int joint) const {
+  const int n = state_[joint];
+  return n < 0 ? 0.0 : std::sqrt(std::max(fit_.variance(n), 0.0)) / std::clamp(fit_.x()[n], c_min_[n], c_max_[n]);
+}
+
+Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalibration::regressor(
+    const humanoid::JointVector& encoder, const humanoid::JointVector& torque, Eigen::Vector2d& y) {
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()}, encoder);
+  const walking::Pose left = walking::sole_pose(model_, data_, 0), right = walking::sole_pose(model_, data_, 1);
+  const walking::Vector3d phi = walking::rotation_vector(left.R.transpose() * right.R);
+  y = phi.head<2>();
+  const walking::Matrix3d to_y = walking::left_jacobian_inverse(phi) * left.R.transpose();
+  Eigen::Matrix<double, 2, kStates> H = Eigen::Matrix<double, 2, kStates>::Zero();
+  for (int side = 0; side < 2; ++side) {
+    const walking::LegJacobian J = walking::leg_jacobian(model_, data_, side, side == 0 ? left.p : right.p);
+    for (int i = 0; i < humanoid::kLegJoints; ++i) {
+      const int j = humanoid::leg_first_joint(side) + i;
+      const walking::Vector3d axis = J.block<3, 1>(3, i);  // (the angular rows: the joint's axis)
+      const Eigen::Vector2d h = (side == 0 ? -1.0 : 1.0) * (to_y * axis).head<2>() * torque[j];
+      if (state_[j] >= 0)
+        H.col(state_[j]) = h;
+      else
+        y -= h / stiffness_[j];  // (a yaw joint: its deflection by the belief, taken out of y)
+    }
+  }
+  H.rightCols<2>().setIdentity();
+  return H;
+}
+
+int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+                                      const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support,
+                                      bool sensors_ok) {
+  if (t > end_ && !published_) {
+    // The calibration is over: the compensators take each confident joint's estimate from now on.
+    published_ = true;
+    for (int j = 0; j < humanoid::kJoints; ++j)
+      if (state_[j] >= 0 && relative_std(j) <= params_.k_estimation_confidence) stiffness_[j] = estimate_[j];
+  }
+  if (t < begin_ || t > end_ || support.swinging[0] || support.swinging[1]) return 0;
+  if (!identification_inputs_ok(t, encoder, torque, ft) || !sensors_ok) {
+    ++bad_data_;
+    return 0;
+  }
+  for (int side = 0; side < 2; ++side)
+    if (!firm_support(model_, ft[side], support.soles[side].R, side, kMinWeightShare)) return 0;
+  // The deflection lags the load (control.gear_damping d: k δ + d δ̇ = τ, time constant d/k); the modelled torque
+  // already lags it by the F/T low-pass (control.load_filter_time): the regressor's torque lags by the rest.
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const double lag = std::max(0.0, params_.gear_damping / belief_[j] - params_.load_filter_time);
+    const double a = lagged_ ? period_ / (period_ + lag) : 1.0;
+    lagged_torque_[j] += a * (torque[j] - lagged_torque_[j]);
+  }
+  lagged_ = true;
+  Eigen::Vector2d y;
+  const Eigen::Matrix<double, 2, kStates> H = regressor(encoder, lagged_torque_, y);
+  for (int r = 0; r < 2; ++r) fit_.add(H.row(r).transpose(), y[r], noise_variance_);
+  fit_.solve();
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const int n = state_[j];
+    if (n < 0) continue;
+    estimate_[j] = 1.0 / std::clamp(fit_.x()[n], c_min_[n], c_max_[n]);  // (the fit itself is not clamped)
+  }
+  ++samples_;
+  return 1;
+}
+
+}  // namespace flexgait::compensation

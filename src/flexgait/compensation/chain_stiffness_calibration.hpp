@@ -1,0 +1,83 @@
+#pragma once
+/// \file chain_stiffness_calibration.hpp
+/// Each leg joint's gear stiffness from a calibration in the start stance (issue 20,
+/// control.k_estimation = calibrate; the motion: walking/calibration_motion.hpp).
+///
+/// With both soles flat on one floor, the legs close a chain: sole → left leg → pelvis → right leg →
+/// sole. Through the link angles θ = θ_enc − τ c (c = 1/k, spec "The actuator deformation model"),
+/// the right sole's attitude in the left sole's frame is a constant R₀ (the floor's), so through the
+/// encoders
+///     y = log(R_L(θ_enc)ᵀ R_R(θ_enc)) = y₀ + Σ_j s_j J_l⁻¹(y) R_Lᵀ a_j τ_j c_j + O(δ²),
+/// a_j joint j's axis (pelvis frame), s_j = −1 on the left leg and +1 on the right, J_l⁻¹ SO(3)'s
+/// inverse left Jacobian (rotation.hpp). Its roll and pitch rows are used; the relative yaw is not
+/// (the soles twist in their contacts: 0.5 mrad rms on the twin, against 0.03–0.1 mrad in roll and
+/// pitch). Neither the IMU nor an attitude estimate enters: the pelvis's attitude cancels.
+///
+/// Unknowns: c_j of every leg joint whose axis is mostly horizontal (roll, pitch: ten on the builtin
+/// robot; the yaw joints' deflections barely tilt a sole and keep the belief) and y₀'s roll and pitch
+/// (the floor under the two soles need not be level between them). Why they separate (walking does
+/// not, README "per-joint"): the two legs' torques change differently as the weight moves between them,
+/// and the calibration motion moves the parallel joints' torques (hip pitch, knee, ankle pitch; hip and
+/// ankle roll) in different ratios. Least squares over the window with prior c₀ = 1/belief (100 % relative
+/// std), y₀ ~ N(0, (0.05 rad)²), observation noise control.k_estimation_noise, no forgetting (one batch:
+/// the slowest component's period is 13 s), in information form (information_least_squares.hpp). A sample is taken within the calibration window, both soles planned in
+/// support and firm by their F/T sensors (normal force ≥ 5 % of the weight, the centre of pressure in
+/// the sole's middle 60 %); bad data (stiffness_estimator.hpp's rule, or the controller's sensor check)
+/// is skipped and counted. The estimate stays within [0.1, 10] × the belief. The compensators keep the
+/// belief until the calibration ends, then take each joint's estimate whose relative std is ≤
+/// control.k_estimation_confidence. (Fed back while it runs, the estimate changes the modelled torque
+/// it is fitted to, sample by sample: on the twin the worst joint then ended 11 % off, against 6.4 %
+/// held; README.) Allocation-free after construction; free of the simulator.
+#include <array>
+
+#include "flexgait/compensation/deformation_compensator.hpp"
+#include "flexgait/compensation/information_least_squares.hpp"
+
+namespace flexgait::compensation {
+
+class ChainStiffnessCalibration {
+ public:
+  static constexpr int kMaxJoints = 2 * humanoid::kLegJoints;  ///< identified joints at most
+  static constexpr int kStates = kMaxJoints + 2;                ///< their c, then y₀'s roll and pitch
+
+  /// \param begin, end the calibration window [s] (walking::CalibrationMotion's start and end()).
+  ChainStiffnessCalibration(const walking::RobotModel& model, const CompensationParams& params, double period, double begin,
+                            double end);
+
+  /// One control period. \param t now [s]; \param torque the modelled gear torque of every joint [Nm];
+  /// \param sensors_ok false when the controller's sensor check flags a sensor. Returns 1 when it took a sample.
+  int update(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+             const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support, bool sensors_ok);
+
+  /// The roll and pitch rows of y's regressor on the states at the encoders θ_enc (the model above) and
+  /// y itself: y ≈ H x. For the tests (finite differences) and the update.
+  Eigen::Matrix<double, 2, kStates> regressor(const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+                                              Eigen::Vector2d& y);
+
+  const humanoid::JointVector& estimate() const { return estimate_; }    ///< 1/c (the belief where not identified) [Nm/rad]
+  /// What the compensators use: the belief, after the calibration the confident estimates [Nm/rad].
+  const humanoid::JointVector& stiffness() const { return stiffness_; }
+  bool identified(int joint) const { return state_[joint] >= 0; }
+  /// Relative standard deviation sqrt(P_jj)/c_j of an identified joint (0 elsewhere).
+  double relative_std(int joint) const;
+  long samples() const { return samples_; }    ///< samples used
+  long bad_data() const { return bad_data_; }  ///< periods skipped for bad data
+
+ private:
+  walking::RobotModel model_;
+  CompensationParams params_;
+  double period_;       ///< [s]
+  double noise_variance_;
+  double begin_, end_;  ///< [s]
+  humanoid::JointVector lagged_torque_{};  ///< the modelled torque through the deflection's lag [Nm]
+  bool lagged_ = false;
+  humanoid::JointVector belief_, estimate_, stiffness_;
+  std::array<int, humanoid::kJoints> state_{};  ///< a joint's state index, −1: not identified
+  std::array<double, kStates> c_min_{}, c_max_{};
+  InformationLeastSquares<kStates> fit_;
+  walking::RobotModelData data_;
+  bool published_ = false;  ///< the calibration is over and stiffness_ holds its result
+  long samples_ = 0, bad_data_ = 0;
+};
+
+}  // namespace flexgait::compensation

@@ -1,0 +1,215 @@
+// control.k_estimation = calibrate (issue 20): the two flat soles' relative tilt through the encoders.
+// The information form of least squares equals the covariance-form RLS without forgetting (the same posterior).
+// The regressor is the exact derivative of the relative tilt (central differences, with SO(3)'s inverse left
+// Jacobian: without it the columns would be off by ≈ |φ|/2 = 3 % at this pose); fed a stance whose encoders read
+// θ_link + τ/k with every joint's own k (±20 %) and each joint's torque on its own, the calibration finds each
+// leg roll and pitch joint's k and the floor's relative tilt under the soles; the compensators keep the belief until
+// the window ends; bad data, a swinging foot and times outside the window give no sample; adversarial data stays
+// bounded and positive.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "flexgait/compensation/chain_stiffness_calibration.hpp"
+#include "flexgait/compensation/forgetting_rls.hpp"
+#include "flexgait/walking/rotation.hpp"
+
+#include "double_support_stance.hpp"
+
+namespace flexgait::compensation {
+namespace {
+
+using fixtures::readings;
+using fixtures::Stance;
+using humanoid::JointVector;
+using humanoid::kJoints;
+using walking::Matrix3d;
+using walking::Vector3d;
+
+constexpr double kBelief = 1000.0;  // [Nm/rad]
+
+CompensationParams calibration_params() {
+  CompensationParams p;
+  p.k_joint = kBelief;
+  p.k_estimation = KEstimation::kCalibrate;
+  p.k_estimation_noise = 1e-4;
+  return p;
+}
+
+
+/// The true stiffness: 1250 Nm/rad × 1.2 (hip roll, knee) or × 0.8 (hip pitch, ankle pitch, ankle roll) on the
+/// left, the other way round on the right.
+JointVector true_stiffness() {
+  JointVector k;
+  k.fill(1250.0);
+  for (int side = 0; side < 2; ++side) {
+    const int f = humanoid::leg_first_joint(side);
+    const double up = side == 0 ? 1.2 : 0.8, down = 2.0 - up;
+    k[f + 1] *= up, k[f + 3] *= up;                    // hip roll, knee
+    k[f + 2] *= down, k[f + 4] *= down, k[f + 5] *= down;  // hip pitch, ankle pitch, ankle roll
+  }
+  return k;
+}
+
+TEST(InformationLeastSquares, EqualsTheRlsWithoutForgettingAndHoldsAParameterWithNoPriorVariance) {
+  using Fit = InformationLeastSquares<4>;
+  Fit::Vector x0(1e-3, 2e-3, 0.5, 0.0), prior(1e-6, 4e-6, 0.01, 0.0);  // (the last: held at 0)
+  ForgettingRls<4> rls(x0, ForgettingRls<4>::Matrix(prior.asDiagonal()), 1.0);
+  Fit fit(x0, prior);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 300; ++i) {
+    const Fit::Vector h(40 * u(rng), 40 * u(rng), u(rng), u(rng));
+    const double y = h.dot(Fit::Vector(8e-4, 1.5e-3, 0.45, 0.0)) + 1e-4 * u(rng);
+    ASSERT_TRUE(rls.update(h, y, 1e-8));
+    ASSERT_TRUE(fit.add(h, y, 1e-8));
+  }
+  fit.solve();
+  // Both are the posterior; they differ by round-off only (the RLS's subtractions: ≈ 1e-12 relative here, where
+  // the scales are mild).
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(fit.x()[i], rls.x()[i], 1e-9 * std::abs(rls.x()[i])) << i;
+    EXPECT_NEAR(fit.variance(i), rls.P()(i, i), 1e-6 * rls.P()(i, i)) << i;
+  }
+  EXPECT_EQ(fit.x()[3], 0.0);
+  EXPECT_EQ(fit.variance(3), 0.0);
+  EXPECT_FALSE(fit.add(Fit::Vector(NAN, 0, 0, 0), 0.0, 1e-8));
+}
+
+TEST(ChainStiffnessCalibration, TheRegressorIsTheRelativeTiltsDerivative) {
+  const Stance s;
+  ChainStiffnessCalibration c(s.model, calibration_params(), 0.004, 0.0, 1.0);
+  // A pose 0.02–0.05 rad off the stance: the soles' relative rotation φ is ≈ 0.06 rad.
+  JointVector q = s.q, tau{};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.05, 0.05), t(-40.0, 40.0);
+  for (int j = 0; j < kJoints; ++j) q[j] += u(rng), tau[j] = t(rng);
+  // (no torque on the yaw joints: y then is the relative tilt itself, without their deflections by the belief)
+  tau[humanoid::kLeftHipYaw] = tau[humanoid::kRightHipYaw] = 0;
+  Eigen::Vector2d y;
+  const auto H = c.regressor(q, tau, y);
+  double phi = 0;
+  {
+    walking::RobotModelData d;
+    walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
+    phi = walking::rotation_vector(walking::sole_pose(s.model, d, 0).R.transpose() * walking::sole_pose(s.model, d, 1).R).norm();
+  }
+  EXPECT_GT(phi, 0.03);
+  int checked = 0;
+  for (int j = 0; j < kJoints; ++j) {
+    if (!c.identified(j)) continue;
+    const double h = 1e-6;
+    JointVector plus = q, minus = q;
+    plus[j] += h, minus[j] -= h;
+    Eigen::Vector2d y_plus, y_minus;
+    c.regressor(plus, tau, y_plus);
+    c.regressor(minus, tau, y_minus);
+    const Eigen::Vector2d fd = (y_plus - y_minus) / (2 * h) * tau[j];
+    int n = 0;  // (the joint's state: the identified joints in order)
+    for (int i = 0; i < j; ++i) n += c.identified(i) ? 1 : 0;
+    // Central differences: O(h²) truncation, ≈ 1e-10/h round-off: 1e-7 relative is ample.
+    EXPECT_LT((H.col(n) - fd).norm(), 1e-7 * fd.norm() + 1e-12) << humanoid::kJointNames[j];
+    ++checked;
+  }
+  EXPECT_EQ(checked, 10);
+  EXPECT_EQ(H.rightCols<2>(), (Eigen::Matrix2d::Identity()));
+}
+
+/// n periods of the stance with each joint's torque drawn on its own in [−20, 20] Nm, the encoders θ_link + τ/k.
+void feed(ChainStiffnessCalibration& c, const Stance& s, const JointVector& q_link, const JointVector& k, int n, double t0) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> torque(-20.0, 20.0);
+  JointVector tau{}, encoder{};
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < kJoints; ++j) {
+      tau[j] = torque(rng);
+      encoder[j] = q_link[j] + tau[j] / k[j];
+    }
+    const double t = t0 + i * 0.004;
+    c.update(t, encoder, tau, readings(s, t), s.plan(), true);
+  }
+}
+
+TEST(ChainStiffnessCalibration, FindsEachJointAndTheFloorsTiltWhenEachJointsTorqueMovesOnItsOwn) {
+  const Stance s;
+  // The right sole on a floor 0.01 rad rolled and 0.005 rad pitched against the left's: the right leg's link
+  // angles by inverse kinematics to that sole.
+  JointVector q = s.q;
+  walking::RobotModelData d;
+  walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
+  const walking::Pose right = walking::sole_pose(s.model, d, 1);
+  const Matrix3d tilt = walking::rot_x(0.01) * walking::rot_y(0.005);
+  const walking::IkSolution ik = walking::leg_inverse_kinematics(s.model.leg[1], walking::Pose{right.p, right.R * tilt});
+  for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(1) + i] = ik.q[i];
+  walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
+  const Vector3d y0 = walking::rotation_vector(walking::sole_pose(s.model, d, 0).R.transpose() * walking::sole_pose(s.model, d, 1).R);
+  ASSERT_NEAR(y0.x(), 0.01, 1e-3) << "the inverse kinematics put the right sole on its tilted floor";
+
+  const JointVector k = true_stiffness();
+  ChainStiffnessCalibration c(s.model, calibration_params(), 0.004, 0.0, 4.0);
+  feed(c, s, q, k, 1000, 0.0);
+  EXPECT_EQ(c.samples(), 1000);
+  for (int j = 0; j < kJoints; ++j) {
+    if (!c.identified(j)) {
+      EXPECT_EQ(c.estimate()[j], kBelief) << humanoid::kJointNames[j];  // the yaw joints and the waist
+      continue;
+    }
+    // Linear in the deflections (|τ/k| ≤ 0.02 rad): the second-order terms are ≈ 1 % of them.
+    EXPECT_NEAR(c.estimate()[j], k[j], 0.01 * k[j]) << humanoid::kJointNames[j];
+    EXPECT_EQ(c.stiffness()[j], kBelief) << "the belief until the calibration ends";
+    EXPECT_LT(c.relative_std(j), 0.01);
+  }
+  // After the window: no more samples, the compensators take the estimates.
+  feed(c, s, q, k, 10, 4.1);
+  EXPECT_EQ(c.samples(), 1000);
+  for (int j = 0; j < kJoints; ++j) EXPECT_EQ(c.stiffness()[j], c.estimate()[j]) << humanoid::kJointNames[j];
+}
+
+TEST(ChainStiffnessCalibration, BadDataASwingingFootOrTimesOutsideTheWindowGiveNoSample) {
+  const Stance s;
+  ChainStiffnessCalibration c(s.model, calibration_params(), 0.004, 1.0, 2.0);
+  JointVector tau{};
+  tau.fill(10.0);
+  c.update(0.5, s.q, tau, readings(s, 0.5), s.plan(), true);  // before the window
+  SupportPlan swing = s.plan();
+  swing.swinging[1] = true;
+  c.update(1.2, s.q, tau, readings(s, 1.2), swing, true);  // a foot swings
+  EXPECT_EQ(c.samples(), 0);
+  EXPECT_EQ(c.bad_data(), 0);
+  JointVector nan_tau = tau;
+  nan_tau[humanoid::kLeftKnee] = NAN;
+  c.update(1.3, s.q, nan_tau, readings(s, 1.3), s.plan(), true);   // a NaN
+  c.update(1.4, s.q, tau, readings(s, 1.3), s.plan(), true);       // an F/T reading 0.1 s old
+  c.update(1.5, s.q, tau, readings(s, 1.5), s.plan(), false);      // the controller flags a sensor
+  EXPECT_EQ(c.samples(), 0);
+  EXPECT_EQ(c.bad_data(), 3);
+  for (int j = 0; j < kJoints; ++j) EXPECT_EQ(c.estimate()[j], kBelief);
+  // A foot barely loaded (its F/T reads 2 % of the weight): no sample either.
+  std::array<humanoid::ForceTorque, 2> light = readings(s, 1.6);
+  for (int a = 0; a < 3; ++a) light[0].force[a] *= 0.04, light[0].torque[a] *= 0.04;
+  c.update(1.6, s.q, tau, light, s.plan(), true);
+  EXPECT_EQ(c.samples(), 0);
+}
+
+TEST(ChainStiffnessCalibration, AdversarialDataStaysBoundedAndPositive) {
+  const Stance s;
+  ChainStiffnessCalibration c(s.model, calibration_params(), 0.004, 0.0, 10.0);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> garbage(-1.0, 1.0), torque(-100.0, 100.0);
+  JointVector tau{}, encoder{};
+  for (int i = 0; i < 2000; ++i) {
+    for (int j = 0; j < kJoints; ++j) tau[j] = torque(rng), encoder[j] = s.q[j] + 0.2 * garbage(rng);
+    const double t = i * 0.004;
+    c.update(t, encoder, tau, readings(s, t), s.plan(), true);
+  }
+  EXPECT_GT(c.samples(), 1000);
+  for (int j = 0; j < kJoints; ++j) {
+    EXPECT_GT(c.estimate()[j], 0.0);
+    EXPECT_GE(c.estimate()[j], kBelief / 10 * (1 - 1e-12));
+    EXPECT_LE(c.estimate()[j], kBelief * 10 * (1 + 1e-12));
+  }
+}
+
+}  // namespace
+}  // namespace flexgait::compensation
