@@ -34,8 +34,7 @@ ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& 
     const int j = body.joint;
     const bool leg = (j >= humanoid::leg_first_joint(0) && j < humanoid::leg_first_joint(0) + humanoid::kLegJoints) ||
                      (j >= humanoid::leg_first_joint(1) && j < humanoid::leg_first_joint(1) + humanoid::kLegJoints);
-    const walking::Vector3d a = body.axis.cwiseAbs();
-    if (!leg || (a.z() >= a.x() && a.z() >= a.y())) continue;  // (a yaw joint: not seen)
+    if (!leg || yaw_axis(body.axis)) continue;
     state_[j] = n;
     x0[n] = 1.0 / belief_[j];
     P0[n] = x0[n] * x0[n];  // prior: 100 % relative standard deviation

@@ -51,8 +51,8 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
     for (const auto& body : model_.bodies) {
       const int j = body.joint;
       if (j < humanoid::leg_first_joint(side) || j >= humanoid::leg_first_joint(side) + humanoid::kLegJoints) continue;
+      if (yaw_axis(body.axis)) continue;
       const walking::Vector3d a = body.axis.cwiseAbs();
-      if (a.z() >= a.x() && a.z() >= a.y()) continue;
       group_[j] = a.x() >= a.y() ? kRoll : kPitch;
     }
     ForgettingRls<kStates>::Vector c0 = ForgettingRls<kStates>::Vector::Zero();  // (the offsets: 0)

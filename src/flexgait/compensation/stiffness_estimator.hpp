@@ -56,6 +56,13 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
 bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R, int side,
                   double min_share);
 
+/// A joint whose axis (body frame) is mostly vertical, a yaw joint: its deflection barely tilts a sole, so neither
+/// identification sees it (it keeps the belief).
+inline bool yaw_axis(const walking::Vector3d& axis) {
+  const walking::Vector3d a = axis.cwiseAbs();
+  return a.z() >= a.x() && a.z() >= a.y();
+}
+
 class StiffnessEstimator {
  public:
   static constexpr int kGroups = 2;  ///< per leg: roll, pitch

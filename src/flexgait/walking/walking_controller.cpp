@@ -79,15 +79,19 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
   ref_x_.resize(samples);
   ref_y_.resize(samples);
   for (std::size_t k = 0; k < samples; ++k) {
-    // (the stiffness calibration moves the COM through the ZMP reference: calibration_motion.hpp)
-    const CalibrationOffset c = calibration_offset(walk_.calibration, static_cast<double>(k) * period_);
-    const Eigen::Vector2d p = zmp_reference(plan_, static_cast<double>(k) * period_);
-    ref_x_[k] = p.x() + c.com_x;
-    ref_y_[k] = p.y() + c.com_y;
+    const Eigen::Vector2d p = planned_zmp(static_cast<double>(k) * period_);
+    ref_x_[k] = p.x();
+    ref_y_[k] = p.y();
   }
   const Eigen::Vector2d p0 = zmp_reference(plan_, 0.0);
   zmp_filtered_ = {p0, p0};
   for (int axis = 0; axis < 2; ++axis) cart_[axis].x = Eigen::Vector3d(p0(axis), 0, 0);
+}
+
+Eigen::Vector2d WalkingController::planned_zmp(double t) const {
+  // (the stiffness calibration moves the COM through the ZMP reference)
+  const CalibrationOffset c = calibration_offset(walk_.calibration, t);
+  return zmp_reference(plan_, t) + Eigen::Vector2d(c.com_x, c.com_y);
 }
 
 void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
@@ -519,7 +523,7 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
   }
   // The preview controller replans: the ZMP reference of the new plan from now on.
   for (std::size_t i = k; i < ref_x_.size(); ++i) {
-    const Eigen::Vector2d p = zmp_reference(plan_, static_cast<double>(i) * period_);
+    const Eigen::Vector2d p = planned_zmp(static_cast<double>(i) * period_);
     ref_x_[i] = p.x();
     ref_y_[i] = p.y();
   }

@@ -149,6 +149,8 @@ class WalkingController {
   /// (a fixed-point iteration on the pelvis position through the model's COM).
   void solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
                   int iterations);
+  /// The plan's ZMP reference at t plus the stiffness calibration's COM offsets (calibration_motion.hpp) [m].
+  Eigen::Vector2d planned_zmp(double t) const;
   void measure_zmp(const humanoid::SensorReadings& sensors);
   /// Where the load split between the feet follows (foot force control and the dcm distribution) [m].
   Eigen::Vector2d load_split_point() const;
