@@ -32,7 +32,7 @@ TEST(WalkKEstimation, TenStepsAt3sFindTheTrueStiffnessWithin6Percent) {
   for (int j = 0; j < humanoid::kJoints; ++j) {
     if (!r.k_identified[j]) continue;
     ++identified;
-    RecordProperty("k_" + std::string(humanoid::kJointNames[j]), std::to_string(r.k_estimate[j]));
+    ::testing::Test::RecordProperty("k_" + std::string(humanoid::kJointNames[j]), std::to_string(r.k_estimate[j]));
     EXPECT_NEAR(r.k_estimate[j], 1250.0, 0.06 * 1250.0) << humanoid::kJointNames[j];
   }
   EXPECT_EQ(identified, 10);  // the leg roll and pitch joints; the hip yaws are not observed
@@ -102,7 +102,15 @@ TEST(WalkKEstimation, ACalibratedDriftingGyroFindsTheStiffnessWithin5PercentAt1s
 // at the hip pitches, ankle pitches and ankle rolls; the belief starts at 1000. Measured (README): the hips and
 // knees within 5.7 %, the ankles within 8.7 % (the right ankle roll: its torque moves least in double support).
 // The bounds: 8 % and 12 %. (That the belief holds until the calibration ends: chain_stiffness_calibration_test.)
-TEST(WalkKEstimation, TheCalibrationStanceFindsEachJointWithin12Percent) {
+// The calibration stance (configs/calibrate-stiffness.yaml without the walk) on a twin whose leg joints'
+// gears are scaled per joint; `scale(side, joint in leg)` gives the factor on 1250 Nm/rad.
+struct Calibrated {
+  WalkResult result;
+  humanoid::JointVector truth;  ///< the twin's k [Nm/rad]
+};
+
+template <class Scale>
+Calibrated calibrate(Scale scale) {
   WalkRunParams p;
   p.walk.steps = 0;
   p.walk.calibration.time = 90.0;
@@ -113,24 +121,48 @@ TEST(WalkKEstimation, TheCalibrationStanceFindsEachJointWithin12Percent) {
   p.control.k_estimation = compensation::KEstimation::kCalibrate;
   p.control.load_model = compensation::LoadModel::kMeasured;
   p.control.load_filter_time = 0.01;
-  for (int side = 0; side < 2; ++side) {
-    const int f = humanoid::leg_first_joint(side);
-    p.plant.k_scale[f + 1] = p.plant.k_scale[f + 3] = 1.2;
-    p.plant.k_scale[f + 2] = p.plant.k_scale[f + 4] = p.plant.k_scale[f + 5] = 0.8;
-  }
-  const WalkResult r = run_walk(p);
-  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
-  ASSERT_TRUE(r.k_estimation);
+  for (int side = 0; side < 2; ++side)
+    for (int i = 1; i < 6; ++i) p.plant.k_scale[humanoid::leg_first_joint(side) + i] = scale(side, i);
+  Calibrated c{run_walk(p), {}};
+  EXPECT_FALSE(c.result.metrics.fell) << c.result.metrics.fall_text();
+  EXPECT_TRUE(c.result.k_estimation);
+  for (int j = 0; j < humanoid::kJoints; ++j) c.truth[j] = p.plant.k_joint * p.plant.k_scale[j];
+  return c;
+}
+
+// Each identified joint's estimate within `hips_knees` or `ankles` (relative) of the twin's k; all ten
+// roll and pitch joints identified.
+void expect_each_joint_within(const Calibrated& c, double hips_knees, double ankles) {
+  const WalkResult& r = c.result;
   int identified = 0;
   for (int j = 0; j < humanoid::kJoints; ++j) {
     if (!r.k_identified[j]) continue;
     ++identified;
-    const double truth = 1250.0 * p.plant.k_scale[j];
+    const double truth = c.truth[j];
     const bool ankle = (j - humanoid::leg_first_joint(j < humanoid::kRightHipYaw ? 0 : 1)) >= 4;
-    RecordProperty("k_" + std::string(humanoid::kJointNames[j]), std::to_string(r.k_estimate[j]));
-    EXPECT_NEAR(r.k_estimate[j], truth, (ankle ? 0.12 : 0.08) * truth) << humanoid::kJointNames[j];
+    ::testing::Test::RecordProperty("k_" + std::string(humanoid::kJointNames[j]), std::to_string(r.k_estimate[j]));
+    EXPECT_NEAR(r.k_estimate[j], truth, (ankle ? ankles : hips_knees) * truth) << humanoid::kJointNames[j];
   }
   EXPECT_EQ(identified, 10);
+}
+
+// The issue's scaling (hip roll and knee 1.2; hip pitch, ankle pitch and roll 0.8) on both legs: the
+// issue's target, each joint within 10 %. Measured: 5.5 % (left knee), the ankles 2.5 %.
+TEST(WalkKEstimation, TheCalibrationStanceFindsEachJointWithin10Percent) {
+  expect_each_joint_within(calibrate([](int, int i) { return (i == 1 || i == 3) ? 1.2 : 0.8; }), 0.10, 0.10);
+}
+
+// The left leg scaled as the issue's, the right the reverse, so the two ankle rolls differ by 50 %. The
+// chain sees an ankle's compliance through the sole resting on the floor, and MuJoCo's soft contact lets
+// the sole rock (about 1/13 of the gear's compliance here; README): the ankles are held to 25 %, the hips
+// and knees to 8 %. Measured: 5.3 % and 16.8 % (right ankle roll). The first motion design (soles' rolls
+// 0.003 rad near a by-product of two other components) put the left ankle roll at its bound, 900 % off.
+TEST(WalkKEstimation, TheCalibrationStanceSeparatesLeftAndRightAnkles) {
+  const Calibrated c = calibrate([](int side, int i) {
+    const double issue = (i == 1 || i == 3) ? 1.2 : 0.8;
+    return side == 0 ? issue : 2.0 - issue;
+  });
+  expect_each_joint_within(c, 0.08, 0.25);
 }
 
 TEST(WalkKEstimation, OffWritesNoEstimate) {

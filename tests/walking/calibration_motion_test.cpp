@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <vector>
 
 #include "flexgait/walking/walking_controller.hpp"
 
@@ -95,6 +98,30 @@ TEST(CalibrationMotion, TheControllersSolesStayPutWhileItsComReferenceMoves) {
   }
   // The COM follows the ZMP reference's ±7 cm (the preview's cart: about as far at 5 s periods).
   EXPECT_GT(com_y_max, 0.05);
+}
+
+// The soles' rolls are what tells the two ankle rolls apart, so nothing else may move at their
+// frequencies. The plant is not linear (the contact, the weight split times a lever), so each
+// component also makes its double and, with each other one, its sum and difference frequency. The
+// least squares over a window T resolves frequencies 1/T apart: with the default 90 s window and
+// 5 s sideways period, 0.056 ω. Each sole roll must keep 0.1 ω (about two resolutions) from every such
+// product of the other components, the other sole's roll included. Frequencies in units of the
+// sideways one, ω = 2π/calibration.period.
+TEST(CalibrationMotion, TheSoleRollsKeepClearOfTheOtherComponentsSecondOrderProducts) {
+  using M = CalibrationMotion;
+  const double others[] = {1.0, 1 / M::kForwardRatio, 1 / M::kSquatRatio, 1 / M::kPelvisPitchRatio};
+  const double soles[2] = {1 / M::kLeftSoleRollRatio, 1 / M::kRightSoleRollRatio};
+  for (int side = 0; side < 2; ++side) {
+    std::vector<double> f(std::begin(others), std::end(others));
+    f.push_back(soles[1 - side]);
+    double nearest = 1e9;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      nearest = std::min({nearest, std::abs(soles[side] - f[i]), std::abs(soles[side] - 2 * f[i])});
+      for (std::size_t j = i + 1; j < f.size(); ++j)
+        nearest = std::min({nearest, std::abs(soles[side] - (f[i] + f[j])), std::abs(soles[side] - std::abs(f[i] - f[j]))});
+    }
+    EXPECT_GE(nearest, 0.1) << "side " << side;
+  }
 }
 
 }  // namespace

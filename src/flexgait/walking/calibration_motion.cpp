@@ -23,11 +23,11 @@ CalibrationOffset calibration_offset(const CalibrationMotion& m, double t) {
   const double fade = sin_squared(0.5 * pi * std::min({1.0, s / ramp, (m.time - s) / ramp}));
   const double w = 2 * pi / m.period;
   o.com_y = fade * m.com_y * std::sin(w * s);
-  o.com_x = fade * m.com_x * std::sin(w * s / 1.4);
-  o.pelvis_z = -fade * m.squat * sin_squared(0.5 * w * s / 2.2);
-  o.pelvis_pitch = fade * m.pelvis_pitch * std::sin(w * s / 2.6);
-  o.sole_roll[0] = fade * m.sole_roll * std::sin(w * s / 0.74);
-  o.sole_roll[1] = fade * m.sole_roll * std::sin(w * s / 0.86);
+  o.com_x = fade * m.com_x * std::sin(w * s / CalibrationMotion::kForwardRatio);
+  o.pelvis_z = -fade * m.squat * sin_squared(0.5 * w * s / CalibrationMotion::kSquatRatio);
+  o.pelvis_pitch = fade * m.pelvis_pitch * std::sin(w * s / CalibrationMotion::kPelvisPitchRatio);
+  o.sole_roll[0] = fade * m.sole_roll * std::sin(w * s / CalibrationMotion::kLeftSoleRollRatio);
+  o.sole_roll[1] = fade * m.sole_roll * std::sin(w * s / CalibrationMotion::kRightSoleRollRatio);
   return o;
 }
 

@@ -13,9 +13,17 @@
 /// - a squat (the pelvis lowered): the knee above all;
 /// - the pelvis pitched: the hip pitch (the upper body's weight ahead of or behind the hip);
 /// - each sole's commanded roll: the foot presses on one edge, the ankle and hip roll of that leg.
-/// Each at its own period (ratios 1 : 1.4 : 2.2 : 2.6 of calibration.period, the soles' rolls 0.74
-/// and 0.86), so no two move in step. The whole is faded in and out over calibration.ramp
+/// Each at its own period (ratios 1 : 1.4 : 2.2 : 2.6 of calibration.period, the soles' rolls 0.633
+/// and 0.543), so no two move in step. The whole is faded in and out over calibration.ramp
 /// by sin², so it starts and ends at rest.
+///
+/// The soles' rolls excite the weakest joints (the ankle rolls), so their frequencies keep clear of
+/// what the other components make through the plant's nonlinearity (the contact, the weight split
+/// times the lever): at 1.58 and 1.84 of the sideways frequency ω, each is at least 0.12 ω from every
+/// sum and difference of two of the others' frequencies (ω, ω/1.4, ω/2.2, ω/2.6 and the other sole's)
+/// and from their doubles. The first design (0.74 and 0.86: 1.35 ω and 1.16 ω) had the right sole
+/// 0.006 ω from ω/1.4 + ω/2.2; the 90 s window resolves about 0.06 ω, so a by-product of the forward
+/// motion and the squat read as the right ankle roll (README, "Per-joint k from a calibration stance").
 #include "flexgait/core/record.hpp"
 
 namespace flexgait::walking {
@@ -29,7 +37,14 @@ struct CalibrationMotion {
   double com_x = 0.03;      ///< forward COM amplitude [m]
   double squat = 0.04;      ///< deepest lowering of the pelvis [m]
   double pelvis_pitch = 0.1;  ///< pelvis pitch amplitude [rad]
-  double sole_roll = 0.003;   ///< each sole's commanded roll amplitude [rad]
+  double sole_roll = 0.01;    ///< each sole's commanded roll amplitude [rad]
+
+  // Each component's period over calibration.period (the squat's is that of its sin², a full dip).
+  static constexpr double kForwardRatio = 1.4;       ///< the COM forward and back
+  static constexpr double kSquatRatio = 2.2;         ///< the squat
+  static constexpr double kPelvisPitchRatio = 2.6;   ///< the pelvis pitch
+  static constexpr double kLeftSoleRollRatio = 0.633;   ///< left sole roll's period over calibration.period
+  static constexpr double kRightSoleRollRatio = 0.543;  ///< right sole roll's period over calibration.period
 
   double end() const { return time > 0 ? start + time : 0.0; }  ///< [s]
 
@@ -42,7 +57,7 @@ struct CalibrationMotion {
     v("calibration.start", s.start, {.unit = "s", .doc = "calibration: when it begins", .bounds = closed(0, 100)});
     v("calibration.period", s.period,
       {.unit = "s", .doc = "calibration: period of the COM's sideways motion (forward 1.4x, squat 2.2x, pelvis pitch 2.6x, "
-                           "the soles' rolls 0.74x and 0.86x)",
+                           "the soles' rolls 0.633x and 0.543x)",
        .bounds = closed(1, 100)});
     v("calibration.ramp", s.ramp, {.unit = "s", .doc = "calibration: fade in and fade out", .bounds = closed(0.1, 100)});
     v("calibration.com_y", s.com_y, {.unit = "m", .doc = "calibration: sideways COM amplitude", .bounds = closed(0, 0.3)});
