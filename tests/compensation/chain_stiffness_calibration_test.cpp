@@ -28,16 +28,9 @@ using humanoid::kJoints;
 using walking::Matrix3d;
 using walking::Vector3d;
 
-constexpr double kBelief = 1000.0;  // [Nm/rad]
+using fixtures::kBelief;
 
-CompensationParams calibration_params() {
-  CompensationParams p;
-  p.k_joint = kBelief;
-  p.k_estimation = KEstimation::kCalibrate;
-  p.k_estimation_noise = 1e-4;
-  return p;
-}
-
+CompensationParams calibration_params() { return fixtures::identification_params(KEstimation::kCalibrate); }
 
 /// The true stiffness: 1250 Nm/rad × 1.2 (hip roll, knee) or × 0.8 (hip pitch, ankle pitch, ankle roll) on the
 /// left, the other way round on the right.

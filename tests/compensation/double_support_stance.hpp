@@ -64,4 +64,16 @@ inline std::array<humanoid::ForceTorque, 2> readings(const Stance& s, double t) 
   return ft;
 }
 
+/// The compensators' belief of every gear's k in the identification tests [Nm/rad].
+inline constexpr double kBelief = 1000.0;
+
+/// The identification tests' parameters: the belief kBelief, observation noise 1e-4 rad, k estimation `mode`.
+inline CompensationParams identification_params(KEstimation mode) {
+  CompensationParams p;
+  p.k_joint = kBelief;
+  p.k_estimation = mode;
+  p.k_estimation_noise = 1e-4;
+  return p;
+}
+
 }  // namespace flexgait::compensation::fixtures

@@ -21,9 +21,10 @@ namespace {
 using humanoid::JointVector;
 using humanoid::kJoints;
 using walking::Matrix3d;
+using fixtures::kBelief;
 
 constexpr double kPeriod = 0.004;  // [s]
-constexpr double kTrue = 1250.0, kBelief = 1000.0;  // [Nm/rad]
+constexpr double kTrue = 1250.0;  // [Nm/rad]
 const humanoid::Imu kStill = [] {  // the IMU of a pelvis at rest, level: zero rate, +g up
   humanoid::Imu imu;
   imu.accel = {0.0, 0.0, 9.81};
@@ -87,14 +88,7 @@ TEST(ForgettingRls, ForgettingTracksAChangeAndNonFiniteDataChangesNothing) {
 using fixtures::readings;
 using fixtures::Stance;
 
-
-CompensationParams estimation_params() {
-  CompensationParams p;
-  p.k_joint = kBelief;
-  p.k_estimation = KEstimation::kOn;
-  p.k_estimation_noise = 1e-4;
-  return p;
-}
+CompensationParams estimation_params() { return fixtures::identification_params(KEstimation::kOn); }
 
 /// An estimator of estimation_params() with change(params) applied; rest_end: the end of the gyro's calibration [s].
 template <class Change>

@@ -32,9 +32,7 @@ ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& 
   int n = 0;
   for (const auto& body : model_.bodies) {
     const int j = body.joint;
-    const bool leg = (j >= humanoid::leg_first_joint(0) && j < humanoid::leg_first_joint(0) + humanoid::kLegJoints) ||
-                     (j >= humanoid::leg_first_joint(1) && j < humanoid::leg_first_joint(1) + humanoid::kLegJoints);
-    if (!leg || yaw_axis(body.axis)) continue;
+    if (!(humanoid::in_leg(j, 0) || humanoid::in_leg(j, 1)) || yaw_axis(body.axis)) continue;
     state_[j] = n;
     x0[n] = 1.0 / belief_[j];
     P0[n] = x0[n] * x0[n];  // prior: 100 % relative standard deviation

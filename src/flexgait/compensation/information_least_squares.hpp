@@ -23,7 +23,8 @@ class InformationLeastSquares {
   using Matrix = Eigen::Matrix<double, N, N>;
 
   InformationLeastSquares() { solve(); }
-  /// \param P0 the prior covariance, diagonal (a zero: the parameter is held at x0)
+  /// \param x0 the prior mean; \param prior_variance the prior covariance's diagonal (a zero: the parameter is
+  /// held at x0)
   InformationLeastSquares(const Vector& x0, const Vector& prior_variance) : x_(x0), x0_(x0) {
     A_.setZero();
     for (int i = 0; i < N; ++i) {

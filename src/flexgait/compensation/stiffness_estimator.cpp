@@ -50,7 +50,7 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
     // A joint's group by its axis: mostly x (roll) or y (pitch); z (yaw) is not observed.
     for (const auto& body : model_.bodies) {
       const int j = body.joint;
-      if (j < humanoid::leg_first_joint(side) || j >= humanoid::leg_first_joint(side) + humanoid::kLegJoints) continue;
+      if (!humanoid::in_leg(j, side)) continue;
       if (yaw_axis(body.axis)) continue;
       const walking::Vector3d a = body.axis.cwiseAbs();
       group_[j] = a.x() >= a.y() ? kRoll : kPitch;
@@ -61,7 +61,7 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
       double sum = 0;
       int n = 0;
       for (int j = 0; j < humanoid::kJoints; ++j)
-        if (group_[j] == g && j >= humanoid::leg_first_joint(side) && j < humanoid::leg_first_joint(side) + humanoid::kLegJoints) {
+        if (group_[j] == g && humanoid::in_leg(j, side)) {
           sum += 1.0 / belief_[j];
           ++n;
         }

@@ -24,6 +24,10 @@ inline constexpr std::array<std::string_view, kJoints> kJointNames = {
 
 /// First joint of a leg (side 0: left, 1: right); the leg's joints follow in kinematic order.
 inline constexpr int leg_first_joint(int side) { return side == 0 ? kLeftHipYaw : kRightHipYaw; }
+/// Whether a joint is one of a leg's (side 0: left, 1: right).
+inline constexpr bool in_leg(int joint, int side) {
+  return joint >= leg_first_joint(side) && joint < leg_first_joint(side) + kLegJoints;
+}
 
 using JointVector = std::array<double, kJoints>;  ///< one value per actuated joint [rad, Nm, ...]
 

@@ -37,7 +37,6 @@ struct Pose {
 
 /// R = Rz(yaw) Ry(pitch) Rx(roll).
 inline Matrix3d rpy_to_matrix(double roll, double pitch, double yaw) { return rot_z(yaw) * rot_y(pitch) * rot_x(roll); }
-/// Roll and pitch of R = Rz(yaw) Ry(pitch) Rx(roll) (|pitch| < π/2) [rad].
 /// The rotation vector φ = θ a of R (SO(3)'s log), |φ| ≤ π.
 inline Vector3d rotation_vector(const Matrix3d& R) {
   const Eigen::AngleAxisd a(R);
@@ -56,6 +55,7 @@ inline Matrix3d left_jacobian_inverse(const Vector3d& phi) {
   return Matrix3d::Identity() - 0.5 * W + b * W * W;
 }
 
+/// Roll and pitch of R = Rz(yaw) Ry(pitch) Rx(roll) (|pitch| < π/2) [rad].
 inline double roll_of(const Matrix3d& R) { return std::atan2(R(2, 1), R(2, 2)); }
 inline double pitch_of(const Matrix3d& R) { return std::asin(std::clamp(-R(2, 0), -1.0, 1.0)); }
 inline double yaw_of(const Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
