@@ -12,6 +12,16 @@ namespace {
 constexpr double kMinWeightShare = 0.05;  // a sole in support carries at least this share of the weight
 constexpr double kBoundFactor = 10.0;     // c ∈ [c₀/10, 10 c₀]
 constexpr double kOffsetStd = 0.05;       // prior std of y₀'s roll and pitch [rad]
+constexpr double kSettleTime = 1.0;       // after a pass publishes, the commanded pose's change settles [s]
+
+// The sole's compliance in series with an ankle gear about the same axis (0 elsewhere) [rad/Nm].
+double sole_compliance(int joint, const CompensationParams& p) {
+  using namespace humanoid;
+  const double k = (joint == kLeftAnkleRoll || joint == kRightAnkleRoll)     ? p.sole_stiffness_roll
+                   : (joint == kLeftAnklePitch || joint == kRightAnklePitch) ? p.sole_stiffness_pitch
+                                                                              : 0.0;
+  return k > 0 ? 1.0 / k : 0.0;
+}
 }  // namespace
 
 ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& model, const CompensationParams& params,
@@ -26,22 +36,41 @@ ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& 
       estimate_(belief_),
       stiffness_(belief_) {
   state_.fill(-1);
-  InformationLeastSquares<kStates>::Vector x0, P0;  // (unused states: variance 0, held at 0)
-  x0.setZero();
-  P0.setZero();
   int n = 0;
   for (const auto& body : model_.bodies) {
     const int j = body.joint;
     if (!(humanoid::in_leg(j, 0) || humanoid::in_leg(j, 1)) || yaw_axis(body.axis)) continue;
     state_[j] = n;
-    x0[n] = 1.0 / belief_[j];
-    P0[n] = x0[n] * x0[n];  // prior: 100 % relative standard deviation
-    c_min_[n] = x0[n] / kBoundFactor;
-    c_max_[n] = x0[n] * kBoundFactor;
+    c_min_[n] = 1.0 / (belief_[j] * kBoundFactor);
+    c_max_[n] = kBoundFactor / belief_[j];
     ++n;
+  }
+  for (int j = 0; j < humanoid::kJoints; ++j) sole_compliance_[j] = sole_compliance(j, params_);
+  start_fit();
+}
+
+void ChainStiffnessCalibration::start_fit() {
+  InformationLeastSquares<kStates>::Vector x0, P0;  // (unused states: variance 0, held at 0)
+  x0.setZero();
+  P0.setZero();
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const int n = state_[j];
+    if (n < 0) continue;
+    x0[n] = 1.0 / stiffness_[j];
+    P0[n] = x0[n] * x0[n];  // prior: 100 % relative standard deviation
   }
   for (int r = 0; r < 2; ++r) P0[kMaxJoints + r] = kOffsetStd * kOffsetStd;
   fit_ = InformationLeastSquares<kStates>(x0, P0);
+}
+
+void ChainStiffnessCalibration::publish() {
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    if (state_[j] >= 0 && relative_std(j) <= params_.k_estimation_confidence) stiffness_[j] = estimate_[j];
+}
+
+int ChainStiffnessCalibration::pass(double t) const {
+  const int passes = params_.k_calibration_passes;
+  return std::clamp(static_cast<int>(std::floor((t - begin_) / (end_ - begin_) * passes)), 0, passes - 1);
 }
 
 double ChainStiffnessCalibration::relative_std(int joint) const {
@@ -63,6 +92,7 @@ Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalib
       const int j = humanoid::leg_first_joint(side) + i;
       const walking::Vector3d axis = J.block<3, 1>(3, i);  // (the angular rows: the joint's axis)
       const Eigen::Vector2d h = (side == 0 ? -1.0 : 1.0) * (to_y * axis).head<2>() * torque[j];
+      y -= h * sole_compliance_[j];  // (an ankle: its sole's tilt, the same torque about the same axis)
       if (state_[j] >= 0)
         H.col(state_[j]) = h;
       else
@@ -79,10 +109,18 @@ int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& enc
   if (t > end_ && !published_) {
     // The calibration is over: the compensators take each confident joint's estimate from now on.
     published_ = true;
-    for (int j = 0; j < humanoid::kJoints; ++j)
-      if (state_[j] >= 0 && relative_std(j) <= params_.k_estimation_confidence) stiffness_[j] = estimate_[j];
+    publish();
   }
-  if (t < begin_ || t > end_ || support.swinging[0] || support.swinging[1]) return 0;
+  if (t < begin_ || t > end_) return 0;
+  if (const int p = pass(t); p > pass_) {
+    // A pass is over: the compensators take its estimate, so the torques are modelled with it (the estimated pose,
+    // the lag d/k); the next pass fits afresh from it, once the commanded pose has settled.
+    pass_ = p;
+    publish();
+    start_fit();
+    settle_until_ = t + kSettleTime;
+  }
+  if (t < settle_until_ || support.swinging[0] || support.swinging[1]) return 0;
   if (!identification_inputs_ok(t, encoder, torque, ft) || !sensors_ok) {
     ++bad_data_;
     return 0;
@@ -91,7 +129,7 @@ int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& enc
   // already lags it by the F/T low-pass (control.load_filter_time): the regressor's torque lags by the rest. The
   // lag is a filter in time, so it runs every period with good data, whether or not the sample is used.
   for (int j = 0; j < humanoid::kJoints; ++j) {
-    const double lag = std::max(0.0, params_.gear_damping / belief_[j] - params_.load_filter_time);
+    const double lag = std::max(0.0, params_.gear_damping / stiffness_[j] - params_.load_filter_time);
     const double a = lagged_ ? period_ / (period_ + lag) : 1.0;
     lagged_torque_[j] += a * (torque[j] - lagged_torque_[j]);
   }

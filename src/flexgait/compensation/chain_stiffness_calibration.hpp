@@ -27,7 +27,17 @@
 /// belief until the calibration ends, then take each joint's estimate whose relative std is ≤
 /// control.k_estimation_confidence. (Fed back while it runs, the estimate changes the modelled torque
 /// it is fitted to, sample by sample: on the twin the worst joint then ended 11 % off, against 6.4 %
-/// held; README.) Allocation-free after construction; free of the simulator.
+/// held; README.)
+///
+/// Three things the chain sees besides the gears (README, "Per-joint k from a calibration stance"), each a belief:
+/// - the soles tilt in their contacts (a pad, a soft floor: on the twin 20.5 kNm/rad in roll, 54 kNm/rad in
+///   pitch), about the ankle's axes under the ankle's torque: in series with the ankle gears and, the torque being
+///   the same, not separable from them. control.sole_stiffness_* takes the tilt out of y (0: rigid soles);
+/// - the gears' lag: control.gear_damping d delays the deflection by d/k behind the torque;
+/// - the modelled torque depends on the stiffness (the output compensator's estimated pose, the lag d/k): with
+///   control.k_calibration_passes > 1 the window is split, each pass fitted afresh with the torques modelled at
+///   the previous pass's estimate (the compensators take it at the pass's end; samples resume kSettleTime later).
+/// Allocation-free after construction; free of the simulator.
 #include <array>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
@@ -58,6 +68,7 @@ class ChainStiffnessCalibration {
   /// What the compensators use: the belief, after the calibration the confident estimates [Nm/rad].
   const humanoid::JointVector& stiffness() const { return stiffness_; }
   bool identified(int joint) const { return state_[joint] >= 0; }
+  int state(int joint) const { return state_[joint]; }  ///< a joint's column in the regressor; −1: not identified
   /// Relative standard deviation sqrt(P_jj)/c_j of an identified joint (0 elsewhere).
   double relative_std(int joint) const;
   long samples() const { return samples_; }    ///< samples used
@@ -76,7 +87,14 @@ class ChainStiffnessCalibration {
   std::array<double, kStates> c_min_{}, c_max_{};
   InformationLeastSquares<kStates> fit_;
   walking::RobotModelData data_;
+  humanoid::JointVector sole_compliance_{};  ///< an ankle's sole in series (control.sole_stiffness_*), 0 elsewhere [rad/Nm]
   bool published_ = false;  ///< the calibration is over and stiffness_ holds its result
+  int pass_ = 0;             ///< the pass being fitted (control.k_calibration_passes)
+  double settle_until_ = 0;  ///< no samples before this, after a pass published [s]
+
+  void start_fit();               ///< the fit afresh, its prior 1/stiffness_ (100 % relative std)
+  void publish();                 ///< stiffness_ takes each confident estimate
+  int pass(double t) const;       ///< the pass time t falls in (clamped to the window's)
   long samples_ = 0, bad_data_ = 0;
 };
 

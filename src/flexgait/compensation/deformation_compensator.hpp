@@ -122,6 +122,13 @@ struct CompensationParams {
   double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
   double k_estimation_noise = 0.002;      ///< standard deviation of the foot-tilt observation [rad]
   double k_estimation_confidence = 0.05;  ///< relative standard deviation below which the compensators use the estimate
+  /// calibrate: the window is split into this many passes, each fitted afresh with the torques modelled (the estimated
+  /// pose, the gears' lag) at the previous pass's estimate [-]
+  int k_calibration_passes = 1;
+  /// calibrate: the belief of the soles' rotational stiffness about the sole's x (roll) and y (pitch) axes, the foot pad
+  /// and the floor contact in series with the ankle gears [Nm/rad]; 0: rigid soles
+  double sole_stiffness_roll = 0.0;
+  double sole_stiffness_pitch = 0.0;
   double k_estimation_attitude_time = 0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
   bool k_estimation_stance_offset = false;  ///< each stance's tilt has an unknown offset of its own (estimated beside 1/k)
   double k_estimation_gyro_rest = 0.0;  ///< the gyro is calibrated over this long at rest before the COM moves; 0: none [s]
@@ -173,6 +180,20 @@ struct CompensationParams {
     v("control.k_estimation_confidence", s.k_estimation_confidence,
       {.doc = "k_estimation: the compensators use a group's estimate once its relative standard deviation is at most this",
        .bounds = closed(1e-6, 1)});
+    v("control.k_calibration_passes", s.k_calibration_passes,
+      {.doc = "k_estimation calibrate: the calibration window is split into this many passes; each fits afresh, its "
+              "torques modelled (the estimated pose, the gears' lag d/k) with the previous pass's estimate",
+       .bounds = closed(1, 10)});
+    v("control.sole_stiffness_roll", s.sole_stiffness_roll,
+      {.unit = "Nm/rad",
+       .doc = "k_estimation calibrate: the belief of each sole's roll stiffness (pad and floor contact, in series with "
+              "the ankle roll gear), taken out of the soles' relative tilt; 0 = rigid soles",
+       .bounds = closed(0, 1e9)});
+    v("control.sole_stiffness_pitch", s.sole_stiffness_pitch,
+      {.unit = "Nm/rad",
+       .doc = "k_estimation calibrate: the belief of each sole's pitch stiffness (pad and floor contact, in series with "
+              "the ankle pitch gear), taken out of the soles' relative tilt; 0 = rigid soles",
+       .bounds = closed(0, 1e9)});
     v("control.k_estimation_attitude_time", s.k_estimation_attitude_time,
       {.unit = "s",
        .doc = "k_estimation: the pelvis attitude the identification uses is the gyro's turn pulled towards the "

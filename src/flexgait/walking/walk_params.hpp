@@ -42,7 +42,7 @@ struct WalkParams {
     v("walk.pelvis_height", s.pelvis_height,
       {.unit = "m", .doc = "pelvis origin above the floor", .bounds = closed(0.1, 3.0),
        .derived = "the stretched legs' height less 14.08 % of thigh + shank, to 1 mm (the builtin: 0.723 m, ROBOTIS's)"});
-    v("walk.start_time", s.start_time, {.unit = "s", .doc = "standing before the first step", .bounds = closed(0.0, 100)});
+    v("walk.start_time", s.start_time, {.unit = "s", .doc = "standing before the first step", .bounds = closed(0.0, 4000)});
     v("walk.end_time", s.end_time, {.unit = "s", .doc = "standing after the last step", .bounds = closed(0.0, 100)});
     v("walk.preview_time", s.preview_time, {.unit = "s", .doc = "preview horizon", .bounds = closed(0.1, 5)});
     v("walk.preview_q", s.preview_q, {.unit = "1/m^2", .doc = "weight of the integrated ZMP error", .bounds = left_open(0, 1e6)});
