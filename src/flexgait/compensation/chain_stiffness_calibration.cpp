@@ -70,6 +70,7 @@ void ChainStiffnessCalibration::publish() {
 
 int ChainStiffnessCalibration::pass(double t) const {
   const int passes = params_.k_calibration_passes;
+  if (!(end_ > begin_)) return 0;  // (an empty window: one pass)
   return std::clamp(static_cast<int>(std::floor((t - begin_) / (end_ - begin_) * passes)), 0, passes - 1);
 }
 
