@@ -160,6 +160,24 @@ TEST(ChainStiffnessCalibration, FindsEachJointAndTheFloorsTiltWhenEachJointsTorq
   for (int j = 0; j < kJoints; ++j) EXPECT_EQ(c.stiffness()[j], c.estimate()[j]) << humanoid::kJointNames[j];
 }
 
+/// Kelvin–Voigt gears (k δ + d δ̇ = τ) in the stance: each deflection is the torque over k through the
+/// backward-Euler first-order lag lag[j] (the calibration's own filter), from the first torque on.
+struct LaggedGears {
+  JointVector lagged{};
+  bool started = false;
+  /// The encoders θ_link + lagged τ / k after one period with torque tau.
+  JointVector encoder(const JointVector& q_link, const JointVector& tau, const JointVector& k, const JointVector& lag,
+                      double period) {
+    JointVector e;
+    for (int j = 0; j < kJoints; ++j) {
+      lagged[j] += (started ? period / (period + lag[j]) : 1.0) * (tau[j] - lagged[j]);
+      e[j] = q_link[j] + lagged[j] / k[j];
+    }
+    started = true;
+    return e;
+  }
+};
+
 // Kelvin–Voigt gears (control.gear_damping d, k δ + d δ̇ = τ): the deflection is the torque over k through a
 // first-order lag of d/k. With d = 20 Nm s/rad and the belief's k, the lag is 0.02 s, five periods; the stance's
 // deflections are made by the same backward-Euler lag the calibration applies to its regressor. Every third
@@ -171,18 +189,18 @@ TEST(ChainStiffnessCalibration, TheGearsLagRunsOnThroughUnusedSamples) {
   CompensationParams p = calibration_params();
   p.gear_damping = 20.0;
   p.load_filter_time = 0.0;
-  const double period = 0.004, lag = p.gear_damping / kBelief;
+  const double period = 0.004;
+  JointVector lag;
+  lag.fill(p.gear_damping / kBelief);
   ChainStiffnessCalibration c(s.model, p, period, 0.0, 10.0);
   const JointVector k = true_stiffness();
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> torque(-20.0, 20.0);
-  JointVector tau{}, lagged{}, encoder{};
+  LaggedGears gears;
+  JointVector tau{};
   for (int i = 0; i < 2000; ++i) {
-    for (int j = 0; j < kJoints; ++j) {
-      tau[j] = torque(rng);
-      lagged[j] += (i == 0 ? 1.0 : period / (period + lag)) * (tau[j] - lagged[j]);
-      encoder[j] = s.q[j] + lagged[j] / k[j];
-    }
+    for (int j = 0; j < kJoints; ++j) tau[j] = torque(rng);
+    const JointVector encoder = gears.encoder(s.q, tau, k, lag, period);
     const double t = i * period;
     std::array<humanoid::ForceTorque, 2> ft = readings(s, t);
     if (i % 3 == 2)
@@ -239,6 +257,8 @@ TEST(ChainStiffnessCalibration, ASecondPassLagsTheRegressorByTheFirstPassEstimat
   p.gear_damping = 20.0;
   p.load_filter_time = 0.0;
   const double period = 0.004, end = 4000 * period;
+  JointVector lag;  // the true gears' d/k
+  for (int j = 0; j < kJoints; ++j) lag[j] = p.gear_damping / k[j];
   auto run = [&](int passes, JointVector& at_half) {
     p.k_calibration_passes = passes;
     ChainStiffnessCalibration c(s.model, p, period, 0.0, end);
@@ -246,14 +266,14 @@ TEST(ChainStiffnessCalibration, ASecondPassLagsTheRegressorByTheFirstPassEstimat
     std::uniform_real_distribution<double> frequency(0.5, 3.0), phase(0.0, 2 * M_PI);  // [Hz], [rad]
     std::array<std::array<double, 4>, kJoints> wave{};
     for (auto& w : wave) w = {2 * M_PI * frequency(rng), phase(rng), 2 * M_PI * frequency(rng), phase(rng)};
-    JointVector tau{}, lagged{}, encoder{};
+    LaggedGears gears;
+    JointVector tau{};
     for (int i = 0; i < 4000; ++i) {
       for (int j = 0; j < kJoints; ++j) {
         const auto& w = wave[j];
         tau[j] = 12.0 * std::sin(w[0] * i * period + w[1]) + 8.0 * std::sin(w[2] * i * period + w[3]);
-        lagged[j] += (i == 0 ? 1.0 : period / (period + p.gear_damping / k[j])) * (tau[j] - lagged[j]);
-        encoder[j] = s.q[j] + lagged[j] / k[j];
       }
+      const JointVector encoder = gears.encoder(s.q, tau, k, lag, period);
       const double t = i * period;
       c.update(t, encoder, tau, readings(s, t), s.plan(), true);
       if (i == 2001) at_half = c.stiffness();
@@ -263,8 +283,7 @@ TEST(ChainStiffnessCalibration, ASecondPassLagsTheRegressorByTheFirstPassEstimat
       if (c.identified(j)) worst = std::max(worst, std::abs(c.estimate()[j] / k[j] - 1.0));
     return worst;
   };
-  const ChainStiffnessCalibration probe(s.model, p, period, 0.0, end);
-  auto c_identified = [&](int j) { return probe.identified(j); };
+  const ChainStiffnessCalibration probe(s.model, p, period, 0.0, end);  // (which joints are identified)
   JointVector half1{}, half2{};
   const double one = run(1, half1), two = run(2, half2);
   ::testing::Test::RecordProperty("one_pass_worst", std::to_string(one));
@@ -273,7 +292,7 @@ TEST(ChainStiffnessCalibration, ASecondPassLagsTheRegressorByTheFirstPassEstimat
   EXPECT_LT(two, 0.01);
   for (int j = 0; j < kJoints; ++j) {
     EXPECT_EQ(half1[j], kBelief) << "one pass: the belief until the end";
-    if (c_identified(j)) {
+    if (probe.identified(j)) {
       EXPECT_NEAR(half2[j], k[j], 0.05 * k[j]) << "two: the first pass's estimate from the half on";
     }
   }
