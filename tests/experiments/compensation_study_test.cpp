@@ -1,5 +1,5 @@
 // The thesis's walking experiments as sets of walks (experiments/compensation_study.hpp): the
-// compensation study's eight cases differ from the base in their compensation alone; the mismatch
+// compensation study's nine cases differ from the base in their compensation alone; the mismatch
 // study scales the twin's true stiffness and pairs off with both; the comparison's headline cuts
 // are 1 − on/off of the cases' metrics.
 #include "flexgait/experiments/compensation_study.hpp"
@@ -34,7 +34,8 @@ TEST(CompensationStudy, CasesDifferInTheirCompensationAlone) {
                                {"talos", CompensationMode::kTalos, LoadModel::kGravity},
                                {"both-measured", CompensationMode::kBoth, LoadModel::kMeasured},
                                {"both-dynamic", CompensationMode::kBoth, LoadModel::kDynamic},
-                               {"both-dynamic-horizontal", CompensationMode::kBoth, LoadModel::kDynamic}};
+                               {"both-dynamic-horizontal", CompensationMode::kBoth, LoadModel::kDynamic},
+                               {"both-dynamic-horizontal-lag", CompensationMode::kBoth, LoadModel::kDynamic}};
   ASSERT_EQ(cases.size(), std::size(expected));
   for (std::size_t i = 0; i < cases.size(); ++i) {
     EXPECT_EQ(cases[i].name, expected[i].name);
@@ -45,8 +46,14 @@ TEST(CompensationStudy, CasesDifferInTheirCompensationAlone) {
   }
   EXPECT_EQ(cases[1].params.control.gravity, GravityForm::kFull);
   EXPECT_EQ(cases[2].params.control.gravity, GravityForm::kThesis);
-  for (std::size_t i = 0; i + 1 < cases.size(); ++i) EXPECT_EQ(cases[i].params.control.plan_horizontal_force, 0.0) << cases[i].name;
-  EXPECT_EQ(cases.back().params.control.plan_horizontal_force, 0.5);
+  const std::size_t horizontal = cases.size() - 2;  // both-dynamic-horizontal, then the same with the gears' lag
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(cases[i].params.control.plan_horizontal_force, i < horizontal ? 0.0 : 0.5) << cases[i].name;
+    // Only the last case believes the gears' lag, at the twin's damping with the short F/T low-pass.
+    const bool lag = i + 1 == cases.size();
+    EXPECT_EQ(cases[i].params.control.gear_damping, lag ? base.plant.gear_damping : 0.0) << cases[i].name;
+    EXPECT_EQ(cases[i].params.control.load_filter_time, lag ? 0.02 : base.control.load_filter_time) << cases[i].name;
+  }
 }
 
 TEST(CompensationStudy, MismatchScalesTheTrueStiffnessOnly) {

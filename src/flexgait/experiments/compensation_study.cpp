@@ -17,6 +17,17 @@ using compensation::GravityForm;
 /// horizontal ground force, the closed-loop best measured at 0.8-3 s/step (README: the whole force
 /// is right in open loop and overshoots in closed loop).
 constexpr double kStudyHorizontalForce = 0.5;
+/// control.load_filter_time of the case both-dynamic-horizontal-lag: with the gears' lag believed, the F/T
+/// low-pass can be short (README "Loads and the field's baselines": 0.02 s) [s].
+constexpr double kStudyLagFilterTime = 0.02;
+
+/// The case both-dynamic-horizontal with the gears' Kelvin–Voigt lag believed as the twin's damping
+/// (control.gear_damping = plant.gear_damping), the issue 20 targets' configuration.
+WalkRunParams with_gear_lag(WalkRunParams p) {
+  p.control.gear_damping = p.plant.gear_damping;
+  p.control.load_filter_time = kStudyLagFilterTime;
+  return p;
+}
 
 WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form,
                    compensation::LoadModel load = compensation::LoadModel::kGravity, double horizontal_force = 0.0) {
@@ -74,7 +85,9 @@ std::vector<StudyCase> compensation_cases(const WalkRunParams& base) {
           {"both-measured", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kMeasured)},
           {"both-dynamic", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic)},
           {"both-dynamic-horizontal",
-           with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic, kStudyHorizontalForce)}};
+           with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic, kStudyHorizontalForce)},
+          {"both-dynamic-horizontal-lag", with_gear_lag(with(base, CompensationMode::kBoth, GravityForm::kFull,
+                                                             LoadModel::kDynamic, kStudyHorizontalForce))}};
 }
 
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales) {

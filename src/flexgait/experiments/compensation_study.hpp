@@ -21,8 +21,10 @@ struct StudyCase {
   WalkRunParams params;
 };
 
-/// off, both (full form), both (thesis form), robotis, talos, both-measured, both-dynamic and
-/// both-dynamic-horizontal (control.plan_horizontal_force 0.5), from `base` (its other settings kept).
+/// off, both (full form), both (thesis form), robotis, talos, both-measured, both-dynamic,
+/// both-dynamic-horizontal (control.plan_horizontal_force 0.5) and both-dynamic-horizontal-lag (the same
+/// with the gears' lag believed: control.gear_damping = plant.gear_damping, control.load_filter_time
+/// 0.02 s), from `base` (its other settings kept).
 std::vector<StudyCase> compensation_cases(const WalkRunParams& base);
 /// For each scale s: the twin's k_joint = s × its configured value, compensation off and both.
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales);
