@@ -179,7 +179,11 @@ int walk(const RunOptions& run, const RenderOptions& render) {
       dir.write(fmt::format("frames/frame_{:05d}.png", frame++), humanoid::encode_png(rgb, render.width, render.height));
     };
   }
-  const experiments::WalkResult r = experiments::run_walk(params, [&](double t) { bar.show(t); }, observe);
+  // (the log streamed to disk: memory flat in the walk's length)
+  experiments::WalkLogWriter log(dir, "", params.control.k_estimation != compensation::KEstimation::kOff);
+  const experiments::WalkResult r = experiments::run_walk(
+      params, [&](double t) { bar.show(t); }, observe, [&](const experiments::WalkSample& w) { log.add(w); });
+  log.commit();
   if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
   const std::string summary = experiments::write_walk(dir, "", r);
@@ -192,8 +196,8 @@ int walk(const RunOptions& run, const RenderOptions& render) {
     incomplete = fmt::format("the walk failed at t = {:.2f} s after {} of {} steps: {}", m.failure_time,
                              m.steps_completed, m.steps_planned, one_line(m.failure_text(), 1000));
   else if (m.fell)
-    incomplete = fmt::format("the robot fell at t = {:.2f} s ({}) after {} of {} steps", m.fall_time, m.fall_text(),
-                             m.steps_completed, m.steps_planned);
+    incomplete = fmt::format("the walk ended at t = {:.2f} s, outcome {} ({}), after {} of {} steps", m.fall_time,
+                             m.outcome(), m.fall_text(), m.steps_completed, m.steps_planned);
   else if (m.safe_stop)
     incomplete = fmt::format("the walk stopped safely at t = {:.2f} s after {} of {} steps: {}", m.safe_stop_time,
                              m.steps_completed, m.steps_planned, m.safe_stop_text());

@@ -249,6 +249,14 @@ for key in fell steps_completed zmp_rms_x zmp_rms_y pelvis_roll_error_max pelvis
   check "walk summary has $key" grep -q "\"$key\"" "$work/walk.json"
 done
 check "walk did not fall" grep -q '"fell": false' "$work/walk.json"
+check "walk's outcome is walked" grep -q '"outcome": "walked"' "$work/walk.json"
+# A push that throws the robot off the floor is no success: outcome airborne, exit 1, one line.
+"$exe" humanoid walk --set walk.steps=3 --set disturbance.push.time=1 --set disturbance.push.force_z=5000 \
+  --set disturbance.push.duration=0.5 --out "$work/thrown" --json --no-plot >"$work/thrown.json" 2>"$work/err"
+rc=$?
+check "a thrown robot exits 1 (got $rc)" test "$rc" -eq 1
+check "a thrown robot is airborne: $(cat "$work/err")" grep -q '"outcome": "airborne"' "$work/thrown.json"
+check "a thrown robot's error names the outcome" grep -q "^error: .*outcome airborne" "$work/err"
 for f in log.csv footsteps.csv summary.json config.yaml; do check "walk writes $f" test -s "$work/walk/$f"; done
 "$exe" humanoid walk --config "$src/configs/walk-rough.yaml" --set terrain.rough.seed=2 --out "$work/rough" --no-plot \
   >/dev/null 2>"$work/err"

@@ -105,6 +105,45 @@ TEST(WalkSensorFaults, PermanentFtFailureIsASafeStop) {
   EXPECT_TRUE(r.log.back().safe_stop);
 }
 
+TEST(WalkSensorFaults, ABadFirstSampleOfAnySensorIsHeldAtItsRestValue) {
+  // A NaN on the very first sample (no last good value yet) reads as the start pose at rest: the
+  // twin never sees a NaN command, and one bad sample is one episode, not a failure.
+  for (const int sensor : {humanoid::kGyro, humanoid::kAccel, humanoid::kAhrs, humanoid::kFtLeft, humanoid::kEncoder}) {
+    WalkRunParams p = ten_steps();
+    p.walk.steps = 2;
+    p.estimator.source = sensor == humanoid::kAhrs ? walking::AttitudeSource::kAhrs : p.estimator.source;
+    set_fault(p, sensor, FaultKind::kNan, 0.0, 0.001);
+    const WalkResult r = run_walk(p);
+    const WalkMetrics& m = r.metrics;
+    EXPECT_FALSE(m.failure) << humanoid::kSensorNames[sensor] << ": " << m.failure_text();
+    EXPECT_EQ(m.outcome(), "walked") << humanoid::kSensorNames[sensor] << ": " << m.fall_text();
+    EXPECT_EQ(m.sensor_fault_episodes, 1) << humanoid::kSensorNames[sensor];
+  }
+}
+
+TEST(WalkSensorFaults, AStuckEncoderIsDetectedAndTheOutputCompensatorReadsItsCommand) {
+  // The left knee's encoder freezes at 2.4 s (mid-walk) for good. Its command keeps moving, so
+  // the health check flags it stuck; the clean reading is the command, and the output
+  // compensator's estimate stays on the link. With health.safe_stop (default) the walk stops
+  // safely; without, it walks on.
+  WalkRunParams p = ten_steps();
+  p.plant.faults.encoder_joint = humanoid::kLeftKnee;
+  set_fault(p, humanoid::kEncoder, FaultKind::kStuck, 2.4, 1e9);
+  const WalkResult stopped = run_walk(p);
+  EXPECT_EQ(stopped.metrics.outcome(), "safe_stop") << stopped.metrics.fall_text();
+  ASSERT_TRUE(stopped.metrics.safe_stop_reason.has_value());
+  EXPECT_EQ(stopped.metrics.safe_stop_reason->sensor, humanoid::kEncoder);
+  EXPECT_EQ(stopped.metrics.safe_stop_reason->fault, walking::SignalFault::kStuck);
+  p.health.safe_stop = false;
+  const WalkResult walked = run_walk(p);
+  const WalkMetrics& m = walked.metrics;
+  EXPECT_EQ(m.outcome(), "walked") << m.fall_text();
+  EXPECT_GE(m.sensor_fault_episodes, 1);
+  // Without the fallback the frozen reading made the estimate error 110 % of the deflection; the
+  // command stands in for the motor within the servo's tracking error.
+  EXPECT_LT(m.estimate_error_share_of_deflection(), 0.6);
+}
+
 TEST(WalkSensorFaults, NoisyFaultyWalksAreDeterministic) {
   WalkRunParams p = ten_steps();
   p.walk.steps = 2;

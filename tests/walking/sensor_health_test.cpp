@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -147,6 +148,74 @@ TEST(SensorHealth, EncodersMayRepeat) {
   Runner r;
   r.go(0, 1000, [](humanoid::SensorReadings&, int) {});
   EXPECT_FALSE(r.health.bad(humanoid::kEncoder));
+}
+
+TEST(SensorHealth, AnEncoderThatDoesNotFollowItsMovingCommandIsStuckAndReadAsTheCommand) {
+  // Joint 3's command ramps at 0.45 rad/s (1.8 mrad a period) from k = 0; its encoder follows it
+  // (quantised to 1e-5 rad) until k = 100, then freezes. Stuck once the command has moved more
+  // than encoder_stuck_motion (0.02 rad) from the command when the reading last changed; the
+  // clean reading is then the command.
+  Runner r;
+  const double rate = 0.45;
+  humanoid::JointVector command{};
+  int first_stuck = -1;
+  for (int k = 0; k < 200; ++k) {
+    humanoid::SensorReadings s = live(k);
+    const int moving = std::min(k, 100);
+    s.encoder[3] = std::round(rate * moving * kT / 1e-5) * 1e-5;
+    r.health.check(s, k * kT);
+    if (first_stuck < 0 && r.health.fault(humanoid::kEncoder) == SignalFault::kStuck) first_stuck = k;
+    if (first_stuck >= 0) {
+      ASSERT_EQ(r.health.clean().encoder[3], command[3]) << "k = " << k;
+      ASSERT_EQ(r.health.clean().encoder[2], s.encoder[2]) << "the other joints as read";
+    }
+    command[3] = rate * k * kT;  // sent after the update of period k
+    r.health.set_command(command);
+  }
+  // The reading last changed at k = 100, when the command sent after period 99 was 0.1782 rad;
+  // the check at k sees the command of period k − 1: 0.0018 (k − 1) − 0.1782 > 0.02 first at
+  // k = 112 (0.0216; at k = 111 0.0198).
+  EXPECT_EQ(first_stuck, 112);
+  EXPECT_EQ(r.health.episodes(humanoid::kEncoder), 1);
+}
+
+TEST(SensorHealth, AnEncoderAtRestWithItsCommandAtRestIsNotStuck) {
+  // Quantised readings repeat for 1000 periods while the command dithers by ±5 mrad (a balance
+  // loop's corrections), well inside encoder_stuck_motion: never stuck.
+  Runner r;
+  humanoid::JointVector command{};
+  for (int k = 0; k < 1000; ++k) {
+    r.health.check(live(k), k * kT);
+    ASSERT_FALSE(r.health.bad(humanoid::kEncoder)) << "k = " << k;
+    for (int j = 0; j < humanoid::kJoints; ++j) command[j] = 0.1 * j + 0.005 * std::sin(0.05 * k);
+    r.health.set_command(command);
+  }
+}
+
+TEST(SensorHealth, ABadFirstSampleReadsAsTheNominalRestValue) {
+  // No last good value exists at the first sample: a NaN there is replaced by the nominal
+  // reading (set_nominal), never passed on; every sensor.
+  SensorHealth h{HealthParams{}, kT};
+  humanoid::SensorReadings nominal;
+  nominal.imu.accel = {0, 0, 9.81};
+  for (int j = 0; j < humanoid::kJoints; ++j) nominal.encoder[j] = 0.01 * j;
+  h.set_nominal(nominal);
+  humanoid::SensorReadings s = live(0);
+  s.imu.gyro.fill(kNan);
+  s.imu.accel.fill(kNan);
+  s.imu.quat.fill(kNan);
+  s.ft[0].force.fill(kNan);
+  s.ft[1].torque.fill(kNan);
+  s.encoder.fill(kNan);
+  h.check(s, 0.0);
+  const humanoid::SensorReadings& c = h.clean();
+  EXPECT_EQ(c.imu.gyro, nominal.imu.gyro);
+  EXPECT_EQ(c.imu.accel, nominal.imu.accel);
+  EXPECT_EQ(c.imu.quat, nominal.imu.quat);
+  EXPECT_EQ(c.ft[0].force, nominal.ft[0].force);
+  EXPECT_EQ(c.ft[1].torque, nominal.ft[1].torque);
+  EXPECT_EQ(c.encoder, nominal.encoder);
+  for (int i = 0; i < humanoid::kSensors; ++i) EXPECT_TRUE(h.bad(i)) << humanoid::kSensorNames[i];
 }
 
 TEST(SensorHealth, CheckAllocatesNothing) {

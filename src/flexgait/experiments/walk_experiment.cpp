@@ -13,6 +13,7 @@
 #include "flexgait/experiments/capture_point_bound.hpp"
 #include "flexgait/experiments/push_timing.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
+#include "flexgait/experiments/walk_judge.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/twin/plant.hpp"
 #include "flexgait/twin/robot_loader.hpp"
@@ -38,6 +39,38 @@ bool finite_truth(const humanoid::GroundTruth& g) {
   };
   return finite(g.link_angle) && finite(g.link_velocity) && finite(g.motor_angle) && finite(g.pelvis_pos) &&
          finite(g.pelvis_quat) && finite(g.com);
+}
+
+/// The ground truth the walk's judge reads, with the soles in the plan's frame.
+SupportSample support_sample(const humanoid::GroundTruth& g, const humanoid::Terrain& terrain, const Eigen::Vector2d& offset) {
+  SupportSample s;
+  s.t = g.t;
+  s.sole_contact = g.sole_contact;
+  s.other_contact = g.non_sole_contact;
+  // (the pelvis's height above the floor under it: terrain.hpp)
+  s.pelvis_height = g.pelvis_pos[2] - terrain.height(g.pelvis_pos[0], g.pelvis_pos[1]);
+  s.pelvis_R = walking::quat_to_matrix(g.pelvis_quat.data());
+  for (int side = 0; side < 2; ++side) s.sole[side] = Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset;
+  return s;
+}
+
+PlannedSupport planned_support(const walking::FeetTarget& feet) {
+  PlannedSupport p;
+  for (int side = 0; side < 2; ++side) {
+    p.sole[side] = feet.sole[side].p.head<2>();
+    p.swinging[side] = feet.swinging[side];
+  }
+  return p;
+}
+
+/// The judge's limits for this robot and walk (walk_judge.hpp states why each is what it is).
+JudgeLimits judge_limits(const WalkRunParams& p, const walking::RobotModel& model) {
+  JudgeLimits L;
+  L.pelvis_height = p.walk.pelvis_height;
+  L.fall_height = p.fall_height;
+  L.fall_tilt = p.fall_tilt;
+  L.position_tolerance = 0.5 * std::min(model.sole_length, model.sole_width);
+  return L;
 }
 
 /// The robot's own walking height and step width where the configuration leaves them to it
@@ -162,7 +195,8 @@ walking::RobotModel walk_controller_model(const WalkRunParams& params) {
 }
 
 WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress,
-                    const std::function<void(const humanoid::HumanoidPlant&)>& observe) {
+                    const std::function<void(const humanoid::HumanoidPlant&)>& observe,
+                    const std::function<void(const WalkSample&)>& record) {
   const auto wall0 = std::chrono::steady_clock::now();
   const double T = params.plant.control_period;
   walking::WalkingController controller(walk_controller_model(params), params.walk, params.balance, T, params.estimator,
@@ -192,6 +226,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const walking::RobotModel& model = controller.model();
 
   WalkResult out;
+  out.log_streamed = static_cast<bool>(record);
   out.plan = controller.plan();
   WalkMetrics& m = out.metrics;
   m.steps_planned = static_cast<int>(out.plan.steps.size());
@@ -223,6 +258,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   const double length = model.sole_length, width = model.sole_width;
   std::vector<walking::Pose> support;
   support.reserve(2);
+  WalkJudge judge(judge_limits(params, model));
 
   // control.compensated_feedback: the output compensator's last deflection estimate θ̂ − θ_enc,
   // added to the encoders the controller reads (the gears move little in one period).
@@ -249,6 +285,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     }
     if (params.control.load_model != compensation::LoadModel::kGravity) compensator.sense(sensors.ft);
     const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
+    controller.sent(command);
     const compensation::OutputEstimate* estimate =
         params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;
     if (estimate && params.control.compensated_feedback)
@@ -340,16 +377,10 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       break;
     }
 
-    // Falls.
-    const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());
-    // (the pelvis's height above the floor under it: terrain.hpp)
-    const double floor_z = plant.terrain().height(g.pelvis_pos[0], g.pelvis_pos[1]);
-    if (g.pelvis_pos[2] - floor_z < params.walk.pelvis_height - params.fall_height)
-      m.fall_reason = FallReason::kPelvisTooLow;
-    else if (std::abs(walking::roll_of(R)) > params.fall_tilt || std::abs(walking::pitch_of(R)) > params.fall_tilt)
-      m.fall_reason = FallReason::kPelvisTilted;
-    else if (g.non_sole_contact)
-      m.fall_reason = FallReason::kNonSoleContact;
+    // Falls and lost support (walk_judge.hpp).
+    const SupportSample sample = support_sample(g, plant.terrain(), offset);
+    const walking::FeetTarget planned_feet = walking::feet_target(controller.plan(), params.walk.swing_height, t_now);
+    m.fall_reason = judge.check(sample, planned_support(planned_feet));
     if (m.fall_reason) {
       m.fell = true;
       m.fall_time = t_now;
@@ -410,6 +441,11 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       l.error = std::hypot(l.actual_x - l.planned_x, l.actual_y - l.planned_y);
       out.landings.push_back(l);
       ++next_landing;
+      m.fall_reason = judge.landing(sample, s.swing, planned_support(planned_feet));
+      if (m.fall_reason) {
+        m.fell = true;
+        m.fall_time = t_now;
+      }
     }
 
     if (k % log_every == 0 || m.fell) {
@@ -459,14 +495,26 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       w.push_force = g.push_force;
       w.dcm = {st.dcm.x(), st.dcm.y()};
       w.dcm_ref = {st.dcm_ref.x(), st.dcm_ref.y()};
-      out.log.push_back(w);
+      if (record)
+        record(w);
+      else
+        out.log.push_back(w);
     }
     if (progress && k % 250 == 0) progress(t_now);
     if (m.fell) break;
   }
   if (progress) progress(out.plan.duration);
+  if (!m.fell && !m.failure) {  // the walk ran to its end: it must end supported
+    m.fall_reason = judge.at_end(support_sample(g, plant.terrain(), offset));
+    if (m.fall_reason) {
+      m.fell = true;
+      m.fall_time = g.t;
+    }
+  }
 
-  m.steps_completed = static_cast<int>(out.landings.size());
+  // (a missed step's landing is logged in footsteps.csv but not completed)
+  m.steps_completed = static_cast<int>(out.landings.size()) - (m.fall_reason == FallReason::kMissedStep ? 1 : 0);
+  m.support_error_max = judge.support_error_max();
   m.steps_planned = std::max(m.steps_planned, static_cast<int>(controller.plan().steps.size()));  // with a recovery step
   m.zmp_rms_x = zx.rms();
   m.zmp_rms_y = zy.rms();

@@ -144,6 +144,7 @@ struct WalkMetrics {
   double pelvis_pitch_error_max = 0, pelvis_pitch_error_rms = 0;
   double landing_error_max = 0, landing_error_mean = 0;          ///< [m]
   double com_error_rms = 0, com_error_max = 0;                   ///< true COM − planned (xy) [m]
+  double support_error_max = 0;         ///< largest slide of a standing sole from where it came down [m]
   int ik_clamped = 0;                   ///< control periods with a leg target out of reach
   int mujoco_warnings = 0;              ///< MuJoCo warnings
   double simulated_time = 0;            ///< [s]
@@ -176,6 +177,15 @@ struct WalkMetrics {
 
   /// The walk ran to its planned end: every step landed, no fall, no safe stop, no failure.
   bool completed() const { return !fell && !failure && !safe_stop && steps_completed == steps_planned; }
+  /// summary.json's outcome: "walked" (completed), the fall reason's name for a fall or lost
+  /// support ("pelvis_too_low", "airborne", "slid", ...), "safe_stop", "simulation_failure", or
+  /// "incomplete" (ran to its end with a step not landed).
+  std::string outcome() const {
+    if (failure) return "simulation_failure";
+    if (fell) return std::string(name_of(*fall_reason));
+    if (safe_stop) return "safe_stop";
+    return completed() ? "walked" : "incomplete";
+  }
   /// summary.json's fall_reason ("" when it did not fall) and failure ("" when it did not).
   std::string fall_text() const { return fall_reason ? std::string(fall_sentence(*fall_reason)) : std::string(); }
   std::string failure_text() const { return failure ? failure->text() : std::string(); }
@@ -190,9 +200,16 @@ struct WalkMetrics {
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
+    std::string outcome = s.outcome();
+    v("outcome", outcome,
+      {.doc = "walked (every step landed where planned, the robot supported to the end), or why not: a fall "
+              "(pelvis_too_low, pelvis_tilted, non_sole_contact, flipped), lost support (airborne, slid, "
+              "missed_step), safe_stop, simulation_failure, incomplete"});
     v("compensation", s.compensation, {.doc = "control.compensation of the run"});
     v("gravity_model", s.gravity_model, {.doc = "control.gravity_model of the run"});
-    v("fell", s.fell, {.doc = "the robot fell (pelvis too low or tilted, a body other than a sole on the floor)"});
+    v("fell", s.fell,
+      {.doc = "the robot fell or lost its support (pelvis too low, tilted or upside down, a body other than a sole on "
+              "the floor, airborne, a sole slid or a step missed): outcome names which"});
     std::string fall_reason = s.fall_text(), failure = s.failure_text();
     v("fall_reason", fall_reason, {.doc = "why it fell; empty when it did not"});
     v("fall_time", s.fall_time, {.unit = "s", .doc = "when it fell (left out when it did not)", .present = s.fell});
@@ -201,7 +218,8 @@ struct WalkMetrics {
     v("failure_time", s.failure_time,
       {.unit = "s", .doc = "when the simulation failed (left out when it did not)", .present = s.failure.has_value()});
     v("steps_planned", s.steps_planned, {.doc = "footsteps in the plan"});
-    v("steps_completed", s.steps_completed, {.doc = "footsteps landed"});
+    v("steps_completed", s.steps_completed,
+      {.doc = "footsteps landed on the floor where planned relative to the standing sole (within half the sole's width)"});
     v("zmp_rms_x", s.zmp_rms_x, {.unit = "m", .doc = "rms of true ZMP − reference, x"});
     v("zmp_rms_y", s.zmp_rms_y, {.unit = "m", .doc = "rms of true ZMP − reference, y"});
     v("zmp_max_x", s.zmp_max_x, {.unit = "m", .doc = "max |true ZMP − reference|, x"});
@@ -222,6 +240,8 @@ struct WalkMetrics {
     v("landing_error_mean", s.landing_error_mean, {.unit = "m", .doc = "mean horizontal distance landed − planned"});
     v("com_error_rms", s.com_error_rms, {.unit = "m", .doc = "rms of true COM − planned (xy)"});
     v("com_error_max", s.com_error_max, {.unit = "m", .doc = "max |true COM − planned| (xy)"});
+    v("support_error_max", s.support_error_max,
+      {.unit = "m", .doc = "largest slide of a standing sole from where it came down (limit: half the sole's width)"});
     v("deflection_rms", s.deflection_rms, {.unit = "rad", .doc = "rms gear deflection θ_enc − θ_link, leg joints"});
     v("deflection_max", s.deflection_max, {.unit = "rad", .doc = "max gear deflection, leg joints"});
     v("link_error_rms", s.link_error_rms, {.unit = "rad", .doc = "rms θ_link − θ_d (what input compensation removes)"});
@@ -269,14 +289,18 @@ struct WalkResult {
   bool k_estimation = false;            ///< control.k_estimation was on: the fields below apply
   humanoid::JointVector k_estimate{};   ///< the final stiffness estimate of each joint [Nm/rad]
   std::array<bool, humanoid::kJoints> k_identified{};  ///< the joints the estimation identifies (leg roll and pitch)
-  std::vector<WalkSample> log;
+  std::vector<WalkSample> log;          ///< the logged samples (empty when run_walk's `record` took them)
+  bool log_streamed = false;            ///< the samples went to run_walk's `record`, not to `log`
   std::vector<Landing> landings;
   walking::WalkPlan plan;
 };
 
 /// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time now and
-/// then; `observe(plant)` after every control period (for rendering: evaluation code only).
+/// then; `observe(plant)` after every control period (for rendering: evaluation code only);
+/// `record(sample)`, when given, takes each logged sample instead of WalkResult::log (a
+/// WalkLogWriter streaming it to disk: memory flat in the walk's length).
 WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress = {},
-                    const std::function<void(const humanoid::HumanoidPlant&)>& observe = {});
+                    const std::function<void(const humanoid::HumanoidPlant&)>& observe = {},
+                    const std::function<void(const WalkSample&)>& record = {});
 
 }  // namespace flexgait::experiments

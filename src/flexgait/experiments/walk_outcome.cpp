@@ -14,6 +14,14 @@ std::string_view fall_sentence(FallReason reason) {
       return "pelvis tilted beyond the limit";
     case FallReason::kNonSoleContact:
       return "a body other than a sole touched the floor";
+    case FallReason::kFlipped:
+      return "the pelvis turned upside down";
+    case FallReason::kAirborne:
+      return "airborne: no body touched the floor for longer than a walking gait allows";
+    case FallReason::kSlid:
+      return "a standing sole slid away from its planned place";
+    case FallReason::kMissedStep:
+      return "a step did not land where planned";
   }
   throw std::logic_error("FallReason without a sentence");
 }

@@ -13,19 +13,28 @@
 
 namespace flexgait::experiments {
 
-/// Why the robot counts as fallen (checked every control period, walk_experiment.cpp).
+/// Why the walk did not walk: the robot fell or lost the support its plan stands on (checked
+/// every control period and at each landing by WalkJudge, walk_judge.hpp).
 enum class FallReason {
   kPelvisTooLow,    ///< pelvis above the floor lower than walk.pelvis_height − fall_height
   kPelvisTilted,    ///< |roll| or |pitch| of the pelvis beyond fall_tilt
   kNonSoleContact,  ///< a body other than a sole touched the floor
+  kFlipped,         ///< the pelvis turned upside down (its z axis points down)
+  kAirborne,        ///< no body touched the floor for longer than a walking gait allows
+  kSlid,            ///< a standing sole slid away from its planned place
+  kMissedStep,      ///< a step's sole did not land (off the floor, or away from its planned place)
 };
-constexpr std::array<EnumName<FallReason>, 3> enum_names(FallReason) {
+constexpr std::array<EnumName<FallReason>, 7> enum_names(FallReason) {
   return {{{FallReason::kPelvisTooLow, "pelvis_too_low"},
            {FallReason::kPelvisTilted, "pelvis_tilted"},
-           {FallReason::kNonSoleContact, "non_sole_contact"}}};
+           {FallReason::kNonSoleContact, "non_sole_contact"},
+           {FallReason::kFlipped, "flipped"},
+           {FallReason::kAirborne, "airborne"},
+           {FallReason::kSlid, "slid"},
+           {FallReason::kMissedStep, "missed_step"}}};
 }
 /// summary.json's fall_reason: "pelvis too low", "pelvis tilted beyond the limit", "a body other
-/// than a sole touched the floor".
+/// than a sole touched the floor", "airborne: ...", ...
 std::string_view fall_sentence(FallReason reason);
 
 /// Why the simulation itself failed (the walk ends there).

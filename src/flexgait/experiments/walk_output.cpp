@@ -12,54 +12,69 @@
 namespace flexgait::experiments {
 namespace {
 
-// The rows of log.csv and joints.csv, into a CsvWriter (the files) or a Table (the bindings).
+// The columns and rows of log.csv and joints.csv, into a CsvWriter (the files, whole or streamed)
+// or a Table (the bindings).
+std::vector<std::string> log_header() {
+  return {"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
+          "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
+          "roll_correction", "pitch_correction", "support_margin", "roll_kin_encoder", "roll_kin_estimate", "l_sole_x", "l_sole_y", "l_sole_z",
+          "r_sole_x", "r_sole_y", "r_sole_z", "roll_true", "pitch_true", "sensor_faults", "safe_stop",
+          "push_force_x", "push_force_y", "push_force_z", "dcm_x", "dcm_y", "dcm_ref_x", "dcm_ref_y", "dcm_error_x",
+          "dcm_error_y"};
+}
+
+template <class Writer>
+void log_row(Writer& csv, const WalkSample& w) {
+  csv.cell(w.t).cell(static_cast<long long>(w.step)).cell(w.zmp_ref_x).cell(w.zmp_ref_y).cell(w.zmp_ft_x);
+  csv.cell(w.zmp_ft_y).cell(w.zmp_true_x).cell(w.zmp_true_y).cell(w.com_ref_x).cell(w.com_ref_y).cell(w.com_x);
+  csv.cell(w.com_y).cell(w.com_z).cell(w.pelvis_z).cell(w.imu_roll).cell(w.imu_pitch).cell(w.roll_correction);
+  csv.cell(w.pitch_correction).cell(w.support_margin).cell(w.roll_kin_encoder).cell(w.roll_kin_estimate);
+  for (const auto& s : w.sole) csv.cell(s[0]).cell(s[1]).cell(s[2]);
+  csv.cell(w.roll_true).cell(w.pitch_true).cell(static_cast<long long>(w.sensor_faults));
+  csv.cell(static_cast<long long>(w.safe_stop ? 1 : 0));
+  for (const double f : w.push_force) csv.cell(f);
+  csv.cell(w.dcm[0]).cell(w.dcm[1]).cell(w.dcm_ref[0]).cell(w.dcm_ref[1]).cell(w.dcm[0] - w.dcm_ref[0]).cell(w.dcm[1] - w.dcm_ref[1]);
+  csv.end_row();
+}
+
+constexpr std::array<std::string_view, 10> kJointFields = {"desired",   "command",      "encoder",      "link",
+                                                            "estimate",  "conventional", "per_joint",    "torque_model",
+                                                            "torque_estimate", "torque_true"};
+
+std::vector<std::string> joints_header(bool k_estimation) {
+  std::vector<std::string> header{"t"};
+  for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
+    for (const auto f : kJointFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
+  // control.k_estimation on: each leg joint's stiffness estimate over time.
+  if (k_estimation)
+    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) header.push_back("k_est_" + std::string(humanoid::kJointNames[j]));
+  return header;
+}
+
+template <class Writer>
+void joints_row(Writer& csv, const WalkSample& w, bool k_estimation) {
+  csv.cell(w.t);
+  for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) {
+    csv.cell(w.desired[j]).cell(w.command[j]).cell(w.encoder[j]).cell(w.link[j]).cell(w.estimate[j]);
+    csv.cell(w.conventional[j]).cell(w.per_joint[j]).cell(w.torque_model[j]).cell(w.torque_estimate[j]);
+    csv.cell(w.torque_true[j]);
+  }
+  if (k_estimation)
+    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) csv.cell(w.k_estimate[j]);
+  csv.end_row();
+}
+
 template <class Writer>
 Writer walk_log_rows(const WalkResult& r) {
-  Writer csv({"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
-                 "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
-                 "roll_correction", "pitch_correction", "support_margin", "roll_kin_encoder", "roll_kin_estimate", "l_sole_x", "l_sole_y", "l_sole_z",
-                 "r_sole_x", "r_sole_y", "r_sole_z", "roll_true", "pitch_true", "sensor_faults", "safe_stop",
-                 "push_force_x", "push_force_y", "push_force_z", "dcm_x", "dcm_y", "dcm_ref_x", "dcm_ref_y", "dcm_error_x",
-                 "dcm_error_y"});
-  for (const auto& w : r.log) {
-    csv.cell(w.t).cell(static_cast<long long>(w.step)).cell(w.zmp_ref_x).cell(w.zmp_ref_y).cell(w.zmp_ft_x);
-    csv.cell(w.zmp_ft_y).cell(w.zmp_true_x).cell(w.zmp_true_y).cell(w.com_ref_x).cell(w.com_ref_y).cell(w.com_x);
-    csv.cell(w.com_y).cell(w.com_z).cell(w.pelvis_z).cell(w.imu_roll).cell(w.imu_pitch).cell(w.roll_correction);
-    csv.cell(w.pitch_correction).cell(w.support_margin).cell(w.roll_kin_encoder).cell(w.roll_kin_estimate);
-    for (const auto& s : w.sole) csv.cell(s[0]).cell(s[1]).cell(s[2]);
-    csv.cell(w.roll_true).cell(w.pitch_true).cell(static_cast<long long>(w.sensor_faults));
-    csv.cell(static_cast<long long>(w.safe_stop ? 1 : 0));
-    for (const double f : w.push_force) csv.cell(f);
-    csv.cell(w.dcm[0]).cell(w.dcm[1]).cell(w.dcm_ref[0]).cell(w.dcm_ref[1]).cell(w.dcm[0] - w.dcm_ref[0]).cell(w.dcm[1] - w.dcm_ref[1]);
-    csv.end_row();
-  }
+  Writer csv(log_header());
+  for (const auto& w : r.log) log_row(csv, w);
   return csv;
 }
 
 template <class Writer>
 Writer walk_joints_rows(const WalkResult& r) {
-  static constexpr std::array<std::string_view, 10> kFields = {"desired",      "command",         "encoder",
-                                                                "link",         "estimate",        "conventional",
-                                                                "per_joint",    "torque_model",    "torque_estimate",
-                                                                "torque_true"};
-  std::vector<std::string> header{"t"};
-  for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
-    for (const auto f : kFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
-  // control.k_estimation on: each leg joint's stiffness estimate over time (issue 20).
-  if (r.k_estimation)
-    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) header.push_back("k_est_" + std::string(humanoid::kJointNames[j]));
-  Writer csv(header);
-  for (const auto& w : r.log) {
-    csv.cell(w.t);
-    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) {
-      csv.cell(w.desired[j]).cell(w.command[j]).cell(w.encoder[j]).cell(w.link[j]).cell(w.estimate[j]);
-      csv.cell(w.conventional[j]).cell(w.per_joint[j]).cell(w.torque_model[j]).cell(w.torque_estimate[j]);
-      csv.cell(w.torque_true[j]);
-    }
-    if (r.k_estimation)
-      for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) csv.cell(w.k_estimate[j]);
-    csv.end_row();
-  }
+  Writer csv(joints_header(r.k_estimation));
+  for (const auto& w : r.log) joints_row(csv, w, r.k_estimation);
   return csv;
 }
 
@@ -119,11 +134,45 @@ std::string walk_timing_json(const WalkResult& r) {
   return j.dump(2) + "\n";
 }
 
+WalkLogWriter::WalkLogWriter(const RunDirectory& dir, const std::string& sub, bool k_estimation)
+    : log_(make_parent(dir.path() / sub) / "log.csv"),
+      joints_(dir.path() / sub / "joints.csv"),
+      log_csv_(log_header()),
+      joints_csv_(joints_header(k_estimation)),
+      k_estimation_(k_estimation) {}
+
+std::filesystem::path WalkLogWriter::make_parent(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void WalkLogWriter::add(const WalkSample& w) {
+  log_row(log_csv_, w);
+  joints_row(joints_csv_, w, k_estimation_);
+  if (++pending_ >= kRowsPerWrite) flush();
+}
+
+void WalkLogWriter::flush() {
+  log_.append(log_csv_.str());
+  joints_.append(joints_csv_.str());
+  log_csv_.clear();
+  joints_csv_.clear();
+  pending_ = 0;
+}
+
+void WalkLogWriter::commit() {
+  flush();
+  log_.commit();
+  joints_.commit();
+}
+
 std::string write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& r) {
   if (!sub.empty()) std::filesystem::create_directories(dir.path() / sub);
-  dir.write(sub + "log.csv", walk_log_csv(r));
+  if (!r.log_streamed) {
+    dir.write(sub + "log.csv", walk_log_csv(r));
+    dir.write(sub + "joints.csv", walk_joints_csv(r));
+  }
   dir.write(sub + "footsteps.csv", walk_footsteps_csv(r));
-  dir.write(sub + "joints.csv", walk_joints_csv(r));
   std::string summary = walk_summary_json(r);
   dir.write(sub + "summary.json", summary);
   dir.write(sub + "timing.json", walk_timing_json(r));

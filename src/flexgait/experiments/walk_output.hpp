@@ -4,7 +4,9 @@
 /// footprints) and summary.json (the metrics), as text.
 #include <string>
 
+#include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/core/table.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 
@@ -24,8 +26,30 @@ Table walk_joints_table(const WalkResult& result);
 std::string walk_summary_json(const WalkResult& result);
 /// Wall-clock time and real-time factor (timing.json; differs run to run).
 std::string walk_timing_json(const WalkResult& result);
+/// log.csv and joints.csv written while the walk runs, so that memory stays flat in the walk's
+/// length (run_walk's `record`): rows go to temporary files beside the targets, in pieces of
+/// kRowsPerWrite rows; commit() renames them into place (nothing half-written if the run stops).
+class WalkLogWriter {
+ public:
+  static constexpr int kRowsPerWrite = 256;
+  /// Opens the temporary files under `dir`/`sub`; `k_estimation`: joints.csv has the stiffness
+  /// estimates' columns (control.k_estimation on or calibrate).
+  WalkLogWriter(const RunDirectory& dir, const std::string& sub, bool k_estimation);
+  void add(const WalkSample& sample);
+  void commit();
+
+ private:
+  static std::filesystem::path make_parent(const std::filesystem::path& dir);
+  void flush();
+  AtomicFileWriter log_, joints_;
+  CsvWriter log_csv_, joints_csv_;
+  bool k_estimation_;
+  int pending_ = 0;
+};
+
 /// Writes the walk's files (log.csv, footsteps.csv, joints.csv, summary.json, timing.json) under
-/// `dir`/`sub` (sub "" or "name/"); returns summary.json's text.
+/// `dir`/`sub` (sub "" or "name/"; log.csv and joints.csv only when the walk kept its log in
+/// memory, not when a WalkLogWriter streamed them); returns summary.json's text.
 std::string write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& result);
 
 }  // namespace flexgait::experiments

@@ -8,7 +8,7 @@ namespace flexgait::walking {
 using humanoid::kSensors;
 
 SignalFault SignalMonitor::check(const HealthParams& p, double t, double T, double stamp, double* values, int n,
-                                 bool detect_stuck) {
+                                 bool detect_stuck, bool frozen, const double* fallback) {
   bool finite = true;
   for (int i = 0; i < n; ++i) finite = finite && std::isfinite(values[i]);
   // Bitwise repeat of the reading before (NaN never repeats: it is caught as nan first).
@@ -20,11 +20,10 @@ SignalFault SignalMonitor::check(const HealthParams& p, double t, double T, doub
   SignalFault f = SignalFault::kOk;
   if (!finite) f = SignalFault::kNan;
   else if (!(t - stamp <= p.max_age)) f = SignalFault::kStale;
-  else if (detect_stuck && p.stuck_samples > 0 && repeats_ + 1 >= p.stuck_samples) f = SignalFault::kStuck;
+  else if (frozen || (detect_stuck && p.stuck_samples > 0 && repeats_ + 1 >= p.stuck_samples)) f = SignalFault::kStuck;
 
   if (f == SignalFault::kOk) {
     std::memcpy(good_.data(), values, sizeof(double) * static_cast<std::size_t>(n));
-    has_good_ = true;
   } else {
     if (fault_ == SignalFault::kOk) {
       ++episodes_;
@@ -32,10 +31,29 @@ SignalFault SignalMonitor::check(const HealthParams& p, double t, double T, doub
     }
     bad_time_ += T;
     if (t - bad_since_ > p.hold_time) failed_ = true;  // bad beyond the hold time: failed
-    if (has_good_) std::memcpy(values, good_.data(), sizeof(double) * static_cast<std::size_t>(n));
+    std::memcpy(values, fallback != nullptr ? fallback : good_.data(), sizeof(double) * static_cast<std::size_t>(n));
   }
   fault_ = f;
   return f;
+}
+
+void SignalMonitor::set_nominal(const double* values, int n) {
+  std::memcpy(good_.data(), values, sizeof(double) * static_cast<std::size_t>(n));
+}
+
+void SensorHealth::set_nominal(const humanoid::SensorReadings& r) {
+  for (int side = 0; side < 2; ++side) {
+    std::array<double, 6> v{};
+    for (int i = 0; i < 3; ++i) {
+      v[i] = r.ft[side].force[i];
+      v[3 + i] = r.ft[side].torque[i];
+    }
+    monitor_[side].set_nominal(v.data(), 6);
+  }
+  monitor_[humanoid::kGyro].set_nominal(r.imu.gyro.data(), 3);
+  monitor_[humanoid::kAccel].set_nominal(r.imu.accel.data(), 3);
+  monitor_[humanoid::kAhrs].set_nominal(r.imu.quat.data(), 4);
+  for (int j = 0; j < humanoid::kJoints; ++j) encoder_[j].set_nominal(&r.encoder[j], 1);
 }
 
 void SensorHealth::check(const humanoid::SensorReadings& s, double t) {
@@ -57,8 +75,22 @@ void SensorHealth::check(const humanoid::SensorReadings& s, double t) {
   monitor_[humanoid::kAccel].check(p, t, period_, s.imu.accel_stamp, clean_.imu.accel.data(), 3, true);
   monitor_[humanoid::kAhrs].check(p, t, period_, s.imu.quat_stamp, clean_.imu.quat.data(), 4, true);
   bool any = false;
-  for (int j = 0; j < humanoid::kJoints; ++j)
-    any = encoder_[j].check(p, t, period_, s.encoder_stamp[j], &clean_.encoder[j], 1, false) != SignalFault::kOk || any;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    // (bitwise: a NaN never repeats, and moves the anchor)
+    const double raw = s.encoder[j];
+    const bool repeat = has_encoder_previous_ && std::memcmp(&raw, &encoder_previous_[j], sizeof raw) == 0;
+    if (!repeat) command_anchor_[j] = command_[j];
+    encoder_previous_[j] = raw;
+    // (stuck until the reading changes again, wherever the command goes meanwhile)
+    const bool frozen = has_command_ && repeat && p.encoder_stuck_motion > 0 &&
+                        (encoder_[j].fault() == SignalFault::kStuck ||
+                         std::abs(command_[j] - command_anchor_[j]) > p.encoder_stuck_motion);
+    const double* fallback = has_command_ ? &command_[j] : nullptr;
+    any = encoder_[j].check(p, t, period_, s.encoder_stamp[j], &clean_.encoder[j], 1, false, frozen, fallback) !=
+              SignalFault::kOk ||
+          any;
+  }
+  has_encoder_previous_ = true;
   if (any && !encoder_bad_) ++encoder_episodes_;
   if (any) encoder_bad_time_ += period_;
   encoder_bad_ = any;

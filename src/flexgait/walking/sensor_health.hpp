@@ -5,9 +5,16 @@
 ///  - nan:   a value is not finite;
 ///  - stale: its time stamp is older than health.max_age (a dropped or late sample);
 ///  - stuck: a live signal repeated the same bits for health.stuck_samples periods (noise and
-///           motion make a working gyro, accelerometer, AHRS or F/T sensor change every sample;
-///           quantised encoders legitimately repeat and are not checked for this).
-/// A bad value is replaced by the signal's last good one (held); a signal bad for longer than
+///           motion make a working gyro, accelerometer, AHRS or F/T sensor change every sample);
+///           an encoder (quantised: it legitimately repeats while its motor rests) is stuck when
+///           its reading has not changed while its motor's command moved by more than
+///           health.encoder_stuck_motion since the reading last changed (the servo keeps the
+///           motor within its tracking error of the command, so a working encoder must move).
+/// A bad value is replaced by the signal's last good one (held) — a bad encoder by its motor's
+/// command when the commands are known (set_command), since the motor follows it — or, before the signal has given
+/// any good value, by its nominal value at rest (set_nominal: the start pose's encoders, a level
+/// IMU at rest, unloaded F/T sensors), so that no bad value ever leaves the check, from the first
+/// sample on; a signal bad for longer than
 /// health.hold_time has failed (latched), which the controller escalates to a safe stop.
 /// Pure and allocation-free: readings and time in, cleaned readings and flags out.
 #include <array>
@@ -23,6 +30,7 @@ struct HealthParams {
   double max_age = 0.01;    ///< a reading older than this is stale [s]
   double hold_time = 0.3;   ///< longest a last good value stands in for a bad reading [s]
   int stuck_samples = 10;   ///< identical consecutive readings that make a live sensor stuck (0: not checked)
+  double encoder_stuck_motion = 0.02;  ///< command motion with an unchanged encoder that makes it stuck [rad]
   double fade_time = 0.5;   ///< after a failure, the loops fed by that sensor fade out with this time constant [s]
   bool safe_stop = true;    ///< a failed sensor ends the walk (safe stop); off: hold and fade only
 
@@ -35,6 +43,11 @@ struct HealthParams {
     v("health.stuck_samples", s.stuck_samples,
       {.doc = "identical consecutive readings that make a gyro, accelerometer, AHRS or F/T sensor stuck (0: not checked)",
        .bounds = closed(0, 100000)});
+    v("health.encoder_stuck_motion", s.encoder_stuck_motion,
+      {.unit = "rad",
+       .doc = "an encoder whose reading has not changed while its motor's command moved this far is stuck (0: not "
+              "checked); above the servo's largest tracking error",
+       .bounds = closed(0, 10)});
     v("health.fade_time", s.fade_time,
       {.unit = "s", .doc = "after a failure the balance loops fed by that sensor fade out with this time constant",
        .bounds = left_open(0, 100)});
@@ -53,7 +66,14 @@ class SignalMonitor {
   static constexpr int kMaxValues = 6;
   /// Checks the reading `values` (n values, measured at `stamp`) at time t [s], period T [s], and
   /// overwrites `values` with the last good ones when it is bad. Returns the reading's fault.
-  SignalFault check(const HealthParams& p, double t, double T, double stamp, double* values, int n, bool detect_stuck);
+  /// `frozen`: the caller's own evidence that the signal is stuck (an encoder that did not move
+  /// with its command); `fallback` (n values, or null): what a bad reading is replaced by instead
+  /// of the last good values.
+  SignalFault check(const HealthParams& p, double t, double T, double stamp, double* values, int n, bool detect_stuck,
+                    bool frozen = false, const double* fallback = nullptr);
+
+  /// The value a bad reading is replaced by until the signal gives a good one (n values).
+  void set_nominal(const double* values, int n);
 
   SignalFault fault() const { return fault_; }      ///< of the last check
   bool bad() const { return fault_ != SignalFault::kOk; }
@@ -62,8 +82,8 @@ class SignalMonitor {
   double bad_time() const { return bad_time_; }      ///< total time bad [s]
 
  private:
-  std::array<double, kMaxValues> good_{}, previous_{};
-  bool has_good_ = false, has_previous_ = false;
+  std::array<double, kMaxValues> good_{}, previous_{};  ///< good_: the last good values, or the nominal ones
+  bool has_previous_ = false;
   int repeats_ = 0;            ///< consecutive readings equal to the one before
   double bad_since_ = 0;       ///< [s]
   SignalFault fault_ = SignalFault::kOk;
@@ -76,8 +96,19 @@ class SignalMonitor {
 /// of kJoints signals).
 class SensorHealth {
  public:
-  SensorHealth(const HealthParams& params, double period) : params_(params), period_(period) {}
+  SensorHealth(const HealthParams& params, double period) : params_(params), period_(period) {
+    set_nominal(humanoid::SensorReadings{});
+  }
 
+  /// The readings that stand in for bad ones before a sensor has given a good reading (the
+  /// robot at rest in its start pose); without it, zeros (and the identity quaternion).
+  void set_nominal(const humanoid::SensorReadings& nominal);
+  /// The motor commands sent after the last check [rad] (the encoders' stuck test and fallback).
+  void set_command(const humanoid::JointVector& command) {
+    if (!has_command_) command_anchor_ = command;  // (motion counts from the first command on)
+    command_ = command;
+    has_command_ = true;
+  }
   /// Checks every reading of `s` at time t [s]; clean() then holds them with bad values replaced.
   void check(const humanoid::SensorReadings& s, double t);
   const humanoid::SensorReadings& clean() const { return clean_; }
@@ -96,6 +127,11 @@ class SensorHealth {
   double period_;
   std::array<SignalMonitor, humanoid::kSensors - 1> monitor_{};  ///< all but the encoders
   std::array<SignalMonitor, humanoid::kJoints> encoder_{};
+  humanoid::JointVector command_{};         ///< the last commands sent [rad]
+  bool has_command_ = false;
+  humanoid::JointVector encoder_previous_{};  ///< each encoder's last raw reading [rad]
+  humanoid::JointVector command_anchor_{};    ///< the command when that reading last changed [rad]
+  bool has_encoder_previous_ = false;
   int encoder_episodes_ = 0;
   double encoder_bad_time_ = 0;
   bool encoder_bad_ = false;

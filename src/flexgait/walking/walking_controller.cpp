@@ -72,6 +72,12 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
   pelvis_.p = Vector3d(0, 0, walk_.pelvis_height);
   solve_pose(zmp_reference(plan_, 0.0), feet.sole, Matrix3d::Identity(), 20);
   initial_pose_ = desired_;
+  // What a sensor that is bad from its first sample reads as: the robot at rest in this pose,
+  // level (specific force +g up), the F/T sensors unloaded (no ZMP from them).
+  humanoid::SensorReadings rest;
+  rest.encoder = initial_pose_;
+  rest.imu.accel = {0, 0, estimator.gravity};
+  health_.set_nominal(rest);
   const double com_height = center_of_mass(model_, data_).z();
   gains_ = preview_gains(period_, com_height, walk_.preview_time, walk_.preview_q, walk_.preview_r);
   // The reference over the whole plan and one horizon beyond (held at its final value).

@@ -129,6 +129,10 @@ class WalkingController {
   }
 
   const ControllerStatus& status() const { return status_; }
+  /// The motor commands sent to the servos after this update (the deformation compensators'
+  /// output, or update()'s own) [rad]: the next update's health check expects an encoder to move
+  /// when its command moved (a stuck encoder), and reads a bad encoder as its command.
+  void sent(const humanoid::JointVector& command) { health_.set_command(command); }
   /// Also compute the plan's joint and pelvis velocities and accelerations (status().motion;
   /// control.load_model = dynamic): three more poses' IK per update.
   void set_plan_motion(bool on) { plan_motion_ = on; }
