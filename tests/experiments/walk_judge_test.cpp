@@ -58,7 +58,7 @@ TEST(WalkJudge, ATrueWalkPassesEveryCheck) {
     }
     EXPECT_FALSE(judge.landing(s, swing, plan));
   }
-  EXPECT_FALSE(judge.at_end(s));
+  EXPECT_FALSE(judge.at_end(s, plan));
   EXPECT_EQ(judge.support_error_max(), 0.0);  // no sole moved while down
 }
 
@@ -84,7 +84,7 @@ TEST(WalkJudge, AWalkThatDriftsAsAWholeTakesItsPlannedSteps) {
     ASSERT_FALSE(judge.landing(s, swing, plan)) << "step " << step;
   }
   EXPECT_NEAR(s.sole[1].y() - plan.sole[1].y(), 0.2, 1e-12);
-  EXPECT_FALSE(judge.at_end(s));
+  EXPECT_FALSE(judge.at_end(s, plan));
 }
 
 TEST(WalkJudge, ARobotThrownUpIsAirborneOnceTheFlightOutlastsTheLimit) {
@@ -107,7 +107,31 @@ TEST(WalkJudge, ARobotThrownUpIsAirborneOnceTheFlightOutlastsTheLimit) {
   ASSERT_TRUE(r);
   EXPECT_EQ(*r, FallReason::kAirborne);
   EXPECT_EQ(periods, 13);
-  EXPECT_EQ(judge.at_end(s), FallReason::kAirborne);  // a run ending in the air is not supported
+  EXPECT_EQ(judge.at_end(s, plan), FallReason::kAirborne);  // a run ending in the air is not supported
+}
+
+TEST(WalkJudge, ASoleThePlanStandsOnUpForLongerThanTheLimitIsUnsupported) {
+  // The left sole lifts (the plan stands on it) while the right stays down: unsupported at the
+  // first period more than airborne_time after it left (the 13th); a planned swing is fine.
+  WalkJudge judge(limits()), swinging(limits());
+  SupportSample s = standing(0);
+  PlannedSupport plan = plan_of(s);
+  ASSERT_FALSE(judge.check(s, plan));
+  s.sole_contact[0] = false;
+  int periods = 0;
+  std::optional<FallReason> r;
+  while (!r && periods < 100) {
+    s.t += kDt;
+    r = judge.check(s, plan);
+    ++periods;
+  }
+  EXPECT_EQ(r, FallReason::kUnsupported);
+  EXPECT_EQ(periods, 14);  // (it was seen up first at the first period: 13 more)
+  plan.swinging[0] = true;
+  for (int k = 0; k < 100; ++k) {
+    s.t += kDt;
+    ASSERT_FALSE(swinging.check(s, plan));
+  }
 }
 
 TEST(WalkJudge, AShortLiftOffOfBothSolesIsNotAFlight) {
@@ -164,6 +188,17 @@ TEST(WalkJudge, APelvisTurnedUpsideDownIsFlippedAndATiltedOneTilted) {
   EXPECT_EQ(flipped.check(s, plan), FallReason::kFlipped);
   s.pelvis_R = Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitY()).toRotationMatrix();  // pitch 0.7 > 0.6
   EXPECT_EQ(tilted.check(s, plan), FallReason::kPelvisTilted);
+}
+
+TEST(WalkJudge, AWalkEndsSupportedOnlyWithEverySoleItStandsOnDown) {
+  WalkJudge judge(limits());
+  SupportSample s = standing(10.0);
+  PlannedSupport plan = plan_of(s);
+  EXPECT_FALSE(judge.at_end(s, plan));
+  s.sole_contact[0] = false;  // one sole lifted at the end (a push lifted the robot onto one foot)
+  EXPECT_EQ(judge.at_end(s, plan), FallReason::kUnsupported);
+  plan.swinging[0] = true;  // (a plan that ends mid-step: that sole may be up)
+  EXPECT_FALSE(judge.at_end(s, plan));
 }
 
 TEST(WalkJudge, AStepLandsOnlyOnTheFloorWithinTheToleranceOfItsPlannedStep) {

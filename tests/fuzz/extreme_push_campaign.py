@@ -11,7 +11,7 @@ pelvis or the chest. Every run must end in a named outcome:
     walking height (not thrown, not sunk) through the last sample, and both soles end within
     1 cm of the floor. A run that says walked and fails this is a FALSE SUCCESS.
   * exit 1 with one "error:" line and summary.json's outcome one of the named physical outcomes
-    (fell, airborne, slid, flipped, missed step, safe stop, simulation failure).
+    (fell, airborne, slid, flipped, missed step, unsupported, safe stop, simulation failure).
 Anything else (a crash, a hang, exit 2, an unnamed outcome) is a defect. Prints the outcome counts
 in Markdown and every defect with its replay command; exit 1 if there is any defect.
 
@@ -29,7 +29,7 @@ import tempfile
 
 import yaml
 
-NAMED = {"pelvis_too_low", "pelvis_tilted", "non_sole_contact", "flipped", "airborne", "slid", "missed_step",
+NAMED = {"pelvis_too_low", "pelvis_tilted", "non_sole_contact", "flipped", "airborne", "slid", "missed_step", "unsupported",
          "safe_stop", "simulation_failure"}
 TOLERANCE = 0.075        # half the builtin sole's 0.15 m width [m]
 STEP_TIME = 1.0          # [s]

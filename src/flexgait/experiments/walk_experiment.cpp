@@ -505,7 +505,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   }
   if (progress) progress(out.plan.duration);
   if (!m.fell && !m.failure) {  // the walk ran to its end: it must end supported
-    m.fall_reason = judge.at_end(support_sample(g, plant.terrain(), offset));
+    m.fall_reason = judge.at_end(support_sample(g, plant.terrain(), offset),
+                                 planned_support(walking::feet_target(controller.plan(), params.walk.swing_height, g.t)));
     if (m.fall_reason) {
       m.fell = true;
       m.fall_time = g.t;

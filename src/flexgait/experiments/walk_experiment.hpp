@@ -204,7 +204,7 @@ struct WalkMetrics {
     v("outcome", outcome,
       {.doc = "walked (every step landed where planned, the robot supported to the end), or why not: a fall "
               "(pelvis_too_low, pelvis_tilted, non_sole_contact, flipped), lost support (airborne, slid, "
-              "missed_step), safe_stop, simulation_failure, incomplete"});
+              "missed_step, unsupported), safe_stop, simulation_failure, incomplete"});
     v("compensation", s.compensation, {.doc = "control.compensation of the run"});
     v("gravity_model", s.gravity_model, {.doc = "control.gravity_model of the run"});
     v("fell", s.fell,

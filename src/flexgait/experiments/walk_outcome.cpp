@@ -22,6 +22,8 @@ std::string_view fall_sentence(FallReason reason) {
       return "a standing sole slid away from its planned place";
     case FallReason::kMissedStep:
       return "a step did not land where planned";
+    case FallReason::kUnsupported:
+      return "a sole the plan stands on was off the floor";
   }
   throw std::logic_error("FallReason without a sentence");
 }

@@ -23,15 +23,17 @@ enum class FallReason {
   kAirborne,        ///< no body touched the floor for longer than a walking gait allows
   kSlid,            ///< a standing sole slid away from its planned place
   kMissedStep,      ///< a step's sole did not land (off the floor, or away from its planned place)
+  kUnsupported,     ///< a sole the plan stands on stayed off the floor (or was off it at the end)
 };
-constexpr std::array<EnumName<FallReason>, 7> enum_names(FallReason) {
+constexpr std::array<EnumName<FallReason>, 8> enum_names(FallReason) {
   return {{{FallReason::kPelvisTooLow, "pelvis_too_low"},
            {FallReason::kPelvisTilted, "pelvis_tilted"},
            {FallReason::kNonSoleContact, "non_sole_contact"},
            {FallReason::kFlipped, "flipped"},
            {FallReason::kAirborne, "airborne"},
            {FallReason::kSlid, "slid"},
-           {FallReason::kMissedStep, "missed_step"}}};
+           {FallReason::kMissedStep, "missed_step"},
+           {FallReason::kUnsupported, "unsupported"}}};
 }
 /// summary.json's fall_reason: "pelvis too low", "pelvis tilted beyond the limit", "a body other
 /// than a sole touched the floor", "airborne: ...", ...
