@@ -175,7 +175,7 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   job.distributor = mpi.get();
   job.name = "basin";
   job.header = rimless::basin_header();
-  job.count = spec.cells();
+  job.count = static_cast<int>(spec.cells());  // at most kMaxBasinCells (check_basin)
   job.jobs = a.jobs > 0 ? a.jobs : (mpi ? 1 : 0);
   job.resume = a.resume;
   job.signature = fmt::format("basin {} {}:{}:{} {} {}:{}:{} steps {} tolerance {} {}\n{}", spec.x.key,

@@ -1,6 +1,6 @@
 // GuardCrossings (numerics/guard_crossings.hpp) on analytic guard functions g(t), standing in for an
-// integrator's interpolant: CVODE's crossing rules, the root located to its tolerance, and the
-// first-step probe for a guard that crosses and returns within one step.
+// integrator's interpolant: CVODE's crossing rules, the root located to its tolerance, the
+// first-step probe and the interior samples for a guard that crosses and returns within one step.
 #include "flexgait/numerics/guard_crossings.hpp"
 
 #include <gtest/gtest.h>
@@ -125,11 +125,46 @@ TEST(GuardCrossings, FirstStepProbeFindsAHumpThatLaterStepsDoNotSee) {
   ASSERT_TRUE(root.has_value());
   EXPECT_NEAR(*root, 0.3, root_tolerance(0.0, 1.0));
   EXPECT_EQ(w.crossings.fired()[0], -1);
-  // The same hump shifted into a later step ([1, 2]) is CVODE's blind spot: both ends below 0.
+  // The same hump shifted into a later step ([1, 2]) is CVODE's blind spot (both ends below 0);
+  // the interior samples see it: 1.25 above 0 starts the bracket, 1.5 below ends it.
   Watch later({[&hump](double t) { return hump(t - 1.0); }});
   later.start(0.0, {-1});
   EXPECT_FALSE(later.check(1.0).has_value());
-  EXPECT_FALSE(later.check(2.0).has_value());
+  const auto late = later.check(2.0);
+  ASSERT_TRUE(late.has_value());
+  EXPECT_NEAR(*late, 1.3, root_tolerance(1.0, 2.0));
+  EXPECT_EQ(later.crossings.fired()[0], -1);
+}
+
+TEST(GuardCrossings, ADipBetweenTheSamplesOfALaterStepIsFound) {
+  // Direction −1, g = (t − 0.52)(t − 0.58) over the step [0, 1] (not the first: the watch starts
+  // at −1): above 0 at both ends and at the interior samples 0.25, 0.5, 0.75, below 0 on
+  // (0.52, 0.58). The samples' second differences give g'' = 2 exactly (a parabola), and the
+  // chord bound min(g(0.5), g(0.75)) − 2·2·0.25²/8 < 0 sends the bisection into (0.5, 0.75):
+  // it finds g(0.5625) < 0 and the crossing at 0.52.
+  Watch w({[](double t) { return (t - 0.52) * (t - 0.58); }});
+  w.start(-1.0, {-1});
+  EXPECT_FALSE(w.check(0.0).has_value());
+  const auto root = w.check(1.0);
+  ASSERT_TRUE(root.has_value());
+  EXPECT_NEAR(*root, 0.52, root_tolerance(0.0, 1.0));
+  EXPECT_EQ(w.crossings.fired()[0], -1);
+  // The same dip for direction +1 is no crossing until its rise at 0.58 (watching restarted at 0.52).
+  Watch up({[](double t) { return (t - 0.52) * (t - 0.58); }});
+  up.start(-1.0, {+1});
+  EXPECT_FALSE(up.check(0.0).has_value());
+  const auto rise = up.check(1.0);
+  ASSERT_TRUE(rise.has_value());
+  EXPECT_NEAR(*rise, 0.58, root_tolerance(0.0, 1.0));
+  EXPECT_EQ(up.crossings.fired()[0], +1);
+}
+
+TEST(GuardCrossings, AGuardThatStaysAwayFromZeroCostsTheSamplesAlone) {
+  // g = 2 + sin 3t: its chord bound excludes 0 everywhere, no bisection: kSamples − 1 evaluations.
+  Watch w({[](double t) { return 2.0 + std::sin(3.0 * t); }});
+  w.start(0.0, {-1});
+  EXPECT_FALSE(w.check(1.0).has_value());
+  EXPECT_EQ(w.crossings.interior_evaluations(), GuardCrossings::kSamples - 1);
 }
 
 TEST(GuardCrossings, StartRejectsMismatchedSizes) {

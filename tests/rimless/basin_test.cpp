@@ -65,7 +65,7 @@ TEST(Basin, RigidWheelEqualsTheClosedFormAwayFromTheBoundary) {
   ASSERT_TRUE(ref.found) << ref.failure;
   EXPECT_NEAR(ref.point.z(0), rigid_step_map(w).fixed_point(), 1e-9);
   int compared = 0, converged = 0, rolled_back = 0;
-  for (int cell = 0; cell < spec.cells(); ++cell) {
+  for (int cell = 0; cell < static_cast<int>(spec.cells()); ++cell) {
     const double omega0 = spec.x.value(cell % spec.x.count), beta0 = spec.y.value(cell / spec.x.count);
     const ClosedForm expect = closed_form(w, omega0, beta0);
     if (std::abs(expect.margin) < 1e-3 || (std::abs(beta0 + w.slope) < 0.02 && std::abs(omega0) < 0.1)) continue;
@@ -101,6 +101,28 @@ TEST(Basin, RefusesKeysOutsideTheInitialState) {
   EXPECT_THROW(check_basin(base, spec), ConfigError);  // the same key twice
   spec.x.key = "initial.omega";
   spec.y = parse_basin_axis("--y-range", "initial.beta", "-0.5:0.1:3");  // |beta| >= alpha = 0.314
+  EXPECT_THROW(check_basin(base, spec), ConfigError);
+}
+
+TEST(Basin, CountsCellsIn64BitsAndRefusesAGridAboveTheCap) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
+  BasinSpec spec;
+  // 100000 x 100000 = 1e10 cells: above 2^31 (an int would wrap), above the cap; refused at once.
+  spec.x = parse_basin_axis("--x-range", "initial.omega", "0.5:2.5:100000");
+  spec.y = parse_basin_axis("--y-range", "initial.beta", "-0.1:0.1:100000");
+  EXPECT_EQ(spec.cells(), 10'000'000'000LL);
+  try {
+    check_basin(base, spec);
+    ADD_FAILURE() << "a grid of 1e10 cells was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--x-range, --y-range: 100000 x 100000 = 10000000000 cells"),
+              std::string::npos)
+        << e.what();
+  }
+  // 10000 x 10000 = 1e8 cells, the cap itself: accepted (the check looks at the four corners only).
+  spec.x.count = spec.y.count = 10000;
+  EXPECT_NO_THROW(check_basin(base, spec));
+  spec.y.count = 10001;
   EXPECT_THROW(check_basin(base, spec), ConfigError);
 }
 

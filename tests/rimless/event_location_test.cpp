@@ -13,16 +13,7 @@
 namespace flexgait::rimless {
 namespace {
 
-class Segment final : public numerics::OdeSystem {
- public:
-  Segment(const WheelParams& w, const ContactSet& c) : w_(w), c_(c) {}
-  bool rhs(double, std::span<const double> y, std::span<double> yd) override { return flow_derivative(w_, c_, y, yd); }
-  void guards(double, std::span<const double>, std::span<double>) override {}
-
- private:
-  const WheelParams& w_;
-  ContactSet c_;
-};
+using testing::Segment;
 
 constexpr int kSamplesPerStep = 64;  // grid of the dense output on which the guards are watched
 

@@ -206,19 +206,8 @@ TEST(ParameterSpace, APainleveParadoxIsNamed) {
 }
 
 // The seeded random sample of the issue: μ 0.05–5 (log-uniform), I 0.02–1, C 5–60, K 300–1e4
-// (log-uniform), N 6–14, φ 0.03–0.2, ω0 1–3; m = L0 = 1; 20 steps each. The generator is
-// written out (splitmix64, 53-bit uniforms) so that the sample is the same on every platform.
-struct SplitMix64 {
-  std::uint64_t s;
-  double uniform(double a, double b) {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return a + (b - a) * static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-  double log_uniform(double a, double b) { return std::exp(uniform(std::log(a), std::log(b))); }
-};
+// (log-uniform), N 6–14, φ 0.03–0.2, ω0 1–3; m = L0 = 1; 20 steps each (test_support.hpp).
+using testing::SplitMix64;
 
 // With both integrators: DOP853's first step after a restart is long, and set 197 (a foot that
 // starts to slip and reverses within that step) once ended as a "missed event" with it.
@@ -228,15 +217,8 @@ TEST_P(RandomWheels, WalkOrStopForANamedPhysicalReason) {
   SplitMix64 rng{20261123};
   int walked = 0;
   for (int i = 0; i < 200; ++i) {
-    Wheel s;
-    s.mu = rng.log_uniform(0.05, 5);
-    s.I = rng.uniform(0.02, 1);
-    s.C = rng.uniform(5, 60);
-    s.K = rng.log_uniform(300, 1e4);
-    s.legs = static_cast<int>(std::floor(rng.uniform(6, 15)));
-    s.slope = rng.uniform(0.03, 0.2);
-    s.omega0 = rng.uniform(1, 3);
-    const WheelParams w = params_of(s);
+    const testing::RandomWheel s = testing::RandomWheel::draw(rng);
+    const WheelParams w = s.params();
     SCOPED_TRACE(::testing::Message() << "set " << i << ": mu " << s.mu << " I " << s.I << " C " << s.C << " K " << s.K
                                       << " N " << s.legs << " slope " << s.slope << " omega0 " << s.omega0);
     SimulationOptions o = events_only(20);

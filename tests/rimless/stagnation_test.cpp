@@ -121,6 +121,14 @@ TEST(Stagnation, SlidingTimeGrowsLogarithmicallyTowardTheCriticalVelocity) {
       const bool inside = s.omega0 > r.interval_low && s.omega0 < r.interval_high;
       EXPECT_EQ(inside, s.near_vertical() > r.threshold) << s.omega0;
     }
+  // The bounds are bisected as ω_c is (to bisection_tol = 1e-12 relative): a stage 1e-10 inside
+  // each bound is above the threshold, one 1e-10 outside below it (1e-10 rad/s: 100 times the
+  // bracket's width, far below the 2e-5 rad/s of the former interpolation in log d).
+  for (const double edge : {r.interval_low, r.interval_high}) {
+    const double in = edge < r.omega_c ? 1e-10 : -1e-10;
+    EXPECT_GE(run_stage(sliding_wheel(), start(edge + in), sim(), opt).near_vertical(), r.threshold) << edge;
+    EXPECT_LT(run_stage(sliding_wheel(), start(edge - in), sim(), opt).near_vertical(), r.threshold) << edge;
+  }
 }
 
 // The fit's and the classification's keys (issue 13): the defaults are the former literals; a fit

@@ -1,7 +1,15 @@
 /// \file cvode_backend.cpp
 /// OdeIntegrator on SUNDIALS CVODE/CVODES: variable-order Adams (fixed-point corrector) or BDF
 /// (dense Newton), with root finding on CVODE's dense output and forward sensitivities.
+///
+/// CVODE's root finding sees a guard's sign at its internal steps' ends only; every step that it
+/// ends without a root is watched by GuardCrossings as well (guard_crossings.hpp: the interior
+/// samples of the step on CVODE's interpolant), which finds a crossing and its return within the
+/// step. Such a crossing ends the step there (time(), state() and the sensitivities interpolated to
+/// it); CVODE itself stays at its step's end, so the caller restarts at the crossing, as after any
+/// guard.
 #include "flexgait/numerics/ode_backend.hpp"
+#include "flexgait/numerics/guard_crossings.hpp"
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
@@ -38,6 +46,13 @@ struct CvodeSolver {
   std::vector<int> fired;
   double t = 0.0;
   std::int64_t restarts = 0;
+  GuardCrossings watch;            // the interior samples of CVODE's steps (above)
+  std::vector<double> g_end;       // the guards at the latest step's end
+  std::vector<double> y_dense;     // scratch: the interpolant at one time
+  std::vector<double> g_scratch;   // scratch: all guards, for OdeSystem::guard()
+  bool interior_crossing = false;  // the last step ended at a crossing GuardCrossings found
+  double watch_t = 0.0;            // where the watch's current step starts [s]
+  std::int64_t watch_evals = 0;    // guard evaluations of the watch
   OdeStats finished;  // counts of the segments before the current one (CVodeReInit zeroes CVODE's)
   std::string last_error;
 
@@ -222,7 +237,10 @@ void CvodeBackend::restart(double t, std::span<const double> y, std::span<const 
 void CvodeBackend::sensitivities(std::span<double> S) const {
   CvodeSolver& m = *impl_;
   sunrealtype t = 0;
-  m.check(CVodeGetSens(m.cvode, &t, m.yS), "GetSens");
+  if (m.interior_crossing)
+    m.check(CVodeGetSensDky(m.cvode, m.t, 0, m.yS), "GetSensDky");  // at the crossing, before CVODE's step end
+  else
+    m.check(CVodeGetSens(m.cvode, &t, m.yS), "GetSens");
   for (int j = 0; j < m.columns; ++j) {
     const double* col = N_VGetArrayPointer(m.yS[j]);
     std::copy(col, col + m.n, S.begin() + j * m.n);
@@ -247,6 +265,15 @@ void CvodeBackend::restart_state(double t, std::span<const double> y, std::span<
   m.directions.assign(directions.begin(), directions.end());
   if (n_guards > 0) m.check(CVodeSetRootDirection(m.cvode, m.directions.data()), "SetRootDirection");
   ++m.restarts;
+  m.interior_crossing = false;
+  m.g_end.resize(directions.size());
+  m.y_dense.resize(static_cast<std::size_t>(m.n));
+  if (n_guards > 0) {
+    m.system->guards(t, y, m.g_end);
+    ++m.watch_evals;
+  }
+  m.watch.start(t, directions, m.g_end);
+  m.watch_t = t;
 }
 
 StepStatus CvodeBackend::step(double t_stop) {
@@ -257,9 +284,57 @@ StepStatus CvodeBackend::step(double t_stop) {
   const int flag = CVode(m.cvode, t_stop, m.y, &t_reached, CV_ONE_STEP);
   m.check(flag, "step");
   m.t = t_reached;
+  m.interior_crossing = false;
+  const std::span<const double> y_end(N_VGetArrayPointer(m.y), static_cast<std::size_t>(m.n));
   if (flag == CV_ROOT_RETURN) {
     m.check(CVodeGetRootInfo(m.cvode, m.fired.data()), "GetRootInfo");
+    // CVODE goes on from its root if the caller does not restart: the watch starts there too.
+    m.system->guards(m.t, y_end, m.g_end);
+    ++m.watch_evals;
+    m.watch.start(m.t, m.directions, m.g_end);
+    m.watch_t = m.t;
     return StepStatus::Guard;
+  }
+  if (m.n_guards > 0) {
+    // The interpolant covers CVODE's last internal step only: a watch that started before it
+    // (CVODE's step after its root return ends the internal step the root was in) starts again
+    // at its beginning, where CVODE's own step-end check has looked.
+    sunrealtype h_last = 0, t_cur = 0;
+    m.check(CVodeGetLastStep(m.cvode, &h_last), "GetLastStep");
+    m.check(CVodeGetCurrentTime(m.cvode, &t_cur), "GetCurrentTime");
+    if (m.watch_t < t_cur - h_last) {
+      interpolate(t_cur - h_last, m.y_dense);
+      m.system->guards(t_cur - h_last, m.y_dense, m.g_end);
+      ++m.watch_evals;
+      m.watch.start(t_cur - h_last, m.directions, m.g_end);
+    }
+    m.system->guards(m.t, y_end, m.g_end);
+    ++m.watch_evals;
+    const auto values = [&m, this](double ts, std::span<double> g) {
+      interpolate(ts, m.y_dense);
+      m.system->guards(ts, m.y_dense, g);
+      ++m.watch_evals;
+    };
+    std::vector<double>& scratch = m.g_scratch;
+    const auto value = [&m, &scratch, this](double ts, int i) {
+      interpolate(ts, m.y_dense);
+      ++m.watch_evals;
+      return m.system->guard(ts, m.y_dense, i, scratch);
+    };
+    scratch.resize(m.g_end.size());
+    if (const auto crossing = m.watch.check(m.t, m.g_end, values, value)) {
+      if (*crossing < m.t) {
+        interpolate(*crossing, m.y_dense);
+        std::copy(m.y_dense.begin(), m.y_dense.end(), N_VGetArrayPointer(m.y));
+        m.t = *crossing;
+        m.interior_crossing = true;
+      }
+      const auto fired = m.watch.fired();
+      std::copy(fired.begin(), fired.end(), m.fired.begin());
+      m.watch_t = m.t;
+      return StepStatus::Guard;
+    }
+    m.watch_t = m.t;
   }
   return flag == CV_TSTOP_RETURN ? StepStatus::StopTime : StepStatus::Step;
 }
@@ -276,7 +351,7 @@ OdeStats CvodeBackend::stats() const {
   OdeStats s = impl_->segment_stats();
   s.steps += impl_->finished.steps;
   s.rhs_evals += impl_->finished.rhs_evals;
-  s.guard_evals += impl_->finished.guard_evals;
+  s.guard_evals += impl_->finished.guard_evals + impl_->watch_evals;
   s.restarts = impl_->restarts;
   return s;
 }

@@ -3,6 +3,7 @@
 #include <boost/math/tools/toms748_solve.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -20,6 +21,13 @@ bool crosses(int direction, double g_lo, double g) {
 
 }  // namespace
 
+double locate_root(const std::function<double(double)>& g, double a, double b, double ga, double gb, double tol) {
+  if (gb == 0.0) return b;
+  auto close_enough = [tol](double lo, double hi) { return hi - lo <= tol; };
+  std::uintmax_t iterations = 100;
+  return boost::math::tools::toms748_solve(g, a, b, ga, gb, close_enough, iterations).second;
+}
+
 void GuardCrossings::start(double t, std::span<const int> directions, std::span<const double> g) {
   if (g.size() != directions.size()) throw std::invalid_argument("GuardCrossings::start: sizes differ");
   directions_.assign(directions.begin(), directions.end());
@@ -27,6 +35,8 @@ void GuardCrossings::start(double t, std::span<const int> directions, std::span<
   t_lo_.resize(g.size());
   active_.resize(g.size());
   scratch_.resize(g.size());
+  samples_.resize(g.size() * (kSamples - 1));
+  for (auto* v : {&lo_t_, &lo_g_, &hi_t_, &hi_g_, &curvature_}) v->resize(g.size());
   fired_.assign(g.size(), 0);
   rearm(t, g);
 }
@@ -61,6 +71,91 @@ void GuardCrossings::probe_unarmed(double t1, std::span<const double> g1, const 
   }
 }
 
+bool GuardCrossings::refine(std::size_t i, Point a, Point b, int depth, const Values& g_at, Point& lo, Point& hi) {
+  if (depth == 0 || budget_ == 0 || (a.g < 0) != (b.g < 0) || a.g == 0.0) return false;
+  const double dt = b.t - a.t;
+  if (std::min(std::abs(a.g), std::abs(b.g)) > curvature_[i] * dt * dt / 8) return false;  // no root possible
+  const Point m{a.t + 0.5 * dt, 0.0};
+  if (!(m.t > a.t && m.t < b.t)) return false;
+  --budget_;
+  ++interior_evaluations_;
+  g_at(m.t, scratch_);
+  const Point mid{m.t, scratch_[i]};
+  // The new triple's curvature: twice the second divided difference, doubled for safety (above).
+  curvature_[i] = std::max(curvature_[i], 8.0 * std::abs(a.g - 2.0 * mid.g + b.g) / (dt * dt));
+  const int d = directions_[i];
+  if (crosses(d, a.g, mid.g)) {
+    lo = a, hi = mid;
+    return true;
+  }
+  if (refine(i, a, mid, depth - 1, g_at, lo, hi)) return true;
+  if (crosses(d, mid.g, b.g)) {
+    lo = mid, hi = b;
+    return true;
+  }
+  return refine(i, mid, b, depth - 1, g_at, lo, hi);
+}
+
+void GuardCrossings::sample_interior(double t1, std::span<const double> g1, const Values& g_at) {
+  const std::size_t n = directions_.size();
+  const std::size_t inner = kSamples - 1;
+  const double h = t1 - t_;
+  for (std::size_t i = 0; i < n; ++i) {
+    lo_t_[i] = t_lo_[i], lo_g_[i] = g_lo_[i];
+    hi_t_[i] = t1, hi_g_[i] = g1[i];
+  }
+  const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(h));
+  if (!(h > kSamples * tol)) return;
+  std::array<double, kSamples - 1> times{};
+  for (std::size_t j = 0; j < inner; ++j) {
+    times[j] = t_ + h * static_cast<double>(j + 1) / kSamples;
+    g_at(times[j], std::span<double>(samples_).subspan(j * n, n));
+  }
+  interior_evaluations_ += static_cast<long long>(inner);
+  budget_ = kRefineBudget;
+  std::array<Point, kSamples + 1> points{};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (active_[i] == 0 || t_lo_[i] >= t1) continue;
+    const int d = directions_[i];
+    std::size_t count = 0;
+    points[count++] = {t_lo_[i], g_lo_[i]};
+    for (std::size_t j = 0; j < inner; ++j)
+      if (times[j] > t_lo_[i]) points[count++] = {times[j], samples_[j * n + i]};
+    points[count++] = {t1, g1[i]};
+    // A crossing at the samples: the first one brackets the root.
+    bool crossed = false;
+    for (std::size_t j = 1; j < count && !crossed; ++j) {
+      if (!crosses(d, points[j - 1].g, points[j].g)) continue;
+      lo_t_[i] = points[j - 1].t, lo_g_[i] = points[j - 1].g;
+      hi_t_[i] = points[j].t, hi_g_[i] = points[j].g;
+      crossed = true;
+    }
+    if (crossed) continue;
+    // M: twice the largest |g''| the second divided differences show, g'' = 2 g[a, b, c]; with all
+    // samples on one side of 0 and the bound (above) excluding 0 on the widest part, no root.
+    double M = 0.0, least = std::abs(points[0].g);
+    bool one_side = true;
+    for (std::size_t j = 1; j < count; ++j) {
+      least = std::min(least, std::abs(points[j].g));
+      one_side = one_side && (points[j].g < 0) == (points[0].g < 0);
+      if (j + 1 == count) break;
+      const Point &a = points[j - 1], &b = points[j], &c = points[j + 1];
+      const double dd = ((c.g - b.g) / (c.t - b.t) - (b.g - a.g) / (b.t - a.t)) / (c.t - a.t);
+      M = std::max(M, 4.0 * std::abs(dd));
+    }
+    const double widest = h / kSamples;  // no part is wider (the first may be shorter)
+    if (one_side && least > M * widest * widest / 8) continue;
+    curvature_[i] = M;
+    for (std::size_t j = 1; j < count; ++j) {
+      Point lo{}, hi{};
+      if (!refine(i, points[j - 1], points[j], kRefineDepth, g_at, lo, hi)) continue;
+      lo_t_[i] = lo.t, lo_g_[i] = lo.g;
+      hi_t_[i] = hi.t, hi_g_[i] = hi.g;
+      break;
+    }
+  }
+}
+
 std::optional<double> GuardCrossings::check(double t1, std::span<const double> g1, const Values& g_at,
                                             const Value& g_i_at) {
   const std::size_t n = directions_.size();
@@ -90,18 +185,14 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   }
   if (first_step_) probe_unarmed(t1, g1, g_at);
   first_step_ = false;
+  sample_interior(t1, g1, g_at);
   // The earliest root among the guards that crossed.
   double first = t1;
   int first_guard = -1;
   for (std::size_t i = 0; i < n; ++i) {
-    if (active_[i] == 0 || t_lo_[i] >= t1 || !crosses(directions_[i], g_lo_[i], g1[i])) continue;
-    double root = t1;
-    if (g1[i] != 0.0) {
-      auto g_i = [&](double t) { return g_i_at(t, static_cast<int>(i)); };
-      auto close_enough = [tol](double a, double b) { return b - a <= tol; };
-      std::uintmax_t iterations = 100;
-      root = boost::math::tools::toms748_solve(g_i, t_lo_[i], t1, g_lo_[i], g1[i], close_enough, iterations).second;
-    }
+    if (active_[i] == 0 || lo_t_[i] >= hi_t_[i] || !crosses(directions_[i], lo_g_[i], hi_g_[i])) continue;
+    const double root = locate_root([&](double t) { return g_i_at(t, static_cast<int>(i)); }, lo_t_[i], hi_t_[i],
+                                    lo_g_[i], hi_g_[i], tol);
     if (first_guard < 0 || root < first) {
       first = root;
       first_guard = static_cast<int>(i);
@@ -128,8 +219,10 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   else
     std::copy(g1.begin(), g1.end(), g.begin());
   for (std::size_t i = 0; i < n; ++i) {
-    const bool fired = active_[i] != 0 && crosses(directions_[i], g_lo_[i], g[i]);
-    fired_[i] = fired || static_cast<int>(i) == first_guard ? (g_lo_[i] > 0 ? -1 : 1) : 0;
+    // From the start of the guard's bracket in this step where that lies before the crossing.
+    const double g_from = lo_t_[i] <= first ? lo_g_[i] : g_lo_[i];
+    const bool fired = active_[i] != 0 && crosses(directions_[i], g_from, g[i]);
+    fired_[i] = fired || static_cast<int>(i) == first_guard ? (g_from > 0 ? -1 : 1) : 0;
   }
   rearm(first, g);
   return first;

@@ -15,12 +15,29 @@
 /// step). It is probed on the interpolant at t + h 2^-k, k = 1…kProbeLevels; where it is found on
 /// the other side, its bracket starts there. (CVODE's first steps after a restart are short
 /// enough that its step ends see such a hump.)
+///
+/// And one rule for every step, against a guard that crosses and returns within it (both ends on
+/// the side before the crossing, so CVODE's end-point rule sees nothing): every guard is sampled
+/// on the interpolant at kSamples - 1 evenly spaced interior points, and each sample is treated
+/// like a step end (a crossing there brackets the root, a sample on the side before a crossing
+/// starts the bracket). Between two samples a and b on one side of 0 the guard can reach 0 only
+/// if its curvature allows it: for |g''| <= M,
+///   |g(s)| >= min(|g(a)|, |g(b)|) - M (b - a)^2 / 8   on [a, b]
+/// (the error bound of linear interpolation). M is taken as twice the largest |g''| the samples' second divided
+/// differences show (each is g'' at some point of its two intervals); where the bound does not
+/// exclude 0 the interval is bisected, to kRefineDepth levels and kRefineBudget evaluations per
+/// step, until a sample crosses or the bound excludes a root. A dip shorter than the spacing
+/// and shallower than its curvature shows is the one crossing this can still miss.
 #include <functional>
 #include <optional>
 #include <span>
 #include <vector>
 
 namespace flexgait::numerics {
+
+/// The root of g in [a, b] (g(a) = ga and g(b) = gb of opposite signs, or gb = 0) by TOMS 748
+/// until the bracket is shorter than tol: the end of that bracket on b's side (b if gb = 0).
+double locate_root(const std::function<double(double)>& g, double a, double b, double ga, double gb, double tol);
 
 class GuardCrossings {
  public:
@@ -45,6 +62,25 @@ class GuardCrossings {
   void rearm(double t, std::span<const double> g);
   /// The probe of the first step after (re)arming, for guards not armed at either end (above).
   void probe_unarmed(double t1, std::span<const double> g1, const Values& g_at);
+  /// The interior samples of the step to t1 (above): per guard, the bracket of its first crossing
+  /// in the step, if any (lo_t_, lo_g_, hi_t_, hi_g_; hi_t_ = t1 and hi_g_ = g1 where the samples
+  /// show none).
+  void sample_interior(double t1, std::span<const double> g1, const Values& g_at);
+  struct Point {
+    double t, g;
+  };
+  /// Between a and b (no crossing from a to b): bisects while the curvature bound (above) does not
+  /// exclude a root; true with the bracket in `lo`, `hi` where a sample crosses.
+  bool refine(std::size_t i, Point a, Point b, int depth, const Values& g_at, Point& lo, Point& hi);
+
+ public:
+  static constexpr int kSamples = 4;        ///< a step is sampled as this many equal parts
+  static constexpr int kRefineDepth = 6;    ///< bisections of one part, at most (to h / 256)
+  static constexpr int kRefineBudget = 24;  ///< extra evaluations of the guards per step, at most
+  /// The guards' evaluations of the interior samples so far (the cost of the rule above).
+  long long interior_evaluations() const { return interior_evaluations_; }
+
+ private:
 
   static constexpr int kProbeLevels = 12;  // probes down to h / 4096
   bool first_step_ = false;      // the next check() is the first step after (re)arming
@@ -57,6 +93,11 @@ class GuardCrossings {
   std::size_t inactive_ = 0;     // guards with active_ 0
   std::vector<int> fired_;       // per guard: the last crossing's direction, or 0
   std::vector<double> scratch_;  // guard values at one time
+  std::vector<double> samples_;  // (kSamples - 1) × count(): the guards at the interior samples
+  std::vector<double> lo_t_, lo_g_, hi_t_, hi_g_;  // per guard: its bracket in the current step
+  std::vector<double> curvature_;  // per guard: M of the bound above, for the current step
+  int budget_ = 0;                  // refinement evaluations left in the current step
+  long long interior_evaluations_ = 0;
 };
 
 }  // namespace flexgait::numerics

@@ -55,6 +55,10 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
       break;
     }
     t = integ.time();
+    const auto state = integ.state();
+    std::copy(state.begin(), state.end(), y_.begin());
+    model.stepped(t, y_);
+    if (status == StepStatus::Guard) t = model.event_time(t, y_, integ.guards_fired(), integ);
     if (limits.sample) {
       while (next_sample < t) {
         integ.interpolate(next_sample, y_dense_);
@@ -62,9 +66,6 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
         next_sample = t0 + limits.sample_dt * static_cast<double>(++sample_index);
       }
     }
-    const auto state = integ.state();
-    std::copy(state.begin(), state.end(), y_.begin());
-    model.stepped(t, y_);
 
     if (status != StepStatus::Guard) {
       if (!model.smooth_step(t, y_, status)) break;

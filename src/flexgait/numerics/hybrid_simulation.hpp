@@ -80,6 +80,15 @@ class HybridModel {
   /// After a step that crossed no guard (status Step or StopTime): the model's checks (missed
   /// events, rest, time limits). false (the model's outcome recorded) stops the run.
   virtual bool smooth_step(double t, std::span<const double> y, StepStatus status) = 0;
+  /// A guard crossed at t (the step's end), y the state there, fired as guards_fired(): where the
+  /// events of that crossing happen. The model may move them back within the last step (a guard
+  /// detected with a margin and located at its true zero), writing the state there into y;
+  /// guards_crossed() is then called at the returned time.
+  virtual double event_time(double t, std::span<double> y, std::span<const int> fired,
+                            const OdeIntegrator& integrator) {
+    (void)y, (void)fired, (void)integrator;
+    return t;
+  }
   /// A guard crossed at t, y the state there (before any reset), fired as guards_fired(). Writes
   /// the events into `events` and returns Restart to go on with them, or Stop (a section
   /// reached, a failure named) or Continue (nothing to reset).

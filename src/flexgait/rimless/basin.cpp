@@ -59,8 +59,12 @@ void check_basin(const Config& base, const BasinSpec& spec) {
     throw ConfigError("--steps-limit", fmt::format("--steps-limit: {}; allowed: an integer >= 1", spec.steps_limit));
   if (!(spec.tolerance > 0) || !std::isfinite(spec.tolerance))
     throw ConfigError("--tolerance", fmt::format("--tolerance: {}; allowed: a finite number > 0", spec.tolerance));
-  for (int iy = 0; iy < spec.y.count; ++iy)
-    for (int ix = 0; ix < spec.x.count; ++ix) cell_config(base, spec, ix, iy);
+  if (spec.cells() > kMaxBasinCells)
+    throw ConfigError("--x-range", fmt::format("--x-range, --y-range: {} x {} = {} cells; allowed: at most {} cells "
+                                               "(a coarser grid, or the region of interest in parts)",
+                                               spec.x.count, spec.y.count, spec.cells(), kMaxBasinCells));
+  for (const int iy : {0, spec.y.count - 1})
+    for (const int ix : {0, spec.x.count - 1}) cell_config(base, spec, ix, iy);
 }
 
 BasinReference basin_reference(const Config& base, Section section) {
@@ -152,7 +156,7 @@ std::map<std::string, int> basin_counts(const std::string& basin_csv) {
 BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& counts) {
   BasinSize b;
   b.converged = counts.at("converged");
-  b.fraction = static_cast<double>(b.converged) / spec.cells();
+  b.fraction = static_cast<double>(b.converged) / static_cast<double>(spec.cells());
   b.cell_area = std::abs(spec.x.spacing() * spec.y.spacing());
   return b;
 }

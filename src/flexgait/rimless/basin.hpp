@@ -8,6 +8,7 @@
 /// command line runs them on the sweep runner (all cores, resumable, the same bytes for any
 /// number of threads). sim.max_time does not limit a cell: --steps-limit does.
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -51,16 +52,23 @@ struct BasinSpec {
   int steps_limit = BasinOptions{}.steps_limit;  ///< section crossings simulated per cell at most
   double tolerance = BasinOptions{}.tolerance;   ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance
   Section section = Section::Touchdown;
-  int cells() const { return x.count * y.count; }
+  /// x.count × y.count in 64 bits (each count is at most 100000: up to 1e10).
+  std::int64_t cells() const { return static_cast<std::int64_t>(x.count) * y.count; }
 };
+
+/// The most cells a basin may have: at ~1 ms of CPU per cell, 1e8 cells are ~28 h on one core;
+/// the cells are numbered by int on the sweep runner.
+inline constexpr std::int64_t kMaxBasinCells = 100'000'000;
 
 /// "A:B:N" as an axis of `key`; throws UsageError naming `option` (A, B finite, A != B, N an
 /// integer >= 2).
 BasinAxis parse_basin_axis(const std::string& option, const std::string& key, const std::string& text);
 
 /// Throws ConfigError naming the option unless both keys are distinct real keys of the initial
-/// state, the limits positive, and every cell's configuration valid (the corners name --x-range or
-/// --y-range).
+/// state, the limits positive, the grid at most kMaxBasinCells cells (naming --x-range and
+/// --y-range), and every cell's configuration valid. O(1): the configuration of the grid's four
+/// corners is checked (each key's bounds are an interval, which holds every value of its axis
+/// when it holds the axis's ends).
 void check_basin(const Config& base, const BasinSpec& spec);
 
 /// The gait the cells are compared with.

@@ -6,10 +6,12 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/numerics/guard_crossings.hpp"
 #include "flexgait/numerics/hybrid_simulation.hpp"
 #include "flexgait/numerics/ode_integrator.hpp"
 #include "flexgait/rimless/dynamics.hpp"
@@ -133,6 +135,9 @@ class WheelFlow final : public numerics::OdeSystem {
     }
   }
   void clear_all() { std::fill(clearing_.begin(), clearing_.end(), 0); }
+  /// Whether foot k's touchdown guard is still h + clearance (it has not cleared the ground).
+  bool clearing(int k) const { return clearing_[static_cast<std::size_t>(k)] != 0; }
+  double clearance() const { return clearance_; }
 
  private:
   // The mode with each sticking foot's anchor where the foot is at y (it moves with a perturbed
@@ -480,6 +485,7 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   double last_touchdown = 0.0;   // [s]
   double translating_since = -1.0;  // [s], -1: not translating
   double ke0 = 0;                // kinetic energy at t = 0, after the modes were chosen [J]
+  double step_begin = 0, step_end = 0;  // the latest integrator step's ends [s]
   static constexpr double kTranslationHold = 1.0;  // s a rigid translation must last to end the run
   StepTracker tracker;
   Eigen::MatrixXd sens;          // ∂y/∂y(0), with sensitivities (n×n)
@@ -554,10 +560,14 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   }
   double stop_time() const override { return std::min(m.opt.max_time, last_touchdown + m.opt.max_step_time); }
   void sample(double t, std::span<const double> y) override { log_sample(t, y); }
-  void stepped(double, std::span<const double> y) override {
+  void stepped(double t, std::span<const double> y) override {
     std::copy(y.begin(), y.end(), m.y.begin());
     m.flow.arm_cleared(m.y);
+    step_begin = step_end;
+    step_end = t;
   }
+  double event_time(double t, std::span<double> y, std::span<const int> fired,
+                    const numerics::OdeIntegrator& integrator) override;
   bool smooth_step(double t, std::span<const double>, numerics::StepStatus status) override;
   numerics::HybridNext guards_crossed(double t, std::span<const double> y, std::span<const int> fired,
                                       const numerics::OdeIntegrator& integrator,
@@ -578,7 +588,10 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
     if (!m.opt.sensitivities) return {};
     return {sens.data(), static_cast<std::size_t>(sens.size())};
   }
-  void restarted(double t, std::span<const double>) override { sink.on_restart(t, m.y, m.flow.contacts()); }
+  void restarted(double t, std::span<const double>) override {
+    step_end = t;
+    sink.on_restart(t, m.y, m.flow.contacts());
+  }
   std::string describe(const numerics::HybridEvent& e) const override {
     return fmt::format("leg {} {}", e.unit, event_name(static_cast<EventKind>(e.kind)));
   }
@@ -666,6 +679,47 @@ bool FlexibleWheelSimulator::Run::start() {
   m.restart(0.0, m.y, sens);
   sink.on_restart(0.0, m.y, m.flow.contacts());
   return true;
+}
+
+// A foot that left the ground and came back before it cleared it by the clearance (WheelFlow)
+// is detected at h = -clearance; it lands where h last fell through 0, found on the step's dense
+// output: from the step's start if the foot was above the ground there, else from the first of
+// kBounceSamples samples of the step that is (a micro-bounce that rose and fell within it). A foot
+// that never rose above the round-off of h in the step (it left with the ground pushing it back)
+// lands where it was detected. Only a crossing of that guard alone moves back (other
+// guards that fired at t have not crossed earlier).
+double FlexibleWheelSimulator::Run::event_time(double t, std::span<double> y, std::span<const int> fired,
+                                               const numerics::OdeIntegrator& integrator) {
+  constexpr int kBounceSamples = 16;
+  int leg = -1, count = 0;
+  for (std::size_t i = 0; i < fired.size(); ++i) {
+    if (fired[i] == 0) continue;
+    ++count;
+    const int k = static_cast<int>(i) / kGuardsPerLeg;
+    if (static_cast<int>(i) < guard_count(w) && i % kGuardsPerLeg == 0 && m.flow.contacts().find(k) < 0 &&
+        m.flow.clearing(k))
+      leg = k;
+  }
+  if (leg < 0 || count != 1 || !(step_begin < t)) return t;
+  std::vector<double>& s = m.y_minus;  // scratch
+  const auto height = [&](double ts) {
+    integrator.interpolate(ts, s);
+    return foot_height(w, leg, s);
+  };
+  const double rose = 64.0 * std::numeric_limits<double>::epsilon() * w.L0;  // above the round-off of h
+  double t_up = step_begin, h_up = height(step_begin);
+  for (int j = 1; j < kBounceSamples && !(h_up > rose); ++j) {
+    const double ts = step_begin + (t - step_begin) * j / kBounceSamples;
+    const double h = height(ts);
+    if (h > h_up) t_up = ts, h_up = h;
+  }
+  const double h_end = height(t);
+  if (!(h_up > rose) || !(h_end < 0)) return t;
+  const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t) + std::abs(t - t_up));
+  const double landing = numerics::locate_root(height, t_up, t, h_up, h_end, tol);
+  integrator.interpolate(landing, y);
+  std::copy(y.begin(), y.end(), m.y.begin());
+  return landing;
 }
 
 bool FlexibleWheelSimulator::Run::smooth_step(double t, std::span<const double>, numerics::StepStatus status) {

@@ -182,20 +182,6 @@ double slope_of(const std::vector<double>& x, const std::vector<double>& y) {
   return den > 0 ? (n * sxy - sx * sy) / den : 0.0;
 }
 
-// The offset where T(d) first reaches `threshold` coming in from the largest d (offsets largest
-// first), interpolated linearly in log10 d; 0 if it never does; offsets.front() if it already does there.
-double interval_bound(const std::vector<double>& offsets, const std::vector<Stage>& stages, double threshold) {
-  for (std::size_t j = 0; j < stages.size(); ++j) {
-    const double t = stages[j].near_vertical();
-    if (t < threshold) continue;
-    if (j == 0) return offsets[0];
-    const double t0 = stages[j - 1].near_vertical();
-    const double l0 = std::log10(offsets[j - 1]), l1 = std::log10(offsets[j]);
-    return std::pow(10.0, l0 + (threshold - t0) / (t - t0) * (l1 - l0));
-  }
-  return 0.0;
-}
-
 }  // namespace
 
 StagnationScan scan_stagnation(const WheelParams& w, const InitialState& start, const SimulationOptions& sim,
@@ -264,8 +250,26 @@ StagnationScan scan_stagnation(const WheelParams& w, const InitialState& start, 
   sum.slide_far = scan.above.front().slide_near_vertical;
   sum.typical_time = scan.above.front().near_vertical();
   sum.threshold = opt.factor * sum.typical_time;
-  const double d_high = interval_bound(scan.offsets, scan.above, sum.threshold);
-  const double d_low = interval_bound(scan.offsets, scan.below, sum.threshold);
+  // Each bound: the offset where T(d) first reaches the threshold coming in from the largest d
+  // (offsets largest first), bisected on T(d) >= threshold between the two scan offsets around it
+  // to stagnation.bisection_tol relative to ω_c, as ω_c is; 0 if T never reaches it,
+  // offsets.front() if it already does there.
+  const auto bound = [&](const std::vector<Stage>& stages, double side) {
+    for (std::size_t j = 0; j < stages.size(); ++j) {
+      if (stages[j].near_vertical() < sum.threshold) continue;
+      if (j == 0) return scan.offsets[0];
+      double outside = scan.offsets[j - 1], inside = scan.offsets[j];
+      while (outside - inside > opt.bisection_tol * std::abs(sum.omega_c)) {
+        const double mid = 0.5 * (outside + inside);
+        if (mid <= inside || mid >= outside) break;
+        (stage(sum.omega_c + side * mid).near_vertical() >= sum.threshold ? inside : outside) = mid;
+      }
+      return 0.5 * (outside + inside);
+    }
+    return 0.0;
+  };
+  const double d_high = bound(scan.above, +1.0);
+  const double d_low = bound(scan.below, -1.0);
   sum.interval_low = sum.omega_c - d_low;
   sum.interval_high = sum.omega_c + d_high;
   sum.interval_width = d_low + d_high;

@@ -34,8 +34,9 @@
 /// bisection on the stage's end narrows it to `stagnation.bisection_tol` relative, then stages at
 /// ω_c ± d for d log-spaced from `offset_max` down to `offset_min`. The near-vertical time T(d)
 /// (slip + stick in the window) at ω_c + offset_max (the wheel passes the vertical briskly) is
-/// its *typical* value; the stagnation interval is where T exceeds `factor` times it, its bounds
-/// interpolated linearly in log10 d between the two scan offsets around the threshold. The growth
+/// its *typical* value; the stagnation interval is where T exceeds `factor` times it, each bound
+/// bisected on T between the two scan offsets around the threshold to `bisection_tol` (as ω_c;
+/// the stages of this bisection count in `stages`, they are not in the scan's rows). The growth
 /// per decade is the least-squares slope of T against log10(1/d) over d ≤ `fit_offset` (1e-3: the
 /// asymptotic regime), per side; the larger of its slip and stick parts names the kind when it
 /// exceeds `kind_fraction` (0.25) of the sliding estimate.
