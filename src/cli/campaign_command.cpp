@@ -3,13 +3,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <limits>
 #include <memory>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "flexgait/campaign/campaign.hpp"
 #include "flexgait/campaign/reduction.hpp"
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
 #include "mpi_distributor.hpp"
 #include "options.hpp"
@@ -28,8 +32,28 @@ struct CampaignArgs {
   std::vector<std::string> reduce;        ///< --reduce: axes reduced over in reduced.csv
   std::vector<std::string> random;        ///< --random KEY=A:B
   int samples = 0;                        ///< --samples: draws of the --random keys
-  std::optional<std::uint64_t> seed;      ///< --seed of the draws (default 1)
+  std::string seed;                       ///< --seed of the draws as given (default 1), checked by seed_check
 };
+
+/// The seed `text` spells in full: decimal digits only (no sign: CLI11's own reading takes -1 as
+/// 2^64 - 1), at most 2^64 - 1; nullopt otherwise.
+std::optional<std::uint64_t> parse_seed(const std::string& text) {
+  std::uint64_t v = 0;
+  const char* last = text.data() + text.size();
+  const auto [end, ec] = std::from_chars(text.data(), last, v);
+  if (text.empty() || text.front() < '0' || text.front() > '9' || ec != std::errc() || end != last) return std::nullopt;
+  return v;
+}
+
+CLI::Validator seed_check() {
+  return CLI::Validator(
+      [](std::string& text) {
+        return parse_seed(text) ? std::string()
+                                : fmt::format("'{}' is not an integer in [0, {}]", one_line(text),
+                                              std::numeric_limits<std::uint64_t>::max());
+      },
+      "INTEGER in [0, 2^64-1]");
+}
 
 std::string joined(const std::vector<std::string>& items) { return fmt::format("{}", fmt::join(items, ",")); }
 
@@ -52,10 +76,12 @@ campaign::Campaign checked_campaign(const CampaignArgs& a) {
   for (const auto& text : a.grid) axes.push_back(campaign::parse_grid_axis(text));
   std::vector<campaign::RandomAxis> random_axes;
   for (const auto& text : a.random) random_axes.push_back(campaign::parse_random_axis(text));
-  if (a.seed && random_axes.empty()) throw UsageError("--seed: given without a --random axis; add one, e.g. --random KEY=A:B");
-  campaign::RandomDesign random(std::move(random_axes), a.samples, a.seed.value_or(1));
+  if (!a.seed.empty() && random_axes.empty())
+    throw UsageError("--seed: given without a --random axis; add one, e.g. --random KEY=A:B");
+  campaign::RandomDesign random(std::move(random_axes), a.samples, a.seed.empty() ? 1 : *parse_seed(a.seed));
   if (!random.empty()) axes.push_back(random.sample_axis());
   const Config base = resolve(experiment.schema, a.run);
+  check_output_directory(a.run.out, "--out");  // a file, a device, a FIFO inside: refused before any work
   campaign::Grid grid(std::move(axes));
   campaign::check_reduction(grid, a.reduce);
   return campaign::Campaign(std::move(experiment), base, std::move(grid), std::move(random));
@@ -77,8 +103,9 @@ int run_campaign_command(const CampaignArgs& a) {
   if (mpi) error = mpi->first_error(error);
   if (!error.empty()) throw UsageError(error);
   const campaign::Campaign& c = *checked;
+  std::optional<RunDirectory> directory;  // `complete` once reduced.csv and the figure are written too
   const SweepOutcome out = campaign::run_campaign(
-      c, {a.run.out, a.jobs > 0 ? a.jobs : (mpi ? 1 : 0), a.resume, a.keep_runs, mpi.get()});
+      c, {a.run.out, a.jobs > 0 ? a.jobs : (mpi ? 1 : 0), a.resume, a.keep_runs, mpi.get(), &directory});
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const auto csv = std::filesystem::path(a.run.out) / "campaign.csv";
   const auto reduced = std::filesystem::path(a.run.out) / "reduced.csv";
@@ -134,7 +161,8 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
       ->type_name("KEY=A:B")
       ->allow_extra_args(false);
   cmd->add_option("--samples", a->samples, "the number of samples of the --random keys")->check(CLI::Range(1, 100000));
-  cmd->add_option("--seed", a->seed, "the seed of the --random draws (default 1)");
+  cmd->add_option("--seed", a->seed, "the seed of the --random draws, an integer in [0, 2^64-1] (default 1)")
+      ->check(seed_check());
   cmd->add_option("--jobs", a->jobs, "worker threads per process (0: all cores; under mpirun 0 means 1 per rank)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();

@@ -228,6 +228,7 @@ struct ExportOptions {
 /// `humanoid export`: the twin as MJCF (elastic gears as joint springs, sensors, floor) or the
 /// rigid robot as URDF, written atomically; the walk's configuration keys choose the robot.
 int export_robot(const ExportOptions& options) {
+  check_output_file(options.out, "--out");  // a device, a FIFO, a directory: refused before any work
   RunOptions run;
   run.config_file = options.config_file;
   run.overrides = options.overrides;

@@ -40,6 +40,7 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   const rimless::WheelSetup s = rimless::wheel_setup(resolve(rimless::rimless_schema(), a.run, extra));
   const Config& config = s.config;
   const std::string model = config.choice("sim.model");
+  check_with_origin(config, [&] { rimless::check_log_size(s.sim); });  // before anything is written
   const RunDirectory dir(a.run.out);  // --out before the computation
   dir.write_config(config);
 
@@ -549,7 +550,8 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   swc->add_option("--from", sw->from, "first value (in the key's unit)")->required()->check(finite_number());
   swc->add_option("--to", sw->to, "last value (in the key's unit)")->required()->check(finite_number());
   swc->add_option("--count", sw->count, "number of values, evenly spaced, ends included")
-      ->required()->check(CLI::Range(1, 1000000));
+      ->required()
+      ->check(CLI::Range(1, kMaxSweepPoints));
   swc->add_option("--jobs", sw->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
   swc->add_flag("--resume", sw->resume, "keep the finished points of an interrupted sweep in --out");
   swc->add_option("--model", sw->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));

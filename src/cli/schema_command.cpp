@@ -263,6 +263,7 @@ void add_schema_command(CLI::App& app, std::function<int()>& action) {
   cmd->add_option("--out", *out, "write to this file (atomically) instead of standard output");
   cmd->callback([&action, out] {
     action = [out] {
+      if (!out->empty()) check_output_file(*out, "--out");
       const std::string text = schema_document();
       if (out->empty())
         fmt::print("{}", text);

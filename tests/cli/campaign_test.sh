@@ -3,7 +3,9 @@
 # grid and a small humanoid grid give the same campaign.csv bytes with 1 and 2 threads (and, with
 # MODE=mpi, under mpirun -np 3); a point that fails is a row with its reason; kill -9 then --resume
 # gives the same bytes, a torn last line included; --resume of a different grid is refused;
-# --plot-metrics names only metrics of the experiment and draws a 3-D grid as one figure.
+# --plot-metrics names only metrics of the experiment and draws a 3-D grid as one figure; axes
+# that set the same key, a --seed outside [0, 2^64 - 1] and an --out that cannot hold a campaign
+# are refused (exit 2); a finished campaign is marked `complete`; --resume trusts no garbage row.
 # Usage: campaign_test.sh FLEXGAIT_EXE [mpi MPIRUN]
 set -u
 exe=$1
@@ -56,7 +58,7 @@ if [ "$mode" = mpi ]; then
   check "mpirun: rank 0 says it once, naming the rank" test "$(grep -c "^error: rank 1: --set: .*rimless.KK" "$work/stderr")" -eq 1
   check "mpirun: an error of other ranks only writes nothing" test ! -e "$work/never"
   mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
-  check "mpirun: resume of a different grid refused (workers released)" grep -q "different sweep" "$work/stderr"
+  check "mpirun: resume of a different grid refused (workers released)" grep -q "different campaign" "$work/stderr"
   # The orbit diagram (issue 18) spreads its parameter values over the ranks: the same bytes.
   orbit=(rimless analysis orbit-diagram --param rimless.slope --from 0.2 --to 0.2355 --count 7 --transient 30
          --record 6 --no-plot)
@@ -116,6 +118,43 @@ expect_usage_error push-force-set "disturbance.push.force_x" humanoid-push-recov
   --grid push_recovery.direction=left --set disturbance.push.force_x=10
 expect_usage_error bad-plot-metric "--plot-metrics: 'nope' is not a metric of humanoid-walk" humanoid-walk \
   --grid walk.step_length=0.1 --plot-metrics fell,nope
+# Axes that set the same key (an alias and its parts): the table would list values never run.
+expect_usage_error alias-and-part "--grid rimless.mu_s and --grid rimless.mu both set rimless.mu_s" rimless-simulate \
+  --grid rimless.mu_s=0.5,0.6 --grid rimless.mu=0.3,0.4
+expect_usage_error random-part-of-alias "--grid rimless.mu and --random rimless.mu_k both set rimless.mu_k" \
+  rimless-simulate --grid rimless.mu=0.3,0.4 --random rimless.mu_k=0.1:0.2 --samples 2
+# --set of a key an axis sets: the axis would replace it at every point (a --config file is the base; allowed).
+expect_usage_error set-and-grid "--set rimless.mu_s and --grid rimless.mu_s both set rimless.mu_s" rimless-simulate \
+  --set rimless.mu_s=0.9 --grid rimless.mu_s=0.7,0.8
+expect_usage_error set-part-and-alias "--set rimless.mu_k and --grid rimless.mu both set rimless.mu_k" rimless-simulate \
+  --set rimless.mu_k=0.2 --grid rimless.mu=0.3,0.4
+# Seeds outside [0, 2^64 - 1] (CLI11 alone reads -1 and 2^64 as 2^64 - 1).
+expect_usage_error seed-negative "--seed: '-1' is not an integer in [0, 18446744073709551615]" rimless-simulate \
+  --random rimless.slope=0.02:0.1 --samples 2 --seed -1
+expect_usage_error seed-2-to-64 "--seed: '18446744073709551616' is not an integer in [0, 18446744073709551615]" \
+  rimless-simulate --random rimless.slope=0.02:0.1 --samples 2 --seed 18446744073709551616
+expect_usage_error seed-fraction "--seed: '1.5' is not an integer" rimless-simulate --random rimless.slope=0.02:0.1 \
+  --samples 2 --seed 1.5
+# --out that cannot hold a campaign: exit 2 before any point, the target untouched.
+cheap_grid=(rimless-simulate --set sim.model=rigid --set sim.steps=1 --grid rimless.slope=0.05,0.1)
+expect_bad_out() {  # expect_bad_out NAME NEEDLE OUT
+  campaign "${cheap_grid[@]}" --out "$3"
+  local code=$?
+  check "$1: exit code 2 (got $code)" test "$code" -eq 2
+  check "$1: message names '$2': $(head -c 1000 "$work/stderr")" grep -qF -- "$2" "$work/stderr"
+  check "$1: one line on stderr" test "$(wc -l <"$work/stderr")" -eq 1
+}
+printf 'mine\n' >"$work/a_file"
+expect_bad_out out-is-file "--out: cannot make the run directory $work/a_file: it is a regular file, not a directory" "$work/a_file"
+check "out-is-file: the file untouched" test "$(cat "$work/a_file")" = mine
+expect_bad_out out-under-file "--out: cannot make the run directory $work/a_file/run" "$work/a_file/run"
+expect_bad_out out-dev-null "--out: cannot make the run directory /dev/null: it is a character device, not a directory" /dev/null
+check "out-dev-null: /dev/null still a character device" test -c /dev/null
+mkdir -p "$work/with_fifo" && mkfifo "$work/with_fifo/campaign.csv"
+expect_bad_out out-holds-fifo "it holds campaign.csv, which is a FIFO (named pipe)" "$work/with_fifo"
+check "out-holds-fifo: nothing written" test "$(ls -A "$work/with_fifo")" = campaign.csv
+check "out-holds-fifo: still a FIFO" test -p "$work/with_fifo/campaign.csv"
+
 if [ -n "${FLEXGAIT_BUILT_WITHOUT_MPI:-}" ]; then  # as if started by mpirun -np 2
   OMPI_COMM_WORLD_SIZE=2 expect_usage_error mpi-without-mpi "built without MPI" rimless-simulate --grid rimless.K=1000
 fi
@@ -126,6 +165,7 @@ check "rimless --jobs 1: exit 0" test $? -eq 0
 campaign "${rimless_grid[@]}" --out "$work/r2" --jobs 2
 check "rimless --jobs 2: same bytes" cmp -s "$work/r1/campaign.csv" "$work/r2/campaign.csv"
 check "rimless: a row per point (12) and the header" test "$(wc -l <"$work/r1/campaign.csv")" -eq 13
+check "rimless: the directory marked complete" test -f "$work/r1/complete"
 check "rimless: header is index, axes, then fixed_point.json's keys" \
   grep -q "^index,rimless.mu,rimless.slope,converged,iterations,residual," "$work/r1/campaign.csv"
 check "rimless: a point without a gait is a row with its reason" grep -q "^0,0.3,0.02,false,.*rolled back" "$work/r1/campaign.csv"
@@ -192,21 +232,44 @@ done
 kill -9 "$pid" 2>/dev/null
 wait "$pid" 2>/dev/null
 check "killed before the end: no campaign.csv yet" test ! -e "$work/k1/campaign.csv"
+check "killed before the end: not marked complete" test ! -e "$work/k1/complete"
 printf '5,0.3,bo' >>"$work/k1/campaign.partial.csv"  # a torn last line
 campaign "${long_grid[@]}" --out "$work/k1" --jobs 2 --resume
 check "resume: exit 0" test $? -eq 0
 check "resume: some points kept ($(head -n 1 "$work/stdout"))" grep -q " [1-9][0-9]* resumed" "$work/stdout"
 check "resume after kill -9: same bytes" cmp -s "$work/k0/campaign.csv" "$work/k1/campaign.csv"
+check "resume: marked complete" test -f "$work/k1/complete"
+# A partial file whose rows have the right cell count and garbage values: none is trusted.
+# Every row of k0 with one cell damaged (an axis value, a number, a boolean) or another point's
+# values under its index; the resume computes them all again and gives the same bytes.
+mkdir -p "$work/k2"
+cp "$work/k1/campaign.signature" "$work/k2/"
+/usr/bin/python3 - "$work/k0/campaign.csv" "$work/k2/campaign.partial.csv" <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1], newline="")))
+header, rows = rows[0], rows[1:]
+fell, roll = header.index("fell"), header.index("pelvis_roll_error_max")
+damage = [(1, "0.7"), (2, "sideways"), (fell, "maybe"), (roll, "nan"), (roll, "1e999"), (0, "0")]
+for row, (column, text) in zip(rows, damage):
+    row[column] = text
+csv.writer(open(sys.argv[2], "w", newline=""), lineterminator="\n").writerows(rows)
+PY
+campaign "${long_grid[@]}" --out "$work/k2" --jobs 2 --resume
+check "garbage rows: exit 0" test $? -eq 0
+check "garbage rows: none trusted ($(head -n 1 "$work/stdout"))" grep -q " 6 computed, 0 resumed" "$work/stdout"
+check "garbage rows: the note says campaign" grep -q "not finished points of this campaign" "$work/stderr"
+check "garbage rows: same bytes" cmp -s "$work/k0/campaign.csv" "$work/k2/campaign.csv"
 cp "$work/k1/campaign.csv" "$work/k1.csv"
 campaign humanoid-walk --set walk.steps=2 --grid walk.step_length=0.1,0.2 --grid control.compensation=off,both \
   --out "$work/k1" --resume
 check "resume of different axes: exit 2" test $? -eq 2
-check "resume of different axes: says so" grep -q "different sweep" "$work/stderr"
+check "resume of different axes: says so" grep -q "holds a different campaign" "$work/stderr"
 check "resume of different axes: the campaign left as it was" cmp -s "$work/k0/campaign.csv" "$work/k1/campaign.csv"
 campaign "${long_grid[@]}" --set walk.swing_height=0.041 --out "$work/k1" --resume
 check "resume of a different base configuration: exit 2" test $? -eq 2
 campaign "${long_grid[@]}" --out "$work/nothing" --resume
 check "resume where there is no campaign: exit 2" test $? -eq 2
+check "resume where there is no campaign: says campaign" grep -q "no campaign to resume" "$work/stderr"
 
 echo "campaign: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "flexgait/core/config.hpp"
 #include "temp_dirs.hpp"
 
 namespace flexgait {
@@ -46,9 +48,10 @@ TEST(AtomicFile, DurableWriteIsAtomicAsWell) {
 TEST(AtomicFile, FailureLeavesTargetUntouched) {
   const auto dir = fresh_dir("fail");
   write_file_atomic(dir / "keep.txt", "intact");
-  // A directory in the way of the rename: the write fails and the temporary is removed.
+  // A directory in the way: refused (bad usage) before a temporary is made; a missing folder:
+  // the temporary cannot be made (a runtime failure).
   std::filesystem::create_directories(dir / "blocked" / "inner");
-  EXPECT_THROW(write_file_atomic(dir / "blocked", "new"), std::system_error);
+  EXPECT_THROW(write_file_atomic(dir / "blocked", "new"), UsageError);
   EXPECT_THROW(write_file_atomic(dir / "missing_dir" / "x.txt", "new"), std::system_error);
   EXPECT_EQ(read_text_file(dir / "keep.txt"), "intact");
   EXPECT_EQ(count_entries(dir), 2);  // keep.txt and blocked/
@@ -87,6 +90,89 @@ TEST(AtomicFileWriter, AbandonedWriteLeavesNothing) {
   }  // destroyed without commit: an exception unwound the run
   EXPECT_FALSE(std::filesystem::exists(dir / "log.csv"));
   EXPECT_EQ(count_entries(dir), 0);
+}
+
+// The message of the UsageError `write` throws ("" if it throws none).
+template <class F>
+std::string usage_error_of(F write) {
+  try {
+    write();
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool is_named_pipe(const std::filesystem::path& p) {
+  struct stat st {};
+  return ::lstat(p.c_str(), &st) == 0 && S_ISFIFO(st.st_mode);
+}
+
+// Renaming over a FIFO, a device or a socket replaces the special file itself (as root: the
+// system's /dev/null): every writer refuses such a target, before and at commit, and leaves it be.
+TEST(OutputTarget, ASpecialFileIsRefusedAndLeftAsItWas) {
+  const auto dir = fresh_dir("special");
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0644), 0);
+  std::filesystem::create_symlink(dir / "fifo", dir / "link");
+  std::string what = usage_error_of([&] { check_output_file(dir / "fifo", "--out"); });
+  EXPECT_EQ(what, "--out: " + (dir / "fifo").string() +
+                      " is a FIFO (named pipe), not a regular file; allowed: a "
+                      "regular file (replaced whole) or a path that does not exist yet");
+  EXPECT_NE(usage_error_of([&] { write_file_atomic(dir / "fifo", "x"); }).find("output: "), std::string::npos);
+  what = usage_error_of([&] { write_file_durable(dir / "link", "x"); });
+  EXPECT_NE(what.find("is a symbolic link to a FIFO"), std::string::npos) << what;
+  EXPECT_TRUE(is_named_pipe(dir / "fifo"));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link"));
+  EXPECT_EQ(count_entries(dir), 2);  // no temporary file left
+  EXPECT_NE(usage_error_of([&] { check_output_file(dir); }).find("is a directory"), std::string::npos);
+  what = usage_error_of([] { write_file_atomic("/dev/null", "x"); });
+  EXPECT_NE(what.find("/dev/null is a character device"), std::string::npos) << what;
+  struct stat st {};
+  ASSERT_EQ(::lstat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+  // Allowed: a path that does not exist, a regular file, a dangling link (the rename replaces it).
+  std::filesystem::create_symlink(dir / "nowhere", dir / "dangling");
+  EXPECT_NO_THROW(check_output_file(dir / "new.csv"));
+  EXPECT_NO_THROW(write_file_atomic(dir / "dangling", "y"));
+  EXPECT_EQ(read_text_file(dir / "dangling"), "y");
+}
+
+TEST(OutputTarget, AFifoAppearingWhileAWriterWritesIsRefusedAtCommit) {
+  const auto dir = fresh_dir("late_fifo");
+  AtomicFileWriter file(dir / "a.csv");
+  file.append("content\n");
+  ASSERT_EQ(::mkfifo((dir / "a.csv").c_str(), 0644), 0);
+  EXPECT_THROW(file.commit(), UsageError);
+  EXPECT_TRUE(is_named_pipe(dir / "a.csv"));
+  EXPECT_EQ(count_entries(dir), 1);
+}
+
+TEST(OutputTarget, ADirectoryOfResultsHoldsOnlyRegularFilesAndDirectories) {
+  const auto dir = fresh_dir("results");
+  std::filesystem::create_directories(dir / "runs");
+  write_file_atomic(dir / "log.csv", "t\n");
+  EXPECT_NO_THROW(check_output_directory(dir, "--out"));
+  EXPECT_NO_THROW(check_output_directory(dir / "absent", "--out"));
+  EXPECT_NE(usage_error_of([&] {
+              check_output_directory(dir / "log.csv", "--out");
+            }).find("log.csv: it is a regular file, not a directory"),
+            std::string::npos);
+  ASSERT_EQ(::mkfifo((dir / "summary.json").c_str(), 0644), 0);
+  const std::string what = usage_error_of([&] { check_output_directory(dir, "--out"); });
+  EXPECT_EQ(
+      what.rfind("--out: cannot use the run directory " + dir.string() + ": it holds summary.json, which is a FIFO", 0),
+      0u)
+      << what;
+}
+
+TEST(ReadTextFile, ReadsAWholeFileOnceAndNothingForAMissingOne) {
+  const auto dir = fresh_dir("read");
+  const std::string text = std::string(3 << 20, 'a') + "end";
+  write_file_atomic(dir / "big", text);
+  EXPECT_EQ(read_text_file(dir / "big"), text);
+  EXPECT_EQ(read_text_file(dir / "missing"), "");
+  write_file_atomic(dir / "empty", "");
+  EXPECT_EQ(read_text_file(dir / "empty"), "");
 }
 
 TEST(Temporaries, OwnerIsParsedFromTheNamingScheme) {

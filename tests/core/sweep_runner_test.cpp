@@ -76,6 +76,44 @@ TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
   (void)whole;
 }
 
+// Rows with the right cell count and garbage values: the job's valid_row refuses them; the
+// messages use the job's noun.
+TEST(SweepRunner, ResumeAsksTheJobWhetherARowsCellsAreItsOwn) {
+  const auto base =
+      std::filesystem::temp_directory_path() / ("flexgait_sweep_cells_test_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(base);
+  SweepJob first = job(base / "c");
+  first.noun = "campaign";
+  run_sweep(first);
+  SweepJob again = first;
+  again.resume = true;
+  again.valid_row = [](int i, const std::vector<std::string>& cells) {
+    return cells.size() == 2 && cells[0] == std::to_string(i) &&
+           cells[1].find_first_not_of("0123456789") == std::string::npos;
+  };
+  write_file_atomic(base / "c" / "sweep.partial.csv", "0,0,0\n1,1,x\n2,7,4\n3,3,9\n");
+  const SweepOutcome resumed = run_sweep(again);
+  EXPECT_EQ(resumed.resumed, 2);  // 0 and 3
+  EXPECT_EQ(resumed.computed, 38);
+  std::string expected = "index,value,square\n";
+  for (int i = 0; i < 40; ++i)
+    expected += std::to_string(i) + "," + std::to_string(i) + "," + std::to_string(i * i) + "\n";
+  EXPECT_EQ(read_text_file(base / "c" / "sweep.csv"), expected);
+  SweepJob none = job(base / "empty");
+  none.noun = "campaign";
+  none.resume = true;
+  try {
+    check_resumable(none);
+    FAIL() << "resumed nothing";
+  } catch (const UsageError& e) {
+    EXPECT_EQ(std::string(e.what()), "--resume: no campaign to resume in " + (base / "empty").string());
+  }
+  // An --out that is a regular file: bad usage (exit 2), nothing written.
+  write_file_atomic(base / "a_file", "x");
+  EXPECT_THROW(run_sweep(job(base / "a_file")), UsageError);
+  EXPECT_EQ(read_text_file(base / "a_file"), "x");
+}
+
 // A distributor standing in for MPI: as coordinator it computes the points in reverse order (the
 // order rows arrive from workers is arbitrary); as a worker it only records that it ran.
 class ReverseDistributor final : public PointDistributor {

@@ -42,6 +42,21 @@ TEST(Csv, ReaderTakesCrlfAndDropsATornLastRecord) {
   EXPECT_EQ(parse_csv("\n")[0].fields, (std::vector<std::string>{""}));
 }
 
+TEST(Csv, RecordsOneAtATimeWithAFieldCap) {
+  std::vector<CsvRecord> seen;
+  for_each_csv_record(
+      "1,2,3\n,,,,,,,,\n\"a,b\",c\ntorn", [&](CsvRecord& r) { seen.push_back(std::move(r)); }, 3);
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_EQ(seen[0].fields, (std::vector<std::string>{"1", "2", "3"}));
+  EXPECT_EQ(seen[1].fields.size(), 4u);  // 9 fields: the first max_fields + 1 kept, enough to refuse it
+  EXPECT_EQ(seen[1].text, ",,,,,,,,");
+  EXPECT_EQ(seen[2].fields, (std::vector<std::string>{"a,b", "c"}));
+  // Without a cap: parse_csv's records.
+  std::size_t n = 0;
+  for_each_csv_record(",,,,\n", [&](CsvRecord& r) { n = r.fields.size(); });
+  EXPECT_EQ(n, 5u);
+}
+
 TEST(Csv, WriterRejectsRowsOfTheWrongLength) {
   CsvWriter w({"a", "b"});
   w.cell(1.0);

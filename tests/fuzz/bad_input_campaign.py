@@ -9,6 +9,16 @@ Each case is one command line (or one Python call) with its expected kind of ans
     masses, huge gains, extreme friction, fine sampling), on short runs. Expected: exit 0 with
     finite results, exit 1 with a named failure ("error: ..." on stderr), or exit 2 naming the
     keys of an infeasible combination — never a crash, a hang or a silent NaN.
+  * class "campaign": campaign command lines no campaign may accept — axes that set the same key
+    (an alias and its parts, over --grid, --random and --set), seeds outside [0, 2^64 - 1], an
+    --out that cannot hold a campaign (a file, a path under a file, /dev/null, a directory
+    holding a FIFO), --resume where there is none — refused, the target left as it was; and
+    resumes from a partial file with damaged cells (exit 0, the same campaign.csv bytes as a
+    clean run: no garbage row trusted).
+  * class "output-target": every writing command (humanoid export, schema, rimless simulate and
+    fixed-point, campaign) with --out naming a FIFO, a socket, /dev/null, a symbolic link to a
+    FIFO, a directory (for a file), or a run directory holding a FIFO: refused, the special file
+    left as it was, no temporary file left.
   * class "python": bad calls to the bindings. Expected: ValueError, or TypeError where the
     argument's type is wrong (Python's convention) — never another exception, never a crash.
 
@@ -36,7 +46,9 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_fuzz  # noqa: E402  (its value lists and YAML damage)
 
-CLASSES = ["set-value", "yaml-file", "path", "option", "extreme-physics", "python"]
+CLASSES = ["set-value", "yaml-file", "path", "option", "extreme-physics", "campaign", "output-target", "python"]
+SPECIAL_CLASSES = {"campaign", "output-target"}
+EXE = None  # the flexgait executable (main sets it)
 OUTCOMES = ["refused", "named-failure", "ok", "crash", "hang", "silent-nan", "unclear"]
 DEFECTS = {"crash", "hang", "silent-nan", "unclear"}
 
@@ -178,6 +190,173 @@ def make_cli_case(rng, cls, config, work):
     return args, None
 
 
+# A cheap campaign (the rigid wheel, one step: each point takes milliseconds).
+CHEAP_CAMPAIGN = ["campaign", "rimless-simulate", "--set", "sim.model=rigid", "--set", "sim.steps=1", "--no-plot"]
+ALIASES = {"rimless.mu": ["rimless.mu_s", "rimless.mu_k"]}
+BAD_SEEDS = ["-1", "18446744073709551616", "99999999999999999999999", "1.5", "1e3", "", " 1", "0x10", "+-1", "nan"]
+
+
+def file_kind(path):
+    """'fifo', 'socket', 'char', 'dir', 'link-to-fifo', 'file', 'absent': what `path` is now."""
+    import stat
+    try:
+        st = os.lstat(path)
+    except FileNotFoundError:
+        return "absent"
+    if stat.S_ISLNK(st.st_mode):
+        return "link-to-" + file_kind(os.path.realpath(path))
+    for test, name in ((stat.S_ISFIFO, "fifo"), (stat.S_ISSOCK, "socket"), (stat.S_ISCHR, "char"), (stat.S_ISDIR, "dir"),
+                       (stat.S_ISREG, "file")):
+        if test(st.st_mode):
+            return name
+    return "other"
+
+
+def special_target(rng, work, kinds):
+    """A fresh special file of one of `kinds` under `work`: (path, kind, what it must stay)."""
+    import socket
+    kind = rng.choice(kinds)
+    base = os.path.join(work, "target-%d" % rng.randrange(10 ** 9))
+    if kind == "fifo":
+        os.mkfifo(base)
+    elif kind == "socket":
+        sock = socket.socket(socket.AF_UNIX)
+        sock.bind(base)
+        sock.close()
+    elif kind == "link-to-fifo":
+        os.mkfifo(base + ".fifo")
+        os.symlink(base + ".fifo", base)
+    elif kind == "dir":
+        os.mkdir(base)
+    elif kind == "file":
+        with open(base, "w") as f:
+            f.write("mine\n")
+    elif kind == "dir-holding-fifo":
+        os.mkdir(base)
+        os.mkfifo(os.path.join(base, rng.choice(["log.csv", "summary.json", "config.yaml", "campaign.csv"])))
+    elif kind == "under-file":
+        with open(base, "w") as f:
+            f.write("mine\n")
+        return os.path.join(base, "run"), kind, None
+    elif kind == "dev-null":
+        return "/dev/null", kind, "char"
+    return base, kind, (kind if kind != "dir-holding-fifo" else None)
+
+
+def target_intact(path, kind, stays):
+    """'' if the target is as it was (and no temporary file is left beside it), else what changed."""
+    if kind == "dir-holding-fifo":
+        entries = os.listdir(path)
+        if len(entries) != 1 or file_kind(os.path.join(path, entries[0])) != "fifo":
+            return "the directory now holds %s" % entries
+    elif kind == "under-file":
+        if file_kind(os.path.dirname(path)) != "file":
+            return "the file in the way was replaced"
+    elif file_kind(path) != stays:
+        return "%s is now %s, was %s" % (path, file_kind(path), stays)
+    if kind == "file" and open(path).read() != "mine\n":
+        return "the file was changed"
+    folder = os.path.dirname(path)
+    left = [f for f in os.listdir(folder) if ".tmp-" in f]
+    return "temporary files left: %s" % left if left else ""
+
+
+def make_special_case(rng, cls, work):
+    """(argv without the exe, post-check returning '' or a problem, expect_ok)."""
+    if cls == "output-target":
+        command = rng.choice([["humanoid", "export"], ["humanoid", "export", "--format", "urdf"], ["schema"],
+                              ["rimless", "simulate", "--set", "sim.steps=1", "--no-plot"],
+                              ["rimless", "fixed-point", "--set", "sim.model=rigid", "--no-plot"],
+                              CHEAP_CAMPAIGN + ["--grid", "rimless.slope=0.05,0.1"]])
+        writes_file = command[0] in ("humanoid", "schema")
+        kinds = ["fifo", "socket", "link-to-fifo", "dev-null"] + (["dir"] if writes_file else ["dir-holding-fifo", "file"])
+        path, kind, stays = special_target(rng, work, kinds)
+        return command + ["--out", path], lambda: target_intact(path, kind, stays), False
+    # campaign
+    kind = rng.choice(["alias", "set-and-axis", "seed", "out", "resume-nothing", "resume-garbage"])
+    out = os.path.join(work, "campaign-%d" % rng.randrange(10 ** 9))
+    absent = lambda: "" if not os.path.exists(out) else "%s written" % out  # noqa: E731
+    if kind == "alias":
+        alias, parts = next(iter(ALIASES.items()))
+        keys = [alias, rng.choice(parts)]
+        rng.shuffle(keys)
+        axes = []
+        for key in keys:
+            if rng.random() < 0.3:
+                axes += ["--random", key + "=0.3:0.5"]
+            else:
+                axes += ["--grid", key + "=0.3,0.5"]
+        if "--random" in axes:
+            axes += ["--samples", "2"]
+        return CHEAP_CAMPAIGN + axes + ["--out", out], absent, False
+    if kind == "set-and-axis":
+        alias, parts = next(iter(ALIASES.items()))
+        given, axis = rng.choice([(p, alias) for p in parts] + [(alias_part, alias_part) for alias_part in parts])
+        value = "0.6" if given != "rimless.mu_k" else "0.2"
+        return CHEAP_CAMPAIGN + ["--set", "%s=%s" % (given, value), "--grid", axis + "=0.3,0.5", "--out", out], absent, False
+    if kind == "seed":
+        return CHEAP_CAMPAIGN + ["--random", "rimless.slope=0.05:0.1", "--samples", "2", "--seed", rng.choice(BAD_SEEDS),
+                                 "--out", out], absent, False
+    if kind == "out":
+        path, target, stays = special_target(rng, work, ["file", "under-file", "dev-null", "fifo", "dir-holding-fifo"])
+        return (CHEAP_CAMPAIGN + ["--grid", "rimless.slope=0.05,0.1", "--out", path],
+                lambda: target_intact(path, target, stays), False)
+    if kind == "resume-nothing":
+        return CHEAP_CAMPAIGN + ["--grid", "rimless.slope=0.05,0.1", "--resume", "--out", out], absent, False
+    # resume-garbage: a finished campaign's rows with cells damaged, resumed: the same bytes as clean.
+    grid = ["--grid", "rimless.slope=0.05:0.1:3", "--grid", "rimless.mu=0.4,0.8", "--jobs", "1"]
+    clean = os.path.join(work, "clean-campaign")
+    if not os.path.exists(os.path.join(clean, "campaign.csv")):
+        subprocess.run([EXE] + CHEAP_CAMPAIGN + grid + ["--out", clean], capture_output=True, timeout=120)
+    os.makedirs(out)
+    shutil.copy(os.path.join(clean, "campaign.signature"), out)
+    import csv
+    with open(os.path.join(clean, "campaign.csv"), newline="") as f:
+        rows = list(csv.reader(f))[1:]
+    # Damage that no row of this campaign can hold: an axis value of another point, or a number
+    # or a boolean cell turned into text that is neither (a plausible wrong number cannot be told
+    # from a right one, by any reader).
+    def is_number_or_boolean(cell):
+        try:
+            return math.isfinite(float(cell))
+        except ValueError:
+            return cell in ("true", "false")
+    for row in rows:
+        if rng.random() < 0.5:
+            typed = [c for c in range(3, len(row) - 1) if is_number_or_boolean(row[c])]
+            if rng.random() < 0.3 or not typed:
+                row[rng.choice([1, 2])] = rng.choice(["0.7", "x", "", "0.05;0.1"])
+            else:
+                row[rng.choice(typed)] = rng.choice(["nan", "inf", "-inf", "1e999", "x", "-", "1;x", "0x1", "True"])
+    with open(os.path.join(out, "campaign.partial.csv"), "w", newline="") as f:
+        csv.writer(f, lineterminator="\n").writerows(rows)
+
+    def same_bytes():
+        a, b = os.path.join(clean, "campaign.csv"), os.path.join(out, "campaign.csv")
+        if not os.path.exists(b) or open(a, "rb").read() != open(b, "rb").read():
+            return "the resumed campaign.csv differs from a clean run's"
+        return ""
+    return CHEAP_CAMPAIGN + grid + ["--resume", "--out", out], same_bytes, True
+
+
+def run_special_case(exe, args, post_check, expect_ok, work, timeout):
+    try:
+        p = subprocess.run([exe] + args, capture_output=True, timeout=timeout, cwd=work,
+                           env=dict(os.environ, MPLBACKEND="Agg"))
+    except subprocess.TimeoutExpired:
+        return "hang", ""
+    stderr = p.stderr.decode("utf-8", "replace")
+    if p.returncode < 0 or p.returncode >= 128 or "internal error" in stderr:
+        return "crash", "exit %d: %s" % (p.returncode, stderr[-600:].strip())
+    problem = post_check()
+    if expect_ok:
+        outcome = "ok" if p.returncode == 0 and not problem else "unclear"
+    else:
+        one_line = stderr.count("\n") == 1 and stderr.endswith("\n")
+        outcome = "refused" if p.returncode == 2 and one_line and not problem else "unclear"
+    return outcome, "exit %d: %s %s" % (p.returncode, stderr[-600:].strip(), problem)
+
+
 def non_finite_in(text):
     return re.search(r"(?<![A-Za-z_\"])(-?nan|-?inf|NaN|-?Infinity)(?![A-Za-z_\"])", text) is not None
 
@@ -235,6 +414,8 @@ PYTHON_CALLS = [
     "flexgait.humanoid.walk({}, compensation='sideways')", "flexgait.humanoid.walk({'walk.step_time': float('inf')})",
     "flexgait.humanoid.bench({'plant.k_joint': -5})", "flexgait.humanoid.bench({'plant.k_joint': 'stiff'})",
     "flexgait.defaults('nothing')", "flexgait.describe('nothing')",
+    "flexgait.rimless.sweep('rimless.mu', 0.1, 1.0, 1000001)", "flexgait.rimless.simulate({'sim.sample_dt': 1e-6})",
+    "flexgait.rimless.simulate({'sim.sample_dt': 1e-4, 'sim.max_log_bytes': 1e6})",
 ]
 
 
@@ -264,7 +445,8 @@ def main():
     parser.add_argument("--classes", default=",".join(CLASSES))
     parser.add_argument("--pythonpath", default=None, help="where the flexgait module is (default: beside the exe)")
     a = parser.parse_args()
-    exe = os.path.abspath(a.exe)
+    global EXE
+    exe = EXE = os.path.abspath(a.exe)
     pythonpath = a.pythonpath or os.path.join(os.path.dirname(os.path.dirname(exe)), "bindings", "python")
     config = schema(exe)
     classes = [c for c in a.classes.split(",") if c]
@@ -284,6 +466,10 @@ def main():
                 if cls == "python":
                     args = PYTHON_CALLS[k]
                     outcome, detail = run_python_case(args, pythonpath, a.timeout)
+                elif cls in SPECIAL_CLASSES:
+                    rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
+                    args, post_check, expect_ok = make_special_case(rng, cls, work)
+                    outcome, detail = run_special_case(exe, args, post_check, expect_ok, work, a.timeout)
                 else:
                     rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
                     args, out = make_cli_case(rng, cls, config, work)

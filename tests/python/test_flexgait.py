@@ -11,6 +11,7 @@ import sys
 import tempfile
 import threading
 import time
+import _thread
 import unittest
 
 import numpy as np
@@ -181,6 +182,44 @@ class Humanoid(unittest.TestCase):
         b = flexgait.humanoid.bench({"bench.poses": 7})
         self.assertLess(abs(b["summary"]["k_fit"] / b["summary"]["k_true"] - 1), 0.01)
         self.assertEqual(len(b["samples"]["encoder"]), 14)
+
+
+class Caps(unittest.TestCase):
+    """The command line's caps hold here too."""
+
+    def test_sweep_count_is_capped_as_on_the_command_line(self):  # `rimless sweep --count` allows 1..10^6
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.sweep("rimless.mu", 0.3, 0.6, 1000001)
+        self.assertIn("count: 1000001 is not in [1, 1000000]", str(e.exception))
+
+    def test_the_logs_projected_size_is_capped(self):  # 1e-6 s over 120 s: ~5e10 bytes of log in memory
+        with self.assertRaises(ValueError) as e:
+            flexgait.rimless.simulate({"sim.sample_dt": 1e-6})
+        self.assertIn("sim.max_log_bytes", str(e.exception))
+
+
+class Interrupt(unittest.TestCase):
+    """Ctrl-C stops a long call with KeyboardInterrupt. _thread.interrupt_main() trips the flag a
+    SIGINT trips; the call, running C++ with the GIL released, sees it at its next check."""
+
+    def interrupted(self, call):
+        timer = threading.Timer(0.3, _thread.interrupt_main)
+        timer.start()
+        try:
+            with self.assertRaises(KeyboardInterrupt):
+                call()  # each runs for many seconds uninterrupted
+        finally:
+            timer.cancel()
+
+    def test_sweep(self):
+        self.interrupted(lambda: flexgait.rimless.sweep("rimless.mu", 0.3, 0.6, 100000))
+
+    def test_simulate(self):
+        self.interrupted(lambda: flexgait.rimless.simulate(
+            {"sim.model": "rigid", "sim.steps": 100000, "sim.max_time": 1e5, "sim.sample_dt": 10}))
+
+    def test_walk(self):
+        self.interrupted(lambda: flexgait.humanoid.walk({"walk.steps": 400}))
 
 
 class Threads(unittest.TestCase):

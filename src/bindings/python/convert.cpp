@@ -98,4 +98,12 @@ py::dict config_dict(const Config& config) {
   return out;
 }
 
+void InterruptCheck::operator()() {
+  const auto now = std::chrono::steady_clock::now();
+  if (now < next_) return;
+  next_ = now + std::chrono::milliseconds(50);
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();  // made with the GIL held
+}
+
 }  // namespace flexgait::python

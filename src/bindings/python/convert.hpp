@@ -8,6 +8,7 @@
 /// digit.
 #include <pybind11/pybind11.h>
 
+#include <chrono>
 #include <optional>
 #include <string>
 
@@ -28,6 +29,19 @@ py::dict csv_columns(const std::string& csv);
 /// The same dict from a Table, without text: each numeric column becomes a numpy float64 array
 /// that owns the table's own vector (no copy), each text column a list of str.
 py::dict table_columns(Table table);
+
+/// Ctrl-C in a long call. Called often from C++ that runs with the GIL released (a progress hook,
+/// a sweep's loop), it takes the GIL for PyErr_CheckSignals at most every 50 ms of wall time (a
+/// clock read otherwise); if a signal handler raised (KeyboardInterrupt), it throws
+/// py::error_already_set, which unwinds the C++ call back to Python with that exception. One
+/// object per call, used by its thread only.
+class InterruptCheck {
+ public:
+  void operator()();
+
+ private:
+  std::chrono::steady_clock::time_point next_ = std::chrono::steady_clock::now();
+};
 
 /// json.loads(text).
 py::object json_value(const std::string& text);

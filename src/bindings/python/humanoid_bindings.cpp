@@ -41,7 +41,8 @@ py::dict walk(const py::object& config, const OptionalPath& config_file, const s
   std::string footsteps, summary, timing;
   {
     py::gil_scoped_release release;
-    const experiments::WalkResult r = experiments::run_walk(params);
+    InterruptCheck interrupted;  // Ctrl-C: checked from the walk's progress hook
+    const experiments::WalkResult r = experiments::run_walk(params, [&](double) { interrupted(); });
     log = experiments::walk_log_table(r);
     joints = experiments::walk_joints_table(r);
     footsteps = experiments::walk_footsteps_csv(r);

@@ -5,6 +5,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
@@ -30,16 +31,44 @@ rimless::Section section_of(const std::string& name) {
   throw py::value_error("section: '" + name + "' is not one of touchdown, upright");
 }
 
+/// The in-memory record of a run (RunCollector) that also lets Ctrl-C stop it (InterruptCheck).
+class InterruptibleCollector final : public rimless::RunSink {
+ public:
+  explicit InterruptibleCollector(rimless::SimulationResult& kept) : keep_(kept) {}
+  void on_sample(const rimless::LogSample& sample) override {
+    keep_.on_sample(sample);
+    check_();
+  }
+  void on_event(const rimless::EventRecord& event) override {
+    keep_.on_event(event);
+    check_();
+  }
+  void on_step(const rimless::StepRecord& step) override {
+    keep_.on_step(step);
+    check_();
+  }
+
+ private:
+  rimless::RunCollector keep_;
+  InterruptCheck check_;
+};
+
 py::dict simulate(const py::object& config, const OptionalPath& config_file) {
   const WheelSetup s = wheel_setup(rimless::rimless_schema(), config, config_file);
+  check_with_origin(s.config, [&] { rimless::check_log_size(s.sim); });  // the log is kept in memory
   const std::string model = s.config.choice("sim.model");
   Table log({}), events({}), steps({});
   std::string summary;
   {
     py::gil_scoped_release release;
-    const rimless::SimulationResult r = s.sim.model == rimless::Model::Rigid
-                                            ? rimless::simulate_rigid(s.wheel, s.initial, s.sim)
-                                            : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
+    rimless::SimulationResult kept;  // samples, events and steps
+    InterruptibleCollector sink(kept);
+    rimless::SimulationResult r = s.sim.model == rimless::Model::Rigid
+                                      ? rimless::simulate_rigid(s.wheel, s.initial, s.sim, sink)
+                                      : rimless::simulate_flexible(s.wheel, s.initial, s.sim, sink);
+    r.samples = std::move(kept.samples);
+    r.events = std::move(kept.events);
+    r.steps = std::move(kept.steps);
     log = rimless::log_table(r);
     events = rimless::events_table(r);
     steps = rimless::steps_table(r);
@@ -115,13 +144,19 @@ py::dict sweep(const std::string& param, double start, double stop, int count, c
                const OptionalPath& config_file, const std::string& section) {
   const WheelSetup s = wheel_setup(rimless::rimless_analysis_schema(), config, config_file);
   rimless::check_sweep_param(s.config.schema(), param);
-  if (count < 1) throw py::value_error("count: must be at least 1, got " + std::to_string(count));
+  if (count < 1 || count > kMaxSweepPoints)
+    throw py::value_error("count: " + std::to_string(count) + " is not in [1, " + std::to_string(kMaxSweepPoints) +
+                          "] (the command line's cap)");
   const rimless::SweepSpec spec{param, start, stop, count, section_of(section)};
   for (int i = 0; i < count; ++i) rimless::sweep_point_config(s.config, spec, i);  // every point valid first
   std::string csv = "index," + rimless::sweep_header() + "\n";
   {
     py::gil_scoped_release release;
-    for (int i = 0; i < count; ++i) csv += std::to_string(i) + "," + rimless::sweep_row(s.config, spec, i) + "\n";
+    InterruptCheck interrupted;
+    for (int i = 0; i < count; ++i) {
+      interrupted();
+      csv += std::to_string(i) + "," + rimless::sweep_row(s.config, spec, i) + "\n";
+    }
   }
   return csv_columns(csv);
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/campaign/program_build.hpp"
@@ -41,6 +42,49 @@ bool is_sample_axis(const RandomDesign& random, const GridAxis& axis) {
   return !random.empty() && axis.key == RandomDesign::kSampleAxis;
 }
 
+/// The configuration keys one axis writes (an alias writes several: rimless.mu sets
+/// rimless.mu_s and rimless.mu_k), under the axis's option text ("--grid rimless.mu").
+struct AxisKeys {
+  std::string axis;
+  std::vector<std::string> keys;
+};
+
+/// The keys of `c` whose value came from `origin`, in schema order.
+std::vector<std::string> keys_with_origin(const Config& c, const std::string& origin) {
+  std::vector<std::string> keys;
+  for (const ParamSpec& p : c.schema().params())
+    if (c.origin(p.key) == origin) keys.push_back(p.key);
+  return keys;
+}
+
+std::string listed(const std::vector<std::string>& keys) {
+  std::string out;
+  for (const auto& k : keys) out += (out.empty() ? "" : " and ") + k;
+  return out;
+}
+
+/// Throws UsageError if two axes write the same key (an alias and one of its parts: the table
+/// would label points with values that were never run), or if an axis writes a key that --set
+/// gave (the axis would silently replace the --set value in every point). Values from a --config
+/// file are the base a grid varies, and stay allowed.
+void check_axes_apart(const std::vector<AxisKeys>& written, const Config& base) {
+  for (std::size_t a = 0; a < written.size(); ++a) {
+    for (std::size_t b = 0; b < a; ++b)
+      for (const std::string& key : written[a].keys)
+        if (std::find(written[b].keys.begin(), written[b].keys.end(), key) != written[b].keys.end())
+          throw UsageError(fmt::format("{} and {} both set {} ({} sets {}; {} sets {}); give only one of them",
+                                       one_line(written[b].axis), one_line(written[a].axis), key,
+                                       one_line(written[b].axis), listed(written[b].keys), one_line(written[a].axis),
+                                       listed(written[a].keys)));
+    for (const std::string& key : written[a].keys)
+      if (base.origin(key) == "--set")
+        throw UsageError(
+            fmt::format("--set {} and {} both set {}: the axis's values would replace the --set value at "
+                        "every point; give only one of them",
+                        key, one_line(written[a].axis), key));
+  }
+}
+
 }  // namespace
 
 std::string summary_cells(const std::string& summary_json, const std::vector<std::string>& metrics) {
@@ -65,17 +109,23 @@ Campaign::Campaign(Experiment experiment, Config base, Grid grid, RandomDesign r
         if (g.key == r.key) throw UsageError(fmt::format("--random: key '{}' is also a --grid axis", one_line(r.key)));
   }
   experiment_.check(base_);
-  for (const GridAxis& axis : grid_.axes())  // each value alone: the domain of its key
+  std::vector<AxisKeys> written;               // the keys each axis writes
+  for (const GridAxis& axis : grid_.axes()) {  // each value alone: the domain of its key
+    if (is_sample_axis(random_, axis)) continue;
     for (const std::string& value : axis.values) {
-      if (is_sample_axis(random_, axis)) continue;
       Config c = base_;
       experiment_.set(c, axis.key, value, "--grid " + axis.key);
+      if (&value == &axis.values.front())
+        written.push_back({"--grid " + axis.key, keys_with_origin(c, "--grid " + axis.key)});
     }
+  }
   for (const RandomAxis& axis : random_.axes())  // each end alone: the domain of its key
     for (const double end : {axis.low, axis.high}) {
       Config c = base_;
       experiment_.set(c, axis.key, format_number(end), "--random " + axis.key);
+      if (end == axis.low) written.push_back({"--random " + axis.key, keys_with_origin(c, "--random " + axis.key)});
     }
+  check_axes_apart(written, base_);
   for (int i = 0; i < size(); ++i) point_config(i);  // each combination: the cross-key checks
 }
 
@@ -141,6 +191,20 @@ std::string Campaign::row(int i, const std::filesystem::path& run_dir) const {
   }
 }
 
+bool Campaign::row_valid(int i, const std::vector<std::string>& cells) const {
+  const std::vector<std::string> values = point_values(i);
+  const std::size_t metrics = experiment_.metrics.size();
+  if (cells.size() != values.size() + metrics + 1 || !std::equal(values.begin(), values.end(), cells.begin()))
+    return false;
+  const bool failed = !cells.back().empty();
+  for (std::size_t m = 0; m < metrics; ++m) {
+    const std::string& cell = cells[values.size() + m];
+    const std::string type = m < experiment_.metric_types.size() ? experiment_.metric_types[m] : "";
+    if ((failed && !cell.empty()) || !metric_cell_valid(type, cell)) return false;
+  }
+  return true;
+}
+
 std::string Campaign::signature() const {
   std::string out = fmt::format("flexgait {}\ncampaign {}\n", program_build(), experiment_.name);
   for (const GridAxis& axis : grid_.axes()) {
@@ -170,6 +234,8 @@ SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run) {
   SweepJob job;
   job.dir = run.dir;
   job.name = "campaign";
+  job.noun = "campaign";
+  job.valid_row = [&campaign](int i, const std::vector<std::string>& cells) { return campaign.row_valid(i, cells); };
   job.header = campaign.header();
   job.count = campaign.size();
   job.jobs = run.jobs;
@@ -177,7 +243,12 @@ SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run) {
   job.signature = campaign.signature();
   job.distributor = run.distributor;
   job.cost = [&campaign](int i) { return campaign.cost(i); };
-  job.prepare = [&] { write_file_atomic(run.dir / "config.yaml", campaign.config_yaml()); };
+  std::optional<RunDirectory> own;  // marks the directory complete as run_campaign returns
+  std::optional<RunDirectory>& directory = run.directory != nullptr ? *run.directory : own;
+  job.prepare = [&] {
+    directory.emplace(run.dir);
+    directory->write("config.yaml", campaign.config_yaml());
+  };
   const std::filesystem::path runs = run.keep_runs ? run.dir / "runs" : std::filesystem::path();
   job.row = [&campaign, runs](int i) {
     return campaign.row(i, runs.empty() ? runs : runs / fmt::format("{:06d}", i));

@@ -10,10 +10,12 @@
 ///                 one row per point, sorted by index, the same bytes whatever the threads,
 ///                 ranks and resumes;
 ///   config.yaml   the base configuration (loadable with --config), the axes in its header;
-///   runs/NNNNNN/  each point's run files (keep_runs only).
+///   runs/NNNNNN/  each point's run files (keep_runs only);
+///   complete      the RunDirectory marker: the campaign finished (core/run_directory.hpp).
 /// Cells: numbers as format_number, booleans true/false, null empty, lists joined by ';' (pairs
 /// such as a multiplier's re, im by ':'), text quoted as CSV needs.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,7 @@
 #include "flexgait/campaign/grid.hpp"
 #include "flexgait/campaign/random_design.hpp"
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/sweep_runner.hpp"
 
 namespace flexgait::campaign {
@@ -47,6 +50,10 @@ class Campaign {
   /// Point i's cells (no index): never throws for a failing run; its message goes to `error`.
   /// `run_dir` not empty: the point's run files go there.
   std::string row(int i, const std::filesystem::path& run_dir = {}) const;
+  /// Whether `cells` (a resumed row's fields after the index) can be row(i)'s: the point's own
+  /// axis and drawn values exactly, each metric's cell of its type (metric_cell_valid), and either
+  /// an empty `error` or no metric at all (a point that could not run).
+  bool row_valid(int i, const std::vector<std::string>& cells) const;
   /// What a resumed campaign must match: the program's build (program_build.hpp: version and git
   /// describe), experiment, axes, base configuration.
   std::string signature() const;
@@ -74,10 +81,16 @@ struct CampaignRun {
   bool resume = false;
   bool keep_runs = false;
   PointDistributor* distributor = nullptr;  ///< nullptr: the threads of this process
+  /// Where the coordinator keeps the campaign's RunDirectory (made once the campaign is known to
+  /// run), so that the caller's later files (reduced.csv, the figure) come before its `complete`
+  /// marker, written when the caller's optional goes out of scope. nullptr: run_campaign marks
+  /// the directory complete itself when the points are done.
+  std::optional<RunDirectory>* directory = nullptr;
 };
 
 /// Runs the campaign into run.dir (on the coordinator; an MPI worker computes the points it is
-/// handed and writes nothing). --resume of a different campaign: UsageError before anything is written.
+/// handed and writes nothing). --resume of a different campaign, or a run.dir that cannot be a
+/// directory of results (check_output_directory): UsageError before anything is written.
 SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run);
 
 }  // namespace flexgait::campaign

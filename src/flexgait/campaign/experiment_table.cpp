@@ -42,6 +42,32 @@ std::vector<std::string> record_keys() {
   return keys;
 }
 
+template <class R>
+std::vector<std::string> record_types() {
+  std::vector<std::string> types;
+  for (const auto& f : describe_record<R>()) types.push_back(f.type);
+  return types;
+}
+
+/// The types of a JSON object's values (as FieldDescription::type), `keys` in order: "" for a
+/// null, a text, a list or an object (kinds a value may change between runs).
+std::vector<std::string> json_types(const std::string& text, const std::vector<std::string>& keys) {
+  const auto json = nlohmann::ordered_json::parse(text);
+  std::vector<std::string> types;
+  for (const auto& k : keys) {
+    const auto it = json.find(k);
+    std::string type;
+    if (it != json.end() && it->is_boolean())
+      type = "boolean";
+    else if (it != json.end() && it->is_number_integer())
+      type = "integer";
+    else if (it != json.end() && it->is_number_float())
+      type = "real";
+    types.push_back(type);
+  }
+  return types;
+}
+
 /// The keys of a JSON object's text, in order, less `skip`.
 std::vector<std::string> json_keys(const std::string& text, const std::vector<std::string>& skip) {
   std::vector<std::string> keys;
@@ -64,6 +90,8 @@ Experiment rimless_simulate() {
   e.check = [](const Config& c) { rimless::wheel_setup(c); };
   e.metrics = record_keys<rimless::SimulationResult>();
   e.metrics.insert(e.metrics.begin(), "model");
+  e.metric_types = record_types<rimless::SimulationResult>();
+  e.metric_types.insert(e.metric_types.begin(), "choice");
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     rimless::WheelSetup s = rimless::wheel_setup(c);
     const auto dir = kept_run(c, run_dir);
@@ -97,6 +125,7 @@ Experiment rimless_fixed_point() {
   e.check = [](const Config& c) { rimless::wheel_setup(c); };
   // Keys that appear only in some reports (last_iterate, jacobian_note) are not columns.
   e.metrics = json_keys(fixed_point_summary(rimless::FixedPointReport{}), {});
+  e.metric_types = json_types(fixed_point_summary(rimless::FixedPointReport{}), e.metrics);
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const rimless::WheelSetup s = rimless::wheel_setup(c);
     const rimless::FixedPointReport r = rimless::find_fixed_point(
@@ -112,6 +141,7 @@ Experiment humanoid_walk() {
   Experiment e{"humanoid-walk", "summary.json", experiments::walk_run_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { experiments::walk_run_from_config(c); };
   e.metrics = record_keys<experiments::WalkMetrics>();
+  e.metric_types = record_types<experiments::WalkMetrics>();
   // The walk's planned duration: a point costs about its simulated time (a fall ends it sooner).
   e.cost = [](const Config& c) { return static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"); };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
@@ -128,6 +158,7 @@ Experiment humanoid_bench() {
   Experiment e{"humanoid-bench", "summary.json", experiments::bench_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { experiments::bench_from_config(c); };
   e.metrics = record_keys<experiments::BenchResult>();
+  e.metric_types = record_types<experiments::BenchResult>();
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::BenchResult r = experiments::run_stiffness_bench(experiments::bench_from_config(c));
     std::string summary = experiments::bench_summary_json(r);
@@ -146,6 +177,7 @@ Experiment humanoid_push_recovery() {
   Experiment e{"humanoid-push-recovery", "summary.json", experiments::push_recovery_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { experiments::push_recovery_from_config(c); };
   e.metrics = record_keys<experiments::PushRecoveryResult>();
+  e.metric_types = record_types<experiments::PushRecoveryResult>();
   // About 8 runs of the simulated time each run plans.
   e.cost = [](const Config& c) {
     const bool standing = c.choice("push_recovery.situation") == "standing";
@@ -166,6 +198,23 @@ std::vector<Experiment> table() {
 }
 
 }  // namespace
+
+bool metric_cell_valid(const std::string& type, const std::string& cell) {
+  if (cell.empty()) return true;
+  if (type == "real") return parse_finite_number(cell).has_value();
+  if (type == "integer") {
+    const std::size_t digits = cell.front() == '-' ? 1 : 0;
+    return cell.size() > digits && cell.size() <= 20 &&
+           cell.find_first_not_of("0123456789", digits) == std::string::npos;
+  }
+  if (type == "boolean") return cell == "true" || cell == "false";
+  if (type == "list of real") {
+    for (const std::string& item : split_text(cell, ';'))
+      if (!parse_finite_number(item)) return false;
+    return true;
+  }
+  return true;
+}
 
 std::vector<std::string> experiment_names() {
   std::vector<std::string> names;

@@ -30,7 +30,15 @@ struct Experiment {
   /// The estimated cost of a point, in any unit (humanoid-walk: the simulated time it plans);
   /// empty: all points alike. Only the order the points are handed out depends on it.
   std::function<double(const Config& config)> cost = {};
+  /// The type of each metric's cells, as FieldDescription::type names it ("real", "integer",
+  /// "boolean", "list of real", ...); "" when not known. A resumed row's cells are checked by it.
+  std::vector<std::string> metric_types = {};
 };
+
+/// Whether `cell` (campaign.csv's text of one summary value) can be a value of type `type`
+/// (Experiment::metric_types): empty (null) always; "real" a finite number; "integer" an integer;
+/// "boolean" true or false; "list of real" finite numbers joined by ';'; any text otherwise.
+bool metric_cell_valid(const std::string& type, const std::string& cell);
 
 /// The names of the experiments, in table order.
 std::vector<std::string> experiment_names();

@@ -1,10 +1,13 @@
 #include "flexgait/core/atomic_file.hpp"
 
+#include <fmt/format.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <sstream>
@@ -12,6 +15,9 @@
 #include <string>
 #include <system_error>
 #include <vector>
+
+#include "flexgait/core/config.hpp"
+#include "flexgait/core/text.hpp"
 
 namespace flexgait {
 namespace {
@@ -47,7 +53,71 @@ void sync_directory(const std::filesystem::path& dir) {
   if (rc != 0) fail("cannot flush the directory", dir);
 }
 
+// What a file of mode `mode` is, for messages ("" for a regular file).
+std::string file_kind(mode_t mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// The kind of `path` if it exists and is not a regular file or (`directory_ok`) a directory,
+// links followed and named ("a symbolic link to a FIFO"); "" otherwise (absent, dangling link).
+std::string unusable_kind(const std::filesystem::path& path, bool directory_ok) {
+  struct stat target {};
+  if (::stat(path.c_str(), &target) != 0) return "";  // absent (or a dangling link: replaced)
+  if (S_ISREG(target.st_mode) || (directory_ok && S_ISDIR(target.st_mode))) return "";
+  struct stat link {};
+  const bool is_link = ::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode);
+  return (is_link ? "a symbolic link to " : "") + file_kind(target.st_mode);
+}
+
+std::string option_prefix(const std::string& option) {
+  return option.empty() ? "output" : option;
+}
+
 }  // namespace
+
+void check_output_file(const std::filesystem::path& path, const std::string& option) {
+  if (path.empty())
+    throw UsageError(
+        fmt::format("{}: an empty path; allowed: a regular file (replaced whole) or a path that does not "
+                    "exist yet",
+                    option_prefix(option)));
+  const std::string kind = unusable_kind(path, false);
+  if (kind.empty()) return;
+  throw UsageError(
+      fmt::format("{}: {} is {}, not a regular file; allowed: a regular file (replaced whole) or a "
+                  "path that does not exist yet",
+                  option_prefix(option), one_line(path.string(), 1000), kind));
+}
+
+void check_output_directory(const std::filesystem::path& path, const std::string& option) {
+  if (path.empty())
+    throw UsageError(fmt::format("{}: an empty path; allowed: a directory or a path that does not exist yet",
+                                 option_prefix(option)));
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return;  // made later
+  if (!S_ISDIR(st.st_mode))
+    throw UsageError(
+        fmt::format("{}: cannot make the run directory {}: it is {}, not a directory; allowed: a "
+                    "directory or a path that does not exist yet",
+                    option_prefix(option), one_line(path.string(), 1000),
+                    S_ISREG(st.st_mode) ? "a regular file" : unusable_kind(path, false)));
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(path, ec)) {
+    const std::string kind = unusable_kind(entry.path(), true);
+    if (!kind.empty())
+      throw UsageError(
+          fmt::format("{}: cannot use the run directory {}: it holds {}, which is {}; allowed: a "
+                      "directory of regular files and directories (remove it or choose another)",
+                      option_prefix(option), one_line(path.string(), 1000),
+                      one_line(entry.path().filename().string(), 1000), kind));
+  }
+}
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
   AtomicFileWriter file(path);
@@ -63,6 +133,7 @@ void write_file_durable(const std::filesystem::path& path, std::string_view cont
 
 AtomicFileWriter::AtomicFileWriter(std::filesystem::path path, Durability durability)
     : path_(std::move(path)), durability_(durability) {
+  check_output_file(path_);
   const std::filesystem::path dir = directory_of(path_);
   std::string leaf = ".";  // built step by step: GCC 12 warns falsely (-Wrestrict) on a + b + c
   leaf += path_.filename().string();
@@ -121,6 +192,12 @@ void AtomicFileWriter::commit() {
     errno = err;
     fail("cannot close", tmp_);
   }
+  try {  // again: the target may have been replaced while the content was written
+    check_output_file(path_);
+  } catch (...) {
+    ::unlink(tmp_.c_str());
+    throw;
+  }
   if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
     const int err = errno;
     ::unlink(tmp_.c_str());
@@ -160,9 +237,18 @@ int remove_orphaned_temporaries(const std::filesystem::path& dir) {
 
 std::string read_text_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
+  std::string text;
+  std::error_code ec;
+  const auto size = std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+  if (!ec && size > 0) {  // a regular file: read in one piece (a stringstream would copy it twice)
+    text.resize(size);
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    text.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+    if (in.gcount() < static_cast<std::streamsize>(size) || in.peek() == std::char_traits<char>::eof()) return text;
+  }
+  std::stringstream ss;  // a pipe, or a file that grew while it was read: the rest
   ss << in.rdbuf();
-  return ss.str();
+  return text + ss.str();
 }
 
 void append_file_durable(const std::filesystem::path& path, std::string_view content) {

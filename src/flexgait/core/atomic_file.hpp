@@ -21,6 +21,20 @@ enum class Durability {
   Durable,  ///< also on disk when commit() returns (fsync of the file, then of its directory)
 };
 
+/// Throws UsageError if `path` exists and is not a regular file, symbolic links followed: a
+/// directory, a character or block device (/dev/null), a FIFO or a socket. Renaming a new file
+/// over such a target would replace the device or the pipe itself (as root: the system's
+/// /dev/null), or fail only after the work is done. The message starts with `option` ("--out")
+/// or, if it is empty, "output", and names the path, its kind and what is allowed; an empty path
+/// is refused too. A path that does not exist (or a dangling link, which the rename replaces)
+/// passes.
+void check_output_file(const std::filesystem::path& path, const std::string& option = "");
+
+/// Throws UsageError (message as check_output_file's) if `path` is empty, exists and is not a directory,
+/// or if one of its entries is neither a regular file nor a directory (links followed): a run
+/// directory's files are replaced by rename, which must not land on a device, FIFO or socket.
+void check_output_directory(const std::filesystem::path& path, const std::string& option = "");
+
 /// Writes `content` to `path` atomically. Throws std::system_error on failure, leaving
 /// neither a partial `path` nor a temporary file behind.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
@@ -36,7 +50,8 @@ void write_file_durable(const std::filesystem::path& path, std::string_view cont
 /// half-written `path`.
 class AtomicFileWriter {
  public:
-  /// Creates the temporary file. Throws std::system_error if that fails.
+  /// Creates the temporary file. Throws UsageError if `path` exists and is not a regular file
+  /// (check_output_file), std::system_error if the temporary file cannot be made.
   explicit AtomicFileWriter(std::filesystem::path path, Durability durability = Durability::Atomic);
   ~AtomicFileWriter();
   AtomicFileWriter(const AtomicFileWriter&) = delete;
@@ -44,8 +59,9 @@ class AtomicFileWriter {
   /// Appends `content` to the temporary file. Throws std::system_error on failure.
   void append(std::string_view content);
   /// Closes the temporary file and renames it over the target (once; Durable: with an fsync of
-  /// the file before and of the directory after). Throws
-  /// std::system_error on failure, leaving neither a partial target nor the temporary file.
+  /// the file before and of the directory after), the target checked again just before.
+  /// Throws UsageError (check_output_file) or std::system_error on failure, leaving neither a
+  /// partial target nor the temporary file.
   void commit();
   const std::filesystem::path& path() const { return path_; }
   /// The temporary file's path (while not committed).

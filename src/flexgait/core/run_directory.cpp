@@ -11,13 +11,20 @@
 
 namespace flexgait {
 
+void make_output_directory(const std::filesystem::path& path, const std::string& option) {
+  check_output_directory(path, option);
+  std::error_code ec;
+  std::filesystem::create_directories(path, ec);
+  if (!ec && !std::filesystem::is_directory(path)) ec = std::make_error_code(std::errc::not_a_directory);
+  if (ec)
+    throw UsageError(
+        fmt::format("{}: cannot make the run directory {}: {}", option, one_line(path.string(), 1000), ec.message()));
+}
+
 RunDirectory::RunDirectory(std::filesystem::path path)
     : path_(std::move(path)), uncaught_at_start_(std::uncaught_exceptions()) {
+  make_output_directory(path_);
   std::error_code ec;
-  std::filesystem::create_directories(path_, ec);
-  if (!ec && !std::filesystem::is_directory(path_)) ec = std::make_error_code(std::errc::not_a_directory);
-  if (ec)
-    throw UsageError(fmt::format("--out: cannot make the run directory {}: {}", one_line(path_.string(), 1000), ec.message()));
   std::filesystem::remove(path_ / kCompleteMarker, ec);
   remove_orphaned_temporaries(path_);
 }

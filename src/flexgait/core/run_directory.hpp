@@ -8,6 +8,7 @@
 /// file `complete` as it goes out of scope. A run that was killed, crashed or stopped on an error
 /// leaves no `complete`, so a reader (a script, `--resume`) can tell it from a finished one.
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 #include "flexgait/core/config.hpp"
@@ -19,8 +20,10 @@ class RunDirectory {
   /// The marker's file name.
   static constexpr const char* kCompleteMarker = "complete";
 
-  /// Creates `path` (and its parents). Throws UsageError naming --out if that fails or if `path`
-  /// exists and is not a directory. Commands make it after every check and before computing.
+  /// Creates `path` (and its parents). Throws UsageError naming --out if that fails, if `path`
+  /// exists and is not a directory, or if it holds an entry that is neither a regular file nor a
+  /// directory (check_output_directory: a FIFO or a device where a run file would be renamed).
+  /// Commands make it after every check and before computing.
   /// An existing directory loses its `complete` marker (it is being written again) and the
   /// temporary files that killed writers left in it (remove_orphaned_temporaries).
   explicit RunDirectory(std::filesystem::path path);
@@ -42,6 +45,11 @@ class RunDirectory {
   int uncaught_at_start_ = 0;  ///< std::uncaught_exceptions() when made
   bool owner_ = true;          ///< false once moved from
 };
+
+/// Makes `path` and its parents for a command's output. Throws UsageError naming `option` if
+/// check_output_directory refuses it or if it cannot be made (a regular file in the way, no
+/// permission): a directory the user named that cannot hold the output is bad usage (exit 2).
+void make_output_directory(const std::filesystem::path& path, const std::string& option = "--out");
 
 /// True if `path` holds the `complete` marker of a finished run.
 bool run_directory_complete(const std::filesystem::path& path);

@@ -13,29 +13,43 @@
 #include <stdexcept>
 
 #include "flexgait/core/atomic_file.hpp"
-#include "flexgait/core/text.hpp"
 #include "flexgait/core/progress.hpp"
+#include "flexgait/core/run_directory.hpp"
+#include "flexgait/core/text.hpp"
 
 namespace flexgait {
 namespace {
 
 // Finished rows of a partial file: complete CSV records "index,cells" with an index in [0, count)
-// written in full (digits only) and as many fields as the header has columns. Anything else (a torn
-// last record, a line that is not the sweep's) is left out, to be computed again; *rejected counts it.
+// written in full (digits only), as many fields as the header has columns, and cells the job's
+// valid_row accepts. Anything else (a torn last record, a line that is not the sweep's, garbage
+// in a cell) is left out, to be computed again; *rejected counts it. Records are read one at a
+// time with at most columns + 1 fields kept: memory is the file's text and the rows kept.
 std::map<int, std::string> read_partial(const std::filesystem::path& p, const SweepJob& job, int* rejected) {
   const std::size_t columns = parse_csv(job.header + "\n").front().fields.size() + 1;
   std::map<int, std::string> rows;
   *rejected = 0;
-  for (const CsvRecord& record : parse_csv(read_text_file(p))) {
-    const std::string& index = record.fields.front();
-    int i = -1;
-    const auto [end, ec] = std::from_chars(index.data(), index.data() + index.size(), i);
-    const bool valid = record.fields.size() == columns && !index.empty() && index.front() != '-' &&
-                       ec == std::errc() && end == index.data() + index.size() && i < job.count &&
-                       record.text.rfind(index + ",", 0) == 0 && rows.count(i) == 0;
-    if (valid) rows[i] = record.text.substr(index.size() + 1);
-    else ++*rejected;
-  }
+  std::vector<std::string> cells;
+  for_each_csv_record(
+      read_text_file(p),
+      [&](CsvRecord& record) {
+        const std::string& index = record.fields.front();
+        int i = -1;
+        const auto [end, ec] = std::from_chars(index.data(), index.data() + index.size(), i);
+        bool valid = record.fields.size() == columns && !index.empty() && index.front() != '-' && ec == std::errc() &&
+                     end == index.data() + index.size() && i < job.count && record.text.rfind(index + ",", 0) == 0 &&
+                     rows.count(i) == 0;
+        if (valid && job.valid_row) {
+          cells.assign(std::make_move_iterator(record.fields.begin() + 1),
+                       std::make_move_iterator(record.fields.end()));
+          valid = job.valid_row(i, cells);
+        }
+        if (valid)
+          rows[i] = record.text.substr(index.size() + 1);
+        else
+          ++*rejected;
+      },
+      columns);
   return rows;
 }
 
@@ -103,10 +117,10 @@ void check_resumable(const SweepJob& job) {
   if (!job.resume) return;
   const auto signature = job.dir / (job.name + ".signature");
   if (!std::filesystem::exists(signature))
-    throw UsageError(fmt::format("--resume: no sweep to resume in {}", job.dir.string()));
+    throw UsageError(fmt::format("--resume: no {} to resume in {}", job.noun, one_line(job.dir.string(), 1000)));
   if (read_text_file(signature) != job.signature)
-    throw UsageError(fmt::format("--resume: {} holds a different sweep (see {})", job.dir.string(),
-                                            signature.string()));
+    throw UsageError(fmt::format("--resume: {} holds a different {} (see {})", one_line(job.dir.string(), 1000),
+                                 job.noun, one_line(signature.string(), 1000)));
 }
 
 namespace {
@@ -116,7 +130,7 @@ SweepOutcome run_coordinator(const SweepJob& job, PointDistributor& distributor)
   std::vector<int> todo;
   try {
     check_resumable(job);
-    std::filesystem::create_directories(job.dir);
+    make_output_directory(job.dir);
     if (job.prepare) job.prepare();
   } catch (...) {
     distributor.run({}, 0, job.row, {});  // release the workers, then report
@@ -129,8 +143,8 @@ SweepOutcome run_coordinator(const SweepJob& job, PointDistributor& distributor)
     int rejected = 0;
     rows = read_partial(partial, job, &rejected);
     if (rejected > 0)
-      fmt::print(stderr, "note: --resume: {} line(s) of {} are not finished points of this sweep; computed again\n",
-                 rejected, partial.string());
+      fmt::print(stderr, "note: --resume: {} line(s) of {} are not finished points of this {}; computed again\n",
+                 rejected, partial.string(), job.noun);
   }
   if (!job.resume) std::filesystem::remove(partial);
   // Durable, as the appended rows: a resume after a power cut trusts both.

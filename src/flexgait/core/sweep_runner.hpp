@@ -8,15 +8,21 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/point_distributor.hpp"
 
 namespace flexgait {
 
+/// The most points of one sweep: `rimless sweep --count`, the Python `sweep`'s count, a
+/// campaign's grid (campaign/grid.hpp).
+inline constexpr int kMaxSweepPoints = 1'000'000;
+
 struct SweepJob {
   std::filesystem::path dir;      ///< output directory
   std::string name = "sweep";     ///< files: NAME.csv (final), NAME.partial.csv, NAME.signature
+  std::string noun = "sweep";     ///< what the messages call it ("no sweep to resume", "campaign")
   std::string header;             ///< CSV header, without "index" (added first)
   int count = 0;                  ///< points 0 .. count-1
   int jobs = 0;                   ///< worker threads (per process); 0: all cores
@@ -24,6 +30,11 @@ struct SweepJob {
   std::string signature;          ///< what defines the sweep (parameters, configuration); checked on resume
   /// Computes point i; returns its CSV cells (no index, no newline). Must be thread-safe.
   PointFunction row;
+  /// Whether `cells` (a resumed row's fields after the index, as many as the header has) are what
+  /// row(i) could have returned: the point's own axis values, numbers that parse and are finite
+  /// where the column holds numbers. A row it refuses is computed again. Empty: any row with the
+  /// right number of fields is kept.
+  std::function<bool(int i, const std::vector<std::string>& cells)> valid_row;
   /// The estimated cost of point i (any unit, e.g. the simulated time it plans): the points are
   /// handed out most expensive first (ties by index), so the last to start are the cheap ones and
   /// no worker idles long at the end. Empty: index order. The CSV is sorted by index either way.

@@ -78,12 +78,15 @@ std::string csv_field(std::string_view text) {
   return out;
 }
 
-std::vector<CsvRecord> parse_csv(std::string_view text) {
-  std::vector<CsvRecord> records;
+void for_each_csv_record(std::string_view text, const std::function<void(CsvRecord&)>& visit, std::size_t max_fields) {
   CsvRecord current;
   std::string field;
   bool quoted = false;       // inside a quoted field
   std::size_t start = 0;     // where the current record's text starts
+  const auto end_field = [&] {
+    if (current.fields.size() <= max_fields) current.fields.push_back(std::move(field));
+    field.clear();
+  };
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char ch = text[i];
     if (quoted) {
@@ -98,22 +101,26 @@ std::vector<CsvRecord> parse_csv(std::string_view text) {
     } else if (ch == '"') {
       quoted = true;
     } else if (ch == ',') {
-      current.fields.push_back(std::move(field));
-      field.clear();
+      end_field();
     } else if (ch == '\n' || (ch == '\r' && i + 1 < text.size() && text[i + 1] == '\n')) {
       const std::size_t end = i;
       if (ch == '\r') ++i;
-      current.fields.push_back(std::move(field));
-      field.clear();
+      end_field();
       current.text = std::string(text.substr(start, end - start));
-      records.push_back(std::move(current));
+      visit(current);
       current = {};
       start = i + 1;
     } else {
       field += ch;
     }
   }
-  return records;  // a record without its line end is torn: left out
+  // a record without its line end is torn: left out
+}
+
+std::vector<CsvRecord> parse_csv(std::string_view text) {
+  std::vector<CsvRecord> records;
+  for_each_csv_record(text, [&](CsvRecord& r) { records.push_back(std::move(r)); });
+  return records;
 }
 
 CsvWriter::CsvWriter(const std::vector<std::string>& columns) : columns_(columns.size()) {

@@ -1,5 +1,7 @@
 #pragma once
 /// \file text.hpp  Deterministic number formatting, CSV building, one-line message text.
+#include <cstddef>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -37,6 +39,13 @@ struct CsvRecord {
 /// and line ends). A last record without its line end — a file torn by an interruption — is
 /// left out, so is one whose quotes are not closed.
 std::vector<CsvRecord> parse_csv(std::string_view text);
+
+/// parse_csv one record at a time: `visit` gets each complete record (and may move from it), so
+/// memory holds one record, not the whole table. A record with more than `max_fields` fields
+/// arrives with its first max_fields + 1 only (the rest dropped as read: a damaged line of many
+/// empty fields costs no more than its text).
+void for_each_csv_record(std::string_view text, const std::function<void(CsvRecord&)>& visit,
+                         std::size_t max_fields = static_cast<std::size_t>(-1));
 
 /// Builds a CSV document in memory, one row at a time; numbers use format_number, text is
 /// quoted as RFC 4180 asks (csv_field).

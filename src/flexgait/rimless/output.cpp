@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -76,7 +78,31 @@ Writer step_rows(const SimulationResult& r) {
   return w;
 }
 
+// The longest run the options allow [s]: the time limit, or every step at its own limit.
+double log_horizon(const SimulationOptions& o) {
+  return std::min(o.max_time, static_cast<double>(o.steps) * o.max_step_time);
+}
+
 }  // namespace
+
+double projected_log_bytes(const SimulationOptions& o) {
+  // Measured at the spec's parameters, 20 steps: flexible 379 bytes a row, 2 rows per event, 59
+  // events (7866 rows over 7.75 s at 1 ms); rigid 319-327 bytes a row, 3 rows a step.
+  constexpr double kRowBytes = 400, kRowsPerStep = 6;
+  return kRowBytes * (std::floor(log_horizon(o) / o.sample_dt) + 1 + kRowsPerStep * o.steps);
+}
+
+void check_log_size(const SimulationOptions& o) {
+  const double bytes = projected_log_bytes(o);
+  if (bytes <= o.max_log_bytes) return;
+  throw ConfigError(
+      "sim.sample_dt",
+      fmt::format("key 'sim.sample_dt' = {} s: the log could reach {:.3g} bytes (about 400 bytes a row, a "
+                  "row every sim.sample_dt over {} s and 6 a step for {} steps), above sim.max_log_bytes "
+                  "= {:.3g}; allowed: a larger sim.sample_dt, a smaller sim.max_time or sim.steps, or "
+                  "sim.max_log_bytes raised to at least {:.3g}",
+                  format_number(o.sample_dt), bytes, format_number(log_horizon(o)), o.steps, o.max_log_bytes, bytes));
+}
 
 std::string log_csv(const SimulationResult& r) { return log_rows<CsvWriter>(r).str(); }
 std::string events_csv(const SimulationResult& r) { return event_rows<CsvWriter>(r).str(); }

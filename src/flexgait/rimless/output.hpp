@@ -26,6 +26,16 @@ Table log_table(const SimulationResult& result);
 Table events_table(const SimulationResult& result);
 Table steps_table(const SimulationResult& result);
 
+/// The projected size of log.csv [bytes]: ~400 bytes a row; a row every sim.sample_dt over the
+/// longest run the options allow, min(sim.max_time, sim.steps × sim.max_step_time), and ~6 a
+/// step (the samples on both sides of each event). An upper bound of the time, typical rows.
+double projected_log_bytes(const SimulationOptions& options);
+
+/// Throws ConfigError naming sim.sample_dt and sim.max_log_bytes if projected_log_bytes exceeds
+/// sim.max_log_bytes: a log of gigabytes (sample_dt = 1e-6 s) is refused before the run starts,
+/// not found on a full disk after it. Commands that keep the log call it (simulate).
+void check_log_size(const SimulationOptions& options);
+
 /// Writes the four files into `dir` (each atomically).
 void write_run(const RunDirectory& dir, const SimulationResult& result, const std::string& model);
 

@@ -106,6 +106,9 @@ struct SimulationOptions {
   /// second. Deterministic, unlike max_wall_time.
   double max_step_rate = 1e6;
   double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
+  /// Cap on the sampled log's projected size [bytes] (output.hpp, check_log_size): a run whose
+  /// log could exceed it is refused before it starts.
+  double max_log_bytes = 1e9;
   double rtol = 1e-10;          ///< the integrator's relative tolerance
   double atol = 1e-12;          ///< the integrator's absolute tolerance
   /// DOP853 (6–7× faster than Adams here, the same events to 1e-8 s); Adams and BDF stay for
@@ -130,6 +133,12 @@ struct SimulationOptions {
       {.unit = "s", .doc = "a step longer than this is reported as stopped", .bounds = positive()});
     v("sim.sample_dt", s.sample_dt,
       {.unit = "s", .doc = "log sampling interval (events are logged too)", .bounds = closed(1e-6, 10)});
+    v("sim.max_log_bytes", s.max_log_bytes,
+      {.unit = "B",
+       .doc = "cap on log.csv's projected size (about 400 bytes a row: a row every sim.sample_dt over sim.max_time, "
+              "or sim.steps times sim.max_step_time if shorter, and 6 a step); a run that could exceed it is refused "
+              "before it starts",
+       .bounds = positive()});
     v("solver.rtol", s.rtol, {.doc = "the integrator's relative tolerance", .bounds = closed(1e-14, 1e-2)});
     v("solver.atol", s.atol, {.doc = "the integrator's absolute tolerance", .bounds = closed(1e-16, 1e-2)});
     v("solver.method", s.method,
