@@ -256,7 +256,7 @@ def target_intact(path, kind, stays):
         return "%s is now %s, was %s" % (path, file_kind(path), stays)
     if kind == "file" and open(path).read() != "mine\n":
         return "the file was changed"
-    folder = os.path.dirname(path)
+    folder = os.path.dirname(os.path.dirname(path) if kind == "under-file" else path)
     left = [f for f in os.listdir(folder) if ".tmp-" in f]
     return "temporary files left: %s" % left if left else ""
 
