@@ -360,7 +360,9 @@ check "a run that ended for a reason is still complete (its files are written)" 
 
 # The complete marker: a run killed mid-way has none (and its temporaries are removed when the
 # directory is written again); a finished run has one; a usage error writes nothing at all.
-"$exe" rimless simulate --set sim.steps=200000 --set sim.max_time=1e6 --no-plot --out "$work/killed" >/dev/null 2>&1 &
+# (a run of 1e6 s: its log's projected 4e11 bytes need sim.max_log_bytes lifted)
+"$exe" rimless simulate --set sim.steps=200000 --set sim.max_time=1e6 --set sim.max_log_bytes=1e15 --no-plot \
+  --out "$work/killed" >/dev/null 2>&1 &
 pid=$!
 for _ in $(seq 1 3000); do
   ls -a "$work/killed" 2>/dev/null | grep -q '^\.log\.csv\.tmp-' && break

@@ -105,7 +105,8 @@ def interval(allowed):
 
 # Keys that set how long a run is: their far ends are long runs, not extreme physics.
 RUN_LENGTH_KEYS = {"sim.steps", "walk.steps", "sim.max_time", "sim.max_wall_time", "sim.max_step_time",
-                   "sim.max_step_rate", "analysis.transient_steps", "analysis.max_iterations", "output.log_period"}
+                   "sim.max_step_rate", "analysis.transient_steps", "analysis.max_iterations", "output.log_period",
+                   "sim.max_log_bytes"}
 
 
 def extreme_value(rng, p):
