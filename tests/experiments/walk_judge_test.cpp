@@ -19,6 +19,7 @@ JudgeLimits limits() {
   JudgeLimits L;
   L.pelvis_height = kHeight;
   L.position_tolerance = kTolerance;
+  L.sole_lift_tolerance = 0.022;  // a tenth of a 0.22 m sole
   return L;
 }
 
@@ -198,6 +199,12 @@ TEST(WalkJudge, AWalkEndsSupportedOnlyWithEverySoleItStandsOnDown) {
   s.sole_contact[0] = false;  // one sole lifted at the end (a push lifted the robot onto one foot)
   EXPECT_EQ(judge.at_end(s, plan), FallReason::kUnsupported);
   plan.swinging[0] = true;  // (a plan that ends mid-step: that sole may be up)
+  EXPECT_FALSE(judge.at_end(s, plan));
+  plan.swinging[0] = false;
+  s.sole_contact[0] = true;
+  s.sole_height[0] = 0.028;  // on the floor, but on an edge: its centre 2.8 cm up (limit 2.2 cm)
+  EXPECT_EQ(judge.at_end(s, plan), FallReason::kUnsupported);
+  s.sole_height[0] = 0.02;
   EXPECT_FALSE(judge.at_end(s, plan));
 }
 

@@ -8,8 +8,9 @@ pelvis or the chest. Every run must end in a named outcome:
   * exit 0, outcome "walked": then the claim is checked against the run's own files by a second
     route, not through the judge that made it: every planned step of footsteps.csv landed within
     half the sole's width (0.075 m) of its plan, the pelvis in log.csv stayed within 0.2 m of the
-    walking height (not thrown, not sunk) through the last sample, and both soles end within
-    1 cm of the floor. A run that says walked and fails this is a FALSE SUCCESS.
+    walking height (not thrown, not sunk) through the last sample, and both soles' centres end
+    within a tenth of the sole's length (2.2 cm) of the floor (flat, not on an edge). A run that
+    says walked and fails this is a FALSE SUCCESS.
   * exit 1 with one "error:" line and summary.json's outcome one of the named physical outcomes
     (fell, airborne, slid, flipped, missed step, unsupported, safe stop, simulation failure).
 Anything else (a crash, a hang, exit 2, an unnamed outcome) is a defect. Prints the outcome counts
@@ -77,7 +78,7 @@ def verify_walked(out):
             return "pelvis at %.3f m at t = %s s" % (z, row["t"])
     last = rows[-1]
     for side in ("l", "r"):
-        if abs(float(last[side + "_sole_z"])) > 0.01:
+        if abs(float(last[side + "_sole_z"])) > 0.022:
             return "the %s sole ends %.3f m off the floor" % (side, float(last[side + "_sole_z"]))
     return ""
 

@@ -50,7 +50,10 @@ SupportSample support_sample(const humanoid::GroundTruth& g, const humanoid::Ter
   // (the pelvis's height above the floor under it: terrain.hpp)
   s.pelvis_height = g.pelvis_pos[2] - terrain.height(g.pelvis_pos[0], g.pelvis_pos[1]);
   s.pelvis_R = walking::quat_to_matrix(g.pelvis_quat.data());
-  for (int side = 0; side < 2; ++side) s.sole[side] = Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset;
+  for (int side = 0; side < 2; ++side) {
+    s.sole[side] = Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset;
+    s.sole_height[side] = g.sole_pos[side][2] - terrain.height(g.sole_pos[side][0], g.sole_pos[side][1]);
+  }
   return s;
 }
 
@@ -70,6 +73,7 @@ JudgeLimits judge_limits(const WalkRunParams& p, const walking::RobotModel& mode
   L.fall_height = p.fall_height;
   L.fall_tilt = p.fall_tilt;
   L.position_tolerance = 0.5 * std::min(model.sole_length, model.sole_width);
+  L.sole_lift_tolerance = 0.1 * model.sole_length;
   return L;
 }
 

@@ -50,7 +50,8 @@ std::optional<FallReason> WalkJudge::landing(const SupportSample& s, int side, c
 std::optional<FallReason> WalkJudge::at_end(const SupportSample& s, const PlannedSupport& plan) const {
   if (!s.sole_contact[0] && !s.sole_contact[1]) return FallReason::kAirborne;
   for (int side = 0; side < 2; ++side)
-    if (!plan.swinging[side] && !s.sole_contact[side]) return FallReason::kUnsupported;
+    if (!plan.swinging[side] && (!s.sole_contact[side] || s.sole_height[side] > limits_.sole_lift_tolerance))
+      return FallReason::kUnsupported;
   return std::nullopt;
 }
 

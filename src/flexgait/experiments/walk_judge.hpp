@@ -21,6 +21,8 @@
 ///  - airborne_time: a walking gait has no flight phase (one sole is always down); a robot with
 ///    nothing on the floor for this long (0.1 s: free fall of 4.9 cm from rest) was thrown, and
 ///    a sole the plan stands on that is up this long is hopping, not standing.
+///  - sole_lift_tolerance: a tenth of the sole's length. A sole whose centre is higher than this
+///    above the floor at the end rests on an edge (tilted by more than ~0.2 rad), not flat.
 ///  - fall_height, fall_tilt: the pelvis sunk or tilted (the thresholds of the fall check).
 #include <Eigen/Core>
 
@@ -37,6 +39,7 @@ struct JudgeLimits {
   double fall_tilt = 0.6;          ///< or its roll or pitch exceeds this [rad]
   double airborne_time = 0.1;      ///< longest time with no body on the floor [s]
   double position_tolerance = 0;   ///< largest slide of a standing sole, and error of a step [m]
+  double sole_lift_tolerance = 0;  ///< at the end, a standing sole's centre above the floor, at most [m]
 };
 
 /// The ground truth of one control period, in the plan's frame (horizontal positions).
@@ -47,6 +50,7 @@ struct SupportSample {
   double pelvis_height = 0;                   ///< pelvis above the floor under it [m]
   Eigen::Matrix3d pelvis_R = Eigen::Matrix3d::Identity();  ///< pelvis attitude (world)
   std::array<Eigen::Vector2d, 2> sole{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};  ///< true sole centres [m]
+  std::array<double, 2> sole_height{};        ///< each sole centre above the floor under it [m]
 };
 
 /// The plan at that period: where each sole should be, and which swings.
@@ -71,7 +75,8 @@ class WalkJudge {
   /// soles where the plan has them now) by more than position_tolerance.
   std::optional<FallReason> landing(const SupportSample& s, int side, const PlannedSupport& plan) const;
   /// At the walk's end: kAirborne when no sole is on the floor, kUnsupported when a sole the plan
-  /// stands on (`plan`, not swinging) is off it.
+  /// stands on (`plan`, not swinging) is off it or rests on an edge (its centre higher than
+  /// sole_lift_tolerance).
   std::optional<FallReason> at_end(const SupportSample& s, const PlannedSupport& plan) const;
 
   /// Largest slide of a standing sole (on the floor, not swinging) from where it came down [m].
