@@ -12,20 +12,21 @@ namespace {
 
 bool sticks(const SectionState& p) { return !p.flight && p.mode == FootMode::Stick; }
 
-// Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip").
-std::string joined_label(const std::vector<Phase>& first, const std::vector<Phase>& second) {
+// Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip"), labelled
+// as the first (the one that began with a landing).
+std::string joined_label(const StepRecord& first, const StepRecord& second) {
   std::vector<Phase> all;
-  for (const auto* part : {&first, &second})
+  for (const auto* part : {&first.single_support, &second.single_support})
     for (Phase p : *part)
       if (all.empty() || all.back() != p) all.push_back(p);
-  return gait_label(all);
+  return step_gait(first, all);
 }
 
 // The gait of one cycle between two crossings: the stance foot's phases of the step that ended at
 // a touchdown crossing, or of the two partial steps around an upright crossing, joined.
 std::string cycle_gait(Section section, const SimulationResult& r) {
-  if (section == Section::Touchdown || r.steps.size() < 2) return r.steps.empty() ? "" : gait_label(r.steps.front().single_support);
-  return joined_label(r.steps[1].single_support, r.steps[0].single_support);
+  if (section == Section::Touchdown || r.steps.size() < 2) return r.steps.empty() ? "" : step_gait(r.steps.front());
+  return joined_label(r.steps[1], r.steps[0]);
 }
 
 }  // namespace
