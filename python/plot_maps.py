@@ -107,7 +107,8 @@ def orbit_diagram(run_dir, param="parameter"):
 
 
 OUTCOME_COLOURS = {"converged": "tab:green", "other_gait": "tab:blue", "step_limit": "tab:olive",
-                   "rolled_back": "tab:red", "stopped": "tab:gray", "slid_away": "tab:orange",
+                   "rolled_back": "tab:red", "stopped": "tab:gray", "balanced_at_vertical": "tab:cyan",
+                   "slid_away": "tab:orange",
                    "time_limit": "tab:purple", "failed": "k", "infeasible": "#dddddd"}
 
 

@@ -8,7 +8,7 @@ import sys
 from flexgait_plotting import cell, read_table, save_atomic
 import matplotlib.pyplot as plt  # noqa: E402
 
-GAIT_ORDER = ["slip", "slip-stick-slip", "slip-stick", "stick-slip", "stick"]
+GAIT_ORDER = ["slip", "slip-stick-slip", "slip-stick", "touchdown-stick slip-stick", "stick-slip", "stick"]
 
 
 def main(run_dir, param):

@@ -153,6 +153,7 @@ std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a
   spec.y = rimless::parse_basin_axis("--y-range", a.map.y, a.map.y_range);
   spec.steps_limit = limits.steps_limit;
   spec.tolerance = limits.tolerance;
+  spec.no_landing_limit = limits.no_landing_limit;
   spec.section = section_of(a.section);
   rimless::check_basin(s.config, spec);
   return {std::move(s), spec};

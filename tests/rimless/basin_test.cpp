@@ -104,6 +104,27 @@ TEST(Basin, RefusesKeysOutsideTheInitialState) {
   EXPECT_THROW(check_basin(base, spec), ConfigError);
 }
 
+// A wheel at rest exactly at the vertical (ω0 = 0, β0 = -φ = -0.1, the stance leg statically compressed) sits
+// on the inverted pendulum's equilibrium; round-off tips it over only after ~14 s. The cell is
+// named balanced_at_vertical whatever analysis.no_landing_limit is below that (1 s and 10 s here);
+// the cell next to it (ω0 = 0.05 rad/s, 0.5 rad/s after 1 s) moves off the vertical: no such cell.
+TEST(Basin, AWheelAtRestAtTheVerticalIsBalancedWhateverTheNoLandingLimit) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  BasinSpec spec;
+  spec.x = parse_basin_axis("--x-range", "initial.omega", "0:0.05:2");
+  spec.y = parse_basin_axis("--y-range", "initial.beta", "-0.1:-0.09:2");
+  spec.steps_limit = 2;
+  const BasinReference ref;  // not found: no cell converges, the outcome is the run's
+  for (double limit : {1.0, 10.0}) {
+    spec.no_landing_limit = limit;
+    const std::vector<std::string> f = split_text(basin_row(base, spec, ref, 0), ',');
+    ASSERT_GE(f.size(), 7u);
+    EXPECT_EQ(f[2], "balanced_at_vertical") << "limit " << limit << ": " << f[6];
+    const std::vector<std::string> g = split_text(basin_row(base, spec, ref, 1), ',');
+    EXPECT_NE(g[2], "balanced_at_vertical") << g[6];
+  }
+}
+
 TEST(Basin, CountsCellsIn64BitsAndRefusesAGridAboveTheCap) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
   BasinSpec spec;
@@ -134,7 +155,9 @@ TEST(Basin, FailureOutcomes) {
   for (const Case& c :
        {Case{FailureReason::FellBack, BasinOutcome::RolledBack},
         Case{FailureReason::RolledBack, BasinOutcome::RolledBack}, Case{FailureReason::AtRest, BasinOutcome::Stopped},
-        Case{FailureReason::NoLanding, BasinOutcome::Stopped}, Case{FailureReason::SlidAway, BasinOutcome::SlidAway},
+        Case{FailureReason::NoLanding, BasinOutcome::Stopped},
+        Case{FailureReason::BalancedAtVertical, BasinOutcome::BalancedAtVertical},
+        Case{FailureReason::SlidAway, BasinOutcome::SlidAway},
         Case{FailureReason::TimeLimit, BasinOutcome::TimeLimit},
         Case{FailureReason::SolverFailure, BasinOutcome::Failed},
         Case{FailureReason::InitialFootBelowGround, BasinOutcome::Failed}}) {
@@ -143,8 +166,8 @@ TEST(Basin, FailureOutcomes) {
   }
   // basin.csv's outcome column: the table's names, in the header's order.
   EXPECT_EQ(basin_outcomes(),
-            (std::vector<std::string>{"converged", "other_gait", "rolled_back", "stopped", "slid_away", "time_limit",
-                                      "failed", "step_limit", "infeasible"}));
+            (std::vector<std::string>{"converged", "other_gait", "rolled_back", "stopped", "balanced_at_vertical",
+                                      "slid_away", "time_limit", "failed", "step_limit", "infeasible"}));
 }
 
 }  // namespace

@@ -51,22 +51,27 @@ TEST(GaitBranch, RigidWheelOverTheSlopeIsTheClosedForm) {
 }
 
 // The flexible wheel from μ = 0.6 down to 0.2 (default step 0.01): the stance foot starts to slip
-// at touchdown; the continuation locates the change (bisection to 1e-7 of the interval: 4e-8 in μ)
-// even though a map evaluation can fail near the boundary. Newton's gait, found directly from the
-// configured start at the located μ ∓ 2e-4, must be the label before and after: the location is
-// within 2e-4 of where the direct gait changes.
+// at touchdown (μ ≈ 0.3273: it still sticks in the landing double support, then slips again), then
+// the landing slip runs straight into single support (μ ≈ 0.2805); the continuation locates both
+// changes (bisection to 1e-7 of the interval: 4e-8 in μ) even though a map evaluation can fail near
+// a boundary. Newton's gait, found directly from the configured start at the located μ ∓ 2e-4, must
+// be the label before and after: each location is within 2e-4 of where the direct gait changes.
 TEST(GaitBranch, FlexibleWheelLocatesTheStickToSlipStickChange) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
   GaitContinuationSpec spec{.param = "rimless.mu", .from = 0.6, .to = 0.2};
   const GaitBranch b = continue_gait(base, spec);
   ASSERT_TRUE(b.failure.empty()) << b.failure;
-  const GaitBranchRow* change = nullptr;
+  std::vector<const GaitBranchRow*> changes;
   for (const auto& r : b.rows)
-    if (r.event.starts_with("gait ")) change = &r;
-  ASSERT_NE(change, nullptr) << b.stop_reason;
-  EXPECT_EQ(change->event, "gait stick -> slip-stick");
+    if (r.event.starts_with("gait ")) changes.push_back(&r);
+  ASSERT_EQ(changes.size(), 2u) << b.stop_reason;
+  EXPECT_EQ(changes[0]->event, "gait stick -> touchdown-stick slip-stick");
+  EXPECT_EQ(changes[1]->event, "gait touchdown-stick slip-stick -> slip-stick");
   for (const auto& sp : b.branch.special) EXPECT_TRUE(sp.located) << b.stop_reason;
-  for (const auto& [dp, gait] : {std::pair{2e-4, "stick"}, std::pair{-2e-4, "slip-stick"}}) {
+  const std::vector<std::tuple<const GaitBranchRow*, double, const char*>> sides{
+      {changes[0], 2e-4, "stick"}, {changes[0], -2e-4, "touchdown-stick slip-stick"},
+      {changes[1], 2e-4, "touchdown-stick slip-stick"}, {changes[1], -2e-4, "slip-stick"}};
+  for (const auto& [change, dp, gait] : sides) {
     const Config c = config_at(base, "rimless.mu", format_number(change->p + dp), "test");
     const SimulationOptions sim = simulation_from_config(c);
     const FixedPointReport fp = find_fixed_point(wheel_from_config(c), sim, analysis_from_config(c), sim.model,

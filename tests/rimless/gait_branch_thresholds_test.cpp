@@ -33,6 +33,35 @@ std::vector<double> friction_thresholds(const Config& base) {
   return out;
 }
 
+// Between μ ≈ 0.2805 and 0.3273 the measured wheel's steady gait is slip−, stick, slip+, stick, slip+
+// over the stance foot's contact: it sticks in the double support after its landing, then slips
+// again into single support (`touchdown-stick slip-stick`); below 0.2805 the landing slip runs
+// straight into single support (`slip-stick`). gait-vs-friction's bisection (to 1e-8) finds the
+// boundary where `simulate`'s contact_phases change, [0.28047539, 0.28047559], to 1e-6 (the
+// bracket was measured on runs from the configured start, not on fixed points).
+TEST(GaitBranchThresholds, TheTouchdownStickWindowStartsAtMu02805) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  const PaperAnalysisOptions o = paper_analysis_from_config(base);
+  const std::vector<FrictionGait> gaits = friction_gaits(base, {0.2800, 0.2810}, Section::Touchdown, o);
+  ASSERT_EQ(gaits.size(), 2u);
+  EXPECT_EQ(gaits[0].gait, "slip-stick");
+  EXPECT_EQ(gaits[1].gait, "touchdown-stick slip-stick");
+  std::istringstream csv(friction_thresholds_csv(base, gaits, Section::Touchdown, o));
+  std::string line;
+  std::getline(csv, line);  // header
+  // Newton may fail within ~1e-8 of the non-smooth boundary (the stick phase in double support is
+  // of zero length there): such a midpoint is a third "gait" that splits the bracket, so the
+  // boundary may come as more than one row; every row lies at the boundary.
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    const double t = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_GE(t, 0.28047539 - 1e-6) << line;
+    EXPECT_LE(t, 0.28047559 + 1e-6) << line;
+  }
+  EXPECT_GE(rows, 1);
+}
+
 // Every threshold has a special point of the branch (a gait change, a change of the section's
 // mode, or the branch's end) within 1e-6 of it: the bisection brackets it to 1e-8; the
 // continuation locates a gait change to 1e-7 of the interval (5.5e-8 in μ) and a change of the

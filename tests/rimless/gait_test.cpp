@@ -57,5 +57,28 @@ TEST(StepTracker, TakingFinalStepsKeepsTwoRecordsAndTheSameSteps) {
   EXPECT_EQ(bounded.last_complete()->index, 1000);
 }
 
+// The touchdown-stick prefix: the landing foot (leg 9) slips back, sticks and slips forward again,
+// all in double support, then slips on and sticks in single support: "touchdown-stick slip-stick".
+// Without the stick in double support, or when single support begins sticking, no prefix.
+TEST(StepTracker, AStickInTheLandingDoubleSupportThenASlipIsNamed) {
+  const auto step = [](std::initializer_list<FootMode> landing, std::initializer_list<FootMode> single) {
+    StepTracker t;
+    t.start(0.0, 0.0, 1.0, feet({{0, FootMode::Stick}}), 10);
+    bool first = true;
+    for (FootMode m : landing) {
+      if (first) t.touchdown(1.0, 0.1, 1.0, 9, feet({{0, FootMode::SlipForward}, {9, m}}));
+      else t.observe(feet({{0, FootMode::SlipForward}, {9, m}}));
+      first = false;
+    }
+    for (FootMode m : single) t.observe(feet({{9, m}}));
+    t.touchdown(2.0, 0.2, 1.0, 8, feet({{9, FootMode::SlipForward}, {8, FootMode::SlipBackward}}));
+    return t.gaits().back();
+  };
+  using enum FootMode;
+  EXPECT_EQ(step({SlipBackward, Stick, SlipForward}, {SlipForward, Stick}), "touchdown-stick slip-stick");
+  EXPECT_EQ(step({SlipBackward, SlipForward}, {SlipForward, Stick}), "slip-stick");
+  EXPECT_EQ(step({SlipBackward, Stick}, {Stick, SlipForward}), "stick-slip");
+}
+
 }  // namespace
 }  // namespace flexgait::rimless

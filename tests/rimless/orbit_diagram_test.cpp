@@ -4,10 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
+#include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 
@@ -81,6 +85,67 @@ TEST(OrbitDiagram, AValueThatFallsRecordsWhy) {
   EXPECT_EQ(rows[1].fields[1], "");
   // The failure cell is the reason's text: the rigid wheel fell back onto the previous leg.
   EXPECT_EQ(rows[1].fields[6], (Failure{FailureReason::FellBack, {}, {}}).text()) << csv;
+}
+
+// Past the Neimark–Sacker point (φ = 0.226277 with the measured parameters) the orbit is
+// quasi-periodic and at some crossings a free leg is still compressed or a second foot is down:
+// restarting each cycle from the reduced section state left the orbit there ("infeasible section
+// point: foot 0 is below the ground" after 16–42 crossings at φ = 0.2272 .. 0.2303). The diagram
+// follows the full hybrid state, so its crossings are those of one uninterrupted simulation: the
+// state just before every landing of a new leg after the transient. Both runs restart the
+// integrator at every touchdown from the same state, so they agree to round-off; 1e-9 (rad, m/s,
+// rad/s) allows the round-off's growth over 166 steps of a neutrally stable orbit.
+TEST(OrbitDiagram, PastTheNeimarkSackerPointFollowsTheSimulatedOrbit) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
+  constexpr int kTransient = 100, kRecord = 64;
+  OrbitDiagramSpec spec{{"rimless.slope", 0.2272, 0.2300, 2}, kTransient, kRecord};
+  for (int i = 0; i < spec.sweep.count; ++i) {
+    const std::vector<CsvRecord> rows =
+        parse_csv("index," + orbit_points_header() + "\n0," + orbit_points_row(base, spec, i) + "\n");
+    ASSERT_EQ(rows.size(), 2u);
+    const auto& f = rows[1].fields;
+    EXPECT_EQ(f[2], std::to_string(kRecord)) << rows[1].text;
+    EXPECT_EQ(f[7], "") << rows[1].text;
+    const std::vector<std::string> states = split_text(f[6], ';'), modes = split_text(f[3], ';');
+    ASSERT_EQ(states.size(), static_cast<std::size_t>(kRecord));
+
+    // The same wheel simulated without a stop: the state at each new leg's landing.
+    const Config c = sweep_point_config(base, spec.sweep, i);
+    const WheelParams w = wheel_from_config(c);
+    SimulationOptions sim = simulation_from_config(c);
+    sim.log = false;
+    sim.max_time = std::numeric_limits<double>::infinity();
+    sim.steps = kTransient + 2 + kRecord;
+    struct Landings final : RunSink {
+      std::vector<Restart> restarts;
+      std::vector<StepRecord> steps;
+      void on_step(const StepRecord& s) override { steps.push_back(s); }
+      void on_restart(double t, std::span<const double> y, const ContactSet& contacts) override {
+        restarts.push_back({t, {y.begin(), y.end()}, contacts});
+      }
+    } run;
+    const SimulationResult r = simulate_flexible(w, initial_from_config(c), sim, run);
+    ASSERT_FALSE(r.failure) << r.failure->text();
+    ASSERT_EQ(run.steps.size(), static_cast<std::size_t>(sim.steps + 1));
+    using S = StateIndex;
+    for (int k = 0; k < kRecord; ++k) {
+      // The transient ends at touchdown kTransient, the settled point is touchdown kTransient + 1,
+      // crossing k + 1 is touchdown kTransient + 2 + k: step kTransient + 3 + k (1-based) starts there.
+      const StepRecord& step = run.steps[static_cast<std::size_t>(kTransient + 2 + k)];
+      const auto at = std::find_if(run.restarts.begin(), run.restarts.end(),
+                                   [&](const Restart& x) { return x.t == step.t_start; });
+      ASSERT_NE(at, run.restarts.end()) << "no restart at t = " << step.t_start;
+      const std::vector<double>& y = at->state;
+      std::vector<double> expected{leg_angle(w, step.stance_leg, y[S::theta])};
+      if (modes[static_cast<std::size_t>(k)] != "stick") expected.push_back(y[S::xd]);
+      expected.push_back(y[S::yd]);
+      expected.push_back(y[S::thetad]);
+      const std::vector<std::string> z = split_text(states[static_cast<std::size_t>(k)], ' ');
+      ASSERT_EQ(z.size(), expected.size()) << "crossing " << k + 1;
+      for (std::size_t j = 0; j < z.size(); ++j)
+        EXPECT_NEAR(std::stod(z[j]), expected[j], 1e-9) << "phi " << spec.sweep.value(i) << " crossing " << k + 1;
+    }
+  }
 }
 
 TEST(OrbitDiagram, RefusesBadInput) {

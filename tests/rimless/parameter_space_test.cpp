@@ -72,6 +72,9 @@ void expect_physical_stop(const WheelParams& w, const SimulationResult& r) {
     EXPECT_LT(std::abs(r.final_state[5]), 1e-6 * std::sqrt(w.g / w.L0)) << why;
     EXPECT_LT(std::abs(r.final_state[4]), 1e-6 * std::sqrt(w.g * w.L0)) << why;
     EXPECT_GT(w.mu_k, std::tan(w.slope)) << why;
+  } else if (why.reason == FailureReason::BalancedAtVertical) {
+    EXPECT_EQ(r.final_contacts.count, 1) << why;  // one foot down: the inverted pendulum's equilibrium
+    EXPECT_LE(std::abs(r.final_state[5]), 1e-3 * std::sqrt(w.g / w.L0)) << why;
   } else if (why.reason == FailureReason::AtRest) {
     EXPECT_LT(ke, 1e-12 * w.m * w.g * w.L0) << why;
   } else if (why.reason == FailureReason::RolledBack) {

@@ -142,7 +142,7 @@ FrictionGait friction_gait(const Config& base, double mu, Section section, const
   g.gait = "none";
   for (auto it = t.steps.rbegin(); it != t.steps.rend(); ++it) {
     if (it->complete) {
-      g.gait = gait_label(it->single_support) + " (no fixed point)";
+      g.gait = step_gait(*it) + " (no fixed point)";
       break;
     }
   }

@@ -91,6 +91,8 @@ BasinOutcome failure_outcome(const Failure& failure) {
     case FailureReason::AtRest:
     case FailureReason::NoLanding:
       return BasinOutcome::Stopped;
+    case FailureReason::BalancedAtVertical:
+      return BasinOutcome::BalancedAtVertical;
     case FailureReason::SlidAway:
       return BasinOutcome::SlidAway;
     case FailureReason::TimeLimit:
@@ -111,6 +113,7 @@ std::string basin_row(const Config& base, const BasinSpec& spec, const BasinRefe
   // The run's length is its number of steps; sim.max_time (meant for one simulate run) does not cut
   // it short. sim.max_step_time still ends a wheel that stops.
   sim.max_time = std::numeric_limits<double>::infinity();
+  sim.max_step_time = spec.no_landing_limit;
   const auto row = [&](BasinOutcome outcome, const std::string& gait, int steps, double distance,
                        const std::string& failure) {
     return fmt::format("{},{},{},{},{},{},{}", format_number(spec.x.value(ix)), format_number(spec.y.value(iy)),
@@ -170,6 +173,7 @@ std::string basin_summary_json(const BasinSpec& spec, const std::string& section
   j["section"] = section;
   j["steps_limit"] = spec.steps_limit;
   j["tolerance"] = spec.tolerance;
+  j["no_landing_limit"] = spec.no_landing_limit;
   nlohmann::ordered_json r;
   r["found"] = ref.found;
   if (ref.found) {

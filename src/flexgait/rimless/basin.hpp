@@ -25,6 +25,7 @@ namespace flexgait::rimless {
 struct BasinOptions {
   int steps_limit = 200;    ///< section crossings simulated per cell at most
   double tolerance = 1e-6;  ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance (scale: SectionState::scale)
+  double no_landing_limit = 10.0;  ///< a cell's step without a new landing ends after this [s] (its sim.max_step_time)
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -33,6 +34,11 @@ struct BasinOptions {
     v("analysis.basin.tolerance", s.tolerance,
       {.doc = "basin: converged when every section-state component is within this fraction of its scale "
               "(sqrt(g L0), sqrt(g/L0), alpha) of the gait's (--tolerance)",
+       .bounds = positive()});
+    v("analysis.no_landing_limit", s.no_landing_limit,
+      {.unit = "s",
+       .doc = "basin: a cell whose step lands no new leg within this time ends (balanced_at_vertical on one foot, "
+              "else stopped); replaces sim.max_step_time in the cells' runs",
        .bounds = positive()});
   }
 };
@@ -51,6 +57,7 @@ struct BasinSpec {
   BasinAxis x, y;
   int steps_limit = BasinOptions{}.steps_limit;  ///< section crossings simulated per cell at most
   double tolerance = BasinOptions{}.tolerance;   ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance
+  double no_landing_limit = BasinOptions{}.no_landing_limit;  ///< [s] the cells' sim.max_step_time
   Section section = Section::Touchdown;
   /// x.count × y.count in 64 bits (each count is at most 100000: up to 1e10).
   std::int64_t cells() const { return static_cast<std::int64_t>(x.count) * y.count; }
@@ -87,7 +94,8 @@ BasinReference basin_reference(const Config& base, Section section);
 ///   other_gait  — settled on another period-1 orbit (successive crossings within tolerance/100,
 ///                 farther than 100 × tolerance from the reference);
 ///   rolled_back — fell back onto the previous leg; stopped — came to rest or no leg landed within
-///   sim.max_step_time; slid_away; time_limit; failed — any other failure (named in `failure`);
+///   no_landing_limit in double support; balanced_at_vertical — no leg landed within
+///   no_landing_limit, the wheel on one foot (at its unstable equilibrium); slid_away; time_limit; failed — any other failure (named in `failure`);
 ///   step_limit  — none of these within steps_limit crossings;
 ///   infeasible  — the initial state cannot be simulated (a foot below the ground; in `failure`).
 enum class BasinOutcome {
@@ -95,17 +103,19 @@ enum class BasinOutcome {
   OtherGait,
   RolledBack,
   Stopped,
+  BalancedAtVertical,
   SlidAway,
   TimeLimit,
   Failed,
   StepLimit,
   Infeasible
 };
-constexpr std::array<EnumName<BasinOutcome>, 9> enum_names(BasinOutcome) {
+constexpr std::array<EnumName<BasinOutcome>, 10> enum_names(BasinOutcome) {
   return {{{BasinOutcome::Converged, "converged"},
            {BasinOutcome::OtherGait, "other_gait"},
            {BasinOutcome::RolledBack, "rolled_back"},
            {BasinOutcome::Stopped, "stopped"},
+           {BasinOutcome::BalancedAtVertical, "balanced_at_vertical"},
            {BasinOutcome::SlidAway, "slid_away"},
            {BasinOutcome::TimeLimit, "time_limit"},
            {BasinOutcome::Failed, "failed"},

@@ -27,6 +27,12 @@ std::string gait_label(const std::vector<Phase>& phases) {
   return s;
 }
 
+std::string step_gait(const StepRecord& step, const std::vector<Phase>& single_support) {
+  const bool touchdown_stick = step.landing_stick && !single_support.empty() && single_support.front() == Phase::Slip;
+  return (touchdown_stick ? "touchdown-stick " : "") + gait_label(single_support);
+}
+std::string step_gait(const StepRecord& step) { return step_gait(step, step.single_support); }
+
 void StepTracker::start(double t, double x, double energy, const ContactSet& contacts, int legs, int stance_leg) {
   steps_.clear();
   gaits_.clear();
@@ -46,6 +52,10 @@ void StepTracker::observe(const ContactSet& contacts) {
   StepRecord& cur = steps_.back();
   if (contacts.count == 0) append(cur.single_support, Phase::Flight);
   if (contacts.count == 1 && contacts.leg[0] == cur.stance_leg) append(cur.single_support, phase_of(contacts.mode[0]));
+  if (contacts.count > 1 && cur.single_support.empty()) {  // the double support after the landing
+    const int i = contacts.find(cur.stance_leg);
+    if (i >= 0 && contacts.mode[i] == FootMode::Stick) cur.landing_stick = true;
+  }
   // Whole-contact phases: the current stance foot, and the previous one while it is still down.
   for (std::size_t back = 0; back < 2 && back < steps_.size(); ++back) {
     StepRecord& r = steps_[steps_.size() - 1 - back];
@@ -67,7 +77,7 @@ void StepTracker::touchdown(double t, double x, double energy, int leg, const Co
   cur.t_end = t;
   cur.x_end = x;
   cur.complete = true;
-  gaits_.push_back(gait_label(cur.single_support));
+  gaits_.push_back(step_gait(cur));
   StepRecord next;
   next.index = cur.index + 1;
   next.stance_leg = leg;

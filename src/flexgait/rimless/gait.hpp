@@ -11,6 +11,11 @@
 ///   `slip-stick-slip`  both
 ///   `double`           no single support at all
 ///
+/// A label that starts with `slip` gets the prefix `touchdown-stick ` when the stance foot stuck
+/// in the double support after its own landing and slipped again before single support began: its
+/// whole contact runs slip, stick, slip, ... rather than one landing slip (on the measured wheel the
+/// window 0.2805 < μ < 0.3273 of the `slip-stick` gait: slip−, stick, slip+, stick, slip+).
+///
 /// These are the paper's four behaviours (and their combination). The full sequence of the
 /// stance foot over its whole contact, double support included, is kept as `contact_phases`.
 #include <span>
@@ -25,6 +30,12 @@ enum class Phase : std::uint8_t { Stick, Slip, Flight };
 const char* phase_name(Phase p);
 /// "slip-stick" style label; "double" for an empty sequence.
 std::string gait_label(const std::vector<Phase>& phases);
+struct StepRecord;
+/// A step's gait: gait_label(single_support), with the prefix "touchdown-stick " when the stance
+/// foot stuck in the double support after its landing and single support begins in slip (the
+/// header). `single_support` may be a longer sequence that starts with the step's (joined cycles).
+std::string step_gait(const StepRecord& step, const std::vector<Phase>& single_support);
+std::string step_gait(const StepRecord& step);
 
 struct StepRecord {
   int index = 0;         ///< 1-based; step 1 starts at the initial state
@@ -34,6 +45,8 @@ struct StepRecord {
   double energy_start = 0;        ///< mechanical energy at the start [J]
   std::vector<Phase> single_support;  ///< stance-foot phases while it is the only foot down
   std::vector<Phase> contact;         ///< stance-foot phases over its whole contact
+  /// The stance foot stuck in the double support after its landing (before single support).
+  bool landing_stick = false;
   bool complete = false;              ///< ended by the next touchdown
 };
 

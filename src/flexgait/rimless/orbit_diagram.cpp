@@ -31,16 +31,16 @@ std::string orbit_points_row(const Config& base, const OrbitDiagramSpec& spec, i
   // it short. sim.max_step_time still ends a wheel that stops.
   sim.max_time = std::numeric_limits<double>::infinity();
   SectionState p;
-  std::optional<Failure> failure =
-      settle_on_section(w, sim, sim.model, spec.sweep.section, initial_from_config(c), spec.transient, p);
+  // The full hybrid state from crossing to crossing (SectionWalk): the orbit a simulation follows.
+  SectionWalk walk(w, sim, sim.model, spec.sweep.section);
+  std::optional<Failure> failure = walk.settle(initial_from_config(c), spec.transient, p);
   if (failure && failure->reason == FailureReason::InitialFootBelowGround)  // a foot below the ground at the start
     failure = failure->in_stage("infeasible initial state");
   std::string modes, gaits, thetad, states;
   int recorded = 0;
   if (!failure) {
-    PoincareMap map(w, sim, sim.model, spec.sweep.section);
     for (; recorded < spec.record; ++recorded) {
-      const MapStep s = map.apply(p, false);  // the transient may still change the section's mode
+      const MapStep s = walk.step();  // in whatever mode the section is crossed
       if (s.failure) {
         failure = s.failure;
         break;

@@ -2,7 +2,8 @@
 /// \file orbit_diagram.hpp
 /// Orbit diagram of the wheel (issue 18; Garcia et al. 1998, Fig. 4): at each value of one real
 /// configuration key, the Poincaré-section states of `record` successive steps after `transient`
-/// steps from the configured initial state, by brute-force simulation (no Newton). A stable
+/// steps from the configured initial state, by brute-force simulation (no Newton) that carries the
+/// full hybrid state from crossing to crossing (SectionWalk, poincare.hpp). A stable
 /// fixed point shows as one dot per value, a period-k orbit as k dots, chaos as a smear.
 /// Points are independent: the command line runs them on the sweep runner (all cores, resumable,
 /// the same bytes for any number of threads). sim.max_time does not limit these runs: their length is

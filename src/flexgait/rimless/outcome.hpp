@@ -50,6 +50,7 @@ enum class FailureReason : std::uint8_t {
   AtRest,                       ///< came to rest in double support
   SlidAway,                     ///< slides down the slope on its feet without turning, ever faster
   NoLanding,                    ///< no new leg landed within sim.max_step_time
+  BalancedAtVertical,           ///< NoLanding on one foot at rest at the true vertical (flexible_wheel.cpp)
   TimeLimit,                    ///< sim.max_time reached
   UprightOutsideSingleSupport,  ///< the upright section crossed outside single support on that leg
   Sensitivities,                ///< the reset's Jacobian could not be formed
@@ -69,7 +70,7 @@ enum class FailureReason : std::uint8_t {
 /// {reason, "name" (snake_case, for JSON and tests), "sentence" (the text files show; "{}": where the detail goes)}.
 using FailureEntry = numerics::ReasonEntry<FailureReason>;
 
-inline constexpr std::array<FailureEntry, 31> kFailureTable{{
+inline constexpr std::array<FailureEntry, 32> kFailureTable{{
     {FailureReason::InitialFootBelowGround, "initial_foot_below_ground", "initial state: foot {} is below the ground"},
     {FailureReason::Fell, "fell", "fell: a stance leg reached |beta| = pi/2"},
     {FailureReason::TooManyFeet, "too_many_feet", "more feet on the ground than supported"},
@@ -101,6 +102,8 @@ inline constexpr std::array<FailureEntry, 31> kFailureTable{{
     {FailureReason::SlidAway, "slid_away",
      "slid away: the wheel slides down the slope on its feet without turning, ever faster"},
     {FailureReason::NoLanding, "no_landing", "stopped: no new leg landed within sim.max_step_time"},
+    {FailureReason::BalancedAtVertical, "balanced_at_vertical",
+     "balanced at the vertical: no new leg landed within sim.max_step_time, the wheel at rest on one foot at the vertical"},
     {FailureReason::TimeLimit, "time_limit", "time limit sim.max_time reached"},
     {FailureReason::UprightOutsideSingleSupport, "upright_outside_single_support",
      "the upright section was crossed outside single support on that leg"},

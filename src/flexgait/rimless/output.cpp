@@ -54,7 +54,7 @@ void step_row(Writer& csv, const StepRecord& s) {
   const double dt = s.t_end - s.t_start;
   csv.cell(static_cast<long long>(s.index)).cell(static_cast<long long>(s.stance_leg)).cell(s.t_start).cell(s.t_end);
   csv.cell(dt).cell(s.x_start).cell(s.x_end).cell(dt > 0 ? (s.x_end - s.x_start) / dt : 0.0).cell(s.energy_start);
-  csv.cell(gait_label(s.single_support)).cell(gait_label(s.contact)).cell(s.complete ? "true" : "false").end_row();
+  csv.cell(step_gait(s)).cell(gait_label(s.contact)).cell(s.complete ? "true" : "false").end_row();
 }
 
 template <class Writer>

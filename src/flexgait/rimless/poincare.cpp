@@ -12,13 +12,21 @@ namespace {
 
 bool sticks(const SectionState& p) { return !p.flight && p.mode == FootMode::Stick; }
 
-// Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip").
-std::string joined_label(const std::vector<Phase>& first, const std::vector<Phase>& second) {
+// Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip"), labelled
+// as the first (the one that began with a landing).
+std::string joined_label(const StepRecord& first, const StepRecord& second) {
   std::vector<Phase> all;
-  for (const auto* part : {&first, &second})
+  for (const auto* part : {&first.single_support, &second.single_support})
     for (Phase p : *part)
       if (all.empty() || all.back() != p) all.push_back(p);
-  return gait_label(all);
+  return step_gait(first, all);
+}
+
+// The gait of one cycle between two crossings: the stance foot's phases of the step that ended at
+// a touchdown crossing, or of the two partial steps around an upright crossing, joined.
+std::string cycle_gait(Section section, const SimulationResult& r) {
+  if (section == Section::Touchdown || r.steps.size() < 2) return r.steps.empty() ? "" : step_gait(r.steps.front());
+  return joined_label(r.steps[1], r.steps[0]);
 }
 
 }  // namespace
@@ -185,11 +193,7 @@ MapStep PoincareMap::apply(const SectionState& p, bool keep_mode) {
     out.dissipated += 0.5 * w_.K * d * d;
   }
   out.jams = r.jams;
-  if (section_ == Section::Touchdown || r.steps.size() < 2) {
-    out.gait = r.steps.empty() ? "" : gait_label(r.steps.front().single_support);
-  } else {
-    out.gait = joined_label(r.steps[1].single_support, r.steps[0].single_support);
-  }
+  out.gait = cycle_gait(section_, r);
   return out;
 }
 
@@ -284,29 +288,53 @@ std::optional<std::string> PoincareMap::operator()(const SectionState& like, con
   return std::nullopt;
 }
 
-std::optional<Failure> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
-                                         Section section, const InitialState& initial, int transient_steps,
-                                         SectionState& out) {
-  SimulationOptions o = options;
-  o.log = false;
-  o.steps = std::max(1, transient_steps);
-  out.model = model;
-  out.section = section;
-  if (model == Model::Rigid) {
-    const SimulationResult r = simulate_rigid(w, initial, o);
+SectionWalk::SectionWalk(const WheelParams& w, const SimulationOptions& options, Model model, Section section)
+    : w_(w), options_(options), model_(model), section_(section) {
+  options_.log = false;
+  if (model_ == Model::Flexible) sim_ = std::make_unique<FlexibleWheelSimulator>(w_, options_);
+  else rigid_ = std::make_unique<PoincareMap>(w_, options_, model_, section_);
+}
+SectionWalk::~SectionWalk() = default;
+SectionWalk::SectionWalk(SectionWalk&&) noexcept = default;
+
+std::optional<Failure> SectionWalk::to_section(const SimulationResult& r, const SectionHit& hit, SectionState& out) {
+  if (hit.leg < 0) return Failure{FailureReason::SectionNotReached, std::string(name_of(section_)), {}};
+  if (auto e = reduce_crossing(w_, section_, hit, out)) return Failure{FailureReason::IrreducibleCrossing, *e, {}};
+  // The next run starts at the crossing: at a touchdown the landing is its first event (and the
+  // landing leg its stance leg, as in a continuous run); at the upright crossing no event.
+  next_ = RunSpec{};
+  next_.y0 = hit.state;
+  next_.contacts = hit.contacts;
+  if (section_ == Section::Touchdown) next_.pending = {{hit.leg, EventKind::Touchdown}};
+  else next_.stance_leg = r.last_step.stance_leg;
+  next_.stop_at = section_;
+  next_.steps = 3;  // a cycle holds one touchdown (upright) or none (touchdown), as the map's
+  point_ = out;
+  return std::nullopt;
+}
+
+std::optional<Failure> SectionWalk::settle(const InitialState& initial, int transient_steps, SectionState& out) {
+  out.model = model_;
+  out.section = section_;
+  if (model_ == Model::Rigid) {
+    SimulationOptions o = options_;
+    o.steps = std::max(1, transient_steps);
+    const SimulationResult r = simulate_rigid(w_, initial, o);
     if (r.failure) return r.failure;
     out.z = Eigen::VectorXd::Constant(1, r.final_state[5]);  // ω⁺ after the last impact
-    if (section == Section::Upright) {
+    if (section_ == Section::Upright) {
       SimulationOptions o2 = o;
       o2.steps = 2;
-      const SimulationResult u = simulate_rigid(w, InitialState{out.z(0), -w.alpha()}, o2, Section::Upright);
+      const SimulationResult u = simulate_rigid(w_, InitialState{out.z(0), -w_.alpha()}, o2, Section::Upright);
       if (u.failure) return u.failure;
       out.z(0) = u.final_state[5];
     }
+    point_ = out;
     return std::nullopt;
   }
-  FlexibleWheelSimulator sim(w, o);
-  const SimulationResult r = sim.run(default_run(w, initial));
+  RunSpec first = default_run(w_, initial);
+  first.steps = std::max(1, transient_steps);
+  const SimulationResult r = sim_->run(first);
   if (r.failure) {  // an infeasible start is no failure of the transient: its reason alone
     if (r.failure->reason == FailureReason::InitialFootBelowGround) return r.failure;
     return r.failure->in_stage("transient");
@@ -315,14 +343,49 @@ std::optional<Failure> settle_on_section(const WheelParams& w, const SimulationO
   next.y0 = r.final_state;
   next.contacts = r.final_contacts;
   next.stance_leg = r.steps.empty() ? -1 : r.steps.back().stance_leg;
-  next.stop_at = section;
+  next.stop_at = section_;
   next.steps = 3;
   SectionHit hit;
-  const SimulationResult r2 = sim.run(next, &hit);
+  const SimulationResult r2 = sim_->run(next, &hit);
   if (r2.failure) return r2.failure->in_stage("reaching the section");
-  if (hit.leg < 0) return Failure{FailureReason::SectionNotReached, std::string(name_of(section)), {}};
-  if (auto e = reduce_crossing(w, section, hit, out)) return Failure{FailureReason::IrreducibleCrossing, *e, {}};
-  return std::nullopt;
+  return to_section(r2, hit, out);
+}
+
+MapStep SectionWalk::step() {
+  if (model_ == Model::Rigid) {
+    MapStep s = rigid_->apply(point_, false);
+    if (!s.failure) point_ = s.next;
+    return s;
+  }
+  MapStep out;
+  out.next = point_;
+  if (next_.y0.empty()) throw std::logic_error("SectionWalk::step before a successful settle");
+  SectionHit hit;
+  hit.leg = -1;
+  const RunSpec spec = next_;
+  const SimulationResult r = sim_->run(spec, &hit);
+  if (r.failure) {
+    out.failure = r.failure;
+    return out;
+  }
+  if (auto f = to_section(r, hit, out.next)) {
+    out.failure = f;
+    return out;
+  }
+  using S = StateIndex;
+  out.period = hit.t;
+  out.distance = hit.state[S::x] - spec.y0[S::x];
+  out.dissipated = hit.state[S::w_damp] + hit.state[S::w_fric] - spec.y0[S::w_damp] - spec.y0[S::w_fric];
+  out.jams = r.jams;
+  out.gait = cycle_gait(section_, r);
+  return out;
+}
+
+std::optional<Failure> settle_on_section(const WheelParams& w, const SimulationOptions& options, Model model,
+                                         Section section, const InitialState& initial, int transient_steps,
+                                         SectionState& out) {
+  SectionWalk walk(w, options, model, section);
+  return walk.settle(initial, transient_steps, out);
 }
 
 }  // namespace flexgait::rimless

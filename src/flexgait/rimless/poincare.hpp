@@ -109,6 +109,42 @@ class PoincareMap {
   std::optional<std::string> linearise(const SectionState& point, Eigen::MatrixXd& J, Eigen::VectorXd* J_p);
 };
 
+/// Follows one orbit from section crossing to section crossing in the full hybrid state: each
+/// run starts where the last one crossed the section, with the free legs' compressions and rates,
+/// every foot on the ground and the landing pending at a touchdown section, so the crossings are
+/// those of one uninterrupted simulation (the integrator restarts at a touchdown anyway). The
+/// Poincaré map instead restarts every cycle from the reduced state (free legs relaxed, one foot
+/// down), which is exact on the section's definition only for Newton's iteration on a fixed point;
+/// where a free leg is still compressed or a second foot is down at the crossing (e.g. past a
+/// Neimark–Sacker point) the reduced restart leaves the orbit. The rigid wheel's reduced state is
+/// its full state: there a step is the map's.
+class SectionWalk {
+ public:
+  SectionWalk(const WheelParams& w, const SimulationOptions& options, Model model, Section section);
+  ~SectionWalk();
+  SectionWalk(SectionWalk&&) noexcept;
+  /// Simulates `transient_steps` from `initial` and runs on to the next crossing, reduced into
+  /// `out` (failures as settle_on_section's). The walk continues from there.
+  std::optional<Failure> settle(const InitialState& initial, int transient_steps, SectionState& out);
+  /// From the last crossing to the next: `next` is the new crossing reduced (in whatever mode it
+  /// arrived), `gait` and `period` as the map's, `distance` the hub's travel, `dissipated` the
+  /// work of the dampers and of friction over the cycle (free legs' stored energy is carried).
+  MapStep step();
+  /// The full state at the last crossing (flexible wheel; empty before settle()).
+  const std::vector<double>& state() const { return next_.y0; }
+
+ private:
+  WheelParams w_;
+  SimulationOptions options_;
+  Model model_;
+  Section section_;
+  std::unique_ptr<FlexibleWheelSimulator> sim_;
+  std::unique_ptr<PoincareMap> rigid_;  // the rigid wheel: its map
+  SectionState point_;                  // the last crossing, reduced
+  RunSpec next_;                        // the run from the last crossing (flexible)
+  std::optional<Failure> to_section(const SimulationResult& r, const SectionHit& hit, SectionState& out);
+};
+
 /// A first section point: simulate `transient_steps` from `initial` and reduce the next crossing.
 /// Returns why not: the transient's failure in stage "transient", the run to the section's in
 /// "reaching the section", an infeasible start (InitialFootBelowGround) without a stage.

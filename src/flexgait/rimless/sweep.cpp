@@ -57,7 +57,7 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
   const SimulationResult r = sim.model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
   std::string transient_gait;
   for (const auto& s : r.steps)
-    if (s.complete) transient_gait = gait_label(s.single_support);
+    if (s.complete) transient_gait = step_gait(s);
 
   std::string row = fmt::format("{},{},{},{}", format_number(spec.value(i)), transient_gait,
                                 format_number(r.mean_speed), csv_field(text_of(r.failure)));
