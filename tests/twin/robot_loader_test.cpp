@@ -190,6 +190,22 @@ TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
   expect_model_agrees_with_mujoco(*walk.loaded);
 }
 
+// A waist hinge between the root and the legs: unmapped, held rigid (the twin has no such joint,
+// the model agrees with MuJoCo's); mapped as the waist, refused naming robot.joints.waist_yaw.
+TEST(RobotLoader, WaistBelowTheRootIsRigidUnlessMapped) {
+  const experiments::WalkRunParams walk = testing::fixture_walk("waist_below_root.yaml");
+  ASSERT_TRUE(walk.loaded);
+  EXPECT_EQ(twin_mjcf(*walk.loaded, walk.robot, walk.plant).find("WaistPitch"), std::string::npos);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  try {
+    (void)testing::fixture_walk("waist_below_root.yaml", {"robot.joints.waist_yaw=WaistPitch"});
+    ADD_FAILURE() << "a mapped waist below the root accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "robot.joints.waist_yaw");
+    EXPECT_NE(std::string(e.what()).find("between the root and the leg to LFoot"), std::string::npos) << e.what();
+  }
+}
+
 // Quaternions printed to 6 digits: the feet tilted by a few 1e-6 rad are accepted and their tilt
 // modelled (the sole poses agree with MuJoCo's to 1e-10); a foot tilted 1e-3 rad or more is refused.
 TEST(RobotLoader, PrintedQuaternionsAreModelled) {

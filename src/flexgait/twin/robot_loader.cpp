@@ -262,6 +262,20 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     for (int x = b; x != root; x = m->body_parentid[x])
       for (int k = m->body_jntadr[x] + m->body_jntnum[x] - 1; k >= m->body_jntadr[x] && m->body_jntnum[x] > 0; --k)
         if (m->jnt_type[k] != mjJNT_FREE) path.insert(path.begin(), k);
+    // Joints between the root and the hips (a waist below the root): held rigid when unmapped;
+    // the legs hang from the root in the controller's model, so a mapped waist cannot be there.
+    auto leg_role = [&](int k) {
+      for (int j = 0; j < kJoints; ++j)
+        if (jid[j] == k && j != kWaistYaw) return true;
+      return false;
+    };
+    while (!path.empty() && !leg_role(path.front())) {
+      if (path.front() == jid[kWaistYaw])
+        fail("robot.joints.waist_yaw", params.joints[kWaistYaw],
+             fmt::format("this joint is between the root and the leg to {}; flexgait's legs hang from the root: map "
+                         "robot.joints.waist_yaw=none to hold it rigid", f.body));
+      path.erase(path.begin());
+    }
     if (path.size() != kLegJoints)
       fail(prefix + ".body", f.body,
            fmt::format("the leg from the root to this foot has {} joints; flexgait's legs have {}", path.size(), kLegJoints));
