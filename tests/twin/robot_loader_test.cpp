@@ -190,6 +190,26 @@ TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
   expect_model_agrees_with_mujoco(*walk.loaded);
 }
 
+// Mesh files that are not there (published robots without their assets): the meshes and the geoms
+// showing them are dropped with one warning; the robot loads on its inertials.
+TEST(RobotLoader, MissingMeshFilesAreDropped) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.xml";
+  std::ifstream in(file);
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  xml.insert(xml.find("<worldbody>"), R"(<asset><mesh file="no_such_shell.stl"/><mesh name="hull" file="no/such/hull.stl"/></asset>)");
+  const std::string base = R"(<geom type="box" size="0.08 0.1 0.05" mass="8"/>)";
+  xml.insert(xml.find(base) + base.size(), R"(<geom mesh="no_such_shell" contype="0"/><geom mesh="hull"/>)");
+  RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
+  const LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("2 mesh files not found (first: no_such_shell); they and the 2 geoms showing them are dropped"),
+            std::string::npos)
+      << r.warnings[0];
+  EXPECT_EQ(r.bodies[0].geoms.size(), 1u);
+  EXPECT_NEAR(r.bodies[0].mass, 8.0, 1e-12);
+}
+
 // A waist hinge between the root and the legs: unmapped, held rigid (the twin has no such joint,
 // the model agrees with MuJoCo's); mapped as the waist, refused naming robot.joints.waist_yaw.
 TEST(RobotLoader, WaistBelowTheRootIsRigidUnlessMapped) {

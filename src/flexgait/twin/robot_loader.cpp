@@ -78,7 +78,10 @@ void check_inertials(const mjModel* m, int b, const std::string& source) {
 ModelPtr compile(const std::string& text, const std::string& format, const std::string& source,
                  std::vector<std::string>& warnings) {
   check_text(text, source);
-  std::string xml = format == "xml" ? translate_mujoco3(text, warnings) : text;
+  std::error_code ec;
+  const std::string dir =
+      std::filesystem::is_regular_file(source, ec) ? std::filesystem::path(source).parent_path().string() : std::string();
+  std::string xml = format == "xml" ? translate_mujoco3(text, warnings, dir) : text;
   if (format == "urdf") {
     // Keep bodies on fixed joints (the feet, sensor frames): MuJoCo fuses them by default for URDF.
     const auto robot = xml.find("<robot");

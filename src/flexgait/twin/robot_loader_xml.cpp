@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 
 #include <fmt/format.h>
@@ -106,7 +107,7 @@ std::string non_finite_token(std::string_view value) {
   return {};
 }
 
-std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings) {
+std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir) {
   struct Edit {
     std::size_t begin, end;
     std::string with;
@@ -126,6 +127,52 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
   };
   std::size_t compiler = std::string_view::npos, root_end = std::string_view::npos;
   bool autolimits = false;
+  // Meshes whose files are absent: their elements and the geoms that show them are dropped.
+  std::string meshdir;
+  for_each_xml_attribute(text, [&](const XmlAttribute& a) {
+    if (a.element == "compiler" && a.name == "meshdir") meshdir = std::string(a.value);
+  });
+  std::vector<std::string> missing;  // mesh names
+  int missing_line = 0;
+  std::size_t mesh_tag = std::string_view::npos;
+  std::string mesh_name, mesh_file;
+  auto end_of_tag = [&](std::size_t tag) { return text.find('>', tag) + 1; };
+  auto close_mesh = [&]() {
+    if (mesh_tag == std::string_view::npos || mesh_file.empty()) return;
+    const std::filesystem::path f = std::filesystem::path(dir) / meshdir / mesh_file;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(f, ec)) {
+      missing.push_back(mesh_name.empty() ? std::filesystem::path(mesh_file).stem().string() : mesh_name);
+      edits.push_back({mesh_tag, end_of_tag(mesh_tag), ""});
+    }
+  };
+  for_each_xml_attribute(text, [&](const XmlAttribute& a) {
+    if (a.tag != mesh_tag) {
+      close_mesh();
+      mesh_tag = std::string_view::npos;
+    }
+    if (a.element == "mesh") {
+      if (mesh_tag != a.tag) mesh_name.clear(), mesh_file.clear();
+      mesh_tag = a.tag;
+      if (a.name == "name") mesh_name = std::string(a.value);
+      if (a.name == "file") {
+        mesh_file = std::string(a.value);
+        if (missing_line == 0) missing_line = a.line;
+      }
+    }
+  });
+  close_mesh();
+  if (!missing.empty()) {
+    int geoms = 0;
+    for_each_xml_attribute(text, [&](const XmlAttribute& a) {
+      if (a.element == "geom" && a.name == "mesh" && std::find(missing.begin(), missing.end(), a.value) != missing.end()) {
+        edits.push_back({a.tag, end_of_tag(a.tag), ""});
+        ++geoms;
+      }
+    });
+    warnings.push_back(fmt::format("line {}: {} mesh files not found (first: {}); they and the {} geoms showing them "
+                                   "are dropped", missing_line, missing.size(), missing.front(), geoms));
+  }
   for_each_xml_attribute(text, [&](const XmlAttribute& a) {
     if (a.element == "compiler") {
       compiler = a.tag;

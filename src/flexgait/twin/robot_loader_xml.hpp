@@ -45,6 +45,10 @@ std::string non_finite_token(std::string_view value);
 /// Returns the translated text (each line where it was) and appends one warning per attribute
 /// (naming it, its first line and how many times it was met). Anything else 2.2.2 does not know
 /// is left for its compiler to refuse, naming the attribute and the line.
-std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings);
+///
+/// Also: a <mesh> whose file is not found (relative to `dir` and the compiler's meshdir) is
+/// dropped with the geoms that show it, one warning in all (the robot's masses come from its
+/// <inertial> elements; a foot whose contact geoms were meshes needs the mapping's sole_size).
+std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir = "");
 
 }  // namespace flexgait::humanoid
