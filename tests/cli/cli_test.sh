@@ -108,6 +108,47 @@ check "--mu sets the same key: same bytes" cmp -s "$work/fp2/fixed_points.csv" "
 expect_usage_error sweep-inf-to "--to: 'inf' is not a finite number" rimless sweep --param rimless.mu --from 0.2 --to inf --count 3
 expect_usage_error sweep-bad-from "--from: key 'rimless.mu_s' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
 expect_usage_error walk-total-mass "key 'robot.total_mass' = '42.53': out of range" humanoid walk --set robot.total_mass=42.53
+# Bad robot files: exit 2 naming robot.description and what is wrong (never an internal error, never a
+# number MuJoCo would replace or pass on silently).
+biped_yaml="$src/tests/humanoid/data/small_biped.yaml"
+biped_xml="$src/tests/humanoid/data/small_biped.xml"
+bad_robot() {  # bad_robot NAME NEEDLE FILE
+  expect_usage_error "$1" "$2" humanoid walk --config "$biped_yaml" --set "robot.description=$3"
+}
+sed '0,/mass="8"/s//mass="inf"/' "$biped_xml" >"$work/inf_mass.xml"
+bad_robot robot-inf-mass "inf_mass.xml': line 13: <geom mass=\"inf\">: 'inf' is not a finite number" "$work/inf_mass.xml"
+sed '0,/mass="8"/s//mass="nan"/' "$biped_xml" >"$work/nan_mass.xml"
+bad_robot robot-nan-mass "nan_mass.xml': line 13: <geom mass=\"nan\">" "$work/nan_mass.xml"
+sed '0,/axis="0 0 1"/s//axis="0 NaN 1"/' "$biped_xml" >"$work/nan_axis.xml"
+bad_robot robot-nan-axis "line 15: <joint axis=\"0 NaN 1\">: 'NaN' is not a finite number" "$work/nan_axis.xml"
+sed 's/name="LShank" pos="0 0 -0.25"/name="LShank" pos="0 0 nan"/' "$biped_xml" >"$work/nan_pos.xml"
+bad_robot robot-nan-pos "key 'robot.description' = '$work/nan_pos.xml': line 27: <body pos=\"0 0 nan\">" "$work/nan_pos.xml"
+sed '0,/pos="0 0 0.7"/s//pos="0 0 1e999"/' "$biped_xml" >"$work/overflow.xml"
+bad_robot robot-overflow "'1e999' is not a finite number" "$work/overflow.xml"
+: >"$work/empty.xml"
+bad_robot robot-empty "key 'robot.description' = '$work/empty.xml': the file is empty" "$work/empty.xml"
+echo "just text" >"$work/text.urdf"
+bad_robot robot-no-element "text.urdf': not an MJCF or URDF file" "$work/text.urdf"
+mkfifo "$work/fifo.xml"
+bad_robot robot-fifo "fifo.xml': not a regular file" "$work/fifo.xml"
+{ echo '<mujoco><!--'; head -c 17000000 /dev/zero | tr '\0' ' '; echo '--></mujoco>'; } >"$work/huge.xml"
+bad_robot robot-huge "huge.xml': larger than 16777216 bytes" "$work/huge.xml"
+rm -f "$work/huge.xml"
+# (MuJoCo's URDF reader takes a negative mass as 0 without a word)
+cat >"$work/negative.urdf" <<'URDF'
+<robot name="negative">
+  <link name="base"><inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="shin"><inertial><mass value="-1"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="shin_fixed" type="fixed"><parent link="base"/><child link="shin"/></joint>
+</robot>
+URDF
+bad_robot robot-negative-urdf-mass "negative.urdf': line 3: <mass value=\"-1\">: a mass must be >= 0 kg" "$work/negative.urdf"
+# The leg as the file has it (joints by role): a role on the wrong leg, a robot that cannot stand.
+expect_usage_error robot-role-on-wrong-leg "key 'robot.joints.r_knee' = 'LKnee': this joint is on the leg to LFoot" \
+  humanoid walk --config "$biped_yaml" --set robot.joints.l_knee=RKnee --set robot.joints.r_knee=LKnee
+sed 's/range="-2.4 0"/range="-0.1 0"/' "$src/tests/humanoid/data/minus_y_knee.xml" >"$work/stiff_knee.xml"
+expect_usage_error robot-no-standing-pose "key 'robot.joints.r_knee': standing at walk.pelvis_height = 0.6" \
+  humanoid walk --config "$src/tests/humanoid/data/minus_y_knee.yaml" --set "robot.description=$work/stiff_knee.xml"
 expect_usage_error mismatch-nan-scale "--scales: 'nan' is not a finite number" humanoid mismatch --scales nan
 expect_usage_error mismatch-empty-scale "--scales: '' is not a finite number" humanoid mismatch --scales 0.9,,1.1
 expect_usage_error walk-nan-fps "--fps: 'nan' is not a finite number" humanoid walk --render --fps nan

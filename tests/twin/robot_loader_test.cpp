@@ -6,8 +6,12 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
 #include <random>
 #include <string>
 
@@ -132,6 +136,114 @@ TEST(RobotLoader, SelfContactAtZeroAnglesIsReportedAndCanBeExcluded) {
   RobotDescriptionParams p;
   p.exclude_contacts = "pelvis:l_hip_roll_link,pelvis:r_hip_roll_link";
   EXPECT_EQ(error_key(xml, p), "no error");
+  // The file's own <contact><exclude> counts as the key's: one pair in the file, the other by key.
+  const std::string own = R"(<contact><exclude body1="pelvis" body2="l_hip_roll_link"/></contact>)";
+  std::string with_exclude = xml;
+  with_exclude.insert(with_exclude.rfind("</mujoco>"), own);
+  p.exclude_contacts = "pelvis:r_hip_roll_link";
+  EXPECT_EQ(error_key(with_exclude, p), "no error");
+  EXPECT_EQ(load_robot_text(with_exclude, "xml", "x.xml", p).exclude.size(), 2u);
+}
+
+// A loaded robot has no builtin names as defaults: every unmapped leg role is listed; an unmapped
+// waist is a rigid trunk.
+TEST(RobotLoader, UnmappedRolesAreListed) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.xml";
+  std::ifstream in(file);
+  const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  RobotDescriptionParams p;
+  p.feet = {FootMapping{"LFoot", "LSole"}, FootMapping{"RFoot", "RSole"}};
+  const std::string what = error_key(xml, p);
+  EXPECT_EQ(what.rfind("robot.joints.l_hip_yaw | ", 0), 0u) << what;
+  EXPECT_NE(what.find("unmapped: l_hip_yaw, l_hip_roll, l_hip_pitch, l_knee, l_ankle_pitch, l_ankle_roll, r_hip_yaw, "
+                      "r_hip_roll, r_hip_pitch, r_knee, r_ankle_pitch, r_ankle_roll)"),
+            std::string::npos)
+      << what;
+  const std::array<const char*, 12> names = {"LHipYaw", "LHipRoll", "LHipPitch", "LKnee", "LAnklePitch", "LAnkleRoll",
+                                             "RHipYaw", "RHipRoll", "RHipPitch", "RKnee", "RAnklePitch", "RAnkleRoll"};
+  for (int i = 0; i < 12; ++i) p.joints[static_cast<std::size_t>(kLeftHipYaw + i)] = names[static_cast<std::size_t>(i)];
+  p.joints[kLeftKnee] = "l_knee";  // one role left at its builtin name
+  EXPECT_NE(error_key(xml, p).find("(unmapped: l_knee)"), std::string::npos) << error_key(xml, p);
+  p.joints[kLeftKnee] = "LKnee";
+  const LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);  // the waist left unmapped: rigid
+  EXPECT_FALSE(r.has_joint(kWaistYaw));
+}
+
+// MJCF written for MuJoCo 3: translated with one warning per attribute, the knees' ranges limit
+// them (autolimits), the model agrees with MuJoCo's.
+TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
+  const experiments::WalkRunParams walk = testing::fixture_walk("mujoco3_attributes.yaml");
+  ASSERT_TRUE(walk.loaded);
+  const std::vector<std::string> expected = {
+      "line 33: actuatorfrcrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself) (2 times)",
+      "line 9: ellipsoidinertia dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)",
+      "line 80: inheritrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)",
+      "line 7: integrator=implicitfast taken as \"implicit\" (MuJoCo 2.2.2 has no implicitfast; the twin sets its own "
+      "integrator)",
+      "line 80: kv dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)"};
+  EXPECT_EQ(walk.loaded->warnings, expected);
+  const auto [body, k] = walk.loaded->joint[kLeftKnee];
+  const LoadedJoint& knee = walk.loaded->bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
+  EXPECT_TRUE(knee.limited);
+  EXPECT_EQ(knee.range[1], 2.4);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+}
+
+// Mesh files that are not there (published robots without their assets): the meshes and the geoms
+// showing them are dropped with one warning; the robot loads on its inertials.
+TEST(RobotLoader, MissingMeshFilesAreDropped) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.xml";
+  std::ifstream in(file);
+  std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  xml.insert(xml.find("<worldbody>"), R"(<asset><mesh file="no_such_shell.stl"/><mesh name="hull" file="no/such/hull.stl"/></asset>)");
+  const std::string base = R"(<geom type="box" size="0.08 0.1 0.05" mass="8"/>)";
+  xml.insert(xml.find(base) + base.size(), R"(<geom mesh="no_such_shell" contype="0"/><geom mesh="hull"/>)");
+  RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
+  const LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);
+  ASSERT_EQ(r.warnings.size(), 1u);
+  EXPECT_NE(r.warnings[0].find("2 mesh files not found (first: no_such_shell); they and the 2 geoms showing them are dropped"),
+            std::string::npos)
+      << r.warnings[0];
+  EXPECT_EQ(r.bodies[0].geoms.size(), 1u);
+  EXPECT_NEAR(r.bodies[0].mass, 8.0, 1e-12);
+}
+
+// A waist hinge between the root and the legs: unmapped, held rigid (the twin has no such joint,
+// the model agrees with MuJoCo's); mapped as the waist, refused naming robot.joints.waist_yaw.
+TEST(RobotLoader, WaistBelowTheRootIsRigidUnlessMapped) {
+  const experiments::WalkRunParams walk = testing::fixture_walk("waist_below_root.yaml");
+  ASSERT_TRUE(walk.loaded);
+  EXPECT_EQ(twin_mjcf(*walk.loaded, walk.robot, walk.plant).find("WaistPitch"), std::string::npos);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  try {
+    (void)testing::fixture_walk("waist_below_root.yaml", {"robot.joints.waist_yaw=WaistPitch"});
+    ADD_FAILURE() << "a mapped waist below the root accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "robot.joints.waist_yaw");
+    EXPECT_NE(std::string(e.what()).find("between the root and the leg to LFoot"), std::string::npos) << e.what();
+  }
+}
+
+// Quaternions printed to 6 digits: the feet tilted by a few 1e-6 rad are accepted and their tilt
+// modelled (the sole poses agree with MuJoCo's to 1e-10); a foot tilted 1e-3 rad or more is refused.
+TEST(RobotLoader, PrintedQuaternionsAreModelled) {
+  const experiments::WalkRunParams walk = testing::fixture_walk("printed_quaternions.yaml");
+  ASSERT_TRUE(walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  EXPECT_TRUE(model.sole_tilted[0]);
+  EXPECT_TRUE(model.sole_tilted[1]);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  LoadedRobot tilted = *walk.loaded;
+  tilted.bodies[static_cast<std::size_t>(tilted.foot[1])].quat = {std::cos(0.0006), 0, std::sin(0.0006), 0};  // 1.2e-3 rad
+  try {
+    (void)walking::make_robot_model(tilted);
+    ADD_FAILURE() << "a tilted foot accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "robot.feet.right.body");
+    EXPECT_NE(std::string(e.what()).find("tilted 0.0012 rad"), std::string::npos) << e.what();
+  }
 }
 
 // A sole given by its size and centre instead of a geom: the same sole.

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "../twin/compiled_model.hpp"
@@ -63,13 +64,16 @@ inline void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
   }
 }
 
+/// The walk of a fixture robot of tests/humanoid/data (its YAML mapping, with these overrides).
+inline experiments::WalkRunParams fixture_walk(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / yaml;
+  return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, overrides));
+}
+
 /// The second robot's walk (tests/humanoid/data/small_biped.yaml: the robot small_biped.xml with
 /// its own names and an offset hip pitch axis, 10 steps at 1 s/step); its description path is
 /// relative to the YAML file.
-inline experiments::WalkRunParams small_biped_walk() {
-  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
-  const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
-  return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, {}));
-}
+inline experiments::WalkRunParams small_biped_walk() { return fixture_walk("small_biped.yaml"); }
 
 }  // namespace flexgait::humanoid::testing

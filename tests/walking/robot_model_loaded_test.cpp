@@ -4,16 +4,22 @@
 // and for the test robot with its own names and an offset hip pitch axis.
 #include <gtest/gtest.h>
 
+#include <random>
+#include <string>
+
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/robot_loader.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/stance_defaults.hpp"
 #include "model_agreement.hpp"
 
 namespace flexgait::humanoid {
 namespace {
 
 using testing::expect_model_agrees_with_mujoco;
+using testing::fixture_walk;
 using testing::small_biped_walk;
+using walking::Pose;
 using walking::RobotModel;
 
 LoadedRobot builtin_loaded() {
@@ -62,6 +68,101 @@ TEST(RobotModelLoaded, SecondRobotModelAgreesWithMuJoCo) {
     EXPECT_EQ(walking::analytic_ik_mismatch(loaded, side), "the hip yaw, roll and pitch axes do not meet in a point");
   }
   EXPECT_TRUE(walking::make_robot_model(builtin_loaded()).leg[0].analytic);
+}
+
+/// FK∘IK on leg `side` of `model`: random angles inside the joints' ranges (the knee bent 0.2 to
+/// 1.5 rad the way its range allows, the others ±0.3 rad), their sole pose, the IK of that pose;
+/// the IK's angles must put the sole there (the 1e-10: Newton's steps stop at |e| < 1e-12)
+/// and lie inside the ranges. Also the leg's own FK against the whole model's (one chain, two
+/// codes) to 1e-12.
+void expect_ik_inverts_fk(const RobotModel& model, int side) {
+  const walking::LegGeometry& leg = model.leg[static_cast<std::size_t>(side)];
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> small(-0.3, 0.3), bend(0.2, 1.5);
+  walking::RobotModelData data;
+  for (int trial = 0; trial < 200; ++trial) {
+    walking::LegAngles q;
+    for (auto& v : q) v = small(rng);
+    q[3] = leg.sign[3] * leg.knee_branch() * bend(rng);
+    JointVector all{};
+    for (int i = 0; i < kLegJoints; ++i) all[leg_first_joint(side) + i] = q[static_cast<std::size_t>(i)];
+    walking::forward_kinematics(model, data, Pose{}, all);
+    const Pose target = walking::leg_forward_kinematics(leg, q);
+    const Pose whole = walking::sole_pose(model, data, side);
+    ASSERT_LT((whole.p - target.p).norm(), 1e-12);
+    ASSERT_LT((whole.R - target.R).cwiseAbs().maxCoeff(), 1e-12);
+    const walking::IkSolution ik = walking::leg_inverse_kinematics(leg, target);
+    ASSERT_EQ(ik.status, walking::IkStatus::kOk) << trial;
+    const Pose back = walking::leg_forward_kinematics(leg, ik.q);
+    EXPECT_LT((back.p - target.p).norm(), 1e-10) << trial;
+    EXPECT_LT((back.R - target.R).cwiseAbs().maxCoeff(), 1e-10) << trial;
+    for (int i = 0; i < kLegJoints; ++i) {
+      EXPECT_GE(ik.q[static_cast<std::size_t>(i)], leg.lower[static_cast<std::size_t>(i)]) << trial << " joint " << i;
+      EXPECT_LE(ik.q[static_cast<std::size_t>(i)], leg.upper[static_cast<std::size_t>(i)]) << trial << " joint " << i;
+    }
+  }
+}
+
+// A knee whose axis points along −y (ROBOTIS's right knee) and whose range only bends it forward:
+// the model agrees with MuJoCo's, the IK bends that knee to negative angles (inside its range),
+// with the numeric IK (the robot's offset hip pitch) and with the analytic one (no offset); the
+// robot stands and walks 10 steps without a joint at its limit.
+TEST(RobotModelLoaded, MinusYKneeBendsTheWayItsRangeAllows) {
+  experiments::WalkRunParams walk = fixture_walk("minus_y_knee.yaml");
+  ASSERT_TRUE(walk.loaded);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  EXPECT_EQ(model.leg[1].sign[3], -1.0);
+  EXPECT_EQ(model.leg[0].sign[3], 1.0);
+  EXPECT_EQ(model.range[kRightKnee][0], -2.4);
+  for (int side = 0; side < 2; ++side) expect_ik_inverts_fk(model, side);
+  const JointVector stand = walking::standing_angles(model, walk.walk.pelvis_height, walk.walk.step_width);
+  EXPECT_GT(stand[kLeftKnee], 0.5);
+  EXPECT_LT(stand[kRightKnee], -0.5);
+  EXPECT_NEAR(stand[kLeftKnee], -stand[kRightKnee], 1e-9);
+  // Without the hip pitch offset the leg has the analytic layout, signs and all.
+  LoadedRobot aligned = *walk.loaded;
+  for (auto& b : aligned.bodies)
+    if (b.name == "LThigh" || b.name == "RThigh") b.pos = {0, 0, 0};
+  const RobotModel analytic = walking::make_robot_model(aligned);
+  ASSERT_TRUE(analytic.leg[1].analytic) << walking::analytic_ik_mismatch(aligned, 1);
+  expect_model_agrees_with_mujoco(aligned);
+  for (int side = 0; side < 2; ++side) expect_ik_inverts_fk(analytic, side);
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
+  EXPECT_EQ(r.metrics.joint_limit_hits, 0);
+  EXPECT_TRUE(r.metrics.joint_ranges);
+}
+
+// Hips ordered pitch, roll, yaw from the pelvis (Unitree G1's order), mapped by role: the model's
+// Jacobian columns and gravity torques are by role and agree with MuJoCo's; FK∘IK; 10 steps.
+TEST(RobotModelLoaded, PitchRollYawHipsMappedByRole) {
+  experiments::WalkRunParams walk = fixture_walk("pitch_roll_yaw_hips.yaml");
+  ASSERT_TRUE(walk.loaded);
+  EXPECT_EQ(walk.loaded->leg_order[0], (std::array<int, 6>{2, 1, 0, 3, 4, 5}));
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  EXPECT_FALSE(model.leg[0].analytic);
+  EXPECT_EQ(walking::analytic_ik_mismatch(*walk.loaded, 0), "joint 1 from the root is l_hip_pitch, not l_hip_yaw");
+  for (int side = 0; side < 2; ++side) expect_ik_inverts_fk(model, side);
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
+}
+
+// Commanded angles outside a range are clamped and counted.
+TEST(RobotModelLoaded, ClampToRangesCounts) {
+  RobotModel model = walking::make_robot_model(RobotParams{});
+  JointVector q{};
+  q[kLeftKnee] = -0.2;
+  q[kRightKnee] = 2.5;
+  EXPECT_EQ(walking::clamp_to_ranges(model, q), 0);  // the builtin: no ranges
+  model.range[kLeftKnee] = {0, 2.4};
+  model.range[kRightKnee] = {0, 2.4};
+  EXPECT_EQ(walking::clamp_to_ranges(model, q), 2);
+  EXPECT_EQ(q[kLeftKnee], 0.0);
+  EXPECT_EQ(q[kRightKnee], 2.4);
 }
 
 }  // namespace

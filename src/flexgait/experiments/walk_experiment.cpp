@@ -133,6 +133,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
     const walking::RobotModel model = walk_controller_model(p);  // refuses a foot the controller cannot handle
     apply_stance_defaults(c, model, p.walk);
     check_reach(p, model);
+    walking::check_standing_pose(model, p.walk.pelvis_height, p.walk.step_width);
   });
   if (p.control.compensated_feedback && !p.control.output())
     throw ConfigError("control.compensated_feedback",
@@ -234,6 +235,9 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
   out.plan = controller.plan();
   WalkMetrics& m = out.metrics;
   m.steps_planned = static_cast<int>(out.plan.steps.size());
+  m.joint_ranges = params.loaded && std::any_of(model.range.begin(), model.range.end(), [](const auto& r) {
+    return std::isfinite(r[0]) || std::isfinite(r[1]);
+  });
   m.riccati_residual = controller.gains().riccati_residual;
   m.compensation = params.control.mode;
   m.gravity_model = params.control.gravity;
@@ -288,7 +292,8 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
       plan_now.single_support_phase = std::clamp((t - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);
     }
     if (params.control.load_model != compensation::LoadModel::kGravity) compensator.sense(sensors.ft);
-    const humanoid::JointVector& command = compensator.input(desired, st.pelvis.R, plan_now);
+    humanoid::JointVector command = compensator.input(desired, st.pelvis.R, plan_now);
+    if (params.loaded) m.joint_limit_hits += walking::clamp_to_ranges(model, command);  // never silent
     controller.sent(command);
     const compensation::OutputEstimate* estimate =
         params.control.output() ? &compensator.output(sensors.encoder, controller.attitude(), plan_now) : nullptr;

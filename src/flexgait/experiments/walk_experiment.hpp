@@ -146,6 +146,8 @@ struct WalkMetrics {
   double com_error_rms = 0, com_error_max = 0;                   ///< true COM − planned (xy) [m]
   double support_error_max = 0;         ///< largest slide of a standing sole from where it came down [m]
   int ik_clamped = 0;                   ///< control periods with a leg target out of reach
+  int joint_limit_hits = 0;             ///< commanded joint angles clamped into their ranges (a loaded robot)
+  bool joint_ranges = false;            ///< a loaded robot: its joint ranges bound the commands
   int mujoco_warnings = 0;              ///< MuJoCo warnings
   double simulated_time = 0;            ///< [s]
   double wall_time = 0;                 ///< [s] (timing.json)
@@ -278,6 +280,9 @@ struct WalkMetrics {
       {.unit = "N s", .doc = "largest impulse an ankle strategy absorbs in the push's direction at its start (m ω0 d)",
        .present = s.pushed});
     v("ik_clamped", s.ik_clamped, {.doc = "control periods with a leg target out of reach"});
+    v("joint_limit_hits", s.joint_limit_hits,
+      {.doc = "commanded joint angles outside the description's ranges, clamped (one per joint and control period)",
+       .present = s.joint_ranges});
     v("mujoco_warnings", s.mujoco_warnings, {.doc = "MuJoCo warnings during the walk"});
     v("riccati_residual", s.riccati_residual, {.doc = "relative residual of the preview controller's DARE"});
     v("simulated_time", s.simulated_time, {.unit = "s", .doc = "simulated time"});

@@ -112,9 +112,13 @@ struct LoadedRobot {
   std::vector<LoadedBody> bodies;       ///< the robot's tree, parents before children; bodies[0] is the root
   std::array<std::array<int, 2>, kJoints> joint{};  ///< each flexgait joint: (body, joint in that body); body −1: absent
   std::array<int, 2> foot{};            ///< foot body of each side
+  /// Each leg's joints from the root to the foot, as roles (0 hip yaw, 1 hip roll, 2 hip pitch,
+  /// 3 knee, 4 ankle pitch, 5 ankle roll): the hips' three in any order, the knee, the ankle's two.
+  std::array<std::array<int, kLegJoints>, 2> leg_order{{{0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5}}};
   std::array<Sole, 2> sole{};
   int imu_body = 0;
-  std::vector<std::array<int, 2>> exclude;  ///< body pairs whose contacts are ignored
+  std::vector<std::array<int, 2>> exclude;  ///< body pairs whose contacts are ignored (the file's and robot.exclude_contacts)
+  std::vector<std::string> warnings;        ///< what the loader translated or dropped, one line each
 
   bool has_joint(int j) const { return joint[j][0] >= 0; }
 };

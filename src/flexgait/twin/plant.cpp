@@ -81,6 +81,7 @@ struct HumanoidPlant::Impl {
   std::array<int, kJoints> joint_id{};
   std::array<int, 2> push_body{};  ///< body ids of PushBody: pelvis, chest
   std::array<int, 2> sole_geom{};
+  std::array<int, 2> foot_body{};  ///< the bodies of the soles: any of their geoms on the floor is support
   std::array<int, 2> ft_site{};
   std::array<int, 4> ft_sensor_adr{};  // l force, l torque, r force, r torque
   int quat_adr = 0, gyro_adr = 0, acc_adr = 0;
@@ -180,6 +181,7 @@ HumanoidPlant::Impl::Impl(const TwinModel& twin, const PlantParams& plant, Terra
   // The root body, and the waist joint's body (the root itself for a trunk without a waist).
   push_body = {1, joint_id[kWaistYaw] < 0 ? 1 : m->jnt_bodyid[joint_id[kWaistYaw]]};
   sole_geom = {require(m, mjOBJ_GEOM, "l_sole"), require(m, mjOBJ_GEOM, "r_sole")};
+  foot_body = {m->geom_bodyid[sole_geom[0]], m->geom_bodyid[sole_geom[1]]};
   ft_site = {require(m, mjOBJ_SITE, "l_ft"), require(m, mjOBJ_SITE, "r_ft")};
   ft_sensor_adr = {sensor_adr(m, "l_ft_force"), sensor_adr(m, "l_ft_torque"), sensor_adr(m, "r_ft_force"),
                    sensor_adr(m, "r_ft_torque")};
@@ -404,8 +406,11 @@ GroundTruth HumanoidPlant::truth() const {
     const mjContact& con = d->contact[c];
     if (!p.is_floor(con.geom1) && !p.is_floor(con.geom2)) continue;
     const int other = p.is_floor(con.geom1) ? con.geom2 : con.geom1;
-    if (other != p.sole_geom[0] && other != p.sole_geom[1]) g.non_sole_contact = true;
-    for (int side = 0; side < 2; ++side) g.sole_contact[side] = g.sole_contact[side] || other == p.sole_geom[side];
+    // Every contact of a foot is support (four spheres, two boxes under a foot), not a fall.
+    bool foot = false;
+    for (int side = 0; side < 2; ++side)
+      if (other == p.sole_geom[side] || m->geom_bodyid[other] == p.foot_body[side]) foot = g.sole_contact[side] = true;
+    if (!foot) g.non_sole_contact = true;
     mjtNum f[6];
     mj_contactForce(m, d, c, f);
     // Contact frame: first row of con.frame is the normal; the normal force is f[0].

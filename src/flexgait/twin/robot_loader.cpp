@@ -5,16 +5,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/robot_loader_xml.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
 
 namespace flexgait::humanoid {
@@ -26,9 +29,59 @@ using ModelPtr = std::unique_ptr<mjModel, void (*)(mjModel*)>;
   throw ConfigError(key, fmt::format("key '{}' = '{}': {}", key, one_line(value), why));
 }
 
-/// Compiles description text through MuJoCo's virtual file system.
-ModelPtr compile(const std::string& text, const std::string& format, const std::string& source) {
-  std::string xml = text;
+std::string name_of(const mjModel* m, mjtObj type, int id) {
+  const char* n = mj_id2name(m, type, id);
+  return n ? n : "";
+}
+
+/// Refuses what MuJoCo's compiler would take silently or fail on without naming the file's fault:
+/// no element at all, and a number that is not finite (MuJoCo reads "nan" and "inf" as numbers; a
+/// NaN mass then falls back to the geoms' density mass, a NaN axis or an infinite mass reaches the
+/// solver).
+void check_text(const std::string& text, const std::string& source) {
+  if (text.find('<') == std::string::npos)
+    fail("robot.description", source, text.find_first_not_of(" \t\r\n") == std::string::npos
+                                          ? "the file is empty"
+                                          : "not an MJCF or URDF file (no XML element)");
+  for_each_xml_attribute(text, [&](const XmlAttribute& a) {
+    if (names_something(a.name)) return;
+    const std::string bad = non_finite_token(a.value);
+    if (!bad.empty())
+      fail("robot.description", source,
+           fmt::format("line {}: <{} {}=\"{}\">: '{}' is not a finite number", a.line, a.element, a.name,
+                       one_line(a.value, 60), one_line(bad, 30)));
+    // A negative mass: MuJoCo's URDF reader takes it as 0 without a word.
+    const bool mass = a.name == "mass" || (a.element == "mass" && a.name == "value");
+    const std::optional<double> x = mass ? parse_finite_number(a.value) : std::nullopt;
+    if (x && *x < 0)
+      fail("robot.description", source,
+           fmt::format("line {}: <{} {}=\"{}\">: a mass must be >= 0 kg", a.line, a.element, a.name, one_line(a.value, 60)));
+  });
+}
+
+/// Refuses a compiled body whose mass or inertia is negative (URDF's <mass value="-1"/> compiles),
+/// naming the body (a URDF link).
+void check_inertials(const mjModel* m, int b, const std::string& source) {
+  const std::string name = name_of(m, mjOBJ_BODY, b);
+  if (!(m->body_mass[b] >= 0))
+    fail("robot.description", source,
+         fmt::format("body '{}' has mass {} kg; allowed: a finite mass >= 0", one_line(name, 60), m->body_mass[b]));
+  for (int i = 0; i < 3; ++i)
+    if (!(m->body_inertia[3 * b + i] >= 0))
+      fail("robot.description", source,
+           fmt::format("body '{}' has a principal moment of inertia {} kg m^2; allowed: finite moments >= 0",
+                       one_line(name, 60), m->body_inertia[3 * b + i]));
+}
+
+/// Compiles description text through MuJoCo's virtual file system (MJCF written for MuJoCo 3
+/// translated first, its warnings appended to `warnings`).
+ModelPtr compile(const std::string& text, const std::string& format, const std::string& source,
+                 std::vector<std::string>& warnings) {
+  check_text(text, source);
+  std::error_code ec;
+  const std::string dir =
+      std::filesystem::is_regular_file(source, ec) ? std::filesystem::path(source).parent_path().string() : std::string();
+  std::string xml = format == "xml" ? translate_mujoco3(text, warnings, dir) : text;
   if (format == "urdf") {
     // Keep bodies on fixed joints (the feet, sensor frames): MuJoCo fuses them by default for URDF.
     const auto robot = xml.find("<robot");
@@ -48,11 +101,6 @@ ModelPtr compile(const std::string& text, const std::string& format, const std::
   mj_deleteVFS(vfs.get());
   if (m == nullptr) fail("robot.description", source, std::string("MuJoCo cannot load it: ") + one_line(error));
   return {m, mj_deleteModel};
-}
-
-std::string name_of(const mjModel* m, mjtObj type, int id) {
-  const char* n = mj_id2name(m, type, id);
-  return n ? n : "";
 }
 
 std::array<double, 3> vec3(const mjtNum* v) { return {v[0], v[1], v[2]}; }
@@ -111,17 +159,34 @@ void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
 
 LoadedRobot load_robot_text(const std::string& text, const std::string& format, const std::string& source,
                             const RobotDescriptionParams& params) {
-  const ModelPtr model = compile(text, format, source);
-  const mjModel* m = model.get();
   LoadedRobot out;
   out.source = source;
+  const ModelPtr model = compile(text, format, source, out.warnings);
+  const mjModel* m = model.get();
+  for (int b = 1; b < m->nbody; ++b) check_inertials(m, b, source);
 
   // The mapped joints (hinges), then the root: the world's child that holds them.
+  // A role left at the builtin's name that the file does not have is unmapped: the waist is then
+  // rigid, a leg role is an error listing every unmapped one (a loaded robot has no defaults).
   std::array<int, kJoints> jid{};
+  std::string unmapped;
+  int first_unmapped = -1;
+  for (int j = 0; j < kJoints; ++j) {
+    const std::string& name = params.joints[j];
+    if (name == kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0 && j != kWaistYaw) {
+      unmapped += (unmapped.empty() ? "" : ", ") + name;
+      if (first_unmapped < 0) first_unmapped = j;
+    }
+  }
+  if (first_unmapped >= 0)
+    fail("robot.joints." + std::string(kJointNames[first_unmapped]), params.joints[first_unmapped],
+         fmt::format("{} has no joint of that name; map every leg role to a joint of the file (unmapped: {})", source,
+                     unmapped));
   for (int j = 0; j < kJoints; ++j) {
     const std::string key = "robot.joints." + std::string(kJointNames[j]);
     const std::string& name = params.joints[j];
-    if (j == kWaistYaw && name == "none") {  // a trunk without a waist: the chest is rigid on the pelvis
+    // A trunk without a waist (none, or left unmapped): the chest is rigid on the pelvis.
+    if (j == kWaistYaw && (name == "none" || (name == kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0))) {
       jid[j] = -1;
       continue;
     }
@@ -200,14 +265,50 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     for (int x = b; x != root; x = m->body_parentid[x])
       for (int k = m->body_jntadr[x] + m->body_jntnum[x] - 1; k >= m->body_jntadr[x] && m->body_jntnum[x] > 0; --k)
         if (m->jnt_type[k] != mjJNT_FREE) path.insert(path.begin(), k);
+    // Joints between the root and the hips (a waist below the root): held rigid when unmapped;
+    // the legs hang from the root in the controller's model, so a mapped waist cannot be there.
+    auto leg_role = [&](int k) {
+      for (int j = 0; j < kJoints; ++j)
+        if (jid[j] == k && j != kWaistYaw) return true;
+      return false;
+    };
+    while (!path.empty() && !leg_role(path.front())) {
+      if (path.front() == jid[kWaistYaw])
+        fail("robot.joints.waist_yaw", params.joints[kWaistYaw],
+             fmt::format("this joint is between the root and the leg to {}; flexgait's legs hang from the root: map "
+                         "robot.joints.waist_yaw=none to hold it rigid", f.body));
+      path.erase(path.begin());
+    }
     if (path.size() != kLegJoints)
       fail(prefix + ".body", f.body,
            fmt::format("the leg from the root to this foot has {} joints; flexgait's legs have {}", path.size(), kLegJoints));
+    // The leg's joints by role, whatever their order within the hip and within the ankle.
+    const int j0 = leg_first_joint(side);
     for (int i = 0; i < kLegJoints; ++i) {
-      const int j = leg_first_joint(side) + i;
-      if (path[static_cast<std::size_t>(i)] != jid[j])
-        fail("robot.joints." + std::string(kJointNames[j]), params.joints[j],
-             fmt::format("joint {} of the leg to {} is '{}'", i + 1, f.body, name_of(m, mjOBJ_JOINT, path[static_cast<std::size_t>(i)])));
+      const int k = path[static_cast<std::size_t>(i)];
+      int role = -1;
+      for (int j = 0; j < kJoints; ++j)
+        if (jid[j] == k) role = j;
+      if (role < 0 || !in_leg(role, side)) {
+        // A joint of the other leg's roles, or of none: name the role that is missing here.
+        int missing = j0;
+        for (int r = 0; r < kLegJoints; ++r)
+          if (std::find(path.begin(), path.end(), jid[j0 + r]) == path.end()) missing = j0 + r;
+        if (role >= 0)
+          fail("robot.joints." + std::string(kJointNames[role]), params.joints[role],
+               fmt::format("this joint is on the leg to {} (the {} foot); map the {} leg's roles to that leg's joints",
+                           f.body, side == 0 ? "left" : "right", side == 0 ? "right" : "left"));
+        fail("robot.joints." + std::string(kJointNames[missing]), params.joints[missing],
+             fmt::format("not on the leg to {}, whose joint {} is '{}' (mapped to no role)", f.body, i + 1,
+                         name_of(m, mjOBJ_JOINT, k)));
+      }
+      const int r = role - j0;
+      const int group = r < 3 ? 0 : (r == 3 ? 1 : 2), at = i < 3 ? 0 : (i == 3 ? 1 : 2);
+      if (group != at)
+        fail("robot.joints." + std::string(kJointNames[role]), params.joints[role],
+             fmt::format("joint {} of the leg to {}; a leg's joints from the root are the three hip joints (any "
+                         "order), the knee, then the two ankle joints (any order)", i + 1, f.body));
+      out.leg_order[side][static_cast<std::size_t>(i)] = r;
     }
     out.foot[side] = index[static_cast<std::size_t>(b)];
     Sole& sole = out.sole[side];
@@ -258,6 +359,14 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       out.exclude.push_back(ids);
     }
   }
+  // The file's own <contact><exclude> pairs (MuJoCo 2.2.2's signature: (body1 + 1) << 16 | (body2 + 1)).
+  for (int e = 0; e < m->nexclude; ++e) {
+    const int a = (m->exclude_signature[e] >> 16) - 1, b = (m->exclude_signature[e] & 0xFFFF) - 1;
+    if (a < 0 || b < 0 || a >= m->nbody || b >= m->nbody) continue;
+    const std::array<int, 2> ids{index[static_cast<std::size_t>(a)], index[static_cast<std::size_t>(b)]};
+    if (ids[0] >= 0 && ids[1] >= 0 && std::find(out.exclude.begin(), out.exclude.end(), ids) == out.exclude.end())
+      out.exclude.push_back(ids);
+  }
   check_self_contacts(out, params.exclude_contacts);
   return out;
 }
@@ -268,12 +377,23 @@ LoadedRobot load_robot(const RobotDescriptionParams& params) {
   if (ext != ".xml" && ext != ".urdf")
     fail("robot.description", path, "allowed: builtin, or a path ending in .xml (MJCF) or .urdf (URDF)");
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) fail("robot.description", path, "no such file");
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (st.type() == std::filesystem::file_type::not_found) fail("robot.description", path, "no such file");
+  if (!std::filesystem::is_regular_file(st))
+    fail("robot.description", path, "not a regular file (a directory, FIFO, socket or device)");
   std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
   if (!in) fail("robot.description", path, "cannot read the file");
-  return load_robot_text(text.str(), ext.substr(1), path, params);
+  std::string text(kMaxDescriptionBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) fail("robot.description", path, "cannot read the file");
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxDescriptionBytes)
+    fail("robot.description", path,
+         fmt::format("larger than {} bytes; a robot description is at most a few megabytes (meshes are separate files)",
+                     kMaxDescriptionBytes));
+  LoadedRobot robot = load_robot_text(text, ext.substr(1), path, params);
+  for (const std::string& w : robot.warnings) fmt::print(stderr, "warning: robot.description {}: {}\n", one_line(path), w);
+  return robot;
 }
 
 }  // namespace flexgait::humanoid

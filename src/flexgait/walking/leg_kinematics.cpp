@@ -16,8 +16,16 @@ LegGeometry leg_geometry(const humanoid::RobotParams& r, int side) {
   return g;
 }
 
-Pose leg_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
-  if (!leg.analytic) return leg_chain_forward_kinematics(leg, q);
+double LegGeometry::knee_branch() const {
+  // The knee's range in the layout's angles (s·q): forward unless it leaves more room backward.
+  const double a = sign[3] * lower[3], b = sign[3] * upper[3];
+  return std::max(a, b) >= -std::min(a, b) ? 1.0 : -1.0;
+}
+
+Pose leg_forward_kinematics(const LegGeometry& leg, const LegAngles& q_file) {
+  if (!leg.analytic) return leg_chain_forward_kinematics(leg, q_file);
+  LegAngles q;  // the layout's angles
+  for (std::size_t i = 0; i < 6; ++i) q[i] = leg.sign[i] * q_file[i];
   const Matrix3d Rh = rot_z(q[0]) * rot_x(q[1]);
   const Vector3d down = -Vector3d::UnitZ();
   Pose sole;
@@ -29,11 +37,12 @@ Pose leg_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
 
 Pose leg_chain_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
   Pose f;
-  for (int i = 0; i < 6; ++i) {
-    f.p += f.R * leg.anchor[static_cast<std::size_t>(i)];
-    f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(i)], leg.axis[static_cast<std::size_t>(i)]).toRotationMatrix();
+  for (std::size_t i = 0; i < 6; ++i) {
+    f.p += f.R * leg.anchor[i];
+    f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(leg.role[i])], leg.axis[i]).toRotationMatrix();
   }
   f.p += f.R * leg.sole;
+  if (leg.sole_tilted) f.R = f.R * leg.sole_R;
   return f;
 }
 
@@ -49,6 +58,9 @@ IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& so
   const Vector3d to_sole = leg.anchor[5] + leg.sole;  // from the last joint's anchor
   near.ankle_to_sole = -to_sole.z();
   near.sole_shift = Vector3d(to_sole.x(), to_sole.y(), 0);
+  near.sign = leg.sign;  // the same knee branch, in the file's angles
+  near.lower = leg.lower;
+  near.upper = leg.upper;
   q = leg_inverse_kinematics(near, sole).q;
   constexpr double kLambda2 = 1e-4;  // damping λ² far from the target: bounds steps near singularities
   constexpr double kMaxStep = 0.2;   // largest joint step per iteration [rad]
@@ -58,12 +70,13 @@ IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& so
     // Frames of the joints and the sole now.
     std::array<Pose, 6> frame;
     Pose f;
-    for (int i = 0; i < 6; ++i) {
-      f.p += f.R * leg.anchor[static_cast<std::size_t>(i)];
-      frame[static_cast<std::size_t>(i)] = f;
-      f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(i)], leg.axis[static_cast<std::size_t>(i)]).toRotationMatrix();
+    for (std::size_t i = 0; i < 6; ++i) {
+      f.p += f.R * leg.anchor[i];
+      frame[i] = f;
+      f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(leg.role[i])], leg.axis[i]).toRotationMatrix();
     }
     const Vector3d p = f.p + f.R * leg.sole;
+    if (leg.sole_tilted) f.R = f.R * leg.sole_R;
     const Eigen::AngleAxisd w(Matrix3d(sole.R * f.R.transpose()));
     e.head<3>() = sole.p - p;
     e.tail<3>() = w.angle() * w.axis();
@@ -80,7 +93,7 @@ IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& so
     Eigen::Matrix<double, 6, 1> dq =
         J.transpose() * (J * J.transpose() + lambda2 * Eigen::Matrix<double, 6, 6>::Identity()).ldlt().solve(e);
     if (dq.cwiseAbs().maxCoeff() > kMaxStep) dq *= kMaxStep / dq.cwiseAbs().maxCoeff();
-    for (int i = 0; i < 6; ++i) q[static_cast<std::size_t>(i)] += dq(i);
+    for (int i = 0; i < 6; ++i) q[static_cast<std::size_t>(leg.role[static_cast<std::size_t>(i)])] += dq(i);
   }
   out.status = IkStatus::kOutOfReach;
   out.clamped_by = e.head<3>().norm();
@@ -107,9 +120,9 @@ IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
     r *= c_min / std::max(C, 1e-12);
     C = c_min;
   }
-  auto& q = out.q;
-  // Knee from the law of cosines: C² = A² + B² + 2AB cos q4.
-  q[3] = std::acos(std::clamp((C * C - A * A - B * B) / (2 * A * B), -1.0, 1.0));
+  auto& q = out.q;  // the layout's angles, turned into the file's at the end
+  // Knee from the law of cosines: C² = A² + B² + 2AB cos q4, on the branch the range allows.
+  q[3] = leg.knee_branch() * std::acos(std::clamp((C * C - A * A - B * B) / (2 * A * B), -1.0, 1.0));
   // Ankle roll: (r_y, r_z) = v_z (sin q6, cos q6). Of the two solutions take |q6| ≤ π/2 (v_z < 0
   // only when the hip is below the ankle in the foot frame).
   q[5] = std::atan(r.y() / r.z());
@@ -122,6 +135,7 @@ IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
   q[0] = std::atan2(-M(0, 1), M(1, 1));
   q[1] = std::atan2(M(2, 1), -M(0, 1) * std::sin(q[0]) + M(1, 1) * std::cos(q[0]));
   q[2] = std::atan2(-M(2, 0), M(2, 2));
+  for (std::size_t i = 0; i < 6; ++i) q[i] *= leg.sign[i];
   return out;
 }
 

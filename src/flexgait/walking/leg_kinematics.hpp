@@ -13,13 +13,22 @@
 /// angles and the knee from the hip seen from the foot, then the hip angles from the remaining
 /// rotation. A target out of reach is clamped to the nearest reachable pose and flagged.
 ///
-/// A leg of another layout (a loaded description, issue 16) is a general chain of six revolute
-/// joints (axes and anchors at zero angles, frames parallel to the pelvis); its inverse is
-/// numeric: damped least squares on the sole's pose error (Wampler 1986; Buss 2004),
+/// A leg as a description file has it: each axis may point either way (sign: +1 along the
+/// layout's axis, −1 against it; the analytic solution is taken in the layout's angles s·q and
+/// turned back), and the knee bends the way its range allows (the branch whose knee angle has
+/// room in the range: forward, knee ≥ 0 in the layout's angles, unless the range only allows the
+/// other way).
+///
+/// A leg of another layout (axes not along the layout's, offsets between the hip or ankle axes,
+/// the hip or ankle joints in another order from the pelvis) is a general chain of six revolute
+/// joints (axes and anchors at zero angles, frames parallel to the pelvis, in the chain's order;
+/// role[i] names the joint at chain position i); its inverse is numeric: damped least squares on
+/// the sole's pose error (Wampler 1986; Buss 2004),
 ///   Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e,   e = (p* − p, log(R* Rᵀ)),
-/// from a bent-knee start, until |e| < 1e-12; a target it cannot reach is flagged kOutOfReach
-/// with clamped_by the remaining position error.
+/// from the nearest analytic leg's solution (same signs, same knee branch), until |e| < 1e-12; a
+/// target it cannot reach is flagged kOutOfReach with clamped_by the remaining position error.
 #include <array>
+#include <limits>
 
 #include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/rotation.hpp"
@@ -41,6 +50,23 @@ struct LegGeometry {
   std::array<Vector3d, 6> axis{};    ///< general chain: unit joint axes at zero angles (pelvis frame)
   std::array<Vector3d, 6> anchor{};  ///< joint i's anchor from joint i−1's (joint 0: from the pelvis origin) [m]
   Vector3d sole = Vector3d::Zero();  ///< sole centre from joint 6's anchor [m]
+  /// General chain: the sole frame's orientation at zero angles (a foot printed slightly tilted:
+  /// below 1e-3 rad, RobotModel); identity unless sole_tilted.
+  Matrix3d sole_R = Matrix3d::Identity();
+  bool sole_tilted = false;
+  /// General chain: the joint (LegAngles index: hip yaw, roll, pitch, knee, ankle pitch, roll) at
+  /// each position from the pelvis. The three hip joints come first, then the knee, then the ankle's.
+  std::array<int, 6> role{0, 1, 2, 3, 4, 5};
+  static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+  /// Per joint (LegAngles order): +1 when its axis points along the layout's (z, x, y, y, y, x), −1 against.
+  std::array<double, 6> sign{1, 1, 1, 1, 1, 1};
+  /// Per joint (LegAngles order): the range [rad]; ±∞ for a joint without one.
+  std::array<double, 6> lower{-kNoLimit, -kNoLimit, -kNoLimit, -kNoLimit, -kNoLimit, -kNoLimit};
+  std::array<double, 6> upper{kNoLimit, kNoLimit, kNoLimit, kNoLimit, kNoLimit, kNoLimit};
+
+  /// +1 when the knee bends forward (knee ≥ 0 in the layout's angles) within its range, −1 when the
+  /// range only allows the other way.
+  double knee_branch() const;
 };
 
 /// The leg of `side` (0 left, 1 right) of this robot.
@@ -61,7 +87,8 @@ struct IkSolution {
   double clamped_by = 0;  ///< how far the ankle target was moved to be reachable [m]
 };
 
-/// Joint angles that put the sole centre at `sole` (pelvis frame). Knee ≥ 0 (forward-bent).
+/// Joint angles that put the sole centre at `sole` (pelvis frame). The knee on the branch its
+/// range allows (LegGeometry::knee_branch; the builtin: knee ≥ 0, forward-bent).
 IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole);
 
 /// The general chain's forward kinematics (any layout; what the numeric IK inverts).

@@ -1,5 +1,7 @@
 #include "flexgait/walking/robot_model.hpp"
 
+#include <algorithm>
+
 #include "flexgait/robot/builtin_inertials.hpp"
 
 namespace flexgait::walking {
@@ -57,14 +59,29 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   return m;
 }
 
+int clamp_to_ranges(const RobotModel& model, humanoid::JointVector& q) {
+  int hits = 0;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const auto& r = model.range[static_cast<std::size_t>(j)];
+    if (q[j] < r[0] || q[j] > r[1]) {
+      q[j] = std::clamp(q[j], r[0], r[1]);
+      ++hits;
+    }
+  }
+  return hits;
+}
+
 void fill_leg_chain(RobotModel& m, int side) {
   const int b0 = 2 + 7 * side;
   LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
   for (int i = 0; i < 6; ++i) {
+    leg.role[static_cast<std::size_t>(i)] = m.bodies[static_cast<std::size_t>(b0 + i)].joint - leg_first_joint(side);
     leg.axis[static_cast<std::size_t>(i)] = m.bodies[static_cast<std::size_t>(b0 + i)].axis;
     leg.anchor[static_cast<std::size_t>(i)] = m.bodies[static_cast<std::size_t>(b0 + i)].offset;
   }
   leg.sole = m.bodies[static_cast<std::size_t>(b0 + 6)].offset + m.sole_offset[static_cast<std::size_t>(side)];
+  leg.sole_R = m.sole_rotation[static_cast<std::size_t>(side)];
+  leg.sole_tilted = m.sole_tilted[static_cast<std::size_t>(side)];
 }
 
 void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
@@ -91,6 +108,7 @@ Vector3d center_of_mass(const RobotModel& model, const RobotModelData& data) {
 
 Pose sole_pose(const RobotModel& model, const RobotModelData& data, int side) {
   const Pose& foot = data.frame[model.foot[side]];
+  if (model.sole_tilted[side]) return {foot.p + foot.R * model.sole_offset[side], foot.R * model.sole_rotation[side]};
   return {foot.p + foot.R * model.sole_offset[side], foot.R};
 }
 
@@ -100,8 +118,9 @@ LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, in
   for (int i = 0; i < 6; ++i) {
     const Pose& f = data.frame[b0 + i];
     const Vector3d a = f.R * model.bodies[b0 + i].axis;
-    J.block<3, 1>(0, i) = a.cross(point - f.p);
-    J.block<3, 1>(3, i) = a;
+    const int c = model.bodies[b0 + i].joint - leg_first_joint(side);  // the column of the joint's role
+    J.block<3, 1>(0, c) = a.cross(point - f.p);
+    J.block<3, 1>(3, c) = a;
   }
   return J;
 }
@@ -115,7 +134,7 @@ LegTorque leg_gravity_torque(const RobotModel& model, const RobotModelData& data
     const Vector3d a = f.R * model.bodies[b0 + i].axis;
     Vector3d moment = Vector3d::Zero();  // gravity moment of the links below joint i about it
     for (int k = b0 + i; k < b0 + 7; ++k) moment += (data.com_world[k] - f.p).cross(model.bodies[k].mass * g);
-    tau(i) = -a.dot(moment);
+    tau(model.bodies[b0 + i].joint - leg_first_joint(side)) = -a.dot(moment);
   }
   return tau;
 }

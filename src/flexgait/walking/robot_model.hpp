@@ -38,7 +38,25 @@ struct RobotModel {
   double total_mass = 0;               ///< [kg]
   double sole_length = 0, sole_width = 0;  ///< the sole rectangle [m]
   std::array<Vector3d, 2> sole_offset{};   ///< sole centre in the foot frame [m]
+  /// The sole's orientation in the foot link's frame: a loaded foot whose frame is tilted from the
+  /// root's at zero angles by less than kMaxFootTilt (numbers printed with few digits); identity
+  /// unless sole_tilted.
+  std::array<Matrix3d, 2> sole_rotation{Matrix3d::Identity(), Matrix3d::Identity()};
+  std::array<bool, 2> sole_tilted{false, false};
+  /// Each joint's range [rad] (a loaded description's limited joints; ±∞ otherwise, and for the builtin).
+  std::array<std::array<double, 2>, humanoid::kJoints> range = [] {
+    std::array<std::array<double, 2>, humanoid::kJoints> r;
+    r.fill({-LegGeometry::kNoLimit, LegGeometry::kNoLimit});
+    return r;
+  }();
 };
+
+/// The largest tilt of a loaded foot's frame from the root's at zero angles that is taken as a
+/// printed level foot and modelled (6 printed digits of a quaternion: ~1e-6 rad) [rad].
+inline constexpr double kMaxFootTilt = 1e-3;
+
+/// Clamps each angle of `q` into its joint's range; returns how many were outside.
+int clamp_to_ranges(const RobotModel& model, humanoid::JointVector& q);
 
 RobotModel make_robot_model(const humanoid::RobotParams& robot);
 /// The model of a loaded description. Each leg's IK is analytic when the leg has its layout
@@ -46,7 +64,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& robot);
 /// straight below, ankle pitch (y) and roll (x) meeting straight below the knee, the sole centre
 /// below the ankle (a horizontal shift allowed, LegGeometry::sole_shift); checked to 1e-9 m), numeric otherwise (leg[side].analytic, and
 /// analytic_ik_mismatch says why). Throws ConfigError (robot.feet.<side>.body) when a foot's
-/// frame is not parallel to the root's at zero angles.
+/// frame is tilted from the root's at zero angles by kMaxFootTilt or more.
 RobotModel make_robot_model(const humanoid::LoadedRobot& robot);
 /// Why the analytic IK does not apply to leg `side` of a loaded description ("" when it does).
 std::string analytic_ik_mismatch(const humanoid::LoadedRobot& robot, int side);
@@ -70,7 +88,8 @@ using LegJacobian = Eigen::Matrix<double, 6, 6>;  ///< rows: linear (3), angular
 using LegTorque = Eigen::Matrix<double, 6, 1>;    ///< leg joints, kinematic order [Nm]
 
 /// Geometric Jacobian of the point `point` (world) rigidly attached to the foot of `side`, with
-/// respect to that leg's six joints, world frame, after forward_kinematics.
+/// respect to that leg's six joints (columns in role order: hip yaw, roll, pitch, knee, ankle
+/// pitch, roll, whatever their order in the chain), world frame, after forward_kinematics.
 LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, int side, const Vector3d& point);
 /// The torque each joint of leg `side` must supply to hold that leg's own links below it against
 /// gravity, the leg hanging from the pelvis (g_leg of the spec's full form) [Nm]. Sign: the gear

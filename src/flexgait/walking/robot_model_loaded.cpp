@@ -5,6 +5,7 @@
 // frame is parallel to the pelvis at zero angles (the model's convention).
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -41,16 +42,25 @@ struct Anchor {
   Vector3d point = Vector3d::Zero();    ///< anchor in that body's frame
 };
 
-/// Why leg `side` of m lacks the analytic IK's layout ("" when it has it).
+/// The layout's axes (leg_kinematics.hpp), by role.
+const std::array<Vector3d, 6> kLayoutAxes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
+                                             Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
+
+/// Why leg `side` of m lacks the analytic IK's layout ("" when it has it): the joints in the
+/// layout's order, each axis along the layout's either way (LegGeometry::sign), the offsets.
 std::string layout_mismatch(const RobotModel& m, int side) {
-  const int b0 = 2 + 7 * side;
+  const int b0 = 2 + 7 * side, j0 = humanoid::leg_first_joint(side);
   auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
-  const std::array<Vector3d, 6> axes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
-                                        Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
   for (int i = 0; i < 6; ++i)
-    if (!close(m.bodies[static_cast<std::size_t>(b0 + i)].axis, axes[static_cast<std::size_t>(i)]))
-      return fmt::format("the axis of {} is not {} at zero angles", humanoid::kJointNames[humanoid::leg_first_joint(side) + i],
+    if (m.bodies[static_cast<std::size_t>(b0 + i)].joint != j0 + i)
+      return fmt::format("joint {} from the root is {}, not {}", i + 1,
+                         humanoid::kJointNames[m.bodies[static_cast<std::size_t>(b0 + i)].joint], humanoid::kJointNames[j0 + i]);
+  for (int i = 0; i < 6; ++i) {
+    const Vector3d& a = m.bodies[static_cast<std::size_t>(b0 + i)].axis;
+    if (!close(a, kLayoutAxes[static_cast<std::size_t>(i)]) && !close(a, -kLayoutAxes[static_cast<std::size_t>(i)]))
+      return fmt::format("the axis of {} is not ±{} at zero angles", humanoid::kJointNames[j0 + i],
                          i == 0 ? "z" : (i == 1 || i == 5 ? "x" : "y"));
+  }
   auto vertical = [](const Vector3d& v) { return std::abs(v.x()) < 1e-9 && std::abs(v.y()) < 1e-9 && v.z() < 0; };
   if (!(std::abs(offset(1).x()) < 1e-9 && std::abs(offset(1).y()) < 1e-9 && close(offset(2), Vector3d::Zero())))
     return "the hip yaw, roll and pitch axes do not meet in a point";
@@ -97,10 +107,12 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     for (int i = 0; i < 7; ++i) {
       auto& b = m.bodies[static_cast<std::size_t>(b0 + i)];
       b.parent = i == 0 ? 0 : b0 + i - 1;
-      b.joint = i < 6 ? j0 + i : -1;
+      // The leg's bodies in the file's order from the root (LoadedRobot::leg_order).
+      const int j = i < 6 ? j0 + r.leg_order[side][static_cast<std::size_t>(i)] : -1;
+      b.joint = j;
       if (i < 6) {
-        b.axis = joint_axis(j0 + i);
-        anchor[static_cast<std::size_t>(b0 + i)] = joint_anchor(j0 + i);
+        b.axis = joint_axis(j);
+        anchor[static_cast<std::size_t>(b0 + i)] = joint_anchor(j);
       } else {
         anchor[static_cast<std::size_t>(b0 + i)] = {r.foot[side], Vector3d::Zero()};
       }
@@ -153,19 +165,38 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     }
   }
   for (const auto& b : m.bodies) m.total_mass += b.mass;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    if (!r.has_joint(j)) continue;
+    const humanoid::LoadedJoint& lj = r.bodies[static_cast<std::size_t>(r.joint[j][0])].joints[static_cast<std::size_t>(r.joint[j][1])];
+    if (lj.limited) m.range[static_cast<std::size_t>(j)] = {lj.range[0], lj.range[1]};
+  }
 
   // The soles and the analytic IK's layout.
   for (int side = 0; side < 2; ++side) {
     const int b0 = 2 + 7 * side;
     const std::string foot_key = std::string("robot.feet.") + (side == 0 ? "left" : "right") + ".body";
     const int fb = r.foot[side];
-    if (!R0[static_cast<std::size_t>(fb)].isIdentity(1e-9))
-      throw ConfigError(foot_key, fmt::format("key '{}' = '{}': the foot's frame is not parallel to the root's at zero joint angles "
-                                              "(the sole must be level)", foot_key, r.bodies[static_cast<std::size_t>(fb)].name));
-    m.sole_offset[side] = vec(r.sole[side].center);
+    const Matrix3d& Rf = R0[static_cast<std::size_t>(fb)];
+    const double tilt = Eigen::AngleAxisd(Rf).angle();
+    if (!(tilt < kMaxFootTilt))
+      throw ConfigError(foot_key, fmt::format("key '{}' = '{}': the foot's frame is tilted {:.3g} rad from the root's at zero "
+                                              "joint angles; allowed: less than {} rad (a level sole, printed digits)",
+                                              foot_key, r.bodies[static_cast<std::size_t>(fb)].name, tilt, kMaxFootTilt));
+    // A tilt within the printed digits: the sole's frame is the foot body's, modelled as such.
+    m.sole_tilted[side] = Rf != Matrix3d::Identity();
+    m.sole_rotation[side] = Rf;
+    m.sole_offset[side] = m.sole_tilted[side] ? Vector3d(Rf * vec(r.sole[side].center)) : vec(r.sole[side].center);
     LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
     fill_leg_chain(m, side);
-    leg.analytic = layout_mismatch(m, side).empty();
+    leg.analytic = layout_mismatch(m, side).empty() && !m.sole_tilted[side];
+    // Each joint's direction against the layout's axis and its range (the file's angles).
+    for (int i = 0; i < 6; ++i) {
+      const auto& body = m.bodies[static_cast<std::size_t>(b0 + i)];
+      const int role = body.joint - humanoid::leg_first_joint(side);
+      leg.sign[static_cast<std::size_t>(role)] = body.axis.dot(kLayoutAxes[static_cast<std::size_t>(role)]) < 0 ? -1.0 : 1.0;
+      leg.lower[static_cast<std::size_t>(role)] = m.range[static_cast<std::size_t>(body.joint)][0];
+      leg.upper[static_cast<std::size_t>(role)] = m.range[static_cast<std::size_t>(body.joint)][1];
+    }
     auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
     leg.hip = offset(0) + offset(1);
     leg.thigh = -offset(3).z();

@@ -1,8 +1,13 @@
 #include "flexgait/walking/stance_defaults.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "flexgait/core/config.hpp"
 
 namespace flexgait::walking {
 
@@ -36,6 +41,30 @@ StanceDefaults stance_defaults(const RobotModel& model) {
 
 double hip_to_ankle(const LegReach& reach, double pelvis_height) {
   return pelvis_height - (reach.stretched_height - reach.length);
+}
+
+humanoid::JointVector standing_angles(const RobotModel& model, double pelvis_height, double step_width) {
+  humanoid::JointVector q{};
+  for (int side = 0; side < 2; ++side) {
+    const Pose sole{Vector3d(0, (side == 0 ? 0.5 : -0.5) * step_width, -pelvis_height), Matrix3d::Identity()};
+    const IkSolution s = leg_inverse_kinematics(model.leg[static_cast<std::size_t>(side)], sole);
+    for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(side) + i] = s.q[static_cast<std::size_t>(i)];
+  }
+  return q;
+}
+
+void check_standing_pose(const RobotModel& model, double pelvis_height, double step_width) {
+  const humanoid::JointVector q = standing_angles(model, pelvis_height, step_width);
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const auto& r = model.range[static_cast<std::size_t>(j)];
+    constexpr double kSlack = 1e-9;  // [rad] the IK's rounding at a range's end
+    if (q[j] >= r[0] - kSlack && q[j] <= r[1] + kSlack) continue;
+    const std::string key = "robot.joints." + std::string(humanoid::kJointNames[j]);
+    throw ConfigError(key, fmt::format("key '{}': standing at walk.pelvis_height = {} with walk.step_width = {} needs "
+                                       "{:.4f} rad at this joint, outside its range [{:.4f}, {:.4f}] rad; the robot "
+                                       "cannot stand there (change the height or width, or the joint's range)",
+                                       key, pelvis_height, step_width, q[j], r[0], r[1]));
+  }
 }
 
 }  // namespace flexgait::walking

@@ -31,4 +31,12 @@ StanceDefaults stance_defaults(const RobotModel& model);
 /// The hip-to-ankle distance at this pelvis height, standing on level ground [m].
 double hip_to_ankle(const LegReach& reach, double pelvis_height);
 
+/// The legs' angles standing: each sole level, straight below the pelvis origin, step_width / 2
+/// to its side, pelvis_height below it (the leg IK, on the knee branch the ranges allow).
+humanoid::JointVector standing_angles(const RobotModel& model, double pelvis_height, double step_width);
+
+/// Throws ConfigError naming robot.joints.<name> when the standing pose (standing_angles) puts a
+/// joint outside its range: such a robot cannot stand at this height and width.
+void check_standing_pose(const RobotModel& model, double pelvis_height, double step_width);
+
 }  // namespace flexgait::walking
