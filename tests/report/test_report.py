@@ -127,6 +127,19 @@ class RenderTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(os.stat(tree.page).st_mode & 0o777, 0o644)
 
+    def test_contents_link_every_section_and_run_and_rows_link_their_run(self):
+        tree = RunTree(self.tmp.name)
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        page = tree.page_text()
+        contents = page[page.index('<nav id="contents">'):page.index("</nav>")]
+        for target in ("demo", "runs", "run-a", "run-b"):
+            self.assertIn(f'href="#{target}"', contents)
+            self.assertIn(f'id="{target}"', page)
+        # A row links its run's entry on the page (command and figures), not a directory listing.
+        self.assertIn('<a href="#run-a">run-a</a>', page)
+        self.assertNotIn('href="run-a/"', page)
+
     def test_a_rendered_walk_shows_its_video_not_its_frames(self):
         tree = RunTree(self.tmp.name)
         write(os.path.join(tree.root, "run-b", "video.mp4"), "not really an MP4")
