@@ -66,7 +66,7 @@ std::vector<experiments::WalkResult> run_study(const RunDirectory& dir, const st
 }
 
 /// `humanoid compensation`: thesis experiments 2-4 on one gait (off, both, both with the thesis form),
-/// beside the field's baselines and the measured and dynamic loads (issue 20).
+/// beside the field's baselines and the measured and dynamic loads (docs/guide/compensation.md).
 int compensation_study(const RunOptions& run) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file leg_kinematics.hpp
-/// Kinematics of one 6-DOF leg (spec humanoid.md, "The robot"): hip yaw (z), hip roll (x) and
+/// Kinematics of one 6-DOF leg (docs/theory/humanoid.md, "The robot"): hip yaw (z), hip roll (x) and
 /// hip pitch (y) axes meet at the hip point; knee (y); ankle pitch (y) and roll (x) meet at the
 /// ankle point; the sole centre is ankle_to_sole below the ankle in the foot frame (shifted
 /// horizontally by sole_shift there). All angles
@@ -13,7 +13,7 @@
 /// angles and the knee from the hip seen from the foot, then the hip angles from the remaining
 /// rotation. A target out of reach is clamped to the nearest reachable pose and flagged.
 ///
-/// A leg of another layout (a loaded description, issue 16) is a general chain of six revolute
+/// A leg of another layout (a loaded description, docs/guide/robot.md) is a general chain of six revolute
 /// joints (axes and anchors at zero angles, frames parallel to the pelvis); its inverse is
 /// numeric: damped least squares on the sole's pose error (Wampler 1986; Buss 2004),
 ///   Δq = Jᵀ (J Jᵀ + λ² I)⁻¹ e,   e = (p* − p, log(R* Rᵀ)),
