@@ -12,11 +12,13 @@ import tempfile
 @contextlib.contextmanager
 def temporary_beside(directory, name):
     """Yields the path of a new temporary file in DIRECTORY; on leaving the block without an
-    exception it is renamed to DIRECTORY/NAME, otherwise removed."""
+    exception it is made world-readable (0644, as the C++ side's files are: mkstemp creates 0600)
+    and renamed to DIRECTORY/NAME, otherwise removed."""
     fd, tmp = tempfile.mkstemp(dir=directory, prefix=f".{name}.tmp-{os.getpid()}-")
     os.close(fd)
     try:
         yield tmp
+        os.chmod(tmp, 0o644)
         os.replace(tmp, os.path.join(directory, name))
     finally:
         if os.path.exists(tmp):

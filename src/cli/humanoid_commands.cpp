@@ -66,7 +66,7 @@ std::vector<experiments::WalkResult> run_study(const RunDirectory& dir, const st
 }
 
 /// `humanoid compensation`: thesis experiments 2-4 on one gait (off, both, both with the thesis form),
-/// beside the field's baselines and the measured and dynamic loads (issue 20).
+/// beside the field's baselines and the measured and dynamic loads (docs/guide/compensation.md).
 int compensation_study(const RunOptions& run) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
@@ -284,7 +284,8 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   CLI::App* ex = humanoid->add_subcommand(
       "export", "Write the robot (robot.description and its mapping; builtin by default) as MJCF (the twin: elastic "
                 "gears, sensors, floor; opens in MuJoCo's simulate) or URDF (the rigid robot)");
-  ex->add_option("--config", exp->config_file, "YAML configuration file (robot.*, plant.*)")->check(CLI::ExistingFile);
+  ex->add_option("--config", exp->config_file, "YAML configuration file (robot.*, plant.*), or a bundled one's NAME")
+      ->transform(config_file_option());
   ex->add_option("--set", exp->overrides, "override one key, e.g. --set robot.description=my_robot.xml (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);

@@ -12,6 +12,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
 #include "command_module.hpp"
+#include "configs_command.hpp"
 #include "mpi_distributor.hpp"
 #include "rimless_commands.hpp"
 
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::function<int()> action;
   flexgait::cli::add_rimless_commands(app, action);
+  flexgait::cli::add_configs_command(app, action);
   // The commands that need MuJoCo come from a module, loaded unless the first word names one of
   // the commands above (command_module.hpp).
   if (!names_registered_command(app, argc, argv)) {

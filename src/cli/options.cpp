@@ -5,11 +5,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <system_error>
 
+#include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/text.hpp"
 
 #include "paths.hpp"
@@ -20,8 +23,10 @@ namespace flexgait::cli {
 
 void add_run_options(CLI::App& app, RunOptions& o, const std::string& default_out) {
   o.out = default_out;
-  app.add_option("--config", o.config_file, "YAML configuration file (keys as in config.yaml of a run)")
-      ->check(CLI::ExistingFile);
+  app.add_option("--config", o.config_file,
+                 "YAML configuration file (keys as in config.yaml of a run), or the NAME of a bundled one "
+                 "(flexgait configs lists them)")
+      ->transform(config_file_option());
   app.add_option("--set", o.overrides, "override one key, e.g. --set rimless.mu_s=0.4 (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
@@ -76,6 +81,7 @@ std::optional<std::filesystem::path> find_python_script(const std::string& scrip
   std::vector<std::filesystem::path> dirs;
   if (const char* env = std::getenv("FLEXGAIT_PLOT_DIR")) dirs.emplace_back(env);
   for (const char* d : kPlotDirs) dirs.emplace_back(d);
+  if (const auto share = installed_data_dir(); !share.empty()) dirs.push_back(share / "python");
   for (const auto& d : dirs)
     if (std::filesystem::exists(d / script)) return d / script;
   return std::nullopt;
@@ -122,10 +128,79 @@ int run_process(const std::vector<std::string>& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
-std::filesystem::path find_config(const std::string& name) {
+std::filesystem::path installed_data_dir() {
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return {};
+  const std::filesystem::path share = exe.parent_path() / FLEXGAIT_DATA_INSTALL_DIR;
+  return std::filesystem::is_directory(share, error) ? share.lexically_normal() : std::filesystem::path();
+}
+
+std::vector<std::filesystem::path> config_dirs() {
+  std::vector<std::filesystem::path> dirs;
+  std::error_code error;
+  if (const auto share = installed_data_dir();
+      !share.empty() && std::filesystem::is_directory(share / "configs", error))
+    dirs.push_back(share / "configs");
   for (const char* d : kConfigDirs)
-    if (std::filesystem::exists(std::filesystem::path(d) / name)) return std::filesystem::path(d) / name;
-  throw std::runtime_error("configuration " + name + " not found in the source tree or the installed share directory");
+    if (std::filesystem::is_directory(d, error) &&
+        std::find(dirs.begin(), dirs.end(), std::filesystem::path(d)) == dirs.end())
+      dirs.emplace_back(d);
+  return dirs;
+}
+
+std::filesystem::path find_config(const std::string& file) {
+  std::error_code error;
+  for (const auto& d : config_dirs())
+    if (std::filesystem::is_regular_file(d / file, error)) return d / file;
+  throw std::runtime_error("configuration " + file + " not found in the installed share directory or the source tree");
+}
+
+std::optional<std::filesystem::path> resolve_config_name(const std::string& text) {
+  std::error_code error;
+  if (text.empty()) return std::nullopt;
+  if (std::filesystem::exists(text, error) && !std::filesystem::is_directory(text, error))
+    return std::filesystem::path(text);
+  const std::filesystem::path name(text);
+  if (name.has_parent_path() || name.has_extension() || text.front() == '.') return std::nullopt;
+  for (const auto& d : config_dirs())
+    if (std::filesystem::is_regular_file(d / (text + ".yaml"), error)) return d / (text + ".yaml");
+  return std::nullopt;
+}
+
+CLI::Validator config_file_option() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (const auto path = resolve_config_name(text)) {
+          text = path->string();
+          return "";
+        }
+        std::string names;
+        for (const auto& [name, path] : bundled_configs()) names += (names.empty() ? "" : ", ") + name;
+        return fmt::format("'{}' is neither a file nor the name of a bundled configuration ({})", one_line(text),
+                           names.empty() ? "none found" : names);
+      },
+      "FILE|NAME");
+}
+
+std::string config_description(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file);
+  for (const std::string& line : split_text(text, '\n')) {
+    if (line.empty() || line.front() != '#') break;
+    const std::size_t start = line.find_first_not_of("# \t");
+    if (start != std::string::npos) return line.substr(start);
+  }
+  return "";
+}
+
+std::vector<std::pair<std::string, std::filesystem::path>> bundled_configs() {
+  std::map<std::string, std::filesystem::path> found;
+  std::error_code error;
+  for (const auto& d : config_dirs())
+    for (const auto& entry : std::filesystem::directory_iterator(d, error))
+      if (entry.is_regular_file(error) && entry.path().extension() == ".yaml")
+        found.emplace(entry.path().stem().string(), entry.path());  // the first directory's wins
+  return {found.begin(), found.end()};
 }
 
 }  // namespace flexgait::cli

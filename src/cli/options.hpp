@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flexgait/core/config.hpp"
@@ -56,7 +57,31 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
 /// start, 128 + signal if it was killed.
 int run_process(const std::vector<std::string>& args);
 
-/// A shipped configuration (configs/NAME) from the source tree or the installed share directory.
-std::filesystem::path find_config(const std::string& name);
+/// The installed share directory, <prefix>/share/flexgait, found from this executable's own path
+/// (so an install under any --prefix finds its files); empty when the program is not installed
+/// (a build tree has no such directory beside it).
+std::filesystem::path installed_data_dir();
+
+/// The directories of the bundled configurations, in search order: the install's
+/// share/flexgait/configs, then the source tree's configs/ (an uninstalled build). Only those that exist.
+std::vector<std::filesystem::path> config_dirs();
+
+/// A shipped configuration (FILE, e.g. "rimless.yaml") from config_dirs(); throws if none has it.
+std::filesystem::path find_config(const std::string& file);
+
+/// What --config names: a path that exists, as given; else a bundled configuration's NAME (no
+/// directory, no extension: "walk-dynamic" is walk-dynamic.yaml of config_dirs()). nullopt if neither.
+std::optional<std::filesystem::path> resolve_config_name(const std::string& text);
+
+/// CLI11 check and transform of --config: the value becomes resolve_config_name's path, or the
+/// option fails (exit 2) naming the value and the bundled names.
+CLI::Validator config_file_option();
+
+/// A bundled configuration's one-line description: the first line of its leading comment block.
+std::string config_description(const std::filesystem::path& file);
+
+/// The bundled configurations, by name (file name without .yaml), each from the first directory of
+/// config_dirs() that holds it; sorted by name.
+std::vector<std::pair<std::string, std::filesystem::path>> bundled_configs();
 
 }  // namespace flexgait::cli

@@ -92,7 +92,7 @@ std::vector<Step> steps(bool quick) {
   std::vector<std::string> fast{"humanoid", "compensation", "--config", walk("walk-robotis.yaml")};
   if (quick) fast.insert(fast.end(), {"--set", "walk.steps=3"});
   s.push_back({"humanoid-compensation-1s",
-               "Humanoid: 1.0 s/step, compensation off against the field's baselines and ours (issue 20)", fast});
+               "Humanoid: 1.0 s/step, compensation off against the field's baselines (ROBOTIS, TALOS) and ours", fast});
   s.push_back({"humanoid-walk-1s", "Humanoid: ROBOTIS's 1.0 s/step with compensation (beyond the thesis)",
                {"humanoid", "walk", "--config", walk("walk-robotis.yaml")}});
   // The walking envelope: a campaign (campaign/ on the sweep runner), 10-step walks of the default
@@ -105,7 +105,7 @@ std::vector<Step> steps(bool quick) {
                "Each cell is one walk of 10 steps at that step length and step time: on the left whether the twin "
                "fell, on the right its peak pelvis roll error (of a fall: up to the fall); the top row without the "
                "deformation compensators, the bottom row with both, on the same colour scale."});
-  // The largest recoverable push (issue 19): a campaign of bisections, standing and at mid single
+  // The largest recoverable push (docs/guide/campaigns.md): a campaign of bisections, standing and at mid single
   // support of the 3rd of 6 steps, pd against dcm balance; quick: forward only, with both
   // compensators only (4 bisections).
   s.push_back({"humanoid-push-recovery",
@@ -121,7 +121,7 @@ std::vector<Step> steps(bool quick) {
                "polygon's edge in the push's direction). Standing: pushed at 4 s; walking: at mid single support of "
                "the 3rd step (left foot in stance; a push to the right, toward the swinging foot, is caught by the "
                "step that lands 0.4 s later, so it can exceed the bound, which assumes no step)."});
-  // One push, seen (issue 19): the full variant renders the 1 s/step walk pushed outward at mid single
+  // One push, seen (docs/guide/campaigns.md): the full variant renders the 1 s/step walk pushed outward at mid single
   // support of its 3rd step (the example push of the issue), frames and video.mp4 (ffmpeg).
   if (!quick)
     s.push_back({"humanoid-push-video", "Humanoid: a 12 N s chest push at mid single support, 1.0 s/step (video)",

@@ -447,7 +447,7 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
 }
 
 
-// --- rimless continuation (issue 18) ---
+// --- rimless continuation (docs/guide/rimless.md, "Orbit diagram and basin of attraction") ---
 struct ContinuationArgs {
   RunOptions run;
   std::string model;

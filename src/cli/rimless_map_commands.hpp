@@ -1,6 +1,7 @@
 #pragma once
 /// \file rimless_map_commands.hpp
-/// `flexgait rimless analysis orbit-diagram` and `... basin` (issue 18): brute-force maps of the
+/// `flexgait rimless analysis orbit-diagram` and `... basin` (docs/guide/rimless.md, "Orbit diagram and basin of
+/// attraction"): brute-force maps of the
 /// wheel's long-run behaviour over a parameter or over initial states, on the sweep runner.
 #include <CLI/CLI.hpp>
 #include <string>

@@ -53,3 +53,33 @@ execute_process(COMMAND "${WORK_DIR}/prefix/bin/flexgait" schema RESULT_VARIABLE
 if(rc OR NOT schema MATCHES "humanoid-walk")
   message(FATAL_ERROR "installed flexgait does not find its commands' module: ${rc}")
 endif()
+# The README's tour from an empty directory with only the install prefix on the PATH: the bundled
+# configurations are found by name from the install's share directory, not from the source tree.
+foreach(f share/flexgait/configs/rimless.yaml share/flexgait/configs/walk-dynamic.yaml share/doc/flexgait/LICENSE)
+  if(NOT EXISTS "${WORK_DIR}/prefix/${f}")
+    message(FATAL_ERROR "not installed: ${f}")
+  endif()
+endforeach()
+file(MAKE_DIRECTORY "${WORK_DIR}/elsewhere")
+set(only_prefix ${CMAKE_COMMAND} -E env "PATH=${WORK_DIR}/prefix/bin")
+execute_process(COMMAND ${only_prefix} flexgait configs --paths WORKING_DIRECTORY "${WORK_DIR}/elsewhere"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE listing ERROR_VARIABLE err)
+if(rc OR NOT listing MATCHES "rimless-stagnation +The stagnation interval")
+  message(FATAL_ERROR "flexgait configs from the PATH failed (${rc}): ${listing}${err}")
+endif()
+if(NOT listing MATCHES "${WORK_DIR}/prefix/share/flexgait/configs/walk-dynamic.yaml")
+  message(FATAL_ERROR "flexgait configs does not list the installed configurations: ${listing}")
+endif()
+execute_process(COMMAND ${only_prefix} flexgait rimless simulate --config rimless --steps 2 --no-plot --out run
+                WORKING_DIRECTORY "${WORK_DIR}/elsewhere" RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+if(rc OR NOT EXISTS "${WORK_DIR}/elsewhere/run/summary.json")
+  message(FATAL_ERROR "rimless simulate --config rimless from an empty directory failed (${rc}): ${err}")
+endif()
+if(PYTHON_DIR)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env "PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR}" /usr/bin/python3 -c
+                          "import flexgait; print(len(flexgait.rimless.simulate({'sim.steps': 1})['summary']))"
+                  WORKING_DIRECTORY "${WORK_DIR}/elsewhere" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc)
+    message(FATAL_ERROR "the installed Python module does not import: ${err}")
+  endif()
+endif()

@@ -108,6 +108,38 @@ class RenderTest(unittest.TestCase):
         self.assertIn('<img src="run-b/plot.png"', tree.page_text())
         self.assertFalse([f for f in os.listdir(tree.root) if f.startswith(".index.html")], "temporary file left")
 
+    def test_every_file_written_is_world_readable(self):
+        # index.html and every figure go through atomic_write.temporary_beside, whose mkstemp makes
+        # 0600 files: a report copied to a web server must be readable by it, so 0644 exactly
+        # (the C++ side's atomic files are 0644 too), whatever the umask.
+        sys.path.insert(0, os.path.join(SOURCE, "python"))
+        import atomic_write
+        old = os.umask(0o077)
+        try:
+            with atomic_write.temporary_beside(self.tmp.name, "figure.png") as tmp:
+                with open(tmp, "wb") as f:
+                    f.write(b"png")
+        finally:
+            os.umask(old)
+        self.assertEqual(os.stat(os.path.join(self.tmp.name, "figure.png")).st_mode & 0o777, 0o644)
+        tree = RunTree(self.tmp.name)
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(os.stat(tree.page).st_mode & 0o777, 0o644)
+
+    def test_contents_link_every_section_and_run_and_rows_link_their_run(self):
+        tree = RunTree(self.tmp.name)
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        page = tree.page_text()
+        contents = page[page.index('<nav id="contents">'):page.index("</nav>")]
+        for target in ("demo", "runs", "run-a", "run-b"):
+            self.assertIn(f'href="#{target}"', contents)
+            self.assertIn(f'id="{target}"', page)
+        # A row links its run's entry on the page (command and figures), not a directory listing.
+        self.assertIn('<a href="#run-a">run-a</a>', page)
+        self.assertNotIn('href="run-a/"', page)
+
     def test_a_rendered_walk_shows_its_video_not_its_frames(self):
         tree = RunTree(self.tmp.name)
         write(os.path.join(tree.root, "run-b", "video.mp4"), "not really an MP4")

@@ -65,7 +65,7 @@ void bind_humanoid(py::module_& m) {
   py::module_ h = m.def_submodule(
       "humanoid",
       "The THORMANG-class humanoid twin (MuJoCo) with elastic gears, the ZMP preview-control walking controller "
-      "and the actuator deformation compensators (spec humanoid.md).\n\n"
+      "and the actuator deformation compensators (Kim 2017).\n\n"
       "`config` is a dict of configuration keys (robot.*, plant.*, walk.*, balance.*, control.*, bench.*) over "
       "the defaults and `config_file` (YAML); an unknown key or a bad value raises ValueError naming the key. "
       "The GIL is released while C++ runs.");

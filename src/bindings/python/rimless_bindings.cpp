@@ -166,7 +166,7 @@ py::dict sweep(const std::string& param, double start, double stop, int count, c
 void bind_rimless(py::module_& m) {
   py::module_ r = m.def_submodule(
       "rimless",
-      "The flexible-leg rimless wheel with stick-slip friction (spec rimless.md): event-driven hybrid simulation on "
+      "The flexible-leg rimless wheel with stick-slip friction (Bao et al. 2024): event-driven hybrid simulation on "
       "SUNDIALS CVODE, Poincare maps, Newton-Raphson fixed points, sweeps.\n\n"
       "Every function takes `config`, a dict of configuration keys (e.g. {'rimless.mu_s': 0.4, 'sim.model': "
       "'rigid'}) applied over the defaults and over `config_file` (YAML), validated as on the command line: an "

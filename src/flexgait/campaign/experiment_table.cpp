@@ -110,7 +110,7 @@ Experiment rimless_simulate() {
 /// max_multiplier, the largest |multiplier| (null without a fixed point), for the maps. The
 /// section is not an axis: on the upright section one orbit has the same multipliers, gait,
 /// period and speed (conjugate return maps), only `state` differs, and gaits with flight never
-/// reach it (README, Campaigns).
+/// reach it (docs/guide/campaigns.md).
 std::string fixed_point_summary(const rimless::FixedPointReport& r) {
   auto j = nlohmann::ordered_json::parse(rimless::fixed_point_json(r));
   j.erase("history");

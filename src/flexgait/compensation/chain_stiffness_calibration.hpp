@@ -1,6 +1,6 @@
 #pragma once
 /// \file chain_stiffness_calibration.hpp
-/// Each leg joint's gear stiffness from a calibration in the start stance (issue 20,
+/// Each leg joint's gear stiffness from a calibration in the start stance (docs/guide/compensation.md,
 /// control.k_estimation = calibrate; the motion: walking/calibration_motion.hpp).
 ///
 /// With both soles flat on one floor, the legs close a chain: sole → left leg → pelvis → right leg →
@@ -16,7 +16,8 @@
 /// Unknowns: c_j of every leg joint whose axis is mostly horizontal (roll, pitch: ten on the builtin
 /// robot; the yaw joints' deflections barely tilt a sole and keep the belief) and y₀'s roll and pitch
 /// (the floor under the two soles need not be level between them). Why they separate (walking does
-/// not, README "per-joint"): the two legs' torques change differently as the weight moves between them,
+/// not, docs/guide/compensation.md, "Stiffness identified while walking"): the two legs' torques change differently as
+/// the weight moves between them,
 /// and the calibration motion moves the parallel joints' torques (hip pitch, knee, ankle pitch; hip and
 /// ankle roll) in different ratios. Least squares over the window with prior c₀ = 1/belief (100 % relative
 /// std), y₀ ~ N(0, (0.05 rad)²), observation noise control.k_estimation_noise, no forgetting (one batch:
@@ -27,9 +28,10 @@
 /// belief until the calibration ends, then take each joint's estimate whose relative std is ≤
 /// control.k_estimation_confidence. (Fed back while it runs, the estimate changes the modelled torque
 /// it is fitted to, sample by sample: on the twin the worst joint then ended 11 % off, against 6.4 %
-/// held; README.)
+/// held; docs/guide/compensation.md.)
 ///
-/// Three things the chain sees besides the gears (README, "Per-joint k from a calibration stance"), each a belief:
+/// Three things the chain sees besides the gears (docs/guide/compensation.md, "Stiffness identified while walking"),
+/// each a belief:
 /// - the soles tilt in their contacts (a pad, a soft floor: on the twin 20.5 kNm/rad in roll, 54 kNm/rad in
 ///   pitch), about the ankle's axes under the ankle's torque: in series with the ankle gears and, the torque being
 ///   the same, not separable from them. control.sole_stiffness_* takes the tilt out of y (0: rigid soles);

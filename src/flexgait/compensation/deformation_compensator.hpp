@@ -1,6 +1,6 @@
 #pragma once
 /// \file deformation_compensator.hpp
-/// The input and output compensators of the thesis's Fig. 2 (spec humanoid.md, "The actuator
+/// The input and output compensators of the thesis's Fig. 2 (docs/theory/humanoid.md, "The actuator
 /// deformation model"), around the walking controller:
 ///     θ_d → input compensator → θ_cmd → robot → θ_enc → output compensator → θ̂ (real joint angles)
 ///  - input (eqs. 8-9): θ_cmd = θ_d + τ_g(θ_d) / k, τ_g in the desired pose (pelvis attitude as
@@ -11,14 +11,14 @@
 ///    reported beside it.
 /// k is the controller's belief (control.k_joint), apart from the plant's true stiffness.
 ///
-/// control.gear_damping d > 0 (issue 20): the gear is a Kelvin–Voigt element, τ = k δ + d δ̇, so
+/// control.gear_damping d > 0 (docs/guide/compensation.md): the gear is a Kelvin–Voigt element, τ = k δ + d δ̇, so
 /// the deflection is the torque through a first-order lag, δ = τ / (k (1 + (d/k) s)). Backward
 /// Euler over the period T, a = T / (T + d/k):  δ_n = a τ_n / k + (1 − a) δ_{n−1}. The input
 /// compensator commands θ_d + δ_n; the output compensator solves eq. 11 with it,
 ///     θ_enc − (1 − a) δ_{n−1} − a τ(θ̂)/k − θ̂ = 0   (the same Newton with k/a and a shifted
 /// encoder), and keeps δ_n = θ_enc − θ̂. The first period starts from the static deflection.
 ///
-/// The load (control.load_model, issue 20): `gravity` is the thesis's static model above
+/// The load (control.load_model, docs/guide/compensation.md): `gravity` is the thesis's static model above
 /// (gravity_torque.hpp). `measured`: the output compensator's legs carry their own links' weight
 /// and, at the ankle, the wrench the F/T sensor reads (low-passed with control.load_filter_time;
 /// the foot below the sensor is in the reading) — τ = g_leg,above(θ) + J_sᵀ w_s, by
@@ -61,13 +61,13 @@ constexpr std::array<EnumName<CompensationMode>, 6> enum_names(CompensationMode)
            {CompensationMode::kTalos, "talos"}}};
 }
 
-/// What loads the deformation model's torque comes from (issue 20).
+/// What loads the deformation model's torque comes from (docs/guide/compensation.md).
 enum class LoadModel { kGravity, kMeasured, kDynamic };
 constexpr std::array<EnumName<LoadModel>, 3> enum_names(LoadModel) {
   return {{{LoadModel::kGravity, "gravity"}, {LoadModel::kMeasured, "measured"}, {LoadModel::kDynamic, "dynamic"}}};
 }
 
-/// Online stiffness identification while walking (issue 20, stiffness_estimator.hpp).
+/// Online stiffness identification while walking (docs/guide/compensation.md, stiffness_estimator.hpp).
 /// calibrate: each leg joint's k from the calibration in the start stance (chain_stiffness_calibration.hpp).
 enum class KEstimation { kOff, kOn, kCalibrate };
 constexpr std::array<EnumName<KEstimation>, 3> enum_names(KEstimation) {
@@ -160,7 +160,7 @@ struct CompensationParams {
     v("control.plan_horizontal_force", s.plan_horizontal_force,
       {.doc = "dynamic: share of the plan's horizontal ground force M c'' (the preview controller's COM acceleration) "
               "in the input compensator's foot loads, shared as the weight; 0 = the weight alone, 1 = the whole "
-              "force (right in open loop, overshoots in closed loop: README)",
+              "force (right in open loop, overshoots in closed loop: docs/guide/compensation.md)",
        .bounds = closed(0, 1)});
     v("control.compensated_feedback", s.compensated_feedback,
       {.doc = "the controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the encoders "

@@ -1,6 +1,6 @@
 #pragma once
 /// \file field_baselines.hpp
-/// The field's hip compensations, as `control.compensation` choices beside the thesis's (issue 20):
+/// The field's hip compensations, as `control.compensation` choices beside the thesis's (docs/guide/compensation.md):
 ///  - robotis: ROBOTIS's THORMANG3 walking module — a fixed feed-forward on the stance hip roll,
 ///    δ = ±δ_peak · sin(π s), s ∈ [0, 1] the phase of single support (0 at lift-off, peak at mid
 ///    single support, 0 at touchdown), with the sign that lifts the swing side (against the sag);

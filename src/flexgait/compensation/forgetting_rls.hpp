@@ -1,7 +1,7 @@
 #pragma once
 /// \file forgetting_rls.hpp
 /// Recursive least squares with exponential forgetting on N parameters x, one scalar measurement
-/// at a time: y = hᵀx + v, var(v) = r (issue 20, online stiffness identification).
+/// at a time: y = hᵀx + v, var(v) = r (docs/guide/compensation.md, online stiffness identification).
 ///   P ← P / λ                                  (once per sample time: forget)
 ///   K = P h / (r + hᵀ P h),  x ← x + K (y − hᵀx),  P ← P − K hᵀ P
 /// With P₀ the prior covariance of x and r the measurement variance, P is x's posterior covariance

@@ -1,6 +1,6 @@
 #pragma once
 /// \file gravity_torque.hpp
-/// The actuator deformation model's load (spec humanoid.md, "The actuator deformation model"):
+/// The actuator deformation model's load (docs/theory/humanoid.md, "The actuator deformation model"):
 /// the gravity torque each leg joint's gear carries, from the controller's own rigid-body model.
 ///
 ///  - Weight split (eqs. 5-6): F_L = μ W, F_R = (1 − μ) W with μ the position of the COM between

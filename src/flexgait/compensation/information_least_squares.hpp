@@ -1,6 +1,6 @@
 #pragma once
 /// \file information_least_squares.hpp
-/// Least squares on N parameters x with a Gaussian prior, in information form (issue 20,
+/// Least squares on N parameters x with a Gaussian prior, in information form (docs/guide/compensation.md,
 /// control.k_estimation = calibrate): scalar measurements y = hᵀx + v, var(v) = r, accumulate
 ///     A = P₀⁻¹ + Σ h hᵀ / r,   b = P₀⁻¹ x₀ + Σ h y / r,   x = A⁻¹ b,   P = A⁻¹
 /// (the posterior's mean and covariance; what forgetting_rls.hpp gives with λ = 1). Why a second form: the

@@ -1,6 +1,6 @@
 #pragma once
 /// \file link_angle_newton.hpp
-/// The output compensator's equation (spec humanoid.md, eqs. 10-13): the link angles θ that the
+/// The output compensator's equation (Kim 2017, eqs. 10-13; docs/theory/humanoid.md): the link angles θ that the
 /// encoders θ_enc imply through the deformation model,
 ///     N(θ) = θ_enc − K⁻¹ τ_g(θ) − θ = 0,
 /// solved by Newton's method: N'(θ) = −(I + K⁻¹ G), G = ∂τ_g/∂θ, so each step solves

@@ -1,8 +1,8 @@
 #pragma once
 /// \file stiffness_estimator.hpp
-/// Online identification of the gears' stiffness while walking (issue 20, control.k_estimation).
+/// Online identification of the gears' stiffness while walking (docs/guide/compensation.md, control.k_estimation).
 ///
-/// The model (spec humanoid.md, "The actuator deformation model"): θ_link = θ_enc − τ/k. A stance
+/// The model (docs/theory/humanoid.md, "The actuator deformation model"): θ_link = θ_enc − τ/k. A stance
 /// foot flat on the ground fixes the foot's tilt; the IMU gives the pelvis attitude; the encoders
 /// give the chain between them. The foot's tilt seen through the encoders, R_obs = R_imu · R_foot(θ_enc),
 /// differs from the flat foot by the chain's deflections: to first order the rotation

@@ -3,7 +3,7 @@
 /// Typed, validated configuration: a schema of dotted keys (`rimless.K`), values from a
 /// YAML file and from `--set key=value` overrides, resolved into a Config.
 ///
-/// Rules (issue 2): an unknown key, a wrong type, a value out of range, NaN or infinity,
+/// Rules (docs/guide/commands.md): an unknown key, a wrong type, a value out of range, NaN or infinity,
 /// or a missing/unreadable file is a ConfigError whose message names the origin (file and
 /// line, or `--set`), the key, the offending value and what is allowed.
 #include <cstdint>

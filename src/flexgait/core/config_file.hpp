@@ -1,6 +1,7 @@
 #pragma once
 /// \file config_file.hpp
-/// A YAML configuration file read with limits (issue 17.2): a regular file of at most
+/// A YAML configuration file read with limits (docs/guide/commands.md, "Reproduce, schema and bad input"): a regular
+/// file of at most
 /// kMaxConfigBytes, one document, a mapping nested at most kMaxConfigDepth deep whose keys are
 /// plain names, each key once, aliases expanded to at most kMaxConfigNodes nodes and never into
 /// themselves. Anything else is a ConfigError naming the file, the line and the problem.

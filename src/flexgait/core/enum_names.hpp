@@ -1,6 +1,6 @@
 #pragma once
 /// \file enum_names.hpp
-/// One `{value, "name"}` table per enum (issue 13). An enum E takes part by declaring, in its own
+/// One `{value, "name"}` table per enum (docs/guide/library.md). An enum E takes part by declaring, in its own
 /// namespace, a constexpr function found by argument-dependent lookup:
 ///
 ///     constexpr std::array<EnumName<Color>, 2> enum_names(Color) {

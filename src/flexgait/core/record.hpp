@@ -1,6 +1,6 @@
 #pragma once
 /// \file record.hpp
-/// One declaration per record (issue 13): a parameter or result struct lists its fields once —
+/// One declaration per record (docs/guide/library.md): a parameter or result struct lists its fields once —
 /// key, member, unit, domain, one line of documentation — in the manner of Drake's
 /// `Serialize(Archive*)`, and small generic visitors derive the rest: the configuration schema
 /// (`schema_of`), the reading of a resolved configuration (`record_from_config`), JSON

@@ -1,6 +1,6 @@
 #pragma once
 /// \file capture_point_bound.hpp
-/// The capture-point bound of a push (issue 19): the largest impulse an ankle strategy absorbs
+/// The capture-point bound of a push (docs/guide/humanoid.md): the largest impulse an ankle strategy absorbs
 /// without a step. In the linear inverted pendulum (COM height z_c, ω0 = √(g / z_c)) the capture
 /// point ξ = c + ċ / ω0 must stay inside the support polygon for the robot to stop without a
 /// step (Pratt et al. 2006; Englsberger et al. 2015). From rest with the COM's ground projection

@@ -14,15 +14,16 @@ using compensation::CompensationMode;
 using compensation::GravityForm;
 
 /// control.plan_horizontal_force of the study's case both-dynamic-horizontal: half the plan's
-/// horizontal ground force, the closed-loop best measured at 0.8-3 s/step (README: the whole force
+/// horizontal ground force, the closed-loop best measured at 0.8-3 s/step (docs/guide/compensation.md: the whole force
 /// is right in open loop and overshoots in closed loop).
 constexpr double kStudyHorizontalForce = 0.5;
 /// control.load_filter_time of the case both-dynamic-horizontal-lag: with the gears' lag believed, the F/T
-/// low-pass can be short (README "Loads and the field's baselines": 0.02 s) [s].
+/// low-pass can be short (docs/guide/compensation.md, "Loads and the field's baselines": 0.02 s) [s].
 constexpr double kStudyLagFilterTime = 0.02;
 
 /// The case both-dynamic-horizontal with the gears' Kelvin–Voigt lag believed as the twin's damping
-/// (control.gear_damping = plant.gear_damping), the issue 20 targets' configuration.
+/// (control.gear_damping = plant.gear_damping), the configuration that met the
+/// estimate's and the roll cut's targets (docs/guide/compensation.md).
 WalkRunParams with_gear_lag(WalkRunParams p) {
   p.control.gear_damping = p.plant.gear_damping;
   p.control.load_filter_time = kStudyLagFilterTime;

@@ -1,12 +1,12 @@
 #pragma once
 /// \file compensation_study.hpp
-/// The thesis's walking experiments 2-4 (spec humanoid.md) as sets of walks that differ in one
+/// The thesis's walking experiments 2-4 (docs/theory/humanoid.md) as sets of walks that differ in one
 /// thing, and their comparison:
 ///  - compensation study: the same gait with compensation off, both compensators with the full
 ///    gravity torque, and both with the thesis form (eq. 4 only) — pelvis error (Fig. 13), ZMP
 ///    tracking (Fig. 14), estimated against true joint angles, Newton against the conventional
 ///    estimate (Fig. 15) — and beside them the field's baselines (robotis, talos) and ours with
-///    the measured and dynamic loads (issue 20), in one table;
+///    the measured and dynamic loads (docs/guide/compensation.md), in one table;
 ///  - stiffness mismatch: the twin's true stiffness scaled against the controller's belief
 ///    (control.k_joint), compensation off and both, balance controller as configured.
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file push_recovery.hpp
-/// The largest recoverable push (issue 19): bisection on the impulse of a push of fixed duration
+/// The largest recoverable push (docs/guide/campaigns.md): bisection on the impulse of a push of fixed duration
 /// and direction, each trial a whole run of the twin from the same configuration; beside it the
 /// capture-point bound of the same situation (summary.json's capture_point_bound), so the result
 /// reads as a fraction of the physical limit of an ankle strategy.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file push_timing.hpp
-/// A push timed by the walking phase (issue 19): `step` n ≥ 1 starts it in the single support of
+/// A push timed by the walking phase (docs/guide/humanoid.md): `step` n ≥ 1 starts it in the single support of
 /// the plan's n-th step, at the fraction `phase` of it (0 lift-off, 1 touchdown):
 ///     t = t_lift,n + phase (t_land,n − t_lift,n);
 /// `step` 0 keeps the push's own `time`.

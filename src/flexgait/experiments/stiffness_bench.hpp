@@ -1,6 +1,6 @@
 #pragma once
 /// \file stiffness_bench.hpp
-/// Experiment 1 of the thesis (spec humanoid.md; thesis Fig. 12): one elastic actuator with a
+/// Experiment 1 of the thesis (Kim 2017, Fig. 12; docs/theory/humanoid.md): one elastic actuator with a
 /// load arm, swept through poses. At each pose the angle error (true link angle − encoder) is
 /// logged against the gravity torque m g l cos θ estimated from the encoder; a linear fit gives
 /// k_joint; the sweep is repeated with the command compensated by τ_g(θ_d) / k_fit (eqs. 8-9).
@@ -68,7 +68,7 @@ struct BenchSample {
   int newton_iterations = 0;
 };
 
-/// Why the bench ended early (issue 13, "One outcome convention": a reason plus its detail).
+/// Why the bench ended early (docs/guide/library.md: a run that stops early says why: a reason plus its detail).
 enum class BenchFailureReason : std::uint8_t {
   kMuJoCoWarning,  ///< MuJoCo warned in a sweep; detail: its text
   kDiverged,       ///< a sweep's state is no longer finite

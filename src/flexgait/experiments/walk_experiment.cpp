@@ -78,7 +78,7 @@ JudgeLimits judge_limits(const WalkRunParams& p, const walking::RobotModel& mode
 }
 
 /// The robot's own walking height and step width where the configuration leaves them to it
-/// (walk.pelvis_height, walk.step_width: auto, the defaults; issue 16).
+/// (walk.pelvis_height, walk.step_width: auto, the defaults; docs/guide/robot.md).
 void apply_stance_defaults(const Config& c, const walking::RobotModel& model, walking::WalkParams& walk) {
   const walking::StanceDefaults d = walking::stance_defaults(model);
   if (c.derived("walk.pelvis_height")) walk.pelvis_height = d.pelvis_height;
@@ -300,7 +300,7 @@ WalkResult run_walk(const WalkRunParams& params, const std::function<void(double
     if (estimate && params.control.compensated_feedback)
       for (int j = 0; j < humanoid::kJoints; ++j) deflection_estimate[j] = estimate->newton[j] - sensors.encoder[j];
     if (k_estimation || k_calibration) {
-      // Stiffness identification (issue 20): the torque the output compensator solved with.
+      // Stiffness identification (docs/guide/compensation.md): the torque the output compensator solved with.
       const humanoid::JointVector& tau =
           estimate ? estimate->gravity_torque : compensator.torque(sensors.encoder, controller.attitude(), plan_now);
       if (k_estimation) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file walk_experiment.hpp
 /// A closed-loop walk: the walking controller drives the twin through SensorReadings only; this
-/// evaluation code alone reads the ground truth, to log and score the walk (issue 6 metrics):
+/// evaluation code alone reads the ground truth, to log and score the walk (its metrics: docs/guide/humanoid.md):
 /// fall detection (pelvis too low or tilted, a body other than a sole on the floor), steps
 /// completed, ZMP tracking (true ZMP from contact forces against the reference), pelvis attitude
 /// (IMU against the commanded level attitude), landing errors, COM tracking, support margin.
@@ -165,7 +165,7 @@ struct WalkMetrics {
   int newton_iterations_max = 0;
   double newton_iterations_mean = 0;
   int newton_failures = 0;                                   ///< control periods not converged (fallback used)
-  // Sensors (issue 17, item 13).
+  // Sensors (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate").
   double attitude_error_rms = 0, attitude_error_max = 0;     ///< controller's roll/pitch − true (norm of both) [rad]
   int sensor_fault_episodes = 0;                             ///< times a sensor turned bad (all sensors)
   double sensor_fault_time = 0;                              ///< total time sensors were bad (summed over sensors) [s]

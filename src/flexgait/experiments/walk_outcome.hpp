@@ -1,7 +1,7 @@
 #pragma once
 /// \file walk_outcome.hpp
-/// How a humanoid walk ended early, as reasons with their names (issue 13, "One outcome
-/// convention"): a fall (FallReason) or a failure of the simulation itself (WalkFailure). The
+/// How a humanoid walk ended early, as reasons with their names (docs/guide/library.md:
+/// a run that stops early says why): a fall (FallReason) or a failure of the simulation itself (WalkFailure). The
 /// text that summary.json and the console show is made from the reason (and its detail).
 #include <array>
 #include <string>

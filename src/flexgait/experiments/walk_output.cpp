@@ -110,7 +110,8 @@ std::string walk_footsteps_csv(const WalkResult& r) {
 std::string walk_summary_json(const WalkResult& r) {
   nlohmann::ordered_json j = record_json(r.metrics);
   if (r.k_estimation) {
-    // The identified joints' final estimates (the leg roll and pitch joints) and their mean (issue 20).
+    // The identified joints' final estimates (the leg roll and pitch joints) and their mean
+    // (docs/guide/compensation.md).
     nlohmann::ordered_json k = nlohmann::ordered_json::object();
     double sum = 0;
     int n = 0;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file reason_table.hpp
-/// One outcome convention (issue 13): a reason is an enum with one `{value, "name", "sentence"}`
+/// One outcome convention (docs/guide/library.md): a reason is an enum with one `{value, "name", "sentence"}`
 /// table; the words files show are made from the reason and its detail (`reason_text`): the
 /// sentence with the detail in place of its "{}", or followed by " (detail)" when it has no "{}"
 /// and the detail is not empty. Used by Newton's and continuation's reasons and the rimless

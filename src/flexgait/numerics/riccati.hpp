@@ -7,7 +7,7 @@
 /// solved by the structured doubling algorithm (Chu, Fan, Lin 2005), which converges
 /// quadratically to the stabilising solution, followed by Newton-Kleinman refinement steps
 /// (Hewer 1971) that bring the residual down to rounding. Used by the ZMP preview controller
-/// (spec humanoid.md, "The walking controller": gains from the DARE at start-up).
+/// (docs/theory/humanoid.md, "The walking controller": gains from the DARE at start-up).
 #include <Eigen/Dense>
 
 namespace flexgait::numerics {

@@ -1,6 +1,6 @@
 #pragma once
 /// \file analyses.hpp
-/// The paper's analyses (Bao, Zhang, Zhou 2024; spec rimless.md, "What the paper does"), each
+/// The paper's analyses (Bao, Zhang, Zhou 2024; docs/theory/rimless.md), each
 /// producing CSV text. The command line writes them with a PNG each.
 ///   1. gait behaviour against the friction coefficient, with the thresholds between behaviours;
 ///   2. energy during single support, sticking against slipping;

@@ -1,6 +1,7 @@
 #pragma once
 /// \file basin.hpp
-/// Basin of attraction of the wheel's gait (issue 18; Schwab & Wisse 2001): a grid of initial
+/// Basin of attraction of the wheel's gait (docs/guide/rimless.md, "Orbit diagram and basin of attraction"; Schwab &
+/// Wisse 2001): a grid of initial
 /// states over two keys of the initial state (initial.omega × initial.beta), each simulated step
 /// by step on the Poincaré section until it converges to the reference gait, falls or stops, or
 /// reaches the step limit. The reference is the fixed point Newton finds from the configured

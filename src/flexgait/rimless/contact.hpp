@@ -1,6 +1,6 @@
 #pragma once
 /// \file contact.hpp
-/// State layout, foot modes and the kinematics of one leg (spec rimless.md, "The model").
+/// State layout, foot modes and the kinematics of one leg (docs/theory/rimless.md, "Equations of motion").
 ///
 /// Slope frame: x down the slope, y along the slope normal. Leg k makes the angle
 /// β_k = θ + 2αk with the slope normal; the hub sits at foot + L_k (sin β_k, cos β_k).

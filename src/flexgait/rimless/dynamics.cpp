@@ -130,12 +130,12 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
       a.stick_index[a.rows++] = i;
     } else {
       // Slip law T = -s μ N with μ = μ(ċ) (SlipLaw; μ = μ_k for Coulomb), and the massless
-      // leg's axial balance T sin β + N cos β = f (spec rimless.md, "The model"):
+      // leg's axial balance T sin β + N cos β = f (docs/theory/rimless.md, "Equations of motion"):
       //   T = -s μ f / D,   N = f / D,   D = cos β - μ s sin β.
       // ċ is a function of (q, q̇), not of q̈, so T is explicit and D <= 0 remains the Painlevé
       // jam with the velocity-dependent coefficient. The viscous part is load-proportional (in
       // μ): a friction force σ|ċ| that outlives N = 0 would leave a foot at zero load that can
-      // neither leave, slip on, nor be stopped (README, Stribeck friction).
+      // neither leave, slip on, nor be stopped (docs/guide/rimless.md, "Stribeck friction").
       const SlipLaw law = slip_law(w, s, g.cdot);
       cf.D = slip_denominator(g, s, law.mu);
       if (!(cf.D > 0)) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file dynamics.hpp
 /// Accelerations and contact forces of the flexible wheel in a given contact mode
-/// (spec rimless.md, "The model"; Lagrange equations of the first kind):
+/// (docs/theory/rimless.md, "Equations of motion"; Lagrange equations of the first kind):
 ///
 ///   diag(m, m, I) q̈ = m g (sin φ, -cos φ, 0) + Σ_k [ f_k ∂L_k/∂q + A_kᵀ T_k ]
 ///   stick:  A_k q̈ = -Ȧ_k q̇ - 2ω_b ċ_k - ω_b² (c_k - anchor_k)      (T_k is the multiplier)
@@ -17,7 +17,7 @@
 /// the multipliers and θ̇ follows from ċ = 0. With two or more feet all slipping no force is free,
 /// and Q_θ, affine in θ̇ through the dampers, fixes θ̇ itself (an index-1 DAE: the I -> 0 limit of
 /// the fast rotation); Dynamics::thetad then differs from the state's θ̇. A single slipping foot
-/// has no consistent motion with I = 0 (spec rimless.md) and is reported.
+/// has no consistent motion with I = 0 (docs/theory/rimless.md) and is reported.
 #include <array>
 #include <limits>
 #include <optional>

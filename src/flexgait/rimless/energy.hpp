@@ -1,6 +1,6 @@
 #pragma once
 /// \file energy.hpp
-/// Mechanical energy of the flexible wheel (spec rimless.md, "Energy"):
+/// Mechanical energy of the flexible wheel (docs/theory/rimless.md, "Energy"):
 ///   E = ½ m (ẋ² + ẏ²) + ½ I θ̇² + m g (y cos φ - x sin φ) + Σ_k ½ K δ_k²
 /// over every leg (a relaxing free leg included). Along a solution
 ///   dE/dt = -Σ C δ̇_k² - Σ_slip μ_k N_k |ċ_k|,

@@ -19,7 +19,8 @@ SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOption
 namespace {
 
 /// Newton with the variational ∂P/∂z (numerics::fixed_point_at), which evaluates the map at its
-/// iterates only: near a boundary of the section's mode (issue 18) a central-difference step leaves
+/// iterates only: near a boundary of the section's mode (docs/guide/rimless.md, "Orbit diagram and basin of
+/// attraction") a central-difference step leaves
 /// the mode and the map fails there, while the fixed point is still inside it. Replaces `nr` when
 /// it converges (its Jacobian then the exact one; no history).
 void newton_with_exact_jacobian(PoincareMap& map, const SectionState& guess, const WheelParams& w,

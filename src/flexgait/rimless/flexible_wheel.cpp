@@ -461,7 +461,7 @@ SimulationResult FlexibleWheelSimulator::run(const RunSpec& spec, RunSink& sink,
 
 // One run of the flexible wheel as a model of the hybrid loop (numerics/hybrid_simulation.hpp).
 //
-// Its guard/reset pairs (spec rimless.md, "Events"; the guards are flow.hpp's, four per leg):
+// Its guard/reset pairs (docs/theory/rimless.md, "Events and contact modes"; the guards are flow.hpp's, four per leg):
 //   touchdown   h_k = y - (L0 - δ_k) cos β_k ↓ 0        lift-off      N_k ↓ 0
 //   stick→slip  μ_s - |T_k|/N_k ↓ 0                    slip→stick    s ċ_k ↓ 0
 //   fall over   cos β_k ↓ 0                            slip jam      cos β_k - μ s sin β_k ↓ 0

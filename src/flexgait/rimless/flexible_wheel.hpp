@@ -1,7 +1,7 @@
 #pragma once
 /// \file flexible_wheel.hpp
 /// Event-driven simulation of the flexible-leg rimless wheel with stick-slip contact
-/// (spec rimless.md). Between events the flow is smooth (dynamics.hpp); at events the contact
+/// (docs/theory/rimless.md). Between events the flow is smooth (dynamics.hpp); at events the contact
 /// modes are re-chosen (mode_selection.hpp) and the integrator restarts (CVodeReInit).
 ///
 /// The guards and the flow are in flow.hpp.
@@ -48,7 +48,8 @@ struct RunSpec {
   bool section_includes_legs_behind = false;
 };
 
-/// The parameter column of the sensitivities (issue 18): the wheel at p + h and at p - h for one
+/// The parameter column of the sensitivities (docs/guide/rimless.md, "Orbit diagram and basin of attraction"): the
+/// wheel at p + h and at p - h for one
 /// real parameter p. With it (and SimulationOptions::sensitivities) the variational equations
 /// carry ∂y/∂p as one more column, p treated as a state with ṗ = 0: along the flow
 /// ṡ_p = (∂f/∂y) s_p + ∂f/∂p, across an event with guard g and reset R

@@ -1,6 +1,7 @@
 #pragma once
 /// \file gait.hpp
-/// Gait classification (spec rimless.md, "Analysis"): a step runs from the touchdown of its
+/// Gait classification (docs/theory/rimless.md, "Poincaré map, fixed points, stability"): a step runs from the
+/// touchdown of its
 /// stance leg to the touchdown of the next leg; its label is the sequence of the stance foot's
 /// phases during single support (and `flight` while no foot is down), consecutive repeats merged:
 ///

@@ -1,6 +1,7 @@
 #pragma once
 /// \file gait_branch.hpp
-/// Continuation of the wheel's periodic gait in one real configuration key (issue 18): the fixed
+/// Continuation of the wheel's periodic gait in one real configuration key (docs/guide/rimless.md, "Orbit diagram and
+/// basin of attraction"): the fixed
 /// point of the Poincaré map followed by pseudo-arclength continuation (numerics/continuation.hpp)
 /// in the normalised parameter q = (p - from)/(to - from) ∈ [0, 1], so that one arclength unit is
 /// the whole interval whatever the key's unit. ∂P/∂z is the exact (variational) Jacobian when the

@@ -56,7 +56,7 @@ double tested_cdot(const Foot& foot, const LegKinematics& g) {
 }
 
 // Whether the slip direction of this foot is decided by its event alone: at stick→slip the
-// incipient slip opposes the sticking force, s = -sign(T_stick) (spec rimless.md); its
+// incipient slip opposes the sticking force, s = -sign(T_stick) (docs/theory/rimless.md); its
 // acceleration there is 0 for μ_k = μ_s (the forces are continuous) and its sign is noise.
 // Not so for I = 0, where θ̇ jumps with the mode and the test must still see whether the slip
 // has a motion at all.

@@ -1,7 +1,7 @@
 #pragma once
 /// \file mode_selection.hpp
-/// Choosing the contact modes at an event (spec rimless.md, "Contact modes are chosen, not
-/// guessed").
+/// Choosing the contact modes at an event (docs/theory/rimless.md, "Events and contact
+/// modes").
 ///
 /// Each foot on the ground may stick, slip forward, slip backward, or leave. A combination is
 /// consistent when, with the forces it implies:

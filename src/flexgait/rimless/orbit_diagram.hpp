@@ -1,6 +1,7 @@
 #pragma once
 /// \file orbit_diagram.hpp
-/// Orbit diagram of the wheel (issue 18; Garcia et al. 1998, Fig. 4): at each value of one real
+/// Orbit diagram of the wheel (docs/guide/rimless.md, "Orbit diagram and basin of attraction"; Garcia et al. 1998, Fig.
+/// 4): at each value of one real
 /// configuration key, the Poincaré-section states of `record` successive steps after `transient`
 /// steps from the configured initial state, by brute-force simulation (no Newton) that carries the
 /// full hybrid state from crossing to crossing (SectionWalk, poincare.hpp). A stable

@@ -2,7 +2,7 @@
 /// \file outcome.hpp
 /// Why a rimless-wheel run or Poincaré-map evaluation stopped early: a physics outcome, as a
 /// reason (`FailureReason`, one `{value, "name", "sentence"}` table) plus its detail, never an
-/// exception (issue 13, "One outcome convention"). Exceptions remain for broken contracts
+/// exception (docs/guide/library.md: a run that stops early says why). Exceptions remain for broken contracts
 /// (a state vector of the wrong size, a mode kept after its guard fired).
 ///
 /// The text that files and the console show is made from the reason and the detail
@@ -27,9 +27,9 @@ enum class LoopFailure;  // hybrid_simulation.hpp
 namespace flexgait::rimless {
 
 enum class FailureReason : std::uint8_t {
-  // The start (spec rimless.md, "Events"): the initial state is not on or above the ground.
+  // The start (docs/theory/rimless.md, "Events and contact modes"): the initial state is not on or above the ground.
   InitialFootBelowGround,
-  // Mode choice at an event (mode_selection.hpp, spec rimless.md "Contact modes").
+  // Mode choice at an event (mode_selection.hpp, docs/theory/rimless.md, "Events and contact modes").
   Fell,                    ///< a stance leg reached |β| = π/2
   TooManyFeet,             ///< more feet on the ground than kMaxContacts
   JamWithoutImpulse,       ///< a Painlevé jam that no impulse inside the cone stops

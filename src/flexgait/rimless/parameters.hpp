@@ -1,6 +1,6 @@
 #pragma once
 /// \file parameters.hpp
-/// Parameters of the flexible-leg rimless wheel (spec rimless.md, "The model") and of its
+/// Parameters of the flexible-leg rimless wheel (docs/theory/rimless.md, "Equations of motion") and of its
 /// simulation. All SI. Defaults: the spec's measured set, under which the four gait
 /// behaviours appear as μ varies in (0, 1.5). Each struct lists its configuration keys once
 /// (core/record.hpp).
@@ -15,7 +15,8 @@
 
 namespace flexgait::rimless {
 
-/// The friction law of a slipping foot (spec rimless.md, "slip"; issue 21 part 3). Coulomb:
+/// The friction law of a slipping foot (docs/theory/rimless.md, "Equations of motion"; docs/guide/rimless.md, "Stribeck
+/// friction"). Coulomb:
 /// T = -s μ_k N. Stribeck: T = -s (μ(v) N + σ |v|) with v = ċ, s = sign v and
 /// μ(v) = μ_k + (μ_s - μ_k) exp(-(|v|/v_s)^δ), so μ(0) = μ_s. A sticking foot obeys |T| <= μ_s N
 /// under both laws.
@@ -68,7 +69,7 @@ struct WheelParams {
   }
 };
 
-/// Where a simulation starts: single support on leg 0, foot at x-coordinate 0 (spec rimless.md).
+/// Where a simulation starts: single support on leg 0, foot at x-coordinate 0 (docs/theory/rimless.md).
 struct InitialState {
   double omega = 1.4;  ///< wheel angular velocity θ̇ [rad/s]
   double beta = 0.0;   ///< stance-leg angle from the slope normal [rad], |β| < α

@@ -1,6 +1,6 @@
 #pragma once
 /// \file poincare.hpp
-/// Poincaré maps of the rimless wheel (spec rimless.md, "Analysis").
+/// Poincaré maps of the rimless wheel (docs/theory/rimless.md, "Poincaré map, fixed points, stability").
 ///
 /// Translation invariance removes x: the stance foot is put at c = 0, leg indices are shifted so
 /// that the stance leg is 0. The free legs' leftover compressions are set to 0 at the section:
@@ -83,7 +83,8 @@ class PoincareMap {
   /// differences (it is algebraic). Flexible wheel with I > 0, or the rigid wheel at touchdown
   /// (analytic). Returns why not, otherwise.
   std::optional<std::string> jacobian(const SectionState& point, Eigen::MatrixXd& J);
-  /// The parameter that jacobian_and_parameter_derivative() differentiates in (issue 18).
+  /// The parameter that jacobian_and_parameter_derivative() differentiates in (docs/guide/rimless.md, "Orbit diagram
+  /// and basin of attraction").
   void set_parameter(const ParameterDirection& parameter);
   bool has_parameter() const { return parameter_.has_value(); }
   /// ∂P/∂z and ∂P/∂p from one variational run (after set_parameter; otherwise why not): the

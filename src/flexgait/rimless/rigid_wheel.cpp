@@ -16,7 +16,8 @@
 namespace flexgait::rimless {
 namespace {
 
-// The wheel's guard/reset pairs (spec rimless.md, "Checks"; McGeer 1990), on the pendulum state
+// The wheel's guard/reset pairs (docs/theory/rimless.md, "The rigid wheel, the analytic limit"; McGeer 1990), on the
+// pendulum state
 // (β, β̇) of the stance leg:
 //   touchdown  g = β - α ↑ 0, reset impact_reset();
 //   roll-back  g = β + α ↓ 0, the wheel fell back onto the previous foot: a failure, no reset;

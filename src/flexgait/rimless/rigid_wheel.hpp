@@ -1,6 +1,7 @@
 #pragma once
 /// \file rigid_wheel.hpp
-/// The rigid rimless wheel (McGeer 1990; spec rimless.md, "Checks"): rigid legs of length L0,
+/// The rigid rimless wheel (McGeer 1990; docs/theory/rimless.md, "The rigid wheel, the analytic limit"): rigid legs of
+/// length L0,
 /// mass m at the hub with inertia I, a foot that never slips, and an inelastic impact at
 /// touchdown that keeps the angular momentum about the new foot. Between impacts it is an
 /// inverted pendulum about the foot:

@@ -19,7 +19,8 @@
 
 namespace flexgait::rimless {
 
-/// Poincaré sections (spec rimless.md, "Analysis"): the touchdown of a new leg (before its
+/// Poincaré sections (docs/theory/rimless.md, "Poincaré map, fixed points, stability"): the touchdown of a new leg
+/// (before its
 /// contact mode is chosen), or a leg passing upright, β = 0 upward (the paper's "vertical
 /// equilibrium surface").
 enum class Section { Touchdown, Upright };

@@ -1,6 +1,6 @@
 #pragma once
 /// \file disturbance.hpp
-/// A push on the twin (issue 19): a constant force in the world frame on one body, from a start
+/// A push on the twin (docs/guide/humanoid.md): a constant force in the world frame on one body, from a start
 /// time for a duration, applied through MuJoCo's `xfrc_applied` at the body's centre of mass
 /// (so it adds no moment about that centre). None by default: no push while the force is zero.
 ///

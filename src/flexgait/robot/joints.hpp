@@ -1,6 +1,6 @@
 #pragma once
 /// \file joints.hpp
-/// The actuated joints of the THORMANG-class twin (spec humanoid.md, "The robot"): the waist and
+/// The actuated joints of the THORMANG-class twin (docs/theory/humanoid.md, "The robot"): the waist and
 /// six per leg, in this order. Arms and head are rigid.
 #include <array>
 #include <string_view>

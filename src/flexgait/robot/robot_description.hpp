@@ -1,6 +1,6 @@
 #pragma once
 /// \file robot_description.hpp
-/// A robot from its description file (issue 16): the keys that name the file and map its joints,
+/// A robot from its description file (docs/guide/robot.md): the keys that name the file and map its joints,
 /// feet and IMU onto flexgait's (robot.description, robot.joints.*, robot.feet.*, robot.imu_body,
 /// robot.exclude_contacts), and what the loader reads from the file, as plain data free of any
 /// simulator (LoadedRobot). The loader (robot_loader.hpp) fills it through MuJoCo's compiler; the

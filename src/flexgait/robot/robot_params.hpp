@@ -1,6 +1,6 @@
 #pragma once
 /// \file robot_params.hpp
-/// The robot's geometry and masses (spec humanoid.md, "The robot (THORMANG3-class)") and the
+/// The robot's geometry and masses (docs/theory/humanoid.md, "The robot") and the
 /// plant's elastic actuators, sensors and timing ("The elastic actuator (plant)"). SI units.
 #include <cmath>
 #include <string>

@@ -1,6 +1,7 @@
 #pragma once
 /// \file sensor_faults.hpp
-/// How the twin's sensors fail (issue 17, item 13): a fault schedule per sensor, and the model of
+/// How the twin's sensors fail (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate"): a fault schedule
+/// per sensor, and the model of
 /// a real IMU (gyro and accelerometer with bias and bias drift; an AHRS orientation output with
 /// its own error). The plant applies these to its readings; a controller only sees the result.
 ///

@@ -1,6 +1,6 @@
 #pragma once
 /// \file sensors.hpp
-/// What the robot's controller can read (spec humanoid.md, "Sensors"): motor-side encoders, the
+/// What the robot's controller can read (docs/theory/humanoid.md, "The robot"): motor-side encoders, the
 /// ankle force/torque sensors and the pelvis IMU. The plant fills these; a controller is handed
 /// nothing else (no simulator types here).
 ///

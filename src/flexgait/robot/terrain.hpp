@@ -1,6 +1,6 @@
 #pragma once
 /// \file terrain.hpp
-/// The twin's floor (issue 19): flat (the default, the MJCF of earlier versions byte for byte), a
+/// The twin's floor (docs/guide/humanoid.md): flat (the default, the MJCF of earlier versions byte for byte), a
 /// ramp, a single step or a rough floor. The controller is told nothing about it; it feels the
 /// floor through its sensors only.
 ///

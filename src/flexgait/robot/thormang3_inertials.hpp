@@ -1,6 +1,6 @@
 #pragma once
 /// \file thormang3_inertials.hpp
-/// THORMANG3's link masses, centres of mass and inertias (spec humanoid.md, "The robot";
+/// THORMANG3's link masses, centres of mass and inertias (docs/theory/humanoid.md, "The robot";
 /// thormang3-inertials.csv beside it, from ROBOTIS's CAD table), and where ROBOTIS's link frames
 /// sit (the joint origins of ROBOTIS's kinematics, thormang3_kinematics_dynamics). What the builtin
 /// robot's bodies are made of (builtin_inertials.hpp).

@@ -1,6 +1,6 @@
 #pragma once
 /// \file urdf_export.hpp
-/// A loaded robot as URDF (issue 16, `flexgait humanoid export --format urdf`): the rigid robot —
+/// A loaded robot as URDF (docs/guide/robot.md, `flexgait humanoid export --format urdf`): the rigid robot —
 /// one link per body with its inertial (mass, centre, principal inertia and axes), one joint per
 /// body (revolute for the mapped joints under the file's names, fixed otherwise), the shapes as
 /// visuals only (URDF readers such as MuJoCo's give every collision shape contacts; the twin's

@@ -1,6 +1,6 @@
 #pragma once
 /// \file elastic_actuator.hpp
-/// The elastic gear actuator of the twin (spec humanoid.md, "The elastic actuator (plant)"):
+/// The elastic gear actuator of the twin (docs/theory/humanoid.md, "The elastic actuator (the twin's plant)"):
 ///
 ///   link:   τ = k · dz(θ_m − θ_l) + d (θ̇_m − θ̇_l)     (dz: backlash dead band of total width b)
 ///   motor:  J_m θ̈_m = τ_servo − τ,   τ_servo = sat(K_p e + K_i ∫e − K_d θ̇_m),  e = θ_cmd − θ_m

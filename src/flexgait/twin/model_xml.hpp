@@ -1,6 +1,6 @@
 #pragma once
 /// \file model_xml.hpp
-/// The twin as MJCF, written from RobotParams (spec humanoid.md, "The robot"): a free-floating
+/// The twin as MJCF, written from RobotParams (docs/theory/humanoid.md, "The robot"): a free-floating
 /// pelvis, a waist yaw joint to the chest (arms and head rigid on it), two 6-joint legs, box soles.
 /// Masses, centres of mass and inertias are THORMANG3's (builtin_inertials.hpp; the shapes are for
 /// looks); only the soles collide with the floor, each sole box robot.sole_offset_y outward of its ankle.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file plant.hpp
-/// The digital twin as a plant (spec humanoid.md): joint commands in, sensor readings out, at the
+/// The digital twin as a plant (docs/theory/humanoid.md): joint commands in, sensor readings out, at the
 /// control period over a finer physics step. Ground truth (link angles, pelvis pose, COM, true
 /// ZMP from the contact forces) is on a separate path, for evaluation code only: a controller is
 /// handed SensorReadings and nothing else.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file twin_mjcf.hpp
-/// The twin of a loaded robot as MJCF (issue 16): the file's bodies with their inertials and
+/// The twin of a loaded robot as MJCF (docs/guide/robot.md): the file's bodies with their inertials and
 /// geoms as MuJoCo compiled them (written at full precision, so the twin compiles to the same
 /// numbers), a free joint at the root, the mapped joints carrying the elastic gears' stiffness
 /// and damping under flexgait's joint names (the elastic drives move their spring references),

@@ -1,11 +1,12 @@
 #pragma once
 /// \file calibration_motion.hpp
-/// A stiffness calibration in the start stance (issue 20, control.k_estimation = calibrate): both soles
+/// A stiffness calibration in the start stance (docs/guide/compensation.md, control.k_estimation = calibrate): both
+/// soles
 /// stay flat on the floor while the body moves slowly, so every leg joint's gear torque changes in its
 /// own way (compensation/chain_stiffness_calibration.hpp identifies each joint's k from it).
 ///
 /// Walking does not separate the leg's parallel joints: their torques rise and fall together
-/// (README, "per-joint"). Each component below moves a different combination:
+/// (docs/guide/compensation.md). Each component below moves a different combination:
 /// - the COM sideways (the ZMP reference): the weight moves between the legs, so the left and right
 ///   legs' torques differ;
 /// - the COM forward and back: the ankle pitch and the knee (not the hip, whose upper body is carried
@@ -23,7 +24,8 @@
 /// sum and difference of two of the others' frequencies (ω, ω/1.4, ω/2.2, ω/2.6 and the other sole's)
 /// and from their doubles. The first design (0.74 and 0.86: 1.35 ω and 1.16 ω) had the right sole
 /// 0.006 ω from ω/1.4 + ω/2.2; the 90 s window resolves about 0.06 ω, so a by-product of the forward
-/// motion and the squat read as the right ankle roll (README, "Per-joint k from a calibration stance").
+/// motion and the squat read as the right ankle roll (docs/guide/compensation.md, "Stiffness identified while
+/// walking").
 #include "flexgait/core/record.hpp"
 
 namespace flexgait::walking {

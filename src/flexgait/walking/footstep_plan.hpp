@@ -1,6 +1,6 @@
 #pragma once
 /// \file footstep_plan.hpp
-/// Footsteps and their timeline (spec humanoid.md: "Footstep plan: step length, width, time,
+/// Footsteps and their timeline (docs/theory/humanoid.md: "Footstep plan: step length, width, time,
 /// double-support ratio, count, turning"), the ZMP reference they imply ("smooth through double
 /// support") and the swing foot's path ("quintic or cycloid, with a swing height").
 ///

@@ -1,6 +1,6 @@
 #pragma once
 /// \file ground_slope.hpp
-/// A sole flat on a plane z = z0 + g·(x, y) (issue 19: a controller told the floor, on a ramp).
+/// A sole flat on a plane z = z0 + g·(x, y) (docs/guide/humanoid.md: a controller told the floor, on a ramp).
 ///
 /// The sole's z axis is the plane's normal n = (−g_x, −g_y, 1)/‖·‖; its x axis is the plane's
 /// tangent above its heading ψ, x ∝ (cos ψ, sin ψ, g·(cos ψ, sin ψ)); and y = n × x (G2).

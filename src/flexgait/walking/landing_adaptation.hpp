@@ -1,7 +1,7 @@
 #pragma once
 /// \file landing_adaptation.hpp
 /// Landing orientation control (Kim, Park & Oh 2007, KHR-2's "landing orientation controller";
-/// issue 19, the rough floor). A rigid sole commanded level on a bumpy floor rests on one bump or
+/// docs/guide/campaigns.md, the rough floor). A rigid sole commanded level on a bumpy floor rests on one bump or
 /// one edge: its centre of pressure is pinned there and the balance loop loses the foot. For a
 /// window after each touchdown — a foot that swung and lands; not the stance the robot starts in,
 /// where the torques are the twin settling onto its soles (adapted to them and held, the dcm twin

@@ -1,6 +1,6 @@
 #pragma once
 /// \file leg_kinematics.hpp
-/// Kinematics of one 6-DOF leg (spec humanoid.md, "The robot"): hip yaw (z), hip roll (x) and
+/// Kinematics of one 6-DOF leg (docs/theory/humanoid.md, "The robot"): hip yaw (z), hip roll (x) and
 /// hip pitch (y) axes meet at the hip point; knee (y); ankle pitch (y) and roll (x) meet at the
 /// ankle point; the sole centre is ankle_to_sole below the ankle in the foot frame (shifted
 /// horizontally by sole_shift there). All angles
@@ -19,7 +19,7 @@
 /// room in the range: forward, knee ≥ 0 in the layout's angles, unless the range only allows the
 /// other way).
 ///
-/// A leg of another layout (axes not along the layout's, offsets between the hip or ankle axes,
+/// A leg of another layout (a loaded description, docs/guide/robot.md: axes not along the layout's, offsets between the hip or ankle axes,
 /// the hip or ankle joints in another order from the pelvis) is a general chain of six revolute
 /// joints (axes and anchors at zero angles, frames parallel to the pelvis, in the chain's order;
 /// role[i] names the joint at chain position i); its inverse is numeric: damped least squares on

@@ -1,7 +1,7 @@
 #pragma once
 /// \file planned_motion.hpp
 /// The plan's own joint and pelvis motion — velocities and accelerations without the balance
-/// loops — for the inertial torques of control.load_model = dynamic (issue 20).
+/// loops — for the inertial torques of control.load_model = dynamic (docs/guide/compensation.md).
 ///
 /// The plan is smooth: the COM of the preview controller's cart-table (its state (c, ċ, c̈) is the
 /// COM's position, velocity and acceleration), the soles of feet_target (quintic swing, C²), the

@@ -1,6 +1,6 @@
 #pragma once
 /// \file preview_control.hpp
-/// COM by ZMP preview control (Kajita et al., ICRA 2003; spec humanoid.md, "The walking
+/// COM by ZMP preview control (Kajita et al., ICRA 2003; docs/theory/humanoid.md, "The walking
 /// controller"). Cart-table model per horizontal axis, sampled at the control period T:
 ///
 ///   x = (c, ċ, c̈),  x⁺ = A x + B u (u: COM jerk),  p = C x = c − (z_c / g) c̈   (the ZMP)

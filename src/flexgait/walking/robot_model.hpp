@@ -2,7 +2,8 @@
 /// \file robot_model.hpp
 /// The controller's own rigid-body model of the robot (no simulator inside): the kinematic tree
 /// of the pelvis, the waist and the two legs with the links' masses at their centres — from
-/// RobotParams (the builtin robot, THORMANG3's inertials: builtin_inertials.hpp) or from a loaded description (issue 16: each
+/// RobotParams (the builtin robot, THORMANG3's inertials: builtin_inertials.hpp) or from a loaded description
+/// (docs/guide/robot.md: each
 /// link the file's bodies it moves, lumped with their inertias; the rest lumped into the trunk). It gives the whole-body centre of mass, each leg's sole Jacobian and the leg
 /// links' own gravity torque — what the COM planner and the deformation model (spec eqs. 4-6 and
 /// the full form) need. Model (immutable) and Data (frames, scratch) apart; no allocation after

@@ -2,7 +2,7 @@
 /// \file robot_model_dynamics.hpp
 /// Inverse dynamics of the controller's own rigid-body model (robot_model.hpp) by the recursive
 /// Newton–Euler algorithm (Luh, Walker and Paul 1980; Featherstone, "Rigid Body Dynamics
-/// Algorithms", §5.3), in the world frame, for the floating pelvis (issue 20, spec humanoid.md
+/// Algorithms", §5.3), in the world frame, for the floating pelvis (docs/guide/compensation.md, docs/theory/humanoid.md
 /// "The actuator deformation model" beyond statics). No simulator, no allocation.
 ///
 /// Forward pass, body i with parent p, r = p_i − p_p, a = R_i · axis (joint origins lie on the axes):

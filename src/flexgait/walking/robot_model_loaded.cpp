@@ -1,4 +1,4 @@
-// The controller's model of a loaded description (robot_model.hpp, issue 16): the file's bodies
+// The controller's model of a loaded description (robot_model.hpp, docs/guide/robot.md): the file's bodies
 // lumped onto the model's 16 links — each file body onto the nearest link anchor at or above it
 // (the root: the pelvis; the waist joint's body: the chest; each leg joint's body; each foot
 // body) — with the zero-pose frames of the file expressed in the root frame, so that every link

@@ -1,6 +1,7 @@
 #pragma once
 /// \file sensor_health.hpp
-/// Sensor health (issue 17, item 13): every reading is checked each control period before the
+/// Sensor health (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate"): every reading is checked each
+/// control period before the
 /// controller uses it. A reading is bad when
 ///  - nan:   a value is not finite;
 ///  - stale: its time stamp is older than health.max_age (a dropped or late sample);

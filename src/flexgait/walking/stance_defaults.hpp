@@ -1,7 +1,7 @@
 #pragma once
 /// \file stance_defaults.hpp
 /// The walking height and step width a robot walks at unless the configuration sets them
-/// (issue 16: `walk.pelvis_height: auto`, `walk.step_width: auto`, the defaults). Rules on the
+/// (docs/guide/robot.md: `walk.pelvis_height: auto`, `walk.step_width: auto`, the defaults). Rules on the
 /// controller's model, so a loaded robot gets its own numbers and the builtin keeps ROBOTIS's.
 #include "flexgait/walking/robot_model.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file step_adjustment.hpp
-/// Capture-point step adjustment (issue 19; Englsberger et al., IEEE T-RO 2015, "Three-dimensional
+/// Capture-point step adjustment (docs/guide/humanoid.md; Englsberger et al., IEEE T-RO 2015, "Three-dimensional
 /// bipedal walking control based on divergent component of motion"; Khadiv et al., Humanoids 2016,
 /// "Step timing adjustment: a step toward generating robust gaits"). In the linear inverted
 /// pendulum the DCM error e = ξ − ξ_ref obeys ė = ω (e − δ) (eq. D1 of dcm_stabiliser.hpp), δ the

@@ -1,6 +1,6 @@
 #pragma once
 /// \file walk_params.hpp
-/// Parameters of the walking controller (spec humanoid.md, "The walking controller"): the
+/// Parameters of the walking controller (docs/theory/humanoid.md, "The walking controller"): the
 /// footstep plan and the preview controller (keys walk.*), and the balance controller (balance.*).
 /// SI units; each struct lists its keys once (core/record.hpp).
 #include <array>

@@ -133,7 +133,7 @@ Eigen::Vector2d WalkingController::load_split_point() const {
   // pd: the ZMP reference. dcm: the stabiliser's command while the robot stands where it began (a
   // plan without steps: the load split is its main lateral authority); once the plan steps
   // (walking, or a capture step) the reference, and the command's difference from it goes to the
-  // soles' centres of pressure (dcm_balance). Measured (issue 19): split by the command while
+  // soles' centres of pressure (dcm_balance). Measured (docs/guide/humanoid.md): split by the command while
   // walking, the load shifts and the COM estimate, anchored at the soles by their loads, feed each
   // other — after a capture step the loads switch between the staggered feet at 12 Hz (true ZMP
   // 0.036 m rms), and the largest lateral push walking at 1 s/step is 7.0–41.4 N s against
@@ -346,7 +346,7 @@ void WalkingController::begin_safe_stop(double t, std::size_t k) {
 void WalkingController::begin_capture_transfer(double t, std::size_t k, int swing, double omega) {
   // (C0) Both feet stay down while the stance leg could not carry the load alone: the centre of
   // pressure at the point of the feet's box (2 cm inside its edges) nearest the DCM, the COM
-  // falling about it as the linear inverted pendulum from its estimated state. (Measured, issue 19:
+  // falling about it as the linear inverted pendulum from its estimated state. (Measured, docs/guide/humanoid.md:
   // lifting at once, 40 ms into a 0.1 s backward chest push, the stance knee needed 150–160 N m;
   // its 100 N m servo gave way, the knee bent 0.12 rad, the pelvis sank 2.6 cm and pitched back
   // 0.25 rad, the swing foot touched down 4.7 cm short; with a 150 N m servo the step recovered

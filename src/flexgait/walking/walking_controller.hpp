@@ -1,6 +1,6 @@
 #pragma once
 /// \file walking_controller.hpp
-/// The walking controller of the thesis's Fig. 2, without the compensators (spec humanoid.md,
+/// The walking controller of the thesis's Fig. 2, without the compensators (docs/theory/humanoid.md,
 /// "The walking controller"): footsteps → ZMP reference → COM by preview control → balance
 /// controller → swing foot → analytic leg IK → joint commands.
 ///
@@ -33,7 +33,8 @@
 /// pressure under each loaded sole, clamped to the sole) and each loaded foot's rotation follows its torque error about the
 /// sole centre with the CoP admittance A (Caron et al. 2019): δ̇ = A (τ − τ_d), clamped.
 ///
-/// Sensors (issue 17, item 13): every reading passes SensorHealth first (NaN, stale, stuck →
+/// Sensors (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate"): every reading passes SensorHealth
+/// first (NaN, stale, stuck →
 /// the last good value is held, for at most health.hold_time). The pelvis attitude comes from
 /// the AttitudeEstimator (Mahony filter on gyro and accelerometer, with the planned COM
 /// acceleration taken out), or from the IMU's AHRS output (estimator.source = ahrs). While a
