@@ -67,6 +67,17 @@ CLI::Validator finite_number() {
   return CLI::Validator([inf](std::string& text) { return number_problem(text, -inf, inf); }, "NUMBER");
 }
 
+CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const double inf = std::numeric_limits<double>::infinity();
+        if (std::string problem = number_problem(text, -inf, inf); !problem.empty()) return problem;
+        if (!(*parse_finite_number(text) > 0)) return fmt::format("'{}' is not greater than 0", one_line(text));
+        return std::string();
+      },
+      "NUMBER > 0");
+}
+
 CLI::Validator number_list(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& text) {

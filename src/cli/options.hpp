@@ -34,6 +34,8 @@ void add_option_value(std::vector<ConfigEntry>& out, const CLI::App& cmd, const 
 
 /// CLI11 check of a number option: rejects empty text, junk, NaN and infinities, naming the option.
 CLI::Validator finite_number();
+/// The same, and greater than 0.
+CLI::Validator positive_number();
 
 /// The fields of a comma-separated list as given, empty ones kept (CLI11's delimiter drops them,
 /// so list options are read as one string and split here).

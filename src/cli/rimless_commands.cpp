@@ -567,11 +567,14 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   add_run_options(*ctc, ct->run, "runs/rimless-continuation");
   ctc->add_option("--param", ct->param, "real configuration key to continue in (e.g. rimless.slope), or rimless.mu "
                                         "for mu_s = mu_k")->required();
-  ctc->add_option("--from", ct->from, "start value, where the first fixed point is found (in the key's unit)")->required();
-  ctc->add_option("--to", ct->to, "end value (in the key's unit)")->required();
+  ctc->add_option("--from", ct->from, "start value, where the first fixed point is found (in the key's unit)")
+      ->required()
+      ->check(finite_number());
+  ctc->add_option("--to", ct->to, "end value (in the key's unit)")->required()->check(finite_number());
   ctc->add_option("--step", ct->step, "first arclength step, in the key's unit (default |to - from| times "
                                       "analysis.continuation.initial_step, 1/50; the step adapts up to "
-                                      "analysis.continuation.max_step_factor, 2, times this)");
+                                      "analysis.continuation.max_step_factor, 2, times this)")
+      ->check(positive_number());
   ctc->add_option("--period", ct->period, "continue period-K orbits: fixed points of the K-th iterate of the map, "
                                           "Newton on it from the transient's state at --from")
       ->check(CLI::Range(1, 64))->capture_default_str();

@@ -303,6 +303,10 @@ for f in log.csv footsteps.csv summary.json config.yaml; do check "walk writes $
   >/dev/null 2>"$work/err"
 rc=$?
 check "walk-rough.yaml walks 10 steps on the 1 cm floor of seed 2: $(cat "$work/err")" test "$rc" -eq 0
+expect_usage_error continuation-zero-step "--step: '0' is not greater than 0" rimless continuation \
+  --param rimless.slope --from 0.1 --to 0.11 --step 0
+expect_usage_error continuation-nan-step "--step: 'nan' is not a finite number" rimless continuation \
+  --param rimless.slope --from 0.1 --to 0.11 --step nan
 expect_usage_error walk-bad-step-time "walk.step_time" humanoid walk --set walk.step_time=0
 expect_usage_error walk-typo "walk.steps" humanoid walk --set walk.stepz=3
 for f in joints.csv timing.json; do check "walk writes $f" test -s "$work/walk/$f"; done
