@@ -21,10 +21,6 @@ std::optional<FallReason> WalkJudge::check(const SupportSample& s, const Planned
   if (down || !last_contact_) last_contact_ = s.t;  // (the walk starts standing)
   if (!down && s.t - *last_contact_ > L.airborne_time) return FallReason::kAirborne;
   for (int side = 0; side < 2; ++side) {
-    // (a sole the plan stands on, up for longer than a touchdown's jitter: hopping, not standing)
-    if (plan.swinging[side] || s.sole_contact[side]) up_since_[side].reset();
-    else if (!up_since_[side]) up_since_[side] = s.t;
-    else if (s.t - *up_since_[side] > L.airborne_time) return FallReason::kUnsupported;
     if (plan.swinging[side] || !s.sole_contact[side]) {
       anchored_[side] = false;
       continue;

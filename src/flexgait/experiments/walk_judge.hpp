@@ -4,8 +4,7 @@
 /// never sees it). A walk is walked only if every planned step landed — the swing sole on the
 /// floor, once the foot has settled, placed relative to the standing sole within
 /// `position_tolerance` of the plan's step — and the robot stayed supported: some body touches
-/// the floor at least every `airborne_time`, no sole the plan stands on stays off it longer than
-/// that, no standing sole slides more than
+/// the floor at least every `airborne_time`, no standing sole slides more than
 /// `position_tolerance` from where it came down, the pelvis is neither sunk nor tilted nor upside
 /// down, and at the end every sole the plan stands on is on the floor. The first violation is the walk's named outcome (FallReason); the walk ends there.
 ///
@@ -19,8 +18,7 @@
 ///    the planned sole; a sole farther than this from its planned place relative to its support
 ///    has that reference at or beyond its edge, so the plan's support no longer exists.
 ///  - airborne_time: a walking gait has no flight phase (one sole is always down); a robot with
-///    nothing on the floor for this long (0.1 s: free fall of 4.9 cm from rest) was thrown, and
-///    a sole the plan stands on that is up this long is hopping, not standing.
+///    nothing on the floor for this long (0.1 s: free fall of 4.9 cm from rest) was thrown.
 ///  - sole_lift_tolerance: a tenth of the sole's length. A sole whose centre is higher than this
 ///    above the floor at the end rests on an edge (tilted by more than ~0.2 rad), not flat.
 ///  - fall_height, fall_tilt: the pelvis sunk or tilted (the thresholds of the fall check).
@@ -67,8 +65,7 @@ class WalkJudge {
   explicit WalkJudge(const JudgeLimits& limits) : limits_(limits) {}
 
   /// The outcome this period's truth shows, if the walk must end here (checked in the order:
-  /// sunk, flipped, tilted, a non-sole body down, airborne, a standing sole up (unsupported) or
-  /// slid).
+  /// sunk, flipped, tilted, a non-sole body down, airborne, a standing sole slid).
   std::optional<FallReason> check(const SupportSample& s, const PlannedSupport& plan);
   /// A step's landing, once the foot has settled: kMissedStep when the swing sole `side` is not
   /// on the floor, or its place relative to the other sole differs from the plan's (`plan`, both
@@ -88,7 +85,6 @@ class WalkJudge {
   std::optional<double> last_contact_;  ///< time of the last period with a body on the floor [s]
   std::array<Eigen::Vector2d, 2> anchor_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};  ///< where each standing sole came down [m]
   std::array<bool, 2> anchored_{};      ///< the sole is down and standing: anchor_ holds
-  std::array<std::optional<double>, 2> up_since_;  ///< since when a sole the plan stands on is off the floor [s]
   double support_error_max_ = 0;
 };
 

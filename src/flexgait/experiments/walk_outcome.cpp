@@ -23,7 +23,7 @@ std::string_view fall_sentence(FallReason reason) {
     case FallReason::kMissedStep:
       return "a step did not land where planned";
     case FallReason::kUnsupported:
-      return "a sole the plan stands on was off the floor";
+      return "at the end a sole the plan stands on was off the floor or on an edge";
   }
   throw std::logic_error("FallReason without a sentence");
 }

@@ -23,7 +23,7 @@ enum class FallReason {
   kAirborne,        ///< no body touched the floor for longer than a walking gait allows
   kSlid,            ///< a standing sole slid away from its planned place
   kMissedStep,      ///< a step's sole did not land (off the floor, or away from its planned place)
-  kUnsupported,     ///< a sole the plan stands on stayed off the floor (or was off it at the end)
+  kUnsupported,     ///< at the end, a sole the plan stands on was off the floor or on an edge
 };
 constexpr std::array<EnumName<FallReason>, 8> enum_names(FallReason) {
   return {{{FallReason::kPelvisTooLow, "pelvis_too_low"},
