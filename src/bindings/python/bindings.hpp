@@ -5,4 +5,5 @@
 namespace flexgait::python {
 void bind_rimless(pybind11::module_& m);
 void bind_humanoid(pybind11::module_& m);
+void bind_loop(pybind11::module_& m);
 }  // namespace flexgait::python

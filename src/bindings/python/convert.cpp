@@ -10,25 +10,38 @@
 
 namespace flexgait::python {
 
+namespace {
+
+/// The dict's entries as configuration entries; a nested dict {a: {b: v}} gives the key a.b (as YAML nests).
+void add_entries(const py::dict& dict, const std::string& prefix, std::vector<ConfigEntry>& entries) {
+  const py::module_ numbers = py::module_::import("numbers");
+  for (const auto& [k, v] : dict) {
+    if (!py::isinstance<py::str>(k)) throw py::type_error("config keys must be str, e.g. 'rimless.mu_s'");
+    const std::string key = prefix + k.cast<std::string>();
+    if (py::isinstance<py::dict>(v)) {
+      add_entries(v.cast<py::dict>(), key + ".", entries);
+      continue;
+    }
+    std::string text;
+    // numbers.Integral / Real: Python's and numpy's (numpy.int64, numpy.float32, ...) alike.
+    if (py::isinstance<py::bool_>(v)) text = v.cast<bool>() ? "true" : "false";
+    else if (py::isinstance(v, numbers.attr("Integral"))) text = py::str(py::int_(py::reinterpret_borrow<py::object>(v)));
+    else if (py::isinstance(v, numbers.attr("Real"))) text = py::repr(py::float_(py::reinterpret_borrow<py::object>(v)));
+    else if (py::isinstance<py::str>(v)) text = v.cast<std::string>();
+    else
+      throw py::value_error("config key '" + one_line(key) + "': value must be a float, int, bool, str or a dict of them, not " +
+                            std::string(py::str(v.get_type().attr("__name__"))));
+    entries.push_back({key, text, "config"});
+  }
+}
+
+}  // namespace
+
 Config make_config(const Schema& schema, const py::object& overrides, const std::optional<std::string>& config_file) {
   std::vector<ConfigEntry> entries;  // each under its own key: a key holding '=' is a key, not a split point
   if (!overrides.is_none()) {
     if (!py::isinstance<py::dict>(overrides)) throw py::type_error("config must be a dict of key: value, or None");
-    const py::module_ numbers = py::module_::import("numbers");
-    for (const auto& [k, v] : overrides.cast<py::dict>()) {
-      if (!py::isinstance<py::str>(k)) throw py::type_error("config keys must be str, e.g. 'rimless.mu_s'");
-      const std::string key = k.cast<std::string>();
-      std::string text;
-      // numbers.Integral / Real: Python's and numpy's (numpy.int64, numpy.float32, ...) alike.
-      if (py::isinstance<py::bool_>(v)) text = v.cast<bool>() ? "true" : "false";
-      else if (py::isinstance(v, numbers.attr("Integral"))) text = py::str(py::int_(py::reinterpret_borrow<py::object>(v)));
-      else if (py::isinstance(v, numbers.attr("Real"))) text = py::repr(py::float_(py::reinterpret_borrow<py::object>(v)));
-      else if (py::isinstance<py::str>(v)) text = v.cast<std::string>();
-      else
-        throw py::value_error("config key '" + one_line(key) + "': value must be a float, int, bool or str, not " +
-                              std::string(py::str(v.get_type().attr("__name__"))));
-      entries.push_back({key, text, "config"});
-    }
+    add_entries(overrides.cast<py::dict>(), "", entries);
   }
   std::optional<std::filesystem::path> file;
   if (config_file) file = *config_file;

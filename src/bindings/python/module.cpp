@@ -91,4 +91,5 @@ PYBIND11_MODULE(flexgait, m) {
       "Every key of a schema ('rimless', 'walk', 'bench') with its default, unit, meaning and allowed values.");
   flexgait::python::bind_rimless(m);
   flexgait::python::bind_humanoid(m);
+  flexgait::python::bind_loop(m);
 }

@@ -18,6 +18,8 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/experiments/walk_outcome.hpp"
+#include "flexgait/loop/closed_loop.hpp"
+#include "flexgait/loop/walking_control.hpp"
 #include "flexgait/robot/robot_description.hpp"
 #include "flexgait/robot/robot_params.hpp"
 #include "flexgait/twin/plant.hpp"
@@ -299,6 +301,20 @@ struct WalkResult {
   std::vector<Landing> landings;
   walking::WalkPlan plan;
 };
+
+/// The loop's parts of the run for any controller: the twin of the run's robot, its plant, the
+/// controller's `model` of the robot, the compensators (control.*), the commands clamped into a
+/// loaded robot's joint ranges; the stiffness identification's still stances from `plan`'s timing.
+loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::RobotModel& model, const walking::WalkPlan& plan);
+
+/// The walk's closed loop: the builtin walking controller on the twin of the run's robot, the
+/// compensators as configured, reset to the controller's start pose, the pushes timed against its plan.
+struct WalkLoop {
+  std::shared_ptr<loop::WalkingControl> control;
+  std::unique_ptr<loop::HumanoidLoop> loop;
+  std::vector<humanoid::Push> pushes;  ///< the pushes applied (timed)
+};
+WalkLoop make_walk_loop(const WalkRunParams& params);
 
 /// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time now and
 /// then; `observe(plant)` after every control period (for rendering: evaluation code only);

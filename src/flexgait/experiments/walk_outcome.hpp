@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "flexgait/core/enum_names.hpp"
+#include "flexgait/loop/simulation_failure.hpp"
 #include "flexgait/robot/sensor_faults.hpp"
 #include "flexgait/walking/sensor_health.hpp"
 
@@ -39,14 +40,7 @@ constexpr std::array<EnumName<FallReason>, 8> enum_names(FallReason) {
 /// than a sole touched the floor", "airborne: ...", ...
 std::string_view fall_sentence(FallReason reason);
 
-/// Why the simulation itself failed (the walk ends there).
-enum class SimulationFailure {
-  kMuJoCoWarning,  ///< MuJoCo warned (it reset an unstable state or dropped contacts); detail: its text
-  kDiverged,       ///< the true state is no longer finite
-};
-constexpr std::array<EnumName<SimulationFailure>, 2> enum_names(SimulationFailure) {
-  return {{{SimulationFailure::kMuJoCoWarning, "mujoco_warning"}, {SimulationFailure::kDiverged, "diverged"}}};
-}
+using loop::SimulationFailure;  ///< why the simulation itself failed (the walk ends there)
 
 struct WalkFailure {
   SimulationFailure reason = SimulationFailure::kDiverged;
