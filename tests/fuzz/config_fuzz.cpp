@@ -17,7 +17,7 @@
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/config_file.hpp"
-#include "flexgait/robot/disturbance.hpp"
+#include "flexgait/twin/disturbance.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 
 namespace {

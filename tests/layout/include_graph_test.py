@@ -5,7 +5,9 @@ Checks, over every .hpp and .cpp under src/flexgait:
   - the graph folder -> folder of the includes "flexgait/<folder>/..." has no cycle;
   - MuJoCo (<mujoco/...>) is included only under twin/, and under twin/ by no installed header
     (only twin/detail/ and .cpp files);
-  - the controller's folders (robot, walking, compensation) include nothing of twin/.
+  - the controller's folders (robot, walking, compensation) include nothing of twin/, where the
+    twin's truth lives (plant_params.hpp: its stiffness, sensors, faults, floor; disturbance.hpp;
+    terrain.hpp; sensor_faults.hpp).
 Usage: include_graph_test.py SOURCE_DIR. Prints each violation; exit 1 if any.
 """
 import pathlib

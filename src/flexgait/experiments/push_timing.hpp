@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "flexgait/robot/disturbance.hpp"
+#include "flexgait/twin/disturbance.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 
 namespace flexgait::experiments {

@@ -9,7 +9,7 @@
 
 #include "flexgait/core/enum_names.hpp"
 #include "flexgait/loop/simulation_failure.hpp"
-#include "flexgait/robot/sensor_faults.hpp"
+#include "flexgait/robot/sensor_ids.hpp"
 #include "flexgait/walking/sensor_health.hpp"
 
 namespace flexgait::experiments {

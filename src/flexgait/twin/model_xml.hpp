@@ -10,6 +10,7 @@
 #include <string>
 
 #include "flexgait/robot/robot_params.hpp"
+#include "flexgait/twin/plant_params.hpp"
 
 namespace flexgait::humanoid {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "flexgait/robot/sensor_faults.hpp"
+#include "flexgait/twin/sensor_faults.hpp"
 #include "flexgait/twin/detail/elastic_drives.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"

@@ -14,11 +14,12 @@
 #include <string>
 #include <vector>
 
-#include "flexgait/robot/disturbance.hpp"
+#include "flexgait/twin/disturbance.hpp"
 #include "flexgait/robot/joints.hpp"
 #include "flexgait/robot/robot_params.hpp"
+#include "flexgait/twin/plant_params.hpp"
 #include "flexgait/robot/sensors.hpp"
-#include "flexgait/robot/terrain.hpp"
+#include "flexgait/twin/terrain.hpp"
 
 namespace flexgait::humanoid {
 

@@ -10,6 +10,7 @@
 
 #include "flexgait/robot/robot_description.hpp"
 #include "flexgait/robot/robot_params.hpp"
+#include "flexgait/twin/plant_params.hpp"
 
 namespace flexgait::humanoid {
 

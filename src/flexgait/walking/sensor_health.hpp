@@ -22,7 +22,7 @@
 #include <cstdint>
 
 #include "flexgait/core/record.hpp"
-#include "flexgait/robot/sensor_faults.hpp"
+#include "flexgait/robot/sensor_ids.hpp"
 #include "flexgait/robot/sensors.hpp"
 
 namespace flexgait::walking {

@@ -1,4 +1,4 @@
-#include "flexgait/robot/robot_params.hpp"
+#include "flexgait/twin/plant_params.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "flexgait/robot/terrain.hpp"
+#include "flexgait/twin/terrain.hpp"
 
 #include <fmt/format.h>
 

@@ -23,6 +23,7 @@
 #include "flexgait/core/enum_names.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/robot/joints.hpp"
+#include "flexgait/robot/sensor_ids.hpp"
 
 namespace flexgait::humanoid {
 
@@ -34,20 +35,6 @@ constexpr std::array<EnumName<FaultKind>, 5> enum_names(FaultKind) {
            {FaultKind::kNan, "nan"},
            {FaultKind::kLatency, "latency"}}};
 }
-
-/// The joints by name, for the encoder fault's key (plant.faults.encoder.joint).
-constexpr std::array<EnumName<Joint>, kJoints> enum_names(Joint) {
-  return {{{kWaistYaw, kJointNames[0]},        {kLeftHipYaw, kJointNames[1]},   {kLeftHipRoll, kJointNames[2]},
-           {kLeftHipPitch, kJointNames[3]},    {kLeftKnee, kJointNames[4]},     {kLeftAnklePitch, kJointNames[5]},
-           {kLeftAnkleRoll, kJointNames[6]},   {kRightHipYaw, kJointNames[7]},  {kRightHipRoll, kJointNames[8]},
-           {kRightHipPitch, kJointNames[9]},   {kRightKnee, kJointNames[10]},   {kRightAnklePitch, kJointNames[11]},
-           {kRightAnkleRoll, kJointNames[12]}}};
-}
-
-/// The twin's sensors that can fail, in this order (names as in the keys plant.faults.<name>.*).
-enum SensorId : int { kFtLeft = 0, kFtRight, kGyro, kAccel, kAhrs, kEncoder, kSensors };
-inline constexpr std::array<std::string_view, kSensors> kSensorNames = {"ft_left", "ft_right", "gyro",
-                                                                         "accel",   "ahrs",     "encoder"};
 
 /// One sensor's fault.
 struct FaultSpec {
