@@ -17,6 +17,9 @@ check "--set rimless.mu=0.13 exits 0" test $? -eq 0
 check "rimless.mu: the same summary.json as mu_s and mu_k" cmp -s alias/summary.json parts/summary.json
 check "rimless.mu: the same config.yaml as mu_s and mu_k" cmp -s alias/config.yaml parts/config.yaml
 check "config.yaml holds mu_s" grep -q "mu_s: 0.13" alias/config.yaml
+printf 'rimless:\n  mu: 0.13\n' >alias.yaml
+"$exe" rimless simulate --steps 2 --no-plot --config "$work/alias.yaml" --out alias-file >/dev/null 2>&1
+check "rimless: {mu: 0.13} in a file: the same config.yaml" cmp -s alias/config.yaml alias-file/config.yaml
 "$exe" rimless simulate --steps 2 --no-plot --set rimless.mu=-1 --out never >/dev/null 2>"$work/err"
 check "rimless.mu=-1: exit 2" test $? -eq 2
 check "rimless.mu=-1: the message names the alias and the value" grep -qF "key 'rimless.mu' = '-1'" "$work/err"
