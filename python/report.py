@@ -15,9 +15,17 @@ RUN_ROOT/schema.json does not declare for the run's command, or a value of the w
 fails the report: every such error is printed to stderr, naming the run, the file and the key,
 and the exit code is 1. Only when the run itself failed (a non-zero exit code in
 reproduce.json) is its row shown as "no result" instead.
+
+Every row carries a verdict: `verdict: {reproduced: EXPRESSION, tolerance: TEXT}`, a Jinja2
+expression over the row's values that is true when our number matches the reference within the
+tolerance the text states; the page shows "reproduced" or "differs" and the tolerance. Every
+figure of a run has a caption with its units: `figures:` maps a file name pattern ("RUN/NAME.png"
+or "NAME.png", fnmatch patterns; the run's own first) to the caption; a figure without one fails
+the report.
 """
 import argparse
 import csv
+import fnmatch
 import json
 import os
 import sys
@@ -30,8 +38,11 @@ from atomic_write import write_text_atomic
 from flexgait_schema import SchemaError, declared_names, names_asked
 
 DATA_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "data", "report")
-ROW_FIELDS = {"id", "section", "run", "values", "label", "ours", "reference", "source"}
+ROW_FIELDS = {"id", "section", "run", "values", "label", "ours", "reference", "source", "verdict"}
 VALUE_FIELDS = {"file", "key", "type", "columns"}
+VERDICT_FIELDS = {"tolerance", "reproduced"}
+# A row's verdict: "reproduced" or "differs" as its expression over the values holds or not.
+VERDICTS = {True: "reproduced", False: "differs"}
 
 
 class ReportError(Exception):
@@ -207,10 +218,18 @@ def check_references(references):
         seen.add(row_id)
         if row["section"] not in sections:
             problems.append(f"row {row_id}: unknown section {row['section']}")
+        verdict = row["verdict"]
+        if not isinstance(verdict, dict) or set(verdict) != VERDICT_FIELDS or not all(
+                isinstance(v, str) and v.strip() for v in verdict.values()):
+            problems.append(f"row {row_id}: verdict needs exactly {sorted(VERDICT_FIELDS)}, each a non-empty text")
         for name, spec in row["values"].items():
             if not (isinstance(name, str) and name.isidentifier()):
                 problems.append(f"row {row_id}: value name {name!r} is not an identifier (YAML reads on/off/yes/no as booleans)")
             problems += check_value_spec(row_id, name, spec)
+    figures = references.get("figures", {})
+    if not isinstance(figures, dict) or not all(isinstance(k, str) and isinstance(v, str) and v.strip()
+                                                for k, v in figures.items()):
+        problems.append("figures: a mapping of file name patterns to non-empty captions")
     return problems
 
 
@@ -280,10 +299,23 @@ def render_row(env, row, files, exit_codes):
     except ReportError as e:
         if exit_codes.get(run, 0) == 0:
             raise ReportError(f"row {row['id']}: {e}") from None
-        return {**shown, "label": label_without_values(env, row), "ours": "", "failed_run_exit_code": exit_codes[run]}
+        return {**shown, "label": label_without_values(env, row), "ours": "", "failed_run_exit_code": exit_codes[run],
+                "verdict": "no result", "tolerance": row["verdict"]["tolerance"]}
     where = f"row {row['id']} ({run})"
     return {**shown, "label": render_cell(env, row["label"], values, where),
-            "ours": render_cell(env, row["ours"], values, where), "failed_run_exit_code": None}
+            "ours": render_cell(env, row["ours"], values, where), "failed_run_exit_code": None,
+            "verdict": judge(env, row, values, where), "tolerance": row["verdict"]["tolerance"]}
+
+
+def judge(env, row, values, where):
+    """The row's verdict: its expression over the values evaluated (it must give true or false)."""
+    try:
+        result = env.compile_expression(row["verdict"]["reproduced"], undefined_to_none=False)(values)
+    except (jinja2.TemplateError, ValueError, TypeError) as e:
+        raise ReportError(f"{where}: verdict: {e}") from None
+    if not isinstance(result, bool):
+        raise ReportError(f"{where}: verdict: {result!r} is not true or false")
+    return VERDICTS[result]
 
 
 def render_sections(env, references, files, exit_codes):
@@ -318,6 +350,26 @@ def videos(root, run_dir):
     return files_ending(root, run_dir, ".mp4")
 
 
+def caption(captions, run_dir, name):
+    """The caption of figure NAME of a run: the first pattern matching RUN/NAME, else NAME."""
+    for pattern in (f"{run_dir}/{name}", name):
+        for key, text in captions.items():
+            if fnmatch.fnmatchcase(pattern, key) and ("/" in key) == ("/" in pattern):
+                return text
+    return None
+
+
+def captioned_figures(root, run_dir, captions, problems):
+    """The run's figures, each {file, caption}; a figure without a caption is a problem."""
+    shown = []
+    for name in figures(root, run_dir):
+        text = caption(captions, run_dir, name)
+        if text is None:
+            problems.append(f"{run_dir}/{name}: no caption in the references file's figures")
+        shown.append({"file": name, "caption": text or ""})
+    return shown
+
+
 def load_manifest(root):
     path = os.path.join(root, "reproduce.json")
     try:
@@ -333,8 +385,11 @@ def render_page(root, references_path, template_path):
     env = make_environment(os.path.dirname(os.path.abspath(template_path)))
     exit_codes = {r["dir"]: r["exit_code"] for r in manifest["runs"]}
     sections = render_sections(env, references, RunFiles(root), exit_codes)
-    runs = [{**r, "caption": r.get("caption", ""), "figures": figures(root, r["dir"]), "videos": videos(root, r["dir"])}
-            for r in manifest["runs"]]
+    captions, problems = references.get("figures", {}), []
+    runs = [{**r, "caption": r.get("caption", ""), "figures": captioned_figures(root, r["dir"], captions, problems),
+             "videos": videos(root, r["dir"])} for r in manifest["runs"]]
+    if problems:
+        raise ReportError("\n".join(problems))
     template = env.get_template(os.path.basename(template_path))
     return template.render(quick=manifest["quick"], sections=sections, runs=runs)
 

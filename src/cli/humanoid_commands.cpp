@@ -184,6 +184,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const experiments::WalkResult r = experiments::run_walk(
       params, [&](double t) { bar.show(t); }, observe, [&](const experiments::WalkSample& w) { log.add(w); });
   log.commit();
+  if (render.enabled) show_stage(fmt::format("encoding video.mp4 from {} frames (ffmpeg)", frame));
   if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
   const std::string summary = experiments::write_walk(dir, "", r);

@@ -2,6 +2,7 @@
 
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -109,12 +110,17 @@ int run_python_script(const std::filesystem::path& script, const std::vector<std
   return run_process(argv);
 }
 
+void show_stage(const std::string& what) {
+  if (isatty(STDERR_FILENO) != 0) fmt::print(stderr, "{}\n", what);
+}
+
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args) {
   const auto path = find_python_script(script);
   if (!path) {
     fmt::print(stderr, "warning: plotting script {} not found; no figures drawn\n", script);
     return false;
   }
+  show_stage(fmt::format("drawing the figures ({})", script));
   const int status = run_python_script(*path, args);
   if (status < 0) {
     fmt::print(stderr, "warning: cannot start /usr/bin/python3; no figures drawn\n");

@@ -51,8 +51,13 @@ std::optional<std::filesystem::path> find_python_script(const std::string& scrip
 /// Runs `/usr/bin/python3 <script> <args...>`, waits; returns its exit code as run_process does.
 int run_python_script(const std::filesystem::path& script, const std::vector<std::string>& args);
 
+/// One line on standard error saying what a command does next, when that is a terminal (a
+/// stage that shows no progress bar and may take seconds: drawing figures, encoding a video).
+void show_stage(const std::string& what);
+
 /// Runs `/usr/bin/python3 <script> <args...>` from the plotting-script directory; returns
 /// false (after printing a warning) if the script is missing or fails. Plots are optional.
+/// On a terminal it says first that it draws the figures.
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args);
 
 /// Runs args[0] (a path) with these arguments, waits; returns its exit code, -1 if it could not

@@ -49,7 +49,7 @@ expect_usage_error stribeck-viscous "rimless.viscous" rimless simulate --set rim
 expect_usage_error stribeck-key-with-coulomb "rimless.viscous" rimless simulate --set rimless.viscous=0.5
 expect_usage_error stribeck-velocity-with-coulomb "rimless.stribeck_velocity" rimless fixed-point --set rimless.stribeck_velocity=0.3
 expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such.yaml
-printf 'rimless:\n  K: 1000\n  mu: 0.5\n' >"$work/typo.yaml"
+printf 'rimless:\n  K: 1000\n  mux: 0.5\n' >"$work/typo.yaml"
 expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
 expect_usage_error bad-model "--model" rimless simulate --model soft
 # YAML read with limits (issue 17.2): each refusal names the file and the line.

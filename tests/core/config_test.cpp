@@ -67,6 +67,86 @@ TEST(Config, CrossFieldErrorNamesEveryKeysOrigin) {
   }
 }
 
+TEST(Config, DefaultIsBlamedOnTheValueGivenAgainstIt) {
+  // model.legs keeps its default; the --set model.K is what made it wrong: the message leads with
+  // "--set" and says model.legs is a default (no message starts with "default:").
+  const Config c = resolve_config(test_schema(), std::nullopt, {"model.K=2500"});
+  try {
+    check_with_origin(c,
+                      [] { throw ConfigError("model.legs", "key 'model.legs' = '10': too many for model.K = 2500"); });
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--set: key 'model.legs' = '10': too many for model.K = 2500 (model.legs from default)");
+  }
+  const Config d = resolve_config(test_schema(), std::nullopt, {});
+  try {  // every value a default: no origin to blame but the defaults themselves
+    check_with_origin(d, [] { throw ConfigError("model.legs", "key 'model.legs' = '10': bad"); });
+    ADD_FAILURE() << "no ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), "the defaults: key 'model.legs' = '10': bad");
+  }
+}
+
+Schema friction_schema() {
+  Schema s;
+  s.add(real_param("wheel.m", "1.0", "kg", "mass", 0, 1e9, false))
+      .add(real_param("wheel.mu_s", "0.5", "", "static friction", 0, 10))
+      .add(real_param("wheel.mu_k", "0.4", "", "kinetic friction", 0, 10))
+      .add(real_param("wheel.omega", "1.0", "rad/s", "rate", -1e3, 1e3))
+      .add(real_param("wheel.K", "1.0", "N/m", "stiffness", 0, 1e9, false));
+  return s.alias("wheel.mu", {"wheel.mu_s", "wheel.mu_k"}, "both friction coefficients");
+}
+
+std::string unknown_key_message(const std::string& set) {
+  try {
+    resolve_config(friction_schema(), std::nullopt, {set});
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no ConfigError for " << set;
+  return "";
+}
+
+TEST(Config, AliasSetsEachOfItsPartsAndNamesItselfInErrors) {
+  const Config c = resolve_config(friction_schema(), std::nullopt, {"wheel.mu=0.13"});
+  EXPECT_EQ(c.real("wheel.mu_s"), 0.13);
+  EXPECT_EQ(c.real("wheel.mu_k"), 0.13);
+  EXPECT_EQ(c.origin("wheel.mu_k"), "--set");
+  EXPECT_EQ(c.to_yaml().find("mu:"), std::string::npos) << "an alias holds no value of its own";
+  // Later --set wins, part by part.
+  EXPECT_EQ(resolve_config(friction_schema(), std::nullopt, {"wheel.mu=0.3", "wheel.mu_k=0.2"}).real("wheel.mu_k"),
+            0.2);
+  const std::string bad = unknown_key_message("wheel.mu=-1");
+  EXPECT_NE(bad.find("key 'wheel.mu' = '-1': out of range"), std::string::npos) << bad;
+  Schema s = friction_schema();
+  EXPECT_THROW(s.alias("wheel.mu", {"wheel.mu_s"}, ""), std::logic_error);           // taken
+  EXPECT_THROW(s.alias("wheel.f", {"wheel.nope"}, ""), std::logic_error);            // of nothing
+  EXPECT_THROW(s.add(real_param("wheel.mu", "1", "", "", 0, 1)), std::logic_error);  // a key named as an alias
+  Schema merged;
+  merged.merge(friction_schema());
+  EXPECT_NE(merged.find_alias("wheel.mu"), nullptr);
+}
+
+TEST(Config, DidYouMeanOffersOnlyTheSameQuantity) {
+  // A one-letter name is another quantity one edit away from most short names: wheel.mux is
+  // offered mu_s and mu_k and the alias (edit distance 1-2), never the mass wheel.m.
+  EXPECT_NE(unknown_key_message("wheel.mus=1").find("did you mean 'wheel.mu_s'"), std::string::npos);
+  const std::string mux = unknown_key_message("wheel.mux=1");
+  EXPECT_NE(mux.find("did you mean 'wheel.mu'?"), std::string::npos) << mux;
+  EXPECT_EQ(mux.find("'wheel.m'"), std::string::npos) << mux;
+  // A case slip of a one-letter name, and a section typo, are offered.
+  EXPECT_NE(unknown_key_message("wheel.k=1").find("(did you mean 'wheel.K'?)"), std::string::npos);
+  EXPECT_NE(unknown_key_message("wheal.omega=1").find("(did you mean 'wheel.omega'?)"), std::string::npos);
+  // Equally near names are all offered.
+  const std::string ties = unknown_key_message("wheel.mu_x=1");
+  EXPECT_NE(ties.find("(did you mean 'wheel.mu_s' or 'wheel.mu_k'?)"), std::string::npos) << ties;
+  // Nothing near: the message says where the keys are listed.
+  const std::string far = unknown_key_message("nope=1");
+  EXPECT_NE(far.find("`flexgait schema` lists every key"), std::string::npos) << far;
+  EXPECT_EQ(far.find("did you mean"), std::string::npos) << far;
+}
+
 TEST(Config, ResolvedYamlRoundTripsExactly) {
   const Config c = resolve_config(test_schema(), std::nullopt, {"model.K=0.1"});
   const auto file = write_temp("roundtrip.yaml", c.to_yaml());
@@ -104,12 +184,12 @@ TEST(Config, DerivedKeyIsAutoUntilSetAndRoundTripsAsAuto) {
 }
 
 TEST(Config, UnknownKeyInFileIsAnError) {
-  const auto file = write_temp("typo.yaml", "model:\n  KK: 5\n");
+  const auto file = write_temp("typo.yaml", "model:\n  legz: 5\n");
   const ConfigError e = expect_error(file, {});
-  EXPECT_EQ(e.key(), "model.KK");
-  EXPECT_NE(std::string(e.what()).find("unknown key 'model.KK'"), std::string::npos) << e.what();
+  EXPECT_EQ(e.key(), "model.legz");
+  EXPECT_NE(std::string(e.what()).find("unknown key 'model.legz'"), std::string::npos) << e.what();
   EXPECT_NE(std::string(e.what()).find(":2"), std::string::npos) << "names the line: " << e.what();
-  EXPECT_NE(std::string(e.what()).find("did you mean 'model.K'?"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("did you mean 'model.legs'?"), std::string::npos) << e.what();
 }
 
 TEST(Config, UnknownKeyInOverrideIsAnError) {

@@ -19,6 +19,9 @@ class PageParser(html.parser.HTMLParser):
         self.row = None
         self.cell = None
         self.run = None
+        self.figures = []       # each {"img": src or None, "caption": text or None}
+        self.figure = None
+        self.caption = None
 
     def handle_starttag(self, tag, attrs):
         attributes = dict(attrs)
@@ -32,7 +35,15 @@ class PageParser(html.parser.HTMLParser):
             self.cell = {"tag": tag, "text": ""}
         elif tag == "br" and self.cell is not None:
             self.cell["text"] += "\n"
+        elif tag == "figure":
+            self.figure = {"img": None, "caption": None}
+        elif tag == "figcaption" and self.figure is not None:
+            self.caption = ""
         elif tag == "img":
+            if self.figure is not None:
+                self.figure["img"] = attributes.get("src")
+            else:
+                self.problems.append(f"line {self.getpos()[0]}: <img> outside a <figure> (no caption)")
             self.images.append(attributes.get("src"))
             if self.run is not None:
                 self.run_figures[self.run] += 1
@@ -49,7 +60,13 @@ class PageParser(html.parser.HTMLParser):
                 del self.open_tags[len(self.open_tags) - 1 - self.open_tags[::-1].index(tag):]
             return
         self.open_tags.pop()
-        if tag in ("td", "th") and self.row is not None:
+        if tag == "figcaption" and self.figure is not None:
+            self.figure["caption"] = self.caption
+            self.caption = None
+        elif tag == "figure" and self.figure is not None:
+            self.figures.append(self.figure)
+            self.figure = None
+        elif tag in ("td", "th") and self.row is not None:
             self.row["cells"].append(self.cell)
             self.cell = None
         elif tag == "tr" and self.tables:
@@ -57,6 +74,8 @@ class PageParser(html.parser.HTMLParser):
             self.row = None
 
     def handle_data(self, data):
+        if self.caption is not None:
+            self.caption += data
         if self.cell is not None:
             self.cell["text"] += data
 
@@ -92,7 +111,19 @@ def table_problems(page):
                 problems.append(f"row {row['id']}: {len(cells)} cells, the header has {len(header)}")
             elif not has_number(cells[ours]["text"]):
                 problems.append(f"row {row['id']}: no number in Ours: {cells[ours]['text']!r}")
+            elif "Verdict (tolerance)" in header:
+                verdict = cells[header.index("Verdict (tolerance)")]["text"].split("\n")
+                if verdict[0] not in ("reproduced", "differs") or len(verdict) < 2 or not verdict[1].strip():
+                    problems.append(f"row {row['id']}: verdict {verdict!r}, not reproduced/differs and a tolerance")
+        if "Verdict (tolerance)" not in header:
+            problems.append(f"table {index + 1}: no Verdict (tolerance) column in the header {header}")
     return problems
+
+
+def figure_problems(page):
+    """Every figure a caption naming at least one unit in brackets ("[rad]")."""
+    return [f"figure {f['img']!r}: caption {f['caption']!r} names no unit in brackets"
+            for f in page.figures if not f["caption"] or not re.search(r"\[[^\]]+\]", f["caption"])]
 
 
 def image_problems(page, page_dir):
@@ -101,9 +132,10 @@ def image_problems(page, page_dir):
 
 
 def page_problems(path):
-    """Every problem of the page at `path`: nesting, tables, images."""
+    """Every problem of the page at `path`: nesting, tables (a number and a verdict in every row),
+    figures (each captioned with units), images."""
     page = parse_page(path)
-    return page.problems + table_problems(page) + image_problems(page, os.path.dirname(path))
+    return page.problems + table_problems(page) + figure_problems(page) + image_problems(page, os.path.dirname(path))
 
 
 def table_rows(path):

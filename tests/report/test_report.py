@@ -34,6 +34,7 @@ REFERENCES = {
             "ours": "{{ k|fmt('.2f') }} Nm/rad ({{ name }})",
             "reference": "≈ 1000 Nm/rad",
             "source": "thesis Fig. 12",
+            "verdict": {"reproduced": "(k - 1000)|abs <= 100", "tolerance": "±10 % of 1000 Nm/rad"},
         },
         {
             "id": "table",
@@ -48,8 +49,10 @@ REFERENCES = {
                     "{{ p.gait }}, |λ| {{ p.lam|fmt('.3f') }}{% endfor %}",
             "reference": "four behaviours",
             "source": "paper, abstract",
+            "verdict": {"reproduced": "points|selectattr('stable')|list|length == 4", "tolerance": "four stable"},
         },
     ],
+    "figures": {"plot.png": "what the plot shows [rad]"},
 }
 
 SUMMARY = {"k_fit": 999.5, "nested": {"steps": 12}, "name": "bench"}
@@ -107,6 +110,31 @@ class RenderTest(unittest.TestCase):
         self.assertEqual(rows["table"][1], "μ = 0.10: slip, then stick, |λ| 0.900\nμ = 0.60: stick, |λ| n/a")
         self.assertIn('<img src="run-b/plot.png"', tree.page_text())
         self.assertFalse([f for f in os.listdir(tree.root) if f.startswith(".index.html")], "temporary file left")
+
+    def test_every_row_has_a_verdict_with_its_tolerance_and_every_figure_a_caption(self):
+        # scalar: |999.5 - 1000| <= 100 holds; table: 1 of 2 points stable, not 4.
+        tree = RunTree(self.tmp.name)
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(page_check.page_problems(tree.page), [])
+        rows = page_check.table_rows(tree.page)
+        self.assertEqual(rows["scalar"][3], "reproduced\n±10 % of 1000 Nm/rad")
+        self.assertEqual(rows["table"][3], "differs\nfour stable")
+        self.assertIn("<figcaption>plot.png: what the plot shows [rad]</figcaption>", tree.page_text())
+
+    def test_a_figure_without_a_caption_or_a_verdict_that_is_not_a_boolean_fails(self):
+        references = dict(REFERENCES, figures={"other.png": "x [m]"})
+        tree = RunTree(self.tmp.name, references=references)
+        result = tree.render()
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("run-b/plot.png: no caption", result.stderr)
+        rows = [dict(REFERENCES["rows"][0], verdict={"reproduced": "k", "tolerance": "t"}), REFERENCES["rows"][1]]
+        tree = RunTree(self.tmp.name, references=dict(REFERENCES, rows=rows))
+        result = tree.render()
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("row scalar (run-a): verdict: 999.5 is not true or false", result.stderr)
+        rows = [dict(REFERENCES["rows"][0], verdict={"reproduced": "k > 1"}), REFERENCES["rows"][1]]
+        self.assertIn("row scalar: verdict needs exactly", "".join(report.check_references(dict(REFERENCES, rows=rows))))
 
     def test_every_file_written_is_world_readable(self):
         # index.html and every figure go through atomic_write.temporary_beside, whose mkstemp makes
@@ -240,9 +268,36 @@ class ReferencesFileTest(unittest.TestCase):
         for row in report.load_references(self.path)["rows"]:
             self.assertTrue(row["source"].strip(), row["id"])
             self.assertTrue(row["reference"].strip(), row["id"])
+            # The papers are cited, not files or tickets a reader of the report does not have.
+            for text in (row["source"], row["reference"], row["verdict"]["tolerance"]):
+                self.assertNotRegex(text, r"spec [a-z]+\.md|issue [0-9]+|seeds/", row["id"])
             for spec in row["values"].values():
                 self.assertFalse(spec["file"].endswith(written_by_plot_scripts), row["id"])
                 self.assertTrue(spec["file"].endswith((".json", ".csv")), row["id"])
+
+
+    def test_every_figure_a_plotting_script_saves_has_a_caption_with_units(self):
+        # The names the plot scripts save (save_atomic(fig, DIR, "NAME.png"); plot_campaign's
+        # campaign*.png per run), each matched by a caption that names a unit in brackets.
+        import glob
+        import re
+        references = report.load_references(self.path)
+        captions = references["figures"]
+        for text in captions.values():
+            self.assertRegex(text, r"\[[^\]]+\]")
+        names = set()
+        for script in glob.glob(os.path.join(SOURCE, "python", "plot_*.py")):
+            with open(script, encoding="utf-8") as f:
+                names |= set(re.findall(r'save_atomic\(fig, \w+, "([\w.-]+\.png)"\)', f.read()))
+        names.discard("sweep.png")  # renamed to gait-vs-friction.png by plot_analysis.py
+        names.add("gait-vs-friction.png")
+        runs = {row["run"] for row in references["rows"]}
+        for name in sorted(names):
+            self.assertTrue(any(report.caption(captions, run, name) for run in runs) or
+                            report.caption(captions, "x", name), name)
+        for run in ("humanoid-envelope", "humanoid-push-recovery"):
+            self.assertIsNotNone(report.caption(captions, run, "campaign_balance.mode=pd.png"
+                                                if run == "humanoid-push-recovery" else "campaign.png"), run)
 
 
 class CampaignRowTest(unittest.TestCase):
@@ -260,7 +315,9 @@ class CampaignRowTest(unittest.TestCase):
                     "ours": "{% for m in ['off', 'both'] %}{{ m }}: "
                             "{{ points|where('control.compensation', m)|selectattr('fell')|list|length }} of "
                             "{{ points|where('control.compensation', m)|length }} fell; {% endfor %}",
-                    "reference": "—", "source": "spec"}],
+                    "reference": "—", "source": "spec",
+                    "verdict": {"reproduced": "true", "tolerance": "none"}}],
+                "figures": REFERENCES["figures"],
             }
             tree = RunTree(tmp, references=references)
             write(os.path.join(tmp, "run-b", "campaign.csv"),

@@ -90,5 +90,30 @@ TEST(Sweep, RigidRowHasMcGeersFixedPoint) {
   }
 }
 
+// Below tan(slope) the wheel slides away and has no fixed point: the row's multiplier, period,
+// speed and energy are empty cells (a reader takes them as missing), never 0 (a number).
+TEST(Sweep, RowWithoutFixedPointHasEmptyNumbers) {
+  const Config base = configured({});
+  const SweepSpec spec{.param = "rimless.mu", .from = 0.05, .to = 0.05, .count = 1};
+  const auto header = split_text(sweep_header(), ',');
+  const auto records = parse_csv(sweep_row(base, spec, 0) + "\n");
+  ASSERT_EQ(records.size(), 1u);
+  const auto& row = records[0].fields;
+  ASSERT_EQ(row.size(), header.size()) << records[0].text;
+  for (std::size_t k = 0; k < header.size(); ++k) {
+    if (header[k] == "converged") {
+      EXPECT_EQ(row[k], "false");
+    }
+    if (header[k] == "failure") {
+      EXPECT_NE(row[k], "");
+    }
+    for (const char* empty : {"max_multiplier", "period", "speed", "dissipated_per_cycle"}) {
+      if (header[k] == empty) {
+        EXPECT_EQ(row[k], "") << empty;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace flexgait::rimless

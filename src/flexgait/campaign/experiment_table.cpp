@@ -28,13 +28,6 @@ void set_key(Config& config, const std::string& key, const std::string& value, c
   config.set(key, value, origin);
 }
 
-/// rimless.mu: the one friction coefficient of a sweep (mu_s = mu_k), as `rimless sweep` has it.
-void set_rimless_key(Config& config, const std::string& key, const std::string& value, const std::string& origin) {
-  if (key != "rimless.mu") return config.set(key, value, origin);
-  config.set("rimless.mu_s", value, origin);
-  config.set("rimless.mu_k", value, origin);
-}
-
 template <class R>
 std::vector<std::string> record_keys() {
   std::vector<std::string> keys;
@@ -86,7 +79,7 @@ std::optional<RunDirectory> kept_run(const Config& config, const std::filesystem
 }
 
 Experiment rimless_simulate() {
-  Experiment e{"rimless-simulate", "summary.json", rimless::rimless_schema(), set_rimless_key, {}, {}, {}};
+  Experiment e{"rimless-simulate", "summary.json", rimless::rimless_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { rimless::wheel_setup(c); };
   e.metrics = record_keys<rimless::SimulationResult>();
   e.metrics.insert(e.metrics.begin(), "model");
@@ -121,7 +114,7 @@ std::string fixed_point_summary(const rimless::FixedPointReport& r) {
 }
 
 Experiment rimless_fixed_point() {
-  Experiment e{"rimless-fixed-point", "fixed_point.json", rimless::rimless_analysis_schema(), set_rimless_key, {}, {}, {}};
+  Experiment e{"rimless-fixed-point", "fixed_point.json", rimless::rimless_analysis_schema(), set_key, {}, {}, {}};
   e.check = [](const Config& c) { rimless::wheel_setup(c); };
   // Keys that appear only in some reports (last_iterate, jacobian_note) are not columns.
   e.metrics = json_keys(fixed_point_summary(rimless::FixedPointReport{}), {});

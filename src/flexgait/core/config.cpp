@@ -2,12 +2,14 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fmt/format.h>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "flexgait/core/config_file.hpp"
 #include "flexgait/core/text.hpp"
@@ -56,7 +58,11 @@ void check_range(const ParamSpec& spec, double v, const std::string& text, const
   if (!low_ok || !high_ok) throw ConfigError(spec.key, error_text(origin, spec.key, text, "out of range", &spec));
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
+// Levenshtein distance, letters compared without case (a name typed as rimless.k is rimless.K).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  const auto same = [](char x, char y) {
+    return std::tolower(static_cast<unsigned char>(x)) == std::tolower(static_cast<unsigned char>(y));
+  };
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
   for (std::size_t i = 1; i <= a.size(); ++i) {
@@ -64,26 +70,57 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
     row[0] = i;
     for (std::size_t j = 1; j <= b.size(); ++j) {
       const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same(a[i - 1], b[j - 1]) ? 0 : 1)});
       diag = up;
     }
   }
   return row[b.size()];
 }
 
-// " (did you mean 'rimless.K'?)" for a near miss, else "".
+std::string_view leaf(std::string_view key) {
+  const std::size_t dot = key.rfind('.');
+  return dot == std::string_view::npos ? key : key.substr(dot + 1);
+}
+
+// How far `candidate` is from the mistyped `key`, or nothing if it is no plausible meaning of it.
+// The whole names may differ in up to 3 edits, and the last components (the quantity's own name)
+// in at most half the shorter one's letters: a one-letter name is offered only for a case
+// difference, so rimless.mu never suggests rimless.m, the mass. A last component that begins
+// with the typed one and an underscore (mu -> mu_s) is offered too.
+std::optional<std::size_t> nearness(const std::string& key, const std::string& candidate) {
+  const std::size_t whole = edit_distance(key, candidate);
+  if (whole > 3) return std::nullopt;
+  const std::string_view typed = leaf(key), named = leaf(candidate);
+  const std::size_t last = edit_distance(typed, named);
+  if (2 * last <= std::min(typed.size(), named.size())) return whole;
+  if (named.size() > typed.size() + 1 && named[typed.size()] == '_' &&
+      edit_distance(named.substr(0, typed.size()), typed) == 0)
+    return whole;
+  return std::nullopt;
+}
+
+// " (did you mean 'rimless.K'?)" for a near miss (the nearest names, aliases included), else
+// a pointer to the list of keys.
 std::string suggestion(const Schema& schema, const std::string& key) {
-  if (key.size() > 100) return "";  // no key is that long; spare the quadratic distance
-  std::string best;
-  std::size_t best_d = 4;
-  for (const auto& p : schema.params()) {
-    const std::size_t d = edit_distance(key, p.key);
-    if (d < best_d) {
-      best_d = d;
-      best = p.key;
-    }
+  const std::string fallback = "; `flexgait schema` lists every key";
+  if (key.size() > 100) return fallback;  // no key is that long; spare the quadratic distance
+  std::vector<std::string> names;
+  for (const auto& p : schema.params()) names.push_back(p.key);
+  for (const auto& a : schema.aliases()) names.push_back(a.key);
+  std::vector<std::string> best;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const auto& name : names) {
+    const auto d = nearness(key, name);
+    if (!d || *d > best_d) continue;
+    if (*d < best_d) best.clear();
+    best_d = *d;
+    best.push_back(name);
   }
-  return best.empty() ? "" : fmt::format(" (did you mean '{}'?)", best);
+  if (best.empty()) return fallback;
+  std::string s;
+  for (std::size_t i = 0; i < best.size() && i < 3; ++i)
+    s += fmt::format("{}'{}'", i == 0 ? "" : (i + 1 == std::min<std::size_t>(best.size(), 3) ? " or " : ", "), best[i]);
+  return fmt::format(" (did you mean {}?)", s);
 }
 
 }  // namespace
@@ -175,15 +212,35 @@ ParamSpec boolean_param(std::string key, std::string fallback, std::string doc) 
 }
 
 Schema& Schema::add(ParamSpec spec) {
-  if (find(spec.key) != nullptr) throw std::logic_error("duplicate configuration key " + spec.key);
+  if (find(spec.key) != nullptr || find_alias(spec.key) != nullptr)
+    throw std::logic_error("duplicate configuration key " + spec.key);
   parse_value(spec, spec.fallback, "default");  // a default outside its own domain is a bug
   params_.push_back(std::move(spec));
   return *this;
 }
 
+Schema& Schema::alias(std::string key, std::vector<std::string> parts, std::string doc) {
+  if (find(key) != nullptr || find_alias(key) != nullptr) throw std::logic_error("duplicate configuration key " + key);
+  if (parts.empty()) throw std::logic_error("an alias of no key: " + key);
+  for (const auto& part : parts) {
+    const ParamSpec* p = find(part);
+    if (p == nullptr || p->type != find(parts.front())->type)
+      throw std::logic_error("alias " + key + " of an unknown key or of keys of different types: " + part);
+  }
+  aliases_.push_back({std::move(key), std::move(parts), std::move(doc)});
+  return *this;
+}
+
 Schema& Schema::merge(const Schema& other) {
   for (const auto& p : other.params()) add(p);
+  for (const auto& a : other.aliases()) alias(a.key, a.parts, a.doc);
   return *this;
+}
+
+const ParamAlias* Schema::find_alias(const std::string& key) const {
+  for (const auto& a : aliases_)
+    if (a.key == key) return &a;
+  return nullptr;
 }
 
 const ParamSpec* Schema::find(const std::string& key) const {
@@ -214,14 +271,26 @@ void check_with_origin(const Config& config, const std::function<void()>& check)
   } catch (const ConfigError& e) {
     if (e.key().empty() || config.schema().find(e.key()) == nullptr) throw;
     // The blamed key's origin in front; every other key the message names, with its own origin
-    // where that differs (a file's value checked against a --set one: both places are named).
-    const std::string& blamed = config.origin(e.key());
+    // where that differs (a file's value checked against a --set one: both places are named). A
+    // default is blamed on the value given against it: --set rimless.mu_s=0.1 against the default
+    // rimless.mu_k leads with "--set:" and says that rimless.mu_k is a default.
+    std::string blamed = config.origin(e.key());
     std::string others;
     const std::string what = e.what();
-    for (const ParamSpec& p : config.schema().params()) {
-      if (p.key == e.key() || !mentions(what, p.key) || config.origin(p.key) == blamed) continue;
-      others += fmt::format("{}{} from {}", others.empty() ? "" : "; ", p.key, config.origin(p.key));
+    std::vector<const ParamSpec*> named;
+    for (const ParamSpec& p : config.schema().params())
+      if (p.key == e.key() || mentions(what, p.key)) named.push_back(&p);
+    if (blamed == "default")
+      for (const ParamSpec* p : named)
+        if (config.origin(p->key) != "default") {
+          blamed = config.origin(p->key);
+          break;
+        }
+    for (const ParamSpec* p : named) {
+      if (config.origin(p->key) == blamed) continue;
+      others += fmt::format("{}{} from {}", others.empty() ? "" : "; ", p->key, config.origin(p->key));
     }
+    if (blamed == "default") blamed = "the defaults";
     throw ConfigError(e.key(), blamed + ": " + what + (others.empty() ? "" : " (" + others + ")"));
   }
 }
@@ -446,6 +515,13 @@ const std::vector<double>& Config::reals(const std::string& key) const {
 const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
 
 void Config::set(const std::string& key, const std::string& text, const std::string& origin, bool list) {
+  if (const ParamAlias* alias = schema_.find_alias(key)) {
+    ParamSpec named = *schema_.find(alias->parts.front());  // a bad value is named under the alias
+    named.key = alias->key;
+    parse_value(named, text, origin);
+    for (const std::string& part : alias->parts) set(part, text, origin, list);
+    return;
+  }
   const ParamSpec* spec = schema_.find(key);
   if (spec == nullptr)
     throw ConfigError(key, fmt::format("{}: unknown key '{}' (value '{}'){}", origin, one_line(key), one_line(text),

@@ -82,18 +82,31 @@ ParamSpec boolean_param(std::string key, std::string fallback, std::string doc);
 /// Free text (a name or a path): any one-line value that is not empty.
 ParamSpec text_param(std::string key, std::string fallback, std::string doc);
 
+/// A key that stands for several keys of one quantity, each set to the alias's value (rimless.mu:
+/// rimless.mu_s = rimless.mu_k). It holds no value of its own: a configuration writes its parts.
+struct ParamAlias {
+  std::string key;
+  std::vector<std::string> parts;
+  std::string doc;
+};
+
 /// The set of keys a command accepts, in declaration order.
 class Schema {
  public:
   /// Adds a parameter; throws std::logic_error on a duplicate key or a default outside the domain.
   Schema& add(ParamSpec spec);
-  /// Adds every parameter of another schema.
+  /// Adds an alias of keys already in the schema, all of one type; throws std::logic_error otherwise.
+  Schema& alias(std::string key, std::vector<std::string> parts, std::string doc);
+  /// Adds every parameter and alias of another schema.
   Schema& merge(const Schema& other);
   const ParamSpec* find(const std::string& key) const;
+  const ParamAlias* find_alias(const std::string& key) const;
   const std::vector<ParamSpec>& params() const { return params_; }
+  const std::vector<ParamAlias>& aliases() const { return aliases_; }
 
  private:
   std::vector<ParamSpec> params_;
+  std::vector<ParamAlias> aliases_;
 };
 
 using ConfigScalar = std::variant<double, std::int64_t, bool, std::string>;
@@ -126,8 +139,8 @@ class Config {
   const std::string& origin(const std::string& key) const;
   /// The key (ParamSpec::derived non-empty) is to be derived: left unset or set to `auto`.
   bool derived(const std::string& key) const { return derived_.count(key) > 0; }
-  /// Replaces a value after validation against the schema (used by sweeps).
-  /// `list`: the text is a YAML list from a file (refused by a key that takes one value: not List or Reals).
+  /// Replaces a value after validation against the schema (used by sweeps); an alias sets each of
+  /// its parts. `list`: the text is a YAML list from a file (refused by a key that takes one value: not List or Reals).
   void set(const std::string& key, const std::string& text, const std::string& origin = "--set", bool list = false);
   /// The resolved configuration as nested YAML, keys in schema order; round-trips through load.
   std::string to_yaml() const;

@@ -9,12 +9,14 @@ namespace flexgait::rimless {
 Schema rimless_schema() {
   Schema s = schema_of<WheelParams>();
   s.merge(schema_of<InitialState>()).merge(schema_of<SimulationOptions>());
-  return s;
+  return s.alias("rimless.mu", {"rimless.mu_s", "rimless.mu_k"},
+                 "one friction coefficient: sets rimless.mu_s and rimless.mu_k to the same value");
 }
 
 void validate(const WheelParams& w, const InitialState& s) {
   if (w.mu_k > w.mu_s)
-    throw ConfigError("rimless.mu_k", fmt::format("key 'rimless.mu_k' = '{}': must not exceed rimless.mu_s = {}",
+    throw ConfigError("rimless.mu_k", fmt::format("key 'rimless.mu_k' = '{}': must not exceed rimless.mu_s = {}; lower "
+                                                  "rimless.mu_k too, or set both with rimless.mu",
                                                   w.mu_k, w.mu_s));
   if (w.friction == Friction::Coulomb) {
     const WheelParams d;

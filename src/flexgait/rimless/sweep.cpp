@@ -70,10 +70,12 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
                         format_number(fp.multipliers[k].imag()));
     max_mult = std::max(max_mult, std::abs(fp.multipliers[k]));
   }
+  // A point without a fixed point has no multiplier, period, speed or energy: empty cells, not 0.
+  const auto found = [&](double v) { return fp.converged ? format_number(v) : std::string(); };
   row += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", fp.converged ? "true" : "false",
-                     fp.point.flight ? "flight" : mode_name(fp.point.mode), state, mult, format_number(max_mult),
-                     fp.stable ? "true" : "false", fp.gait, format_number(fp.period), format_number(fp.speed),
-                     format_number(fp.dissipated), format_number(fp.residual), fp.iterations, csv_field(fp.failure()));
+                     fp.point.flight ? "flight" : mode_name(fp.point.mode), state, mult, found(max_mult),
+                     fp.stable ? "true" : "false", fp.gait, found(fp.period), found(fp.speed), found(fp.dissipated),
+                     format_number(fp.residual), fp.iterations, csv_field(fp.failure()));
   return row;
 }
 
