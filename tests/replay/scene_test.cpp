@@ -13,42 +13,25 @@
 namespace flexgait::replay {
 namespace {
 
-std::vector<unsigned char> unbase64(const std::string& s) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    return c == '+' ? 62 : c == '/' ? 63 : -1;
-  };
-  std::vector<unsigned char> out;
-  unsigned bits = 0;
-  int n = 0;
-  for (char c : s) {
-    const int v = value(c);
-    if (v < 0) break;
-    bits = (bits << 6) | static_cast<unsigned>(v);
-    n += 6;
-    if (n >= 8) {
-      n -= 8;
-      out.push_back(static_cast<unsigned char>((bits >> n) & 0xff));
-    }
-  }
-  return out;
-}
-
 template <class T>
-std::vector<T> decode(const std::string& s) {
-  const auto bytes = unbase64(s);
+std::vector<T> decode(const nlohmann::json& s) {
+  const auto bytes = unbase64(s.get<std::string>());
   std::vector<T> v(bytes.size() / sizeof(T));
   std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
   return v;
 }
 
-TEST(Base64, Rfc4648Vectors) {
+TEST(Base64, Rfc4648VectorsBothWays) {
   for (const auto& [in, out] : std::vector<std::pair<std::string, std::string>>{
            {"", ""}, {"f", "Zg=="}, {"fo", "Zm8="}, {"foo", "Zm9v"}, {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="},
-           {"foobar", "Zm9vYmFy"}})
+           {"foobar", "Zm9vYmFy"}}) {
     EXPECT_EQ(base64(in.data(), in.size()), out) << in;
+    const auto back = unbase64(out);
+    EXPECT_EQ(std::string(back.begin(), back.end()), in) << out;
+  }
+  EXPECT_THROW(unbase64("Zm9"), std::invalid_argument);    // not a multiple of 4
+  EXPECT_THROW(unbase64("Zm=v"), std::invalid_argument);   // padding inside
+  EXPECT_THROW(unbase64("Zm9*"), std::invalid_argument);   // outside the alphabet
 }
 
 Scene two_frames() {
@@ -110,6 +93,19 @@ TEST(ReplayHtml, HoldsTheBlockOnceAndNoEarlyScriptEnd) {
   // Offline: the page loads nothing from elsewhere (no script or stylesheet by address).
   EXPECT_EQ(html.find("<script src"), std::string::npos);
   EXPECT_EQ(html.find("<link "), std::string::npos);
+}
+
+TEST(ReplayHtml, ReadsBackTheSceneItHolds) {
+  if (!replay_page_available()) GTEST_SKIP() << "built with FLEXGAIT_REPLAY=OFF";
+  const Scene s = two_frames();
+  const Scene back = parse_replay_html(replay_html(s));
+  EXPECT_EQ(back.title, s.title);
+  EXPECT_EQ(back.time, s.time);
+  EXPECT_EQ(replay_json(back), replay_json(s));  // every field, bit for bit
+  EXPECT_THROW(parse_replay_html("<html></html>"), std::invalid_argument);
+  std::string broken = replay_html(s);
+  broken.replace(broken.find("\"poses\":\"") + 9, 4, "!!!!");
+  EXPECT_THROW(parse_replay_html(broken), std::invalid_argument);
 }
 
 }  // namespace

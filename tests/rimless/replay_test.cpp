@@ -72,5 +72,19 @@ TEST(WheelReplay, FramesAreLoggedSamples) {
   }
 }
 
+TEST(WheelReplay, KeepsAtMostMaxFramesAndSaysSo) {
+  WheelParams w;
+  SimulationOptions o;
+  o.steps = 2;
+  SimulationResult forwarded;
+  RunCollector collector(forwarded);
+  WheelReplay replay(w, collector, 0.01, "capped", 5);
+  (void)simulate_flexible(w, InitialState{}, o, replay);
+  const replay::Scene& s = replay.finish();
+  EXPECT_EQ(s.frames(), 5);
+  EXPECT_NE(s.title.find("the first 0.0"), std::string::npos) << s.title;
+  EXPECT_GT(forwarded.samples.size(), 100u);  // the log itself is whole
+}
+
 }  // namespace
 }  // namespace flexgait::rimless

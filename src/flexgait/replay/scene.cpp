@@ -1,6 +1,7 @@
 #include "flexgait/replay/scene.hpp"
 
 #include <bit>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -108,7 +109,43 @@ std::string base64(const void* bytes, std::size_t size) {
   return out;
 }
 
+std::vector<unsigned char> unbase64(std::string_view text) {
+  if (text.size() % 4 != 0) throw std::invalid_argument("base64: length not a multiple of 4");
+  auto value = [](char c) -> int {
+    if (c >= 'A' && c <= 'Z') return c - 'A';
+    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+    if (c >= '0' && c <= '9') return c - '0' + 52;
+    return c == '+' ? 62 : c == '/' ? 63 : -1;
+  };
+  std::vector<unsigned char> out;
+  out.reserve(text.size() / 4 * 3);
+  for (std::size_t i = 0; i < text.size(); i += 4) {
+    unsigned v = 0;
+    int pad = 0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const char c = text[i + k];
+      const int d = c == '=' && i + 4 == text.size() && k >= 2 ? (++pad, 0) : value(c);
+      if (d < 0 || (pad > 0 && c != '=')) throw std::invalid_argument("base64: a character outside the alphabet");
+      v = (v << 6) | static_cast<unsigned>(d);
+    }
+    out.push_back(static_cast<unsigned char>(v >> 16));
+    if (pad < 2) out.push_back(static_cast<unsigned char>((v >> 8) & 0xff));
+    if (pad < 1) out.push_back(static_cast<unsigned char>(v & 0xff));
+  }
+  return out;
+}
+
 namespace {
+
+template <class T>
+std::vector<T> from_b64(const nlohmann::json& j, const char* what) {
+  if (!j.is_string()) throw std::invalid_argument(std::string("replay: ") + what + " is not a base64 string");
+  const auto bytes = unbase64(j.get<std::string>());
+  if (bytes.size() % sizeof(T) != 0) throw std::invalid_argument(std::string("replay: ") + what + " has a partial value");
+  std::vector<T> v(bytes.size() / sizeof(T));
+  std::memcpy(v.data(), bytes.data(), bytes.size());
+  return v;
+}
 
 template <class T>
 std::string b64(const std::vector<T>& v) {
@@ -188,6 +225,87 @@ std::string replay_json(const Scene& scene) {
     if (text[i] == '<' && i + 1 < text.size() && text[i + 1] == '/') out.push_back('\\');
   }
   return out;
+}
+
+namespace {
+
+GeomType geom_type(const std::string& name) {
+  for (GeomType t : {GeomType::Plane, GeomType::Sphere, GeomType::Capsule, GeomType::Ellipsoid, GeomType::Cylinder,
+                     GeomType::Box, GeomType::Mesh})
+    if (name == geom_type_name(t)) return t;
+  throw std::invalid_argument("replay: unknown geom type " + name);
+}
+
+Geom geom_from(const nlohmann::json& j) {
+  Geom g;
+  g.type = geom_type(j.at("type").get<std::string>());
+  g.size = j.at("size").get<std::array<double, 3>>();
+  g.pos = j.at("pos").get<std::array<double, 3>>();
+  g.quat = j.at("quat").get<std::array<double, 4>>();
+  g.rgba = j.at("rgba").get<std::array<float, 4>>();
+  g.checker = j.value("checker", false);
+  if (g.type == GeomType::Mesh) {
+    g.vertices = from_b64<float>(j.at("vertices"), "a mesh's vertices");
+    g.faces = from_b64<std::uint32_t>(j.at("faces"), "a mesh's faces");
+  }
+  return g;
+}
+
+}  // namespace
+
+Scene parse_replay_html(std::string_view html) {
+  constexpr std::string_view kOpen = R"(<script id="flexgait-replay-data" type="application/json">)";
+  const std::size_t at = html.find(kOpen);
+  const std::size_t end = at == std::string_view::npos ? at : html.find("</script>", at);
+  if (end == std::string_view::npos) throw std::invalid_argument("no flexgait replay data block in the page");
+  const std::string_view block = html.substr(at + kOpen.size(), end - at - kOpen.size());
+  Scene s;
+  try {
+    const auto j = nlohmann::json::parse(block);
+    if (j.value("format", "") != "flexgait-replay" || j.value("version", 0) != 1)
+      throw std::invalid_argument("replay: not format flexgait-replay version 1");
+    s.title = j.value("title", "");
+    const auto& c = j.at("camera");
+    s.camera = {c.at("target").get<std::array<double, 3>>(), c.at("distance").get<double>(),
+                c.at("azimuth").get<double>(), c.at("elevation").get<double>(), c.value("follow", "")};
+    s.shadow_extent = j.value("shadow_extent", 6.0);
+    s.time = from_b64<double>(j.at("time"), "time");
+    for (const auto& g : j.at("statics")) s.statics.push_back(geom_from(g));
+    for (const auto& b : j.at("bodies")) {
+      Body body{b.at("name").get<std::string>(), {}};
+      for (const auto& g : b.at("geoms")) body.geoms.push_back(geom_from(g));
+      s.bodies.push_back(std::move(body));
+    }
+    s.poses = from_b64<float>(j.at("poses"), "poses");
+    for (const auto& lj : j.at("layers")) {
+      Layer l;
+      l.name = lj.at("name").get<std::string>();
+      const std::string kind = lj.at("kind").get<std::string>();
+      bool known = false;
+      for (LayerKind k : {LayerKind::Segments, LayerKind::Springs, LayerKind::Arrows, LayerKind::Points})
+        if (kind == layer_kind_name(k)) l.kind = k, known = true;
+      if (!known) throw std::invalid_argument("replay: unknown layer kind " + kind);
+      l.count = lj.at("count").get<int>();
+      l.width = lj.at("width").get<double>();
+      l.turns = lj.value("turns", 10);
+      l.palette = lj.at("palette").get<std::vector<std::array<float, 4>>>();
+      l.legend = lj.value("legend", std::vector<std::string>{});
+      l.visible = lj.value("visible", true);
+      l.data = from_b64<float>(lj.at("data"), "a layer's items");
+      l.color = from_b64<std::uint8_t>(lj.at("color"), "a layer's colours");
+      s.layers.push_back(std::move(l));
+    }
+    for (const auto& sj : j.at("signals"))
+      s.signals.push_back({sj.at("name").get<std::string>(), sj.value("unit", ""), from_b64<float>(sj.at("data"), "a signal")});
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("replay data block: ") + e.what());
+  }
+  try {
+    s.check();
+  } catch (const std::logic_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return s;
 }
 
 bool replay_page_available() { return detail::kReplayTemplateSize > 1; }

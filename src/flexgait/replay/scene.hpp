@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace flexgait::replay {
@@ -108,7 +109,13 @@ bool replay_page_available();
 /// std::runtime_error if !replay_page_available().
 std::string replay_html(const Scene& scene);
 
-/// Standard base64 (RFC 4648, with padding) of `size` bytes.
+/// The scene in a page that replay_html wrote (its JSON block read back), e.g. to draw a run's
+/// replay offscreen. Throws std::invalid_argument saying what is missing or malformed.
+Scene parse_replay_html(std::string_view html);
+
+/// Standard base64 (RFC 4648, with padding) of `size` bytes, and back (std::invalid_argument for
+/// a character outside the alphabet or a length that is not a multiple of 4).
 std::string base64(const void* bytes, std::size_t size);
+std::vector<unsigned char> unbase64(std::string_view text);
 
 }  // namespace flexgait::replay

@@ -21,8 +21,8 @@ std::array<double, 3> slope_to_world(const WheelParams& w, double x, double y) {
   return {x * c + y * s, 0.0, -x * s + y * c};
 }
 
-WheelReplay::WheelReplay(const WheelParams& w, RunSink& next, double frame_dt, std::string title)
-    : w_(w), next_(next), frame_dt_(frame_dt), force_scale_(0.4 * w.L0 / (w.m * w.g)) {
+WheelReplay::WheelReplay(const WheelParams& w, RunSink& next, double frame_dt, std::string title, int max_frames)
+    : w_(w), next_(next), frame_dt_(frame_dt), force_scale_(0.4 * w.L0 / (w.m * w.g)), max_frames_(max_frames) {
   replay::Scene& s = scene_;
   s.title = title.empty() ? fmt::format("rimless wheel: {} legs, slope {:g} rad, mu_s {:g}, mu_k {:g}", w.legs, w.slope,
                                         w.mu_s, w.mu_k)
@@ -80,6 +80,10 @@ WheelReplay::WheelReplay(const WheelParams& w, RunSink& next, double frame_dt, s
 void WheelReplay::on_sample(const LogSample& sample) {
   next_.on_sample(sample);
   if (sample.t < next_frame_ && scene_.frames() > 0) return;
+  if (scene_.frames() >= max_frames_) {
+    truncated_ = true;
+    return;
+  }
   while (next_frame_ <= sample.t) next_frame_ += frame_dt_;
   replay::Scene& s = scene_;
   const int f = s.add_frame(sample.t);
@@ -130,6 +134,9 @@ const replay::Scene& WheelReplay::finish() {
   slope.rgba = {0.82F, 0.78F, 0.7F, 1.0F};
   slope.checker = true;
   scene_.statics = {slope};
+  if (truncated_ && scene_.frames() > 0)
+    scene_.title += fmt::format(" (the first {:.1f} s of the run)", scene_.time.back());
+  truncated_ = false;
   return scene_;
 }
 

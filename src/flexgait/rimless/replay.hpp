@@ -23,13 +23,16 @@ namespace flexgait::rimless {
 std::array<double, 3> slope_to_world(const WheelParams& w, double x, double y);
 
 /// Records a frame every `frame_dt` of simulated time (the first log sample at or after each
-/// frame time: frames are logged samples, bit for bit) and hands every callback on to `next`.
+/// frame time: frames are logged samples, bit for bit), at most `max_frames` (the page stays near
+/// 10 MB or less: ~0.8 KB a frame for 10 legs; the title then says how much it shows), and hands
+/// every callback on to `next`.
 class WheelReplay final : public RunSink {
  public:
   /// Palette indices of the feet layer.
   enum Mode : int { kStick = 0, kSlip = 1, kFree = 2 };
   /// Arrow length per newton [m/N]: m g is drawn 0.4 L0 long.
-  WheelReplay(const WheelParams& w, RunSink& next, double frame_dt = 1.0 / 60.0, std::string title = "");
+  WheelReplay(const WheelParams& w, RunSink& next, double frame_dt = 1.0 / 60.0, std::string title = "",
+              int max_frames = 12000);
   void on_start(double energy_initial) override { next_.on_start(energy_initial); }
   void on_sample(const LogSample& sample) override;
   void on_event(const EventRecord& event) override { next_.on_event(event); }
@@ -45,6 +48,8 @@ class WheelReplay final : public RunSink {
   WheelParams w_;
   RunSink& next_;
   double frame_dt_, next_frame_ = 0, force_scale_;
+  int max_frames_;
+  bool truncated_ = false;
   double x_min_ = 0, x_max_ = 0;
   replay::Scene scene_;
 };
