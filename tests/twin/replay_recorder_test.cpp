@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "flexgait/twin/detail/mujoco.hpp"
@@ -54,6 +55,26 @@ TEST(ReplayRecorder, FramesHoldTheStatesBodyPoses) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(layer.data[3 + i], arrow->to[i], 1e-6);
   EXPECT_NEAR(std::hypot(arrow->to[0] - arrow->from[0], arrow->to[2] - arrow->from[2]), 0.1 + kPushScale * 10, 1e-12);
   EXPECT_THROW(now.record(plant, 5.0, {}, std::vector<double>{1.0}), std::logic_error);  // no such signal
+}
+
+TEST(ReplayRecorder, ATenStepWalksPageStaysUnderFiveMegabytes) {
+  // A 10-step walk: ~12 s at 50 frames per second (the recorder's default), 600 frames, with the
+  // plan's 24 footprints and 4 signals. The page: the viewer (~0.6 MB) and the data block.
+  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  plant.reset(standing_pose(RobotParams{}, 0.75));
+  ReplayRecorder rec(plant, "walk", {{"a", ""}, {"b", ""}, {"c", ""}, {"d", ""}});
+  rec.set_planned_footprints(std::vector<FootprintMarker>(24));
+  const std::vector<double> values{1, 2, 3, 4};
+  RenderMarkers markers;
+  markers.zmp = markers.com_ground = markers.capture_point = std::array<double, 3>{0.1, 0.2, 0};
+  rec.record(plant, 0.0, markers, values);
+  const double one = static_cast<double>(replay::replay_json(rec.scene()).size());
+  for (int f = 1; f <= 100; ++f) rec.record(plant, f * 0.02, markers, values);
+  const double per_frame = (static_cast<double>(replay::replay_json(rec.scene()).size()) - one) / 100;
+  const double page = 0.6e6 + one + 600 * per_frame;
+  std::printf("humanoid replay: %.0f bytes a frame, %.0f bytes of scene; a 600-frame page ~%.2f MB\n", per_frame, one,
+              page / 1e6);
+  EXPECT_LT(page, 5e6);
 }
 
 TEST(ReplayRecorder, PlannedFootprintsAreStaticBoxes) {
