@@ -70,7 +70,9 @@ class Renderer {
   /// offheight bound the size). Throws UsageError for a size outside 1 .. the buffer and
   /// std::runtime_error when no OSMesa context can be made.
   Renderer(const HumanoidPlant& plant, const RenderView& view);
-  Renderer(const HumanoidPlant& plant, int width, int height) : Renderer(plant, RenderView{width, height}) {}
+  /// A camera that follows the pelvis (kFollow), for callers that do not know the walk's stretch.
+  Renderer(const HumanoidPlant& plant, int width, int height)
+      : Renderer(plant, RenderView{width, height, CameraView::kFollow}) {}
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
