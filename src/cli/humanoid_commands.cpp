@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <tuple>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -20,6 +21,7 @@
 #include "flexgait/robot/urdf_export.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
 #include "options.hpp"
+#include "render_command.hpp"
 
 namespace flexgait::cli {
 namespace {
@@ -147,14 +149,37 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
 }
 
 struct RenderOptions {
-  bool enabled = false;  ///< --render
-  double fps = 25.0;     ///< --fps [1/s]
-  int width = 640, height = 480;
+  bool enabled = false;         ///< --render
+  double fps = 25.0;            ///< --fps [1/s]
+  std::string size = "1280x720";  ///< --size WIDTHxHEIGHT [pixels]
+  std::string camera = "side";  ///< --camera side | follow | front
 };
+
+/// The render's view: --size and --camera checked (exit 2 naming the option), the side camera
+/// framing the plan's footprints.
+humanoid::RenderView render_view(const RenderOptions& render, const walking::WalkPlan& plan) {
+  humanoid::RenderView view;
+  std::tie(view.width, view.height) = parse_render_size(render.size, "--size", 1280, 720);
+  const auto camera = humanoid::camera_view(render.camera);
+  if (!camera)
+    throw UsageError(fmt::format("--camera '{}': expected side, follow or front", one_line(render.camera, 100)));
+  view.camera = *camera;
+  view.walk_from = view.walk_to = plan.initial[0].x;
+  auto cover = [&](const walking::Footprint& f) {
+    view.walk_from = std::min(view.walk_from, f.x);
+    view.walk_to = std::max(view.walk_to, f.x);
+  };
+  for (const auto& f : plan.initial) cover(f);
+  for (const auto& f : plan.final) cover(f);
+  for (const auto& step : plan.steps) cover(step.to);
+  return view;
+}
 
 int walk(const RunOptions& run, const RenderOptions& render) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
+  const walking::WalkPlan plan = walking::plan_footsteps(params.walk);
+  const humanoid::RenderView view = render.enabled ? render_view(render, plan) : humanoid::RenderView{};  // exit 2 before any file
   const RunDirectory dir(run.out);
   dir.write_config(experiments::with_derived_values(config, params));
   if (params.loaded && !run.json)
@@ -163,7 +188,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
       fmt::print("{}: {} leg IK {}\n", params.description.description, side == 0 ? "left" : "right",
                  why.empty() ? "analytic" : "numeric (" + why + ")");
     }
-  ProgressBar bar(walking::plan_footsteps(params.walk).duration, "s simulated");
+  ProgressBar bar(plan.duration, "s simulated");
   // --render: PNG frames of the twin (OSMesa, offscreen) at --fps, then video.mp4 via ffmpeg.
   std::unique_ptr<humanoid::Renderer> renderer;
   int frame = 0;
@@ -174,9 +199,9 @@ int walk(const RunOptions& run, const RenderOptions& render) {
     std::filesystem::create_directories(dir.path() / "frames");
     observe = [&](const humanoid::HumanoidPlant& plant) {
       if (period++ % every != 0) return;
-      if (!renderer) renderer = std::make_unique<humanoid::Renderer>(plant, render.width, render.height);
+      if (!renderer) renderer = std::make_unique<humanoid::Renderer>(plant, view);
       const auto& rgb = renderer->render(plant);
-      dir.write(fmt::format("frames/frame_{:05d}.png", frame++), humanoid::encode_png(rgb, render.width, render.height));
+      dir.write(fmt::format("frames/frame_{:05d}.png", frame++), humanoid::encode_png(rgb, view.width, view.height));
     };
   }
   // (the log streamed to disk: memory flat in the walk's length)
@@ -277,6 +302,12 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
               "write PNG frames of the twin to OUT/frames (offscreen, OSMesa) and OUT/video.mp4 if ffmpeg is present");
   w->add_option("--fps", walk_render->fps, "frames per second of simulated time for --render (1/s)")
       ->check(finite_number() & CLI::Range(1.0, 250.0));
+  w->add_option("--size", walk_render->size, "frame size for --render, WIDTHxHEIGHT in pixels (at most 1280x720)")
+      ->capture_default_str();
+  w->add_option("--camera", walk_render->camera,
+                "camera for --render: side (fixed, the walk passes through the frame), follow (behind the pelvis) or "
+                "front (ahead of the pelvis)")
+      ->capture_default_str();
   w->callback([walk_run, walk_render, &action] {
     action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); };
   });

@@ -16,6 +16,7 @@
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
+#include "flexgait/rimless/replay.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 #include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/gait_branch.hpp"
@@ -47,10 +48,13 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   // log.csv, events.csv and steps.csv are written while the run goes: memory does not grow
   // with the number of steps.
   rimless::RunFiles files(dir);
+  // replay.html: a frame every 1/60 s of simulated time, recorded from the same samples.
+  rimless::WheelReplay replay(s.wheel, files);
   const rimless::SimulationResult result = s.sim.model == rimless::Model::Rigid
-                                               ? rimless::simulate_rigid(s.wheel, s.initial, s.sim, files)
-                                               : rimless::simulate_flexible(s.wheel, s.initial, s.sim, files);
+                                               ? rimless::simulate_rigid(s.wheel, s.initial, s.sim, replay)
+                                               : rimless::simulate_flexible(s.wheel, s.initial, s.sim, replay);
   files.finish();
+  if (replay::replay_page_available()) dir.write("replay.html", replay::replay_html(replay.finish()));
   dir.write("summary.json", rimless::summary_json(result, model));
   if (a.run.plot) run_plot_script("plot_rimless.py", {dir.path().string()});
   if (a.run.json) {

@@ -44,9 +44,9 @@ double mujoco_floor(const HumanoidPlant& plant, double x, double y) {
 
 TEST(Terrain, FlatFloorIsThePlaneOfEarlierVersions) {
   const std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
-  EXPECT_NE(xml.find(R"(    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="1 0.005 0.0001" solref="0.005 1" rgba=".8 .85 .8 1"/>
+  EXPECT_NE(xml.find(R"(    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="1 0.005 0.0001" solref="0.005 1" material="flexgait_floor"/>
     <body name="pelvis")"), std::string::npos);
-  EXPECT_EQ(xml.find("asset"), std::string::npos);
+  EXPECT_EQ(xml.find("<hfield"), std::string::npos);  // no height field (the assets are the look: sky, floor)
   EXPECT_EQ(Terrain(TerrainParams{}).height(1.3, -0.4), 0.0);
 }
 

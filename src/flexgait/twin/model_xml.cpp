@@ -129,6 +129,23 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
   return twin_document("flexgait_thormang_twin", false, r.sole_friction, p, pelvis, "");
 }
 
+std::string look_visual_mjcf(int width, int height) {
+  return fmt::format(R"(  <visual>
+    <global offwidth="{}" offheight="{}"/>
+    <quality shadowsize="4096"/>
+    <headlight ambient=".3 .3 .3" diffuse=".35 .35 .35" specular="0 0 0"/>
+  </visual>
+)",
+                     width, height);
+}
+
+std::string look_assets_mjcf() {
+  return R"(    <texture name="flexgait_sky" type="skybox" builtin="gradient" rgb1=".42 .6 .85" rgb2=".93 .95 .98" width="256" height="1536"/>
+    <texture name="flexgait_grid" type="2d" builtin="checker" rgb1=".86 .87 .84" rgb2=".72 .75 .71" mark="edge" markrgb=".35 .35 .35" width="512" height="512"/>
+    <material name="flexgait_floor" texture="flexgait_grid" texrepeat="1 1" texuniform="true"/>
+)";
+}
+
 std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& p,
                           const std::string& bodies, const std::string& contact) {
   const TerrainMjcf floor = terrain_mjcf(p.terrain, sole_friction, p.contact_time_constant);
@@ -140,9 +157,10 @@ std::string twin_document(const std::string& model, bool inertia_from_geom, doub
     <geom contype="0" conaffinity="0" rgba=".75 .75 .75 1"/>
     <site rgba="1 0 0 1"/>
   </default>
-  <visual><global offwidth="1280" offheight="720"/></visual>
-{asset}  <worldbody>
-    <light pos="0 -2 4" dir="0 0.4 -1" directional="true"/>
+{visual}  <asset>
+{look}{asset}  </asset>
+  <worldbody>
+    <light pos="0 -2 4" dir="0 0.4 -1" directional="true" castshadow="true" diffuse=".75 .75 .75"/>
 {floor}{bodies}  </worldbody>
 {contact}  <sensor>
     <force name="l_ft_force" site="l_ft"/>
@@ -155,7 +173,8 @@ std::string twin_document(const std::string& model, bool inertia_from_geom, doub
   </sensor>
 </mujoco>
 )",
-                     fmt::arg("asset", floor.asset.empty() ? "" : "  <asset>\n" + floor.asset + "  </asset>\n"),
+                     fmt::arg("asset", floor.asset), fmt::arg("visual", look_visual_mjcf(1280, 720)),
+                     fmt::arg("look", look_assets_mjcf()),
                      fmt::arg("floor", floor.geoms), fmt::arg("model", model), fmt::arg("ifg", inertia_from_geom ? "true" : "false"),
                      fmt::arg("dt", p.physics_dt),
                      fmt::arg("bodies", bodies), fmt::arg("contact", contact));

@@ -20,6 +20,13 @@ std::string humanoid_mjcf(const RobotParams& robot, const PlantParams& plant);
 /// physics options from `plant`, the floor (plant.terrain, terrain.hpp; friction sole_friction, contact time constant), the
 /// robot's `bodies` (MJCF body elements, indented for the worldbody), `contact` (a <contact>
 /// element or ""), and the F/T and IMU sensors on the sites l_ft, r_ft and imu.
+/// The look that the twin's pictures and the replay scenes' share (renderer.hpp): the <visual>
+/// element (offscreen buffer width × height [pixels], a 4096² shadow map, a dim headlight) and the
+/// <asset> entries flexgait_sky (a gradient skybox), flexgait_grid and flexgait_floor (the
+/// checkered floor: 0.5 m squares, a line every 1 m).
+std::string look_visual_mjcf(int width, int height);
+std::string look_assets_mjcf();
+
 std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& plant,
                           const std::string& bodies, const std::string& contact);
 

@@ -90,7 +90,7 @@ double Terrain::height(double x, double y) const {
 }
 
 TerrainMjcf terrain_mjcf(const TerrainParams& p, double mu, double tc) {
-  const std::string contact = fmt::format(R"(contype="1" conaffinity="1" friction="{} 0.005 0.0001" solref="{} 1" rgba=".8 .85 .8 1")", mu, tc);
+  const std::string contact = fmt::format(R"(contype="1" conaffinity="1" friction="{} 0.005 0.0001" solref="{} 1" material="flexgait_floor")", mu, tc);
   TerrainMjcf out;
   switch (p.kind) {
     case TerrainKind::kFlat:

@@ -90,7 +90,8 @@ class Terrain {
 };
 
 /// The floor as MJCF: `asset` (the height field's element, inside <asset>, or "") and `geoms`
-/// (world geoms, the first named "floor", the others floor_1, ...; friction and the contact's
+/// (world geoms, the first named "floor", the others floor_1, ...; material flexgait_floor, which the
+/// document around them defines (the checkered floor); friction and the contact's
 /// time constant as the soles'). The height field's data is not in the text: MuJoCo 2.2 reads it
 /// from a file only, so the plant writes Terrain::grid() into the model's hfield_data.
 struct TerrainMjcf {

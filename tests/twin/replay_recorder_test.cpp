@@ -1,0 +1,92 @@
+// The twin's replay: every visible body is recorded with its geoms, a frame's poses are the
+// state's (xpos, xquat) to float32, the floor is a checkered static plane, frames come every
+// frame_dt, and the push arrow is the renderer's.
+#include "flexgait/twin/replay_recorder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "flexgait/twin/detail/mujoco.hpp"
+
+namespace flexgait::humanoid {
+namespace {
+
+TEST(ReplayRecorder, FramesHoldTheStatesBodyPoses) {
+  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  const JointVector pose = standing_pose(RobotParams{}, 0.75);
+  plant.reset(pose);
+  ReplayRecorder rec(plant, "standing", {{"pelvis z", "m"}}, 0.02);
+  const mjModel* m = plant_model(plant);
+  ASSERT_GT(rec.scene().bodies.size(), 10u);
+  EXPECT_EQ(rec.scene().bodies.front().name, "pelvis");
+  bool floor = false;
+  for (const auto& g : rec.scene().statics) floor |= g.type == replay::GeomType::Plane && g.checker;
+  EXPECT_TRUE(floor);
+  plant.set_push(Push{0.0, PushBody::kChest, {10, 0, 0}, 0.1});
+  double t = 0;
+  for (int i = 0; i < 20; ++i, t += m->opt.timestep) {
+    plant.step(pose);
+    const double z = plant_data(plant)->xpos[3 * rec.body_ids().front() + 2];
+    rec.record(plant, t, {}, std::vector<double>{z});
+  }
+  const replay::Scene& s = rec.scene();
+  // A frame every 0.02 s over 20 physics steps of dt.
+  EXPECT_EQ(s.frames(), static_cast<int>(std::ceil(20 * m->opt.timestep / 0.02 - 1e-9)));
+  const mjData* d = plant_data(plant);
+  const int last = s.frames() - 1;
+  // The last frame was recorded from an earlier state; record it now and compare.
+  ReplayRecorder now(plant, "now", {}, 1.0);
+  now.record(plant, 0);
+  for (std::size_t k = 0; k < now.body_ids().size(); ++k) {
+    const int b = now.body_ids()[k];
+    const float* p = &now.scene().poses[7 * k];
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(p[i], d->xpos[3 * b + i], 1e-6);  // float32 of |x| < 2 m
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(p[3 + i], d->xquat[4 * b + i], 1e-7);
+  }
+  EXPECT_FLOAT_EQ(s.signals[0].data[static_cast<std::size_t>(last)], s.poses[static_cast<std::size_t>(last) * s.bodies.size() * 7 + 2]);
+  // The push: the renderer's arrow.
+  const auto arrow = push_arrow(plant);
+  ASSERT_TRUE(arrow);
+  const auto& layer = now.scene().layers.back();
+  EXPECT_EQ(layer.name, "push");
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(layer.data[3 + i], arrow->to[i], 1e-6);
+  EXPECT_NEAR(std::hypot(arrow->to[0] - arrow->from[0], arrow->to[2] - arrow->from[2]), 0.1 + kPushScale * 10, 1e-12);
+  EXPECT_THROW(now.record(plant, 5.0, {}, std::vector<double>{1.0}), std::logic_error);  // no such signal
+}
+
+TEST(ReplayRecorder, ATenStepWalksPageStaysUnderFiveMegabytes) {
+  // A 10-step walk: ~12 s at 50 frames per second (the recorder's default), 600 frames, with the
+  // plan's 24 footprints and 4 signals. The page: the viewer (~0.6 MB) and the data block.
+  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  plant.reset(standing_pose(RobotParams{}, 0.75));
+  ReplayRecorder rec(plant, "walk", {{"a", ""}, {"b", ""}, {"c", ""}, {"d", ""}});
+  rec.set_planned_footprints(std::vector<FootprintMarker>(24));
+  const std::vector<double> values{1, 2, 3, 4};
+  RenderMarkers markers;
+  markers.zmp = markers.com_ground = markers.capture_point = std::array<double, 3>{0.1, 0.2, 0};
+  rec.record(plant, 0.0, markers, values);
+  const double one = static_cast<double>(replay::replay_json(rec.scene()).size());
+  for (int f = 1; f <= 100; ++f) rec.record(plant, f * 0.02, markers, values);
+  const double per_frame = (static_cast<double>(replay::replay_json(rec.scene()).size()) - one) / 100;
+  const double page = 0.6e6 + one + 600 * per_frame;
+  std::printf("humanoid replay: %.0f bytes a frame, %.0f bytes of scene; a 600-frame page ~%.2f MB\n", per_frame, one,
+              page / 1e6);
+  EXPECT_LT(page, 5e6);
+}
+
+TEST(ReplayRecorder, PlannedFootprintsAreStaticBoxes) {
+  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  ReplayRecorder rec(plant, "plan");
+  const std::size_t before = rec.scene().statics.size();
+  rec.set_planned_footprints({FootprintMarker{{0.2, 0.1, 0}, 0.3}, FootprintMarker{{0.4, -0.1, 0}, 0}});
+  ASSERT_EQ(rec.scene().statics.size(), before + 2);
+  const auto& g = rec.scene().statics[before];
+  EXPECT_EQ(g.type, replay::GeomType::Box);
+  EXPECT_NEAR(2 * std::atan2(g.quat[3], g.quat[0]), 0.3, 1e-12);  // the yaw about z
+}
+
+}  // namespace
+}  // namespace flexgait::humanoid
