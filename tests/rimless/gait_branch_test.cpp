@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "flexgait/core/text.hpp"
@@ -182,6 +183,25 @@ TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {
     ADD_FAILURE() << "no ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "analysis.continuation.min_step");
+  }
+}
+
+// A branch that starts or ends on a bound of its key (rimless.I >= 0, the point-mass wheel): the
+// difference step in the key stays inside the allowed values (one-sided at the bound) and the end
+// is reached on the bound itself; every point is the closed form, as in the first test (1e-9).
+TEST(GaitBranch, RigidWheelFromAndToTheBoundOfItsKey) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
+  for (const auto& [from, to] : {std::pair{0.0, 0.02}, std::pair{0.02, 0.0}}) {
+    const GaitContinuationSpec spec{.param = "rimless.I", .from = from, .to = to};
+    const GaitBranch b = continue_gait(base, spec);
+    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    EXPECT_TRUE(b.branch.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.rows.front().p, from);
+    EXPECT_EQ(b.rows.back().p, to);
+    for (const GaitBranchRow& r : b.rows) {
+      const WheelParams w = wheel_from_config(sweep_point_config(base, SweepSpec{"rimless.I", r.p, r.p, 1}, 0));
+      EXPECT_NEAR(r.point.z(0), rigid_step_map(w).fixed_point(), 1e-9) << "I " << r.p;
+    }
   }
 }
 
