@@ -264,7 +264,23 @@ cont=(rimless continuation --model rigid --param rimless.slope --from 0.05 --to 
 rc=$?
 check "continuation exits 0: $(cat "$work/err")" test "$rc" -eq 0
 check "continuation: branch.csv columns" test "$(head -1 "$work/cont1/branch.csv")" = \
-  "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event"
+  "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event,key,section,computed_at"
+check "continuation: every row says its key, section and wheel" python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert rows and all(r['key'] == 'rimless.slope' and r['section'] == 'touchdown' for r in rows), rows[0]
+assert len({r['computed_at'] for r in rows}) == 1 and 'sim.model=rigid' in rows[0]['computed_at'], rows[0]
+assert 'rimless.slope=' not in rows[0]['computed_at'], rows[0]
+" "$work/cont1/branch.csv"
+# Started on a key's bound (rimless.I >= 0) and continued to it: the difference step stays inside.
+for ends in "0 0.05" "0.05 0"; do
+  read -r lo hi <<<"$ends"
+  "$exe" rimless continuation --model rigid --param rimless.I --from "$lo" --to "$hi" --no-plot \
+    --out "$work/cont-bound-$lo" >"$work/out" 2>"$work/err"
+  rc=$?
+  check "continuation from $lo to $hi (a bound) exits 0 (got $rc): $(cat "$work/err")" test "$rc" -eq 0
+  check "continuation from $lo to $hi reaches its end" grep -q "reached rimless.I = $hi" "$work/out"
+done
 check "continuation reaches the end" grep -q "^0.15," "$work/cont1/branch.csv"
 "$exe" "${cont[@]}" --out "$work/cont2" >/dev/null 2>&1
 check "continuation: same bytes twice" cmp -s "$work/cont1/branch.csv" "$work/cont2/branch.csv"
@@ -446,6 +462,32 @@ for r in csv.DictReader(open(sys.argv[1])):
     a = 4 * m * g * L0 * math.sin(a_) * math.sin(phi) / J
     assert abs(float(r['thetad']) - rr * math.sqrt(a / (1 - rr * rr))) < 1e-8, r
 " "$work/orbit1/orbit.csv"
+# --branch: a branch.csv of the same key, section and wheel is drawn; another key, section, model or
+# wheel parameter is refused naming --branch and both; a branch.csv without the record (written
+# before it) is drawn with a warning.
+branch_orbit=(rimless analysis orbit-diagram --set sim.model=rigid --param rimless.slope --from 0.05 --to 0.15
+              --count 2 --transient 5 --record 2)
+timeout 120 "$exe" "${branch_orbit[@]}" --branch "$work/cont1/branch.csv" --no-plot --out "$work/orbit-branch" \
+  >/dev/null 2>"$work/err"
+rc=$?
+check "orbit-diagram --branch of the same branch exits 0 (got $rc): $(cat "$work/err")" test "$rc" -eq 0
+check "orbit-diagram --branch: copied as branch_1.csv" cmp -s "$work/cont1/branch.csv" "$work/orbit-branch/branch_1.csv"
+expect_usage_error orbit-branch-key "--branch: '$work/cont1/branch.csv' was continued in rimless.slope, not in the requested --param rimless.L0" \
+  "${branch_orbit[@]/rimless.slope/rimless.L0}" --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-section "not on the requested --section upright" \
+  "${branch_orbit[@]}" --section upright --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-model "sim.model = rigid (here: flexible)" \
+  "${branch_orbit[@]/sim.model=rigid/sim.model=flexible}" --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-wheel "rimless.K = 1000.0 (here: 2000.0)" \
+  "${branch_orbit[@]}" --set rimless.K=2000 --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-fifo "is not a regular file" "${branch_orbit[@]}" --branch /dev/null
+cut -d, -f1-12 "$work/cont1/branch.csv" >"$work/old-branch.csv"
+timeout 120 "$exe" "${branch_orbit[@]}" --branch "$work/old-branch.csv" --no-plot --out "$work/orbit-old-branch" \
+  >/dev/null 2>"$work/err"
+rc=$?
+check "orbit-diagram --branch of an old branch.csv exits 0 (got $rc)" test "$rc" -eq 0
+check "orbit-diagram --branch of an old branch.csv warns: $(cat "$work/err")" \
+  grep -q "^warning: --branch: .* does not say which key" "$work/err"
 expect_usage_error orbit-key rimless.nothing rimless analysis orbit-diagram --param rimless.nothing --from 0.1 --to 0.2 --count 3
 expect_usage_error orbit-empty "--to" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.1 --count 3
 expect_usage_error orbit-count "--count" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.2 --count 1

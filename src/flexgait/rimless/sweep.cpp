@@ -19,14 +19,14 @@ void check_sweep_param(const Schema& schema, const std::string& param) {
     throw ConfigError(param, fmt::format("--param: key '{}' is not a real number; allowed: a real-valued key", param));
 }
 
+std::vector<std::string> param_keys(const std::string& param) {
+  if (param == "rimless.mu") return {"rimless.mu_s", "rimless.mu_k"};
+  return {param};
+}
+
 Config config_at(const Config& base, const std::string& param, const std::string& value, const std::string& origin) {
   Config c = base;
-  if (param == "rimless.mu") {
-    c.set("rimless.mu_s", value, origin);
-    c.set("rimless.mu_k", value, origin);
-  } else {
-    c.set(param, value, origin);
-  }
+  for (const std::string& key : param_keys(param)) c.set(key, value, origin);
   check_with_origin(c, [&] { validate(wheel_from_config(c), initial_from_config(c)); });
   return c;
 }

@@ -4,6 +4,7 @@
 /// the fixed point of the Poincaré map near it, its multipliers, stability, speed and energy per
 /// step. Points are independent, so a sweep runs them on all cores (core/sweep_runner.hpp).
 #include <string>
+#include <vector>
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/rimless/poincare.hpp"
@@ -21,6 +22,9 @@ struct SweepSpec {
 
 /// Throws ConfigError if the key is unknown or not a real number.
 void check_sweep_param(const Schema& schema, const std::string& param);
+
+/// The configuration keys `param` sets: rimless.mu sets rimless.mu_s and rimless.mu_k, any other key itself.
+std::vector<std::string> param_keys(const std::string& param);
 
 /// The configuration with `param` (rimless.mu: mu_s and mu_k) set to the text `value`, checked as
 /// a --set of it is (domain, then the wheel's cross-field checks); a ConfigError names `origin`.
