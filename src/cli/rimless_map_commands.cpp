@@ -171,6 +171,9 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
                               spec.transient, spec.record, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::orbit_points_row(base, spec, i); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
+    return rimless::orbit_points_row_valid(spec, i, cells);
+  };
   const SweepOutcome out = run_sweep(job);
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;
@@ -233,6 +236,7 @@ int basin(const MapRun& a, const CLI::App& cmd) {
                               format_number(spec.tolerance), a.section, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec, ref](int i) { return rimless::basin_row(base, spec, ref, i); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) { return rimless::basin_row_valid(spec, i, cells); };
   const SweepOutcome out = run_sweep(job);
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;

@@ -224,6 +224,32 @@ wait "$pid" 2>/dev/null
 check "killed and resumed sweep equals the one run through" cmp -s "$work/sweep_full/sweep.csv" "$work/sweep_killed/sweep.csv"
 check "a finished sweep's directory is marked complete" test -f "$work/sweep_full/complete"
 check "the resumed sweep's directory is marked complete" test -f "$work/sweep_killed/complete"
+# A partial file whose rows have the right number of fields but one damaged cell each (another
+# point's value, text for a number, a non-boolean, a fractional count, a broken state list, a
+# converged point with a failure): every row is computed again, to the same bytes.
+cp -r "$work/sweep_full" "$work/sweep_damaged"
+python3 - "$work/sweep_full/sweep.csv" "$work/sweep_damaged/sweep.partial.csv" <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))[1:]
+header = next(csv.reader(open(sys.argv[1])))
+damage = [("value", "0.3"), ("transient_speed", "fast"), ("converged", "maybe"), ("iterations", "2.5"),
+          ("state", "1;x"), ("failure", "fell over")]
+for row, (column, text) in zip(rows, damage):
+    row[header.index(column)] = text
+    if column == "failure":
+        row[header.index("converged")] = "true"
+with open(sys.argv[2], "w", newline="") as f:
+    csv.writer(f, lineterminator="\n").writerows(rows)
+PY
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --resume --out "$work/sweep_damaged" \
+  --no-plot >"$work/out" 2>&1
+check "resume computes every damaged row again: $(cat "$work/out")" grep -q "6 computed, 0 resumed" "$work/out"
+check "resume from damaged rows equals the one run through" cmp -s "$work/sweep_full/sweep.csv" "$work/sweep_damaged/sweep.csv"
+cp "$work/sweep_full/sweep.csv" "$work/sweep_damaged/sweep.partial.csv"
+sed -i 1d "$work/sweep_damaged/sweep.partial.csv"
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --resume --out "$work/sweep_damaged" \
+  --no-plot >"$work/out" 2>&1
+check "resume keeps every sound row: $(cat "$work/out")" grep -q "0 computed, 6 resumed" "$work/out"
 expect_usage_error resume-other-sweep "--resume" rimless sweep --param rimless.mu --from 0.3 --to 0.6 --count 6 --resume
 for name in fixed-points energy; do
   "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
@@ -510,6 +536,33 @@ assert o['converged'] > 0 and o['rolled_back'] > 0, o
 assert abs(d['basin_area'] - o['converged'] * 0.5 * 0.125) < 1e-12, d
 assert d['reference']['found'] and d['reference']['stable'], d
 " "$work/basin1/summary.json"
+# --resume from a partial file whose rows have the right number of fields but damaged cells (the
+# orbit diagram's reduction used to stop on them as an internal error): computed again, same bytes.
+damage_rows() {  # damage_rows FINAL_CSV PARTIAL_CSV COLUMN=TEXT...: row k of FINAL (no header) gets damage k
+  python3 - "$@" <<'PY'
+import csv, sys
+final, partial, damage = sys.argv[1], sys.argv[2], sys.argv[3:]
+table = list(csv.reader(open(final)))
+header, rows = table[0], table[1:]
+for row, item in zip(rows, damage * len(rows)):
+    column, text = item.split("=", 1)
+    row[header.index(column)] = text
+with open(partial, "w", newline="") as f:
+    csv.writer(f, lineterminator="\n").writerows(rows)
+PY
+}
+for kind in orbit basin; do
+  cp -r "$work/${kind}1" "$work/${kind}_damaged"
+done
+damage_rows "$work/orbit1/orbit_points.csv" "$work/orbit_damaged/orbit_points.partial.csv" recorded=abc recorded=4 \
+  thetad=1 states=x "failure=fell over"
+damage_rows "$work/basin1/basin.csv" "$work/basin_damaged/basin.partial.csv" x=9 outcome=flew steps=-1 distance=far
+timeout 120 "$exe" "${orbit[@]}" --resume --out "$work/orbit_damaged" >"$work/out" 2>&1
+check "orbit-diagram --resume computes damaged rows again: $(cat "$work/out")" grep -q "4 computed, 0 resumed" "$work/out"
+check "orbit-diagram --resume from damaged rows: same bytes" cmp -s "$work/orbit1/orbit.csv" "$work/orbit_damaged/orbit.csv"
+timeout 120 "$exe" "${basin[@]}" --resume --out "$work/basin_damaged" >"$work/out" 2>&1
+check "basin --resume computes damaged rows again: $(tail -2 "$work/out")" grep -q "40 computed, 0 resumed" "$work/out"
+check "basin --resume from damaged rows: same bytes" cmp -s "$work/basin1/basin.csv" "$work/basin_damaged/basin.csv"
 expect_usage_error basin-key "--x" rimless analysis basin --x rimless.slope --y initial.beta --x-range 0:1:3 --y-range 0:0.1:3
 expect_usage_error basin-empty "--x-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 1:1:3 --y-range 0:0.1:3
 expect_usage_error basin-count "--y-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:1
