@@ -270,7 +270,7 @@ void add_map_options(CLI::App& anc, MapOptions& o) {
                                                    "analysis.orbit.record ({})", orbit.record))
       ->type_name("INT");
   anc.add_option("--branch", o.branches, "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
-                                         "copied to branch_K.csv and drawn over the dots (stable solid, unstable "
+                                         "section and wheel (checked), copied to branch_K.csv and drawn over the dots (stable solid, unstable "
                                          "dashed); repeat for more branches")
       ->allow_extra_args(false);
   anc.add_option("--x", o.x, "basin: key of the initial state on the x axis (initial.omega or initial.beta)");
