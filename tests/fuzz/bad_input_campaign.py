@@ -447,43 +447,49 @@ def make_special_case(rng, cls, work):
     return CHEAP_CAMPAIGN + grid + ["--resume", "--out", out], same_bytes, True
 
 
-def run_any_answer_case(exe, args, out, work, timeout):
-    """A case whose input may be good or bad: exit 0, exit 1 with an "error:" line, or exit 2 with
-    one line and `out` not written; a signal, an exit above 2 or "internal error" is a crash."""
+def run_exe(exe, args, work, timeout):
+    """(exit code, stderr text) of `exe args` in `work`, or None when it does not end in time."""
     try:
         p = subprocess.run([exe] + args, capture_output=True, timeout=timeout, cwd=work,
                            env=dict(os.environ, MPLBACKEND="Agg"))
     except subprocess.TimeoutExpired:
+        return None
+    return p.returncode, p.stderr.decode("utf-8", "replace")
+
+
+def run_any_answer_case(exe, args, out, work, timeout):
+    """A case whose input may be good or bad: exit 0, exit 1 with an "error:" line, or exit 2 with
+    one line and `out` not written; a signal, an exit above 2 or "internal error" is a crash."""
+    ran = run_exe(exe, args, work, timeout)
+    if ran is None:
         return "hang", ""
-    stderr = p.stderr.decode("utf-8", "replace")
-    detail = "exit %d: %s" % (p.returncode, stderr[-600:].strip())
-    if p.returncode < 0 or p.returncode > 2 or "internal error" in stderr:
+    code, stderr = ran
+    detail = "exit %d: %s" % (code, stderr[-600:].strip())
+    if code < 0 or code > 2 or "internal error" in stderr:
         return "crash", detail
-    if p.returncode == 2:
+    if code == 2:
         errors = [line for line in stderr.splitlines() if line.startswith("error: ")]
         ok = len(errors) == 1 and stderr.rstrip("\n").endswith(errors[0]) and not os.path.exists(out)
         return ("refused" if ok else "unclear"), detail
-    if p.returncode == 1:
+    if code == 1:
         return ("named-failure" if re.search(r"^error: ", stderr, re.M) else "unclear"), detail
     return "ok", detail
 
 
 def run_special_case(exe, args, post_check, expect_ok, work, timeout):
-    try:
-        p = subprocess.run([exe] + args, capture_output=True, timeout=timeout, cwd=work,
-                           env=dict(os.environ, MPLBACKEND="Agg"))
-    except subprocess.TimeoutExpired:
+    ran = run_exe(exe, args, work, timeout)
+    if ran is None:
         return "hang", ""
-    stderr = p.stderr.decode("utf-8", "replace")
-    if p.returncode < 0 or p.returncode >= 128 or "internal error" in stderr:
-        return "crash", "exit %d: %s" % (p.returncode, stderr[-600:].strip())
+    code, stderr = ran
+    if code < 0 or code >= 128 or "internal error" in stderr:
+        return "crash", "exit %d: %s" % (code, stderr[-600:].strip())
     problem = post_check()
     if expect_ok:
-        outcome = "ok" if p.returncode == 0 and not problem else "unclear"
+        outcome = "ok" if code == 0 and not problem else "unclear"
     else:
         one_line = stderr.count("\n") == 1 and stderr.endswith("\n")
-        outcome = "refused" if p.returncode == 2 and one_line and not problem else "unclear"
-    return outcome, "exit %d: %s %s" % (p.returncode, stderr[-600:].strip(), problem)
+        outcome = "refused" if code == 2 and one_line and not problem else "unclear"
+    return outcome, "exit %d: %s %s" % (code, stderr[-600:].strip(), problem)
 
 
 def non_finite_in(text):
