@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 
@@ -10,6 +13,7 @@
 #include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/basin.hpp"
+#include "flexgait/rimless/gait_branch.hpp"
 #include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
 #include "mpi_distributor.hpp"
@@ -32,20 +36,64 @@ void check_resume(const MapRun& a, const std::string& name) {
   if (!std::filesystem::exists(probe.dir / (name + ".signature"))) check_resumable(probe);
 }
 
-/// The --branch file's text: a branch.csv of `rimless continuation` in the same key.
-std::string read_branch(const std::string& path, const std::string& param) {
-  const std::string text = read_text_file(path);
-  const auto records = parse_csv(text);
+/// A --branch file larger than this is refused before it is read (a branch of the default 2000 points
+/// is ~1 MB; 256 MiB holds ~800,000).
+constexpr std::uintmax_t kMaxBranchBytes = std::uintmax_t{256} << 20;
+
+/// The --branch file's text: a branch.csv of `rimless continuation` in the same key, on the same
+/// section, of the same wheel (its key, section and computed_at columns; gait_branch.hpp). A file
+/// written before those columns were is drawn with a warning: it is only drawn, and the run
+/// directories of earlier continuations stay usable.
+std::string read_branch(const std::string& path, const std::string& param, const std::string& section,
+                        const Config& config) {
   const auto bad = [&](const std::string& why) {
     return UsageError(fmt::format("--branch: '{}' {}; allowed: a branch.csv written by `flexgait rimless continuation "
-                                  "--param {}`", one_line(path), why, param));
+                                  "--param {} --section {}` with this configuration's sim.model and rimless.* keys",
+                                  one_line(path), why, param, section));
   };
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw bad("does not exist");
+  if (!std::filesystem::is_regular_file(status)) throw bad("is not a regular file (a directory, FIFO, socket or device)");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxBranchBytes)
+    throw bad(fmt::format("has {} bytes, above the limit of {}", size, kMaxBranchBytes));
+  const std::string text = read_text_file(path);
+  const auto records = parse_csv(text);
   if (records.empty()) throw bad("cannot be read or is empty");
   const auto& h = records.front().fields;
-  if (h.empty() || h.front() != "parameter" || std::find(h.begin(), h.end(), "thetad") == h.end() ||
-      std::find(h.begin(), h.end(), "stable") == h.end())
+  const auto column = [&](const char* name) { return std::find(h.begin(), h.end(), name) - h.begin(); };
+  const auto width = static_cast<std::ptrdiff_t>(h.size());
+  if (h.empty() || h.front() != "parameter" || column("thetad") == width || column("stable") == width)
     throw bad("has no parameter, thetad and stable columns");
-  // config.yaml beside it names the key only indirectly; the header cannot: trust the caller's --param.
+  const std::ptrdiff_t key = column("key"), sec = column("section"), at = column("computed_at");
+  if (key == width || sec == width || at == width) {
+    fmt::print(stderr, "warning: --branch: '{}' does not say which key, section and wheel it was continued in (written "
+                       "before branch.csv had key, section and computed_at columns); drawn as a branch in {} on the "
+                       "{} section unchecked\n", one_line(path), param, section);
+    return text;
+  }
+  if (records.size() < 2) throw bad("has no rows");
+  const auto& first = records[1].fields;
+  for (std::size_t i = 1; i < records.size(); ++i) {
+    const auto& f = records[i].fields;
+    if (f.size() != h.size())
+      throw bad(fmt::format("line {} has {} fields where the header has {}", i + 1, f.size(), h.size()));
+    if (f[key] != first[key] || f[sec] != first[sec] || f[at] != first[at])
+      throw bad(fmt::format("line {} holds another branch than line 2 (key, section or computed_at differ)", i + 1));
+  }
+  if (first[key] != param)
+    throw bad(fmt::format("was continued in {}, not in the requested --param {}", one_line(first[key], 80), param));
+  if (first[sec] != section)
+    throw bad(fmt::format("has fixed points on the {} section, not on the requested --section {}",
+                          one_line(first[sec], 40), section));
+  const std::vector<std::string> differ = rimless::computed_at_differences(first[at], config, param);
+  if (!differ.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < differ.size() && i < 4; ++i) list += (i ? ", " : "") + differ[i];
+    if (differ.size() > 4) list += fmt::format(" and {} more", differ.size() - 4);
+    throw bad(fmt::format("was computed on another wheel: {}", list));
+  }
   return text;
 }
 
@@ -73,7 +121,7 @@ CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
                                  lengths.record};
   rimless::check_orbit_diagram(s.config, spec);
   std::vector<std::string> branches;
-  for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param));
+  for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param, a.section, s.config));
   return {std::move(s), spec, std::move(branches)};
 }
 
@@ -123,6 +171,9 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
                               spec.transient, spec.record, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::orbit_points_row(base, spec, i); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
+    return rimless::orbit_points_row_valid(spec, i, cells);
+  };
   const SweepOutcome out = run_sweep(job);
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;
@@ -185,6 +236,7 @@ int basin(const MapRun& a, const CLI::App& cmd) {
                               format_number(spec.tolerance), a.section, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec, ref](int i) { return rimless::basin_row(base, spec, ref, i); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) { return rimless::basin_row_valid(spec, i, cells); };
   const SweepOutcome out = run_sweep(job);
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;
@@ -218,7 +270,7 @@ void add_map_options(CLI::App& anc, MapOptions& o) {
                                                    "analysis.orbit.record ({})", orbit.record))
       ->type_name("INT");
   anc.add_option("--branch", o.branches, "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
-                                         "copied to branch_K.csv and drawn over the dots (stable solid, unstable "
+                                         "section and wheel (checked), copied to branch_K.csv and drawn over the dots (stable solid, unstable "
                                          "dashed); repeat for more branches")
       ->allow_extra_args(false);
   anc.add_option("--x", o.x, "basin: key of the initial state on the x axis (initial.omega or initial.beta)");

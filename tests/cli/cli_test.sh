@@ -224,6 +224,32 @@ wait "$pid" 2>/dev/null
 check "killed and resumed sweep equals the one run through" cmp -s "$work/sweep_full/sweep.csv" "$work/sweep_killed/sweep.csv"
 check "a finished sweep's directory is marked complete" test -f "$work/sweep_full/complete"
 check "the resumed sweep's directory is marked complete" test -f "$work/sweep_killed/complete"
+# A partial file whose rows have the right number of fields but one damaged cell each (another
+# point's value, text for a number, a non-boolean, a fractional count, a broken state list, a
+# converged point with a failure): every row is computed again, to the same bytes.
+cp -r "$work/sweep_full" "$work/sweep_damaged"
+python3 - "$work/sweep_full/sweep.csv" "$work/sweep_damaged/sweep.partial.csv" <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))[1:]
+header = next(csv.reader(open(sys.argv[1])))
+damage = [("value", "0.3"), ("transient_speed", "fast"), ("converged", "maybe"), ("iterations", "2.5"),
+          ("state", "1;x"), ("failure", "fell over")]
+for row, (column, text) in zip(rows, damage):
+    row[header.index(column)] = text
+    if column == "failure":
+        row[header.index("converged")] = "true"
+with open(sys.argv[2], "w", newline="") as f:
+    csv.writer(f, lineterminator="\n").writerows(rows)
+PY
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --resume --out "$work/sweep_damaged" \
+  --no-plot >"$work/out" 2>&1
+check "resume computes every damaged row again: $(cat "$work/out")" grep -q "6 computed, 0 resumed" "$work/out"
+check "resume from damaged rows equals the one run through" cmp -s "$work/sweep_full/sweep.csv" "$work/sweep_damaged/sweep.csv"
+cp "$work/sweep_full/sweep.csv" "$work/sweep_damaged/sweep.partial.csv"
+sed -i 1d "$work/sweep_damaged/sweep.partial.csv"
+"$exe" rimless sweep --param rimless.mu --from 0.2 --to 0.6 --count 6 --resume --out "$work/sweep_damaged" \
+  --no-plot >"$work/out" 2>&1
+check "resume keeps every sound row: $(cat "$work/out")" grep -q "0 computed, 6 resumed" "$work/out"
 expect_usage_error resume-other-sweep "--resume" rimless sweep --param rimless.mu --from 0.3 --to 0.6 --count 6 --resume
 for name in fixed-points energy; do
   "$exe" rimless analysis "$name" --out "$work/an_$name" --no-plot >/dev/null 2>"$work/err"
@@ -264,7 +290,23 @@ cont=(rimless continuation --model rigid --param rimless.slope --from 0.05 --to 
 rc=$?
 check "continuation exits 0: $(cat "$work/err")" test "$rc" -eq 0
 check "continuation: branch.csv columns" test "$(head -1 "$work/cont1/branch.csv")" = \
-  "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event"
+  "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event,key,section,computed_at"
+check "continuation: every row says its key, section and wheel" python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert rows and all(r['key'] == 'rimless.slope' and r['section'] == 'touchdown' for r in rows), rows[0]
+assert len({r['computed_at'] for r in rows}) == 1 and 'sim.model=rigid' in rows[0]['computed_at'], rows[0]
+assert 'rimless.slope=' not in rows[0]['computed_at'], rows[0]
+" "$work/cont1/branch.csv"
+# Started on a key's bound (rimless.I >= 0) and continued to it: the difference step stays inside.
+for ends in "0 0.05" "0.05 0"; do
+  read -r lo hi <<<"$ends"
+  "$exe" rimless continuation --model rigid --param rimless.I --from "$lo" --to "$hi" --no-plot \
+    --out "$work/cont-bound-$lo" >"$work/out" 2>"$work/err"
+  rc=$?
+  check "continuation from $lo to $hi (a bound) exits 0 (got $rc): $(cat "$work/err")" test "$rc" -eq 0
+  check "continuation from $lo to $hi reaches its end" grep -q "reached rimless.I = $hi" "$work/out"
+done
 check "continuation reaches the end" grep -q "^0.15," "$work/cont1/branch.csv"
 "$exe" "${cont[@]}" --out "$work/cont2" >/dev/null 2>&1
 check "continuation: same bytes twice" cmp -s "$work/cont1/branch.csv" "$work/cont2/branch.csv"
@@ -446,6 +488,32 @@ for r in csv.DictReader(open(sys.argv[1])):
     a = 4 * m * g * L0 * math.sin(a_) * math.sin(phi) / J
     assert abs(float(r['thetad']) - rr * math.sqrt(a / (1 - rr * rr))) < 1e-8, r
 " "$work/orbit1/orbit.csv"
+# --branch: a branch.csv of the same key, section and wheel is drawn; another key, section, model or
+# wheel parameter is refused naming --branch and both; a branch.csv without the record (written
+# before it) is drawn with a warning.
+branch_orbit=(rimless analysis orbit-diagram --set sim.model=rigid --param rimless.slope --from 0.05 --to 0.15
+              --count 2 --transient 5 --record 2)
+timeout 120 "$exe" "${branch_orbit[@]}" --branch "$work/cont1/branch.csv" --no-plot --out "$work/orbit-branch" \
+  >/dev/null 2>"$work/err"
+rc=$?
+check "orbit-diagram --branch of the same branch exits 0 (got $rc): $(cat "$work/err")" test "$rc" -eq 0
+check "orbit-diagram --branch: copied as branch_1.csv" cmp -s "$work/cont1/branch.csv" "$work/orbit-branch/branch_1.csv"
+expect_usage_error orbit-branch-key "--branch: '$work/cont1/branch.csv' was continued in rimless.slope, not in the requested --param rimless.L0" \
+  "${branch_orbit[@]/rimless.slope/rimless.L0}" --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-section "not on the requested --section upright" \
+  "${branch_orbit[@]}" --section upright --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-model "sim.model = rigid (here: flexible)" \
+  "${branch_orbit[@]/sim.model=rigid/sim.model=flexible}" --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-wheel "rimless.K = 1000.0 (here: 2000.0)" \
+  "${branch_orbit[@]}" --set rimless.K=2000 --branch "$work/cont1/branch.csv"
+expect_usage_error orbit-branch-fifo "is not a regular file" "${branch_orbit[@]}" --branch /dev/null
+cut -d, -f1-12 "$work/cont1/branch.csv" >"$work/old-branch.csv"
+timeout 120 "$exe" "${branch_orbit[@]}" --branch "$work/old-branch.csv" --no-plot --out "$work/orbit-old-branch" \
+  >/dev/null 2>"$work/err"
+rc=$?
+check "orbit-diagram --branch of an old branch.csv exits 0 (got $rc)" test "$rc" -eq 0
+check "orbit-diagram --branch of an old branch.csv warns: $(cat "$work/err")" \
+  grep -q "^warning: --branch: .* does not say which key" "$work/err"
 expect_usage_error orbit-key rimless.nothing rimless analysis orbit-diagram --param rimless.nothing --from 0.1 --to 0.2 --count 3
 expect_usage_error orbit-empty "--to" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.1 --count 3
 expect_usage_error orbit-count "--count" rimless analysis orbit-diagram --param rimless.slope --from 0.1 --to 0.2 --count 1
@@ -468,6 +536,33 @@ assert o['converged'] > 0 and o['rolled_back'] > 0, o
 assert abs(d['basin_area'] - o['converged'] * 0.5 * 0.125) < 1e-12, d
 assert d['reference']['found'] and d['reference']['stable'], d
 " "$work/basin1/summary.json"
+# --resume from a partial file whose rows have the right number of fields but damaged cells (the
+# orbit diagram's reduction used to stop on them as an internal error): computed again, same bytes.
+damage_rows() {  # damage_rows FINAL_CSV PARTIAL_CSV COLUMN=TEXT...: row k of FINAL (no header) gets damage k
+  python3 - "$@" <<'PY'
+import csv, sys
+final, partial, damage = sys.argv[1], sys.argv[2], sys.argv[3:]
+table = list(csv.reader(open(final)))
+header, rows = table[0], table[1:]
+for row, item in zip(rows, damage * len(rows)):
+    column, text = item.split("=", 1)
+    row[header.index(column)] = text
+with open(partial, "w", newline="") as f:
+    csv.writer(f, lineterminator="\n").writerows(rows)
+PY
+}
+for kind in orbit basin; do
+  cp -r "$work/${kind}1" "$work/${kind}_damaged"
+done
+damage_rows "$work/orbit1/orbit_points.csv" "$work/orbit_damaged/orbit_points.partial.csv" recorded=abc recorded=4 \
+  thetad=1 states=x "failure=fell over"
+damage_rows "$work/basin1/basin.csv" "$work/basin_damaged/basin.partial.csv" x=9 outcome=flew steps=-1 distance=far
+timeout 120 "$exe" "${orbit[@]}" --resume --out "$work/orbit_damaged" >"$work/out" 2>&1
+check "orbit-diagram --resume computes damaged rows again: $(cat "$work/out")" grep -q "4 computed, 0 resumed" "$work/out"
+check "orbit-diagram --resume from damaged rows: same bytes" cmp -s "$work/orbit1/orbit.csv" "$work/orbit_damaged/orbit.csv"
+timeout 120 "$exe" "${basin[@]}" --resume --out "$work/basin_damaged" >"$work/out" 2>&1
+check "basin --resume computes damaged rows again: $(tail -2 "$work/out")" grep -q "40 computed, 0 resumed" "$work/out"
+check "basin --resume from damaged rows: same bytes" cmp -s "$work/basin1/basin.csv" "$work/basin_damaged/basin.csv"
 expect_usage_error basin-key "--x" rimless analysis basin --x rimless.slope --y initial.beta --x-range 0:1:3 --y-range 0:0.1:3
 expect_usage_error basin-empty "--x-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 1:1:3 --y-range 0:0.1:3
 expect_usage_error basin-count "--y-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:1

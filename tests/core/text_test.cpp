@@ -71,6 +71,18 @@ TEST(Numbers, ShortestTextReadsBackExactly) {
   EXPECT_EQ(format_number(std::numeric_limits<double>::quiet_NaN()), "nan");
 }
 
+// A resumed cell is a number if format_number could have written it (nan and infinities too), a
+// count if it is digits alone within its bound.
+TEST(Numbers, NumberAndCountTextAreWhatTheWritersWrite) {
+  for (const double x : {0.1, -1e-300, std::numeric_limits<double>::infinity(),
+                         -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_TRUE(number_text(format_number(x))) << format_number(x);
+  for (const char* bad : {"", "fast", "1e", "0x10", "1;2", " 1"}) EXPECT_FALSE(number_text(bad)) << bad;
+  EXPECT_TRUE(count_text("0", 5));
+  EXPECT_TRUE(count_text("5", 5));
+  for (const char* bad : {"", "6", "-1", "2.0", "+1", "99999999999999999999"}) EXPECT_FALSE(count_text(bad, 5)) << bad;
+}
+
 // A CSV cell of a number is format_number's text to the byte (the writer formats into its own
 // buffer): the longest texts, signed zero, subnormals, infinities and NaN included.
 TEST(Csv, NumberCellIsFormatNumbersText) {

@@ -19,6 +19,14 @@ Each case is one command line (or one Python call) with its expected kind of ans
     fixed-point, campaign) with --out naming a FIFO, a socket, /dev/null, a symbolic link to a
     FIFO, a directory (for a file), or a run directory holding a FIFO: refused, the special file
     left as it was, no temporary file left.
+  * class "analysis": `rimless continuation` (a random wheel key, ends at or near its bounds,
+    reversed or tiny intervals), `analysis orbit-diagram --branch` with a damaged branch.csv (cut,
+    another key, section or wheel, columns dropped, garbage cells) and `analysis basin` over
+    random ranges, each on the rigid wheel and short. Expected: exit 0, exit 1 with an "error:"
+    line, or exit 2 with one line and nothing written — never a crash or an exit above 2.
+  * class "robot-file": the builtin robot exported as MJCF or URDF, damaged (cut anywhere, a
+    number replaced by nan, inf, -1, 1e308 or text, a tag dropped, bytes inserted, emptied) and
+    loaded by `humanoid export --set robot.description=FILE`. Expected as for "analysis".
   * class "python": bad calls to the bindings. Expected: ValueError, or TypeError where the
     argument's type is wrong (Python's convention) — never another exception, never a crash.
 
@@ -46,8 +54,9 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_fuzz  # noqa: E402  (its value lists and YAML damage)
 
-CLASSES = ["set-value", "yaml-file", "path", "option", "extreme-physics", "campaign", "output-target", "python"]
-SPECIAL_CLASSES = {"campaign", "output-target"}
+CLASSES = ["set-value", "yaml-file", "path", "option", "extreme-physics", "campaign", "output-target", "analysis",
+           "robot-file", "python"]
+SPECIAL_CLASSES = {"campaign", "output-target", "analysis", "robot-file"}
 EXE = None  # the flexgait executable (main sets it)
 OUTCOMES = ["refused", "named-failure", "ok", "crash", "hang", "silent-nan", "unclear"]
 DEFECTS = {"crash", "hang", "silent-nan", "unclear"}
@@ -262,6 +271,104 @@ def target_intact(path, kind, stays):
     return "temporary files left: %s" % left if left else ""
 
 
+RIGID_SHORT = ["--set", "sim.model=rigid", "--no-plot"]
+WHEEL_KEYS = ["rimless.slope", "rimless.I", "rimless.m", "rimless.L0", "rimless.legs", "rimless.mu", "rimless.C",
+              "solver.rtol", "initial.omega", "rimless.nothing"]
+
+
+def base_run(work, name, args):
+    """A finished run directory under work (made once): its path."""
+    out = os.path.join(work, name)
+    if not os.path.exists(os.path.join(out, "complete")):
+        subprocess.run([EXE] + args + ["--out", out], capture_output=True, timeout=120)
+    return out
+
+
+def damaged_text(rng, text, numbers=True):
+    """text with one random damage: cut, a number replaced, a line dropped, bytes inserted, emptied."""
+    kind = rng.choice(["cut", "number", "line", "bytes", "empty"] if numbers else ["cut", "line", "bytes", "empty"])
+    if kind == "cut":
+        return text[:rng.randrange(len(text) + 1)]
+    if kind == "number":
+        spans = [m.span() for m in re.finditer(r"-?\d+(\.\d+)?(e[-+]?\d+)?", text)]
+        if spans:
+            a, b = rng.choice(spans)
+            return text[:a] + rng.choice(["nan", "inf", "-1", "1e308", "x", "", "0", "-0", "1e-320"]) + text[b:]
+    if kind == "line":
+        lines = text.split("\n")
+        del lines[rng.randrange(len(lines))]
+        return "\n".join(lines)
+    if kind == "bytes":
+        at = rng.randrange(len(text) + 1)
+        return text[:at] + rng.choice(['"', "<", ">", ",", "\x00", "\xff", "&", "\n", "<a>", "]]>"]) + text[at:]
+    return ""
+
+
+def make_analysis_case(rng, work):
+    """(argv, post-check) of one continuation, orbit diagram with a damaged --branch, or basin."""
+    out = os.path.join(work, "analysis-%d" % rng.randrange(10 ** 9))
+    kind = rng.choice(["continuation", "orbit-branch", "basin"])
+    if kind == "continuation":
+        key = rng.choice(WHEEL_KEYS)
+        lo = rng.choice(["0", "1e-12", "0.05", "-0.1", "0.3", "1e300", "nan"])
+        hi = rng.choice(["0", "0.1", "0.06", "0.05000001", "0.7", "-1", "inf"])
+        args = ["rimless", "continuation", "--param", key, "--from", lo, "--to", hi,
+                "--set", "analysis.continuation.max_points=20"] + RIGID_SHORT
+        if rng.random() < 0.3:
+            args += ["--step", rng.choice(["1e-9", "0.5", "1e-300", "2"])]
+    elif kind == "orbit-branch":
+        branch_dir = base_run(work, "analysis-branch", ["rimless", "continuation", "--param", "rimless.slope",
+                                                        "--from", "0.05", "--to", "0.1"] + RIGID_SHORT)
+        text = open(os.path.join(branch_dir, "branch.csv")).read()
+        choice = rng.random()
+        if choice < 0.2:
+            text = text.replace(",rimless.slope,touchdown,", ",rimless.mu,touchdown,")
+        elif choice < 0.3:
+            text = text.replace(",touchdown,", ",upright,")
+        elif choice < 0.4:
+            text = text.replace("rimless.m=1.0", "rimless.m=" + rng.choice(["2.0", "nan", "x", ""]))
+        else:
+            text = damaged_text(rng, text)
+        branch = os.path.join(work, "branch-%d.csv" % rng.randrange(10 ** 9))
+        with open(branch, "w") as f:
+            f.write(text)
+        args = ["rimless", "analysis", "orbit-diagram", "--param", rng.choice(["rimless.slope", "rimless.slope",
+                                                                               "rimless.L0"]),
+                "--from", "0.05", "--to", "0.1", "--count", "2", "--transient", "3", "--record", "2",
+                "--branch", branch] + RIGID_SHORT
+    else:
+        ranges = [rng.choice(["-1:2:2", "0:0:2", "1e300:1e301:2", "-100:100:2", "0.5:1.5:3", "nan:1:2", "1:2:0",
+                              "1:2:100000"]) for _ in range(2)]
+        args = ["rimless", "analysis", "basin", "--x", "initial.omega", "--y", rng.choice(["initial.beta", "initial.omega"]),
+                "--x-range", ranges[0], "--y-range", rng.choice(["-0.1:0.1:2", ranges[1]]),
+                "--steps-limit", rng.choice(["3", "0", "-1", "1000000000"])] + RIGID_SHORT
+    return args + ["--out", out], lambda: "", out
+
+
+def make_robot_case(rng, work):
+    """(argv, post-check, out) of `humanoid export` loading a damaged robot file."""
+    fmt = rng.choice(["mjcf", "urdf"])
+    base = os.path.join(work, "robot-base." + ("xml" if fmt == "mjcf" else "urdf"))
+    keys_file = base + ".keys"
+    if not os.path.exists(base):
+        p = subprocess.run([EXE, "humanoid", "export", "--format", fmt, "--out", base], capture_output=True,
+                           timeout=120)
+        keys = [line for line in p.stdout.decode().splitlines() if line.startswith("robot.") and "=" in line]
+        with open(keys_file, "w") as f:
+            f.write("\n".join(keys))
+    keys = [k for k in open(keys_file).read().splitlines() if k]
+    damaged = os.path.join(work, "robot-%d.%s" % (rng.randrange(10 ** 9), "xml" if fmt == "mjcf" else "urdf"))
+    with open(base, errors="replace") as f:
+        text = f.read()
+    with open(damaged, "w", errors="replace") as f:
+        f.write(damaged_text(rng, text))
+    out = os.path.join(work, "robot-out-%d.xml" % rng.randrange(10 ** 9))
+    args = ["humanoid", "export", "--set", "robot.description=" + damaged]
+    for k in keys:
+        args += ["--set", k]
+    return args + ["--out", out], lambda: "", out
+
+
 def make_special_case(rng, cls, work):
     """(argv without the exe, post-check returning '' or a problem, expect_ok)."""
     if cls == "output-target":
@@ -340,22 +447,49 @@ def make_special_case(rng, cls, work):
     return CHEAP_CAMPAIGN + grid + ["--resume", "--out", out], same_bytes, True
 
 
-def run_special_case(exe, args, post_check, expect_ok, work, timeout):
+def run_exe(exe, args, work, timeout):
+    """(exit code, stderr text) of `exe args` in `work`, or None when it does not end in time."""
     try:
         p = subprocess.run([exe] + args, capture_output=True, timeout=timeout, cwd=work,
                            env=dict(os.environ, MPLBACKEND="Agg"))
     except subprocess.TimeoutExpired:
+        return None
+    return p.returncode, p.stderr.decode("utf-8", "replace")
+
+
+def run_any_answer_case(exe, args, out, work, timeout):
+    """A case whose input may be good or bad: exit 0, exit 1 with an "error:" line, or exit 2 with
+    one line and `out` not written; a signal, an exit above 2 or "internal error" is a crash."""
+    ran = run_exe(exe, args, work, timeout)
+    if ran is None:
         return "hang", ""
-    stderr = p.stderr.decode("utf-8", "replace")
-    if p.returncode < 0 or p.returncode >= 128 or "internal error" in stderr:
-        return "crash", "exit %d: %s" % (p.returncode, stderr[-600:].strip())
+    code, stderr = ran
+    detail = "exit %d: %s" % (code, stderr[-600:].strip())
+    if code < 0 or code > 2 or "internal error" in stderr:
+        return "crash", detail
+    if code == 2:
+        errors = [line for line in stderr.splitlines() if line.startswith("error: ")]
+        ok = len(errors) == 1 and stderr.rstrip("\n").endswith(errors[0]) and not os.path.exists(out)
+        return ("refused" if ok else "unclear"), detail
+    if code == 1:
+        return ("named-failure" if re.search(r"^error: ", stderr, re.M) else "unclear"), detail
+    return "ok", detail
+
+
+def run_special_case(exe, args, post_check, expect_ok, work, timeout):
+    ran = run_exe(exe, args, work, timeout)
+    if ran is None:
+        return "hang", ""
+    code, stderr = ran
+    if code < 0 or code >= 128 or "internal error" in stderr:
+        return "crash", "exit %d: %s" % (code, stderr[-600:].strip())
     problem = post_check()
     if expect_ok:
-        outcome = "ok" if p.returncode == 0 and not problem else "unclear"
+        outcome = "ok" if code == 0 and not problem else "unclear"
     else:
         one_line = stderr.count("\n") == 1 and stderr.endswith("\n")
-        outcome = "refused" if p.returncode == 2 and one_line and not problem else "unclear"
-    return outcome, "exit %d: %s %s" % (p.returncode, stderr[-600:].strip(), problem)
+        outcome = "refused" if code == 2 and one_line and not problem else "unclear"
+    return outcome, "exit %d: %s %s" % (code, stderr[-600:].strip(), problem)
 
 
 def non_finite_in(text):
@@ -467,6 +601,11 @@ def main():
                 if cls == "python":
                     args = PYTHON_CALLS[k]
                     outcome, detail = run_python_case(args, pythonpath, a.timeout)
+                elif cls in ("analysis", "robot-file"):
+                    rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
+                    make = make_analysis_case if cls == "analysis" else make_robot_case
+                    args, _, out = make(rng, work)
+                    outcome, detail = run_any_answer_case(exe, args, out, work, a.timeout)
                 elif cls in SPECIAL_CLASSES:
                     rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
                     args, post_check, expect_ok = make_special_case(rng, cls, work)

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 
 namespace flexgait::numerics {
 namespace {
@@ -234,6 +236,57 @@ TEST(Continuation, ReportsWhyItCannotStart) {
   // step h_p = 1e-6 (which must stay inside).
   EXPECT_NEAR(c.points.back().p, 0.3, 1.1e-6);
   EXPECT_LE(c.points.back().p, 0.3 - 1e-6);
+}
+
+// z -> z/2 + p + p², defined only for p in [0, top] (as a configuration key is within its bounds):
+// the fixed point z* = 2(p + p²), ∂P/∂p = 1 + 2p. The one-sided difference of second order is exact
+// on a quadratic, so ∂P/∂p at the bound is 1 to round-off (|P| ~ 1 over h = 1e-6: ~1e-10; 1e-8
+// allowed), where a first-order difference would be off by h = 1e-6: the test tells them apart.
+MapFamily quadratic_on(double top) {
+  MapFamily f;
+  f.map = [top](const Eigen::VectorXd& z, double p, Eigen::VectorXd& out) -> std::optional<std::string> {
+    if (p < 0 || p > top) return "p = " + std::to_string(p) + " is not valid";
+    out = (0.5 * z.array() + p + p * p).matrix();
+    return std::nullopt;
+  };
+  f.valid = [top](double p) { return p >= 0 && p <= top; };
+  return f;
+}
+
+TEST(Continuation, ParameterDerivativeStaysInsideTheValidValues) {
+  const Eigen::VectorXd z = Eigen::VectorXd::Constant(1, 0.3);
+  Eigen::VectorXd Pp;
+  for (const double p : {0.0, 1e-7, 0.5, 1.0}) {  // the lower bound, next to it, inside, the upper bound
+    ASSERT_FALSE(parameter_derivative(quadratic_on(1.0), z, p, 1e-6, Pp)) << p;
+    EXPECT_NEAR(Pp(0), 1 + 2 * p, 1e-8) << "p = " << p;
+  }
+  // A range narrower than the step: the step is halved until two of its points fit.
+  ASSERT_FALSE(parameter_derivative(quadratic_on(1e-8), z, 0.0, 1e-6, Pp));
+  EXPECT_NEAR(Pp(0), 1.0, 1e-6);  // round-off over h <= 5e-9: ~4e-8
+  // Without MapFamily::valid the step crosses the bound and the map's failure is passed on.
+  MapFamily unbounded = quadratic_on(1.0);
+  unbounded.valid = nullptr;
+  const auto e = parameter_derivative(unbounded, z, 0.0, 1e-6, Pp);
+  ASSERT_TRUE(e);
+  EXPECT_NE(e->find("is not valid"), std::string::npos) << *e;
+  // No valid value next to p at all.
+  MapFamily point = quadratic_on(1.0);
+  point.valid = [](double p) { return p == 0; };
+  EXPECT_TRUE(parameter_derivative(point, z, 0.0, 1e-6, Pp));
+}
+
+// The branch from a bound of the parameter and to it: both reach their end, the end on the bound
+// exactly, every point on z* = 2(p + p²) to the corrector's tolerance (1e-11, amplified by
+// 1/(1 - 1/2) = 2 in z).
+TEST(Continuation, StartsAndEndsOnABoundOfTheParameter) {
+  const MapFamily f = quadratic_on(1.0);
+  for (const auto& [from, to] : {std::pair{0.0, 1.0}, std::pair{1.0, 0.0}}) {
+    const Branch b = continue_fixed_points(f, Eigen::VectorXd::Constant(1, 2 * (from + from * from)), from, to, {});
+    ASSERT_FALSE(b.start_failure) << b.failure();
+    EXPECT_TRUE(b.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.points.back().p, to);
+    for (const BranchPoint& pt : b.points) EXPECT_NEAR(pt.z(0), 2 * (pt.p + pt.p * pt.p), 3e-11) << pt.p;
+  }
 }
 
 }  // namespace

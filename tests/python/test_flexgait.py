@@ -221,6 +221,24 @@ class Interrupt(unittest.TestCase):
     def test_walk(self):
         self.interrupted(lambda: flexgait.humanoid.walk({"walk.steps": 400}))
 
+    # 100,000 transient steps (with the simulated-time limit lifted) before Newton: minutes.
+    long_transient = {"analysis.transient_steps": 100000, "sim.max_time": 1e6}
+
+    def test_fixed_point(self):
+        self.interrupted(lambda: flexgait.rimless.fixed_point(self.long_transient))
+
+    def test_fixed_point_of_the_rigid_wheel(self):  # many short runs: each one checks at its start
+        self.interrupted(lambda: flexgait.rimless.fixed_point(dict(self.long_transient, **{"sim.model": "rigid"})))
+
+    def test_poincare_map(self):
+        self.interrupted(lambda: flexgait.rimless.poincare_map(self.long_transient))
+
+    def test_within_one_sweep_point(self):
+        self.interrupted(lambda: flexgait.rimless.sweep("rimless.mu", 0.5, 0.5, 1, self.long_transient))
+
+    def test_bench(self):
+        self.interrupted(lambda: flexgait.humanoid.bench({"bench.poses": 10000, "bench.settle_time": 100}))
+
 
 class Threads(unittest.TestCase):
     def test_the_gil_is_released_during_a_sweep(self):

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "flexgait/core/text.hpp"
@@ -47,7 +48,38 @@ TEST(GaitBranch, RigidWheelOverTheSlopeIsTheClosedForm) {
   EXPECT_TRUE(b.branch.special.empty());
   const std::string csv = gait_branch_csv(b);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event");
+            "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event,"
+            "key,section,computed_at");
+  // What the branch is of, on every row: the key, the section, the wheel without the key.
+  EXPECT_EQ(b.section, Section::Touchdown);
+  EXPECT_EQ(b.computed_at, branch_computed_at(base, "rimless.slope"));
+  EXPECT_EQ(b.computed_at.find("rimless.slope="), std::string::npos) << b.computed_at;
+  EXPECT_NE(b.computed_at.find("rimless.I=0.01;"), std::string::npos) << b.computed_at;
+  EXPECT_NE(b.computed_at.find("sim.model=rigid"), std::string::npos) << b.computed_at;
+  const std::string row = csv.substr(csv.find('\n') + 1, csv.find('\n', csv.find('\n') + 1) - csv.find('\n') - 1);
+  EXPECT_TRUE(row.ends_with(",rimless.slope,touchdown," + b.computed_at)) << row;
+}
+
+// computed_at against a configuration: the same wheel has no difference whatever the continued
+// key's value; each changed wheel key (or sim.model) is named with both values; a value spelled
+// otherwise (1e0 for 1.0) is the same value; rimless.mu leaves out both of its keys; an entry
+// that names no key of the wheel, or is no key=value, is a difference.
+TEST(GaitBranch, ComputedAtNamesEveryDifferentWheelKey) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
+  const std::string at = branch_computed_at(base, "rimless.slope");
+  EXPECT_TRUE(computed_at_differences(at, base, "rimless.slope").empty());
+  const Config steeper = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.slope=0.2"});
+  EXPECT_TRUE(computed_at_differences(at, steeper, "rimless.slope").empty());
+  const Config other = resolve_config(rimless_analysis_schema(), std::nullopt, {"rimless.K=2000", "rimless.legs=8"});
+  EXPECT_EQ(computed_at_differences(at, other, "rimless.slope"),
+            (std::vector<std::string>{"rimless.legs = 10 (here: 8)", "rimless.K = 1000.0 (here: 2000.0)",
+                                      "sim.model = rigid (here: flexible)"}));
+  EXPECT_TRUE(computed_at_differences("rimless.m=1e0;rimless.g=9.81", base, "rimless.slope").empty());
+  const Config slippery = resolve_config(rimless_analysis_schema(), std::nullopt, {"rimless.mu_s=0.9", "rimless.mu_k=0.8"});
+  EXPECT_EQ(branch_computed_at(base, "rimless.mu").find("rimless.mu_"), std::string::npos);
+  EXPECT_TRUE(computed_at_differences("rimless.mu_s=0.1;rimless.mu_k=0.1", slippery, "rimless.mu").empty());
+  EXPECT_EQ(computed_at_differences("rimless.mu_s=0.1", slippery, "rimless.slope").size(), 1u);
+  EXPECT_EQ(computed_at_differences("solver.rtol=1e-9;nonsense", base, "rimless.slope").size(), 2u);
 }
 
 // The flexible wheel from μ = 0.6 down to 0.2 (default step 0.01): the stance foot starts to slip
@@ -182,6 +214,25 @@ TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {
     ADD_FAILURE() << "no ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "analysis.continuation.min_step");
+  }
+}
+
+// A branch that starts or ends on a bound of its key (rimless.I >= 0, the point-mass wheel): the
+// difference step in the key stays inside the allowed values (one-sided at the bound) and the end
+// is reached on the bound itself; every point is the closed form, as in the first test (1e-9).
+TEST(GaitBranch, RigidWheelFromAndToTheBoundOfItsKey) {
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
+  for (const auto& [from, to] : {std::pair{0.0, 0.02}, std::pair{0.02, 0.0}}) {
+    const GaitContinuationSpec spec{.param = "rimless.I", .from = from, .to = to};
+    const GaitBranch b = continue_gait(base, spec);
+    ASSERT_TRUE(b.failure.empty()) << b.failure;
+    EXPECT_TRUE(b.branch.reached_end) << b.stop_reason;
+    EXPECT_EQ(b.rows.front().p, from);
+    EXPECT_EQ(b.rows.back().p, to);
+    for (const GaitBranchRow& r : b.rows) {
+      const WheelParams w = wheel_from_config(sweep_point_config(base, SweepSpec{"rimless.I", r.p, r.p, 1}, 0));
+      EXPECT_NEAR(r.point.z(0), rigid_step_map(w).fixed_point(), 1e-9) << "I " << r.p;
+    }
   }
 }
 

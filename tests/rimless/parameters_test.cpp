@@ -59,6 +59,26 @@ TEST(Parameters, StribeckKeysApplyOnlyWithStribeckFriction) {
   }
 }
 
+// Scales that overflow (an impact of infinite momentum, formerly an internal error) or vanish are
+// refused naming the most extreme of m, L0, I, K, C, g; extreme but representable ones are not.
+TEST(Parameters, WheelScalesMustBeFiniteAndPositive) {
+  WheelParams w;
+  w.L0 = 1e300;
+  EXPECT_EQ(refused_key(w, InitialState{}), "rimless.L0");
+  w = WheelParams{};
+  w.m = 1e308;
+  w.C = 1e200;
+  EXPECT_EQ(refused_key(w, InitialState{}), "rimless.m");  // m g L0 = 9.81e308 overflows; m the most extreme
+  w = WheelParams{};
+  w.m = 1e-320;
+  w.I = 0;
+  w.L0 = 1e-10;
+  EXPECT_EQ(refused_key(w, InitialState{}), "rimless.m");  // m L0² + I = 0
+  w = WheelParams{};
+  w.K = 1e300;  // K L0² = 1e300: finite
+  EXPECT_EQ(refused_key(w, InitialState{}), "");
+}
+
 TEST(Parameters, InitialBetaMustLieWithinHalfTheSpokeAngle) {
   WheelParams w;
   w.legs = 6;  // α = π/6

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flexgait/core/text.hpp"
@@ -113,6 +114,35 @@ TEST(Sweep, RowWithoutFixedPointHasEmptyNumbers) {
       }
     }
   }
+}
+
+// A resumed row is kept only if sweep_row could have written it for its point: the rows written
+// (a converged point, and one whose transient fails: a flat slope where the rigid wheel stops)
+// pass; the same row under another index, or with one cell damaged, does not.
+TEST(Sweep, ARowIsValidOnlyAsItsOwnPointsRow) {
+  const Config base = configured({"sim.model=rigid", "rimless.I=0"});
+  const SweepSpec spec{.param = "rimless.slope", .from = 0.0, .to = 0.1, .count = 2};
+  const auto cells = [](const std::string& row) { return parse_csv(row + "\n").front().fields; };
+  const auto failed = cells(sweep_row(base, spec, 0)), walked = cells(sweep_row(base, spec, 1));
+  ASSERT_EQ(failed[4], "false");
+  ASSERT_EQ(walked[4], "true");
+  EXPECT_TRUE(sweep_row_valid(spec, 0, failed));
+  EXPECT_TRUE(sweep_row_valid(spec, 1, walked));
+  EXPECT_FALSE(sweep_row_valid(spec, 0, walked));  // the value is point 1's
+  const std::vector<std::pair<std::size_t, std::string>> damage{
+      {2, "fast"}, {2, ""}, {4, "yes"}, {6, "1.5;x"}, {7, "0.5"}, {8, "1e"}, {9, "1"}, {11, "0x10"},
+      {15, "2.0"}, {15, "-1"}, {15, ""}, {16, "fell over"}};
+  for (const auto& [column, text] : damage) {
+    auto row = walked;
+    row[column] = text;
+    EXPECT_FALSE(sweep_row_valid(spec, 1, row)) << "cell " << column << " = '" << text << "'";
+  }
+  auto fewer = walked;
+  fewer.pop_back();
+  EXPECT_FALSE(sweep_row_valid(spec, 1, fewer));
+  auto no_reason = failed;
+  no_reason[16].clear();  // not converged, and no failure named
+  EXPECT_FALSE(sweep_row_valid(spec, 0, no_reason));
 }
 
 }  // namespace

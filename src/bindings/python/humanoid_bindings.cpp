@@ -20,7 +20,8 @@ py::dict bench(const py::object& config, const OptionalPath& config_file) {
   std::string csv, summary;
   {
     py::gil_scoped_release release;
-    const experiments::BenchResult r = experiments::run_stiffness_bench(params);
+    InterruptCheck interrupted;  // Ctrl-C: checked before every physics step
+    const experiments::BenchResult r = experiments::run_stiffness_bench(params, [&interrupted] { interrupted(); });
     csv = experiments::bench_csv(r);
     summary = experiments::bench_summary_json(r);
   }

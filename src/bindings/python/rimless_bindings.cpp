@@ -90,7 +90,10 @@ py::dict fixed_point(const py::object& config, const OptionalPath& config_file, 
   rimless::FixedPointReport rep;
   {
     py::gil_scoped_release release;
-    rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, sec, s.initial);
+    InterruptCheck interrupted;  // Ctrl-C: checked from every run's poll
+    rimless::SimulationOptions sim = s.sim;
+    sim.poll = [&interrupted] { interrupted(); };
+    rep = rimless::find_fixed_point(s.wheel, sim, opt, s.sim.model, sec, s.initial);
   }
   py::dict out = json_value(rimless::fixed_point_json(rep));
   // A failed search (converged False, failure saying why) has no fixed point and no Jacobian.
@@ -110,8 +113,10 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
   std::optional<std::string> failure;
   {
     py::gil_scoped_release release;
+    InterruptCheck interrupted;  // Ctrl-C: checked from every run's poll
     const rimless::Section sec = section_of(section);
-    const rimless::SimulationOptions sim = rimless::map_options(s.sim, opt);
+    rimless::SimulationOptions sim = rimless::map_options(s.sim, opt);
+    sim.poll = [&interrupted] { interrupted(); };
     if (auto f = rimless::settle_on_section(s.wheel, sim, s.sim.model, sec, s.initial, opt.transient_steps, point))
       failure = f->text();
     if (!failure && z) {
@@ -153,9 +158,10 @@ py::dict sweep(const std::string& param, double start, double stop, int count, c
   {
     py::gil_scoped_release release;
     InterruptCheck interrupted;
+    const std::function<void()> poll = [&interrupted] { interrupted(); };  // within and between points
     for (int i = 0; i < count; ++i) {
       interrupted();
-      csv += std::to_string(i) + "," + rimless::sweep_row(s.config, spec, i) + "\n";
+      csv += std::to_string(i) + "," + rimless::sweep_row(s.config, spec, i, poll) + "\n";
     }
   }
   return csv_columns(csv);

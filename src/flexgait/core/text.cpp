@@ -19,6 +19,17 @@ std::optional<double> parse_finite_number(std::string_view text) {
   return v;
 }
 
+bool number_text(std::string_view text) {
+  return parse_finite_number(text).has_value() || text == "nan" || text == "inf" || text == "-inf";
+}
+
+bool count_text(std::string_view text, long long max) {
+  if (text.empty() || text.size() > 18 || text.find_first_not_of("0123456789") != std::string_view::npos) return false;
+  long long v = 0;
+  for (const char c : text) v = 10 * v + (c - '0');
+  return v <= max;
+}
+
 std::vector<std::string> split_text(std::string_view text, char separator) {
   std::vector<std::string> out(1);
   for (const char ch : text) {

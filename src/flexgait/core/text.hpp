@@ -17,6 +17,13 @@ std::string format_number(double v);
 /// NaN and infinities.
 std::optional<double> parse_finite_number(std::string_view text);
 
+/// Whether `text` is a number as format_number writes any double: finite, nan, inf or -inf (a
+/// resumed row's cell checked before it is kept).
+bool number_text(std::string_view text);
+
+/// Whether `text` is a count in [0, max] written in decimal digits alone.
+bool count_text(std::string_view text, long long max);
+
 /// The fields of `text` between `separator`s, empty ones kept ("a,,b" -> a, "", b; "" -> "").
 std::vector<std::string> split_text(std::string_view text, char separator);
 

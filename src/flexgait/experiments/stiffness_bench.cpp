@@ -34,7 +34,7 @@ std::string BenchFailure::text() const {
   throw std::logic_error("BenchFailureReason without a text");
 }
 
-BenchResult run_stiffness_bench(const BenchParams& p) {
+BenchResult run_stiffness_bench(const BenchParams& p, const std::function<void()>& poll) {
   const humanoid::ActuatorRigParams rig{p.actuator, p.arm_length, p.load_mass, p.physics_dt};
   const double weight_arm = p.load_mass * 9.81 * p.arm_length;  // m g l [Nm]
   std::optional<BenchFailure> failure;  // the first sweep's failure ends the bench
@@ -46,7 +46,10 @@ BenchResult run_stiffness_bench(const BenchParams& p) {
       const double desired = p.angle_min + (p.angle_max - p.angle_min) * i / (p.poses - 1);
       // Input compensator (eq. 9) with the bench's gravity model: the arm sags by τ_g / k.
       const double command = k_comp > 0 ? desired - weight_arm * std::cos(desired) / k_comp : desired;
-      for (int s = 0; s < settle && bench.warnings() == 0; ++s) bench.step(command);
+      for (int s = 0; s < settle && bench.warnings() == 0; ++s) {
+        if (poll) poll();
+        bench.step(command);
+      }
       if (bench.warnings() > 0)
         failure = BenchFailure{BenchFailureReason::kMuJoCoWarning, bench.warnings_text(), which, i};
       else if (!std::isfinite(bench.link_angle()) || !std::isfinite(bench.motor().theta_m))

@@ -6,6 +6,7 @@
 /// k_joint; the sweep is repeated with the command compensated by τ_g(θ_d) / k_fit (eqs. 8-9).
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -136,6 +137,7 @@ struct BenchResult {
   }
 };
 
-BenchResult run_stiffness_bench(const BenchParams& params);
+/// `poll`, when set, is called before every physics step and may throw to abandon the bench (Ctrl-C from Python).
+BenchResult run_stiffness_bench(const BenchParams& params, const std::function<void()>& poll = {});
 
 }  // namespace flexgait::experiments

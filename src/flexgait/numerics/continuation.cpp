@@ -58,11 +58,10 @@ Error linearise(const MapFamily& f, const Eigen::VectorXd& x, const Continuation
     if (auto e = central_difference_jacobian(at_p, z, h, Pz)) return e;
   }
   J.leftCols(n) = Pz - Eigen::MatrixXd::Identity(n, n);
-  const double hp = opt.fd_relative_step * std::max(std::abs(p), opt.parameter_scale);
-  Eigen::VectorXd plus(n), minus(n);
-  if (auto e = f.map(z, p + hp, plus)) return "parameter derivative: " + *e;
-  if (auto e = f.map(z, p - hp, minus)) return "parameter derivative: " + *e;
-  J.col(n) = (plus - minus) / ((p + hp) - (p - hp));
+  Eigen::VectorXd Pp;
+  if (auto e = parameter_derivative(f, z, p, opt.fd_relative_step * std::max(std::abs(p), opt.parameter_scale), Pp))
+    return e;
+  J.col(n) = Pp;
   return std::nullopt;
 }
 
@@ -337,6 +336,20 @@ struct Walker {
       Solved b;
       std::string why;
       for (;;) {
+        // A predictor that leaves [lo, hi] where the parameter has no valid value (the interval
+        // ends on a bound of the key): Newton at p = bound itself, from the tangent's point there.
+        const double predicted = a.x(n) + ds * a.t(n);
+        if ((predicted < lo || predicted > hi) && f.valid && !f.valid(predicted)) {
+          const double bound = predicted < lo ? lo : hi, s = (bound - a.x(n)) / a.t(n);
+          Eigen::VectorXd on = a.x + s * a.t;
+          on(n) = bound;
+          Solved end;
+          if (!correct(f, on, parameter_direction(n), 0.0, opt, end)) {
+            if (end.t.dot(a.t) < 0) end.t = -end.t;
+            end_on_bound(a, std::move(end), s, bound, p_end);
+            return;
+          }
+        }
         auto e = correct(f, a.x, a.t, ds, opt, b);
         if (!e && b.t.dot(a.t) < cos_turn)
           e = "the tangent turns by " + number(std::acos(std::clamp(b.t.dot(a.t), -1.0, 1.0))) + " rad";
@@ -369,13 +382,7 @@ struct Walker {
           if (exact.t.dot(end.t) < 0) exact.t = -exact.t;
           end = std::move(exact);
         }
-        if (opt.detect) detect(a, end, s);
-        branch.points.push_back(make_point(f, end, branch.points.back().arclength + s));
-        branch.reached_end = bound == p_end;
-        if (branch.reached_end)
-          stop(BranchEnd::ReachedEnd, "reached p = " + number(p_end));
-        else
-          stop(BranchEnd::TurnedBack, "turned back to p = " + number(bound) + " (left the parameter interval)");
+        end_on_bound(a, std::move(end), s, bound, p_end);
         return;
       }
       const std::size_t folds_before = count_folds();
@@ -392,6 +399,17 @@ struct Walker {
       a = std::move(b);
     }
     stop(BranchEnd::MaxPoints, "max_points (" + std::to_string(opt.max_points) + ") reached");
+  }
+
+  /// The branch's last point `end`, on p = bound, s along it after `a`.
+  void end_on_bound(const Solved& a, Solved end, double s, double bound, double p_end) {
+    if (opt.detect) detect(a, end, s);
+    branch.points.push_back(make_point(f, end, branch.points.back().arclength + s));
+    branch.reached_end = bound == p_end;
+    if (branch.reached_end)
+      stop(BranchEnd::ReachedEnd, "reached p = " + number(p_end));
+    else
+      stop(BranchEnd::TurnedBack, "turned back to p = " + number(bound) + " (left the parameter interval)");
   }
 
   std::size_t count_folds() const {
@@ -437,10 +455,40 @@ std::string to_string(SpecialKind kind) {
   return "?";
 }
 
+std::optional<std::string> parameter_derivative(const MapFamily& f, const Eigen::VectorXd& z, double p, double h,
+                                                Eigen::VectorXd& J_p) {
+  const auto valid = [&](double v) { return !f.valid || f.valid(v); };
+  const auto at = [&](double v, Eigen::VectorXd& out) -> Error {
+    if (auto e = f.map(z, v, out)) return "parameter derivative: " + *e;
+    return std::nullopt;
+  };
+  for (int halvings = 0; halvings <= 30; ++halvings, h *= 0.5) {
+    Eigen::VectorXd plus, minus;
+    if (valid(p + h) && valid(p - h)) {
+      if (auto e = at(p + h, plus)) return e;
+      if (auto e = at(p - h, minus)) return e;
+      J_p = (plus - minus) / ((p + h) - (p - h));
+      return std::nullopt;
+    }
+    for (const double side : {1.0, -1.0}) {
+      const double d = (p + side * h) - p;  // the step as represented
+      if (!valid(p + d) || !valid(p + 2 * d)) continue;
+      Eigen::VectorXd at_p, one, two;
+      if (auto e = at(p, at_p)) return e;
+      if (auto e = at(p + d, one)) return e;
+      if (auto e = at(p + 2 * d, two)) return e;
+      J_p = (4 * one - 3 * at_p - two) / (2 * d);
+      return std::nullopt;
+    }
+  }
+  return "parameter derivative: no difference step around p = " + number(p) + " stays among valid parameter values";
+}
+
 MapFamily iterate(const MapFamily& f, int k) {
   MapFamily g;
   g.period = f.period * k;
   g.label = f.label;
+  g.valid = f.valid;
   g.map = [f, k](const Eigen::VectorXd& z, double p, Eigen::VectorXd& out) -> std::optional<std::string> {
     Eigen::VectorXd current = z;
     for (int i = 0; i < k; ++i) {

@@ -69,7 +69,17 @@ struct MapFamily {
   ParametrisedJacobians jacobians;      ///< exact ∂P/∂z and ∂P/∂p; when set, used instead of both
   PointLabel label;                     ///< empty: no labels watched
   int period = 1;                       ///< this map is the period-th iterate of the underlying map
+  /// Whether p is a parameter value of the family (e.g. inside a key's bounds); empty: every p.
+  /// A difference step in p stays among valid values (parameter_derivative).
+  std::function<bool(double p)> valid;
 };
+
+/// ∂P/∂p at (z, p) by differences of step h: central, (P(p + h) - P(p - h)) / 2h, where both are
+/// valid parameter values (MapFamily::valid); else one-sided towards the valid side,
+/// (-3 P(p) + 4 P(p ± h) - P(p ± 2h)) / (±2h), of the same order h² (Fornberg 1988, Math. Comp. 51,
+/// table 1); the step halved while neither fits (a range narrower than 2h). Returns why not.
+std::optional<std::string> parameter_derivative(const MapFamily& f, const Eigen::VectorXd& z, double p, double h,
+                                                Eigen::VectorXd& J_p);
 
 /// P^k with ∂P^k/∂z by the chain rule, ∂P(z_{k-1}) ⋯ ∂P(z_0), when `family` has an exact ∂P/∂z.
 MapFamily iterate(const MapFamily& family, int k);

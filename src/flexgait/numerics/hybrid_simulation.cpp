@@ -32,6 +32,7 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
   while (!model.finished()) {
     ++solver_calls;
     if (solver_calls == 1 && !model.ready(t)) break;
+    if (limits.poll && (solver_calls == 1 || solver_calls % 256 == 0)) limits.poll();
     if (solver_calls % 256 == 0) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
       if (wall > limits.max_wall_time) {

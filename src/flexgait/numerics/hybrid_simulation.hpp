@@ -12,6 +12,7 @@
 /// own stops through HybridModel::loop_failed() and HybridModel::work_limit_reached().
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <span>
 #include <string>
@@ -59,6 +60,9 @@ struct HybridLimits {
   double sample_dt = 0.0;                                          ///< sampling period from the start time [s]
   double max_wall_time = std::numeric_limits<double>::infinity();  ///< [s] of wall clock
   double max_step_rate = std::numeric_limits<double>::infinity();  ///< integrator steps per simulated second
+  /// Called before the first integrator step and every 256 after it (e.g. to see a Ctrl-C); may
+  /// throw to abandon the run, the exception passed on to run()'s caller. Empty: nothing called.
+  std::function<void()> poll;
 };
 
 class HybridModel {

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -141,6 +142,16 @@ std::string basin_row(const Config& base, const BasinSpec& spec, const BasinRefe
     if (moved <= 0.01 * spec.tolerance && distance > 100 * spec.tolerance)
       return row(BasinOutcome::OtherGait, gait, n + 1, distance, "");
   }
+}
+
+bool basin_row_valid(const BasinSpec& spec, int cell, const std::vector<std::string>& cells) {
+  // x,y,outcome,gait,steps,distance,failure
+  const int ix = cell % spec.x.count, iy = cell / spec.x.count;
+  const auto& outcomes = basin_outcomes();
+  return cells.size() == 7 && cells[0] == format_number(spec.x.value(ix)) &&
+         cells[1] == format_number(spec.y.value(iy)) &&
+         std::find(outcomes.begin(), outcomes.end(), cells[2]) != outcomes.end() &&
+         count_text(cells[4], static_cast<long long>(spec.steps_limit) + 1) && number_text(cells[5]);
 }
 
 const std::vector<std::string>& basin_outcomes() {

@@ -125,6 +125,9 @@ constexpr std::array<EnumName<BasinOutcome>, 10> enum_names(BasinOutcome) {
 }
 std::string basin_header();  ///< x, y, outcome, gait, steps, distance, failure
 std::string basin_row(const Config& base, const BasinSpec& spec, const BasinReference& ref, int cell);
+/// Whether `cells` (a resumed row, after its index) could be basin_row(…, cell): the cell's x and
+/// y, an outcome of basin_outcomes(), steps in [0, steps_limit + 1], the distance a number.
+bool basin_row_valid(const BasinSpec& spec, int cell, const std::vector<std::string>& cells);
 
 /// The outcome class of a failure on the way (whatever its stage): rolled_back, stopped, slid_away,
 /// time_limit, or failed for any other reason.

@@ -901,6 +901,7 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
   limits.sample_dt = m.opt.sample_dt;
   limits.max_wall_time = m.opt.max_wall_time;
   limits.max_step_rate = m.opt.max_step_rate;
+  limits.poll = m.opt.poll;
   run.finish(m.loop.run(run, limits, 0.0));
   const numerics::OdeStats st = m.integrator.stats();
   res.solver_steps = st.steps - stats0.steps;

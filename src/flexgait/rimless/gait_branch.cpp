@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -207,6 +208,8 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
     const numerics::MapFamily f = family_for(cache, r.section, out.exact_jacobian);
     GaitBranch child;
     child.param = out.param;
+    child.section = out.section;
+    child.computed_at = out.computed_at;
     child.period = 2 * out.period;
     child.exact_jacobian = out.exact_jacobian;
     child.state_names = r.section.names();
@@ -230,7 +233,62 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
   }
 }
 
+
+/// The value text of a scalar key, as config.yaml writes it (format_value).
+std::string value_text(const Config& config, const ParamSpec& p) {
+  switch (p.type) {
+    case ParamType::Real: return format_value(config.real(p.key));
+    case ParamType::Integer: return format_value(config.integer(p.key));
+    case ParamType::Boolean: return format_value(config.boolean(p.key));
+    case ParamType::Choice: return format_value(config.choice(p.key));
+    case ParamType::Text: return format_value(config.text(p.key));
+    case ParamType::List:
+    case ParamType::Reals: break;
+  }
+  return {};
+}
+
+bool identifies_branch(const ParamSpec& p) {
+  return (p.key == "sim.model" || p.key.starts_with("rimless.")) && p.type != ParamType::List &&
+         p.type != ParamType::Reals;
+}
+
 }  // namespace
+
+std::string branch_computed_at(const Config& config, const std::string& param) {
+  const std::vector<std::string> varied = param_keys(param);
+  std::string out;
+  for (const ParamSpec& p : config.schema().params()) {
+    if (!identifies_branch(p) || std::find(varied.begin(), varied.end(), p.key) != varied.end()) continue;
+    out += (out.empty() ? "" : ";") + p.key + "=" + value_text(config, p);
+  }
+  return out;
+}
+
+std::vector<std::string> computed_at_differences(const std::string& recorded, const Config& config,
+                                                 const std::string& param) {
+  const std::vector<std::string> varied = param_keys(param);
+  std::vector<std::string> out;
+  for (const std::string& entry : split_text(recorded, ';')) {
+    const auto eq = entry.find('=');
+    const std::string key = entry.substr(0, eq);
+    if (std::find(varied.begin(), varied.end(), key) != varied.end()) continue;
+    const ParamSpec* p = eq == std::string::npos ? nullptr : config.schema().find(key);
+    if (p == nullptr || !identifies_branch(*p)) {
+      out.push_back(fmt::format("'{}' (not a key of this configuration's wheel)", one_line(entry, 80)));
+      continue;
+    }
+    const std::string here = value_text(config, *p), text = entry.substr(eq + 1);
+    std::string canonical;
+    try {
+      canonical = format_value(parse_value(*p, text, "--branch"));
+    } catch (const ConfigError&) {
+      canonical = text;  // not a value of the key: differs from any
+    }
+    if (canonical != here) out.push_back(fmt::format("{} = {} (here: {})", key, one_line(text, 40), here));
+  }
+  return out;
+}
 
 GaitContinuationOptions gait_continuation_from_config(const Config& config) {
   const GaitContinuationOptions o = record_from_config<GaitContinuationOptions>(config);
@@ -263,6 +321,8 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
 
   GaitBranch out;
   out.param = spec.param;
+  out.section = spec.section;
+  out.computed_at = branch_computed_at(base, spec.param);
   const WheelParams w0 = wheel_from_config(start_config);
   out.period = spec.period;
   numerics::ContinuationOptions o = continuation_options(spec, cache->opt);
@@ -313,8 +373,9 @@ std::string gait_branch_csv(const GaitBranch& b) {
     cols.push_back(fmt::format("abs_lambda_{}", k + 1));
     cols.push_back(fmt::format("arg_lambda_{}", k + 1));
   }
-  for (const char* c : {"stable", "residual", "event"}) cols.emplace_back(c);
+  for (const char* c : {"stable", "residual", "event", "key", "section", "computed_at"}) cols.emplace_back(c);
   CsvWriter csv(cols);
+  const std::string section{name_of(b.section)};
   for (const GaitBranchRow& r : b.rows) {
     csv.cell(r.p);
     for (Eigen::Index i = 0; i < r.state.size(); ++i) csv.cell(r.state(i));
@@ -324,6 +385,7 @@ std::string gait_branch_csv(const GaitBranch& b) {
       csv.cell(has ? std::abs(r.point.multipliers[k]) : NAN).cell(has ? std::arg(r.point.multipliers[k]) : NAN);
     }
     csv.cell(r.point.stable ? "true" : "false").cell(r.point.residual).cell(r.event);
+    csv.cell(b.param).cell(section).cell(b.computed_at);
     csv.end_row();
   }
   return csv.str();

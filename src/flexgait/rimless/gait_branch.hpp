@@ -151,7 +151,20 @@ struct GaitBranch {
   GaitBranchEnd end = GaitBranchEnd::AsContinued;  ///< with branch.end: how the branch ended
   std::string stop_reason;           ///< why the branch ended, in the key's unit
   std::string failure;               ///< nonempty when the start has no fixed point
+  Section section = Section::Touchdown;  ///< the Poincaré section of its fixed points
+  std::string computed_at;           ///< branch_computed_at of the configuration it was continued in
 };
+
+/// What identifies a branch besides its key and section: sim.model and the wheel's keys
+/// (rimless.*), each `key=value` (config.yaml's value text), joined by ';' in schema order, the keys
+/// `param` sets (param_keys: they vary along the branch) left out. branch.csv's computed_at column.
+std::string branch_computed_at(const Config& config, const std::string& param);
+
+/// The keys of a computed_at text whose values differ from `config`'s, as "key = recorded (here:
+/// value)", those `param` sets skipped; a key `config` does not know, or an entry that is not
+/// `key=value`, is a difference too. Empty: the same wheel.
+std::vector<std::string> computed_at_differences(const std::string& recorded, const Config& config,
+                                                 const std::string& param);
 
 /// The branch from the gait found at `from` (find_fixed_point from the configured initial state;
 /// for period k > 1, Newton on P^k from the state the transient reaches). A row's period, speed,
@@ -160,7 +173,8 @@ struct GaitBranch {
 GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec);
 
 /// branch.csv: parameter, the state's components (state_names), mode (of each row), period, speed, dissipated_per_step, gait,
-/// abs_lambda_k and arg_lambda_k for every multiplier (largest first), stable, residual, event.
+/// abs_lambda_k and arg_lambda_k for every multiplier (largest first), stable, residual, event, and
+/// what the branch is of, the same on every row: key (the continued key), section, computed_at.
 std::string gait_branch_csv(const GaitBranch& b);
 
 }  // namespace flexgait::rimless

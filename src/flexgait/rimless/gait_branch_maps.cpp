@@ -14,6 +14,15 @@ Config MapCache::config_at(double p) const { return sweep_point_config(base, Swe
 
 WheelParams MapCache::wheel_at(double q) const { return wheel_from_config(config_at(value(q))); }
 
+bool MapCache::valid(double q) const {
+  try {
+    config_at(value(q));
+    return true;
+  } catch (const ConfigError&) {
+    return false;
+  }
+}
+
 PoincareMap* MapCache::at(double q, std::string& why) {
   for (auto& [key, map] : maps)
     if (key == q) return map.get();
@@ -57,6 +66,7 @@ PoincareMap* map_and_point(MapCache& cache, const SectionState& like, const Eige
 /// The family of maps in q with the discrete section mode of `like`.
 numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const SectionState& like, bool exact) {
   numerics::MapFamily family;
+  family.valid = [cache](double q) { return cache->valid(q); };
   family.map = [cache, like](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
     std::string why;
     SectionState pt;
@@ -89,22 +99,18 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
       return m == nullptr ? std::optional<std::string>(why) : m->jacobian(pt, J);
     };
     // ∂P/∂q by sensitivity from the same run where the map has its parameter direction;
-    // otherwise central differences of the map in q (as numerics::continuation would).
-    const numerics::ParametrisedMap map = family.map;
-    family.jacobians = [cache, like, map](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J,
-                                          Eigen::VectorXd& J_p) -> std::optional<std::string> {
+    // otherwise differences of the map in q (as numerics::continuation would).
+    const numerics::MapFamily plain = family;
+    family.jacobians = [cache, like, plain](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J,
+                                            Eigen::VectorXd& J_p) -> std::optional<std::string> {
       std::string why;
       SectionState pt;
       PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
       if (m == nullptr) return why;
       if (m->has_parameter()) return m->jacobian_and_parameter_derivative(pt, J, J_p);
       if (auto e = m->jacobian(pt, J)) return e;  // m is not used below (the cache may drop it)
-      const double h = cache->opt.newton.fd_relative_step * std::max(std::abs(q), 1.0);
-      Eigen::VectorXd up, down;
-      if (auto e = map(z, q + h, up)) return "parameter derivative: " + *e;
-      if (auto e = map(z, q - h, down)) return "parameter derivative: " + *e;
-      J_p = (up - down) / ((q + h) - (q - h));
-      return std::nullopt;
+      return numerics::parameter_derivative(plain, z, q, cache->opt.newton.fd_relative_step * std::max(std::abs(q), 1.0),
+                                            J_p);
     };
   }
   return family;
@@ -133,6 +139,7 @@ numerics::MapFamily family_for(const std::shared_ptr<MapCache>& cache, const Sec
   };
   numerics::MapFamily family;
   family.period = k;
+  family.valid = [cache](double q) { return cache->valid(q); };
   family.map = [cache, like, steps, k](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
     SectionState end;
     std::string gait;

@@ -32,6 +32,8 @@ struct MapCache {
   double value(double q) const { return spec.from + q * (spec.to - spec.from); }
   Config config_at(double p) const;
   WheelParams wheel_at(double q) const;
+  /// Whether the key's value at q is valid (its bounds, the wheel's cross-field checks).
+  bool valid(double q) const;
   /// The map at q, or why the parameter value is not valid. A map of a wheel parameter (a
   /// rimless.* key) carries its ParameterDirection in q (∂P/∂q by sensitivity) when q ± h are valid.
   PoincareMap* at(double q, std::string& why);

@@ -58,6 +58,25 @@ std::string orbit_points_row(const Config& base, const OrbitDiagramSpec& spec, i
                      csv_field(text_of(failure)));
 }
 
+bool orbit_points_row_valid(const OrbitDiagramSpec& spec, int i, const std::vector<std::string>& cells) {
+  // value,recorded,modes,gaits,thetad,states,failure
+  if (cells.size() != 7 || cells[0] != format_number(spec.sweep.value(i)) || !count_text(cells[1], spec.record))
+    return false;
+  const auto recorded = static_cast<std::size_t>(std::stoi(cells[1]));
+  if ((recorded == static_cast<std::size_t>(spec.record)) != cells[6].empty()) return false;
+  if (recorded == 0) return cells[2].empty() && cells[3].empty() && cells[4].empty() && cells[5].empty();
+  const auto modes = split_text(cells[2], ';'), gaits = split_text(cells[3], ';'), thetad = split_text(cells[4], ';'),
+             states = split_text(cells[5], ';');
+  if (modes.size() != recorded || gaits.size() != recorded || thetad.size() != recorded || states.size() != recorded)
+    return false;
+  for (std::size_t k = 0; k < recorded; ++k) {
+    if (modes[k].empty() || !number_text(thetad[k])) return false;
+    for (const std::string& x : split_text(states[k], ' '))
+      if (!number_text(x)) return false;
+  }
+  return true;
+}
+
 std::string orbit_csv(const std::string& points_csv) {
   CsvWriter out({"parameter", "step", "mode", "gait", "thetad", "state", "failure"});
   const std::vector<CsvRecord> records = parse_csv(points_csv);

@@ -10,6 +10,7 @@
 /// the same bytes for any number of threads). sim.max_time does not limit these runs: their length is
 /// their number of steps.
 #include <string>
+#include <vector>
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
@@ -48,6 +49,10 @@ void check_orbit_diagram(const Config& base, const OrbitDiagramSpec& spec);
 /// The lists hold one entry per recorded crossing, separated by ';'. Thread-safe.
 std::string orbit_points_header();
 std::string orbit_points_row(const Config& base, const OrbitDiagramSpec& spec, int i);
+/// Whether `cells` (a resumed row, after its index) could be orbit_points_row(…, i): value i's, a
+/// count recorded in [0, record] with as many modes, gaits, thetad (numbers) and states (numbers
+/// joined by ' ') joined by ';', and a failure named exactly when fewer than `record` were recorded.
+bool orbit_points_row_valid(const OrbitDiagramSpec& spec, int i, const std::vector<std::string>& cells);
 
 /// orbit.csv, one row per recorded crossing, from orbit_points.csv's text (with its index column):
 ///   parameter, step (1 = the first crossing after the transient), mode (the stance foot's at

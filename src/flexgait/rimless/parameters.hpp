@@ -6,6 +6,7 @@
 /// (core/record.hpp).
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -117,6 +118,9 @@ struct SimulationOptions {
   numerics::OdeMethod method = numerics::OdeMethod::Dop853;
   bool log = true;              ///< keep the sampled log (off for maps and sweeps; not a key)
   bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp; not a key)
+  /// Called now and then during every run of these options (numerics::HybridLimits::poll: Ctrl-C
+  /// from Python); may throw to abandon the run. Not a key.
+  std::function<void()> poll;
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {

@@ -272,6 +272,7 @@ void simulate_rigid_into(const WheelParams& w, const InitialState& init, const S
   limits.sample_dt = opt.sample_dt;
   limits.max_wall_time = opt.max_wall_time;
   limits.max_step_rate = opt.max_step_rate;
+  limits.poll = opt.poll;
   run.finish(loop.run(run, limits, 0.0), first);
   const auto st = integ.stats();
   res.solver_steps = st.steps;

@@ -19,14 +19,14 @@ void check_sweep_param(const Schema& schema, const std::string& param) {
     throw ConfigError(param, fmt::format("--param: key '{}' is not a real number; allowed: a real-valued key", param));
 }
 
+std::vector<std::string> param_keys(const std::string& param) {
+  if (param == "rimless.mu") return {"rimless.mu_s", "rimless.mu_k"};
+  return {param};
+}
+
 Config config_at(const Config& base, const std::string& param, const std::string& value, const std::string& origin) {
   Config c = base;
-  if (param == "rimless.mu") {
-    c.set("rimless.mu_s", value, origin);
-    c.set("rimless.mu_k", value, origin);
-  } else {
-    c.set(param, value, origin);
-  }
+  for (const std::string& key : param_keys(param)) c.set(key, value, origin);
   check_with_origin(c, [&] { validate(wheel_from_config(c), initial_from_config(c)); });
   return c;
 }
@@ -46,13 +46,14 @@ std::string sweep_header() {
          "stable,gait,period,speed,dissipated_per_cycle,residual,iterations,failure";
 }
 
-std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
+std::string sweep_row(const Config& base, const SweepSpec& spec, int i, const std::function<void()>& poll) {
   const Config c = sweep_point_config(base, spec, i);
   const WheelParams w = wheel_from_config(c);
   const InitialState initial = initial_from_config(c);
   SimulationOptions sim = simulation_from_config(c);
   const AnalysisOptions opt = analysis_from_config(c);
   sim.log = false;
+  sim.poll = poll;
   sim.steps = std::max(1, opt.transient_steps);
   const SimulationResult r = sim.model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
   std::string transient_gait;
@@ -77,6 +78,42 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i) {
                      fp.stable ? "true" : "false", fp.gait, found(fp.period), found(fp.speed), found(fp.dissipated),
                      format_number(fp.residual), fp.iterations, csv_field(fp.failure()));
   return row;
+}
+
+namespace {
+
+bool boolean_text(const std::string& cell) { return cell == "true" || cell == "false"; }
+
+/// Items joined by ';' (none: the empty cell), each of which `item` accepts.
+template <class Item>
+bool list_text(const std::string& cell, const Item& item) {
+  if (cell.empty()) return true;
+  for (const std::string& part : split_text(cell, ';'))
+    if (!item(part)) return false;
+  return true;
+}
+
+bool number_cell(const std::string& cell) { return number_text(cell); }
+
+}  // namespace
+
+bool sweep_row_valid(const SweepSpec& spec, int i, const std::vector<std::string>& cells) {
+  // value,transient_gait,transient_speed,transient_failure,converged,mode,state,multipliers,
+  // max_multiplier,stable,gait,period,speed,dissipated_per_cycle,residual,iterations,failure
+  if (cells.size() != 17 || cells[0] != format_number(spec.value(i))) return false;
+  for (const std::size_t k : {2u, 14u})
+    if (!number_cell(cells[k])) return false;
+  // (a point without a fixed point leaves max_multiplier, period, speed and the energy empty)
+  for (const std::size_t k : {8u, 11u, 12u, 13u})
+    if (cells[4] == "false" ? !cells[k].empty() : !number_cell(cells[k])) return false;
+  if (!boolean_text(cells[4]) || !boolean_text(cells[9])) return false;
+  if (!count_text(cells[15], 1'000'000)) return false;  // Newton's iterations (analysis.max_iterations <= 1000)
+  const auto complex_text = [](const std::string& item) {
+    const auto colon = item.find(':');
+    return colon != std::string::npos && number_text(item.substr(0, colon)) && number_text(item.substr(colon + 1));
+  };
+  if (!list_text(cells[6], number_cell) || !list_text(cells[7], complex_text)) return false;
+  return (cells[4] == "true") == cells[16].empty();
 }
 
 }  // namespace flexgait::rimless

@@ -3,7 +3,9 @@
 /// One point of a parameter sweep of the rimless wheel: the gait reached from the initial state,
 /// the fixed point of the Poincaré map near it, its multipliers, stability, speed and energy per
 /// step. Points are independent, so a sweep runs them on all cores (core/sweep_runner.hpp).
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/rimless/poincare.hpp"
@@ -22,6 +24,9 @@ struct SweepSpec {
 /// Throws ConfigError if the key is unknown or not a real number.
 void check_sweep_param(const Schema& schema, const std::string& param);
 
+/// The configuration keys `param` sets: rimless.mu sets rimless.mu_s and rimless.mu_k, any other key itself.
+std::vector<std::string> param_keys(const std::string& param);
+
 /// The configuration with `param` (rimless.mu: mu_s and mu_k) set to the text `value`, checked as
 /// a --set of it is (domain, then the wheel's cross-field checks); a ConfigError names `origin`.
 Config config_at(const Config& base, const std::string& param, const std::string& value, const std::string& origin);
@@ -33,8 +38,14 @@ Config sweep_point_config(const Config& base, const SweepSpec& spec, int i);
 /// every point.
 void check_sweep(const Config& base, const SweepSpec& spec);
 
-/// CSV header and cells of one point (no index). Thread-safe.
+/// CSV header and cells of one point (no index). Thread-safe. `poll`: SimulationOptions::poll of its runs.
 std::string sweep_header();
-std::string sweep_row(const Config& base, const SweepSpec& spec, int i);
+std::string sweep_row(const Config& base, const SweepSpec& spec, int i, const std::function<void()>& poll = {});
+/// Whether `cells` (a resumed row of the partial file, after its index) could be sweep_row(…, i):
+/// as many cells as sweep_header has columns, the value point i's (format_number of spec.value(i)),
+/// numbers where the columns hold numbers (format_number's text: nan and inf too), true/false,
+/// a whole count of iterations, the state and multipliers as written, and a failure named exactly
+/// when the point did not converge (SweepJob::valid_row; a row it refuses is computed again).
+bool sweep_row_valid(const SweepSpec& spec, int i, const std::vector<std::string>& cells);
 
 }  // namespace flexgait::rimless
