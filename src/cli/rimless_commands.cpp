@@ -148,7 +148,9 @@ int sweep(const SweepArgs& a, const CLI::App& cmd) {
                               a.section, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
-  job.valid_row = [spec](int i, const std::vector<std::string>& cells) { return rimless::sweep_row_valid(spec, i, cells); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
+    return rimless::sweep_row_valid(spec, i, cells);
+  };
   check_resumable(job);
   const RunDirectory dir(a.run.out);
   dir.write_config(s.config);
@@ -245,7 +247,9 @@ std::vector<std::string> gait_vs_friction(const AnalysisContext& c, const RunDir
                               c.setup.config.to_yaml());
   const Config base = c.setup.config;
   job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
-  job.valid_row = [spec](int i, const std::vector<std::string>& cells) { return rimless::sweep_row_valid(spec, i, cells); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
+    return rimless::sweep_row_valid(spec, i, cells);
+  };
   run_sweep(job);
   // The periodic gait at each value (longer transients, then continuation from the neighbours'
   // fixed points where the start finds none), and the thresholds between them by bisection.

@@ -47,14 +47,16 @@ constexpr std::uintmax_t kMaxBranchBytes = std::uintmax_t{256} << 20;
 std::string read_branch(const std::string& path, const std::string& param, const std::string& section,
                         const Config& config) {
   const auto bad = [&](const std::string& why) {
-    return UsageError(fmt::format("--branch: '{}' {}; allowed: a branch.csv written by `flexgait rimless continuation "
-                                  "--param {} --section {}` with this configuration's sim.model and rimless.* keys",
-                                  one_line(path), why, param, section));
+    return UsageError(
+        fmt::format("--branch: '{}' {}; allowed: a branch.csv written by `flexgait rimless continuation "
+                    "--param {} --section {}` with this configuration's sim.model and rimless.* keys",
+                    one_line(path), why, param, section));
   };
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) throw bad("does not exist");
-  if (!std::filesystem::is_regular_file(status)) throw bad("is not a regular file (a directory, FIFO, socket or device)");
+  if (!std::filesystem::is_regular_file(status))
+    throw bad("is not a regular file (a directory, FIFO, socket or device)");
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   if (!ec && size > kMaxBranchBytes)
     throw bad(fmt::format("has {} bytes, above the limit of {}", size, kMaxBranchBytes));
@@ -68,9 +70,11 @@ std::string read_branch(const std::string& path, const std::string& param, const
     throw bad("has no parameter, thetad and stable columns");
   const std::ptrdiff_t key = column("key"), sec = column("section"), at = column("computed_at");
   if (key == width || sec == width || at == width) {
-    fmt::print(stderr, "warning: --branch: '{}' does not say which key, section and wheel it was continued in (written "
-                       "before branch.csv had key, section and computed_at columns); drawn as a branch in {} on the "
-                       "{} section unchecked\n", one_line(path), param, section);
+    fmt::print(stderr,
+               "warning: --branch: '{}' does not say which key, section and wheel it was continued in (written "
+               "before branch.csv had key, section and computed_at columns); drawn as a branch in {} on the "
+               "{} section unchecked\n",
+               one_line(path), param, section);
     return text;
   }
   if (records.size() < 2) throw bad("has no rows");
@@ -236,7 +240,9 @@ int basin(const MapRun& a, const CLI::App& cmd) {
                               format_number(spec.tolerance), a.section, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec, ref](int i) { return rimless::basin_row(base, spec, ref, i); };
-  job.valid_row = [spec](int i, const std::vector<std::string>& cells) { return rimless::basin_row_valid(spec, i, cells); };
+  job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
+    return rimless::basin_row_valid(spec, i, cells);
+  };
   const SweepOutcome out = run_sweep(job);
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;
@@ -269,9 +275,10 @@ void add_map_options(CLI::App& anc, MapOptions& o) {
   anc.add_option("--record", o.record, fmt::format("orbit-diagram: section crossings recorded at each value; sets "
                                                    "analysis.orbit.record ({})", orbit.record))
       ->type_name("INT");
-  anc.add_option("--branch", o.branches, "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
-                                         "section and wheel (checked), copied to branch_K.csv and drawn over the dots (stable solid, unstable "
-                                         "dashed); repeat for more branches")
+  anc.add_option("--branch", o.branches,
+                 "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
+                 "section and wheel (checked), copied to branch_K.csv and drawn over the dots (stable solid, unstable "
+                 "dashed); repeat for more branches")
       ->allow_extra_args(false);
   anc.add_option("--x", o.x, "basin: key of the initial state on the x axis (initial.omega or initial.beta)");
   anc.add_option("--y", o.y, "basin: key of the initial state on the y axis");

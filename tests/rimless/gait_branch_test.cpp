@@ -47,9 +47,10 @@ TEST(GaitBranch, RigidWheelOverTheSlopeIsTheClosedForm) {
   }
   EXPECT_TRUE(b.branch.special.empty());
   const std::string csv = gait_branch_csv(b);
-  EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event,"
-            "key,section,computed_at");
+  EXPECT_EQ(
+      csv.substr(0, csv.find('\n')),
+      "parameter,thetad,mode,period,speed,dissipated_per_step,gait,abs_lambda_1,arg_lambda_1,stable,residual,event,"
+      "key,section,computed_at");
   // What the branch is of, on every row: the key, the section, the wheel without the key.
   EXPECT_EQ(b.section, Section::Touchdown);
   EXPECT_EQ(b.computed_at, branch_computed_at(base, "rimless.slope"));
@@ -68,14 +69,16 @@ TEST(GaitBranch, ComputedAtNamesEveryDifferentWheelKey) {
   const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid"});
   const std::string at = branch_computed_at(base, "rimless.slope");
   EXPECT_TRUE(computed_at_differences(at, base, "rimless.slope").empty());
-  const Config steeper = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.slope=0.2"});
+  const Config steeper =
+      resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.slope=0.2"});
   EXPECT_TRUE(computed_at_differences(at, steeper, "rimless.slope").empty());
   const Config other = resolve_config(rimless_analysis_schema(), std::nullopt, {"rimless.K=2000", "rimless.legs=8"});
   EXPECT_EQ(computed_at_differences(at, other, "rimless.slope"),
             (std::vector<std::string>{"rimless.legs = 10 (here: 8)", "rimless.K = 1000.0 (here: 2000.0)",
                                       "sim.model = rigid (here: flexible)"}));
   EXPECT_TRUE(computed_at_differences("rimless.m=1e0;rimless.g=9.81", base, "rimless.slope").empty());
-  const Config slippery = resolve_config(rimless_analysis_schema(), std::nullopt, {"rimless.mu_s=0.9", "rimless.mu_k=0.8"});
+  const Config slippery =
+      resolve_config(rimless_analysis_schema(), std::nullopt, {"rimless.mu_s=0.9", "rimless.mu_k=0.8"});
   EXPECT_EQ(branch_computed_at(base, "rimless.mu").find("rimless.mu_"), std::string::npos);
   EXPECT_TRUE(computed_at_differences("rimless.mu_s=0.1;rimless.mu_k=0.1", slippery, "rimless.mu").empty());
   EXPECT_EQ(computed_at_differences("rimless.mu_s=0.1", slippery, "rimless.slope").size(), 1u);

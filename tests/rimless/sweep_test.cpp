@@ -129,9 +129,9 @@ TEST(Sweep, ARowIsValidOnlyAsItsOwnPointsRow) {
   EXPECT_TRUE(sweep_row_valid(spec, 0, failed));
   EXPECT_TRUE(sweep_row_valid(spec, 1, walked));
   EXPECT_FALSE(sweep_row_valid(spec, 0, walked));  // the value is point 1's
-  const std::vector<std::pair<std::size_t, std::string>> damage{
-      {2, "fast"}, {2, ""}, {4, "yes"}, {6, "1.5;x"}, {7, "0.5"}, {8, "1e"}, {9, "1"}, {11, "0x10"},
-      {15, "2.0"}, {15, "-1"}, {15, ""}, {16, "fell over"}};
+  const std::vector<std::pair<std::size_t, std::string>> damage{{2, "fast"}, {2, ""},    {4, "yes"}, {6, "1.5;x"},
+                                                                {7, "0.5"},  {8, "1e"},  {9, "1"},   {11, "0x10"},
+                                                                {15, "2.0"}, {15, "-1"}, {15, ""},   {16, "fell over"}};
   for (const auto& [column, text] : damage) {
     auto row = walked;
     row[column] = text;

@@ -233,17 +233,22 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
   }
 }
 
-
 /// The value text of a scalar key, as config.yaml writes it (format_value).
 std::string value_text(const Config& config, const ParamSpec& p) {
   switch (p.type) {
-    case ParamType::Real: return format_value(config.real(p.key));
-    case ParamType::Integer: return format_value(config.integer(p.key));
-    case ParamType::Boolean: return format_value(config.boolean(p.key));
-    case ParamType::Choice: return format_value(config.choice(p.key));
-    case ParamType::Text: return format_value(config.text(p.key));
+    case ParamType::Real:
+      return format_value(config.real(p.key));
+    case ParamType::Integer:
+      return format_value(config.integer(p.key));
+    case ParamType::Boolean:
+      return format_value(config.boolean(p.key));
+    case ParamType::Choice:
+      return format_value(config.choice(p.key));
+    case ParamType::Text:
+      return format_value(config.text(p.key));
     case ParamType::List:
-    case ParamType::Reals: break;
+    case ParamType::Reals:
+      break;
   }
   return {};
 }

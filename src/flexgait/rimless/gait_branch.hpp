@@ -152,7 +152,7 @@ struct GaitBranch {
   std::string stop_reason;           ///< why the branch ended, in the key's unit
   std::string failure;               ///< nonempty when the start has no fixed point
   Section section = Section::Touchdown;  ///< the Poincaré section of its fixed points
-  std::string computed_at;           ///< branch_computed_at of the configuration it was continued in
+  std::string computed_at;               ///< branch_computed_at of the configuration it was continued in
 };
 
 /// What identifies a branch besides its key and section: sim.model and the wheel's keys
@@ -172,9 +172,9 @@ std::vector<std::string> computed_at_differences(const std::string& recorded, co
 /// Throws ConfigError when param is not a real key, from = to, or either end is not a valid value.
 GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec);
 
-/// branch.csv: parameter, the state's components (state_names), mode (of each row), period, speed, dissipated_per_step, gait,
-/// abs_lambda_k and arg_lambda_k for every multiplier (largest first), stable, residual, event, and
-/// what the branch is of, the same on every row: key (the continued key), section, computed_at.
+/// branch.csv: parameter, the state's components (state_names), mode (of each row), period, speed, dissipated_per_step,
+/// gait, abs_lambda_k and arg_lambda_k for every multiplier (largest first), stable, residual, event, and what the
+/// branch is of, the same on every row: key (the continued key), section, computed_at.
 std::string gait_branch_csv(const GaitBranch& b);
 
 }  // namespace flexgait::rimless

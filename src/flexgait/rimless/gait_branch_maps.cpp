@@ -109,8 +109,8 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
       if (m == nullptr) return why;
       if (m->has_parameter()) return m->jacobian_and_parameter_derivative(pt, J, J_p);
       if (auto e = m->jacobian(pt, J)) return e;  // m is not used below (the cache may drop it)
-      return numerics::parameter_derivative(plain, z, q, cache->opt.newton.fd_relative_step * std::max(std::abs(q), 1.0),
-                                            J_p);
+      return numerics::parameter_derivative(plain, z, q,
+                                            cache->opt.newton.fd_relative_step * std::max(std::abs(q), 1.0), J_p);
     };
   }
   return family;

@@ -38,9 +38,12 @@ void validate(const WheelParams& w, const InitialState& s) {
   const double scales[] = {w.m * w.L0 * w.L0 + w.I, w.m * w.g * w.L0, w.K * w.L0 * w.L0, w.C * w.L0};
   if (!std::all_of(std::begin(scales), std::end(scales), [](double x) { return std::isfinite(x); }) ||
       !(scales[0] > 0) || !(scales[1] > 0)) {
-    const std::array<std::pair<const char*, double>, 6> keys{
-        {{"rimless.L0", w.L0}, {"rimless.m", w.m}, {"rimless.I", w.I}, {"rimless.K", w.K}, {"rimless.C", w.C},
-         {"rimless.g", w.g}}};
+    const std::array<std::pair<const char*, double>, 6> keys{{{"rimless.L0", w.L0},
+                                                              {"rimless.m", w.m},
+                                                              {"rimless.I", w.I},
+                                                              {"rimless.K", w.K},
+                                                              {"rimless.C", w.C},
+                                                              {"rimless.g", w.g}}};
     const auto extreme = [](double v) { return v > 0 ? std::abs(std::log10(v)) : 0.0; };
     const auto* worst = &keys[0];
     for (const auto& k : keys)
@@ -48,8 +51,8 @@ void validate(const WheelParams& w, const InitialState& s) {
     throw ConfigError(worst->first,
                       fmt::format("key '{}' = '{}': the wheel's scales overflow or vanish (m L0^2 + I = {}, m g L0 = "
                                   "{}, K L0^2 = {}, C L0 = {}); allowed: m, I, L0, K, C and g whose products are "
-                                  "finite, m L0^2 + I and m g L0 above 0", worst->first, worst->second, scales[0],
-                                  scales[1], scales[2], scales[3]));
+                                  "finite, m L0^2 + I and m g L0 above 0",
+                                  worst->first, worst->second, scales[0], scales[1], scales[2], scales[3]));
   }
   if (std::abs(s.beta) >= w.alpha())
     throw ConfigError("initial.beta",

@@ -82,7 +82,9 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i, const st
 
 namespace {
 
-bool boolean_text(const std::string& cell) { return cell == "true" || cell == "false"; }
+bool boolean_text(const std::string& cell) {
+  return cell == "true" || cell == "false";
+}
 
 /// Items joined by ';' (none: the empty cell), each of which `item` accepts.
 template <class Item>
@@ -93,7 +95,9 @@ bool list_text(const std::string& cell, const Item& item) {
   return true;
 }
 
-bool number_cell(const std::string& cell) { return number_text(cell); }
+bool number_cell(const std::string& cell) {
+  return number_text(cell);
+}
 
 }  // namespace
 
