@@ -311,6 +311,7 @@ check "continuation reaches the end" grep -q "^0.15," "$work/cont1/branch.csv"
 "$exe" "${cont[@]}" --out "$work/cont2" >/dev/null 2>&1
 check "continuation: same bytes twice" cmp -s "$work/cont1/branch.csv" "$work/cont2/branch.csv"
 expect_usage_error continuation-key rimless.nothing rimless continuation --param rimless.nothing --from 0.05 --to 0.1
+expect_usage_error continuation-solver-key 'a branch follows a parameter of the wheel' rimless continuation --param solver.rtol --from 1e-10 --to 1e-3
 expect_usage_error continuation-empty-interval "--to" rimless continuation --param rimless.slope --from 0.1 --to 0.1
 
 # Humanoid stiffness bench.

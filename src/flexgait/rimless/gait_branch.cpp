@@ -309,6 +309,12 @@ GaitContinuationOptions gait_continuation_from_config(const Config& config) {
 
 GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   check_sweep_param(base.schema(), spec.param);
+  // The branch's maps share the start's integration, initial-state and analysis settings: a key
+  // outside the wheel's would vary nothing and draw a flat branch.
+  if (spec.param.rfind("rimless.", 0) != 0)
+    throw ConfigError("--param", fmt::format("--param {}: a branch follows a parameter of the wheel; allowed: a real "
+                                             "rimless.* key (sweep other keys with rimless sweep)",
+                                             spec.param));
   if (!(spec.from != spec.to) || !std::isfinite(spec.from) || !std::isfinite(spec.to))
     throw ConfigError("--to", fmt::format("the interval is empty: --from {} --to {}", spec.from, spec.to));
   if (spec.step < 0 || spec.step > std::abs(spec.to - spec.from))
