@@ -319,6 +319,9 @@ std::vector<std::string> stagnation_map(const AnalysisContext& c, const RunDirec
   job.row = [base, variations = c.variations](int i) {
     return rimless::stagnation_map_row(base, variations[static_cast<std::size_t>(i)]);
   };
+  job.valid_row = [variations = c.variations](int i, const std::vector<std::string>& cells) {
+    return rimless::stagnation_map_row_valid(variations[static_cast<std::size_t>(i)], cells);
+  };
   run_sweep(job);
   return {"stagnation_map.csv"};
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -212,6 +213,31 @@ TEST(Stagnation, StartPastTheVerticalIsAConfigError) {
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "initial.beta");
   }
+}
+
+// A resumed stagnation-map row is kept only as its own variation's row: the header's cell count,
+// the variation first, then four numbers.
+TEST(Stagnation, AMapRowIsValidOnlyAsItsOwnVariationsRow) {
+  const std::string header = stagnation_map_header();
+  const auto columns = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+  std::vector<std::string> row(columns, "");
+  row[0] = "rimless.mu=0.5";
+  row[1] = "0.1";
+  row[2] = "0.01";
+  row[3] = "0";
+  row[4] = "10000";
+  EXPECT_TRUE(stagnation_map_row_valid("rimless.mu=0.5", row));
+  EXPECT_FALSE(stagnation_map_row_valid("rimless.mu=0.6", row));  // another variation's row
+  auto base = row;
+  base[0] = "base";
+  EXPECT_TRUE(stagnation_map_row_valid("", base));
+  for (std::size_t k = 1; k <= 4; ++k) {
+    auto damaged = row;
+    damaged[k] = "1e";
+    EXPECT_FALSE(stagnation_map_row_valid("rimless.mu=0.5", damaged)) << k;
+  }
+  row.pop_back();
+  EXPECT_FALSE(stagnation_map_row_valid("rimless.mu=0.5", row));
 }
 
 }  // namespace

@@ -398,4 +398,11 @@ std::string stagnation_map_row(const Config& base, const std::string& variation)
   return row;
 }
 
+bool stagnation_map_row_valid(const std::string& variation, const std::vector<std::string>& cells) {
+  const std::string header = stagnation_map_header();
+  const auto columns = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+  if (cells.size() != columns || cells[0] != (variation.empty() ? "base" : variation)) return false;
+  return std::all_of(cells.begin() + 1, cells.begin() + 5, [](const std::string& cell) { return number_text(cell); });
+}
+
 }  // namespace flexgait::rimless

@@ -230,5 +230,8 @@ std::string stagnation_csv(const StagnationScan& scan);
 Config stagnation_map_config(const Config& base, const std::string& variation);
 std::string stagnation_map_header();
 std::string stagnation_map_row(const Config& base, const std::string& variation);
+/// A resumed row is kept only if stagnation_map_row could have written it for `variation`: the
+/// header's number of cells, the variation's own name first, then four numbers (μ − tan slope, I, C, K).
+bool stagnation_map_row_valid(const std::string& variation, const std::vector<std::string>& cells);
 
 }  // namespace flexgait::rimless
