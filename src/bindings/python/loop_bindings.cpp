@@ -92,16 +92,7 @@ class PyHumanoidLoop {
       params_.plant.noise_seed = static_cast<int>(*seed);
     }
     renderer_.reset();
-    walk_ = experiments::make_walk_loop(params_);
-    if (user_) {
-      // The user's controller in the builtin's place, on the same twin, from the same start pose.
-      const walking::WalkingController& builtin = walk_.control->controller();
-      const loop::LoopSetup setup = experiments::walk_loop_setup(params_, builtin.model(), builtin.plan());
-      const humanoid::JointVector pose = walk_.control->controller().initial_pose();
-      walk_.loop = std::make_unique<loop::HumanoidLoop>(setup, user_);
-      walk_.loop->reset(pose);
-      walk_.loop->plant().set_pushes(walk_.pushes);
-    }
+    walk_ = experiments::make_walk_loop(params_, user_);  // the user's controller, if any, in the builtin's place
   }
 
   void step(const py::object& command) {

@@ -148,14 +148,16 @@ loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::Robo
   return setup;
 }
 
-WalkLoop make_walk_loop(const WalkRunParams& params) {
+WalkLoop make_walk_loop(const WalkRunParams& params, std::shared_ptr<loop::Controller> controller_in_its_place) {
   walking::WalkingController controller(walk_controller_model(params), params.walk, params.balance,
                                         params.plant.control_period, params.estimator, params.health);
   controller.set_plan_motion(params.control.load_model == compensation::LoadModel::kDynamic);
   const loop::LoopSetup setup = walk_loop_setup(params, controller.model(), controller.plan());
   WalkLoop w;
   w.control = std::make_shared<loop::WalkingControl>(std::move(controller));
-  w.loop = std::make_unique<loop::HumanoidLoop>(setup, w.control);
+  w.loop = std::make_unique<loop::HumanoidLoop>(setup, controller_in_its_place
+                                                           ? std::move(controller_in_its_place)
+                                                           : std::shared_ptr<loop::Controller>(w.control));
   walking::WalkingController& c = w.control->controller();
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
   const humanoid::Terrain& terrain = w.loop->plant().terrain();

@@ -314,7 +314,10 @@ struct WalkLoop {
   std::unique_ptr<loop::HumanoidLoop> loop;
   std::vector<humanoid::Push> pushes;  ///< the pushes applied (timed)
 };
-WalkLoop make_walk_loop(const WalkRunParams& params);
+/// `controller_in_its_place`, when given, drives the twin instead (a user's controller on the same
+/// twin, start pose and pushes); the builtin controller is then made only for its plan and pose.
+WalkLoop make_walk_loop(const WalkRunParams& params,
+                        std::shared_ptr<loop::Controller> controller_in_its_place = nullptr);
 
 /// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time now and
 /// then; `observe(plant)` after every control period (for rendering: evaluation code only);
