@@ -85,6 +85,15 @@ def configuration_page(schema):
                 out.append(f"| {code(k['key'])} | {cell(k.get('type'))} | {code(k.get('default', ''))} | "
                            f"{cell(k.get('unit'))} | {cell(k.get('allowed'))} | {doc} |")
             out.append("")
+        aliases = schema.get("aliases", {}).get(name, [])
+        if aliases:
+            out += [f"### {name}: aliases", "",
+                    "An alias sets each of its keys to its value; it has no value of its own (a configuration",
+                    "file written by the program holds its keys).", "",
+                    "| alias | sets | doc |", "|---|---|---|"]
+            out += [f"| {code(a['key'])} | {', '.join(code(p) for p in a['parts'])} | {cell(a.get('doc', ''))} |"
+                    for a in aliases]
+            out.append("")
     return "\n".join(out).rstrip() + "\n"
 
 

@@ -28,6 +28,7 @@ struct CampaignArgs {
   int jobs = 0;
   bool resume = false;
   bool keep_runs = false;
+  double max_run_bytes = 1e10;            ///< --max-run-bytes: cap on the kept runs' projected size
   std::vector<std::string> plot_metrics;  ///< --plot-metrics: campaign.png shows only these
   std::vector<std::string> reduce;        ///< --reduce: axes reduced over in reduced.csv
   std::vector<std::string> random;        ///< --random KEY=A:B
@@ -84,7 +85,9 @@ campaign::Campaign checked_campaign(const CampaignArgs& a) {
   check_output_directory(a.run.out, "--out");  // a file, a device, a FIFO inside: refused before any work
   campaign::Grid grid(std::move(axes));
   campaign::check_reduction(grid, a.reduce);
-  return campaign::Campaign(std::move(experiment), base, std::move(grid), std::move(random));
+  campaign::Campaign c(std::move(experiment), base, std::move(grid), std::move(random));
+  if (a.keep_runs) campaign::check_kept_runs_size(c, a.max_run_bytes);
+  return c;
 }
 
 int run_campaign_command(const CampaignArgs& a) {
@@ -179,6 +182,11 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
       ->delimiter(',')
       ->type_name("KEY1,KEY2,...");
   cmd->add_flag("--keep-runs", a->keep_runs, "also write each point's run files to OUT/runs/NNNNNN");
+  cmd->add_option("--max-run-bytes", a->max_run_bytes,
+                  "with --keep-runs: a campaign whose kept run files could exceed this many bytes (each run's logs as "
+                  "projected from its keys) is refused before it starts")
+      ->check(positive_number())
+      ->capture_default_str();
   cmd->callback([a, &action] { action = [a] { return run_campaign_command(*a); }; });
 }
 

@@ -70,6 +70,13 @@ nlohmann::ordered_json configuration_json(const Schema& schema) {
   return keys;
 }
 
+/// The schema's aliases: [{key, parts, doc}, ...] (a key that sets each of its parts).
+nlohmann::ordered_json aliases_json(const Schema& schema) {
+  nlohmann::ordered_json aliases = nlohmann::ordered_json::array();
+  for (const ParamAlias& a : schema.aliases()) aliases.push_back({{"key", a.key}, {"parts", a.parts}, {"doc", a.doc}});
+  return aliases;
+}
+
 /// The columns of a CSV text: its header, as the file's own writer made it (the writers are run on
 /// an empty result, so the names are never typed twice).
 std::vector<std::string> header_of(const std::string& csv) {
@@ -238,6 +245,9 @@ std::string schema_document() {
   doc["configurations"]["rimless"] = configuration_json(rimless::rimless_analysis_schema());
   doc["configurations"]["humanoid-walk"] = configuration_json(experiments::walk_run_schema());
   doc["configurations"]["humanoid-bench"] = configuration_json(experiments::bench_schema());
+  doc["aliases"]["rimless"] = aliases_json(rimless::rimless_analysis_schema());
+  doc["aliases"]["humanoid-walk"] = aliases_json(experiments::walk_run_schema());
+  doc["aliases"]["humanoid-bench"] = aliases_json(experiments::bench_schema());
   nlohmann::ordered_json rimless_summary = record_schema_json<rimless::SimulationResult>();
   rimless_summary["fields"].insert(rimless_summary["fields"].begin(),
                                    nlohmann::ordered_json{{"key", "model"}, {"type", "choice"}, {"unit", ""},

@@ -10,6 +10,7 @@ namespace flexgait::cli {
 
 /// The document `flexgait schema` prints and `reproduce` writes as schema.json:
 /// {"configurations": {command: [{key, type, default, unit, doc, allowed}, ...]},
+///  "aliases": {command: [{key, parts: [key, ...], doc}, ...]} (a key that sets each of its parts),
 ///  "results": {file: {"fields": [{key, type, unit, doc[, choices]}, ...]}},
 ///  "tables": {"command: file.csv": {doc, columns: [name, ...][, present_when: {condition: [name, ...]}]}},
 ///  "reproduce": {run directory: command}} (the runs of `flexgait reproduce`, for the report).

@@ -5,7 +5,7 @@
 # gives the same bytes, a torn last line included; --resume of a different grid is refused;
 # --plot-metrics names only metrics of the experiment and draws a 3-D grid as one figure; axes
 # that set the same key, a --seed outside [0, 2^64 - 1] and an --out that cannot hold a campaign
-# are refused (exit 2); a finished campaign is marked `complete`; --resume trusts no garbage row.
+# are refused (exit 2), as is --keep-runs whose logs would exceed --max-run-bytes; a finished campaign is marked `complete`; --resume trusts no garbage row.
 # Usage: campaign_test.sh FLEXGAIT_EXE [mpi MPIRUN]
 set -u
 exe=$1
@@ -196,6 +196,14 @@ check "push recovery: a row with the push's time, recovered, fell_at, bound ($(h
   grep -qE "^0,forward,standing,forward,4,[0-9.]+,[0-9.]+,[0-9.]+,[0-9.]+,3,$" "$work/p1/campaign.csv"
 campaign humanoid-bench --grid plant.k_joint=500,1000 --out "$work/b1" --keep-runs
 check "bench campaign with --keep-runs: a run directory per point" test -f "$work/b1/runs/000001/summary.json"
+# The kept runs' projected size is checked before anything runs: two 100-step walks keep ~17 MB of
+# logs (3 kB a row every 20 ms over ~100 s each), above a cap of 1 MB.
+campaign humanoid-walk --grid walk.steps=100,200 --keep-runs --max-run-bytes 1e6 --out "$work/k1"
+rc=$?
+check "--keep-runs over --max-run-bytes: exit 2 (got $rc)" test "$rc" -eq 2
+check "--keep-runs over --max-run-bytes: one line naming both and the size needed" \
+  grep -qE "^error: --keep-runs: .* above --max-run-bytes = 1e\+06; .* at least [0-9.e+]+$" "$work/stderr"
+check "--keep-runs over --max-run-bytes: nothing written" test ! -e "$work/k1"
 
 # Random draws: the same bytes with 1 and 2 threads; sample s draws the same values at every grid
 # point; reduced.csv has a row per mu with the points of its 5 samples.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Messages and output of the first contact: `--set` takes the alias rimless.mu as --grid and
-# --param do; an unknown key's did-you-mean offers keys of the same quantity only; a check that
+# --param do, and `flexgait schema` lists it; an unknown key's did-you-mean offers keys of the same quantity only; a check that
 # fails on a default names the value given against it and what to change, and no message starts
 # with "default:"; a finished campaign is marked complete; the stages
 # without a progress bar (drawing figures) are announced on a terminal only.
@@ -24,6 +24,11 @@ check "rimless: {mu: 0.13} in a file: the same config.yaml" cmp -s alias/config.
 check "rimless.mu=-1: exit 2" test $? -eq 2
 check "rimless.mu=-1: the message names the alias and the value" grep -qF "key 'rimless.mu' = '-1'" "$work/err"
 check "nothing written for a refused alias value" test ! -e never
+"$exe" schema >schema.json
+check "schema lists the alias rimless.mu and its parts" /usr/bin/python3 -c "
+import json
+aliases = json.load(open('schema.json'))['aliases']['rimless']
+assert {'key': 'rimless.mu', 'parts': ['rimless.mu_s', 'rimless.mu_k']} == {k: aliases[0][k] for k in ('key', 'parts')}"
 
 # Did-you-mean: the nearest names of the same quantity, never the mass for a friction typo.
 "$exe" rimless simulate --steps 2 --no-plot --set rimless.mux=0.1 --out never >/dev/null 2>"$work/err"

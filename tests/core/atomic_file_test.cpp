@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 
@@ -145,6 +146,42 @@ TEST(OutputTarget, AFifoAppearingWhileAWriterWritesIsRefusedAtCommit) {
   EXPECT_THROW(file.commit(), UsageError);
   EXPECT_TRUE(is_named_pipe(dir / "a.csv"));
   EXPECT_EQ(count_entries(dir), 1);
+}
+
+// The rename itself refuses a special file, with no check before it: what is at the target when
+// the rename happens is what counts (no window between a check and the rename).
+TEST(OutputTarget, TheRenameNeverReplacesASpecialFileAndReplacesARegularOne) {
+  const auto dir = fresh_dir("rename_over");
+  const auto make_tmp = [&](const std::string& text) {
+    const auto tmp = dir / ".tmp";
+    std::ofstream(tmp) << text;
+    return tmp;
+  };
+  ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0644), 0);
+  std::filesystem::create_symlink("fifo", dir / "link");  // relative, as a user's link may be
+  for (const char* name : {"fifo", "link"}) {
+    const auto tmp = make_tmp("new");
+    const std::string what = usage_error_of([&] { rename_over_regular_file(tmp, dir / name); });
+    EXPECT_NE(what.find("FIFO (named pipe), not a regular file"), std::string::npos) << name << ": " << what;
+    EXPECT_EQ(read_text_file(tmp), "new") << name;  // the caller's file, where it was
+    std::filesystem::remove(tmp);
+  }
+  EXPECT_TRUE(is_named_pipe(dir / "fifo"));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link"));
+  std::filesystem::create_directory(dir / "sub");
+  const auto tmp = make_tmp("new");
+  EXPECT_THROW(rename_over_regular_file(tmp, dir / "sub"), UsageError);
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "sub"));
+  std::ofstream(dir / "old.csv") << "old";
+  rename_over_regular_file(tmp, dir / "old.csv");  // a regular file is replaced
+  EXPECT_EQ(read_text_file(dir / "old.csv"), "new");
+  rename_over_regular_file(make_tmp("fresh"), dir / "absent.csv");  // an absent one created
+  EXPECT_EQ(read_text_file(dir / "absent.csv"), "fresh");
+  std::filesystem::create_symlink(dir / "nowhere", dir / "dangling");
+  rename_over_regular_file(make_tmp("y"), dir / "dangling");  // a dangling link replaced, as before
+  EXPECT_EQ(read_text_file(dir / "dangling"), "y");
+  EXPECT_FALSE(std::filesystem::is_symlink(dir / "dangling"));
+  EXPECT_EQ(count_entries(dir), 6);  // fifo, link, sub, old.csv, absent.csv, dangling: nothing left over
 }
 
 TEST(OutputTarget, ADirectoryOfResultsHoldsOnlyRegularFilesAndDirectories) {

@@ -27,6 +27,12 @@ Each case is one command line (or one Python call) with its expected kind of ans
   * class "robot-file": the builtin robot exported as MJCF or URDF, damaged (cut anywhere, a
     number replaced by nan, inf, -1, 1e308 or text, a tag dropped, bytes inserted, emptied) and
     loaded by `humanoid export --set robot.description=FILE`. Expected as for "analysis".
+  * class "sensor-fault": a one-step walk whose sensor (F/T, gyro, accelerometer, AHRS or an
+    encoder) fails from its first sample or within the first milliseconds (nan, stuck, dropout,
+    latency; for 1 ms to the whole walk). Expected: exit 0 with outcome "walked" and finite
+    numbers (a fault the controller bridges), or exit 1 with a named outcome in summary.json (a
+    safe stop, a fall) — never a simulation failure (a NaN that reached the twin), a crash or a
+    hang.
   * class "python": bad calls to the bindings. Expected: ValueError, or TypeError where the
     argument's type is wrong (Python's convention) — never another exception, never a crash.
 
@@ -55,7 +61,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_fuzz  # noqa: E402  (its value lists and YAML damage)
 
 CLASSES = ["set-value", "yaml-file", "path", "option", "extreme-physics", "campaign", "output-target", "analysis",
-           "robot-file", "python"]
+           "robot-file", "sensor-fault", "python"]
 SPECIAL_CLASSES = {"campaign", "output-target", "analysis", "robot-file"}
 EXE = None  # the flexgait executable (main sets it)
 OUTCOMES = ["refused", "named-failure", "ok", "crash", "hang", "silent-nan", "unclear"]
@@ -369,6 +375,48 @@ def make_robot_case(rng, work):
     return args + ["--out", out], lambda: "", out
 
 
+SENSORS = ["ft_left", "ft_right", "gyro", "accel", "ahrs", "encoder"]
+ENCODER_JOINTS = ["waist_yaw", "l_hip_roll", "l_hip_pitch", "l_knee", "l_ankle_pitch", "l_ankle_roll", "r_hip_yaw",
+                  "r_knee", "r_ankle_roll"]
+
+
+def make_sensor_fault_case(rng, work):
+    """(argv, out) of a one-step walk with one or two sensors failing at start-up."""
+    out = os.path.join(work, "fault-%d" % rng.randrange(10 ** 9))
+    args = ["humanoid", "walk", "--set", "walk.steps=1", "--no-plot"]
+    for sensor in rng.sample(SENSORS, rng.choice([1, 1, 2])):
+        kind = rng.choice(["nan", "nan", "stuck", "dropout", "latency"])
+        key = "plant.faults.%s." % sensor
+        args += ["--set", key + "kind=" + kind,
+                 "--set", key + "start=" + rng.choice(["0", "0", "0.001", "0.002", "0.0015", "0.01"]),
+                 "--set", key + "duration=" + rng.choice(["0.001", "0.002", "0.01", "0.3", "1e9"])]
+        if kind == "latency":
+            args += ["--set", key + "delay=" + rng.choice(["0.001", "0.02", "0.2"])]
+        if sensor == "encoder":
+            args += ["--set", key + "joint=" + rng.choice(ENCODER_JOINTS)]
+    return args + ["--out", out], out
+
+
+def run_sensor_fault_case(exe, args, out, work, timeout):
+    """exit 0: walked, finite; exit 1: a named outcome in summary.json, not a simulation failure."""
+    defect, code, stderr, detail = run_checked(exe, args, work, timeout)
+    if defect:
+        return defect, detail
+    try:
+        text = open(os.path.join(out, "summary.json")).read()
+        summary = json.loads(text)
+    except (OSError, ValueError):
+        return "unclear", detail + " (no readable summary.json)"
+    if summary.get("outcome") == "simulation_failure":
+        return "unclear", detail + " (the simulation failed: a bad reading reached the twin)"
+    if code == 0:
+        if non_finite_in(text):
+            return "silent-nan", detail
+        return ("ok" if summary.get("outcome") == "walked" else "unclear"), detail
+    named = code == 1 and re.search(r"^error: ", stderr, re.M) and summary.get("outcome") not in (None, "walked")
+    return ("named-failure" if named else "unclear"), detail
+
+
 def make_special_case(rng, cls, work):
     """(argv without the exe, post-check returning '' or a problem, expect_ok)."""
     if cls == "output-target":
@@ -457,16 +505,24 @@ def run_exe(exe, args, work, timeout):
     return p.returncode, p.stderr.decode("utf-8", "replace")
 
 
+def run_checked(exe, args, work, timeout):
+    """(defect or None, exit code, stderr, detail): "hang" without an answer in time, "crash" for a
+    signal, an exit above 2 or "internal error"."""
+    ran = run_exe(exe, args, work, timeout)
+    if ran is None:
+        return "hang", None, "", ""
+    code, stderr = ran
+    detail = "exit %d: %s" % (code, stderr[-600:].strip())
+    crashed = code < 0 or code > 2 or "internal error" in stderr
+    return ("crash" if crashed else None), code, stderr, detail
+
+
 def run_any_answer_case(exe, args, out, work, timeout):
     """A case whose input may be good or bad: exit 0, exit 1 with an "error:" line, or exit 2 with
     one line and `out` not written; a signal, an exit above 2 or "internal error" is a crash."""
-    ran = run_exe(exe, args, work, timeout)
-    if ran is None:
-        return "hang", ""
-    code, stderr = ran
-    detail = "exit %d: %s" % (code, stderr[-600:].strip())
-    if code < 0 or code > 2 or "internal error" in stderr:
-        return "crash", detail
+    defect, code, stderr, detail = run_checked(exe, args, work, timeout)
+    if defect:
+        return defect, detail
     if code == 2:
         errors = [line for line in stderr.splitlines() if line.startswith("error: ")]
         ok = len(errors) == 1 and stderr.rstrip("\n").endswith(errors[0]) and not os.path.exists(out)
@@ -601,6 +657,10 @@ def main():
                 if cls == "python":
                     args = PYTHON_CALLS[k]
                     outcome, detail = run_python_case(args, pythonpath, a.timeout)
+                elif cls == "sensor-fault":
+                    rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
+                    args, out = make_sensor_fault_case(rng, work)
+                    outcome, detail = run_sensor_fault_case(exe, args, out, work, a.timeout)
                 elif cls in ("analysis", "robot-file"):
                     rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
                     make = make_analysis_case if cls == "analysis" else make_robot_case

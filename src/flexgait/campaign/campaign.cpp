@@ -230,6 +230,24 @@ std::string Campaign::config_yaml() const {
   return out + base_.to_yaml();
 }
 
+double kept_runs_bytes(const Campaign& campaign) {
+  const Experiment& e = campaign.experiment();
+  double bytes = 0;
+  for (int i = 0; i < campaign.size(); ++i)
+    bytes += e.run_bytes ? e.run_bytes(campaign.point_config(i)) : kSmallRunBytes;
+  return bytes;
+}
+
+void check_kept_runs_size(const Campaign& campaign, double max_bytes) {
+  const double bytes = kept_runs_bytes(campaign);
+  if (bytes <= max_bytes) return;
+  throw UsageError(
+      fmt::format("--keep-runs: the {} points' run files could reach {:.3g} bytes (their logs as each run projects "
+                  "them), above --max-run-bytes = {:.3g}; allowed: fewer points, sparser logs (sim.sample_dt, "
+                  "output.log_period), no --keep-runs, or --max-run-bytes raised to at least {:.3g}",
+                  campaign.size(), bytes, max_bytes, bytes));
+}
+
 SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run) {
   SweepJob job;
   job.dir = run.dir;

@@ -72,6 +72,11 @@ class Campaign {
   RandomDesign random_;
 };
 
+/// The projected size of every point's run files when kept (Experiment::run_bytes) [bytes].
+double kept_runs_bytes(const Campaign& campaign);
+/// Throws UsageError naming --keep-runs and --max-run-bytes if kept_runs_bytes exceeds `max_bytes`.
+void check_kept_runs_size(const Campaign& campaign, double max_bytes);
+
 /// The summary's keys `metrics` of a JSON object's text as CSV cells (see the file comment).
 std::string summary_cells(const std::string& summary_json, const std::vector<std::string>& metrics);
 

@@ -33,7 +33,14 @@ struct Experiment {
   /// The type of each metric's cells, as FieldDescription::type names it ("real", "integer",
   /// "boolean", "list of real", ...); "" when not known. A resumed row's cells are checked by it.
   std::vector<std::string> metric_types = {};
+  /// The projected size of one point's run files when they are kept (campaign --keep-runs)
+  /// [bytes]; empty: a few files of a few kB (kSmallRunBytes).
+  std::function<double(const Config& config)> run_bytes = {};
 };
+
+/// What a kept run writes at least (config.yaml, the summary, small tables) [bytes]: the builtin
+/// robot's config.yaml alone is ~19 kB.
+inline constexpr double kSmallRunBytes = 64e3;
 
 /// Whether `cell` (campaign.csv's text of one summary value) can be a value of type `type`
 /// (Experiment::metric_types): empty (null) always; "real" a finite number; "integer" an integer;

@@ -4,6 +4,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <stdio.h>  // renameat2 (glibc >= 2.28, _GNU_SOURCE)
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -119,6 +120,36 @@ void check_output_directory(const std::filesystem::path& path, const std::string
   }
 }
 
+// Linux's renameat2 creates the name only if it is absent (RENAME_NOREPLACE) or swaps the two
+// names atomically (RENAME_EXCHANGE); after a swap the old target sits at `tmp`, is looked at,
+// and is swapped back if it is a device, a FIFO, a socket or a directory, so such a file is never
+// unlinked, whenever it appeared. Where the file system has no renameat2 (EINVAL, ENOSYS) the
+// check and the rename are two calls. A target that keeps changing between the calls is tried 8
+// times.
+void rename_over_regular_file(const std::filesystem::path& tmp, const std::filesystem::path& target) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return;
+    if (errno == EINVAL || errno == ENOSYS) break;
+    if (errno != EEXIST) fail("cannot rename into place", target);
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) {
+      if (errno == ENOENT) continue;  // the target went away meanwhile: create it
+      if (errno == EINVAL || errno == ENOSYS) break;
+      fail("cannot rename into place", target);
+    }
+    const std::string kind = unusable_kind(tmp, false);  // the old target, now at tmp
+    if (kind.empty()) {
+      ::unlink(tmp.c_str());
+      return;
+    }
+    if (::renameat2(AT_FDCWD, tmp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0)
+      fail("cannot put back the file found at", target);
+    check_output_file(target);  // throws, naming the kind
+    break;                      // not reached: the file put back is the unusable one
+  }
+  check_output_file(target);
+  if (::rename(tmp.c_str(), target.c_str()) != 0) fail("cannot rename into place", target);
+}
+
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
   AtomicFileWriter file(path);
   file.append(content);
@@ -192,17 +223,11 @@ void AtomicFileWriter::commit() {
     errno = err;
     fail("cannot close", tmp_);
   }
-  try {  // again: the target may have been replaced while the content was written
-    check_output_file(path_);
+  try {
+    rename_over_regular_file(tmp_, path_);
   } catch (...) {
     ::unlink(tmp_.c_str());
     throw;
-  }
-  if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp_.c_str());
-    errno = err;
-    fail("cannot rename into place", path_);
   }
   if (durable) sync_directory(directory_of(path_));
 }

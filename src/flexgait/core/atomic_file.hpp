@@ -35,6 +35,12 @@ void check_output_file(const std::filesystem::path& path, const std::string& opt
 /// directory's files are replaced by rename, which must not land on a device, FIFO or socket.
 void check_output_directory(const std::filesystem::path& path, const std::string& option = "");
 
+/// Renames the file `tmp` to `target` if `target` is absent or a regular file (links followed);
+/// never replaces a directory, device, FIFO or socket, even one that appears during the call.
+/// Throws UsageError (check_output_file's message; `tmp` and `target` as they were) or
+/// std::system_error; `tmp` is the caller's to remove on failure.
+void rename_over_regular_file(const std::filesystem::path& tmp, const std::filesystem::path& target);
+
 /// Writes `content` to `path` atomically. Throws std::system_error on failure, leaving
 /// neither a partial `path` nor a temporary file behind.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
@@ -59,7 +65,9 @@ class AtomicFileWriter {
   /// Appends `content` to the temporary file. Throws std::system_error on failure.
   void append(std::string_view content);
   /// Closes the temporary file and renames it over the target (once; Durable: with an fsync of
-  /// the file before and of the directory after), the target checked again just before.
+  /// the file before and of the directory after). The rename never replaces what is not a
+  /// regular file, even one put there after the constructor's check: on Linux it creates the
+  /// name or swaps atomically and swaps back a special file it found (renameat2).
   /// Throws UsageError (check_output_file) or std::system_error on failure, leaving neither a
   /// partial target nor the temporary file.
   void commit();

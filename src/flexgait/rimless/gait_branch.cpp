@@ -261,7 +261,7 @@ bool identifies_branch(const ParamSpec& p) {
 }  // namespace
 
 std::string branch_computed_at(const Config& config, const std::string& param) {
-  const std::vector<std::string> varied = param_keys(param);
+  const std::vector<std::string> varied = param_keys(config.schema(), param);
   std::string out;
   for (const ParamSpec& p : config.schema().params()) {
     if (!identifies_branch(p) || std::find(varied.begin(), varied.end(), p.key) != varied.end()) continue;
@@ -272,7 +272,7 @@ std::string branch_computed_at(const Config& config, const std::string& param) {
 
 std::vector<std::string> computed_at_differences(const std::string& recorded, const Config& config,
                                                  const std::string& param) {
-  const std::vector<std::string> varied = param_keys(param);
+  const std::vector<std::string> varied = param_keys(config.schema(), param);
   std::vector<std::string> out;
   for (const std::string& entry : split_text(recorded, ';')) {
     const auto eq = entry.find('=');

@@ -373,12 +373,7 @@ Config stagnation_map_config(const Config& base, const std::string& variation) {
       throw UsageError(fmt::format("stagnation map variation '{}': expected KEY=VALUE[,KEY=VALUE...]", variation));
     const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     const std::string origin = fmt::format("stagnation map '{}'", variation);
-    if (key == "rimless.mu") {
-      c.set("rimless.mu_s", value, origin);
-      c.set("rimless.mu_k", value, origin);
-    } else {
-      c.set(key, value, origin);
-    }
+    c.set(key, value, origin);  // an alias (rimless.mu) sets each of its parts
   }
   validate(wheel_from_config(c), initial_from_config(c));
   stagnation_from_config(c);

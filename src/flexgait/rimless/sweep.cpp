@@ -10,7 +10,10 @@
 namespace flexgait::rimless {
 
 void check_sweep_param(const Schema& schema, const std::string& param) {
-  if (param == "rimless.mu") return;
+  if (const ParamAlias* alias = schema.find_alias(param)) {
+    check_sweep_param(schema, alias->parts.front());  // an alias's parts are of one type
+    return;
+  }
   const ParamSpec* p = schema.find(param);
   if (p == nullptr)
     throw ConfigError(param, fmt::format("--param: unknown key '{}'; allowed: a real-valued key of config.yaml, or "
@@ -19,14 +22,14 @@ void check_sweep_param(const Schema& schema, const std::string& param) {
     throw ConfigError(param, fmt::format("--param: key '{}' is not a real number; allowed: a real-valued key", param));
 }
 
-std::vector<std::string> param_keys(const std::string& param) {
-  if (param == "rimless.mu") return {"rimless.mu_s", "rimless.mu_k"};
+std::vector<std::string> param_keys(const Schema& schema, const std::string& param) {
+  if (const ParamAlias* alias = schema.find_alias(param)) return alias->parts;
   return {param};
 }
 
 Config config_at(const Config& base, const std::string& param, const std::string& value, const std::string& origin) {
   Config c = base;
-  for (const std::string& key : param_keys(param)) c.set(key, value, origin);
+  c.set(param, value, origin);  // an alias (rimless.mu) sets each of its parts
   check_with_origin(c, [&] { validate(wheel_from_config(c), initial_from_config(c)); });
   return c;
 }

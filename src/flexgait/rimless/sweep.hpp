@@ -24,8 +24,9 @@ struct SweepSpec {
 /// Throws ConfigError if the key is unknown or not a real number.
 void check_sweep_param(const Schema& schema, const std::string& param);
 
-/// The configuration keys `param` sets: rimless.mu sets rimless.mu_s and rimless.mu_k, any other key itself.
-std::vector<std::string> param_keys(const std::string& param);
+/// The configuration keys `param` sets: an alias its parts (rimless.mu: rimless.mu_s and
+/// rimless.mu_k), any other key itself.
+std::vector<std::string> param_keys(const Schema& schema, const std::string& param);
 
 /// The configuration with `param` (rimless.mu: mu_s and mu_k) set to the text `value`, checked as
 /// a --set of it is (domain, then the wheel's cross-field checks); a ConfigError names `origin`.
