@@ -8,6 +8,7 @@
 #include <utility>
 #include <nlohmann/json.hpp>
 
+#include "flexgait/core/progress.hpp"
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/sweep_runner.hpp"
@@ -15,13 +16,13 @@
 #include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/gait_branch.hpp"
 #include "flexgait/rimless/output.hpp"
 #include "flexgait/rimless/replay.hpp"
+#include "flexgait/rimless/rigid_wheel.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 #include "flexgait/rimless/sweep.hpp"
-#include "flexgait/rimless/gait_branch.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
-#include "flexgait/rimless/rigid_wheel.hpp"
 #include "options.hpp"
 #include "rimless_map_commands.hpp"
 
@@ -274,9 +275,13 @@ std::vector<std::string> fixed_points(const AnalysisContext& c, const RunDirecto
 std::vector<std::string> robustness(const AnalysisContext& c, const RunDirectory& dir) {
   const std::vector<double> eps = rimless::robustness_epsilons(c.paper);
   std::string text;
-  for (const double mu : c.paper.robustness_mu) {
-    const std::string part =
-        rimless::robustness_csv(c.setup.config, mu, eps, c.paper.max_steps, c.paper.return_tol);
+  const auto fixed_points = static_cast<double>(c.paper.robustness_mu.size());
+  ProgressBar bar(100, "% of the perturbations");
+  bar.show(0);
+  for (std::size_t k = 0; k < c.paper.robustness_mu.size(); ++k) {
+    const std::string part = rimless::robustness_csv(
+        c.setup.config, c.paper.robustness_mu[k], eps, c.paper.max_steps, c.paper.return_tol,
+        [&](double fraction) { bar.show(100 * (static_cast<double>(k) + fraction) / fixed_points); });
     text += text.empty() ? part : part.substr(part.find('\n') + 1);
   }
   dir.write("robustness.csv", text);
@@ -478,8 +483,13 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   spec.period = a.period;
   spec.switch_at_period_doubling = a.switch_at_pd;
   spec.tuning = rimless::gait_continuation_from_config(s.config);
+  ProgressBar bar(100, "% of the interval");
+  bar.show(0);
+  double reached = 0;  // the branch may turn back at a fold: the farthest q reached
+  spec.on_point = [&](double q) { bar.show(100 * (reached = std::max(reached, q))); };
   const auto t0 = std::chrono::steady_clock::now();
   const rimless::GaitBranch b = rimless::continue_gait(s.config, spec);  // throws ConfigError on bad input
+  bar.show(100);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!b.failure.empty()) {
     fmt::print(stderr, "error: {}\n", b.failure);

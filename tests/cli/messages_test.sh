@@ -3,7 +3,8 @@
 # --param do, and `flexgait schema` lists it; an unknown key's did-you-mean offers keys of the same quantity only; a check that
 # fails on a default names the value given against it and what to change, and no message starts
 # with "default:"; a finished campaign is marked complete; the stages
-# without a progress bar (drawing figures) are announced on a terminal only.
+# without a progress bar (drawing figures) are announced on a terminal only; continuation and
+# robustness show a progress bar there.
 # Usage: messages_test.sh FLEXGAIT_EXE
 set -u
 exe=$1
@@ -59,6 +60,14 @@ check "off a terminal: no stage line" bash -c "! grep -qF 'drawing the figures' 
 if script -qec true /dev/null >/dev/null 2>&1; then
   script -qec "'$exe' rimless simulate --steps 2 --out plotted-tty 2>&1" /dev/null >"$work/tty" 2>&1
   check "on a terminal: drawing the figures is said" grep -qF "drawing the figures (plot_rimless.py)" "$work/tty"
+  # Long analyses show a bar from their start: continuation over the interval's fraction reached,
+  # robustness over the perturbations tried.
+  script -qec "'$exe' rimless continuation --param rimless.slope --from 0.1 --to 0.11 --no-plot --out cont 2>&1" \
+    /dev/null >"$work/tty" 2>&1
+  check "on a terminal: continuation shows its progress" grep -qF "/100 % of the interval" "$work/tty"
+  script -qec "'$exe' rimless analysis robustness --mu 0.6 --set analysis.robustness.epsilon_count=2 --no-plot \
+    --out robust 2>&1" /dev/null >"$work/tty" 2>&1
+  check "on a terminal: robustness shows its progress" grep -qF "100/100 % of the perturbations" "$work/tty"
 fi
 
 echo "$passed passed, $failed failed"

@@ -388,6 +388,7 @@ struct Walker {
       const std::size_t folds_before = count_folds();
       if (opt.detect) detect(a, b, ds);
       branch.points.push_back(make_point(f, b, branch.points.back().arclength + ds));
+      if (opt.on_point) opt.on_point(branch.points.back());
       if (count_folds() > folds_before && vertical()) {
         stop(BranchEnd::Vertical,
              "a vertical branch at p = " + number(b.x(n)) +

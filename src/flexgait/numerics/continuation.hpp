@@ -84,6 +84,8 @@ std::optional<std::string> parameter_derivative(const MapFamily& f, const Eigen:
 /// P^k with ∂P^k/∂z by the chain rule, ∂P(z_{k-1}) ⋯ ∂P(z_0), when `family` has an exact ∂P/∂z.
 MapFamily iterate(const MapFamily& family, int k);
 
+struct BranchPoint;
+
 struct ContinuationOptions {
   double initial_step = 1e-2;   ///< Δs of the first step (units of |(z, p)|)
   double min_step = 1e-9;       ///< the branch ends when a step this small fails
@@ -100,6 +102,8 @@ struct ContinuationOptions {
   double locate_tolerance = 1e-10;  ///< special points located to this in s (so in p)
   double label_tolerance = 1e-8;    ///< label changes located to this in s
   bool detect = true;           ///< detect and locate special points
+  /// Called with each point accepted on the branch, the start included (e.g. to show progress).
+  std::function<void(const BranchPoint& point)> on_point = {};
 };
 
 enum class SpecialKind { Fold, BranchPoint, PeriodDoubling, NeimarkSacker, LabelChange };

@@ -286,7 +286,7 @@ const std::vector<std::string>& robustness_csv_columns() {
 }
 
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps,
-                           double return_tol) {
+                           double return_tol, const std::function<void(double fraction)>& progress) {
   CsvWriter csv(robustness_csv_columns());
   const Setup s = setup(with_mu(base, mu));
   const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, Section::Touchdown, s.initial);
@@ -297,6 +297,7 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
   PoincareMap map(s.w, o, Model::Flexible, Section::Touchdown);
   const Eigen::VectorXd scale = r.point.scale(s.w);
   const auto names = r.point.names();
+  Eigen::Index trials = 0;
   for (Eigen::Index i = 0; i < r.point.z.size(); ++i) {
     for (int sign : {+1, -1}) {
       for (double eps : epsilons) {
@@ -321,6 +322,8 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
         }
         csv.cell(mu).cell(names[static_cast<std::size_t>(i)]).cell(static_cast<long long>(sign)).cell(eps);
         csv.cell(returned ? "true" : "false").cell(static_cast<long long>(steps)).cell(failure).end_row();
+        if (progress)
+          progress(static_cast<double>(++trials) / static_cast<double>(2 * r.point.z.size() * epsilons.size()));
       }
     }
   }

@@ -7,6 +7,7 @@
 ///   3. a fixed point and its multipliers for each of the four behaviours;
 ///   4. robustness of the sliding gait: the largest perturbation of the fixed point that returns;
 ///   5. the stagnation interval (paper Fig. 12) has its own file, stagnation.hpp.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -145,7 +146,8 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
 /// CSV: mu, component, sign, epsilon, returned, steps, failure.
 /// The columns of robustness.csv (robustness_csv writes them; `flexgait schema` lists them).
 const std::vector<std::string>& robustness_csv_columns();
+/// `progress`, if given, is called after each perturbation with the fraction of them done.
 std::string robustness_csv(const Config& base, double mu, const std::vector<double>& epsilons, int max_steps,
-                           double return_tol);
+                           double return_tol, const std::function<void(double fraction)>& progress = {});
 
 }  // namespace flexgait::rimless

@@ -33,6 +33,7 @@ numerics::ContinuationOptions continuation_options(const GaitContinuationSpec& s
   o.parameter_scale = 1;
   o.locate_tolerance = t.locate_tolerance;
   o.label_tolerance = t.label_tolerance;  // in q: |Δp| <= label_tolerance |to - from|
+  if (spec.on_point) o.on_point = [on_point = spec.on_point](const numerics::BranchPoint& b) { on_point(b.p); };
   return o;
 }
 

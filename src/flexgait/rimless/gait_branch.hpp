@@ -22,6 +22,7 @@
 /// from there in the new mode, and the boundary is an event "section mode A -> B"; otherwise the
 /// branch ends and says why.
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,8 @@ struct GaitContinuationSpec {
   /// exact Jacobian and the key is a wheel parameter; false: central differences of the map.
   bool parameter_sensitivity = true;
   GaitContinuationOptions tuning{};  ///< analysis.continuation.* (gait_continuation_from_config)
+  /// Called after each point of the branch with its q = (p - from)/(to - from) (e.g. to show progress).
+  std::function<void(double q)> on_point = {};
 };
 
 /// One row of branch.csv: a point of the branch or a special point on it.
