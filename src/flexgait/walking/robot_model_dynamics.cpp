@@ -63,7 +63,8 @@ LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const R
   const int b0 = 2 + 7 * side;
   // The primal pass's quantities per body of the chain: world axis u (0 if rigid), r = p_m − p_parent,
   // c = R com, the joint's rate and acceleration, the parent's ω and α, the body's own force F.
-  std::array<Vector3d, kChain> u, r, c, w_parent, alpha_parent, force;
+  std::array<Vector3d, kChain> u, r, c, w_parent, alpha_parent, force, Iw, Ialpha;
+  std::array<Matrix3d, kChain> inertia;  // world frame, about the centre of mass
   std::array<double, kChain> rate{}, accel{};
   std::array<int, kChain> role{};
   for (int m = 0; m < kChain; ++m) {
@@ -79,8 +80,11 @@ LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const R
     w_parent[m] = data.angular_velocity[static_cast<std::size_t>(b.parent)];
     alpha_parent[m] = data.angular_acceleration[static_cast<std::size_t>(b.parent)];
     const Vector3d& w = data.angular_velocity[static_cast<std::size_t>(i)];
-    force[m] = b.mass * (data.acceleration[static_cast<std::size_t>(i)] +
-                         data.angular_acceleration[static_cast<std::size_t>(i)].cross(c[m]) + w.cross(w.cross(c[m])));
+    const Vector3d& alpha = data.angular_acceleration[static_cast<std::size_t>(i)];
+    force[m] = b.mass * (data.acceleration[static_cast<std::size_t>(i)] + alpha.cross(c[m]) + w.cross(w.cross(c[m])));
+    inertia[m] = f.R * b.inertia * f.R.transpose();
+    Iw[m] = inertia[m] * w;
+    Ialpha[m] = inertia[m] * alpha;
   }
   const bool given = feet.given[static_cast<std::size_t>(side)];
   LegTorqueDerivative G = LegTorqueDerivative::Zero();
@@ -93,7 +97,6 @@ LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const R
     for (int m = k; m < kChain; ++m) {
       const int i = b0 + m;
       const auto& b = model.bodies[static_cast<std::size_t>(i)];
-      const Pose& f = kinematics.frame[static_cast<std::size_t>(i)];
       const Vector3d du = m > k ? Vector3d(uk.cross(u[m])) : Vector3d::Zero();
       dr[m] = m > k ? Vector3d(uk.cross(r[m])) : Vector3d::Zero();
       const Vector3d& wp = w_parent[m];
@@ -111,13 +114,10 @@ LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const R
       const Vector3d dc = uk.cross(c[m]);
       dF[m] = b.mass * (da + dalpha.cross(c[m]) + alpha.cross(dc) + dw.cross(w.cross(c[m])) +
                         w.cross(dw.cross(c[m]) + w.cross(dc)));
-      // I x = R (I_body (Rᵀ x)); δI x = u_k × (I x) − I (u_k × x).
-      auto inertia = [&](const Vector3d& x) -> Vector3d { return f.R * (b.inertia * (f.R.transpose() * x)); };
-      const Vector3d Iw = inertia(w), Ialpha = inertia(alpha);
-      const Vector3d dIalpha = uk.cross(Ialpha) - inertia(uk.cross(alpha));
-      const Vector3d dIw = uk.cross(Iw) - inertia(uk.cross(w));
-      dN[m] = dIalpha + inertia(dalpha) + dw.cross(Iw) + w.cross(dIw + inertia(dw)) + dc.cross(force[m]) +
-              c[m].cross(dF[m]);
+      // δ(I x) = δI x + I δx with δI x = u_k × (I x) − I (u_k × x).
+      const Vector3d dIalpha = uk.cross(Ialpha[m]) + inertia[m] * (dalpha - uk.cross(alpha));
+      const Vector3d dIw = uk.cross(Iw[m]) + inertia[m] * (dw - uk.cross(w));
+      dN[m] = dIalpha + dw.cross(Iw[m]) + w.cross(dIw) + dc.cross(force[m]) + c[m].cross(dF[m]);
     }
     // Backward: the subtree wrench's tangent (δf, δn about p_m), up to the leg's first body.
     Vector3d df = Vector3d::Zero(), dn = Vector3d::Zero();
