@@ -271,7 +271,9 @@ void expect_derivative_near(const LegTorqueDerivative& analytic, const LegTorque
   const double scale = numeric.lpNorm<Eigen::Infinity>();
   ASSERT_GT(scale, 1.0) << what;  // a derivative of O(10-100) Nm/rad is checked, not zeros
   EXPECT_LE((analytic - numeric).lpNorm<Eigen::Infinity>(), kDerivativeRelative * scale)
-      << what << "\nanalytic\n" << analytic << "\ncentral differences\n" << numeric;
+      << what << "\nanalytic\n"
+      << analytic << "\ncentral differences\n"
+      << numeric;
 }
 
 TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
@@ -279,8 +281,9 @@ TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
   std::uniform_real_distribution<double> u(-1, 1);
   for (const auto& [name, model] : derivative_robots())
     for (int trial = 0; trial < 4; ++trial) {
-      const Pose pelvis{Vector3d(u(rng), u(rng), 0.7),
-                        Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
+      const Pose pelvis{
+          Vector3d(u(rng), u(rng), 0.7),
+          Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
       const BaseMotion base{Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)),
                             5 * Vector3d(u(rng), u(rng), u(rng)), 5 * Vector3d(u(rng), u(rng), u(rng))};
       JointVector q{}, qd{}, qdd{};
@@ -319,8 +322,9 @@ TEST(RobotModelDynamics, GravityTorqueDerivativeMatchesCentralDifferencesAndIsSy
   for (const auto& [name, model] : derivative_robots())
     for (const auto form : {compensation::GravityForm::kFull, compensation::GravityForm::kThesis})
       for (int trial = 0; trial < 4; ++trial) {
-        const Pose pelvis{Vector3d::Zero(),
-                          Eigen::Quaterniond(1, 0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)).normalized().toRotationMatrix()};
+        const Pose pelvis{
+            Vector3d::Zero(),
+            Eigen::Quaterniond(1, 0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)).normalized().toRotationMatrix()};
         JointVector q{};
         for (int j = 0; j < kJoints; ++j) q[j] = 0.6 * u(rng);
         compensation::FootLoads loads;
@@ -356,7 +360,8 @@ TEST(RobotModelDynamics, AtRestTheTwoDerivativesAgree) {
     compensation::FootLoads none;
     none.share = {0, 0};
     for (int side = 0; side < 2; ++side) {
-      const LegTorqueDerivative a = inverse_dynamics_derivative(model, kin, JointVector{}, JointVector{}, dyn, {}, side);
+      const LegTorqueDerivative a =
+          inverse_dynamics_derivative(model, kin, JointVector{}, JointVector{}, dyn, {}, side);
       const LegTorqueDerivative b =
           compensation::gravity_torque_derivative(model, kin, none, compensation::GravityForm::kFull, side);
       EXPECT_LE((a - b).lpNorm<Eigen::Infinity>(), 1e-12 * b.lpNorm<Eigen::Infinity>())  // rounding

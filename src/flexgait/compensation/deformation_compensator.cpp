@@ -188,7 +188,8 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
     for (int side = 0; side < 2; ++side) {
       const int o = side * kLegJoints;
       if (params_.load_model == LoadModel::kGravity) {
-        G.block<kLegJoints, kLegJoints>(o, o) = gravity_torque_derivative(model_, data_, plan_loads_, params_.gravity, side);
+        G.block<kLegJoints, kLegJoints>(o, o) =
+            gravity_torque_derivative(model_, data_, plan_loads_, params_.gravity, side);
         continue;
       }
       const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
@@ -221,7 +222,8 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   set_legs(estimate_.per_joint, e.per_joint);
   set_legs(estimate_.conventional, e.conventional);
   // τ_g(θ̂): Newton's last evaluation unless the fallback chose another point.
-  estimate_.gravity_torque = legs_of(q_) == legs_of(estimate_.newton) ? tau_ : torque_at(estimate_.newton, imu_R, support);
+  estimate_.gravity_torque =
+      legs_of(q_) == legs_of(estimate_.newton) ? tau_ : torque_at(estimate_.newton, imu_R, support);
   estimate_.iterations = e.iterations;
   estimate_.residual = e.residual;
   estimate_.converged = e.converged;

@@ -66,8 +66,9 @@ walking::LegTorqueDerivative gravity_torque_derivative(const walking::RobotModel
   Vector3d moment_below = Vector3d::Zero();
   if (loads.share[side] > 0) {
     const walking::Pose sole = walking::sole_pose(model, data, side);
-    const Vector3d point =
-        form == GravityForm::kThesis ? sole.p : Vector3d(sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
+    const Vector3d point = form == GravityForm::kThesis
+                               ? sole.p
+                               : Vector3d(sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
     const double push = -loads.share[side] * model.total_mass * walking::kGravity;
     weight_below += push;
     moment_below += push * point;
