@@ -1,14 +1,19 @@
 // Walking controller benchmarks: one controller update (issue 6, target ≤ 20 µs on this machine),
 // the update with both deformation compensators (issue 7, target ≤ 30 µs), each compensator
 // alone, and the closed-loop walk's real-time factor (controller + compensators + twin), 1.0 s
-// per step.
+// per step, beside bare mj_step on the same walk's states (the closed loop's share of the time).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/compensation/stiffness_estimator.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/walking/walking_controller.hpp"
 
 namespace {
@@ -113,6 +118,68 @@ void ClosedLoopWalk(benchmark::State& state) {
   state.counters["real_time_factor"] = benchmark::Counter(simulated, benchmark::Counter::kIsRate);
 }
 BENCHMARK(ClosedLoopWalk)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The closed loop's periods (loop::HumanoidLoop::step: controller, compensators, drives, sensors, the
+// loop's checks; not the twin's making) against bare mj_step of the same model on the same walk's states:
+// each control period starts from the walk's state at that period (positions, velocities, warm start, the
+// drives' and pushes' forces, held over the period's physics steps), so that the contacts and the solver's
+// work are the walk's. Counters: both real-time factors and their ratio, closed loop / bare (1: the loop's
+// own work costs nothing), from the same iteration at the same machine load. 10 steps at 1 s/step.
+void ClosedLoopAgainstBareMujoco(benchmark::State& state) {
+  experiments::WalkRunParams p;
+  p.walk.steps = 10;
+  p.walk.step_time = 1.0;
+  using Clock = std::chrono::steady_clock;
+  double loop_seconds = 0, bare_seconds = 0, simulated = 0;
+  struct Snapshot {
+    double time;
+    std::vector<mjtNum> qpos, qvel, act, warmstart, qfrc, xfrc;
+  };
+  for (auto _ : state) {
+    experiments::WalkLoop w = experiments::make_walk_loop(p);
+    const double end = w.control->controller().plan().duration;
+    const Clock::time_point t0 = Clock::now();
+    while (w.loop->time() < end)
+      if (w.loop->step()) break;
+    loop_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    simulated += w.loop->time();
+    // The same walk again (deterministic), its state recorded at the start of each period.
+    state.PauseTiming();
+    experiments::WalkLoop again = experiments::make_walk_loop(p);
+    const mjModel* pm = humanoid::plant_model(again.loop->plant());
+    const mjData* pd = humanoid::plant_data(again.loop->plant());
+    auto copy = [](const mjtNum* x, int n) { return std::vector<mjtNum>(x, x + n); };
+    std::vector<Snapshot> states;
+    while (again.loop->time() < end) {
+      states.push_back({pd->time, copy(pd->qpos, pm->nq), copy(pd->qvel, pm->nv), copy(pd->act, pm->na),
+                        copy(pd->qacc_warmstart, pm->nv), copy(pd->qfrc_applied, pm->nv),
+                        copy(pd->xfrc_applied, 6 * pm->nbody)});
+      if (again.loop->step()) break;
+    }
+    mjModel* m = mj_copyModel(nullptr, pm);
+    mjData* d = mj_makeData(m);
+    state.ResumeTiming();
+    const int substeps = static_cast<int>(std::lround(p.plant.control_period / m->opt.timestep));
+    const Clock::time_point t1 = Clock::now();
+    for (const Snapshot& s : states) {
+      d->time = s.time;
+      std::copy(s.qpos.begin(), s.qpos.end(), d->qpos);
+      std::copy(s.qvel.begin(), s.qvel.end(), d->qvel);
+      std::copy(s.act.begin(), s.act.end(), d->act);
+      std::copy(s.warmstart.begin(), s.warmstart.end(), d->qacc_warmstart);
+      std::copy(s.qfrc.begin(), s.qfrc.end(), d->qfrc_applied);
+      std::copy(s.xfrc.begin(), s.xfrc.end(), d->xfrc_applied);
+      for (int k = 0; k < substeps; ++k) mj_step(m, d);
+    }
+    bare_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  state.counters["rtf_closed_loop"] = simulated / loop_seconds;
+  state.counters["rtf_bare_mj_step"] = simulated / bare_seconds;
+  state.counters["ratio"] = bare_seconds / loop_seconds;
+}
+BENCHMARK(ClosedLoopAgainstBareMujoco)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 

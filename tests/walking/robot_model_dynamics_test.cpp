@@ -4,6 +4,9 @@
 // model written as MJCF, point masses and with inertias) and the loaded test robot
 // tests/humanoid/data/small_biped.xml (MuJoCo reads the file itself). At rest it is the legs'
 // gravity torque, and with the ground's force given at the feet it is the full form of τ_g.
+// The analytic derivatives ∂τ/∂q (inverse_dynamics_derivative, compensation::gravity_torque_derivative)
+// against central differences, on the builtin robot and on loaded test robots whose legs have other joint
+// orders and −y axes.
 #include "flexgait/walking/robot_model_dynamics.hpp"
 
 #include <fmt/format.h>
@@ -15,6 +18,8 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "flexgait/compensation/gravity_torque.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
@@ -224,6 +229,145 @@ TEST(RobotModelDynamics, WithTheGroundForceGivenAtTheFeetItIsTheFullGravityTorqu
   RobotDynamicsData dyn;
   inverse_dynamics(model, kin, BaseMotion{}, JointVector{}, JointVector{}, dyn, feet);
   for (int j = humanoid::kLeftHipYaw; j < kJoints; ++j) EXPECT_NEAR(dyn.tau[j], expected[j], 1e-10) << j;  // rounding on O(100) Nm
+}
+
+// ---- ∂τ/∂q against central differences ----
+
+/// The robots the derivatives are checked on: the builtin and loaded test robots (hips pitch-roll-yaw
+/// from the pelvis; knees and ankles about −y).
+std::vector<std::pair<std::string, RobotModel>> derivative_robots() {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  const std::filesystem::path data = dir ? dir : "tests/humanoid/data";
+  std::vector<std::pair<std::string, RobotModel>> out{{"builtin", builtin()}};
+  for (const char* name : {"pitch_roll_yaw_hips.yaml", "minus_y_knee.yaml"}) {
+    const experiments::WalkRunParams w =
+        experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), data / name, {}));
+    out.emplace_back(name, experiments::walk_controller_model(w));
+  }
+  return out;
+}
+
+/// Central differences of one leg's six torques in its six joints (role order), step h.
+LegTorqueDerivative central_difference(const JointVector& q, int side, double h,
+                                       const std::function<JointVector(const JointVector&)>& torque) {
+  LegTorqueDerivative G;
+  const int first = humanoid::leg_first_joint(side);
+  for (int c = 0; c < humanoid::kLegJoints; ++c) {
+    JointVector plus = q, minus = q;
+    plus[first + c] += h;
+    minus[first + c] -= h;
+    const JointVector tp = torque(plus), tm = torque(minus);
+    for (int r = 0; r < humanoid::kLegJoints; ++r) G(r, c) = (tp[first + r] - tm[first + r]) / (2 * h);
+  }
+  return G;
+}
+
+// Central differences with h = 1e-5 rad: truncation h^2 |tau'''| / 6 ~ 1e-11 of G's scale (tau''' ~ tau),
+// rounding eps |tau| / h ~ 1e-10 of it (|tau| within 10 |G| here); 1e-7 of the largest entry is the bound.
+constexpr double kStep = 1e-5, kDerivativeRelative = 1e-7;
+
+void expect_derivative_near(const LegTorqueDerivative& analytic, const LegTorqueDerivative& numeric,
+                            const std::string& what) {
+  const double scale = numeric.lpNorm<Eigen::Infinity>();
+  ASSERT_GT(scale, 1.0) << what;  // a derivative of O(10-100) Nm/rad is checked, not zeros
+  EXPECT_LE((analytic - numeric).lpNorm<Eigen::Infinity>(), kDerivativeRelative * scale)
+      << what << "\nanalytic\n"
+      << analytic << "\ncentral differences\n"
+      << numeric;
+}
+
+TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const auto& [name, model] : derivative_robots())
+    for (int trial = 0; trial < 4; ++trial) {
+      const Pose pelvis{
+          Vector3d(u(rng), u(rng), 0.7),
+          Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
+      const BaseMotion base{Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)),
+                            5 * Vector3d(u(rng), u(rng), u(rng)), 5 * Vector3d(u(rng), u(rng), u(rng))};
+      JointVector q{}, qd{}, qdd{};
+      for (int j = 0; j < kJoints; ++j) q[j] = 0.6 * u(rng), qd[j] = 3 * u(rng), qdd[j] = 30 * u(rng);
+      // The left foot's wrench is a reading fixed in the foot (it turns with it); the right foot's is computed.
+      const Wrench reading{Vector3d(20 * u(rng), 20 * u(rng), 300 + 50 * u(rng)),
+                           Vector3d(10 * u(rng), 10 * u(rng), 2 * u(rng))};
+      auto evaluate = [&](const JointVector& angles, RobotModelData& kin, RobotDynamicsData& dyn, FootWrenches& feet) {
+        forward_kinematics(model, kin, pelvis, angles);
+        const Matrix3d& R = kin.frame[model.foot[0]].R;
+        feet.given = {true, false};
+        feet.wrench[0] = {R * reading.force, R * reading.moment};
+        inverse_dynamics(model, kin, base, qd, qdd, dyn, feet);
+      };
+      RobotModelData kin;
+      RobotDynamicsData dyn;
+      FootWrenches feet;
+      evaluate(q, kin, dyn, feet);
+      for (int side = 0; side < 2; ++side) {
+        const LegTorqueDerivative G = inverse_dynamics_derivative(model, kin, qd, qdd, dyn, feet, side);
+        const LegTorqueDerivative numeric = central_difference(q, side, kStep, [&](const JointVector& angles) {
+          RobotModelData k;
+          RobotDynamicsData d;
+          FootWrenches f;
+          evaluate(angles, k, d, f);
+          return d.tau;
+        });
+        expect_derivative_near(G, numeric, name + " trial " + std::to_string(trial) + " side " + std::to_string(side));
+      }
+    }
+}
+
+TEST(RobotModelDynamics, GravityTorqueDerivativeMatchesCentralDifferencesAndIsSymmetric) {
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const auto& [name, model] : derivative_robots())
+    for (const auto form : {compensation::GravityForm::kFull, compensation::GravityForm::kThesis})
+      for (int trial = 0; trial < 4; ++trial) {
+        const Pose pelvis{
+            Vector3d::Zero(),
+            Eigen::Quaterniond(1, 0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)).normalized().toRotationMatrix()};
+        JointVector q{};
+        for (int j = 0; j < kJoints; ++j) q[j] = 0.6 * u(rng);
+        compensation::FootLoads loads;
+        const double left = 0.5 + 0.5 * u(rng);
+        loads.share = {left, 1 - left};
+        loads.cop = {Eigen::Vector2d(0.05 * u(rng), 0.03 * u(rng)), Eigen::Vector2d(0.05 * u(rng), 0.03 * u(rng))};
+        auto torque = [&](const JointVector& angles) {
+          RobotModelData k;
+          forward_kinematics(model, k, pelvis, angles);
+          return compensation::gravity_torque(model, k, loads, form);
+        };
+        RobotModelData kin;
+        forward_kinematics(model, kin, pelvis, q);
+        for (int side = 0; side < 2; ++side) {
+          const LegTorqueDerivative G = compensation::gravity_torque_derivative(model, kin, loads, form, side);
+          const std::string what = name + " " + std::string(name_of(form)) + " trial " + std::to_string(trial);
+          expect_derivative_near(G, central_difference(q, side, kStep, torque), what);
+          // The Hessian of the loads' potential: symmetric up to rounding.
+          EXPECT_LE((G - G.transpose()).lpNorm<Eigen::Infinity>(), 1e-12 * G.lpNorm<Eigen::Infinity>()) << what;
+        }
+      }
+}
+
+TEST(RobotModelDynamics, AtRestTheTwoDerivativesAgree) {
+  // A leg at rest with nothing given at its foot: the inverse dynamics' derivative is the closed form of the
+  // legs' weight.
+  for (const auto& [name, model] : derivative_robots()) {
+    const JointVector q = random_angles(6, 0.5);
+    RobotModelData kin;
+    forward_kinematics(model, kin, Pose{Vector3d::Zero(), Matrix3d(Eigen::AngleAxisd(0.1, Vector3d::UnitX()))}, q);
+    RobotDynamicsData dyn;
+    inverse_dynamics(model, kin, BaseMotion{}, JointVector{}, JointVector{}, dyn);
+    compensation::FootLoads none;
+    none.share = {0, 0};
+    for (int side = 0; side < 2; ++side) {
+      const LegTorqueDerivative a =
+          inverse_dynamics_derivative(model, kin, JointVector{}, JointVector{}, dyn, {}, side);
+      const LegTorqueDerivative b =
+          compensation::gravity_torque_derivative(model, kin, none, compensation::GravityForm::kFull, side);
+      EXPECT_LE((a - b).lpNorm<Eigen::Infinity>(), 1e-12 * b.lpNorm<Eigen::Infinity>())  // rounding
+          << name << " side " << side;
+    }
+  }
 }
 
 }  // namespace

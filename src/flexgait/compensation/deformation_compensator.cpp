@@ -9,6 +9,8 @@ using humanoid::kJoints;
 using humanoid::kLegJoints;
 using humanoid::leg_first_joint;
 
+const walking::PlannedMotion kAtRest{};  ///< the motion of the measured load model: none
+
 /// Leg joints (left then right, kinematic order) ↔ the joint vector.
 LegVector legs_of(const humanoid::JointVector& v) {
   LegVector out;
@@ -88,7 +90,6 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     feet_.given[side] = true;
     feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }
-  static const walking::PlannedMotion kAtRest{};
   const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
   walking::inverse_dynamics(model_, data_, m.pelvis, m.velocity, m.acceleration, dynamics_, feet_);
   tau_ = dynamics_.tau;
@@ -164,26 +165,36 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
     set_legs(q_, theta);
     tau = legs_of(torque_at(q_, imu_R, support));
   };
-  // G = ∂τ_g/∂θ by forward differences. With the split about the reference ZMP the loads do not
-  // depend on θ, so each leg's torque depends on its own joints only: G is block diagonal and one
-  // evaluation perturbs joint i of both legs at once (6 evaluations, not 12). The COM split
-  // couples the legs through μ: all 12 columns.
-  const bool block_diagonal = params_.split == WeightSplit::kZmpReference;
+  // G = ∂τ_g/∂θ. Each leg's torque depends on its own joints only unless the loads depend on the pose:
+  // G is block diagonal, each block the analytic derivative at the pose of the last torque evaluation
+  // (gravity_torque_derivative, walking::inverse_dynamics_derivative). The gravity loads split about the
+  // pose's COM couple the legs through μ and the centres of pressure: forward differences, all 12 columns.
+  const bool coupled = params_.split == WeightSplit::kCom && params_.load_model == LoadModel::kGravity;
   auto leg_jacobian = [&](const LegVector& theta, const LegVector& tau, LegMatrix& G) {
     G.setZero();
-    const int evaluations = block_diagonal ? kLegJoints : kLegDofs;
-    for (int j = 0; j < evaluations; ++j) {
-      LegVector shifted = theta;
-      shifted(j) += h;
-      if (block_diagonal) shifted(j + kLegJoints) += h;
-      set_legs(q_, shifted);
-      const LegVector difference = (legs_of(torque_at(q_, imu_R, support)) - tau) / h;
-      if (!block_diagonal) {
-        G.col(j) = difference;
+    if (coupled) {
+      for (int j = 0; j < kLegDofs; ++j) {
+        LegVector shifted = theta;
+        shifted(j) += h;
+        set_legs(q_, shifted);
+        G.col(j) = (legs_of(torque_at(q_, imu_R, support)) - tau) / h;
+      }
+      return;
+    }
+    if (legs_of(q_) != theta) {  // data_ and dynamics_ must hold this pose
+      set_legs(q_, theta);
+      torque_at(q_, imu_R, support);
+    }
+    for (int side = 0; side < 2; ++side) {
+      const int o = side * kLegJoints;
+      if (params_.load_model == LoadModel::kGravity) {
+        G.block<kLegJoints, kLegJoints>(o, o) =
+            gravity_torque_derivative(model_, data_, plan_loads_, params_.gravity, side);
         continue;
       }
-      G.block<kLegJoints, 1>(0, j) = difference.head<kLegJoints>();
-      G.block<kLegJoints, 1>(kLegJoints, j + kLegJoints) = difference.tail<kLegJoints>();
+      const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
+      G.block<kLegJoints, kLegJoints>(o, o) =
+          walking::inverse_dynamics_derivative(model_, data_, m.velocity, m.acceleration, dynamics_, feet_, side);
     }
   };
   // control.gear_damping: eq. 11 with the Kelvin–Voigt lag, k/a and θ_enc − (1 − a) δ_{n−1}.
@@ -210,7 +221,9 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   set_legs(estimate_.one_step, e.one_step);
   set_legs(estimate_.per_joint, e.per_joint);
   set_legs(estimate_.conventional, e.conventional);
-  estimate_.gravity_torque = torque_at(estimate_.newton, imu_R, support);
+  // τ_g(θ̂): Newton's last evaluation unless the fallback chose another point.
+  estimate_.gravity_torque =
+      legs_of(q_) == legs_of(estimate_.newton) ? tau_ : torque_at(estimate_.newton, imu_R, support);
   estimate_.iterations = e.iterations;
   estimate_.residual = e.residual;
   estimate_.converged = e.converged;

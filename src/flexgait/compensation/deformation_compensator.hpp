@@ -7,8 +7,9 @@
 ///    commanded);
 ///  - output (eqs. 10-13): θ̂ solves θ_enc − τ_g(θ̂)/k − θ̂ = 0 by Newton's method, τ_g in the
 ///    estimated pose with the pelvis attitude from the IMU (eq. 1: the robot is a floating base);
-///    G = ∂τ_g/∂θ by forward differences. The one-step form (12) and the conventional estimate are
-///    reported beside it.
+///    G = ∂τ_g/∂θ analytic (gravity_torque_derivative, walking::inverse_dynamics_derivative; forward
+///    differences only for the gravity loads split about the pose's COM, which couple the legs). The
+///    one-step form (12) and the conventional estimate are reported beside it.
 /// k is the controller's belief (control.k_joint), apart from the plant's true stiffness.
 ///
 /// control.gear_damping d > 0 (docs/guide/compensation.md): the gear is a Kelvin–Voigt element, τ = k δ + d δ̇, so
@@ -136,7 +137,7 @@ struct CompensationParams {
   double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
   double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
   NewtonSettings newton;
-  double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ [rad]
+  double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ with the gravity loads split about the COM [rad]
 
   /// The belief of each gear's stiffness, k_joint × k_scale [Nm/rad].
   humanoid::JointVector stiffness() const { return humanoid::scaled(k_joint, k_scale); }

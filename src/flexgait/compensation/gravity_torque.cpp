@@ -57,4 +57,43 @@ humanoid::JointVector gravity_torque(const walking::RobotModel& model, const wal
   return tau;
 }
 
+walking::LegTorqueDerivative gravity_torque_derivative(const walking::RobotModel& model,
+                                                       const walking::RobotModelData& data, const FootLoads& loads,
+                                                       GravityForm form, int side) {
+  const int b0 = 2 + 7 * side;  // the leg's six jointed bodies, then the foot (robot_model.hpp's layout)
+  // From the foot up: Σ ψ and Σ ψ x of the loads below each joint, so that Φ_i = Σ ψ x − (Σ ψ) p_i.
+  double weight_below = 0;
+  Vector3d moment_below = Vector3d::Zero();
+  if (loads.share[side] > 0) {
+    const walking::Pose sole = walking::sole_pose(model, data, side);
+    const Vector3d point = form == GravityForm::kThesis
+                               ? sole.p
+                               : Vector3d(sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
+    const double push = -loads.share[side] * model.total_mass * walking::kGravity;
+    weight_below += push;
+    moment_below += push * point;
+  }
+  std::array<Vector3d, 6> u, phi;
+  std::array<int, 6> role{};
+  for (int m = 6; m >= 0; --m) {
+    const auto& b = model.bodies[static_cast<std::size_t>(b0 + m)];
+    if (form == GravityForm::kFull) {
+      weight_below += b.mass * walking::kGravity;
+      moment_below += b.mass * walking::kGravity * data.com_world[static_cast<std::size_t>(b0 + m)];
+    }
+    if (m == 6) continue;
+    const walking::Pose& f = data.frame[static_cast<std::size_t>(b0 + m)];
+    u[m] = f.R * b.axis;
+    phi[m] = moment_below - weight_below * f.p;
+    role[m] = b.joint - humanoid::leg_first_joint(side);
+  }
+  walking::LegTorqueDerivative G;
+  for (int d = 0; d < 6; ++d)
+    for (int s = 0; s <= d; ++s) {
+      const double g = u[d].z() * u[s].dot(phi[d]) - u[s].dot(u[d]) * phi[d].z();
+      G(role[s], role[d]) = G(role[d], role[s]) = g;
+    }
+  return G;
+}
+
 }  // namespace flexgait::compensation

@@ -26,6 +26,7 @@
 #include "flexgait/core/enum_names.hpp"
 #include "flexgait/robot/joints.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/robot_model_dynamics.hpp"
 
 namespace flexgait::compensation {
 
@@ -62,5 +63,17 @@ FootLoads com_loads(const walking::RobotModel& model, const walking::RobotModelD
 /// (the weight W = M g shared as `loads` says; the thesis form puts each at its sole centre) [Nm].
 humanoid::JointVector gravity_torque(const walking::RobotModel& model, const walking::RobotModelData& data,
                                      const FootLoads& loads, GravityForm form);
+
+/// G = ∂τ_g/∂θ of leg `side` with the loads held (rows and columns in role order) [Nm/rad], after
+/// walking::forward_kinematics. Every load on the leg is a vertical force ψ_l ẑ at a point x_l fixed in a link:
+/// each link's weight (ψ = m g, the full form) and the ground's push at the sole centre or the centre of
+/// pressure (ψ = −share · W), so τ_i = u_i · (Φ_i × ẑ) with Φ_i = Σ_{l below i} ψ_l (x_l − p_i), u_i, p_i joint
+/// i's axis and origin. Turning joint j moves the points below it by u_j × (x − p_j) and turns the axes below
+/// it; with s the joint nearer the pelvis and d the farther of i, j (s = d allowed),
+///     G_sd = G_ds = (u_d · ẑ)(u_s · Φ_d) − (u_s · u_d)(ẑ · Φ_d),
+/// symmetric, as the Hessian of the loads' potential (docs/theory/humanoid.md, "The actuator deformation model").
+walking::LegTorqueDerivative gravity_torque_derivative(const walking::RobotModel& model,
+                                                       const walking::RobotModelData& data, const FootLoads& loads,
+                                                       GravityForm form, int side);
 
 }  // namespace flexgait::compensation

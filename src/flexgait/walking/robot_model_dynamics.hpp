@@ -18,6 +18,16 @@
 /// A foot's wrench may be given instead of computed (a measured ankle F/T reading: the leg's wrench
 /// on the foot); then nothing below the sensor is modelled. With q̇ = q̈ = 0 and the pelvis at rest
 /// the leg torques are leg_gravity_torque's.
+///
+/// The derivative ∂τ/∂q of one leg's torques with respect to its own joints (inverse_dynamics_derivative) is
+/// the forward-mode derivative of the same recursion (the idea of Carpentier and Mansard 2018, "Analytical
+/// derivatives of rigid body dynamics algorithms", RSS: differentiate the passes, not the result). Turning joint k
+/// by dq_k turns every body below it about its axis u_k through its origin: for each body m at or below k
+///     δu_m = u_k × u_m,  δr_m = u_k × r_m (m below k; 0 for k itself),  δc_m = u_k × c_m,
+///     δI_m x = u_k × (I_m x) − I_m (u_k × x),
+/// and the forward pass's recursions, differentiated, carry δω, δα, δa down from k (zero at k); the backward
+/// pass carries (δf, δn) up to the leg's first joint, and δτ_i = δu_i · n_i + u_i · δn_i. The pelvis's motion
+/// and the gravity do not turn. O(6²) per leg, one pass per column, no allocation.
 #include <array>
 
 #include "flexgait/robot/joints.hpp"
@@ -62,5 +72,17 @@ struct FootWrenches {
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
                       const FootWrenches& feet = {}, double gravity = 1.0);
+
+/// ∂τ_i/∂q_j of leg `side`'s joints (rows and columns in role order: hip yaw, roll, pitch, knee, ankle pitch,
+/// roll) [Nm/rad].
+using LegTorqueDerivative = Eigen::Matrix<double, 6, 6>;
+
+/// ∂τ/∂q of leg `side`'s six torques with respect to its own six joint angles, the velocities, accelerations
+/// and the pelvis's motion held, after inverse_dynamics(model, kinematics, …, qd, qdd, data, feet, …) with the
+/// same arguments. A foot's given wrench is taken as fixed in the foot (an ankle F/T reading turned into the
+/// world by the foot's frame: it turns with the foot).
+LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const RobotModelData& kinematics,
+                                                const humanoid::JointVector& qd, const humanoid::JointVector& qdd,
+                                                const RobotDynamicsData& data, const FootWrenches& feet, int side);
 
 }  // namespace flexgait::walking
