@@ -589,16 +589,11 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   double event_time(double t, std::span<double> y, std::span<const int> fired,
                     const numerics::OdeIntegrator& integrator) override;
   bool smooth_step(double t, std::span<const double>, numerics::StepStatus status) override;
-  // On one foot the wheel is an inverted pendulum whose only equilibrium is the stance leg at the
-  // true vertical (β = -φ); it leaves a neighbourhood of it at the rate λ ≈ sqrt(g / L0). A wheel
-  // still within 1e-3 rad and 1e-3 sqrt(g / L0) of it when no leg has landed for max_step_time
-  // balances there (from rest exactly at the vertical round-off tips it over only after ~14 s on
-  // configs/rimless.yaml; from 1e-3 it needs ln(α / 1e-3) / λ ≈ 1.8 s more): the outcome is named,
-  // not left to the limit.
+  // One foot down, balanced at the vertical (simulation.hpp).
   bool balanced_at_vertical() const {
     const ContactSet& down = m.flow.contacts();
-    return down.count == 1 && std::abs(leg_angle(w, down.leg[0], m.y[S::theta]) + w.slope) <= 1e-3 &&
-           std::abs(m.y[S::thetad]) <= 1e-3 * std::sqrt(w.g / w.L0);
+    return down.count == 1 &&
+           rimless::balanced_at_vertical(w, leg_angle(w, down.leg[0], m.y[S::theta]), m.y[S::thetad]);
   }
   numerics::HybridNext guards_crossed(double t, std::span<const double> y, std::span<const int> fired,
                                       const numerics::OdeIntegrator& integrator,
