@@ -160,11 +160,20 @@ TEST(GuardCrossings, ADipBetweenTheSamplesOfALaterStepIsFound) {
 }
 
 TEST(GuardCrossings, AGuardThatStaysAwayFromZeroCostsTheSamplesAlone) {
-  // g = 2 + sin 3t: its chord bound excludes 0 everywhere, no bisection: kSamples − 1 evaluations.
+  // g = 2 + sin 3t over [0, 1]: g(0) = 2, g(0.5) = 2.997, g(1) = 2.141, one second difference
+  // -3.71, M = 2·2·3.71 = 14.8; the coarse bound 4 M (1/2)²/8 = 1.85 < 2 = min |g|: the midpoint
+  // alone.
   Watch w({[](double t) { return 2.0 + std::sin(3.0 * t); }});
   w.start(0.0, {-1});
   EXPECT_FALSE(w.check(1.0).has_value());
-  EXPECT_EQ(w.crossings.interior_evaluations(), GuardCrossings::kSamples - 1);
+  EXPECT_EQ(w.crossings.interior_evaluations(), 1);
+  // g = 1.5 + sin 3t: the same curvature, 1.85 > 1.5: the coarse bound does not exclude a root; the
+  // four parts' bound, M (1/4)²/8 = 0.134 with their largest second difference, does (no bisection):
+  // kSamples − 1 evaluations.
+  Watch nearer({[](double t) { return 1.5 + std::sin(3.0 * t); }});
+  nearer.start(0.0, {-1});
+  EXPECT_FALSE(nearer.check(1.0).has_value());
+  EXPECT_EQ(nearer.crossings.interior_evaluations(), GuardCrossings::kSamples - 1);
 }
 
 TEST(GuardCrossings, StartRejectsMismatchedSizes) {

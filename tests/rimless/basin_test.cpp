@@ -109,19 +109,23 @@ TEST(Basin, RefusesKeysOutsideTheInitialState) {
 // named balanced_at_vertical whatever analysis.no_landing_limit is below that (1 s and 10 s here);
 // the cell next to it (ω0 = 0.05 rad/s, 0.5 rad/s after 1 s) moves off the vertical: no such cell.
 TEST(Basin, AWheelAtRestAtTheVerticalIsBalancedWhateverTheNoLandingLimit) {
-  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {});
-  BasinSpec spec;
-  spec.x = parse_basin_axis("--x-range", "initial.omega", "0:0.05:2");
-  spec.y = parse_basin_axis("--y-range", "initial.beta", "-0.1:-0.09:2");
-  spec.steps_limit = 2;
-  const BasinReference ref;  // not found: no cell converges, the outcome is the run's
-  for (double limit : {1.0, 10.0}) {
-    spec.no_landing_limit = limit;
-    const std::vector<std::string> f = split_text(basin_row(base, spec, ref, 0), ',');
-    ASSERT_GE(f.size(), 7u);
-    EXPECT_EQ(f[2], "balanced_at_vertical") << "limit " << limit << ": " << f[6];
-    const std::vector<std::string> g = split_text(basin_row(base, spec, ref, 1), ',');
-    EXPECT_NE(g[2], "balanced_at_vertical") << g[6];
+  // Both models: β0 = -0.1 = -φ is the stance leg at the true vertical (the rigid wheel's exact
+  // equilibrium, sin(β + φ) = 0); ω0 = 0.05 rad/s walks off it.
+  for (const char* model : {"sim.model=flexible", "sim.model=rigid"}) {
+    const Config base = resolve_config(rimless_analysis_schema(), std::nullopt, {model});
+    BasinSpec spec;
+    spec.x = parse_basin_axis("--x-range", "initial.omega", "0:0.05:2");
+    spec.y = parse_basin_axis("--y-range", "initial.beta", "-0.1:-0.09:2");
+    spec.steps_limit = 2;
+    const BasinReference ref;  // not found: no cell converges, the outcome is the run's
+    for (double limit : {1.0, 10.0}) {
+      spec.no_landing_limit = limit;
+      const std::vector<std::string> f = split_text(basin_row(base, spec, ref, 0), ',');
+      ASSERT_GE(f.size(), 7u);
+      EXPECT_EQ(f[2], "balanced_at_vertical") << model << ", limit " << limit << ": " << f[6];
+      const std::vector<std::string> g = split_text(basin_row(base, spec, ref, 1), ',');
+      EXPECT_NE(g[2], "balanced_at_vertical") << model << ": " << g[6];
+    }
   }
 }
 

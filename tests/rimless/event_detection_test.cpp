@@ -49,18 +49,25 @@ std::string time_text(double t) {
   return buf;
 }
 
-// How two event lists compare: the same (kind and leg) throughout; the same until their times
-// drift apart by more than kDrift (the trajectories diverged: a sensitive run, the two tolerances'
-// global errors grown past the event-detection question); the same but for a tie (the first
-// difference is an event of the same kind at the same instant, to kTie, on another leg: two feet
-// slipping as one, which of them reaches stick first is round-off; the runs' times agree to
-// ~1e-9 s after tens of seconds); else different (`text` shows where).
+// How two event lists compare: the same (kind and leg) throughout, whatever their times; else
+// different after their times had drifted apart by more than kDrift (the trajectories diverged: a
+// sensitive run, the two tolerances' global errors grown past the event-detection question; on
+// the seeded sample such runs also differ between rtol 1e-12, 1e-13 and 1e-14); else different
+// but for a tie (the first difference is an event of the same kind at the same instant, to kTie,
+// on another leg); else different (`text` shows where).
 enum class Comparison { Same, Diverged, Tie, Different };
 constexpr double kDrift = 1e-6, kTie = 1e-8;
 Comparison compare(const std::vector<EventRecord>& a, const std::vector<EventRecord>& b, std::string& text) {
   std::size_t i = 0;
+  bool diverged = false;
+  // A run's failure record (at rest, slid away, ...) is dated where a decaying or growing quantity
+  // passes a threshold, not at a guard's root: its time is not compared (a wheel coming to rest
+  // whose 114 events agree to 4e-11 s between rtol 1e-10 and 1e-12 is declared at rest 0.28 s apart).
+  const auto drifted = [&](std::size_t j) {
+    return a[j].kind != RunEvent::Failure && std::abs(a[j].t - b[j].t) > kDrift;
+  };
   while (i < a.size() && i < b.size() && a[i].kind == b[i].kind && a[i].leg == b[i].leg) {
-    if (std::abs(a[i].t - b[i].t) > kDrift) return Comparison::Diverged;
+    diverged = diverged || drifted(i);
     ++i;
   }
   if (i == a.size() && i == b.size()) return Comparison::Same;
@@ -72,7 +79,7 @@ Comparison compare(const std::vector<EventRecord>& a, const std::vector<EventRec
     return s;
   };
   text = "event " + std::to_string(i) + ": " + show(a) + "| " + show(b);
-  if (i > 0 && std::abs(a[i - 1].t - b[i - 1].t) > kDrift) return Comparison::Diverged;
+  if (diverged) return Comparison::Diverged;
   if (i < a.size() && i < b.size() && a[i].kind == b[i].kind && std::abs(a[i].t - b[i].t) <= kTie) return Comparison::Tie;
   return Comparison::Different;
 }
@@ -198,7 +205,8 @@ TEST(EventDetection, RandomWheelsHaveTheEventsOfRtol1e12AndHoldTheirInvariants) 
     const Comparison c = compare(run.events, fine.events, where);
     ++counts[static_cast<std::size_t>(c)];
     EXPECT_NE(c, Comparison::Different) << where << " (rtol 1e-10 | rtol 1e-12)";
-    if (c == Comparison::Diverged || c == Comparison::Tie) std::printf("set %d: %s %s\n", i, c == Comparison::Tie ? "tie" : "diverged", where.c_str());
+    if (c == Comparison::Diverged || c == Comparison::Tie)
+      std::printf("set %d: %s %s\n", i, c == Comparison::Tie ? "tie" : "diverged", where.c_str());
     const Violation v = invariants_on_dense_output(w, events_only(20), run.restarts, r.t_final);
     // The targets: no sticking foot outside the cone by more than 1e-6 relative, no free foot below
     // -1e-9 m; a loaded foot pulls by no more than 1e-6 m g (the consistency check's tolerance).
@@ -210,9 +218,10 @@ TEST(EventDetection, RandomWheelsHaveTheEventsOfRtol1e12AndHoldTheirInvariants) 
     worst.tension = std::max(worst.tension, v.tension);
   }
   RecordProperty("same_sequence", counts[0]);
-  std::printf("%d sets: %d the same event sequence, %d the same until their times drift apart by > 1e-6 s, %d the "
-              "same but for a tie, %d different; worst cone excess %.3g, depth %.3g m, tension %.3g m g\n",
-              sets, counts[0], counts[1], counts[2], counts[3], worst.cone, worst.depth, worst.tension);
+  std::printf(
+      "%d sets: %d the same event sequence, %d different after their times drifted apart by > 1e-6 s, %d "
+      "different at a tie, %d different; worst cone excess %.3g, depth %.3g m, tension %.3g m g\n",
+      sets, counts[0], counts[1], counts[2], counts[3], worst.cone, worst.depth, worst.tension);
 }
 
 

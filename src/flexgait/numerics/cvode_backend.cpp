@@ -53,6 +53,8 @@ struct CvodeSolver {
   bool interior_crossing = false;  // the last step ended at a crossing GuardCrossings found
   double watch_t = 0.0;            // where the watch's current step starts [s]
   std::int64_t watch_evals = 0;    // guard evaluations of the watch
+  double root_t = 0.0;             // CVODE's latest evaluation of the guards: time, state, values
+  std::vector<double> root_y, root_g;
   OdeStats finished;  // counts of the segments before the current one (CVodeReInit zeroes CVODE's)
   std::string last_error;
 
@@ -113,8 +115,22 @@ struct CvodeSolver {
   static int guards(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
     auto* self = static_cast<CvodeSolver*>(data);
     const std::span<const double> ys(N_VGetArrayPointer(y), static_cast<std::size_t>(self->n));
-    self->system->guards(t, ys, std::span<double>(g, static_cast<std::size_t>(self->n_guards)));
+    const std::span<double> gs(g, static_cast<std::size_t>(self->n_guards));
+    self->system->guards(t, ys, gs);
+    // Kept: CVODE's root check evaluates the guards at its step's end, which the watch needs too.
+    self->root_t = t;
+    self->root_y.assign(ys.begin(), ys.end());
+    self->root_g.assign(gs.begin(), gs.end());
     return 0;
+  }
+  // The guards at (t, y): CVODE's latest evaluation if it was at this very point, else computed.
+  void guards_at(double t, std::span<const double> y, std::span<double> g) {
+    if (t == root_t && root_y.size() == y.size() && std::equal(y.begin(), y.end(), root_y.begin())) {
+      std::copy(root_g.begin(), root_g.end(), g.begin());
+      return;
+    }
+    system->guards(t, y, g);
+    ++watch_evals;
   }
   // CVODE's error weights with OdeOptions::error_scale (CVodeWFtolerances).
   static int error_weights(N_Vector y, N_Vector ewt, void* data) {
@@ -280,6 +296,7 @@ StepStatus CvodeBackend::step(double t_stop) {
   CvodeSolver& m = *impl_;
   m.check(CVodeSetStopTime(m.cvode, t_stop), "SetStopTime");
   m.last_error.clear();
+  m.root_y.clear();  // only this step's evaluations are reused (the model's guards may change between steps)
   sunrealtype t_reached = m.t;
   const int flag = CVode(m.cvode, t_stop, m.y, &t_reached, CV_ONE_STEP);
   m.check(flag, "step");
@@ -308,8 +325,7 @@ StepStatus CvodeBackend::step(double t_stop) {
       ++m.watch_evals;
       m.watch.start(t_cur - h_last, m.directions, m.g_end);
     }
-    m.system->guards(m.t, y_end, m.g_end);
-    ++m.watch_evals;
+    m.guards_at(m.t, y_end, m.g_end);
     const auto values = [&m, this](double ts, std::span<double> g) {
       interpolate(ts, m.y_dense);
       m.system->guards(ts, m.y_dense, g);

@@ -21,10 +21,24 @@ constexpr double kMaxGrowth = 6.0;      // dop853.f: FAC2, the largest h_new/h
 constexpr double kUround = std::numeric_limits<double>::epsilon();
 constexpr int kMaxRhsFailures = 40;  // consecutive domain failures of f before giving up
 
+// The stages of the dense output's r4..r8 (dop853.f's CONTD8): those with a nonzero d in some row.
+constexpr std::array<std::size_t, 12> kDenseColumns{0, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+constexpr bool skipped_columns_are_zero() {
+  for (const auto& row : kD)
+    for (std::size_t j = 0; j < row.size(); ++j) {
+      bool listed = false;
+      for (const std::size_t c : kDenseColumns) listed = listed || c == j;
+      if (!listed && row[j] != 0.0) return false;
+    }
+  return true;
+}
+static_assert(skipped_columns_are_zero());
+
 }  // namespace
 
-Dop853::Dop853(Rhs f, int dim, Dop853Options options)
+Dop853::Dop853(Rhs f, int dim, Dop853Options options, Rhs lead)
     : f_(std::move(f)),
+      lead_(std::move(lead)),
       dim_(static_cast<std::size_t>(dim)),
       controlled_(options.controlled > 0 ? static_cast<std::size_t>(options.controlled) : dim_),
       opt_(std::move(options)),
@@ -50,16 +64,16 @@ namespace {
 // out = base + h Σ_j a_ij k_j for one row i of A, its coefficients compile-time constants: per
 // component the row's nonzero terms added in j's order in a register (the numbers of adding one
 // stage at a time to base, without storing and reloading out for every stage), the components
-// vectorised. k: stage j at k + j·n.
+// vectorised. k: stage j at k + j·stride; the first n components.
 template <std::size_t I, std::size_t... J>
 void combine_row(const double* __restrict base, double h, const double* __restrict k, double* __restrict out,
-                 std::size_t n, std::index_sequence<J...>) {
+                 std::size_t n, std::size_t stride, std::index_sequence<J...>) {
   constexpr auto& a = kA[I];
   const std::array<double, sizeof...(J) + 1> ha{h * a[J]..., 0.0};
   for (std::size_t c = 0; c < n; ++c) {
     double s = base[c];
     const auto term = [&]<std::size_t j>() {
-      if constexpr (a[j] != 0.0) s += ha[j] * k[j * n + c];
+      if constexpr (a[j] != 0.0) s += ha[j] * k[j * stride + c];
     };
     (term.template operator()<J>(), ...);
     (void)term;  // row 0 has no terms
@@ -67,10 +81,10 @@ void combine_row(const double* __restrict base, double h, const double* __restri
   }
 }
 
-using CombineRow = void (*)(const double*, double, const double*, double*, std::size_t);
+using CombineRow = void (*)(const double*, double, const double*, double*, std::size_t, std::size_t);
 template <std::size_t I>
-void combine_row(const double* base, double h, const double* k, double* out, std::size_t n) {
-  combine_row<I>(base, h, k, out, n, std::make_index_sequence<I>());
+void combine_row(const double* base, double h, const double* k, double* out, std::size_t n, std::size_t stride) {
+  combine_row<I>(base, h, k, out, n, stride, std::make_index_sequence<I>());
 }
 template <std::size_t... I>
 constexpr std::array<CombineRow, sizeof...(I)> combine_rows(std::index_sequence<I...>) {
@@ -80,9 +94,9 @@ constexpr std::array<CombineRow, kDenseStages> kCombineRows = combine_rows(std::
 
 }  // namespace
 
-void Dop853::combine(const std::vector<double>& base, int i, double h, std::vector<double>& out) const {
+void Dop853::combine(const std::vector<double>& base, int i, double h, std::vector<double>& out, std::size_t n) const {
   // out is never a stage or base (the restrict pointers of combine_row)
-  kCombineRows[static_cast<std::size_t>(i)](base.data(), h, k_.data(), out.data(), dim_);
+  kCombineRows[static_cast<std::size_t>(i)](base.data(), h, k_.data(), out.data(), n, dim_);
 }
 
 // dop853.f's error estimate (Hairer–Nørsett–Wanner II.10, eq. (10.17)): the 5th-order estimator
@@ -151,7 +165,7 @@ void Dop853::start(double t, std::span<const double> y) {
   if (!eval(t, y_, stage(0))) throw std::runtime_error("DOP853: the right-hand side fails at the start");
   next_k0_ = NextStage0::Valid;
   rejected_ = false;
-  dense_ready_ = false;
+  dense_ready_ = 0;
   // A restart after an event: the flow's time scale is rarely shorter than the last accepted
   // step's, and hinit alone overshoots (its first step was rejected at almost every event of the
   // walking wheel; bounded by the last step, 4.8 % fewer evaluations of f over 2000 steps).
@@ -181,12 +195,12 @@ void Dop853::step(double t_max) {
     // Stages 1..11, then the 8th-order solution y_new = y + h Σ b_j k_j (b: row 12 of A).
     bool ok = true;
     for (int i = 1; i < kStages && ok; ++i) {
-      combine(y_, i, h, y_tmp_);
+      combine(y_, i, h, y_tmp_, dim_);
       ok = eval(t_ + kC[static_cast<std::size_t>(i)] * h, y_tmp_, stage(i));
     }
     double err = 0.0;
     if (ok) {
-      combine(y_, kStages, h, y_new_);
+      combine(y_, kStages, h, y_new_, dim_);
       err = error_norm(h);
       // Stage 12: f at the new point (the next step's stage 0), only for an accepted step.
       if (err <= 1.0) ok = eval(last ? t_max : t_ + h, y_new_, stage(kStages));
@@ -216,7 +230,7 @@ void Dop853::step(double t_max) {
     h_last_ = h;
     h_next_ = h_new;
     ++steps_;
-    dense_ready_ = false;
+    dense_ready_ = 0;
     // FSAL: the next step's stage 0 is this step's stage 12, copied when the next step starts
     // (this step's dense output needs both).
     next_k0_ = NextStage0::FromLastStage;
@@ -225,29 +239,39 @@ void Dop853::step(double t_max) {
 }
 
 // The extra stages 13..15 and the coefficients of dop853.f's CONTD8:
-// y(t_old + s h) = y_old + s (r2 + (1-s) (r3 + s (r4 + (1-s) (r5 + s (r6 + (1-s) (r7 + s r8)))))).
-void Dop853::prepare_dense() const {
+// y(t_old + s h) = y_old + s (r2 + (1-s) (r3 + s (r4 + (1-s) (r5 + s (r6 + (1-s) (r7 + s r8)))))),
+// for the first n components: n = controlled_ by the leading block's own flow (lead_; its stages
+// are the same numbers as the full flow's leading components), or all of them.
+void Dop853::prepare_dense(std::size_t n) const {
   for (int i = kStages + 1; i < kDenseStages; ++i) {
-    combine(y_old_, i, h_, dense_tmp_);
-    if (!eval(t_old_ + kC[static_cast<std::size_t>(i)] * h_, dense_tmp_,
-              k_.data() + static_cast<std::size_t>(i) * dim_))
-      throw std::runtime_error("DOP853: the right-hand side fails in the dense output");
+    combine(y_old_, i, h_, dense_tmp_, n);
+    const double t = t_old_ + kC[static_cast<std::size_t>(i)] * h_;
+    double* k = k_.data() + static_cast<std::size_t>(i) * dim_;
+    ++rhs_evals_;
+    const bool ok = n < dim_ ? lead_(t, std::span<const double>(dense_tmp_.data(), n), std::span<double>(k, n))
+                             : f_(t, dense_tmp_, std::span<double>(k, dim_));
+    if (!ok) throw std::runtime_error("DOP853: the right-hand side fails in the dense output");
   }
   const double* k0 = stage(0);
   const double* k12 = stage(kStages);
-  for (std::size_t c = 0; c < dim_; ++c) {
+  for (std::size_t c = 0; c < n; ++c) {
     const double diff = y_new_[c] - y_old_[c];
     const double bspl = h_ * k0[c] - diff;
     cont_[c] = diff;
     cont_[dim_ + c] = bspl;
     cont_[2 * dim_ + c] = diff - h_ * k12[c] - bspl;
-    for (std::size_t r = 0; r < kD.size(); ++r) {
-      double sum = 0.0;
-      for (int j = 0; j < kDenseStages; ++j) sum += kD[r][static_cast<std::size_t>(j)] * stage(j)[c];
-      cont_[(3 + r) * dim_ + c] = h_ * sum;
-    }
   }
-  dense_ready_ = true;
+  // r4..r8 = h Σ_j d_rj k_j, per component in four registers, summed in j's order over the
+  // stages whose d_rj are not all 0 (adding 0·k_j changes no sum).
+  for (std::size_t c = 0; c < n; ++c) {
+    std::array<double, kD.size()> sum{};
+    for (const std::size_t j : kDenseColumns) {
+      const double kj = k_[j * dim_ + c];
+      for (std::size_t r = 0; r < kD.size(); ++r) sum[r] += kD[r][j] * kj;
+    }
+    for (std::size_t r = 0; r < kD.size(); ++r) cont_[(3 + r) * dim_ + c] = h_ * sum[r];
+  }
+  dense_ready_ = n;
 }
 
 void Dop853::dense(double t, std::span<double> y) const {
@@ -256,7 +280,8 @@ void Dop853::dense(double t, std::span<double> y) const {
     std::copy(y_.begin(), y_.begin() + static_cast<std::ptrdiff_t>(n), y.begin());
     return;
   }
-  if (!dense_ready_) prepare_dense();
+  const std::size_t needed = lead_ && n <= controlled_ ? controlled_ : dim_;
+  if (dense_ready_ < needed) prepare_dense(needed);
   const double s = (t - t_old_) / h_, s1 = 1.0 - s;
   const double* r = cont_.data();
   for (std::size_t c = 0; c < n; ++c) {

@@ -33,7 +33,10 @@ class Dop853 {
   /// retried 4 times smaller).
   using Rhs = std::function<bool(double t, std::span<const double> y, std::span<double> ydot)>;
 
-  Dop853(Rhs f, int dim, Dop853Options options);
+  /// lead (optional, with options.controlled < dim): the flow of the controlled components alone,
+  /// when they do not depend on the others (a state and its variational equations): the dense
+  /// output of those components then never evaluates the whole of f (dense()).
+  Dop853(Rhs f, int dim, Dop853Options options, Rhs lead = {});
 
   /// Starts a new smooth segment at (t, y) (dim): f(t, y) and the initial step of dop853.f's
   /// hinit (one more evaluation of f), at most the last accepted step of an earlier segment.
@@ -49,7 +52,9 @@ class Dop853 {
   double previous_time() const { return t_old_; }
   std::span<const double> state() const { return y_; }
   /// The dense output (order 7) over the last step: the first y.size() components of y(t),
-  /// t in [previous_time(), time()]. The first call after a step costs three evaluations of f.
+  /// t in [previous_time(), time()]. The first call after a step costs three evaluations of f;
+  /// with `lead` and y.size() <= controlled, three of `lead` (the whole of f only once more
+  /// components are asked for).
   void dense(double t, std::span<double> y) const;
 
   std::int64_t steps() const { return steps_; }          ///< accepted steps
@@ -60,13 +65,14 @@ class Dop853 {
   double* stage(int i) { return k_.data() + static_cast<std::size_t>(i) * dim_; }
   const double* stage(int i) const { return k_.data() + static_cast<std::size_t>(i) * dim_; }
   bool eval(double t, const std::vector<double>& y, double* ydot) const;
-  /// out = base + h Σ_j a_ij k_j over j < i
-  void combine(const std::vector<double>& base, int i, double h, std::vector<double>& out) const;
+  /// out = base + h Σ_j a_ij k_j over j < i, its first n components
+  void combine(const std::vector<double>& base, int i, double h, std::vector<double>& out, std::size_t n) const;
   double error_norm(double h) const;
   double initial_step(double t);
-  void prepare_dense() const;
+  void prepare_dense(std::size_t n) const;
 
   Rhs f_;
+  Rhs lead_;  // the controlled components' own flow, or empty
   std::size_t dim_;
   std::size_t controlled_;
   Dop853Options opt_;
@@ -81,7 +87,7 @@ class Dop853 {
   mutable std::vector<double> dense_tmp_;          // dim
   mutable std::vector<double> k_;                  // 16 stages × dim (stages 13..15 for dense output)
   mutable std::vector<double> cont_;               // dense-output coefficients r4..r8 (5 × dim)
-  mutable bool dense_ready_ = false;
+  mutable std::size_t dense_ready_ = 0;            // components of the dense output prepared
   std::int64_t steps_ = 0;
   mutable std::int64_t rhs_evals_ = 0;
 };

@@ -33,7 +33,10 @@ class Dop853Backend final : public OdeBackend {
         sensitivities_(options.sensitivities),
         columns_(static_cast<std::size_t>(n + options.parameter_columns)),
         stepper_([this](double t, std::span<const double> y, std::span<double> yd) { return rhs(t, y, yd); },
-                 static_cast<int>(options.sensitivities ? n_ + n_ * columns_ : n_), stepper_options(n, options)),
+                 static_cast<int>(options.sensitivities ? n_ + n_ * columns_ : n_), stepper_options(n, options),
+                 // The state's own flow: the guards' samples and interpolate() read the state alone,
+                 // so the dense output's stages never differentiate the sensitivity columns for them.
+                 [this](double t, std::span<const double> y, std::span<double> yd) { return system_.rhs(t, y, yd); }),
         guard_values_([this](double t, std::span<double> g) {
           stepper_.dense(t, y_dense_);
           evaluate_guards(t, y_dense_, g);

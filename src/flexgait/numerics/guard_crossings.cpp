@@ -36,7 +36,7 @@ void GuardCrossings::start(double t, std::span<const int> directions, std::span<
   active_.resize(g.size());
   scratch_.resize(g.size());
   samples_.resize(g.size() * (kSamples - 1));
-  for (auto* v : {&lo_t_, &lo_g_, &hi_t_, &hi_g_, &curvature_}) v->resize(g.size());
+  for (auto* v : {&lo_t_, &lo_g_, &hi_t_, &hi_g_, &curvature_, &roots_}) v->resize(g.size());
   fired_.assign(g.size(), 0);
   rearm(t, g);
 }
@@ -96,22 +96,55 @@ bool GuardCrossings::refine(std::size_t i, Point a, Point b, int depth, const Va
   return refine(i, mid, b, depth - 1, g_at, lo, hi);
 }
 
-void GuardCrossings::sample_interior(double t1, std::span<const double> g1, const Values& g_at) {
+bool GuardCrossings::coarse_excludes(double t1, std::span<const double> g1, double t_mid, std::size_t mid) const {
+  const std::size_t n = directions_.size();
+  const double half = 0.5 * (t1 - t_);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (active_[i] == 0 || t_lo_[i] >= t1) continue;
+    // A guard activated after the midpoint has no second difference here: the full samples.
+    if (!(t_lo_[i] < t_mid)) return false;
+    const Point a{t_lo_[i], g_lo_[i]}, b{t_mid, samples_[mid * n + i]}, c{t1, g1[i]};
+    if (a.g == 0.0 || b.g == 0.0 || c.g == 0.0 || (a.g < 0) != (b.g < 0) || (b.g < 0) != (c.g < 0)) return false;
+    // M (h/2)²/8 with M = 4 |g[a, b, c]| (twice |g''|, above); with a at the step's start the
+    // points are equally spaced and it is |g(a) - 2 g(b) + g(c)| / 4.
+    const double reach =
+        a.t == t_ ? 0.25 * std::abs(a.g - 2.0 * b.g + c.g)
+                  : 0.5 * std::abs((c.g - b.g) / (c.t - b.t) - (b.g - a.g) / (b.t - a.t)) / (c.t - a.t) * half * half;
+    const double least = std::min({std::abs(a.g), std::abs(b.g), std::abs(c.g)});
+    if (!(least > kCoarseMargin * reach)) return false;
+  }
+  return true;
+}
+
+bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, const Values& g_at) {
   const std::size_t n = directions_.size();
   const std::size_t inner = kSamples - 1;
   const double h = t1 - t_;
-  for (std::size_t i = 0; i < n; ++i) {
-    lo_t_[i] = t_lo_[i], lo_g_[i] = g_lo_[i];
-    hi_t_[i] = t1, hi_g_[i] = g1[i];
-  }
+  const auto whole_step = [&] {  // each guard's bracket: the step (its part from t_lo_)
+    for (std::size_t i = 0; i < n; ++i) {
+      lo_t_[i] = t_lo_[i], lo_g_[i] = g_lo_[i];
+      hi_t_[i] = t1, hi_g_[i] = g1[i];
+    }
+  };
   const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(h));
-  if (!(h > kSamples * tol)) return;
-  std::array<double, kSamples - 1> times{};
-  for (std::size_t j = 0; j < inner; ++j) {
-    times[j] = t_ + h * static_cast<double>(j + 1) / kSamples;
-    g_at(times[j], std::span<double>(samples_).subspan(j * n, n));
+  if (!(h > kSamples * tol)) {
+    whole_step();
+    return true;
   }
-  interior_evaluations_ += static_cast<long long>(inner);
+  std::array<double, kSamples - 1> times{};
+  for (std::size_t j = 0; j < inner; ++j) times[j] = t_ + h * static_cast<double>(j + 1) / kSamples;
+  const auto sample = [&](std::size_t j) {
+    g_at(times[j], std::span<double>(samples_).subspan(j * n, n));
+    ++interior_evaluations_;
+  };
+  // The midpoint first: where it shows every guard far from 0 for its curvature (the coarse
+  // bound, above), the step is done with one sample.
+  constexpr std::size_t mid = inner / 2;
+  sample(mid);
+  if (coarse_excludes(t1, g1, times[mid], mid)) return false;
+  whole_step();
+  for (std::size_t j = 0; j < inner; ++j)
+    if (j != mid) sample(j);
   budget_ = kRefineBudget;
   std::array<Point, kSamples + 1> points{};
   for (std::size_t i = 0; i < n; ++i) {
@@ -154,6 +187,7 @@ void GuardCrossings::sample_interior(double t1, std::span<const double> g1, cons
       break;
     }
   }
+  return true;
 }
 
 std::optional<double> GuardCrossings::check(double t1, std::span<const double> g1, const Values& g_at,
@@ -185,14 +219,16 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   }
   if (first_step_) probe_unarmed(t1, g1, g_at);
   first_step_ = false;
-  sample_interior(t1, g1, g_at);
+  const bool may_cross = sample_interior(t1, g1, g_at);
   // The earliest root among the guards that crossed.
   double first = t1;
   int first_guard = -1;
-  for (std::size_t i = 0; i < n; ++i) {
+  if (may_cross) std::fill(roots_.begin(), roots_.end(), std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n && may_cross; ++i) {
     if (active_[i] == 0 || lo_t_[i] >= hi_t_[i] || !crosses(directions_[i], lo_g_[i], hi_g_[i])) continue;
     const double root = locate_root([&](double t) { return g_i_at(t, static_cast<int>(i)); }, lo_t_[i], hi_t_[i],
                                     lo_g_[i], hi_g_[i], tol);
+    roots_[i] = root;
     if (first_guard < 0 || root < first) {
       first = root;
       first_guard = static_cast<int>(i);
@@ -212,7 +248,10 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
     t_ = t1;
     return std::nullopt;
   }
-  // Every guard that has crossed by the first root fires; watching restarts there.
+  // Every guard that has crossed by the first root fires, and every guard whose own root lies
+  // within the root tolerance of it (a tie: two roots that coincide but for round-off, e.g. two
+  // feet slipping as one that reach stick together, fire together whatever the round-off, as
+  // CVODE's guards crossing within its final bracket do); watching restarts there.
   std::vector<double>& g = scratch_;
   if (first < t1)
     g_at(first, g);
@@ -221,7 +260,7 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   for (std::size_t i = 0; i < n; ++i) {
     // From the start of the guard's bracket in this step where that lies before the crossing.
     const double g_from = lo_t_[i] <= first ? lo_g_[i] : g_lo_[i];
-    const bool fired = active_[i] != 0 && crosses(directions_[i], g_from, g[i]);
+    const bool fired = active_[i] != 0 && (crosses(directions_[i], g_from, g[i]) || roots_[i] <= first + tol);
     fired_[i] = fired || static_cast<int>(i) == first_guard ? (g_from > 0 ? -1 : 1) : 0;
   }
   rearm(first, g);

@@ -294,7 +294,7 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
   SimulationOptions o = s.sim;
   o.rtol = s.opt.rtol;
   o.atol = s.opt.atol;
-  PoincareMap map(s.w, o, Model::Flexible, Section::Touchdown);
+  SectionWalk walk(s.w, o, Model::Flexible, Section::Touchdown);
   const Eigen::VectorXd scale = r.point.scale(s.w);
   const auto names = r.point.names();
   Eigen::Index trials = 0;
@@ -306,8 +306,11 @@ std::string robustness_csv(const Config& base, double mu, const std::vector<doub
         int steps = 0;
         bool returned = false;
         std::string failure;
+        // From the perturbed point's reconstruction, then crossing to crossing in the full state; a
+        // transient may change modes.
+        walk.start_at(p);
         for (; steps < max_steps; ++steps) {
-          const MapStep m = map.apply(p, /*keep_mode=*/false);  // a transient may change modes
+          const MapStep m = walk.step();
           if (m.failure) {
             failure = m.failure->text();
             break;

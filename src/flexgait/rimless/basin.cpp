@@ -121,19 +121,20 @@ std::string basin_row(const Config& base, const BasinSpec& spec, const BasinRefe
                        name_of(outcome), gait, steps, format_number(distance), csv_field(failure));
   };
   SectionState p;
-  // The first crossing of the section after the first step (settle_on_section simulates >= 1 step).
-  if (const auto e = settle_on_section(w, sim, sim.model, spec.section, initial_from_config(c), 1, p)) {
+  // The first crossing of the section after the first step (settle simulates >= 1 step); the
+  // orbit goes on from crossing to crossing in the full hybrid state (SectionWalk).
+  SectionWalk walk(w, sim, sim.model, spec.section);
+  if (const auto e = walk.settle(initial_from_config(c), 1, p)) {
     const bool infeasible = e->reason == FailureReason::InitialFootBelowGround;  // a foot below the ground
     return row(infeasible ? BasinOutcome::Infeasible : failure_outcome(*e), "", 0, NAN, e->text());
   }
-  PoincareMap map(w, sim, sim.model, spec.section);
   std::string gait;
   double distance = ref.found ? scaled_distance(w, p, ref.point) : INFINITY;
   for (int n = 1;; ++n) {
     if (distance <= spec.tolerance)
       return row(BasinOutcome::Converged, gait.empty() ? ref.gait : gait, n, distance, "");
     if (n == spec.steps_limit) return row(BasinOutcome::StepLimit, gait, n, distance, "");
-    const MapStep s = map.apply(p, false);
+    const MapStep s = walk.step();
     if (s.failure) return row(failure_outcome(*s.failure), gait, n, distance, s.failure->text());
     const double moved = scaled_distance(w, s.next, p);
     p = s.next;

@@ -511,6 +511,26 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
     ++res.event_count;
     sink.on_event({te, kind, leg, m.flow.contacts(), {}});
   }
+  // The events of a reset, in leg order. At a slip→stick event every other foot that came to
+  // rest with it (slipping before, sticking after, no event of its own: two feet slipping as one,
+  // whose slip velocities reach 0 within round-off of each other) is reported as reaching stick
+  // too, so the record does not depend on which of the two guards the round-off fired.
+  void record_events(double te, std::span<const GuardEvent> events, const ContactSet& after) {
+    bool slip_to_stick = false;
+    for (const auto& e : events) slip_to_stick = slip_to_stick || e.kind == EventKind::SlipToStick;
+    for (int k = 0; k < w.legs; ++k) {
+      bool own = false;
+      for (const auto& e : events) {
+        if (e.leg != k) continue;
+        record_event(te, run_event(e.kind), k);
+        own = true;
+      }
+      const int i = before.find(k), j = after.find(k);
+      if (!own && slip_to_stick && i >= 0 && before.mode[i] != FootMode::Stick && j >= 0 &&
+          after.mode[j] == FootMode::Stick)
+        record_event(te, RunEvent::SlipToStick, k);
+    }
+  }
   void fail(double te, FailureReason reason, std::string detail = {}) {
     res.failure = Failure{reason, std::move(detail), {}};
     ++res.event_count;
@@ -569,16 +589,11 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   double event_time(double t, std::span<double> y, std::span<const int> fired,
                     const numerics::OdeIntegrator& integrator) override;
   bool smooth_step(double t, std::span<const double>, numerics::StepStatus status) override;
-  // On one foot the wheel is an inverted pendulum whose only equilibrium is the stance leg at the
-  // true vertical (β = -φ); it leaves a neighbourhood of it at the rate λ ≈ sqrt(g / L0). A wheel
-  // still within 1e-3 rad and 1e-3 sqrt(g / L0) of it when no leg has landed for max_step_time
-  // balances there (from rest exactly at the vertical round-off tips it over only after ~14 s on
-  // configs/rimless.yaml; from 1e-3 it needs ln(α / 1e-3) / λ ≈ 1.8 s more): the outcome is named,
-  // not left to the limit.
+  // One foot down, balanced at the vertical (simulation.hpp).
   bool balanced_at_vertical() const {
     const ContactSet& down = m.flow.contacts();
-    return down.count == 1 && std::abs(leg_angle(w, down.leg[0], m.y[S::theta]) + w.slope) <= 1e-3 &&
-           std::abs(m.y[S::thetad]) <= 1e-3 * std::sqrt(w.g / w.L0);
+    return down.count == 1 &&
+           rimless::balanced_at_vertical(w, leg_angle(w, down.leg[0], m.y[S::theta]), m.y[S::thetad]);
   }
   numerics::HybridNext guards_crossed(double t, std::span<const double> y, std::span<const int> fired,
                                       const numerics::OdeIntegrator& integrator,
@@ -849,7 +864,7 @@ numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<doub
   if (dec.consistent > 1) ++res.ambiguous_choices;
   res.jams += dec.jammed_feet;
   if (dec.jammed_feet > 0) record_event(t, RunEvent::Jam, events.front().leg);
-  for (const auto& e : events) record_event(t, run_event(e.kind), e.leg);
+  record_events(t, events, dec.contacts);
 
   const double energy = mechanical_energy(w, dec.contacts, m.y).total();
   bool new_step = false;

@@ -50,7 +50,7 @@ enum class FailureReason : std::uint8_t {
   AtRest,                       ///< came to rest in double support
   SlidAway,                     ///< slides down the slope on its feet without turning, ever faster
   NoLanding,                    ///< no new leg landed within sim.max_step_time
-  BalancedAtVertical,           ///< NoLanding on one foot at rest at the true vertical (flexible_wheel.cpp)
+  BalancedAtVertical,           ///< NoLanding on one foot at rest at the true vertical (simulation.hpp)
   TimeLimit,                    ///< sim.max_time reached
   UprightOutsideSingleSupport,  ///< the upright section crossed outside single support on that leg
   Sensitivities,                ///< the reset's Jacobian could not be formed

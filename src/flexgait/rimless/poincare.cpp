@@ -289,52 +289,61 @@ std::optional<std::string> PoincareMap::operator()(const SectionState& like, con
 }
 
 SectionWalk::SectionWalk(const WheelParams& w, const SimulationOptions& options, Model model, Section section)
-    : w_(w), options_(options), model_(model), section_(section) {
-  options_.log = false;
-  if (model_ == Model::Flexible) sim_ = std::make_unique<FlexibleWheelSimulator>(w_, options_);
-  else rigid_ = std::make_unique<PoincareMap>(w_, options_, model_, section_);
-}
+    : map_(w, options, model, section) {}
 SectionWalk::~SectionWalk() = default;
 SectionWalk::SectionWalk(SectionWalk&&) noexcept = default;
 
 std::optional<Failure> SectionWalk::to_section(const SimulationResult& r, const SectionHit& hit, SectionState& out) {
-  if (hit.leg < 0) return Failure{FailureReason::SectionNotReached, std::string(name_of(section_)), {}};
-  if (auto e = reduce_crossing(w_, section_, hit, out)) return Failure{FailureReason::IrreducibleCrossing, *e, {}};
+  const Section section = map_.section();
+  if (hit.leg < 0) return Failure{FailureReason::SectionNotReached, std::string(name_of(section)), {}};
+  if (auto e = reduce_crossing(map_.params(), section, hit, out))
+    return Failure{FailureReason::IrreducibleCrossing, *e, {}};
   // The next run starts at the crossing: at a touchdown the landing is its first event (and the
   // landing leg its stance leg, as in a continuous run); at the upright crossing no event.
   next_ = RunSpec{};
   next_.y0 = hit.state;
   next_.contacts = hit.contacts;
-  if (section_ == Section::Touchdown) next_.pending = {{hit.leg, EventKind::Touchdown}};
+  if (section == Section::Touchdown)
+    next_.pending = {{hit.leg, EventKind::Touchdown}};
   else next_.stance_leg = r.last_step.stance_leg;
-  next_.stop_at = section_;
+  next_.stop_at = section;
   next_.steps = 3;  // a cycle holds one touchdown (upright) or none (touchdown), as the map's
   point_ = out;
   return std::nullopt;
 }
 
+void SectionWalk::start_at(const SectionState& point) {
+  point_ = point;
+  if (map_.model() == Model::Rigid) return;
+  next_ = section_run(map_.params(), point);
+  next_.stop_at = map_.section();
+  next_.steps = 3;
+}
+
 std::optional<Failure> SectionWalk::settle(const InitialState& initial, int transient_steps, SectionState& out) {
-  out.model = model_;
-  out.section = section_;
-  if (model_ == Model::Rigid) {
-    SimulationOptions o = options_;
+  const WheelParams& w = map_.params();
+  out.model = map_.model();
+  out.section = map_.section();
+  if (map_.model() == Model::Rigid) {
+    SimulationOptions o = map_.options();
     o.steps = std::max(1, transient_steps);
-    const SimulationResult r = simulate_rigid(w_, initial, o);
+    const SimulationResult r = simulate_rigid(w, initial, o);
     if (r.failure) return r.failure;
     out.z = Eigen::VectorXd::Constant(1, r.final_state[5]);  // ω⁺ after the last impact
-    if (section_ == Section::Upright) {
+    if (out.section == Section::Upright) {
       SimulationOptions o2 = o;
       o2.steps = 2;
-      const SimulationResult u = simulate_rigid(w_, InitialState{out.z(0), -w_.alpha()}, o2, Section::Upright);
+      const SimulationResult u = simulate_rigid(w, InitialState{out.z(0), -w.alpha()}, o2, Section::Upright);
       if (u.failure) return u.failure;
       out.z(0) = u.final_state[5];
     }
     point_ = out;
     return std::nullopt;
   }
-  RunSpec first = default_run(w_, initial);
+  RunSpec first = default_run(w, initial);
   first.steps = std::max(1, transient_steps);
-  const SimulationResult r = sim_->run(first);
+  FlexibleWheelSimulator& sim = *map_.simulator();
+  const SimulationResult r = sim.run(first);
   if (r.failure) {  // an infeasible start is no failure of the transient: its reason alone
     if (r.failure->reason == FailureReason::InitialFootBelowGround) return r.failure;
     return r.failure->in_stage("transient");
@@ -343,29 +352,32 @@ std::optional<Failure> SectionWalk::settle(const InitialState& initial, int tran
   next.y0 = r.final_state;
   next.contacts = r.final_contacts;
   next.stance_leg = r.steps.empty() ? -1 : r.steps.back().stance_leg;
-  next.stop_at = section_;
+  next.stop_at = out.section;
   next.steps = 3;
   SectionHit hit;
-  const SimulationResult r2 = sim_->run(next, &hit);
+  const SimulationResult r2 = sim.run(next, &hit);
   if (r2.failure) return r2.failure->in_stage("reaching the section");
   return to_section(r2, hit, out);
 }
 
 MapStep SectionWalk::step() {
-  if (model_ == Model::Rigid) {
-    MapStep s = rigid_->apply(point_, false);
+  if (map_.model() == Model::Rigid) {
+    MapStep s = map_.apply(point_, false);
     if (!s.failure) point_ = s.next;
     return s;
   }
   MapStep out;
   out.next = point_;
-  if (next_.y0.empty()) throw std::logic_error("SectionWalk::step before a successful settle");
+  if (next_.y0.empty()) throw std::logic_error("SectionWalk::step before settle or start_at");
   SectionHit hit;
   hit.leg = -1;
   const RunSpec spec = next_;
-  const SimulationResult r = sim_->run(spec, &hit);
+  const SimulationResult r = map_.simulator()->run(spec, &hit);
   if (r.failure) {
-    out.failure = r.failure;
+    // a start_at point with a foot below the ground, as the map's
+    out.failure = r.failure->reason == FailureReason::InitialFootBelowGround
+                      ? r.failure->in_stage("infeasible section point")
+                      : *r.failure;
     return out;
   }
   if (auto f = to_section(r, hit, out.next)) {
@@ -377,7 +389,7 @@ MapStep SectionWalk::step() {
   out.distance = hit.state[S::x] - spec.y0[S::x];
   out.dissipated = hit.state[S::w_damp] + hit.state[S::w_fric] - spec.y0[S::w_damp] - spec.y0[S::w_fric];
   out.jams = r.jams;
-  out.gait = cycle_gait(section_, r);
+  out.gait = cycle_gait(map_.section(), r);
   return out;
 }
 

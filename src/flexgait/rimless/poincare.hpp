@@ -98,6 +98,10 @@ class PoincareMap {
   std::optional<std::string> operator()(const SectionState& like, const Eigen::VectorXd& z, Eigen::VectorXd& out);
   Model model() const { return model_; }
   Section section() const { return section_; }
+  const WheelParams& params() const { return w_; }
+  const SimulationOptions& options() const { return options_; }
+  /// The flexible wheel's simulator (the map's and a SectionWalk's runs; null for the rigid wheel).
+  FlexibleWheelSimulator* simulator() { return sim_.get(); }
 
  private:
   WheelParams w_;
@@ -127,6 +131,10 @@ class SectionWalk {
   /// Simulates `transient_steps` from `initial` and runs on to the next crossing, reduced into
   /// `out` (failures as settle_on_section's). The walk continues from there.
   std::optional<Failure> settle(const InitialState& initial, int transient_steps, SectionState& out);
+  /// The walk continues from a given section point (e.g. a perturbed fixed point): its first run
+  /// starts at the point's reconstruction (section_run), as the map's; the later ones at the
+  /// crossings' full states.
+  void start_at(const SectionState& point);
   /// From the last crossing to the next: `next` is the new crossing reduced (in whatever mode it
   /// arrived), `gait` and `period` as the map's, `distance` the hub's travel, `dissipated` the
   /// work of the dampers and of friction over the cycle (free legs' stored energy is carried).
@@ -135,12 +143,7 @@ class SectionWalk {
   const std::vector<double>& state() const { return next_.y0; }
 
  private:
-  WheelParams w_;
-  SimulationOptions options_;
-  Model model_;
-  Section section_;
-  std::unique_ptr<FlexibleWheelSimulator> sim_;
-  std::unique_ptr<PoincareMap> rigid_;  // the rigid wheel: its map
+  PoincareMap map_;                     // the wheel, options, model, section and simulator; the rigid wheel's step
   SectionState point_;                  // the last crossing, reduced
   RunSpec next_;                        // the run from the last crossing (flexible)
   std::optional<Failure> to_section(const SimulationResult& r, const SectionHit& hit, SectionState& out);

@@ -179,7 +179,9 @@ class RigidRun final : public numerics::HybridModel {
   void stepped(double, std::span<const double> y) override { y_ = {y[0], y[1]}; }
   bool smooth_step(double t, std::span<const double>, numerics::StepStatus status) override {
     if (status != numerics::StepStatus::StopTime) return true;
-    fail(t >= opt_.max_time ? FailureReason::TimeLimit : FailureReason::NoLanding);
+    fail(t >= opt_.max_time                       ? FailureReason::TimeLimit
+         : balanced_at_vertical(w_, y_[0], y_[1]) ? FailureReason::BalancedAtVertical
+                                                  : FailureReason::NoLanding);
     return false;
   }
   numerics::HybridNext guards_crossed(double t, std::span<const double>, std::span<const int> fired,

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace flexgait::rimless {
 
 // RunEvent begins with EventKind's values, in its order.
@@ -32,5 +34,9 @@ std::string describe_contacts(const ContactSet& c) {
 void RunCollector::on_sample(const LogSample& sample) { result_.samples.push_back(sample); }
 void RunCollector::on_event(const EventRecord& event) { result_.events.push_back(event); }
 void RunCollector::on_step(const StepRecord& step) { result_.steps.push_back(step); }
+
+bool balanced_at_vertical(const WheelParams& w, double beta, double omega) {
+  return std::abs(beta + w.slope) <= 1e-3 && std::abs(omega) <= 1e-3 * std::sqrt(w.g / w.L0);
+}
 
 }  // namespace flexgait::rimless

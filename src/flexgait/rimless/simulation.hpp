@@ -160,4 +160,13 @@ struct SimulationResult {
 /// "3:stick 4:slip+" for a contact set; "flight" if empty.
 std::string describe_contacts(const ContactSet& contacts);
 
+/// On one foot the wheel is an inverted pendulum whose only equilibrium is the stance leg at the
+/// true vertical (β = -φ); it leaves a neighbourhood of it at the rate λ ≈ sqrt(g / L0). A wheel
+/// still within 1e-3 rad and 1e-3 sqrt(g / L0) of it when no leg has landed for max_step_time
+/// balances there (from rest exactly at the vertical round-off tips it over only after ~14 s on
+/// configs/rimless.yaml; from 1e-3 it needs ln(α / 1e-3) / λ ≈ 1.8 s more): the outcome is named
+/// (FailureReason::BalancedAtVertical), not left to the limit. beta: the stance leg's angle from
+/// the slope's normal, omega = θ̇.
+bool balanced_at_vertical(const WheelParams& w, double beta, double omega);
+
 }  // namespace flexgait::rimless
