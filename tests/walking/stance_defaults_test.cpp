@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string_view>
 
 namespace flexgait::walking {
 namespace {
@@ -40,6 +41,37 @@ TEST(StanceDefaults, FollowsTheLegsOfAnotherRobot) {
   EXPECT_NEAR(d.pelvis_height, stretched - kCrouchShare * 0.6, 5e-4 + 1e-12);  // to the millimetre
   EXPECT_EQ(d.step_width, 0.14);
   EXPECT_NEAR(hip_to_ankle(reach, d.pelvis_height), d.pelvis_height - r.hip_axes_depth - 0.08, 1e-12);
+}
+
+// The scaled defaults: the builtin against itself is scale 1 (its own values, bit-equal), and the
+// rules are the stated powers (Froude: time as sqrt(leg), length as leg) to 3 significant digits.
+TEST(ScaledDefaults, BuiltinIsItsOwnReferenceAndRulesAreThePowersStated) {
+  const RobotModel model = make_robot_model(humanoid::RobotParams{});
+  const double pelvis = stance_defaults(model).pelvis_height;
+  const RobotScale one = robot_scale(model, pelvis, model, pelvis);
+  EXPECT_EQ(one.mass, 1.0);
+  EXPECT_EQ(one.leg, 1.0);
+  EXPECT_EQ(one.com_height, 1.0);
+  for (const ScaledDefault& d : kScaledDefaults) EXPECT_EQ(scaled_default(d, 0.723, one), 0.723) << d.key;
+  const RobotScale four{2.0, 4.0, 9.0};
+  const auto rule = [](std::string_view key) {
+    for (const ScaledDefault& d : kScaledDefaults)
+      if (d.key == key) return d;
+    ADD_FAILURE() << key;
+    return ScaledDefault{};
+  };
+  EXPECT_EQ(scaled_default(rule("walk.step_time"), 1.0, four), 2.0);      // sqrt(4)
+  EXPECT_EQ(scaled_default(rule("walk.step_length"), 0.1, four), 0.4);    // 4
+  EXPECT_EQ(scaled_default(rule("walk.preview_time"), 1.6, four), 4.8);   // sqrt(9)
+  EXPECT_EQ(scaled_default(rule("plant.k_joint"), 1000, four), 8000);     // mass x leg
+  EXPECT_EQ(scaled_default(rule("plant.gear_damping"), 80, four), 1280);  // mass x leg^1.5
+  EXPECT_EQ(scaled_default(rule("balance.dcm_ki"), 10, four), 1.11);      // 10/9 to 3 digits
+  // A robot of other proportions: the leg ratio is its thigh + shank over the builtin's 0.6 m.
+  humanoid::RobotParams r;
+  r.thigh = 0.15;
+  r.shank = 0.15;
+  const RobotModel half = make_robot_model(r);
+  EXPECT_NEAR(robot_scale(half, stance_defaults(half).pelvis_height, model, pelvis).leg, 0.5, 1e-12);
 }
 
 }  // namespace

@@ -17,12 +17,58 @@
 namespace flexgait::experiments {
 namespace {
 
-/// The robot's own walking height and step width where the configuration leaves them to it
-/// (walk.pelvis_height, walk.step_width: auto, the defaults; docs/guide/robot.md).
-void apply_stance_defaults(const Config& c, const walking::RobotModel& model, walking::WalkParams& walk) {
+/// x rounded up to the millimetre [m].
+double to_millimetre_up(double x) {
+  return std::ceil(x * 1000.0 - 1e-9) / 1000.0;
+}
+
+/// The robot's own defaults where the configuration leaves them to it (the keys left `auto`; docs/guide/robot.md):
+/// the walking height and step width (stance_defaults.hpp) for every robot, and for a loaded description the
+/// keys of walking::kScaledDefaults scaled from the builtin's values by the robot's size, the torque limits
+/// from the file's actuators where it has them, and a step width scaled as the legs.
+/// The builtin robot keeps the builtin's values (the rules' reference). Each value derived is also put in
+/// p.derived, for config.yaml.
+void apply_robot_defaults(const Config& c, const walking::RobotModel& model, WalkRunParams& p) {
   const walking::StanceDefaults d = walking::stance_defaults(model);
-  if (c.derived("walk.pelvis_height")) walk.pelvis_height = d.pelvis_height;
-  if (c.derived("walk.step_width")) walk.step_width = d.step_width;
+  Config resolved = c;
+  const auto derive = [&](const std::string& key, double value) {
+    if (!c.derived(key)) return;
+    p.derived.emplace_back(key, value);
+    resolved.set(key, format_number(value), "auto (from the robot)");
+  };
+  derive("walk.pelvis_height", d.pelvis_height);
+  if (p.loaded) {
+    const walking::RobotModel reference = walking::make_robot_model(humanoid::RobotParams{});
+    const double pelvis = c.derived("walk.pelvis_height") ? d.pelvis_height : c.real("walk.pelvis_height");
+    const walking::RobotScale scale =
+        walking::robot_scale(model, pelvis, reference, walking::stance_defaults(reference).pelvis_height);
+    const double actuators = walking::leg_actuator_torque(*p.loaded);
+    for (const walking::ScaledDefault& rule : walking::kScaledDefaults) {
+      const std::string key(rule.key);
+      if (key == "control.k_joint" || key == "balance.capture_torque_limit") {  // the plant's, set or derived
+        derive(key, resolved.real(key == "control.k_joint" ? "plant.k_joint" : "plant.torque_limit"));
+        continue;
+      }
+      derive(key, key == "plant.torque_limit" && actuators > 0 ? actuators
+                                                               : walking::scaled_default(rule, c.real(key), scale));
+    }
+    p.plant = humanoid::plant_from_config(resolved);
+    p.walk = record_from_config<walking::WalkParams>(resolved);
+    p.balance = record_from_config<walking::BalanceParams>(resolved);
+    p.control = compensation::compensation_from_config(resolved);
+    // The hip spacing, at most the builtin's width scaled with the leg (the sideways sway, and with it the
+    // legs' roll, scales so), at least the soles' width + 2 cm.
+    derive(
+        "walk.step_width",
+        std::max(std::min(d.step_width, walking::scaled_default({"", 0, 1, 0, ""}, c.real("walk.step_width"), scale)),
+                 to_millimetre_up(model.sole_width + 0.02)));
+  } else {
+    for (const walking::ScaledDefault& rule : walking::kScaledDefaults)
+      derive(std::string(rule.key), c.real(std::string(rule.key)));
+    derive("walk.step_width", d.step_width);
+  }
+  if (c.derived("walk.pelvis_height")) p.walk.pelvis_height = d.pelvis_height;
+  if (c.derived("walk.step_width")) p.walk.step_width = resolved.real("walk.step_width");
 }
 
 /// A stance the legs cannot take: hip to ankle between 45 % and 97.5 % of thigh + shank (the
@@ -71,7 +117,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
   }
   check_with_origin(c, [&] {
     const walking::RobotModel model = walk_controller_model(p);  // refuses a foot the controller cannot handle
-    apply_stance_defaults(c, model, p.walk);
+    apply_robot_defaults(c, model, p);
     check_reach(p, model);
     walking::check_standing_pose(model, p.walk.pelvis_height, p.walk.step_width);
   });
@@ -121,9 +167,20 @@ WalkRunParams walk_run_from_config(const Config& c) {
 
 Config with_derived_values(const Config& config, const WalkRunParams& params) {
   Config out = config;
-  for (const auto& [key, value] : {std::pair{"walk.pelvis_height", params.walk.pelvis_height},
-                                   std::pair{"walk.step_width", params.walk.step_width}})
+  for (const auto& [key, value] : params.derived)
     if (out.derived(key)) out.set(key, format_number(value), "auto (from the robot)");
+  return out;
+}
+
+Schema walk_run_schema() {
+  const Schema keys = schema_of<WalkRunParams>();
+  Schema out;
+  for (ParamSpec spec : keys.params()) {
+    for (const walking::ScaledDefault& rule : walking::kScaledDefaults)
+      if (spec.key == rule.key) spec.derived = std::string(rule.rule) + "; the builtin robot keeps the builtin's";
+    out.add(std::move(spec));
+  }
+  for (const ParamAlias& a : keys.aliases()) out.alias(a.key, a.parts, a.doc);
   return out;
 }
 

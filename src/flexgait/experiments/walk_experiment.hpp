@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
@@ -47,6 +48,9 @@ struct WalkRunParams {
   double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                  ///< or tilts this far [rad]
+  /// The keys left `auto` and the values walk_run_from_config derived for them from the robot, in
+  /// derivation order (with_derived_values writes them into config.yaml); not keys themselves.
+  std::vector<std::pair<std::string, double>> derived;
 
   /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*, disturbance.pushes, output.log_period (the controller's
   /// belief of the robot and the fall thresholds are not keys).
@@ -67,7 +71,8 @@ struct WalkRunParams {
   }
 };
 
-inline Schema walk_run_schema() { return schema_of<WalkRunParams>(); }
+/// WalkRunParams's keys, those of walking::kScaledDefaults derived from the robot unless set (`auto`).
+Schema walk_run_schema();
 /// The run's parameters (the controller believes the twin's robot); throws ConfigError as plant_from_config
 /// and, for a description file, as humanoid::load_robot and walking::make_robot_model.
 WalkRunParams walk_run_from_config(const Config& config);

@@ -71,6 +71,9 @@ struct LoadedJoint {
   bool limited = false;
   std::array<double, 2> range{};        ///< [rad]
   double armature = 0, frictionloss = 0;
+  /// The largest torque the file's actuators on this joint can apply [Nm]: gear × force range, or
+  /// gear × gain × control range for a motor without a force range; 0: the file sets none.
+  double force_limit = 0;
 };
 
 struct LoadedGeom {

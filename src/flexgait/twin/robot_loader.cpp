@@ -134,6 +134,27 @@ bool is_ancestor(const mjModel* m, int ancestor, int body) {
   return ancestor == 0;
 }
 
+/// The largest torque the file's actuators on hinge `joint` can apply (LoadedJoint::force_limit; MuJoCo's
+/// actuator model: torque = gear × force, force clamped to forcerange, a motor's force = gain × control
+/// clamped to ctrlrange); 0 when none of them is limited.
+double actuator_force_limit(const mjModel* m, int joint) {
+  double limit = 0;
+  for (int a = 0; a < m->nu; ++a) {
+    if (m->actuator_trntype[a] != mjTRN_JOINT || m->actuator_trnid[2 * a] != joint) continue;
+    const double gear = std::abs(m->actuator_gear[6 * a]);
+    double force = 0;
+    if (m->actuator_forcelimited[a]) {
+      force = std::max(std::abs(m->actuator_forcerange[2 * a]), std::abs(m->actuator_forcerange[2 * a + 1]));
+    } else if (m->actuator_ctrllimited[a] && m->actuator_gaintype[a] == mjGAIN_FIXED &&
+               m->actuator_biastype[a] == mjBIAS_NONE) {
+      force = std::abs(m->actuator_gainprm[mjNGAIN * a]) *
+              std::max(std::abs(m->actuator_ctrlrange[2 * a]), std::abs(m->actuator_ctrlrange[2 * a + 1]));
+    }
+    limit = std::max(limit, gear * force);
+  }
+  return limit;
+}
+
 /// Refuses a robot whose colliding geoms touch each other at zero joint angles (the twin would
 /// start, and stand, in contact with itself), naming the first pair for robot.exclude_contacts.
 void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
@@ -227,6 +248,7 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       joint.range = {m->jnt_range[2 * k], m->jnt_range[2 * k + 1]};
       joint.armature = m->dof_armature[m->jnt_dofadr[k]];
       joint.frictionloss = m->dof_frictionloss[m->jnt_dofadr[k]];
+      joint.force_limit = actuator_force_limit(m, k);
       if (joint.mapped >= 0) out.joint[joint.mapped] = {static_cast<int>(out.bodies.size()), static_cast<int>(body.joints.size())};
       body.joints.push_back(joint);
     }

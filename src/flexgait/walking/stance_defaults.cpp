@@ -67,4 +67,37 @@ void check_standing_pose(const RobotModel& model, double pelvis_height, double s
   }
 }
 
+double standing_com_height(const RobotModel& model, double pelvis_height, double step_width) {
+  RobotModelData data;
+  forward_kinematics(model, data, Pose{Vector3d(0, 0, pelvis_height), Matrix3d::Identity()},
+                     standing_angles(model, pelvis_height, step_width));
+  return center_of_mass(model, data).z();
+}
+
+RobotScale robot_scale(const RobotModel& model, double pelvis_height, const RobotModel& reference,
+                       double reference_pelvis_height) {
+  const double width = stance_defaults(model).step_width, reference_width = stance_defaults(reference).step_width;
+  return {model.total_mass / reference.total_mass, leg_reach(model).length / leg_reach(reference).length,
+          standing_com_height(model, pelvis_height, width) /
+              standing_com_height(reference, reference_pelvis_height, reference_width)};
+}
+
+double scaled_default(const ScaledDefault& d, double builtin, const RobotScale& scale) {
+  const double x =
+      builtin * std::pow(scale.mass, d.mass) * std::pow(scale.leg, d.leg) * std::pow(scale.com_height, d.com_height);
+  if (!(x > 0) || !std::isfinite(x)) return builtin;
+  return std::stod(fmt::format("{:.3g}", x));  // 3 significant digits, as a user would type them
+}
+
+double leg_actuator_torque(const humanoid::LoadedRobot& robot) {
+  double limit = 0;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    if (j == humanoid::kWaistYaw || !robot.has_joint(j)) continue;
+    const auto [body, joint] = robot.joint[static_cast<std::size_t>(j)];
+    limit = std::max(limit,
+                     robot.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(joint)].force_limit);
+  }
+  return limit;
+}
+
 }  // namespace flexgait::walking

@@ -3,6 +3,10 @@
 /// The walking height and step width a robot walks at unless the configuration sets them
 /// (docs/guide/robot.md: `walk.pelvis_height: auto`, `walk.step_width: auto`, the defaults). Rules on the
 /// controller's model, so a loaded robot gets its own numbers and the builtin keeps ROBOTIS's.
+#include <array>
+#include <string_view>
+
+#include "flexgait/robot/robot_description.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::walking {
@@ -38,5 +42,68 @@ humanoid::JointVector standing_angles(const RobotModel& model, double pelvis_hei
 /// Throws ConfigError naming robot.joints.<name> when the standing pose (standing_angles) puts a
 /// joint outside its range: such a robot cannot stand at this height and width.
 void check_standing_pose(const RobotModel& model, double pelvis_height, double step_width);
+
+/// A robot's size against the builtin THORMANG-class robot at its default parameters (the reference of
+/// the scaled defaults): ratios of total mass, of thigh + shank and of the standing COM height.
+struct RobotScale {
+  double mass = 1, leg = 1, com_height = 1;
+};
+
+/// The centre of mass's height standing at this pelvis height and step width (standing_angles) [m].
+double standing_com_height(const RobotModel& model, double pelvis_height, double step_width);
+
+/// `model` standing at `pelvis_height` against `reference` standing at `reference_pelvis_height`
+/// (both at the reference's step width would not do: each at its own hip spacing, StanceDefaults).
+RobotScale robot_scale(const RobotModel& model, double pelvis_height, const RobotModel& reference,
+                       double reference_pelvis_height);
+
+/// One key whose default follows the robot by dynamic similarity: the builtin's value times
+/// mass^m · leg^l · com_height^c (RobotScale's ratios), to 3 significant digits (control.k_joint and
+/// balance.capture_torque_limit take the plant's value instead, walk_experiment.cpp). With g fixed, Froude
+/// similarity (Alexander & Jayes 1983) makes times scale as √leg and lengths as leg; the linear inverted
+/// pendulum's time constant √(z/g) (Kajita et al. 2003) makes the preview and the balance loops' times
+/// scale as √com_height and their rates as its inverse; torques scale as weight × leg.
+struct ScaledDefault {
+  std::string_view key;
+  double mass = 0, leg = 0, com_height = 0;
+  std::string_view rule;  ///< the rule in words, for the key's documentation (ParamSpec::derived)
+};
+
+inline constexpr std::array<ScaledDefault, 17> kScaledDefaults{{
+    {"walk.step_time", 0, 0.5, 0, "1 s x sqrt(leg / the builtin's), Froude scaling (the builtin: 1 s)"},
+    {"walk.step_length", 0, 1, 0, "0.1 m x leg / the builtin's, Froude scaling (the builtin: 0.1 m)"},
+    {"walk.swing_height", 0, 1, 0, "0.05 m x leg / the builtin's (the builtin: 0.05 m)"},
+    {"walk.preview_time", 0, 0, 0.5, "1.6 s x sqrt(COM height / the builtin's) (the builtin: 1.6 s)"},
+    {"plant.k_joint", 1, 1, 0,
+     "1000 Nm/rad x mass x leg / the builtin's: the builtin's gear deflection under the standing weight's torque "
+     "(the builtin: 1000)"},
+    {"plant.gear_damping", 1, 1.5, 0,
+     "80 Nm s/rad x mass x leg^1.5 / the builtin's: the builtin's damping ratio at that stiffness (the builtin: 80)"},
+    {"plant.rotor_inertia", 1, 2, 0,
+     "0.8 kg m^2 x mass x leg^2 / the builtin's: the builtin's ratio to the leg's inertia (the builtin: 0.8)"},
+    {"plant.servo_bandwidth", 0, -0.5, 0, "30 Hz x sqrt(the builtin's leg / leg), Froude scaling (the builtin: 30 Hz)"},
+    {"plant.torque_limit", 1, 1, 0,
+     "the largest force range of the file's actuators on the leg joints; else 100 Nm x mass x leg / the builtin's "
+     "(the builtin: 100)"},
+    {"control.k_joint", 1, 1, 0,
+     "plant.k_joint, set or derived: the controller believes the gears' true stiffness (the builtin: 1000)"},
+    {"balance.capture_torque_limit", 1, 1, 0, "plant.torque_limit, set or derived (the builtin: 100)"},
+    {"balance.contact_force", 1, 0, 0, "50 N x mass / the builtin's (the builtin: 50 N)"},
+    {"balance.ankle_damping", 1, 0, 1.5,
+     "3000 Nm s/rad x mass x COM height^1.5 / the builtin's: its tilt rate per weight torque scales as the "
+     "pendulum's rate (the builtin: 3000)"},
+    {"balance.foot_force_damping", 1, 0, -0.5,
+     "3000 N s/m x mass / sqrt(COM height), over the builtin's (the builtin: 3000)"},
+    {"balance.zmp_ki", 0, 0, -0.5, "0.3 /s x sqrt(the builtin's COM height / COM height) (the builtin: 0.3)"},
+    {"balance.dcm_kp", 0, 0, -0.5, "5 /s x sqrt(the builtin's COM height / COM height) (the builtin: 5)"},
+    {"balance.dcm_ki", 0, 0, -1, "10 /s^2 x the builtin's COM height / COM height (the builtin: 10)"},
+}};
+
+/// `builtin` (the key's value for the builtin robot) scaled by `d`'s rule, to 3 significant digits.
+double scaled_default(const ScaledDefault& d, double builtin, const RobotScale& scale);
+
+/// The largest torque the file's actuators can apply on the mapped leg joints (LoadedJoint::force_limit)
+/// [Nm]; 0 when the file limits none of them.
+double leg_actuator_torque(const humanoid::LoadedRobot& robot);
 
 }  // namespace flexgait::walking

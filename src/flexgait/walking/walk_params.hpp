@@ -33,8 +33,12 @@ struct WalkParams {
     v("walk.step_length", s.step_length,
       {.unit = "m", .doc = "advance of each footprint over the previous", .bounds = closed(-0.3, 0.3)});
     v("walk.step_width", s.step_width,
-      {.unit = "m", .doc = "lateral distance between the sole centres", .bounds = closed(0.02, 2.0),
-       .derived = "the hip points' lateral distance, to 1 mm (the builtin: 0.186 m)"});
+      {.unit = "m",
+       .doc = "lateral distance between the sole centres",
+       .bounds = closed(0.02, 2.0),
+       .derived =
+           "the hip points' lateral distance, to 1 mm (the builtin: 0.186 m); a loaded robot's at most 0.186 m x "
+           "leg / the builtin's (3 significant digits), at least its soles' width + 2 cm"});
     v("walk.step_time", s.step_time, {.unit = "s", .doc = "one step: double then single support", .bounds = closed(0.3, 100)});
     v("walk.dsp_ratio", s.dsp_ratio, {.doc = "double-support share of a step", .bounds = left_open(0.0, 0.9)});
     v("walk.turn", s.turn, {.unit = "rad", .doc = "heading change per step (> 0: left)", .bounds = closed(-0.5, 0.5)});
