@@ -106,7 +106,7 @@ check "config.yaml holds the list" grep -q "mu: \[0.2, 0.6\]" "$work/fp2/config.
 "$exe" rimless analysis fixed-points --mu 0.2,0.6 --out "$work/fp2mu" --no-plot >/dev/null 2>&1
 check "--mu sets the same key: same bytes" cmp -s "$work/fp2/fixed_points.csv" "$work/fp2mu/fixed_points.csv"
 expect_usage_error sweep-inf-to "--to: 'inf' is not a finite number" rimless sweep --param rimless.mu --from 0.2 --to inf --count 3
-expect_usage_error sweep-bad-from "--from: key 'rimless.mu_s' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
+expect_usage_error sweep-bad-from "--from: key 'rimless.mu' = '-0.2'" rimless sweep --param rimless.mu --from -0.2 --to 0.3 --count 3
 expect_usage_error walk-total-mass "key 'robot.total_mass' = '42.53': out of range" humanoid walk --set robot.total_mass=42.53
 # Bad robot files: exit 2 naming robot.description and what is wrong (never an internal error, never a
 # number MuJoCo would replace or pass on silently).

@@ -27,6 +27,11 @@ Each case is one command line (or one Python call) with its expected kind of ans
   * class "robot-file": the builtin robot exported as MJCF or URDF, damaged (cut anywhere, a
     number replaced by nan, inf, -1, 1e308 or text, a tag dropped, bytes inserted, emptied) and
     loaded by `humanoid export --set robot.description=FILE`. Expected as for "analysis".
+  * class "export": the builtin robot or a test robot (tests/humanoid/data: -y knees, pitch-roll-yaw
+    hips, a waist below the root, printed quaternions, MuJoCo 3 attributes) exported as MJCF or URDF
+    with random plant keys at or near the ends of their domains, then the exported file loaded and
+    exported again with the keys the export printed. Expected for each of the two: exit 0, exit 1
+    with an "error:" line, or exit 2 with one line and nothing written — never a crash.
   * class "sensor-fault": a one-step walk whose sensor (F/T, gyro, accelerometer, AHRS or an
     encoder) fails from its first sample or within the first milliseconds (nan, stuck, dropout,
     latency; for 1 ms to the whole walk). Expected: exit 0 with outcome "walked" and finite
@@ -61,7 +66,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cli_fuzz  # noqa: E402  (its value lists and YAML damage)
 
 CLASSES = ["set-value", "yaml-file", "path", "option", "extreme-physics", "campaign", "output-target", "analysis",
-           "robot-file", "sensor-fault", "python"]
+           "robot-file", "export", "sensor-fault", "python"]
 SPECIAL_CLASSES = {"campaign", "output-target", "analysis", "robot-file"}
 EXE = None  # the flexgait executable (main sets it)
 OUTCOMES = ["refused", "named-failure", "ok", "crash", "hang", "silent-nan", "unclear"]
@@ -375,6 +380,41 @@ def make_robot_case(rng, work):
     return args + ["--out", out], lambda: "", out
 
 
+ROBOTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "humanoid", "data")
+
+
+def run_export_case(rng, exe, config, work, timeout):
+    """Export a robot with random plant keys, then load the exported file and export it again."""
+    robot = rng.choice([None, "minus_y_knee", "pitch_roll_yaw_hips", "waist_below_root", "printed_quaternions",
+                        "mujoco3_attributes", "small_biped"])
+    base = ["--config", os.path.join(ROBOTS, robot + ".yaml")] if robot else []
+    fmt = rng.choice(["mjcf", "urdf"])
+    keys = [p for p in config["humanoid-walk"] if p["key"].startswith("plant.") and p["type"] in ("real", "integer")]
+    for p in rng.sample(keys, rng.randint(0, 3)):
+        v = extreme_value(rng, p)
+        if v is not None:
+            base += ["--set", "%s=%s" % (p["key"], v)]
+    first = os.path.join(work, "export-%d.%s" % (rng.randrange(10 ** 9), "xml" if fmt == "mjcf" else "urdf"))
+    args = ["humanoid", "export", "--format", fmt] + base + ["--out", first]
+    try:
+        p = subprocess.run([exe] + args, capture_output=True, timeout=timeout, cwd=work)
+    except subprocess.TimeoutExpired:
+        return "hang", "", args
+    stderr = p.stderr.decode("utf-8", "replace")
+    if p.returncode < 0 or p.returncode > 2 or "internal error" in stderr:
+        return "crash", "exit %d: %s" % (p.returncode, stderr[-600:].strip()), args
+    if p.returncode != 0:
+        return run_any_answer_case(exe, args, first, work, timeout) + (args,)
+    # Load it back: the mapping the export printed (robot.* keys), else the test robot's own.
+    printed = [line for line in p.stdout.decode().splitlines() if line.startswith("robot.") and "=" in line]
+    reload = ["humanoid", "export", "--format", "mjcf"] + (base if not printed else [])
+    for k in printed:
+        reload += ["--set", k]
+    second = first + ".again.xml"
+    reload += ["--set", "robot.description=" + first, "--out", second]
+    return run_any_answer_case(exe, reload, second, work, timeout) + (reload,)
+
+
 SENSORS = ["ft_left", "ft_right", "gyro", "accel", "ahrs", "encoder"]
 ENCODER_JOINTS = ["waist_yaw", "l_hip_roll", "l_hip_pitch", "l_knee", "l_ankle_pitch", "l_ankle_roll", "r_hip_yaw",
                   "r_knee", "r_ankle_roll"]
@@ -657,6 +697,9 @@ def main():
                 if cls == "python":
                     args = PYTHON_CALLS[k]
                     outcome, detail = run_python_case(args, pythonpath, a.timeout)
+                elif cls == "export":
+                    rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
+                    outcome, detail, args = run_export_case(rng, exe, config, work, a.timeout)
                 elif cls == "sensor-fault":
                     rng = random.Random("%d:%s:%d" % (a.seed, cls, k))
                     args, out = make_sensor_fault_case(rng, work)
