@@ -350,6 +350,11 @@ def videos(root, run_dir):
     return files_ending(root, run_dir, ".mp4")
 
 
+def replays(root, run_dir):
+    """The interactive replay pages of a run directory (replay.html of humanoid walk and rimless simulate)."""
+    return [f for f in files_ending(root, run_dir, ".html") if f == "replay.html"]
+
+
 def caption(captions, run_dir, name):
     """The caption of figure NAME of a run: the first pattern matching RUN/NAME, else NAME."""
     for pattern in (f"{run_dir}/{name}", name):
@@ -387,7 +392,7 @@ def render_page(root, references_path, template_path):
     sections = render_sections(env, references, RunFiles(root), exit_codes)
     captions, problems = references.get("figures", {}), []
     runs = [{**r, "caption": r.get("caption", ""), "figures": captioned_figures(root, r["dir"], captions, problems),
-             "videos": videos(root, r["dir"])} for r in manifest["runs"]]
+             "videos": videos(root, r["dir"]), "replays": replays(root, r["dir"])} for r in manifest["runs"]]
     if problems:
         raise ReportError("\n".join(problems))
     template = env.get_template(os.path.basename(template_path))

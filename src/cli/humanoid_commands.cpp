@@ -9,17 +9,19 @@
 #include <nlohmann/json.hpp>
 
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/progress.hpp"
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
-#include "flexgait/core/progress.hpp"
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/experiments/walk_output.hpp"
+#include "flexgait/experiments/walk_pictures.hpp"
+#include "flexgait/replay/scene.hpp"
+#include "flexgait/robot/urdf_export.hpp"
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/renderer.hpp"
 #include "flexgait/twin/robot_loader.hpp"
-#include "flexgait/robot/urdf_export.hpp"
-#include "flexgait/experiments/stiffness_bench.hpp"
 #include "options.hpp"
 #include "render_command.hpp"
 
@@ -189,29 +191,34 @@ int walk(const RunOptions& run, const RenderOptions& render) {
                  why.empty() ? "analytic" : "numeric (" + why + ")");
     }
   ProgressBar bar(plan.duration, "s simulated");
-  // --render: PNG frames of the twin (OSMesa, offscreen) at --fps, then video.mp4 via ffmpeg.
-  std::unique_ptr<humanoid::Renderer> renderer;
-  int frame = 0;
+  // --render: PNG frames of the twin with the walk's markers (OSMesa, offscreen) at --fps, then
+  // video.mp4 via ffmpeg; replay.html from the log's samples at 25 frames per second.
+  experiments::WalkPictureOptions pictures;
   const long every = std::max(1L, std::lround(1.0 / (render.fps * params.plant.control_period)));
-  long period = 0;
-  std::function<void(const humanoid::HumanoidPlant&)> observe;
   if (render.enabled) {
     std::filesystem::create_directories(dir.path() / "frames");
-    observe = [&](const humanoid::HumanoidPlant& plant) {
-      if (period++ % every != 0) return;
-      if (!renderer) renderer = std::make_unique<humanoid::Renderer>(plant, view);
-      const auto& rgb = renderer->render(plant);
-      dir.write(fmt::format("frames/frame_{:05d}.png", frame++), humanoid::encode_png(rgb, view.width, view.height));
-    };
+    pictures.render = view;
+    pictures.render_every = every;
   }
+  pictures.replay = replay::replay_page_available();
+  std::unique_ptr<experiments::WalkPictures> drawn;
+  auto attach = [&](experiments::WalkLoop& w) {
+    drawn = std::make_unique<experiments::WalkPictures>(
+        params, w, pictures, [&](const std::vector<unsigned char>& rgb, int frame) {
+          dir.write(fmt::format("frames/frame_{:05d}.png", frame), humanoid::encode_png(rgb, view.width, view.height));
+        });
+    w.loop->attach(*drawn);
+  };
   // (the log streamed to disk: memory flat in the walk's length)
   experiments::WalkLogWriter log(dir, "", params.control.k_estimation != compensation::KEstimation::kOff);
   const experiments::WalkResult r = experiments::run_walk(
-      params, [&](double t) { bar.show(t); }, observe, [&](const experiments::WalkSample& w) { log.add(w); });
+      params, [&](double t) { bar.show(t); }, attach, [&](const experiments::WalkSample& w) { log.add(w); });
   log.commit();
+  const int frame = drawn->frames();
   if (render.enabled) show_stage(fmt::format("encoding video.mp4 from {} frames (ffmpeg)", frame));
   if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
+  if (drawn->replay()) dir.write("replay.html", replay::replay_html(drawn->replay()->scene()));
   const std::string summary = experiments::write_walk(dir, "", r);
   if (run.plot) run_plot_script("plot_walk.py", {dir.path().string()});
   const auto& m = r.metrics;

@@ -193,7 +193,11 @@ TEST(WalkKEstimation, TheTwinsSolesTiltAsTheConfigSays) {
   Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
   Eigen::Vector4d b = Eigen::Vector4d::Zero();
   const double begin = p.walk.calibration.start + p.walk.calibration.ramp, end = p.walk.calibration.end() - 1.0;
-  run_walk(p, {}, [&](const humanoid::HumanoidPlant& plant) {
+  struct Observer final : loop::LoopObserver {
+    std::function<void(const humanoid::HumanoidPlant&)> f;
+    void observe(const loop::LoopStep& step) override { f(step.plant); }
+  } observer;
+  observer.f = [&](const humanoid::HumanoidPlant& plant) {
     const humanoid::GroundTruth g = plant.truth();
     if (g.t < begin || g.t > end) return;
     const humanoid::SensorReadings& s = plant.sensors();
@@ -211,7 +215,8 @@ TEST(WalkKEstimation, TheTwinsSolesTiltAsTheConfigSays) {
       A += h * h.transpose();
       b += h * y[r];
     }
-  });
+  };
+  run_walk(p, {}, [&](WalkLoop& w) { w.loop->attach(observer); });
   const Eigen::Vector4d x = A.ldlt().solve(b);
   ::testing::Test::RecordProperty("sole_stiffness_roll", std::to_string(1.0 / x[0]));
   ::testing::Test::RecordProperty("sole_stiffness_pitch", std::to_string(1.0 / x[1]));

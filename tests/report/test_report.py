@@ -179,6 +179,16 @@ class RenderTest(unittest.TestCase):
         self.assertNotIn("frame_00000.png", text)
         self.assertEqual(page_check.page_problems(tree.page), [])
 
+    def test_a_run_with_a_replay_links_it(self):
+        tree = RunTree(self.tmp.name)
+        write(os.path.join(tree.root, "run-b", "replay.html"), "<!doctype html><title>replay</title>")
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        text = tree.page_text()
+        self.assertIn('<a href="run-b/replay.html">', text)
+        self.assertNotIn("run-a/replay.html", text)
+        self.assertEqual(page_check.page_problems(tree.page), [])
+
     def test_values_and_titles_are_escaped(self):
         summary = dict(SUMMARY, name="<script>alert(1)</script>")
         points = 'mu,gait,stable,lam\n0.1,"<script>x</script> & ""quoted""",true,0.9\n'

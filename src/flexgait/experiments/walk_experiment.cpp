@@ -226,19 +226,14 @@ WalkLoop make_walk_loop(const WalkRunParams& params, std::shared_ptr<loop::Contr
 }
 
 WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress,
-                    const std::function<void(const humanoid::HumanoidPlant&)>& observe,
+                    const std::function<void(WalkLoop&)>& attach,
                     const std::function<void(const WalkSample&)>& record) {
   const auto wall0 = std::chrono::steady_clock::now();
   WalkLoop w = make_walk_loop(params);
   const walking::WalkingController& controller = w.control->controller();
   WalkScorer scorer(params, controller, w.loop->truth(), w.pushes, record);
   w.loop->attach(scorer);
-  struct PlantWatcher final : loop::LoopObserver {  // the caller's view of the twin (rendering)
-    const std::function<void(const humanoid::HumanoidPlant&)>& watch;
-    explicit PlantWatcher(const std::function<void(const humanoid::HumanoidPlant&)>& f) : watch(f) {}
-    void observe(const loop::LoopStep& step) override { watch(step.plant); }
-  } watcher(observe);
-  if (observe) w.loop->attach(watcher);
+  if (attach) attach(w);
 
   const long ticks = std::lround(controller.plan().duration / params.plant.control_period);
   const double duration = controller.plan().duration;

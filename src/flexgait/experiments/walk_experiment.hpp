@@ -325,11 +325,13 @@ WalkLoop make_walk_loop(const WalkRunParams& params,
                         std::shared_ptr<loop::Controller> controller_in_its_place = nullptr);
 
 /// Runs the walk to its end or to a fall. `progress(t)` is called with the simulated time now and
-/// then; `observe(plant)` after every control period (for rendering: evaluation code only);
-/// `record(sample)`, when given, takes each logged sample instead of WalkResult::log (a
-/// WalkLogWriter streaming it to disk: memory flat in the walk's length).
+/// then; `attach(walk)`, once the loop is made and reset and before its first period, may attach
+/// further observers to walk.loop (pictures, a replay: evaluation code only; they must live until
+/// run_walk returns; each sees every period after the walk's scorer); `record(sample)`, when given,
+/// takes each logged sample instead of WalkResult::log (a WalkLogWriter streaming it to disk:
+/// memory flat in the walk's length).
 WalkResult run_walk(const WalkRunParams& params, const std::function<void(double)>& progress = {},
-                    const std::function<void(const humanoid::HumanoidPlant&)>& observe = {},
+                    const std::function<void(WalkLoop&)>& attach = {},
                     const std::function<void(const WalkSample&)>& record = {});
 
 }  // namespace flexgait::experiments

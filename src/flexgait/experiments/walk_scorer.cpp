@@ -48,13 +48,16 @@ JudgeLimits judge_limits(const WalkRunParams& p, const walking::RobotModel& mode
   return L;
 }
 
-/// The plan's frame against the truth's: the offset between the initial feet [m].
+}  // namespace
+
 Eigen::Vector2d plan_offset(const humanoid::GroundTruth& g, const walking::WalkPlan& plan) {
   return 0.5 * (Eigen::Vector2d(g.sole_pos[0][0], g.sole_pos[0][1]) + Eigen::Vector2d(g.sole_pos[1][0], g.sole_pos[1][1])) -
          0.5 * (Eigen::Vector2d(plan.initial[0].x, plan.initial[0].y) + Eigen::Vector2d(plan.initial[1].x, plan.initial[1].y));
 }
 
-}  // namespace
+double landing_settle(const WalkRunParams& params) {
+  return 0.5 * params.walk.dsp_ratio * params.walk.step_time;
+}
 
 void WalkScorer::Accumulator::add(double v) {
   sum2 += v * v;
@@ -91,7 +94,7 @@ WalkScorer::WalkScorer(const WalkRunParams& params, const walking::WalkingContro
   const double T = params.plant.control_period;
   log_every_ = std::max(1L, std::lround(params.log_period / T));
   t_walk0_ = out_.plan.steps.empty() ? 0.0 : out_.plan.steps.front().t_begin;
-  settle_ = 0.5 * params.walk.dsp_ratio * params.walk.step_time;  // after touchdown
+  settle_ = landing_settle(params);
   support_.reserve(2);
 }
 

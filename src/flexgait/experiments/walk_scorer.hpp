@@ -14,6 +14,12 @@
 
 namespace flexgait::experiments {
 
+/// The plan's frame against the truth's: the offset between the initial feet (world = plan + offset) [m].
+Eigen::Vector2d plan_offset(const humanoid::GroundTruth& g, const walking::WalkPlan& plan);
+/// A step's landing is taken (its sole's pose read) this long after its touchdown, once the foot has
+/// settled: half the double support [s].
+double landing_settle(const WalkRunParams& params);
+
 class WalkScorer final : public loop::LoopObserver {
  public:
   /// \param controller the walking controller of the loop (its status and plan are read each period)

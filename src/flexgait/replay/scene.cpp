@@ -1,8 +1,9 @@
 #include "flexgait/replay/scene.hpp"
 
+#include <algorithm>
 #include <bit>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -52,6 +53,29 @@ int Scene::add_frame(double t) {
   }
   for (Signal& s : signals) s.data.push_back(kNaN);
   return frames() - 1;
+}
+
+namespace {
+/// Keeps the even-numbered blocks of `stride` values (frames 0, 2, 4, ...).
+template <class T>
+void keep_even_blocks(std::vector<T>& v, std::size_t stride) {
+  if (stride == 0) return;
+  const std::size_t blocks = v.size() / stride;
+  for (std::size_t f = 0; 2 * f < blocks; ++f)
+    std::copy_n(v.begin() + static_cast<std::ptrdiff_t>(2 * f * stride), stride,
+                v.begin() + static_cast<std::ptrdiff_t>(f * stride));
+  v.resize((blocks + 1) / 2 * stride);
+}
+}  // namespace
+
+void Scene::drop_odd_frames() {
+  keep_even_blocks(time, 1);
+  keep_even_blocks(poses, bodies.size() * 7);
+  for (Layer& l : layers) {
+    keep_even_blocks(l.data, static_cast<std::size_t>(l.count * layer_item_floats(l.kind)));
+    keep_even_blocks(l.color, static_cast<std::size_t>(l.count));
+  }
+  for (Signal& s : signals) keep_even_blocks(s.data, 1);
 }
 
 void Scene::set_pose(int frame, int body, const std::array<double, 3>& pos, const std::array<double, 4>& quat) {

@@ -109,30 +109,32 @@ void check_size(int width, int height, int max_width, int max_height) {
 }
 
 /// A flat rectangle on the floor (a footprint): a thin box, yawed, its top 2 mm above `centre`.
-void add_footprint(Offscreen& o, const FootprintMarker& f, const float rgba[4]) {
+void add_footprint(Offscreen& o, const FootprintMarker& f, const float rgba[4], double lift = 0) {
   const mjtNum size[3] = {f.half_length, f.half_width, 0.003};
-  const mjtNum pos[3] = {f.centre[0], f.centre[1], f.centre[2] - 0.001};
+  const mjtNum pos[3] = {f.centre[0], f.centre[1], f.centre[2] - 0.001 + lift};
   const double c = std::cos(f.yaw), s = std::sin(f.yaw);
   const mjtNum mat[9] = {c, -s, 0, s, c, 0, 0, 0, 1};
   o.add(mjGEOM_BOX, size, pos, mat, rgba);
 }
 
-/// A flat disc on the floor at `p` (the ZMP, the COM's projection, the capture point).
-void add_disc(Offscreen& o, const std::array<double, 3>& p, double radius, const float rgba[4]) {
+/// A point on the floor at `p` (the ZMP, the COM's projection, the capture point): a flat disc,
+/// and a ball of 0.8 × its radius resting on it, which the low side camera sees.
+void add_point(Offscreen& o, const std::array<double, 3>& p, double radius, const std::array<float, 4>& rgba) {
   const mjtNum size[3] = {radius, 0.004, 0};
   const mjtNum pos[3] = {p[0], p[1], p[2] + 0.004};
-  o.add(mjGEOM_CYLINDER, size, pos, nullptr, rgba);
+  o.add(mjGEOM_CYLINDER, size, pos, nullptr, rgba.data());
+  const mjtNum ball[3] = {0.8 * radius, 0, 0};
+  const mjtNum top[3] = {p[0], p[1], p[2] + 0.008 + 0.8 * radius};
+  o.add(mjGEOM_SPHERE, ball, top, nullptr, rgba.data());
 }
 
 void add_markers(Offscreen& o, const RenderMarkers& m) {
-  static constexpr float kPlanned[4] = {0.2F, 0.45F, 0.95F, 0.45F}, kActual[4] = {0.15F, 0.7F, 0.25F, 0.8F};
-  static constexpr float kZmp[4] = {0.9F, 0.1F, 0.1F, 1}, kCom[4] = {0.1F, 0.1F, 0.1F, 1},
-                         kCapture[4] = {0.8F, 0.2F, 0.8F, 1};
-  for (const auto& f : m.planned) add_footprint(o, f, kPlanned);
-  for (const auto& f : m.actual) add_footprint(o, f, kActual);
-  if (m.zmp) add_disc(o, *m.zmp, 0.03, kZmp);
-  if (m.com_ground) add_disc(o, *m.com_ground, 0.025, kCom);
-  if (m.capture_point) add_disc(o, *m.capture_point, 0.025, kCapture);
+  for (const auto& f : m.planned) add_footprint(o, f, kMarkerColours[kPlannedColour].data());
+  for (const auto& f : m.actual) add_footprint(o, f, kMarkerColours[kActualColour].data(), 0.001);  // above the plan's
+  if (m.zmp_ref) add_point(o, *m.zmp_ref, 0.035, kMarkerColours[kZmpRefColour]);
+  if (m.zmp) add_point(o, *m.zmp, 0.03, kMarkerColours[kZmpColour]);
+  if (m.com_ground) add_point(o, *m.com_ground, 0.03, kMarkerColours[kComColour]);
+  if (m.capture_point) add_point(o, *m.capture_point, 0.03, kMarkerColours[kCaptureColour]);
 }
 
 void add_push_arrow(Offscreen& o, const HumanoidPlant& plant) {
@@ -198,7 +200,7 @@ const std::vector<unsigned char>& Renderer::render(const HumanoidPlant& plant, c
       cam.lookat[2] = 0.6;
       cam.distance = std::max(3.0, 0.5 * span / (aspect * std::tan(std::numbers::pi / 8)));
       cam.azimuth = 90;
-      cam.elevation = -8;
+      cam.elevation = -12;  // the floor markers seen past the feet, the sky behind the robot
       break;
     }
     case CameraView::kFollow:

@@ -43,13 +43,26 @@ struct FootprintMarker {
 };
 
 /// What the controller knows and the twin does not, drawn when given (one plain record per frame,
-/// filled by the walk's loop): planned and actual footprints, the ZMP, the centre of mass's ground
-/// projection, the capture point, and lines of text (time, step, compensation mode).
+/// filled by the walk's loop, experiments/walk_markers.hpp): planned and actual footprints, the
+/// ZMP (true, of the contact forces) and the controller's reference ZMP, the centre of mass's
+/// ground projection, the capture point, and lines of text (time, step, compensation mode).
+/// Colours (kMarkerColours): planned footprints blue, actual green, ZMP red, reference ZMP yellow,
+/// COM black, capture point magenta; each point a disc on the floor under a ball (seen from the side).
 struct RenderMarkers {
   std::vector<FootprintMarker> planned, actual;
-  std::optional<std::array<double, 3>> zmp, com_ground, capture_point;  ///< [m], world
+  std::optional<std::array<double, 3>> zmp, zmp_ref, com_ground, capture_point;  ///< [m], world
   std::string overlay;  ///< drawn at the top left; lines separated by '\n'
 };
+
+/// The markers' colours (RGBA), in RenderMarkers' order: planned and actual footprints, ZMP,
+/// reference ZMP, COM ground projection, capture point.
+enum MarkerColour { kPlannedColour, kActualColour, kZmpColour, kZmpRefColour, kComColour, kCaptureColour };
+inline constexpr std::array<std::array<float, 4>, 6> kMarkerColours{{{0.2F, 0.45F, 0.95F, 0.45F},
+                                                                     {0.15F, 0.7F, 0.25F, 0.8F},
+                                                                     {0.9F, 0.1F, 0.1F, 1},
+                                                                     {0.95F, 0.8F, 0.05F, 1},
+                                                                     {0.1F, 0.1F, 0.1F, 1},
+                                                                     {0.8F, 0.2F, 0.8F, 1}}};
 
 /// A push drawn as an arrow: along the force, ending kPushGap [m] before the pushed body's centre
 /// of mass (outside the torso), 0.1 m + kPushScale per newton long, at most 1 m (a 10 N push:

@@ -1,5 +1,6 @@
 #include "flexgait/twin/replay_recorder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -8,7 +9,7 @@
 namespace flexgait::humanoid {
 namespace {
 
-enum LayerIndex { kZmp = 0, kCom = 1, kCapture = 2, kPush = 3 };
+enum LayerIndex { kZmp = 0, kCom = 1, kCapture = 2, kPush = 3, kZmpRef = 4, kActual = 5 };
 
 /// A height field as a triangle mesh in its geom's frame: MuJoCo's elevation h = z_top · data on
 /// an (nrow × ncol) grid spanning ±size_x, ±size_y.
@@ -68,10 +69,37 @@ bool shape(const mjModel* m, int i, replay::Geom& g) {
 
 }  // namespace
 
+struct ReplayRecorder::Kinematics {
+  const mjModel* model;
+  mjData* data;
+  explicit Kinematics(const mjModel* m) : model(m), data(mj_makeData(m)) {
+    if (data == nullptr) throw std::runtime_error("ReplayRecorder: MuJoCo could not allocate its state");
+  }
+  ~Kinematics() { mj_deleteData(data); }
+  Kinematics(const Kinematics&) = delete;
+  Kinematics& operator=(const Kinematics&) = delete;
+  /// The bodies' poses of the positions `qpos`.
+  const mjData* of(const mjData* state) {
+    std::copy_n(state->qpos, model->nq, data->qpos);
+    if (model->nmocap > 0) {
+      std::copy_n(state->mocap_pos, 3 * model->nmocap, data->mocap_pos);
+      std::copy_n(state->mocap_quat, 4 * model->nmocap, data->mocap_quat);
+    }
+    mj_kinematics(model, data);
+    return data;
+  }
+};
+
+ReplayRecorder::~ReplayRecorder() = default;
+
 ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title,
-                               std::vector<std::pair<std::string, std::string>> signals, double frame_dt)
-    : frame_dt_(frame_dt) {
+                               std::vector<std::pair<std::string, std::string>> signals, double frame_dt,
+                               int max_frames)
+    : frame_dt_(frame_dt), max_frames_(max_frames) {
+  if (!(frame_dt > 0) || !std::isfinite(frame_dt) || max_frames < 2)
+    throw std::invalid_argument("ReplayRecorder: frame_dt > 0 and max_frames >= 2 expected");
   const mjModel* m = plant_model(plant);
+  kinematics_ = std::make_unique<Kinematics>(m);
   scene_.title = std::move(title);
   scene_.camera = {{0, 0, 0.8}, 3.5, -90, 8, "pelvis"};
   scene_.shadow_extent = 3;
@@ -104,26 +132,35 @@ ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title,
     l.palette = {rgba};
     scene_.layers.push_back(l);
   };
-  points("ZMP", {0.9F, 0.1F, 0.1F, 1}, 0.03);
-  points("COM ground projection", {0.1F, 0.1F, 0.1F, 1}, 0.025);
-  points("capture point", {0.8F, 0.2F, 0.8F, 1}, 0.025);
+  points("ZMP", kMarkerColours[kZmpColour], 0.03);
+  points("COM ground projection", kMarkerColours[kComColour], 0.025);
+  points("capture point", kMarkerColours[kCaptureColour], 0.025);
   replay::Layer push;
   push.name = "push";
   push.kind = replay::LayerKind::Arrows;
   push.count = 1;
   push.palette = {{1, 0.5F, 0, 1}};
   scene_.layers.push_back(push);
+  points("reference ZMP", kMarkerColours[kZmpRefColour], 0.03);
+  replay::Layer actual;  // (items added by set_planned_footprints)
+  actual.name = "actual footprints";
+  actual.kind = replay::LayerKind::Segments;
+  actual.width = 0.012;
+  actual.palette = {kMarkerColours[kActualColour]};
+  scene_.layers.push_back(actual);
   for (auto& [name, unit] : signals) scene_.signals.push_back({std::move(name), std::move(unit), {}});
 }
 
 void ReplayRecorder::set_planned_footprints(const std::vector<FootprintMarker>& footprints) {
+  if (scene_.frames() > 0) throw std::logic_error("ReplayRecorder::set_planned_footprints: after the first frame");
+  scene_.layers[kActual].count = static_cast<int>(footprints.size());
   for (const auto& f : footprints) {
     replay::Geom g;
     g.type = replay::GeomType::Box;
     g.size = {f.half_length, f.half_width, 0.002};
     g.pos = {f.centre[0], f.centre[1], f.centre[2] + 0.001};
     g.quat = {std::cos(f.yaw / 2), 0, 0, std::sin(f.yaw / 2)};
-    g.rgba = {0.2F, 0.45F, 0.95F, 0.45F};
+    g.rgba = kMarkerColours[kPlannedColour];
     scene_.statics.push_back(g);
   }
 }
@@ -131,10 +168,16 @@ void ReplayRecorder::set_planned_footprints(const std::vector<FootprintMarker>& 
 void ReplayRecorder::record(const HumanoidPlant& plant, double t, const RenderMarkers& markers,
                             std::span<const double> values) {
   if (scene_.frames() > 0 && t < next_) return;
-  while (next_ <= t) next_ += frame_dt_;
   if (values.size() != scene_.signals.size())
     throw std::logic_error("ReplayRecorder::record: one value per signal expected");
-  const mjData* d = plant_data(plant);
+  if (scene_.frames() >= max_frames_) {  // full: half the frames, twice the interval
+    scene_.drop_odd_frames();
+    frame_dt_ *= 2;
+    next_ = scene_.time.back() + frame_dt_;
+    if (t < next_) return;
+  }
+  while (next_ <= t) next_ += frame_dt_;
+  const mjData* d = kinematics_->of(plant_data(plant));
   const int f = scene_.add_frame(t);
   for (std::size_t k = 0; k < body_ids_.size(); ++k) {
     const int b = body_ids_[k];
@@ -145,6 +188,14 @@ void ReplayRecorder::record(const HumanoidPlant& plant, double t, const RenderMa
   if (markers.com_ground) scene_.set_item(kCom, f, 0, *markers.com_ground, *markers.com_ground);
   if (markers.capture_point) scene_.set_item(kCapture, f, 0, *markers.capture_point, *markers.capture_point);
   if (const auto arrow = push_arrow(plant)) scene_.set_item(kPush, f, 0, arrow->from, arrow->to);
+  if (markers.zmp_ref) scene_.set_item(kZmpRef, f, 0, *markers.zmp_ref, *markers.zmp_ref);
+  const std::size_t actual = std::min(markers.actual.size(), static_cast<std::size_t>(scene_.layers[kActual].count));
+  for (std::size_t k = 0; k < actual; ++k) {  // heel to toe, 3 mm above the floor
+    const FootprintMarker& m = markers.actual[k];
+    const double c = m.half_length * std::cos(m.yaw), s = m.half_length * std::sin(m.yaw), z = m.centre[2] + 0.003;
+    scene_.set_item(kActual, f, static_cast<int>(k), {m.centre[0] - c, m.centre[1] - s, z},
+                    {m.centre[0] + c, m.centre[1] + s, z});
+  }
   for (std::size_t i = 0; i < values.size(); ++i) scene_.set_signal(static_cast<int>(i), f, values[i]);
 }
 

@@ -1,0 +1,63 @@
+#pragma once
+/// \file walk_pictures.hpp
+/// Pictures of a walk as an observer of its closed loop (loop/closed_loop.hpp): the walk's
+/// markers (walk_markers.hpp) drawn over the twin by the offscreen renderer (twin/renderer.hpp)
+/// at a frame rate, and a replay scene (twin/replay_recorder.hpp) recorded at the log's samples
+/// for `replay.html`. Evaluation and presentation only: it changes nothing of the walk.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/experiments/walk_markers.hpp"
+#include "flexgait/twin/renderer.hpp"
+#include "flexgait/twin/replay_recorder.hpp"
+
+namespace flexgait::experiments {
+
+struct WalkPictureOptions {
+  /// Draw frames from this view (none: no frames), one every `render_every` control periods,
+  /// from the first period on.
+  std::optional<humanoid::RenderView> render;
+  long render_every = 1;
+  /// Record the replay scene: a frame at the log's samples (WalkRunParams::log_period) every
+  /// `replay_frame_dt` [s] of simulated time (25 frames per second: every other 0.02 s sample),
+  /// at most `replay_max_frames` (then every other frame is dropped; ReplayRecorder).
+  bool replay = false;
+  double replay_frame_dt = 0.04;
+  int replay_max_frames = 6000;
+};
+
+class WalkPictures final : public loop::LoopObserver {
+ public:
+  /// The signals plotted in the replay: log.csv's columns of these names (the plan's frame) [m].
+  static constexpr std::array<const char*, 5> kReplaySignals{"com_x", "com_y", "zmp_true_y", "zmp_ref_y", "pelvis_z"};
+
+  /// `walk`: the loop made by make_walk_loop, before its first period. `frame(rgb, index)` takes
+  /// each drawn frame (RGB rows top to bottom, view width × height × 3 bytes).
+  WalkPictures(const WalkRunParams& params, WalkLoop& walk, const WalkPictureOptions& options,
+               std::function<void(const std::vector<unsigned char>& rgb, int index)> frame = {});
+
+  void observe(const loop::LoopStep& step) override;
+
+  /// The frames drawn so far.
+  int frames() const { return frames_; }
+  const WalkMarkers& markers() const { return markers_; }
+  /// The renderer of the frames (null unless options.render), e.g. to draw a state without markers.
+  humanoid::Renderer* renderer() { return renderer_.get(); }
+  /// The replay scene recorded (null unless options.replay).
+  const humanoid::ReplayRecorder* replay() const { return replay_.get(); }
+
+ private:
+  const walking::WalkingController& controller_;
+  WalkPictureOptions options_;
+  std::function<void(const std::vector<unsigned char>&, int)> frame_;
+  WalkMarkers markers_;
+  std::unique_ptr<humanoid::Renderer> renderer_;
+  std::unique_ptr<humanoid::ReplayRecorder> replay_;
+  long log_every_ = 1;
+  int frames_ = 0;
+};
+
+}  // namespace flexgait::experiments

@@ -1,0 +1,105 @@
+// Pictures of a real walk (walk_pictures.hpp, walk_markers.hpp): the side camera's first and last
+// frames differ (the robot walked through the fixed view), the markers are drawn (their colours'
+// pixels appear over the bare picture of the same state), and the markers hold what they claim:
+// the actual footprints are where the soles landed, near the plan's; the capture point meets the
+// COM's projection when the robot stands still. Small frames (320 × 180), few of them: fast.
+#include "flexgait/experiments/walk_pictures.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+namespace flexgait::experiments {
+namespace {
+
+/// Pixels of a marker colour: strongly saturated red, yellow, magenta, green or blue (the floor is
+/// grey, the sky pale blue-grey, the robot grey and dark).
+long marker_pixels(const std::vector<unsigned char>& rgb) {
+  long n = 0;
+  for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) {
+    const int r = rgb[i], g = rgb[i + 1], b = rgb[i + 2];
+    const int hi = std::max({r, g, b}), lo = std::min({r, g, b});
+    n += hi > 110 && hi - lo > 90;
+  }
+  return n;
+}
+
+long differing(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b) {
+  long n = 0;
+  for (std::size_t i = 0; i + 2 < a.size(); i += 3)
+    n += std::abs(a[i] - b[i]) + std::abs(a[i + 1] - b[i + 1]) + std::abs(a[i + 2] - b[i + 2]) > 30;
+  return n;
+}
+
+TEST(WalkPictures, TheSideCameraSeesTheRobotWalkWithItsMarkers) {
+  WalkRunParams p;
+  p.walk.steps = 2;
+  const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
+  humanoid::RenderView view{320, 180, humanoid::CameraView::kSide, plan.initial[0].x, plan.final[0].x};
+  WalkPictureOptions options;
+  options.render = view;
+  // Two frames: at the start and at 5.4 s, standing after the steps (the walk ends at 5.5 s).
+  options.render_every = std::lround(5.4 / p.plant.control_period);
+  std::vector<std::vector<unsigned char>> frames, bare;
+  std::unique_ptr<WalkPictures> pictures;
+  struct Bare final : loop::LoopObserver {
+    std::function<void(const loop::LoopStep&)> f;
+    void observe(const loop::LoopStep& step) override { f(step); }
+  } bare_frames;
+  bare_frames.f = [&](const loop::LoopStep& step) {
+    // (the same renderer and state without the markers)
+    if (step.k % options.render_every == 0) bare.push_back(pictures->renderer()->render(step.plant));
+  };
+  const WalkResult r = run_walk(p, {}, [&](WalkLoop& w) {
+    pictures = std::make_unique<WalkPictures>(p, w, options, [&](const std::vector<unsigned char>& rgb, int index) {
+      EXPECT_EQ(index, static_cast<int>(frames.size()));
+      frames.push_back(rgb);
+    });
+    w.loop->attach(*pictures);
+    w.loop->attach(bare_frames);
+  });
+  ASSERT_TRUE(r.metrics.completed()) << r.metrics.outcome();
+  ASSERT_EQ(frames.size(), 2u);
+  ASSERT_EQ(frames.size(), bare.size());
+  ASSERT_EQ(frames.front().size(), 320u * 180u * 3u);
+
+  // The robot moved 0.2 m (two steps of 0.1 m) in a view 2.5 m high from 3 m (~72 pixels a metre):
+  // ~14 pixels along its ~70-pixel height: over a thousand pixels change (1600 measured).
+  const long moved = differing(bare.front(), bare.back());
+  ::testing::Test::RecordProperty("pixels_moved", std::to_string(moved));
+  EXPECT_GT(moved, 300) << moved;
+  // The markers: their saturated colours appear in every frame over the bare picture of the same
+  // state (footprints ~0.22 m long, balls ~5 cm wide: 62 and 80 pixels more measured).
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const long added = marker_pixels(frames[i]) - marker_pixels(bare[i]);
+    ::testing::Test::RecordProperty("marker_pixels_" + std::to_string(i), std::to_string(added));
+    EXPECT_GT(added, 30) << "frame " << i;
+  }
+
+  // What the markers hold at the end (the robot stands still after the walk).
+  const humanoid::RenderMarkers& m = pictures->markers().markers();
+  ASSERT_EQ(m.planned.size(), 2 + plan.steps.size());
+  ASSERT_EQ(m.actual.size(), 2 + plan.steps.size());  // the start's soles and every landing
+  ASSERT_EQ(r.landings.size(), plan.steps.size());
+  const Eigen::Vector2d& o = pictures->markers().offset();
+  for (std::size_t k = 0; k < plan.steps.size(); ++k) {
+    // The landing the scorer took (plan frame) is the actual footprint (world) less the offset.
+    const auto& a = m.actual[2 + k];
+    EXPECT_NEAR(a.centre[0] - o.x(), r.landings[k].actual_x, 1e-12);
+    EXPECT_NEAR(a.centre[1] - o.y(), r.landings[k].actual_y, 1e-12);
+    // and lies within the judge's tolerance of the planned one (a completed walk's landings).
+    const auto& q = m.planned[2 + k];
+    EXPECT_LT(std::hypot(a.centre[0] - q.centre[0], a.centre[1] - q.centre[1]), 0.03);
+  }
+  // Standing still (2 s after the last step): ċ ≈ 0, so ξ = c + ċ/ω meets the COM's projection
+  // within millimetres, and the true ZMP the COM's (static balance) within a centimetre.
+  ASSERT_TRUE(m.capture_point && m.com_ground && m.zmp && m.zmp_ref);
+  EXPECT_LT(std::hypot((*m.capture_point)[0] - (*m.com_ground)[0], (*m.capture_point)[1] - (*m.com_ground)[1]), 0.005);
+  EXPECT_LT(std::hypot((*m.zmp)[0] - (*m.com_ground)[0], (*m.zmp)[1] - (*m.com_ground)[1]), 0.01);
+  EXPECT_NE(m.overlay.find("step 2 of 2"), std::string::npos) << m.overlay;
+}
+
+}  // namespace
+}  // namespace flexgait::experiments
