@@ -22,6 +22,7 @@
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/renderer.hpp"
 #include "flexgait/twin/robot_loader.hpp"
+#include "flexgait/twin/twin_mjcf.hpp"
 #include "options.hpp"
 #include "render_command.hpp"
 
@@ -260,30 +261,55 @@ struct ExportOptions {
 
 /// `humanoid export`: the twin as MJCF (elastic gears as joint springs, sensors, floor) or the
 /// rigid robot as URDF, written atomically; the walk's configuration keys choose the robot.
+/// Where `humanoid export --out OUT` writes the configuration that loads OUT back: OUT with its
+/// extension replaced by .yaml (OUT.config.yaml if OUT is itself a .yaml file).
+std::filesystem::path reload_config_path(const std::filesystem::path& out) {
+  const std::string ext = out.extension().string();
+  if (ext == ".yaml" || ext == ".yml") return std::filesystem::path(out.string() + ".config.yaml");
+  return std::filesystem::path(out).replace_extension(".yaml");
+}
+
+/// `humanoid export`: the twin as MJCF (elastic gears as joint springs, sensors, floor) or the
+/// rigid robot as URDF, written atomically, and beside it the configuration that loads it back
+/// (reload_config_path: the run's keys with robot.description naming the file and the mapping
+/// of the exported names).
 int export_robot(const ExportOptions& options) {
+  const std::filesystem::path reload = reload_config_path(options.out);
   check_output_file(options.out, "--out");  // a device, a FIFO, a directory: refused before any work
+  check_output_file(reload, "--out (its configuration beside it)");
   RunOptions run;
   run.config_file = options.config_file;
   run.overrides = options.overrides;
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
-  std::string text;
-  if (options.format == "mjcf") {
+  // The robot through the loader (the builtin: its twin's MJCF with the builtin mapping).
+  humanoid::LoadedRobot loaded;
+  if (params.loaded)
+    loaded = *params.loaded;
+  else
+    loaded = humanoid::load_robot_text(humanoid::humanoid_mjcf(params.robot, params.plant), "xml", "builtin",
+                                       humanoid::RobotDescriptionParams{});
+  const bool mjcf = options.format == "mjcf";
+  std::string text, mapping;
+  if (mjcf) {
     text = experiments::walk_twin(params).mjcf;
+    mapping = humanoid::twin_mjcf_mapping(loaded);
   } else {
-    // The builtin robot through the loader (its twin's MJCF, the builtin mapping).
-    humanoid::LoadedRobot loaded;
-    if (params.loaded)
-      loaded = *params.loaded;
-    else
-      loaded = humanoid::load_robot_text(humanoid::humanoid_mjcf(params.robot, params.plant), "xml", "builtin",
-                                         humanoid::RobotDescriptionParams{});
     text = humanoid::robot_urdf(loaded);
-    fmt::print("load it back with these keys (--set KEY=VALUE), robot.description={}:\n{}", options.out,
-               humanoid::urdf_mapping(loaded));
+    mapping = humanoid::urdf_mapping(loaded);
   }
+  Config again = config;
+  again.set("robot.description", std::filesystem::path(options.out).filename().string(), "humanoid export");
+  for (const std::string& line :
+       split_text(mjcf ? humanoid::twin_mjcf_mapping(loaded) : humanoid::urdf_mapping(loaded), '\n'))
+    if (const auto eq = line.find('='); eq != std::string::npos)
+      again.set(line.substr(0, eq), line.substr(eq + 1), "humanoid export");
   write_file_atomic(options.out, text);
-  fmt::print("wrote {} ({})\n", options.out, options.format);
+  write_file_atomic(
+      reload, fmt::format("# Loads {} back: flexgait humanoid walk --config {}\n{}",
+                          std::filesystem::path(options.out).filename().string(), reload.string(), again.to_yaml()));
+  fmt::print("wrote {} ({}) and {} (load it back with --config {})\n", options.out, options.format, reload.string(),
+             reload.string());
   return 0;
 }
 

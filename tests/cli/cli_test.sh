@@ -149,6 +149,26 @@ expect_usage_error robot-role-on-wrong-leg "key 'robot.joints.r_knee' = 'LKnee':
 sed 's/range="-2.4 0"/range="-0.1 0"/' "$src/tests/humanoid/data/minus_y_knee.xml" >"$work/stiff_knee.xml"
 expect_usage_error robot-no-standing-pose "key 'robot.joints.r_knee': standing at walk.pelvis_height = 0.6" \
   humanoid walk --config "$src/tests/humanoid/data/minus_y_knee.yaml" --set "robot.description=$work/stiff_knee.xml"
+# Export and load back with the configuration written beside the file (no --set): a robot with -y
+# knees walks with the same summary as from its own file (MJCF: the same numbers; URDF: the same
+# robot re-anchored on its joints, to 1e-9 relative).
+knee_yaml="$src/tests/humanoid/data/minus_y_knee.yaml"
+"$exe" humanoid walk --config "$knee_yaml" --set walk.steps=2 --no-plot --out "$work/knee0" >/dev/null 2>&1
+for fmt in mjcf urdf; do
+  "$exe" humanoid export --config "$knee_yaml" --format "$fmt" --out "$work/knee_$fmt.$([ $fmt = mjcf ] && echo xml || echo urdf)" >"$work/out" 2>&1
+  check "export $fmt: the configuration beside it is named" grep -qF "load it back with --config $work/knee_$fmt.yaml" "$work/out"
+  "$exe" humanoid walk --config "$work/knee_$fmt.yaml" --set walk.steps=2 --no-plot --out "$work/knee_$fmt" >/dev/null 2>&1
+  check "export $fmt, loaded back with --config alone: walks (exit $?)" test -f "$work/knee_$fmt/summary.json"
+  check "export $fmt, loaded back: the original's summary" /usr/bin/python3 -c "
+import json, sys
+a, b = (json.load(open(sys.argv[i] + '/summary.json')) for i in (1, 2))
+skip = {'wall_time', 'real_time_factor'}
+for k, v in a.items():
+    if k in skip or isinstance(v, bool) or not isinstance(v, (int, float)):
+        assert k in skip or a[k] == b[k], k
+    else:
+        assert abs(v - b[k]) <= 1e-9 * max(1.0, abs(v)), (k, v, b[k])" "$work/knee0" "$work/knee_$fmt"
+done
 expect_usage_error mismatch-nan-scale "--scales: 'nan' is not a finite number" humanoid mismatch --scales nan
 expect_usage_error mismatch-empty-scale "--scales: '' is not a finite number" humanoid mismatch --scales 0.9,,1.1
 expect_usage_error walk-nan-fps "--fps: 'nan' is not a finite number" humanoid walk --render --fps nan

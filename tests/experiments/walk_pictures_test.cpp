@@ -1,8 +1,7 @@
 // Pictures of a real walk (walk_pictures.hpp, walk_markers.hpp): the side camera's first and last
 // frames differ (the robot walked through the fixed view), the markers are drawn (their colours'
-// pixels appear over the bare picture of the same state), and the markers hold what they claim:
-// the actual footprints are where the soles landed, near the plan's; the capture point meets the
-// COM's projection when the robot stands still. Small frames (320 × 180), few of them: fast.
+// pixels appear over the bare picture of the same state). What the markers hold is tested in
+// walk_markers_test.cpp. Small frames (320 × 180), few of them: fast.
 #include "flexgait/experiments/walk_pictures.hpp"
 
 #include <gtest/gtest.h>
@@ -78,27 +77,8 @@ TEST(WalkPictures, TheSideCameraSeesTheRobotWalkWithItsMarkers) {
     EXPECT_GT(added, 30) << "frame " << i;
   }
 
-  // What the markers hold at the end (the robot stands still after the walk).
-  const humanoid::RenderMarkers& m = pictures->markers().markers();
-  ASSERT_EQ(m.planned.size(), 2 + plan.steps.size());
-  ASSERT_EQ(m.actual.size(), 2 + plan.steps.size());  // the start's soles and every landing
-  ASSERT_EQ(r.landings.size(), plan.steps.size());
-  const Eigen::Vector2d& o = pictures->markers().offset();
-  for (std::size_t k = 0; k < plan.steps.size(); ++k) {
-    // The landing the scorer took (plan frame) is the actual footprint (world) less the offset.
-    const auto& a = m.actual[2 + k];
-    EXPECT_NEAR(a.centre[0] - o.x(), r.landings[k].actual_x, 1e-12);
-    EXPECT_NEAR(a.centre[1] - o.y(), r.landings[k].actual_y, 1e-12);
-    // and lies within the judge's tolerance of the planned one (a completed walk's landings).
-    const auto& q = m.planned[2 + k];
-    EXPECT_LT(std::hypot(a.centre[0] - q.centre[0], a.centre[1] - q.centre[1]), 0.03);
-  }
-  // Standing still (2 s after the last step): ċ ≈ 0, so ξ = c + ċ/ω meets the COM's projection
-  // within millimetres, and the true ZMP the COM's (static balance) within a centimetre.
-  ASSERT_TRUE(m.capture_point && m.com_ground && m.zmp && m.zmp_ref);
-  EXPECT_LT(std::hypot((*m.capture_point)[0] - (*m.com_ground)[0], (*m.capture_point)[1] - (*m.com_ground)[1]), 0.005);
-  EXPECT_LT(std::hypot((*m.zmp)[0] - (*m.com_ground)[0], (*m.zmp)[1] - (*m.com_ground)[1]), 0.01);
-  EXPECT_NE(m.overlay.find("step 2 of 2"), std::string::npos) << m.overlay;
+  // The markers hold the walk's landings (walk_markers_test.cpp); here they are the pictures' own.
+  EXPECT_EQ(pictures->markers().markers().actual.size(), 2 + plan.steps.size());
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ Each case is one command line (or one Python call) with its expected kind of ans
   * class "export": the builtin robot or a test robot (tests/humanoid/data: -y knees, pitch-roll-yaw
     hips, a waist below the root, printed quaternions, MuJoCo 3 attributes) exported as MJCF or URDF
     with random plant keys at or near the ends of their domains, then the exported file loaded and
-    exported again with the keys the export printed. Expected for each of the two: exit 0, exit 1
+    exported again with the configuration the export wrote beside it. Expected for each of the two: exit 0, exit 1
     with an "error:" line, or exit 2 with one line and nothing written — never a crash.
   * class "sensor-fault": a one-step walk whose sensor (F/T, gyro, accelerometer, AHRS or an
     encoder) fails from its first sample or within the first milliseconds (nan, stuck, dropout,
@@ -359,24 +359,16 @@ def make_analysis_case(rng, work):
 def make_robot_case(rng, work):
     """(argv, post-check, out) of `humanoid export` loading a damaged robot file."""
     fmt = rng.choice(["mjcf", "urdf"])
-    base = os.path.join(work, "robot-base." + ("xml" if fmt == "mjcf" else "urdf"))
-    keys_file = base + ".keys"
-    if not os.path.exists(base):
-        p = subprocess.run([EXE, "humanoid", "export", "--format", fmt, "--out", base], capture_output=True,
-                           timeout=120)
-        keys = [line for line in p.stdout.decode().splitlines() if line.startswith("robot.") and "=" in line]
-        with open(keys_file, "w") as f:
-            f.write("\n".join(keys))
-    keys = [k for k in open(keys_file).read().splitlines() if k]
+    base = os.path.join(work, "robot-base-%s.%s" % (fmt, "xml" if fmt == "mjcf" else "urdf"))
+    if not os.path.exists(base):  # writes robot-base-FMT.yaml beside it, the configuration that loads it back
+        subprocess.run([EXE, "humanoid", "export", "--format", fmt, "--out", base], capture_output=True, timeout=120)
     damaged = os.path.join(work, "robot-%d.%s" % (rng.randrange(10 ** 9), "xml" if fmt == "mjcf" else "urdf"))
     with open(base, errors="replace") as f:
         text = f.read()
     with open(damaged, "w", errors="replace") as f:
         f.write(damaged_text(rng, text))
     out = os.path.join(work, "robot-out-%d.xml" % rng.randrange(10 ** 9))
-    args = ["humanoid", "export", "--set", "robot.description=" + damaged]
-    for k in keys:
-        args += ["--set", k]
+    args = ["humanoid", "export", "--config", os.path.splitext(base)[0] + ".yaml", "--set", "robot.description=" + damaged]
     return args + ["--out", out], lambda: "", out
 
 
@@ -405,13 +397,10 @@ def run_export_case(rng, exe, config, work, timeout):
         return "crash", "exit %d: %s" % (p.returncode, stderr[-600:].strip()), args
     if p.returncode != 0:
         return run_any_answer_case(exe, args, first, work, timeout) + (args,)
-    # Load it back: the mapping the export printed (robot.* keys), else the test robot's own.
-    printed = [line for line in p.stdout.decode().splitlines() if line.startswith("robot.") and "=" in line]
-    reload = ["humanoid", "export", "--format", "mjcf"] + (base if not printed else [])
-    for k in printed:
-        reload += ["--set", k]
+    # Load it back with the configuration the export wrote beside it.
     second = first + ".again.xml"
-    reload += ["--set", "robot.description=" + first, "--out", second]
+    reload = ["humanoid", "export", "--format", "mjcf", "--config", os.path.splitext(first)[0] + ".yaml",
+              "--out", second]
     return run_any_answer_case(exe, reload, second, work, timeout) + (reload,)
 
 

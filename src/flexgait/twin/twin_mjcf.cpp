@@ -86,4 +86,16 @@ std::string twin_mjcf(const LoadedRobot& r, const RobotParams& robot, const Plan
                        exclude.empty() ? std::string() : "  <contact>\n" + exclude + "  </contact>\n");
 }
 
+std::string twin_mjcf_mapping(const LoadedRobot& loaded) {
+  std::string out;
+  for (int j = 0; j < kJoints; ++j)
+    out += fmt::format("robot.joints.{}={}\n", kJointNames[j], loaded.has_joint(j) ? kJointNames[j] : "none");
+  for (int side = 0; side < 2; ++side) {
+    const LoadedBody& foot = loaded.bodies[static_cast<std::size_t>(loaded.foot[side])];
+    out += fmt::format("robot.feet.{0}.body={1}\nrobot.feet.{0}.sole_geom={2}\n", side == 0 ? "left" : "right",
+                       foot.name, side == 0 ? "l_sole" : "r_sole");
+  }
+  return out;
+}
+
 }  // namespace flexgait::humanoid

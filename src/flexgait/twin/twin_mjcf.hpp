@@ -17,4 +17,9 @@ namespace flexgait::humanoid {
 /// \param robot sole friction (robot.sole_friction); \param plant gears, physics step, contacts.
 std::string twin_mjcf(const LoadedRobot& loaded, const RobotParams& robot, const PlantParams& plant);
 
+/// The mapping that loads twin_mjcf(loaded, ...) back as a description: `--set` lines (KEY=VALUE),
+/// one per line: each joint under its flexgait name (waist_yaw none if the robot has no waist),
+/// each foot's body with its sole geom l_sole / r_sole.
+std::string twin_mjcf_mapping(const LoadedRobot& loaded);
+
 }  // namespace flexgait::humanoid
