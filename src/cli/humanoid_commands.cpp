@@ -259,8 +259,6 @@ struct ExportOptions {
   std::string out;                     ///< --out FILE
 };
 
-/// `humanoid export`: the twin as MJCF (elastic gears as joint springs, sensors, floor) or the
-/// rigid robot as URDF, written atomically; the walk's configuration keys choose the robot.
 /// Where `humanoid export --out OUT` writes the configuration that loads OUT back: OUT with its
 /// extension replaced by .yaml (OUT.config.yaml if OUT is itself a .yaml file).
 std::filesystem::path reload_config_path(const std::filesystem::path& out) {
@@ -300,8 +298,7 @@ int export_robot(const ExportOptions& options) {
   }
   Config again = config;
   again.set("robot.description", std::filesystem::path(options.out).filename().string(), "humanoid export");
-  for (const std::string& line :
-       split_text(mjcf ? humanoid::twin_mjcf_mapping(loaded) : humanoid::urdf_mapping(loaded), '\n'))
+  for (const std::string& line : split_text(mapping, '\n'))
     if (const auto eq = line.find('='); eq != std::string::npos)
       again.set(line.substr(0, eq), line.substr(eq + 1), "humanoid export");
   write_file_atomic(options.out, text);
