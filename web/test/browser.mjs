@@ -2,7 +2,8 @@
 // puppeteer-core through the DevTools protocol; every network request is refused and recorded,
 // every console error and page error collected.
 import puppeteer from 'puppeteer-core';
-import { existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
@@ -14,6 +15,18 @@ export function requireChromium() {
     console.log(`SKIPPED: no chromium at ${chromiumPath} (scripts/install-deps installs Debian's chromium)`);
     process.exit(77);
   }
+}
+
+/// A run of `$FLEXGAIT args... --out DIR/run` in a fresh temporary directory (chromium required
+/// first): { dir, out, html: its replay.html, log: its log.csv's rows }. The caller removes dir.
+export function runWithReplay(args, prefix) {
+  requireChromium();
+  const exe = process.env.FLEXGAIT;
+  if (!exe) throw new Error('set FLEXGAIT to the flexgait executable');
+  const dir = mkdtempSync(join(tmpdir(), prefix));
+  const out = join(dir, 'run');
+  execFileSync(exe, [...args, '--out', out], { stdio: 'ignore' });
+  return { dir, out, html: join(out, 'replay.html'), log: parseCsv(readFileSync(join(out, 'log.csv'), 'utf8')) };
 }
 
 export async function openPage(file, { width = 900, height = 640 } = {}) {

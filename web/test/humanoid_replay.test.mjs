@@ -5,21 +5,11 @@
 // Run: node web/test/humanoid_replay.test.mjs (env FLEXGAIT = the flexgait executable).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { requireChromium, openPage, canvasSnapshot, moveSlider, parseCsv } from './browser.mjs';
+import { rmSync, statSync } from 'node:fs';
+import { runWithReplay, openPage, canvasSnapshot, moveSlider } from './browser.mjs';
 
-requireChromium();
-const exe = process.env.FLEXGAIT;
-assert.ok(exe, 'set FLEXGAIT to the flexgait executable');
-const dir = mkdtempSync(join(tmpdir(), 'flexgait-humanoid-replay-'));
-const out = join(dir, 'run');
 // One step (4.5 s simulated): the page's data are the log's samples, 25 frames per second.
-execFileSync(exe, ['humanoid', 'walk', '--set', 'walk.steps=1', '--out', out], { stdio: 'ignore' });
-const html = join(out, 'replay.html');
-const log = parseCsv(readFileSync(join(out, 'log.csv'), 'utf8'));
+const { dir, html, log } = runWithReplay(['humanoid', 'walk', '--set', 'walk.steps=1'], 'flexgait-humanoid-replay-');
 const { page, errors, requests, close } = await openPage(html);
 
 test('the page loads offline with no console error, with the walk\'s layers', async () => {

@@ -4,20 +4,11 @@
 // Run: node web/test/rimless_replay.test.mjs (env FLEXGAIT = the flexgait executable).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, rmSync, statSync } from 'node:fs';
 import { join } from 'node:path';
-import { requireChromium, openPage, canvasSnapshot, moveSlider, parseCsv } from './browser.mjs';
+import { runWithReplay, openPage, canvasSnapshot, moveSlider } from './browser.mjs';
 
-requireChromium();
-const exe = process.env.FLEXGAIT;
-assert.ok(exe, 'set FLEXGAIT to the flexgait executable');
-const dir = mkdtempSync(join(tmpdir(), 'flexgait-rimless-replay-'));
-const out = join(dir, 'run');
-execFileSync(exe, ['rimless', 'simulate', '--steps', '6', '--out', out], { stdio: 'ignore' });
-const html = join(out, 'replay.html');
-const log = parseCsv(readFileSync(join(out, 'log.csv'), 'utf8'));
+const { dir, out, html, log } = runWithReplay(['rimless', 'simulate', '--steps', '6'], 'flexgait-rimless-replay-');
 const slope = Number(/^\s+slope: ([0-9.e+-]+)/m.exec(readFileSync(join(out, 'config.yaml'), 'utf8'))[1]);
 const { page, errors, requests, close } = await openPage(html);
 
