@@ -23,8 +23,8 @@ void PlantStep(benchmark::State& state) {
   for (auto _ : state) plant.step(pose);
   state.counters["us/physics_step"] = benchmark::Counter(static_cast<double>(state.iterations() * 4),
                                                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  state.counters["real_time_factor"] =
-      benchmark::Counter(static_cast<double>(state.iterations()) * plant.params().control_period, benchmark::Counter::kIsRate);
+  state.counters["real_time_factor"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * plant.params().control_period, benchmark::Counter::kIsRate);
 }
 BENCHMARK(PlantStep)->Unit(benchmark::kMicrosecond);
 

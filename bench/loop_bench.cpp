@@ -30,10 +30,15 @@ BENCHMARK(LoopPeriod)->Unit(benchmark::kMicrosecond)->MinTime(3.0);
 /// The same period by hand: what the loop composes, with nothing of its own.
 struct ByHand {
   fg::experiments::WalkRunParams params;
-  fg::walking::WalkingController controller{fg::experiments::walk_controller_model(params), params.walk, params.balance,
-                                            params.plant.control_period, params.estimator, params.health};
-  fg::loop::CompensationStage stage{controller.model(), params.control, params.plant.control_period,
-                                    fg::experiments::walk_loop_setup(params, controller.model(), controller.plan()).windows};
+  fg::walking::WalkingController controller{fg::experiments::walk_controller_model(params),
+                                            params.walk,
+                                            params.balance,
+                                            params.plant.control_period,
+                                            params.estimator,
+                                            params.health};
+  fg::loop::CompensationStage stage{
+      controller.model(), params.control, params.plant.control_period,
+      fg::experiments::walk_loop_setup(params, controller.model(), controller.plan()).windows};
   fg::humanoid::HumanoidPlant plant{fg::experiments::walk_twin(params), params.plant};
   long k = 0;
   ByHand() {

@@ -8,10 +8,10 @@
 #include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/rimless/dynamics.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
-#include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/flow.hpp"
 #include "flexgait/rimless/rigid_wheel.hpp"
+#include "flexgait/rimless/sweep.hpp"
 
 namespace {
 
@@ -45,10 +45,12 @@ void time_flexible_steps(benchmark::State& state, flexgait::numerics::OdeMethod 
   state.counters["steps/s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
   state.counters["events/s"] = benchmark::Counter(static_cast<double>(events), benchmark::Counter::kIsRate);
   state.counters["rhs/step"] = static_cast<double>(rhs) / static_cast<double>(steps);
-  state.counters["us/step"] = benchmark::Counter(static_cast<double>(steps),
-                                                 benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["us/step"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-void FlexibleWheelStep(benchmark::State& state) { time_flexible_steps(state, flexgait::numerics::OdeMethod::Adams); }
+void FlexibleWheelStep(benchmark::State& state) {
+  time_flexible_steps(state, flexgait::numerics::OdeMethod::Adams);
+}
 BENCHMARK(FlexibleWheelStep)->Arg(600)->Arg(130)->Arg(5000)->Unit(benchmark::kMicrosecond);
 void FlexibleWheelStepDop853(benchmark::State& state) {
   time_flexible_steps(state, flexgait::numerics::OdeMethod::Dop853);
@@ -66,8 +68,8 @@ void RigidWheelStep(benchmark::State& state) {
     steps += r.steps_completed;
     benchmark::DoNotOptimize(r.final_state.data());
   }
-  state.counters["us/step"] = benchmark::Counter(static_cast<double>(steps),
-                                                 benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["us/step"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(RigidWheelStep)->Unit(benchmark::kMicrosecond);
 
@@ -138,7 +140,8 @@ void FrictionSweep200(benchmark::State& state, const char* method) {
     flexgait::Schema s = rimless_schema();
     return s.merge(analysis_schema());
   }();
-  const flexgait::Config base = flexgait::resolve_config(schema, std::nullopt, {std::string("solver.method=") + method});
+  const flexgait::Config base =
+      flexgait::resolve_config(schema, std::nullopt, {std::string("solver.method=") + method});
   const SweepSpec spec{"rimless.mu", 0.1, 1.5, 200, Section::Touchdown};
   const auto dir = std::filesystem::temp_directory_path() / "flexgait_bench_sweep";
   for (auto _ : state) {

@@ -77,7 +77,8 @@ int main(int argc, char** argv) {
   const long periods = std::lround(seconds / params.plant.control_period);
   for (long k = 1; k <= periods; ++k) {
     if (const auto failure = loop.step()) {
-      std::fprintf(stderr, "the simulation failed at t = %.3f s: %s\n", loop.time(), std::string(fg::name_of(*failure)).c_str());
+      std::fprintf(stderr, "the simulation failed at t = %.3f s: %s\n", loop.time(),
+                   std::string(fg::name_of(*failure)).c_str());
       return 1;
     }
     if (k % std::lround(1.0 / params.plant.control_period) == 0) {

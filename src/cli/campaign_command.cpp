@@ -56,7 +56,9 @@ CLI::Validator seed_check() {
       "INTEGER in [0, 2^64-1]");
 }
 
-std::string joined(const std::vector<std::string>& items) { return fmt::format("{}", fmt::join(items, ",")); }
+std::string joined(const std::vector<std::string>& items) {
+  return fmt::format("{}", fmt::join(items, ","));
+}
 
 /// Throws UsageError naming the first of `metrics` that is not a column of `experiment`.
 void check_plot_metrics(const campaign::Experiment& experiment, const std::vector<std::string>& metrics) {
@@ -113,8 +115,8 @@ int run_campaign_command(const CampaignArgs& a) {
   const auto csv = std::filesystem::path(a.run.out) / "campaign.csv";
   const auto reduced = std::filesystem::path(a.run.out) / "reduced.csv";
   if (!a.reduce.empty())
-    write_file_atomic(reduced, campaign::reduce_campaign_table(c.grid(), a.reduce, read_text_file(csv),
-                                                               c.random().axes().size()));
+    write_file_atomic(
+        reduced, campaign::reduce_campaign_table(c.grid(), a.reduce, read_text_file(csv), c.random().axes().size()));
   if (a.run.plot) {
     std::vector<std::string> args{a.run.out};
     if (!a.plot_metrics.empty()) args.insert(args.end(), {"--metrics", joined(a.plot_metrics)});
@@ -147,14 +149,17 @@ void add_campaign_command(CLI::App& app, std::function<int()>& action) {
   std::string names;
   for (const auto& n : campaign::experiment_names()) names += (names.empty() ? "" : ", ") + n;
   CLI::App* cmd = app.add_subcommand(
-      "campaign", "Run an experiment at every point of a grid of configuration keys (Cartesian product of the --grid "
-                  "axes): campaign.csv with one row per point, on all cores or over MPI ranks (mpirun), resumable");
+      "campaign",
+      "Run an experiment at every point of a grid of configuration keys (Cartesian product of the --grid "
+      "axes): campaign.csv with one row per point, on all cores or over MPI ranks (mpirun), resumable");
   add_run_options(*cmd, a->run, "runs/campaign");
   cmd->get_option("--out")->description("directory for campaign.csv, config.yaml, campaign.png (and the partial file)");
-  cmd->get_option("--json")->description("print the outcome (points, computed, resumed, seconds, csv) as JSON on stdout");
+  cmd->get_option("--json")->description(
+      "print the outcome (points, computed, resumed, seconds, csv) as JSON on stdout");
   cmd->add_option("experiment", a->experiment, "the experiment: " + names)->required();
-  cmd->add_option("--grid", a->grid, "one axis: KEY=A:B:N (N values from A to B, ends included) or KEY=v1,v2,... "
-                                     "(numbers or names, e.g. control.compensation=off,both); repeatable")
+  cmd->add_option("--grid", a->grid,
+                  "one axis: KEY=A:B:N (N values from A to B, ends included) or KEY=v1,v2,... "
+                  "(numbers or names, e.g. control.compensation=off,both); repeatable")
       ->type_name("KEY=VALUES")
       ->allow_extra_args(false);
   cmd->add_option("--random", a->random,

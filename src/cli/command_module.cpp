@@ -36,7 +36,8 @@ void add_module_commands(CLI::App& app, std::function<int()>& action) {
   if (module == nullptr)
     throw std::runtime_error(fmt::format("cannot load the humanoid, campaign, reproduce and schema commands: {}",
                                          one_line(::dlerror(), 1000)));
-  auto* add = reinterpret_cast<decltype(&flexgait_add_module_commands)>(::dlsym(module, "flexgait_add_module_commands"));
+  auto* add =
+      reinterpret_cast<decltype(&flexgait_add_module_commands)>(::dlsym(module, "flexgait_add_module_commands"));
   if (add == nullptr)
     throw std::runtime_error(fmt::format("{} has no entry flexgait_add_module_commands", FLEXGAIT_COMMAND_MODULE));
   add(app, action);

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
-#include <tuple>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/progress.hpp"
@@ -56,7 +56,8 @@ int bench(const RunOptions& run) {
 
 /// Runs the study's walks one after the other (one progress bar over all of them) and writes each
 /// into its own subdirectory.
-std::vector<experiments::WalkResult> run_study(const RunDirectory& dir, const std::vector<experiments::StudyCase>& cases) {
+std::vector<experiments::WalkResult> run_study(const RunDirectory& dir,
+                                               const std::vector<experiments::StudyCase>& cases) {
   double total = 0;
   for (const auto& c : cases) total += walking::plan_footsteps(c.params.walk).duration;
   ProgressBar bar(total, "s simulated");
@@ -86,22 +87,25 @@ int compensation_study(const RunOptions& run) {
   if (run.json) {
     fmt::print("{}", comparison);
   } else {
-    fmt::print("{:.1f} s/step, {} steps: peak pelvis roll error {:.4f} rad off, {:.4f} rad compensated ({:.0f} % less; "
-               "thesis form {:.4f})\n",
-               params.walk.step_time, params.walk.steps, j["pelvis_roll_error_max_off"].get<double>(),
-               j["pelvis_roll_error_max_on"].get<double>(), 100 * j["pelvis_roll_error_max_cut"].get<double>(),
-               j["pelvis_roll_error_max_thesis_form"].get<double>());
-    fmt::print("single-support ZMP rms (y) {:.4f} m off, {:.4f} m compensated; estimated joint angles: error {:.1f} % "
-               "of the deflection (rms)\n",
-               j["zmp_single_support_rms_y_off"].get<double>(), j["zmp_single_support_rms_y_on"].get<double>(),
-               100 * j["estimate_error_share_of_deflection"].get<double>());
+    fmt::print(
+        "{:.1f} s/step, {} steps: peak pelvis roll error {:.4f} rad off, {:.4f} rad compensated ({:.0f} % less; "
+        "thesis form {:.4f})\n",
+        params.walk.step_time, params.walk.steps, j["pelvis_roll_error_max_off"].get<double>(),
+        j["pelvis_roll_error_max_on"].get<double>(), 100 * j["pelvis_roll_error_max_cut"].get<double>(),
+        j["pelvis_roll_error_max_thesis_form"].get<double>());
+    fmt::print(
+        "single-support ZMP rms (y) {:.4f} m off, {:.4f} m compensated; estimated joint angles: error {:.1f} % "
+        "of the deflection (rms)\n",
+        j["zmp_single_support_rms_y_off"].get<double>(), j["zmp_single_support_rms_y_on"].get<double>(),
+        100 * j["estimate_error_share_of_deflection"].get<double>());
     for (const auto& row : j["table"])
-      fmt::print("  {:<17} peak roll {:.4f} rad ({:4.0f} % less), ZMP rms y {:.4f} m, landing {:.4f} m, estimate {:5.1f} % "
-                 "of the deflection{}\n",
-                 row["case"].get<std::string>(), row["pelvis_roll_error_max"].get<double>(),
-                 100 * row["pelvis_roll_error_max_cut"].get<double>(), row["zmp_rms_y"].get<double>(),
-                 row["landing_error_mean"].get<double>(), 100 * row["estimate_error_share_of_deflection"].get<double>(),
-                 row["fell"].get<bool>() ? " (fell)" : "");
+      fmt::print(
+          "  {:<17} peak roll {:.4f} rad ({:4.0f} % less), ZMP rms y {:.4f} m, landing {:.4f} m, estimate {:5.1f} % "
+          "of the deflection{}\n",
+          row["case"].get<std::string>(), row["pelvis_roll_error_max"].get<double>(),
+          100 * row["pelvis_roll_error_max_cut"].get<double>(), row["zmp_rms_y"].get<double>(),
+          row["landing_error_mean"].get<double>(), 100 * row["estimate_error_share_of_deflection"].get<double>(),
+          row["fell"].get<bool>() ? " (fell)" : "");
     fmt::print("results in {}\n", dir.path().string());
   }
   // A fall of the thesis's cases (off, both, both-thesis-form) fails the study; a comparison case
@@ -152,10 +156,10 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
 }
 
 struct RenderOptions {
-  bool enabled = false;         ///< --render
-  double fps = 25.0;            ///< --fps [1/s]
+  bool enabled = false;           ///< --render
+  double fps = 25.0;              ///< --fps [1/s]
   std::string size = "1280x720";  ///< --size WIDTHxHEIGHT [pixels]
-  std::string camera = "side";  ///< --camera side | follow | front
+  std::string camera = "side";    ///< --camera side | follow | front
 };
 
 /// The render's view: --size and --camera checked (exit 2 naming the option), the side camera
@@ -182,7 +186,8 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const walking::WalkPlan plan = walking::plan_footsteps(params.walk);
-  const humanoid::RenderView view = render.enabled ? render_view(render, plan) : humanoid::RenderView{};  // exit 2 before any file
+  const humanoid::RenderView view =
+      render.enabled ? render_view(render, plan) : humanoid::RenderView{};  // exit 2 before any file
   const RunDirectory dir(run.out);
   dir.write_config(experiments::with_derived_values(config, params));
   if (params.loaded && !run.json)
@@ -317,16 +322,18 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   humanoid->require_subcommand(1);
   auto run = std::make_shared<RunOptions>();
   CLI::App* b = humanoid->add_subcommand(
-      "bench", "Stiffness bench (thesis Fig. 12): one actuator with a load arm swept through poses; fit k_joint from "
-               "angle error against gravity torque, then repeat with the input compensator");
+      "bench",
+      "Stiffness bench (thesis Fig. 12): one actuator with a load arm swept through poses; fit k_joint from "
+      "angle error against gravity torque, then repeat with the input compensator");
   add_run_options(*b, *run, "runs/humanoid-bench");
   b->callback([run, &action] { action = [run] { return bench(*run); }; });
 
   auto walk_run = std::make_shared<RunOptions>();
   auto walk_render = std::make_shared<RenderOptions>();
   CLI::App* w = humanoid->add_subcommand(
-      "walk", "Walk the twin with the ZMP preview controller (footsteps, preview control, balance, leg IK); "
-              "exit 1 if it falls");
+      "walk",
+      "Walk the twin with the ZMP preview controller (footsteps, preview control, balance, leg IK); "
+      "exit 1 if it falls");
   add_run_options(*w, *walk_run, "runs/humanoid-walk");
   w->add_flag("--render", walk_render->enabled,
               "write PNG frames of the twin to OUT/frames (offscreen, OSMesa) and OUT/video.mp4 if ffmpeg is present");
@@ -338,20 +345,22 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
                 "camera for --render: side (fixed, the walk passes through the frame), follow (behind the pelvis) or "
                 "front (ahead of the pelvis)")
       ->capture_default_str();
-  w->callback([walk_run, walk_render, &action] {
-    action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); };
-  });
+  w->callback(
+      [walk_run, walk_render, &action] { action = [walk_run, walk_render] { return walk(*walk_run, *walk_render); }; });
 
   auto exp = std::make_shared<ExportOptions>();
   CLI::App* ex = humanoid->add_subcommand(
-      "export", "Write the robot (robot.description and its mapping; builtin by default) as MJCF (the twin: elastic "
-                "gears, sensors, floor; opens in MuJoCo's simulate) or URDF (the rigid robot)");
+      "export",
+      "Write the robot (robot.description and its mapping; builtin by default) as MJCF (the twin: elastic "
+      "gears, sensors, floor; opens in MuJoCo's simulate) or URDF (the rigid robot)");
   ex->add_option("--config", exp->config_file, "YAML configuration file (robot.*, plant.*), or a bundled one's NAME")
       ->transform(config_file_option());
   ex->add_option("--set", exp->overrides, "override one key, e.g. --set robot.description=my_robot.xml (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
-  ex->add_option("--format", exp->format, "mjcf or urdf")->check(CLI::IsMember({"mjcf", "urdf"}))->capture_default_str();
+  ex->add_option("--format", exp->format, "mjcf or urdf")
+      ->check(CLI::IsMember({"mjcf", "urdf"}))
+      ->capture_default_str();
   ex->add_option("--out", exp->out, "file to write (atomically)")->required();
   ex->callback([exp, &action] { action = [exp] { return export_robot(*exp); }; });
 
@@ -369,8 +378,9 @@ void add_humanoid_commands(CLI::App& app, std::function<int()>& action) {
   auto mismatch_run = std::make_shared<RunOptions>();
   auto scales = std::make_shared<std::string>("0.7,1.0,1.3");
   CLI::App* ms = humanoid->add_subcommand(
-      "mismatch", "The twin's true gear stiffness scaled against the controller's belief (control.k_joint): "
-                  "compensation off and both at each scale");
+      "mismatch",
+      "The twin's true gear stiffness scaled against the controller's belief (control.k_joint): "
+      "compensation off and both at each scale");
   add_run_options(*ms, *mismatch_run, "runs/humanoid-mismatch");
   ms->add_option("--scales", *scales, "true stiffness / configured plant.k_joint, comma separated")
       ->check(number_list(0.05, 20.0))

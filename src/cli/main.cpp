@@ -2,17 +2,17 @@
 // or bad configuration (one line on stderr naming the key, the value and what is allowed). Every
 // message is one line: control characters escaped, long text cut (core one_line). Under mpirun
 // a bad argument is said once, by rank 0, which exits 2 (so does mpirun); the other ranks exit 0.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <functional>
 #include <system_error>
 
+#include "command_module.hpp"
+#include "configs_command.hpp"
 #include "flexgait/campaign/program_build.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/text.hpp"
-#include "command_module.hpp"
-#include "configs_command.hpp"
 #include "mpi_distributor.hpp"
 #include "rimless_commands.hpp"
 
@@ -32,7 +32,8 @@ std::string unknown_command(const CLI::App& app, int argc, char** argv) {
       if (s->check_name(word)) next = s;
       names += (names.empty() ? "" : ", ") + s->get_name();
     }
-    if (next == nullptr) return fmt::format("unknown command '{}'; the commands are {}", flexgait::one_line(word), names);
+    if (next == nullptr)
+      return fmt::format("unknown command '{}'; the commands are {}", flexgait::one_line(word), names);
     cur = next;
   }
   return "";

@@ -168,7 +168,9 @@ class MpiDistributor final : public MpiRanks {
 
 }  // namespace
 
-bool launched_as_mpi_ranks() { return env_int("OMPI_COMM_WORLD_SIZE") > 1 || env_int("PMI_SIZE") > 1; }
+bool launched_as_mpi_ranks() {
+  return env_int("OMPI_COMM_WORLD_SIZE") > 1 || env_int("PMI_SIZE") > 1;
+}
 
 bool secondary_mpi_rank() {
   return launched_as_mpi_ranks() && (env_int("OMPI_COMM_WORLD_RANK") > 0 || env_int("PMI_RANK") > 0);
@@ -179,8 +181,9 @@ std::unique_ptr<MpiRanks> mpi_distributor_if_launched() {
 #ifdef FLEXGAIT_HAVE_MPI
   return std::make_unique<MpiDistributor>();
 #else
-  throw UsageError("started as several MPI ranks, but this flexgait was built without MPI (install libopenmpi-dev and "
-                   "rebuild, or run without mpirun: the threads of one machine, --jobs)");
+  throw UsageError(
+      "started as several MPI ranks, but this flexgait was built without MPI (install libopenmpi-dev and "
+      "rebuild, or run without mpirun: the threads of one machine, --jobs)");
 #endif
 }
 

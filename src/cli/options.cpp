@@ -48,7 +48,9 @@ void add_option_value(std::vector<ConfigEntry>& out, const CLI::App& cmd, const 
   if (cmd.get_option_no_throw(option) != nullptr && cmd.count(option) > 0) out.push_back({key, text, option});
 }
 
-std::vector<std::string> split_list(const std::string& text) { return split_text(text, ','); }
+std::vector<std::string> split_list(const std::string& text) {
+  return split_text(text, ',');
+}
 
 namespace {
 

@@ -13,11 +13,11 @@
 namespace flexgait::cli {
 
 struct RunOptions {
-  std::string config_file;            ///< --config
-  std::vector<std::string> overrides; ///< --set key=value, in order
-  std::string out;                    ///< --out
-  bool json = false;                  ///< --json
-  bool plot = true;                   ///< --no-plot clears it
+  std::string config_file;             ///< --config
+  std::vector<std::string> overrides;  ///< --set key=value, in order
+  std::string out;                     ///< --out
+  bool json = false;                   ///< --json
+  bool plot = true;                    ///< --no-plot clears it
 };
 
 /// Adds --config, --set, --out, --json and --no-plot to a subcommand.

@@ -19,7 +19,8 @@
 
 namespace flexgait::cli {
 
-std::pair<int, int> parse_render_size(const std::string& text, const std::string& option, int max_width, int max_height) {
+std::pair<int, int> parse_render_size(const std::string& text, const std::string& option, int max_width,
+                                      int max_height) {
   const std::size_t x = text.find('x');
   int w = 0, h = 0;
   const char* end = text.data() + text.size();
@@ -35,9 +36,9 @@ std::pair<int, int> parse_render_size(const std::string& text, const std::string
 namespace {
 
 struct RenderArgs {
-  std::string run;             ///< --run DIR
+  std::string run;  ///< --run DIR
   std::string size = "1280x720";
-  double fps = 30;             ///< [1/s] of simulated time
+  double fps = 30;  ///< [1/s] of simulated time
 };
 
 int render(const RenderArgs& a) {
@@ -46,8 +47,8 @@ int render(const RenderArgs& a) {
   const std::filesystem::path page = dir / "replay.html";
   std::error_code error;
   if (!std::filesystem::is_regular_file(page, error))
-    throw UsageError(fmt::format("--run '{}': no replay.html in it (rimless simulate writes one into its run directory)",
-                                 one_line(a.run, 300)));
+    throw UsageError(fmt::format(
+        "--run '{}': no replay.html in it (rimless simulate writes one into its run directory)", one_line(a.run, 300)));
   std::ifstream in(page, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
@@ -70,7 +71,8 @@ int render(const RenderArgs& a) {
     if (scene.time[static_cast<std::size_t>(f)] < next && f + 1 < scene.frames()) continue;
     next += 1.0 / a.fps;
     const auto& rgb = renderer.render(scene, f);
-    write_file_atomic(dir / "frames" / fmt::format("frame_{:05d}.png", written++), humanoid::encode_png(rgb, width, height));
+    write_file_atomic(dir / "frames" / fmt::format("frame_{:05d}.png", written++),
+                      humanoid::encode_png(rgb, width, height));
     bar.show(scene.time[static_cast<std::size_t>(f)] - scene.time.front());
   }
   const bool video = humanoid::encode_video(dir, a.fps);
@@ -84,8 +86,9 @@ int render(const RenderArgs& a) {
 void add_render_command(CLI::App& app, std::function<int()>& action) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* r = app.add_subcommand(
-      "render", "Draw a run's replay (RUN/replay.html, e.g. the rimless wheel's) offscreen with MuJoCo: PNG frames in "
-                "RUN/frames and RUN/video.mp4 (ffmpeg)");
+      "render",
+      "Draw a run's replay (RUN/replay.html, e.g. the rimless wheel's) offscreen with MuJoCo: PNG frames in "
+      "RUN/frames and RUN/video.mp4 (ffmpeg)");
   r->add_option("--run", args->run, "run directory holding replay.html")->required();
   r->add_option("--size", args->size, "frame size WIDTHxHEIGHT in pixels")->capture_default_str();
   r->add_option("--fps", args->fps, "frames per second of simulated time (1/s)")

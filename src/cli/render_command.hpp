@@ -13,7 +13,8 @@ namespace flexgait::cli {
 
 /// "WxH" → (W, H), each in 16 .. max [pixels]. Throws UsageError naming `option`, the text and what
 /// is allowed.
-std::pair<int, int> parse_render_size(const std::string& text, const std::string& option, int max_width, int max_height);
+std::pair<int, int> parse_render_size(const std::string& text, const std::string& option, int max_width,
+                                      int max_height);
 
 void add_render_command(CLI::App& app, std::function<int()>& action);
 

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <utility>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "flexgait/core/progress.hpp"
 #include "flexgait/core/record_json.hpp"
@@ -43,7 +43,7 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
   const Config& config = s.config;
   const std::string model = config.choice("sim.model");
   check_with_origin(config, [&] { rimless::check_log_size(s.sim); });  // before anything is written
-  const RunDirectory dir(a.run.out);  // --out before the computation
+  const RunDirectory dir(a.run.out);                                   // --out before the computation
   dir.write_config(config);
 
   // log.csv, events.csv and steps.csv are written while the run goes: memory does not grow
@@ -115,7 +115,8 @@ int fixed_point(const FixedPointArgs& a, const CLI::App& cmd) {
   const auto names = rep.point.names();
   for (Eigen::Index i = 0; i < rep.point.z.size(); ++i)
     fmt::print("  {:8s} = {:.12g}\n", names.at(static_cast<std::size_t>(i)), rep.point.z(i));
-  for (const auto& m : rep.multipliers) fmt::print("  multiplier {:.6g}{:+.6g}i  |{:.6g}|\n", m.real(), m.imag(), std::abs(m));
+  for (const auto& m : rep.multipliers)
+    fmt::print("  multiplier {:.6g}{:+.6g}i  |{:.6g}|\n", m.real(), m.imag(), std::abs(m));
   fmt::print("  {} gait '{}', period {:.6f} s, speed {:.6f} m/s, dissipated {:.6f} J per cycle\n",
              rep.stable ? "stable" : "unstable", rep.gait, rep.period, rep.speed, rep.dissipated);
   fmt::print("results in {}\n", dir.path().string());
@@ -145,8 +146,8 @@ int sweep(const SweepArgs& a, const CLI::App& cmd) {
   job.count = spec.count;
   job.jobs = a.jobs;
   job.resume = a.resume;
-  job.signature = fmt::format("param {} from {} to {} count {} section {}\n{}", spec.param, spec.from, spec.to, spec.count,
-                              a.section, s.config.to_yaml());
+  job.signature = fmt::format("param {} from {} to {} count {} section {}\n{}", spec.param, spec.from, spec.to,
+                              spec.count, a.section, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
   job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
@@ -157,8 +158,8 @@ int sweep(const SweepArgs& a, const CLI::App& cmd) {
   dir.write_config(s.config);
   const SweepOutcome out = run_sweep(job);
   if (a.run.plot) run_plot_script("plot_sweep.py", {dir.path().string(), spec.param});
-  fmt::print("sweep of {} over [{}, {}], {} points: {} computed, {} resumed, {:.2f} s\n", spec.param, spec.from, spec.to,
-             spec.count, out.computed, out.resumed, out.seconds);
+  fmt::print("sweep of {} over [{}, {}], {} points: {} computed, {} resumed, {:.2f} s\n", spec.param, spec.from,
+             spec.to, spec.count, out.computed, out.resumed, out.seconds);
   fmt::print("results in {}\n", (dir.path() / "sweep.csv").string());
   return 0;
 }
@@ -212,8 +213,8 @@ struct Analysis {
   std::vector<std::string> options{};  ///< the options it takes beyond --config/--set/--out/--json/--no-plot
   /// Options that set a configuration key for this analysis (checked as --set checks the key).
   std::vector<std::pair<std::string, std::string>> keys{};
-  std::string sweep_name{};            ///< the resumable sweep's file stem in --out ("" when not resumable)
-  bool reads_stagnation = false;       ///< reads the stagnation.* keys (checked together: stagnation_from_config)
+  std::string sweep_name{};       ///< the resumable sweep's file stem in --out ("" when not resumable)
+  bool reads_stagnation = false;  ///< reads the stagnation.* keys (checked together: stagnation_from_config)
   /// Checks beyond the keys' own, before anything is written (may be null); given this entry, so
   /// that a check reads its keys from `keys`.
   void (*check)(const AnalysisContext&, const Analysis&) = nullptr;
@@ -268,7 +269,8 @@ std::vector<std::string> energy(const AnalysisContext& c, const RunDirectory& di
 }
 
 std::vector<std::string> fixed_points(const AnalysisContext& c, const RunDirectory& dir) {
-  dir.write("fixed_points.csv", rimless::behaviour_fixed_points_csv(c.setup.config, c.paper.fixed_points_mu, c.section));
+  dir.write("fixed_points.csv",
+            rimless::behaviour_fixed_points_csv(c.setup.config, c.paper.fixed_points_mu, c.section));
   return {"fixed_points.csv"};
 }
 
@@ -296,10 +298,12 @@ std::vector<std::string> stagnation(const AnalysisContext& c, const RunDirectory
   const rimless::StagnationSummary& r = scan.summary;
   if (r.critical_found) {
     fmt::print("critical omega0 = {:.12f} rad/s (bracket {:.3e} wide after {} bisection stages){}\n", r.omega_c,
-               r.omega_c_high - r.omega_c_low, r.bisection_steps, r.bisection_note.empty() ? "" : "; " + r.bisection_note);
-    fmt::print("{} stagnation: {:.3f} s near the vertical per decade of |omega0 - omega_c| above, {:.3f} s below "
-               "(pendulum estimates: {:.3f} s sliding, {:.3f} s sticking)\n", r.kind, r.growth_above, r.growth_below,
-               r.estimate_sliding, r.estimate_sticking);
+               r.omega_c_high - r.omega_c_low, r.bisection_steps,
+               r.bisection_note.empty() ? "" : "; " + r.bisection_note);
+    fmt::print(
+        "{} stagnation: {:.3f} s near the vertical per decade of |omega0 - omega_c| above, {:.3f} s below "
+        "(pendulum estimates: {:.3f} s sliding, {:.3f} s sticking)\n",
+        r.kind, r.growth_above, r.growth_below, r.estimate_sliding, r.estimate_sticking);
     fmt::print("stagnation interval (near-vertical time > {:.3f} s): omega0 in [{:.10f}, {:.10f}] rad/s\n", r.threshold,
                r.interval_low, r.interval_high);
   } else {
@@ -335,16 +339,18 @@ std::vector<std::string> stagnation_map(const AnalysisContext& c, const RunDirec
 const std::vector<Analysis>& analyses() {
   static const std::vector<Analysis> table = [] {
     using Keys = std::vector<std::pair<std::string, std::string>>;
-    const Keys omega_grid{{"--from", "stagnation.omega_from"}, {"--to", "stagnation.omega_to"},
-                          {"--count", "stagnation.count"}};
+    const Keys omega_grid{
+        {"--from", "stagnation.omega_from"}, {"--to", "stagnation.omega_to"}, {"--count", "stagnation.count"}};
     return std::vector<Analysis>{
         {.name = "gait-vs-friction",
          .help = "behaviours and thresholds",
          .options = {"--from", "--to", "--count", "--jobs", "--resume", "--section"},
-         .keys = {{"--from", "analysis.friction.mu_from"}, {"--to", "analysis.friction.mu_to"},
+         .keys = {{"--from", "analysis.friction.mu_from"},
+                  {"--to", "analysis.friction.mu_to"},
                   {"--count", "analysis.friction.count"}},
          .sweep_name = "sweep",
-         .check = [](const AnalysisContext& c, const Analysis&) { rimless::check_sweep(c.setup.config, friction_range(c)); },
+         .check = [](const AnalysisContext& c,
+                     const Analysis&) { rimless::check_sweep(c.setup.config, friction_range(c)); },
          .run = gait_vs_friction},
         {.name = "energy",
          .help = "single support, stick against slip",
@@ -384,8 +390,8 @@ const std::vector<Analysis>& analyses() {
          .run = stagnation_map},
         {.name = "orbit-diagram",
          .help = "section values of many steps after a transient, against a parameter",
-         .options = {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count", "--jobs", "--resume",
-                     "--section"},
+         .options = {"--param", "--transient", "--record", "--branch", "--from", "--to", "--count", "--jobs",
+                     "--resume", "--section"},
          .map = true},
         {.name = "basin",
          .help = "a grid of initial states: which converge to the gait, which fall and why",
@@ -427,7 +433,8 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   // Every option checked before anything is written; an option this analysis ignores is refused.
   const auto& table = analyses();
   const auto entry = std::find_if(table.begin(), table.end(), [&](const Analysis& x) { return x.name == a.name; });
-  if (entry == table.end()) throw std::logic_error("analysis " + a.name + " passed CLI11's check but is not in the table");
+  if (entry == table.end())
+    throw std::logic_error("analysis " + a.name + " passed CLI11's check but is not in the table");
   reject_options_not_taken(cmd, *entry);
   if (entry->map)
     return run_map_analysis({a.name, a.run, a.map, a.from, a.to, a.count, a.jobs, a.resume, a.section}, cmd);
@@ -443,7 +450,10 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   const rimless::PaperAnalysisOptions paper = rimless::paper_analysis_from_config(s.config);
   const rimless::StagnationOptions stagnation =
       entry->reads_stagnation ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
-  const AnalysisContext context{a, s, paper, stagnation,
+  const AnalysisContext context{a,
+                                s,
+                                paper,
+                                stagnation,
                                 a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown,
                                 a.vary.empty() ? default_stagnation_map() : a.vary};
   if (entry->check != nullptr) entry->check(context, *entry);
@@ -463,7 +473,6 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   for (const auto& f : files) fmt::print("wrote {}\n", (dir.path() / f).string());
   return 0;
 }
-
 
 // --- rimless continuation (docs/guide/rimless.md, "Orbit diagram and basin of attraction") ---
 struct ContinuationArgs {
@@ -545,17 +554,20 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   rimless->require_subcommand(1);
 
   auto args = std::make_shared<SimulateArgs>();
-  CLI::App* sim = rimless->add_subcommand("simulate", "Simulate the wheel for a number of steps and write a run directory");
+  CLI::App* sim =
+      rimless->add_subcommand("simulate", "Simulate the wheel for a number of steps and write a run directory");
   add_run_options(*sim, args->run, "runs/rimless-simulate");
-  sim->add_option("--model", args->model, "flexible (spring-damper legs, stick-slip) or rigid (McGeer's wheel); sets sim.model")
+  sim->add_option("--model", args->model,
+                  "flexible (spring-damper legs, stick-slip) or rigid (McGeer's wheel); sets sim.model")
       ->check(CLI::IsMember({"flexible", "rigid"}));
   sim->add_option("--steps", args->steps, "number of steps (touchdowns of new legs); sets sim.steps")->type_name("INT");
   sim->add_option("--omega0", args->omega0, "initial angular velocity (rad/s); sets initial.omega")->type_name("FLOAT");
   sim->callback([args, sim, &action] { action = [args, sim] { return simulate(*args, *sim); }; });
 
   auto fp_args = std::make_shared<FixedPointArgs>();
-  CLI::App* fp = rimless->add_subcommand("fixed-point", "Find a periodic gait: Newton-Raphson on the Poincare map, "
-                                                        "Floquet multipliers, stability");
+  CLI::App* fp = rimless->add_subcommand("fixed-point",
+                                         "Find a periodic gait: Newton-Raphson on the Poincare map, "
+                                         "Floquet multipliers, stability");
   add_run_options(*fp, fp_args->run, "runs/rimless-fixed-point");
   fp->add_option("--model", fp_args->model, "flexible or rigid; sets sim.model")
       ->check(CLI::IsMember({"flexible", "rigid"}));
@@ -565,47 +577,63 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   fp->callback([fp_args, fp, &action] { action = [fp_args, fp] { return fixed_point(*fp_args, *fp); }; });
 
   auto sw = std::make_shared<SweepArgs>();
-  CLI::App* swc = rimless->add_subcommand("sweep", "Sweep one parameter: gait, fixed point, multipliers, stability, "
-                                                   "speed and energy per point, on all cores, resumable");
+  CLI::App* swc = rimless->add_subcommand("sweep",
+                                          "Sweep one parameter: gait, fixed point, multipliers, stability, "
+                                          "speed and energy per point, on all cores, resumable");
   add_run_options(*swc, sw->run, "runs/rimless-sweep");
-  swc->add_option("--param", sw->param, "configuration key to vary (e.g. rimless.slope, initial.omega), or "
-                                        "rimless.mu for mu_s = mu_k")->required();
+  swc->add_option("--param", sw->param,
+                  "configuration key to vary (e.g. rimless.slope, initial.omega), or "
+                  "rimless.mu for mu_s = mu_k")
+      ->required();
   swc->add_option("--from", sw->from, "first value (in the key's unit)")->required()->check(finite_number());
   swc->add_option("--to", sw->to, "last value (in the key's unit)")->required()->check(finite_number());
   swc->add_option("--count", sw->count, "number of values, evenly spaced, ends included")
       ->required()
       ->check(CLI::Range(1, kMaxSweepPoints));
-  swc->add_option("--jobs", sw->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
+  swc->add_option("--jobs", sw->jobs, "worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   swc->add_flag("--resume", sw->resume, "keep the finished points of an interrupted sweep in --out");
-  swc->add_option("--model", sw->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
+  swc->add_option("--model", sw->model, "flexible or rigid; sets sim.model")
+      ->check(CLI::IsMember({"flexible", "rigid"}));
   swc->add_option("--section", sw->section, "Poincare section of the fixed points")
-      ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
+      ->check(CLI::IsMember({"touchdown", "upright"}))
+      ->capture_default_str();
   swc->callback([sw, swc, &action] { action = [sw, swc] { return sweep(*sw, *swc); }; });
 
   auto ct = std::make_shared<ContinuationArgs>();
-  CLI::App* ctc = rimless->add_subcommand("continuation", "Pseudo-arclength continuation of the gait's fixed point in "
-                                                         "one real key: branch.csv with multipliers, stability and "
-                                                         "located folds, period doublings, Neimark-Sacker points and "
-                                                         "gait changes");
+  CLI::App* ctc = rimless->add_subcommand("continuation",
+                                          "Pseudo-arclength continuation of the gait's fixed point in "
+                                          "one real key: branch.csv with multipliers, stability and "
+                                          "located folds, period doublings, Neimark-Sacker points and "
+                                          "gait changes");
   add_run_options(*ctc, ct->run, "runs/rimless-continuation");
-  ctc->add_option("--param", ct->param, "real configuration key to continue in (e.g. rimless.slope), or rimless.mu "
-                                        "for mu_s = mu_k")->required();
+  ctc->add_option("--param", ct->param,
+                  "real configuration key to continue in (e.g. rimless.slope), or rimless.mu "
+                  "for mu_s = mu_k")
+      ->required();
   ctc->add_option("--from", ct->from, "start value, where the first fixed point is found (in the key's unit)")
       ->required()
       ->check(finite_number());
   ctc->add_option("--to", ct->to, "end value (in the key's unit)")->required()->check(finite_number());
-  ctc->add_option("--step", ct->step, "first arclength step, in the key's unit (default |to - from| times "
-                                      "analysis.continuation.initial_step, 1/50; the step adapts up to "
-                                      "analysis.continuation.max_step_factor, 2, times this)")
+  ctc->add_option("--step", ct->step,
+                  "first arclength step, in the key's unit (default |to - from| times "
+                  "analysis.continuation.initial_step, 1/50; the step adapts up to "
+                  "analysis.continuation.max_step_factor, 2, times this)")
       ->check(positive_number());
-  ctc->add_option("--period", ct->period, "continue period-K orbits: fixed points of the K-th iterate of the map, "
-                                          "Newton on it from the transient's state at --from")
-      ->check(CLI::Range(1, 64))->capture_default_str();
-  ctc->add_flag("--switch-at-pd", ct->switch_at_pd, "at the branch's first period doubling, switch to the period-2K "
-                                                     "branch born there and continue it too (branch_period2K.csv)");
-  ctc->add_option("--model", ct->model, "flexible or rigid; sets sim.model")->check(CLI::IsMember({"flexible", "rigid"}));
+  ctc->add_option("--period", ct->period,
+                  "continue period-K orbits: fixed points of the K-th iterate of the map, "
+                  "Newton on it from the transient's state at --from")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  ctc->add_flag("--switch-at-pd", ct->switch_at_pd,
+                "at the branch's first period doubling, switch to the period-2K "
+                "branch born there and continue it too (branch_period2K.csv)");
+  ctc->add_option("--model", ct->model, "flexible or rigid; sets sim.model")
+      ->check(CLI::IsMember({"flexible", "rigid"}));
   ctc->add_option("--section", ct->section, "Poincare section of the fixed points")
-      ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
+      ->check(CLI::IsMember({"touchdown", "upright"}))
+      ->capture_default_str();
   ctc->callback([ct, ctc, &action] { action = [ct, ctc] { return continuation(*ct, *ctc); }; });
 
   auto an = std::make_shared<AnalysisArgs>();
@@ -614,25 +642,30 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   CLI::App* anc = rimless->add_subcommand("analysis", "The paper's analyses, each a CSV and a PNG: " + described);
   add_run_options(*anc, an->run, "runs/rimless-analysis");
   anc->add_option("name", an->name, "which analysis")->required()->check(CLI::IsMember(analysis_names()));
-  anc->add_option("--mu", an->mus, "friction coefficients (mu_s = mu_k), comma separated, for energy, fixed-points, "
-                                   "robustness (sets analysis.energy.mu, analysis.fixed_points.mu, "
-                                   "analysis.robustness.mu)")
+  anc->add_option("--mu", an->mus,
+                  "friction coefficients (mu_s = mu_k), comma separated, for energy, fixed-points, "
+                  "robustness (sets analysis.energy.mu, analysis.fixed_points.mu, "
+                  "analysis.robustness.mu)")
       ->type_name("MU,...");
-  anc->add_option("--from", an->from, "first value: mu of gait-vs-friction (sets analysis.friction.mu_from) or "
-                                     "omega0 in rad/s of the stagnation grid (sets stagnation.omega_from)")
+  anc->add_option("--from", an->from,
+                  "first value: mu of gait-vs-friction (sets analysis.friction.mu_from) or "
+                  "omega0 in rad/s of the stagnation grid (sets stagnation.omega_from)")
       ->check(finite_number());
-  anc->add_option("--to", an->to, "last value: mu (sets analysis.friction.mu_to) or omega0 in rad/s (sets "
-                                 "stagnation.omega_to)")
+  anc->add_option("--to", an->to,
+                  "last value: mu (sets analysis.friction.mu_to) or omega0 in rad/s (sets "
+                  "stagnation.omega_to)")
       ->check(finite_number());
   anc->add_option("--count", an->count, "number of values (sets analysis.friction.count or stagnation.count)")
       ->check(CLI::Range(1, 1000000));
   anc->add_option("--jobs", an->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   anc->add_flag("--resume", an->resume, "keep the finished points of an interrupted run in --out");
   anc->add_option("--section", an->section, "Poincare section of the fixed points")
-      ->check(CLI::IsMember({"touchdown", "upright"}))->capture_default_str();
-  anc->add_option("--vary", an->vary, "stagnation-map: one map point, KEY=VALUE[,KEY=VALUE...] set on the "
-                                     "configuration (rimless.mu sets mu_s and mu_k); repeat for more points; default: "
-                                     "the base and mu, I, C, K one at a time, and I = 0.02 with mu = 0.25");
+      ->check(CLI::IsMember({"touchdown", "upright"}))
+      ->capture_default_str();
+  anc->add_option("--vary", an->vary,
+                  "stagnation-map: one map point, KEY=VALUE[,KEY=VALUE...] set on the "
+                  "configuration (rimless.mu sets mu_s and mu_k); repeat for more points; default: "
+                  "the base and mu, I, C, K one at a time, and I = 0.02 with mu = 0.25");
   add_map_options(*anc, an->map);
   anc->callback([an, anc, &action] { action = [an, anc] { return analysis(*an, *anc); }; });
 }

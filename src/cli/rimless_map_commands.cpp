@@ -121,8 +121,8 @@ CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
   if (a.from == a.to)
     throw UsageError(fmt::format("--to: {} equals --from; allowed: a value other than --from", format_number(a.to)));
   if (a.count < 2) throw UsageError(fmt::format("--count: {}; allowed: an integer >= 2", a.count));
-  rimless::OrbitDiagramSpec spec{{a.map.param, a.from, a.to, a.count, section_of(a.section)}, lengths.transient,
-                                 lengths.record};
+  rimless::OrbitDiagramSpec spec{
+      {a.map.param, a.from, a.to, a.count, section_of(a.section)}, lengths.transient, lengths.record};
   rimless::check_orbit_diagram(s.config, spec);
   std::vector<std::string> branches;
   for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param, a.section, s.config));
@@ -187,9 +187,11 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   for (std::size_t k = 0; k < checked.branches.size(); ++k)
     dir.write(fmt::format("branch_{}.csv", k + 1), checked.branches[k]);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"orbit-diagram", dir.path().string(), spec.sweep.param});
-  fmt::print("orbit diagram of {} over [{}, {}], {} values x {} crossings after {} steps: {} computed, {} resumed, "
-             "{:.2f} s\n", spec.sweep.param, format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count,
-             spec.record, spec.transient, out.computed, out.resumed, out.seconds);
+  fmt::print(
+      "orbit diagram of {} over [{}, {}], {} values x {} crossings after {} steps: {} computed, {} resumed, "
+      "{:.2f} s\n",
+      spec.sweep.param, format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count, spec.record,
+      spec.transient, out.computed, out.resumed, out.seconds);
   fmt::print("wrote {}\n", (dir.path() / "orbit.csv").string());
   return 0;
 }
@@ -247,17 +249,21 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   if (mpi && !mpi->coordinator()) return 0;  // a worker rank: rank 0 reports
   const RunDirectory& dir = *made;
   const auto counts = rimless::basin_counts(read_text_file(dir.path() / "basin.csv"));
-  const std::string area_unit = fmt::format("({}) x ({})", s.config.schema().find(spec.x.key)->unit,
-                                            s.config.schema().find(spec.y.key)->unit);
+  const std::string area_unit =
+      fmt::format("({}) x ({})", s.config.schema().find(spec.x.key)->unit, s.config.schema().find(spec.y.key)->unit);
   dir.write("summary.json", rimless::basin_summary_json(spec, a.section, ref, counts, area_unit));
   const rimless::BasinSize size = rimless::basin_size(spec, counts);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"basin", dir.path().string()});
   if (!ref.found)
-    fmt::print(stderr, "warning: no reference gait (Newton from the configured initial state: {}); no cell can "
-                       "converge\n", one_line(ref.failure, 300));
-  fmt::print("basin over {} x {} ({} cells): {} converged to the '{}' gait ({:.4f} of the grid, area {:.6g} {}), "
-             "{} computed, {} resumed, {:.2f} s\n", spec.x.key, spec.y.key, spec.cells(), size.converged, ref.gait,
-             size.fraction, size.area(), area_unit, out.computed, out.resumed, out.seconds);
+    fmt::print(stderr,
+               "warning: no reference gait (Newton from the configured initial state: {}); no cell can "
+               "converge\n",
+               one_line(ref.failure, 300));
+  fmt::print(
+      "basin over {} x {} ({} cells): {} converged to the '{}' gait ({:.4f} of the grid, area {:.6g} {}), "
+      "{} computed, {} resumed, {:.2f} s\n",
+      spec.x.key, spec.y.key, spec.cells(), size.converged, ref.gait, size.fraction, size.area(), area_unit,
+      out.computed, out.resumed, out.seconds);
   fmt::print("wrote {}\n", (dir.path() / "basin.csv").string());
   return 0;
 }
@@ -265,15 +271,20 @@ int basin(const MapRun& a, const CLI::App& cmd) {
 }  // namespace
 
 void add_map_options(CLI::App& anc, MapOptions& o) {
-  anc.add_option("--param", o.param, "orbit-diagram: real configuration key to vary (e.g. rimless.slope), or "
-                                     "rimless.mu for mu_s = mu_k");
+  anc.add_option("--param", o.param,
+                 "orbit-diagram: real configuration key to vary (e.g. rimless.slope), or "
+                 "rimless.mu for mu_s = mu_k");
   const rimless::OrbitDiagramOptions orbit;
   const rimless::BasinOptions basin;
-  anc.add_option("--transient", o.transient, fmt::format("orbit-diagram: steps simulated before the first recorded "
-                                                         "crossing; sets analysis.orbit.transient ({})", orbit.transient))
+  anc.add_option("--transient", o.transient,
+                 fmt::format("orbit-diagram: steps simulated before the first recorded "
+                             "crossing; sets analysis.orbit.transient ({})",
+                             orbit.transient))
       ->type_name("INT");
-  anc.add_option("--record", o.record, fmt::format("orbit-diagram: section crossings recorded at each value; sets "
-                                                   "analysis.orbit.record ({})", orbit.record))
+  anc.add_option("--record", o.record,
+                 fmt::format("orbit-diagram: section crossings recorded at each value; sets "
+                             "analysis.orbit.record ({})",
+                             orbit.record))
       ->type_name("INT");
   anc.add_option("--branch", o.branches,
                  "orbit-diagram: a branch.csv of `rimless continuation` in the same key, "
@@ -284,19 +295,22 @@ void add_map_options(CLI::App& anc, MapOptions& o) {
   anc.add_option("--y", o.y, "basin: key of the initial state on the y axis");
   anc.add_option("--x-range", o.x_range, "basin: FROM:TO:COUNT of the x key (its unit)")->type_name("A:B:N");
   anc.add_option("--y-range", o.y_range, "basin: FROM:TO:COUNT of the y key (its unit)")->type_name("A:B:N");
-  anc.add_option("--steps-limit", o.steps_limit, fmt::format("basin: section crossings simulated per cell at most; "
-                                                             "sets analysis.basin.steps_limit ({})", basin.steps_limit))
+  anc.add_option("--steps-limit", o.steps_limit,
+                 fmt::format("basin: section crossings simulated per cell at most; "
+                             "sets analysis.basin.steps_limit ({})",
+                             basin.steps_limit))
       ->type_name("INT");
-  anc.add_option("--tolerance", o.tolerance, fmt::format("basin: converged when every section-state component is "
-                                                         "within this fraction of its scale (sqrt(g L0), sqrt(g/L0), "
-                                                         "alpha) of the gait's; sets analysis.basin.tolerance ({})",
-                                                         format_number(basin.tolerance)))
+  anc.add_option("--tolerance", o.tolerance,
+                 fmt::format("basin: converged when every section-state component is "
+                             "within this fraction of its scale (sqrt(g L0), sqrt(g/L0), "
+                             "alpha) of the gait's; sets analysis.basin.tolerance ({})",
+                             format_number(basin.tolerance)))
       ->type_name("FLOAT");
 }
 
 const std::vector<std::string>& map_option_names() {
-  static const std::vector<std::string> names{"--param", "--transient", "--record", "--branch", "--x", "--y",
-                                              "--x-range", "--y-range", "--steps-limit", "--tolerance"};
+  static const std::vector<std::string> names{"--param", "--transient", "--record",  "--branch",      "--x",
+                                              "--y",     "--x-range",   "--y-range", "--steps-limit", "--tolerance"};
   return names;
 }
 

@@ -12,11 +12,11 @@ namespace flexgait::cli {
 
 /// The options only these two analyses take (besides --from/--to/--count, --jobs, --resume, --section).
 struct MapOptions {
-  std::string param;            ///< orbit-diagram: the key varied
-  std::string transient, record;  ///< orbit-diagram: as given, set as analysis.orbit.transient and .record
-  std::vector<std::string> branches;  ///< orbit-diagram: branch.csv files of `rimless continuation` to overlay
-  std::string x, y;             ///< basin: keys of the initial state
-  std::string x_range, y_range; ///< basin: FROM:TO:COUNT
+  std::string param;                   ///< orbit-diagram: the key varied
+  std::string transient, record;       ///< orbit-diagram: as given, set as analysis.orbit.transient and .record
+  std::vector<std::string> branches;   ///< orbit-diagram: branch.csv files of `rimless continuation` to overlay
+  std::string x, y;                    ///< basin: keys of the initial state
+  std::string x_range, y_range;        ///< basin: FROM:TO:COUNT
   std::string steps_limit, tolerance;  ///< basin: as given, set as analysis.basin.steps_limit and .tolerance
 };
 
@@ -28,7 +28,7 @@ const std::vector<std::string>& map_option_names();
 
 /// What the analysis subcommand hands over.
 struct MapRun {
-  std::string name;   ///< "orbit-diagram" or "basin"
+  std::string name;  ///< "orbit-diagram" or "basin"
   RunOptions run;
   MapOptions map;
   double from = 0, to = 0;

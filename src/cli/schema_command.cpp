@@ -5,20 +5,20 @@
 #include <algorithm>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
-#include <nlohmann/json.hpp>
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/record_json.hpp"
+#include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
-#include "flexgait/core/sweep_runner.hpp"
 #include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/basin.hpp"
 #include "flexgait/rimless/gait_branch.hpp"
@@ -26,23 +26,30 @@
 #include "flexgait/rimless/output.hpp"
 #include "flexgait/rimless/poincare.hpp"
 #include "flexgait/rimless/simulation.hpp"
-#include "flexgait/rimless/sweep.hpp"
-#include "reproduce_command.hpp"
 #include "flexgait/rimless/stagnation.hpp"
+#include "flexgait/rimless/sweep.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
+#include "reproduce_command.hpp"
 
 namespace flexgait::cli {
 namespace {
 
 const char* type_name(ParamType type) {
   switch (type) {
-    case ParamType::Real: return "real";
-    case ParamType::Integer: return "integer";
-    case ParamType::Boolean: return "boolean";
-    case ParamType::Choice: return "choice";
-    case ParamType::Text: return "text";
-    case ParamType::List: return "list";
-    case ParamType::Reals: return "list of real";
+    case ParamType::Real:
+      return "real";
+    case ParamType::Integer:
+      return "integer";
+    case ParamType::Boolean:
+      return "boolean";
+    case ParamType::Choice:
+      return "choice";
+    case ParamType::Text:
+      return "text";
+    case ParamType::List:
+      return "list";
+    case ParamType::Reals:
+      return "list of real";
   }
   return "?";
 }
@@ -61,8 +68,13 @@ nlohmann::ordered_json configuration_json(const Schema& schema) {
     if (p.type == ParamType::List) {
       nlohmann::ordered_json fields = nlohmann::ordered_json::array();
       for (const ParamSpec& f : p.item_fields)
-        fields.push_back({{"name", f.key}, {"type", type_name(f.type)}, {"length", f.length}, {"unit", f.unit},
-                          {"doc", f.doc}, {"allowed", f.allowed()}, {"optional", f.optional}});
+        fields.push_back({{"name", f.key},
+                          {"type", type_name(f.type)},
+                          {"length", f.length},
+                          {"unit", f.unit},
+                          {"doc", f.doc},
+                          {"allowed", f.allowed()},
+                          {"optional", f.optional}});
       k["item_fields"] = std::move(fields);
     }
     keys.push_back(std::move(k));
@@ -250,7 +262,9 @@ std::string schema_document() {
   doc["aliases"]["humanoid-bench"] = aliases_json(experiments::bench_schema());
   nlohmann::ordered_json rimless_summary = record_schema_json<rimless::SimulationResult>();
   rimless_summary["fields"].insert(rimless_summary["fields"].begin(),
-                                   nlohmann::ordered_json{{"key", "model"}, {"type", "choice"}, {"unit", ""},
+                                   nlohmann::ordered_json{{"key", "model"},
+                                                          {"type", "choice"},
+                                                          {"unit", ""},
                                                           {"doc", "sim.model of the run"},
                                                           {"choices", enum_name_list<rimless::Model>()}});
   doc["results"]["rimless simulate: summary.json"] = std::move(rimless_summary);

@@ -16,7 +16,8 @@ namespace {
 TEST(SummaryCells, FlattensUnderTheSummarysKeys) {
   const std::string json =
       R"({"a": 1, "b": 0.1, "c": null, "d": true, "e": "x, y", "f": ["p", "q"], "g": [[0.5, -1], [2, 0]]})";
-  EXPECT_EQ(summary_cells(json, {"a", "b", "c", "d", "e", "f", "g", "missing"}), "1,0.1,,true,\"x, y\",p;q,0.5:-1;2:0,");
+  EXPECT_EQ(summary_cells(json, {"a", "b", "c", "d", "e", "f", "g", "missing"}),
+            "1,0.1,,true,\"x, y\",p;q,0.5:-1;2:0,");
   // Doubles round-trip: the cell is format_number of the value.
   EXPECT_EQ(summary_cells(R"({"v": 0.30000000000000004})", {"v"}), format_number(0.30000000000000004));
 }
@@ -37,7 +38,9 @@ Experiment toy() {
   return e;
 }
 
-Config toy_base() { return resolve_config(toy().schema, std::nullopt, {}); }
+Config toy_base() {
+  return resolve_config(toy().schema, std::nullopt, {});
+}
 
 TEST(Campaign, RowsHoldAxesMetricsAndTheErrorOfAFailedPoint) {
   const Campaign c(toy(), toy_base(), Grid({parse_grid_axis("x=2,3"), parse_grid_axis("y=0:1:2")}));

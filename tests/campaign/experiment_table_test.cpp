@@ -36,7 +36,8 @@ TEST(ExperimentTable, FindsEveryNameAndRefusesOthersListingThem) {
     find_experiment("humanoid-run");
     FAIL() << "humanoid-run found";
   } catch (const UsageError& e) {
-    for (const auto& name : experiment_names()) EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    for (const auto& name : experiment_names())
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
   }
 }
 

@@ -10,7 +10,9 @@
 namespace flexgait::campaign {
 namespace {
 
-Grid two_by_three() { return Grid({parse_grid_axis("a=1,2"), parse_grid_axis("seed=1:3:3")}); }
+Grid two_by_three() {
+  return Grid({parse_grid_axis("a=1,2"), parse_grid_axis("seed=1:3:3")});
+}
 
 // index, a, seed | fell, x, gait, list | error
 const char* kTable =

@@ -30,7 +30,9 @@ using walking::Vector3d;
 
 using fixtures::kBelief;
 
-CompensationParams calibration_params() { return fixtures::identification_params(KEstimation::kCalibrate); }
+CompensationParams calibration_params() {
+  return fixtures::identification_params(KEstimation::kCalibrate);
+}
 
 /// The true stiffness: 1250 Nm/rad × 1.2 (hip roll, knee) or × 0.8 (hip pitch, ankle pitch, ankle roll) on the
 /// left, the other way round on the right.
@@ -40,7 +42,7 @@ JointVector true_stiffness() {
   for (int side = 0; side < 2; ++side) {
     const int f = humanoid::leg_first_joint(side);
     const double up = side == 0 ? 1.2 : 0.8, down = 2.0 - up;
-    k[f + 1] *= up, k[f + 3] *= up;                    // hip roll, knee
+    k[f + 1] *= up, k[f + 3] *= up;                        // hip roll, knee
     k[f + 2] *= down, k[f + 4] *= down, k[f + 5] *= down;  // hip pitch, ankle pitch, ankle roll
   }
   return k;
@@ -87,7 +89,9 @@ TEST(ChainStiffnessCalibration, TheRegressorIsTheRelativeTiltsDerivative) {
   {
     walking::RobotModelData d;
     walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
-    phi = walking::rotation_vector(walking::sole_pose(s.model, d, 0).R.transpose() * walking::sole_pose(s.model, d, 1).R).norm();
+    phi =
+        walking::rotation_vector(walking::sole_pose(s.model, d, 0).R.transpose() * walking::sole_pose(s.model, d, 1).R)
+            .norm();
   }
   EXPECT_GT(phi, 0.03);
   int checked = 0;
@@ -111,7 +115,8 @@ TEST(ChainStiffnessCalibration, TheRegressorIsTheRelativeTiltsDerivative) {
 }
 
 /// n periods of the stance with each joint's torque drawn on its own in [−20, 20] Nm, the encoders θ_link + τ/k.
-void feed(ChainStiffnessCalibration& c, const Stance& s, const JointVector& q_link, const JointVector& k, int n, double t0) {
+void feed(ChainStiffnessCalibration& c, const Stance& s, const JointVector& q_link, const JointVector& k, int n,
+          double t0) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> torque(-20.0, 20.0);
   JointVector tau{}, encoder{};
@@ -134,10 +139,12 @@ TEST(ChainStiffnessCalibration, FindsEachJointAndTheFloorsTiltWhenEachJointsTorq
   walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
   const walking::Pose right = walking::sole_pose(s.model, d, 1);
   const Matrix3d tilt = walking::rot_x(0.01) * walking::rot_y(0.005);
-  const walking::IkSolution ik = walking::leg_inverse_kinematics(s.model.leg[1], walking::Pose{right.p, right.R * tilt});
+  const walking::IkSolution ik =
+      walking::leg_inverse_kinematics(s.model.leg[1], walking::Pose{right.p, right.R * tilt});
   for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(1) + i] = ik.q[i];
   walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, q);
-  const Vector3d y0 = walking::rotation_vector(walking::sole_pose(s.model, d, 0).R.transpose() * walking::sole_pose(s.model, d, 1).R);
+  const Vector3d y0 =
+      walking::rotation_vector(walking::sole_pose(s.model, d, 0).R.transpose() * walking::sole_pose(s.model, d, 1).R);
   ASSERT_NEAR(y0.x(), 0.01, 1e-3) << "the inverse kinematics put the right sole on its tilted floor";
 
   const JointVector k = true_stiffness();
@@ -311,9 +318,9 @@ TEST(ChainStiffnessCalibration, BadDataASwingingFootOrTimesOutsideTheWindowGiveN
   EXPECT_EQ(c.bad_data(), 0);
   JointVector nan_tau = tau;
   nan_tau[humanoid::kLeftKnee] = NAN;
-  c.update(1.3, s.q, nan_tau, readings(s, 1.3), s.plan(), true);   // a NaN
-  c.update(1.4, s.q, tau, readings(s, 1.3), s.plan(), true);       // an F/T reading 0.1 s old
-  c.update(1.5, s.q, tau, readings(s, 1.5), s.plan(), false);      // the controller flags a sensor
+  c.update(1.3, s.q, nan_tau, readings(s, 1.3), s.plan(), true);  // a NaN
+  c.update(1.4, s.q, tau, readings(s, 1.3), s.plan(), true);      // an F/T reading 0.1 s old
+  c.update(1.5, s.q, tau, readings(s, 1.5), s.plan(), false);     // the controller flags a sensor
   EXPECT_EQ(c.samples(), 0);
   EXPECT_EQ(c.bad_data(), 3);
   for (int j = 0; j < kJoints; ++j) EXPECT_EQ(c.estimate()[j], kBelief);

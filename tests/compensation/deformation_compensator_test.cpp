@@ -2,16 +2,16 @@
 // field baselines and the twin's statics have test files of their own). The output compensator
 // (spec eqs. 10-13): Newton's method recovers the link angles that the
 // encoders imply through the deformation model to 1e-12 rad in at most 5 iterations (8 with G
-// reused, the default), on the single-joint bench (τ_g = −m g l cos θ) and on both legs; the one-step form (12) is second
-// order in the deflection; a bounded, non-converged solve says so and falls back; and the
-// compensators allocate nothing.
+// reused, the default), on the single-joint bench (τ_g = −m g l cos θ) and on both legs; the one-step form (12) is
+// second order in the deflection; a bounded, non-converged solve says so and falls back; and the compensators allocate
+// nothing.
 #include "flexgait/compensation/deformation_compensator.hpp"
 
 #include <gtest/gtest.h>
 
-#include "../support/count_allocations.hpp"
 #include <cmath>
 #include <random>
+#include "../support/count_allocations.hpp"
 
 using flexgait::testing::g_allocations;
 
@@ -138,7 +138,8 @@ TEST_P(OutputCompensatorLegs, RecoversTheLinkAnglesThatTheModelDeflects) {
     const Matrix3d R = walking::rot_x(tilt(rng)) * walking::rot_y(tilt(rng));
     SupportPlan plan;
     plan.swinging = {trial % 3 == 1, trial % 3 == 2};  // double, left swing, right swing
-    plan.soles = {Pose{Vector3d(0.05, 0.093, 0), Matrix3d::Identity()}, Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
+    plan.soles = {Pose{Vector3d(0.05, 0.093, 0), Matrix3d::Identity()},
+                  Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
     plan.zmp_ref = Eigen::Vector2d(0.02, tilt(rng));
     p.k_joint = 1.0;
     for (auto& kj : p.k_scale) kj = k(rng);
@@ -176,7 +177,8 @@ TEST(OutputCompensator, FlagsAndFallsBackWhenTheIterationsRunOut) {
   std::mt19937 rng(9);
   SupportPlan plan;
   plan.swinging = {false, true};
-  plan.soles = {Pose{Vector3d(0, 0.093, 0), Matrix3d::Identity()}, Pose{Vector3d(0, -0.093, 0.05), Matrix3d::Identity()}};
+  plan.soles = {Pose{Vector3d(0, 0.093, 0), Matrix3d::Identity()},
+                Pose{Vector3d(0, -0.093, 0.05), Matrix3d::Identity()}};
   humanoid::JointVector encoder = bent_pose(rng);
   encoder[humanoid::kLeftHipRoll] += 0.04;
   const OutputEstimate& e = c.output(encoder, Matrix3d::Identity(), plan);
@@ -213,7 +215,8 @@ TEST(DeformationCompensator, AllocatesNothing) {
     std::mt19937 rng(17);
     const humanoid::JointVector q = bent_pose(rng);
     SupportPlan plan;
-    plan.soles = {Pose{Vector3d(0, 0.093, 0), Matrix3d::Identity()}, Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
+    plan.soles = {Pose{Vector3d(0, 0.093, 0), Matrix3d::Identity()},
+                  Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
     const long before = g_allocations.load();
     for (int k = 0; k < 100; ++k) {
       c.input(q, Matrix3d::Identity(), plan);

@@ -25,7 +25,8 @@ struct Stance {
     walking::RobotModelData data;
     for (int it = 0; it < 40; ++it) {
       for (int side = 0; side < 2; ++side) {
-        const walking::IkSolution ik = walking::leg_inverse_kinematics(model.leg[side], Pose{soles[side].p - pelvis.p, Matrix3d::Identity()});
+        const walking::IkSolution ik =
+            walking::leg_inverse_kinematics(model.leg[side], Pose{soles[side].p - pelvis.p, Matrix3d::Identity()});
         for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(side) + i] = ik.q[i];
       }
       walking::forward_kinematics(model, data, pelvis, q);
@@ -47,9 +48,11 @@ struct Stance {
     for (int side = 0; side < 2; ++side) {
       const Pose& foot = data.frame[model.foot[side]];
       const auto& b = model.bodies[model.foot[side]];
-      const Vector3d ground(0, 0, 0.5 * model.total_mass * walking::kGravity), weight(0, 0, -b.mass * walking::kGravity);
+      const Vector3d ground(0, 0, 0.5 * model.total_mass * walking::kGravity),
+          weight(0, 0, -b.mass * walking::kGravity);
       const Vector3d f = -ground - weight;
-      const Vector3d m = -(walking::sole_pose(model, data, side).p - foot.p).cross(ground) - (foot.R * b.com).cross(weight);
+      const Vector3d m =
+          -(walking::sole_pose(model, data, side).p - foot.p).cross(ground) - (foot.R * b.com).cross(weight);
       const Vector3d fs = foot.R.transpose() * f, ms = foot.R.transpose() * m;
       for (int i = 0; i < 3; ++i) ft[side].force[i] = fs(i), ft[side].torque[i] = ms(i);
     }

@@ -34,8 +34,8 @@ struct LeftStance {
     plan.swinging = {false, true};
     plan.zmp_ref = plan.soles[0].p.head<2>();
     for (int side = 0; side < 2; ++side) {
-      const walking::IkSolution ik =
-          walking::leg_inverse_kinematics(model.leg[side], Pose{plan.soles[side].p - Vector3d(0, y, 0.72), Matrix3d::Identity()});
+      const walking::IkSolution ik = walking::leg_inverse_kinematics(
+          model.leg[side], Pose{plan.soles[side].p - Vector3d(0, y, 0.72), Matrix3d::Identity()});
       for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(side) + i] = ik.q[i];
     }
   }

@@ -20,7 +20,7 @@ constexpr std::array<bool, 2> kDouble{false, false};
 
 TEST(WeightSplit, AtBothFeetAndTheMidpoint) {
   const Eigen::Vector2d left(0.1, 0.093), right(0.0, -0.093);
-  EXPECT_DOUBLE_EQ(weight_split(left, left, right), 1.0);   // eq. 5: all on the left
+  EXPECT_DOUBLE_EQ(weight_split(left, left, right), 1.0);  // eq. 5: all on the left
   EXPECT_DOUBLE_EQ(weight_split(right, left, right), 0.0);
   EXPECT_NEAR(weight_split(0.5 * (left + right), left, right), 0.5, 1e-15);
   EXPECT_NEAR(weight_split(0.75 * left + 0.25 * right, left, right), 0.75, 1e-15);
@@ -54,7 +54,8 @@ TEST(SupportLoads, DoubleSupportForcesHaveTheirResultantAtThePoint) {
   std::uniform_real_distribution<double> s(0.0, 1.0), off(-0.03, 0.03);
   for (int trial = 0; trial < 100; ++trial) {
     const double a = s(rng);
-    const Eigen::Vector2d point = a * soles[0].p.head<2>() + (1 - a) * soles[1].p.head<2>() + Eigen::Vector2d(off(rng), 0);
+    const Eigen::Vector2d point =
+        a * soles[0].p.head<2>() + (1 - a) * soles[1].p.head<2>() + Eigen::Vector2d(off(rng), 0);
     const FootLoads loads = support_loads(point, soles, kDouble, 0.22, 0.15);
     EXPECT_NEAR(loads.share[0] + loads.share[1], 1.0, 1e-15);
     Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
@@ -111,9 +112,9 @@ TEST(GravityTorque, IsMinusJacobianTransposeTimesTheGroundForceByVirtualWork) {
         EXPECT_NEAR(thesis[j], virtual_work, 1e-8 * weight) << humanoid::kJointNames[j];
         // The forms differ by the legs' own weight and the force's point of action (cop).
         const walking::LegJacobian J = walking::leg_jacobian(
-            model, data, side, walking::sole_pose(model, data, side).p +
-                                    walking::sole_pose(model, data, side).R *
-                                        Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
+            model, data, side,
+            walking::sole_pose(model, data, side).p +
+                walking::sole_pose(model, data, side).R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
         const double expected = g(i) - J(2, i) * loads.share[side] * weight;
         EXPECT_NEAR(full[j], expected, 1e-10) << humanoid::kJointNames[j];
       }

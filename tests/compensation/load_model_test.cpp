@@ -1,6 +1,6 @@
 // control.load_model (issue 20): the measured load (ankle F/T wrenches, read by the output
-// compensator) equals the thesis's weight split when the readings are what the split assumes — the robot standing still in double support,
-// half the weight under each sole centre — exactly without noise and to the F/T noise with it; the
+// compensator) equals the thesis's weight split when the readings are what the split assumes — the robot standing still
+// in double support, half the weight under each sole centre — exactly without noise and to the F/T noise with it; the
 // output compensator then finds the same joint angles. The dynamic load adds exactly the Newton–Euler
 // inertial torques of the planned motion (a constant joint acceleration, differentiated by the
 // compensator), and at rest it is the measured load.
@@ -88,7 +88,8 @@ TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillToTheFtNoise) {
     const walking::LegJacobian J = walking::leg_jacobian(s.model, data, side, sensor);
     for (int i = 0; i < humanoid::kLegJoints; ++i) {
       const int j = humanoid::leg_first_joint(side) + i;
-      const double sd = filtered * std::sqrt(sf * sf * J.col(i).head<3>().squaredNorm() + st * st * J.col(i).tail<3>().squaredNorm());
+      const double sd =
+          filtered * std::sqrt(sf * sf * J.col(i).head<3>().squaredNorm() + st * st * J.col(i).tail<3>().squaredNorm());
       EXPECT_NEAR(em.gravity_torque[j], eg.gravity_torque[j], 5 * sd) << j;
       // θ̂ moves by (K + G)⁻¹ Δτ ≈ Δτ / k: 5 sd / k.
       EXPECT_NEAR(em.newton[j], eg.newton[j], 5 * sd / p.k_joint) << j;
@@ -172,7 +173,8 @@ TEST(LoadModel, PlanHorizontalForceAddsMinusJacobianTransposeOfItsShareAtTheCent
   }
   walking::RobotModelData data;
   walking::forward_kinematics(s.model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, s.q);
-  const FootLoads loads = support_loads(plan.zmp_ref, plan.soles, plan.swinging, s.model.sole_length, s.model.sole_width);
+  const FootLoads loads =
+      support_loads(plan.zmp_ref, plan.soles, plan.swinging, s.model.sole_length, s.model.sole_width);
   ASSERT_EQ(loads.share[0], 1.0);
   const Pose sole = walking::sole_pose(s.model, data, 0);
   const Vector3d cop = sole.p + sole.R * Vector3d(loads.cop[0].x(), loads.cop[0].y(), 0);

@@ -18,13 +18,13 @@
 namespace flexgait::compensation {
 namespace {
 
+using fixtures::kBelief;
 using humanoid::JointVector;
 using humanoid::kJoints;
 using walking::Matrix3d;
-using fixtures::kBelief;
 
 constexpr double kPeriod = 0.004;  // [s]
-constexpr double kTrue = 1250.0;  // [Nm/rad]
+constexpr double kTrue = 1250.0;   // [Nm/rad]
 const humanoid::Imu kStill = [] {  // the IMU of a pelvis at rest, level: zero rate, +g up
   humanoid::Imu imu;
   imu.accel = {0.0, 0.0, 9.81};
@@ -88,7 +88,9 @@ TEST(ForgettingRls, ForgettingTracksAChangeAndNonFiniteDataChangesNothing) {
 using fixtures::readings;
 using fixtures::Stance;
 
-CompensationParams estimation_params() { return fixtures::identification_params(KEstimation::kOn); }
+CompensationParams estimation_params() {
+  return fixtures::identification_params(KEstimation::kOn);
+}
 
 /// An estimator of estimation_params() with change(params) applied; rest_end: the end of the gyro's calibration [s].
 template <class Change>
@@ -197,12 +199,14 @@ TEST(StiffnessEstimator, StanceOffsetsRemoveAnAttitudeErrorConstantOverEachStanc
 TEST(StiffnessEstimator, TheCalibrationAtRestFindsTheGyrosBiasWhileThePelvisTurnsSlowly) {
   const Stance s;
   const double rest_end = 1.2, turn_rate = 3e-4;  // [s], [rad/s]
-  StiffnessEstimator e = estimator(s, [](CompensationParams& p) { p.k_estimation_gyro_rest = 1.0; }, rest_end);
+  StiffnessEstimator e = estimator(
+      s, [](CompensationParams& p) { p.k_estimation_gyro_rest = 1.0; }, rest_end);
   const walking::Vector3d bias(0.001, -0.002, 0.0005), gravity(0, 0, 9.81);
   // The soles in the upright pelvis's frame; the pelvis turns about its origin, the soles stay.
   walking::RobotModelData data;
   walking::forward_kinematics(s.model, data, walking::Pose{walking::Vector3d::Zero(), Matrix3d::Identity()}, s.q);
-  const std::array<walking::Pose, 2> soles = {walking::sole_pose(s.model, data, 0), walking::sole_pose(s.model, data, 1)};
+  const std::array<walking::Pose, 2> soles = {walking::sole_pose(s.model, data, 0),
+                                              walking::sole_pose(s.model, data, 1)};
   JointVector tau{};
   tau.fill(30.0);
   long k = 0;
@@ -211,9 +215,10 @@ TEST(StiffnessEstimator, TheCalibrationAtRestFindsTheGyrosBiasWhileThePelvisTurn
     const Matrix3d R = walking::rot_x(0.01 + turn_rate * t);
     JointVector encoder{};
     for (int side = 0; side < 2; ++side) {
-      const walking::IkSolution ik =
-          walking::leg_inverse_kinematics(s.model.leg[side], walking::Pose{R.transpose() * soles[side].p, R.transpose() * soles[side].R});
-      for (int i = 0; i < humanoid::kLegJoints; ++i) encoder[humanoid::leg_first_joint(side) + i] = ik.q[i] + tau[i] / kBelief;
+      const walking::IkSolution ik = walking::leg_inverse_kinematics(
+          s.model.leg[side], walking::Pose{R.transpose() * soles[side].p, R.transpose() * soles[side].R});
+      for (int i = 0; i < humanoid::kLegJoints; ++i)
+        encoder[humanoid::leg_first_joint(side) + i] = ik.q[i] + tau[i] / kBelief;
     }
     humanoid::Imu imu;
     const walking::Vector3d gyro = walking::Vector3d(turn_rate, 0, 0) + bias, accel = R.transpose() * gravity;
@@ -236,7 +241,8 @@ TEST(StiffnessEstimator, BadDataKeepsTheEstimateAndAdversarialDataStaysBoundedAn
   JointVector tau{}, encoder = s.q;
   tau.fill(30.0);
   for (int j = 0; j < kJoints; ++j) encoder[j] += tau[j] / kTrue;
-  for (int k = 0; k < 100; ++k) e.update(k * kPeriod, encoder, Matrix3d::Identity(), kStill, tau, readings(s, k * kPeriod), s.plan(), true);
+  for (int k = 0; k < 100; ++k)
+    e.update(k * kPeriod, encoder, Matrix3d::Identity(), kStill, tau, readings(s, k * kPeriod), s.plan(), true);
   const JointVector before = e.estimate();
   const double t = 100 * kPeriod;
   JointVector nan_encoder = encoder;
@@ -246,12 +252,13 @@ TEST(StiffnessEstimator, BadDataKeepsTheEstimateAndAdversarialDataStaysBoundedAn
   EXPECT_EQ(e.update(t, nan_encoder, Matrix3d::Identity(), kStill, tau, readings(s, t), s.plan(), true), 0);
   EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, nan_ft, s.plan(), true), 0);
   EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t - 0.1), s.plan(), true), 0);  // stale
-  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t), s.plan(), false), 0);       // flagged
+  EXPECT_EQ(e.update(t, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t), s.plan(), false), 0);  // flagged
   EXPECT_EQ(e.bad_data(), 4);
   EXPECT_EQ(e.estimate(), before);
   // Encoders bent the wrong way, far: the estimate hits its bound, k stays positive.
   for (int j = 0; j < kJoints; ++j) encoder[j] = s.q[j] - 0.3 * tau[j] / kTrue;
-  for (int k = 0; k < 2000; ++k) e.update(t + k * kPeriod, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t + k * kPeriod), s.plan(), true);
+  for (int k = 0; k < 2000; ++k)
+    e.update(t + k * kPeriod, encoder, Matrix3d::Identity(), kStill, tau, readings(s, t + k * kPeriod), s.plan(), true);
   for (int j = 0; j < kJoints; ++j) {
     EXPECT_GT(e.estimate()[j], 0.0);
     EXPECT_GE(e.estimate()[j], kBelief / 10 - 1e-9);

@@ -27,7 +27,7 @@ using walking::Vector3d;
 
 constexpr double kSwingLift = 0.05;  // the right foot held this high [m]
 // The whole body's slow sway on its compliant legs (~0.5 Hz) takes this long to die out to 1e-9 rad.
-constexpr double kHoldTime = 12.0;  // [s]
+constexpr double kHoldTime = 12.0;                                             // [s]
 const double kEncoderStep = 2 * M_PI / humanoid::PlantParams{}.encoder_steps;  // the twin's encoder resolution [rad]
 
 /// A robot: the controller's model, the twin, the pelvis height of the test pose [m].
@@ -39,16 +39,20 @@ struct Robot {
 
 /// The builtin robot, or (second) the loaded test robot, with this plant.
 Robot robot(bool second, const humanoid::PlantParams& plant) {
-  if (!second) return {walking::make_robot_model(humanoid::RobotParams{}), humanoid::builtin_twin(humanoid::RobotParams{}, plant), 0.72};
+  if (!second)
+    return {walking::make_robot_model(humanoid::RobotParams{}), humanoid::builtin_twin(humanoid::RobotParams{}, plant),
+            0.72};
   const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
   const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
-  experiments::WalkRunParams w = experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, {}));
+  experiments::WalkRunParams w =
+      experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, {}));
   w.plant = plant;
   return {experiments::walk_controller_model(w), experiments::walk_twin(w), 0.56};
 }
 
 /// Standing on the left foot, the right raised, the COM over the left sole centre (the model's).
-humanoid::JointVector single_support_pose(const walking::RobotModel& model, double pelvis_height, std::array<Pose, 2>& soles) {
+humanoid::JointVector single_support_pose(const walking::RobotModel& model, double pelvis_height,
+                                          std::array<Pose, 2>& soles) {
   const double y = model.leg[0].anchor[0].y();  // under the hip yaw axes
   soles = {Pose{Vector3d(0, y, 0), Matrix3d::Identity()}, Pose{Vector3d(0, -y, kSwingLift), Matrix3d::Identity()}};
   Pose pelvis{Vector3d(0, 0, pelvis_height), Matrix3d::Identity()};
@@ -117,8 +121,8 @@ TEST(TwinStatic, InputCompensationPutsTheLinksWhereDesired) {
   RecordProperty("link_error_off", std::to_string(off.link_error));
   RecordProperty("link_error_full", std::to_string(full.link_error));
   RecordProperty("link_error_thesis", std::to_string(thesis.link_error));
-  EXPECT_GT(off.link_error, 0.02);   // the gears sag by centiradians under the body
-  EXPECT_LT(full.link_error, 1e-6);  // issue 7's target is 1e-4; the model matches the twin to ~1e-8
+  EXPECT_GT(off.link_error, 0.02);                    // the gears sag by centiradians under the body
+  EXPECT_LT(full.link_error, 1e-6);                   // issue 7's target is 1e-4; the model matches the twin to ~1e-8
   EXPECT_GT(thesis.link_error, 5 * full.link_error);  // the legs' own weight matters
 }
 

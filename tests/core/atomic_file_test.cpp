@@ -88,7 +88,7 @@ TEST(AtomicFileWriter, AbandonedWriteLeavesNothing) {
     AtomicFileWriter file(dir / "log.csv");
     file.append("half a row");
     EXPECT_EQ(count_entries(dir), 1);  // the temporary file
-  }  // destroyed without commit: an exception unwound the run
+  }                                    // destroyed without commit: an exception unwound the run
   EXPECT_FALSE(std::filesystem::exists(dir / "log.csv"));
   EXPECT_EQ(count_entries(dir), 0);
 }

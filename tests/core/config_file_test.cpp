@@ -2,8 +2,8 @@
 // ConfigError naming the file and, where there is one, the line.
 #include "flexgait/core/config_file.hpp"
 
-#include <gtest/gtest.h>
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 
 #include <filesystem>
@@ -96,8 +96,9 @@ TEST(ConfigFile, ValuesMustBeSingleAndPresent) {
 class ConfigFileOnDisk : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("flexgait_config_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ =
+        std::filesystem::temp_directory_path() /
+        ("flexgait_config_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     std::filesystem::remove_all(dir_);
     std::filesystem::create_directories(dir_);
   }

@@ -52,8 +52,8 @@ TEST(ConfigReals, SetReachesTheRecord) {
 }
 
 TEST(ConfigReals, FileListAndYamlRoundTrip) {
-  const auto file = std::filesystem::temp_directory_path() /
-                    ("flexgait_config_reals_test_" + std::to_string(::getpid()) + ".yaml");
+  const auto file =
+      std::filesystem::temp_directory_path() / ("flexgait_config_reals_test_" + std::to_string(::getpid()) + ".yaml");
   std::ofstream(file) << "grid:\n  mu:\n    - 0.3\n    - 0.25\n";
   const Config c = resolve_config(schema_of<Grid>(), file, {});
   EXPECT_EQ(c.reals("grid.mu"), (std::vector<double>{0.3, 0.25}));

@@ -21,7 +21,8 @@ Schema test_schema() {
 }
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("flexgait_config_test_" + std::to_string(::getpid()) + "_" + name);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("flexgait_config_test_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
@@ -56,8 +57,8 @@ TEST(Config, CrossFieldErrorNamesEveryKeysOrigin) {
     ADD_FAILURE() << "no ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "model.legs");
-    EXPECT_EQ(std::string(e.what()), "--set: key 'model.legs' = '4': too few for model.K = 2500 (model.K from " +
-                                         file.string() + ":2)");
+    EXPECT_EQ(std::string(e.what()),
+              "--set: key 'model.legs' = '4': too few for model.K = 2500 (model.K from " + file.string() + ":2)");
   }
   try {  // a key named only inside a longer name is not named; one from the same origin adds nothing
     check_with_origin(c, [] { throw ConfigError("model.legs", "key 'model.legs': see model.K_max and run.model.x"); });

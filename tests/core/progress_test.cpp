@@ -28,7 +28,8 @@ TEST(ProgressBar, OffATerminalOneLinePerTenthReached) {
   const std::vector<std::string> out = lines(testing::internal::GetCapturedStderr());
   ASSERT_EQ(out.size(), 11u);
   for (int tenth = 0; tenth <= 10; ++tenth)
-    EXPECT_EQ(out[static_cast<std::size_t>(tenth)].substr(0, 6), (tenth == 10 ? "100 % " : (tenth == 0 ? "  0 % " : " " + std::to_string(10 * tenth) + " % ")));
+    EXPECT_EQ(out[static_cast<std::size_t>(tenth)].substr(0, 6),
+              (tenth == 10 ? "100 % " : (tenth == 0 ? "  0 % " : " " + std::to_string(10 * tenth) + " % ")));
   EXPECT_EQ(out.front().find("(0/20 points)"), 6u);
   EXPECT_EQ(out.back().find("(20/20 points)"), 6u);
 }

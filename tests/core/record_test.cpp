@@ -10,12 +10,12 @@
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/core/record_json.hpp"
-#include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/robot/robot_description.hpp"
-#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/parameters.hpp"
+#include "flexgait/robot/robot_description.hpp"
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/walk_params.hpp"
 
 namespace flexgait {
@@ -28,11 +28,16 @@ struct Collect {
   std::map<std::string, Value> values;
   template <class T>
   void operator()(std::string_view key, const T& v, const FieldInfo&) {
-    if constexpr (NamedEnum<T>) values[std::string(key)] = std::string(name_of(v));
-    else if constexpr (std::is_same_v<T, bool>) values[std::string(key)] = v;
-    else if constexpr (std::is_integral_v<T>) values[std::string(key)] = static_cast<std::int64_t>(v);
-    else if constexpr (std::is_same_v<T, std::string>) values[std::string(key)] = v;
-    else values[std::string(key)] = static_cast<double>(v);
+    if constexpr (NamedEnum<T>)
+      values[std::string(key)] = std::string(name_of(v));
+    else if constexpr (std::is_same_v<T, bool>)
+      values[std::string(key)] = v;
+    else if constexpr (std::is_integral_v<T>)
+      values[std::string(key)] = static_cast<std::int64_t>(v);
+    else if constexpr (std::is_same_v<T, std::string>)
+      values[std::string(key)] = v;
+    else
+      values[std::string(key)] = static_cast<double>(v);
   }
 };
 
@@ -46,8 +51,10 @@ std::map<std::string, Value> values_of(const R& r) {
 // A value of the key's domain other than `current` (the perturbation must reach the member).
 std::string other_value(const ParamSpec& p, const Value& current) {
   switch (p.type) {
-    case ParamType::Boolean: return std::get<bool>(current) ? "false" : "true";
-    case ParamType::Text: return std::get<std::string>(current) + "_2";
+    case ParamType::Boolean:
+      return std::get<bool>(current) ? "false" : "true";
+    case ParamType::Text:
+      return std::get<std::string>(current) + "_2";
     case ParamType::Choice:
       for (const auto& c : p.choices)
         if (c != std::get<std::string>(current)) return c;
@@ -63,8 +70,10 @@ std::string other_value(const ParamSpec& p, const Value& current) {
       const bool up_ok = p.max_inclusive ? up <= p.max : up < p.max;
       return format_value(up_ok ? up : down);
     }
-    case ParamType::List: return {};  // no record checked here holds one (experiments/push_list_test.cpp)
-    case ParamType::Reals: return {};  // (core/config_reals_test.cpp)
+    case ParamType::List:
+      return {};  // no record checked here holds one (experiments/push_list_test.cpp)
+    case ParamType::Reals:
+      return {};  // (core/config_reals_test.cpp)
   }
   return {};
 }
@@ -83,8 +92,10 @@ void check_record() {
     const Config changed = resolve_config(schema, std::nullopt, {p.key + "=" + text});
     const auto read = values_of(record_from_config<R>(changed));
     for (const auto& [key, value] : read) {
-      if (key == p.key) EXPECT_NE(value, defaults.at(key)) << key << " = " << text << " did not reach its member";
-      else EXPECT_EQ(value, defaults.at(key)) << "setting " << p.key << " changed " << key;
+      if (key == p.key)
+        EXPECT_NE(value, defaults.at(key)) << key << " = " << text << " did not reach its member";
+      else
+        EXPECT_EQ(value, defaults.at(key)) << "setting " << p.key << " changed " << key;
     }
   }
 }
@@ -116,7 +127,8 @@ TEST(Record, PlantStiffnessDefaultIsTheSchemasDefault) {
 
 TEST(Record, ChoicesComeFromTheEnumTable) {
   const Schema s = compensation::compensation_schema();
-  EXPECT_EQ(s.find("control.compensation")->choices, (std::vector<std::string>{"off", "input", "output", "both", "robotis", "talos"}));
+  EXPECT_EQ(s.find("control.compensation")->choices,
+            (std::vector<std::string>{"off", "input", "output", "both", "robotis", "talos"}));
   EXPECT_EQ(s.find("control.weight_split")->fallback, "zmp");
   for (const auto& name : enum_name_list<compensation::CompensationMode>())
     EXPECT_EQ(name_of(*enum_from_name<compensation::CompensationMode>(name)), name);
@@ -127,7 +139,10 @@ TEST(Record, ChoicesComeFromTheEnumTable) {
 
 TEST(Record, WalkRunSchemaIsTheUnionOfItsParts) {
   Schema parts = humanoid::robot_schema();
-  parts.merge(schema_of<humanoid::RobotDescriptionParams>()).merge(humanoid::plant_schema()).merge(walking::walk_schema()).merge(walking::balance_schema());
+  parts.merge(schema_of<humanoid::RobotDescriptionParams>())
+      .merge(humanoid::plant_schema())
+      .merge(walking::walk_schema())
+      .merge(walking::balance_schema());
   parts.merge(compensation::compensation_schema()).merge(schema_of<walking::EstimatorParams>());
   parts.merge(schema_of<walking::HealthParams>()).merge(schema_of<humanoid::Push>());
   const Schema run = experiments::walk_run_schema();
@@ -144,8 +159,8 @@ TEST(Record, JsonLeavesOutFieldsThatDoNotApply) {
   EXPECT_FALSE(off.contains("estimate_error_rms"));
   EXPECT_EQ(off["compensation"], "input");
   m.compensation = compensation::CompensationMode::kBoth;
-  m.pushed = true;  // push_impulse and capture_point_bound apply
-  m.fell = true;    // fall_time applies
+  m.pushed = true;        // push_impulse and capture_point_bound apply
+  m.fell = true;          // fall_time applies
   m.joint_ranges = true;  // joint_limit_hits applies
   m.failure =
       experiments::WalkFailure{experiments::SimulationFailure::kMuJoCoWarning, "a warning"};  // failure_time applies

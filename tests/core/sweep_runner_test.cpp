@@ -56,7 +56,8 @@ TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
 
 // Issue 17.10: --resume trusted any line of the partial file; a garbage row reached the final CSV.
 TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
-  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_garbage_test_" + std::to_string(::getpid()));
+  const auto base =
+      std::filesystem::temp_directory_path() / ("flexgait_sweep_garbage_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   const SweepOutcome whole = run_sweep(job(base / "whole"));
   SweepJob again = job(base / "whole");
@@ -70,7 +71,8 @@ TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
   EXPECT_EQ(resumed.computed, 38);
   EXPECT_EQ(read_text_file(base / "whole" / "sweep.csv"), [&] {
     std::string text = "index,value,square\n";
-    for (int i = 0; i < 40; ++i) text += std::to_string(i) + "," + std::to_string(i) + "," + std::to_string(i * i) + "\n";
+    for (int i = 0; i < 40; ++i)
+      text += std::to_string(i) + "," + std::to_string(i) + "," + std::to_string(i * i) + "\n";
     return text;
   }());
   (void)whole;
@@ -133,7 +135,8 @@ class ReverseDistributor final : public PointDistributor {
 };
 
 TEST(SweepRunner, AnyDistributorGivesTheSameFile) {
-  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_distributor_test_" + std::to_string(::getpid()));
+  const auto base =
+      std::filesystem::temp_directory_path() / ("flexgait_sweep_distributor_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   run_sweep(job(base / "threads"));
   SweepJob reversed = job(base / "reversed");
@@ -174,7 +177,8 @@ TEST(SweepRunner, HandsOutTheMostExpensivePointsFirstAndWritesByIndex) {
 }
 
 TEST(SweepRunner, AWorkerWritesNothingAndAFailedResumeReleasesTheWorkers) {
-  const auto base = std::filesystem::temp_directory_path() / ("flexgait_sweep_worker_test_" + std::to_string(::getpid()));
+  const auto base =
+      std::filesystem::temp_directory_path() / ("flexgait_sweep_worker_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(base);
   SweepJob worker_job = job(base / "worker");
   ReverseDistributor worker(false);

@@ -67,7 +67,8 @@ TEST(Csv, WriterRejectsRowsOfTheWrongLength) {
 }
 
 TEST(Numbers, ShortestTextReadsBackExactly) {
-  for (const double x : {0.1, 1.0 / 3.0, 1e-300, 6.02214076e23, -0.0, 123456789.125}) EXPECT_EQ(std::stod(format_number(x)), x);
+  for (const double x : {0.1, 1.0 / 3.0, 1e-300, 6.02214076e23, -0.0, 123456789.125})
+    EXPECT_EQ(std::stod(format_number(x)), x);
   EXPECT_EQ(format_number(std::numeric_limits<double>::quiet_NaN()), "nan");
 }
 
@@ -86,8 +87,15 @@ TEST(Numbers, NumberAndCountTextAreWhatTheWritersWrite) {
 // A CSV cell of a number is format_number's text to the byte (the writer formats into its own
 // buffer): the longest texts, signed zero, subnormals, infinities and NaN included.
 TEST(Csv, NumberCellIsFormatNumbersText) {
-  const std::vector<double> values = {0.1, -1.0 / 3.0, -2.2250738585072014e-308, 4.9e-324, -1.7976931348623157e308,
-                                      -0.0, 1e21, 123456789012345680.0, 1e-7,
+  const std::vector<double> values = {0.1,
+                                      -1.0 / 3.0,
+                                      -2.2250738585072014e-308,
+                                      4.9e-324,
+                                      -1.7976931348623157e308,
+                                      -0.0,
+                                      1e21,
+                                      123456789012345680.0,
+                                      1e-7,
                                       std::numeric_limits<double>::infinity(),
                                       -std::numeric_limits<double>::infinity(),
                                       std::numeric_limits<double>::quiet_NaN()};

@@ -24,7 +24,8 @@ using humanoid::Push;
 using humanoid::PushBody;
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("flexgait_push_list_test_" + std::to_string(::getpid()) + "_" + name);
+  const auto path =
+      std::filesystem::temp_directory_path() / ("flexgait_push_list_test_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
@@ -84,11 +85,14 @@ TEST(PushList, EachBadFieldNamedWithItsIndexAndLine) {
   const std::string file = "_bad.yaml:3";  // the list's line (in this process's file)
   for (const auto& [item, key, what] : std::vector<std::tuple<std::string, std::string, std::string>>{
            {"{time: -1, body: chest, force: [0, 1, 0], duration: 0.1}", "disturbance.pushes[1].time", "out of range"},
-           {"{time: 1, body: head, force: [0, 1, 0], duration: 0.1}", "disturbance.pushes[1].body", "one of pelvis, chest"},
-           {"{time: 1, body: chest, force: [0, 1], duration: 0.1}", "disturbance.pushes[1].force", "not a list of 3 values"},
+           {"{time: 1, body: head, force: [0, 1, 0], duration: 0.1}", "disturbance.pushes[1].body",
+            "one of pelvis, chest"},
+           {"{time: 1, body: chest, force: [0, 1], duration: 0.1}", "disturbance.pushes[1].force",
+            "not a list of 3 values"},
            {"{time: 1, body: chest, force: 5, duration: 0.1}", "disturbance.pushes[1].force", "not a list of 3 values"},
            {"{time: 1, body: chest, force: [0, x, 0], duration: 0.1}", "disturbance.pushes[1].force", "not a number"},
-           {"{time: 1, body: chest, force: [0, 1, 0], duration: -0.1}", "disturbance.pushes[1].duration", "out of range"},
+           {"{time: 1, body: chest, force: [0, 1, 0], duration: -0.1}", "disturbance.pushes[1].duration",
+            "out of range"},
            {"{time: 1, body: chest, force: [0, 1, 0]}", "disturbance.pushes[1].duration", "missing"},
            {"{time: 1, body: chest, force: [0, 1, 0], duration: 0.1, speed: 2}", "disturbance.pushes[1].speed",
             "unknown key"},
@@ -103,12 +107,14 @@ TEST(PushList, EachBadFieldNamedWithItsIndexAndLine) {
   // Not a list of mappings; a list on a key of one value.
   EXPECT_NE(refusal("disturbance:\n  pushes: [1, 2]\n").find("item 0 is a name, not a mapping"), std::string::npos);
   EXPECT_NE(refusal("disturbance:\n  pushes: 3\n").find("'disturbance.pushes'"), std::string::npos);
-  EXPECT_NE(refusal("disturbance:\n  push:\n    time: [1]\n").find("must be a single value, not a list"), std::string::npos);
+  EXPECT_NE(refusal("disturbance:\n  push:\n    time: [1]\n").find("must be a single value, not a list"),
+            std::string::npos);
   EXPECT_NE(refusal("", {"disturbance.pushes=[{time: 1}"}).find("--set: key 'disturbance.pushes'"), std::string::npos);
 }
 
 TEST(PushList, WrittenConfigurationReadsBackToTheSameRun) {
-  const Config c = resolve_config(walk_run_schema(), write_temp("rt.yaml", kTwoPushes), {"disturbance.push.force_y=-40"});
+  const Config c =
+      resolve_config(walk_run_schema(), write_temp("rt.yaml", kTwoPushes), {"disturbance.push.force_y=-40"});
   const std::string yaml = c.to_yaml();
   const Config back = resolve_config(walk_run_schema(), write_temp("rt2.yaml", yaml), {});
   EXPECT_EQ(back.to_yaml(), yaml);
@@ -154,7 +160,8 @@ TEST(PushList, TwoPushesBothApplied) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(e.push_impulse[i], expected(i), 1e-9 * expected.norm());
   EXPECT_TRUE(e.sole_contact[0] && e.sole_contact[1] && !e.non_sole_contact);
   Eigen::Vector3d measured;
-  for (int i = 0; i < 3; ++i) measured(i) = (e.linear_momentum[i] - s.linear_momentum[i]) - (e.floor_impulse[i] - s.floor_impulse[i]);
+  for (int i = 0; i < 3; ++i)
+    measured(i) = (e.linear_momentum[i] - s.linear_momentum[i]) - (e.floor_impulse[i] - s.floor_impulse[i]);
   measured.z() += plant.total_mass() * plant.gravity() * (e.t - s.t);
   EXPECT_LT((measured - expected).norm(), 0.01 * expected.norm()) << measured.transpose();
 
@@ -165,7 +172,7 @@ TEST(PushList, TwoPushesBothApplied) {
   const WalkResult r = run_walk(p);
   EXPECT_NEAR(r.metrics.push_impulse, expected.norm(), 1e-9 * expected.norm());
   for (const WalkSample& w : r.log) {
-    const bool on_a = w.t > 1.0 + 1e-9 && w.t < 1.1 + 1e-9, on_b = w.t > 1.05 + 1e-9 && w.t < 1.1 + 1e-9;
+    const bool on_a = w.t > 1.0 + 1e-9 && w.t<1.1 + 1e-9, on_b = w.t> 1.05 + 1e-9 && w.t < 1.1 + 1e-9;
     EXPECT_DOUBLE_EQ(w.push_force[0], on_b ? 200.0 : 0.0) << "t = " << w.t;
     EXPECT_DOUBLE_EQ(w.push_force[1], on_a ? -150.0 : 0.0) << "t = " << w.t;
   }
@@ -226,7 +233,8 @@ TEST(PushList, TimedByTheWalkingPhase) {
   const Config c = resolve_config(walk_run_schema(), write_temp("phase.yaml", text), {});
   const std::string yaml = c.to_yaml();
   EXPECT_NE(yaml.find("{step: 2, phase: 0.25, body: pelvis"), std::string::npos) << yaml;
-  const WalkRunParams back = walk_run_from_config(resolve_config(walk_run_schema(), write_temp("phase2.yaml", yaml), {}));
+  const WalkRunParams back =
+      walk_run_from_config(resolve_config(walk_run_schema(), write_temp("phase2.yaml", yaml), {}));
   EXPECT_EQ(back.pushes[0].step, 2);
   EXPECT_EQ(back.pushes[0].time, 0.0);
 }
@@ -235,7 +243,8 @@ TEST(PushList, BadWalkingPhaseRefusedNamingTheKey) {
   const std::string head = "walk:\n  steps: 3\ndisturbance:\n  pushes:\n";
   const auto item = [&](const std::string& fields) { return refusal(head + "    - {" + fields + "}\n"); };
   const std::string rest = "body: chest, force: [0, 1, 0], duration: 0.1";
-  EXPECT_NE(item("step: 4, " + rest).find("'disturbance.pushes[0].step' = '4': the walk has 3 steps"), std::string::npos);
+  EXPECT_NE(item("step: 4, " + rest).find("'disturbance.pushes[0].step' = '4': the walk has 3 steps"),
+            std::string::npos);
   EXPECT_NE(item("time: 2, step: 1, " + rest).find("'disturbance.pushes[0].time'"), std::string::npos);
   EXPECT_NE(item("step: 1, phase: 1.5, " + rest).find("'disturbance.pushes[0].phase'"), std::string::npos);
   EXPECT_NE(item("step: -1, " + rest).find("'disturbance.pushes[0].step'"), std::string::npos);

@@ -68,8 +68,8 @@ TEST(PushRecoveryExperiment, BracketIsRecoveredBelowAndFallsAbove) {
 TEST(PushRecoveryExperiment, UpperEndDoublesWhileRecovered) {
   // 1 N s is far below the ~23 N s the standing twin takes: 1, 2, 4 and 8 N s are all recovered,
   // so the result is a lower bound (fell_at NaN, null in JSON) after 4 runs and one for the bound.
-  const PushRecoveryResult r = run_push_recovery(push_recovery_from_config(
-      config({"push_recovery.upper=1", "push_recovery.settle_time=1"})));
+  const PushRecoveryResult r =
+      run_push_recovery(push_recovery_from_config(config({"push_recovery.upper=1", "push_recovery.settle_time=1"})));
   EXPECT_EQ(r.recovered, 8.0);
   EXPECT_TRUE(std::isnan(r.fell_at));
   EXPECT_EQ(r.runs, 5);

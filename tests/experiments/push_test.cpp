@@ -37,7 +37,8 @@ Eigen::Vector3d impulse_from_momentum(const Push& push) {
   EXPECT_TRUE(a.sole_contact[0] && a.sole_contact[1] && b.sole_contact[0] && b.sole_contact[1]);  // no contact change
   const double g = plant.gravity();
   Eigen::Vector3d out;
-  for (int i = 0; i < 3; ++i) out(i) = (b.linear_momentum[i] - a.linear_momentum[i]) - (b.floor_impulse[i] - a.floor_impulse[i]);
+  for (int i = 0; i < 3; ++i)
+    out(i) = (b.linear_momentum[i] - a.linear_momentum[i]) - (b.floor_impulse[i] - a.floor_impulse[i]);
   out.z() += plant.total_mass() * g * (b.t - a.t);
   return out;
 }
@@ -55,7 +56,8 @@ TEST(Push, ImpulseEqualsForceTimesDurationInTheMomentum) {
     const Push push{1.0, body, force, duration};
     const Eigen::Vector3d measured = impulse_from_momentum(push);
     const Eigen::Vector3d expected(force[0] * duration, force[1] * duration, force[2] * duration);
-    RecordProperty("relative_error_" + std::to_string(i++), std::to_string((measured - expected).norm() / push.impulse()));
+    RecordProperty("relative_error_" + std::to_string(i++),
+                   std::to_string((measured - expected).norm() / push.impulse()));
     EXPECT_LT((measured - expected).norm(), 0.01 * push.impulse())
         << "measured " << measured.transpose() << " against " << expected.transpose();
   }

@@ -29,7 +29,9 @@ TEST(StiffnessBench, RecoversThePlantStiffness) {
   }
 }
 
-TEST(StiffnessBench, FailureNamesRoundTrip) { flexgait::testing::expect_enum_table_round_trips<BenchFailureReason>(); }
+TEST(StiffnessBench, FailureNamesRoundTrip) {
+  flexgait::testing::expect_enum_table_round_trips<BenchFailureReason>();
+}
 
 // summary.json's failure is made from the reason, the sweep, the pose and the detail (the text
 // the bench wrote before the reasons were typed).

@@ -13,7 +13,9 @@ namespace {
 
 constexpr double kLength = 0.2, kWidth = 0.1;
 
-walking::Pose sole(double x, double y, double yaw) { return walking::Pose{Eigen::Vector3d(x, y, 0.0), walking::rot_z(yaw)}; }
+walking::Pose sole(double x, double y, double yaw) {
+  return walking::Pose{Eigen::Vector3d(x, y, 0.0), walking::rot_z(yaw)};
+}
 
 // Signed area by the shoelace formula: positive for counter-clockwise corners.
 double signed_area(const std::vector<Eigen::Vector2d>& p) {
@@ -35,10 +37,10 @@ TEST(SupportPolygon, OneSoleIsItsRectangleAndTheMarginItsInnerDistance) {
     EXPECT_NEAR(std::abs(c.y() + 0.1), 0.05, 1e-15);
   }
   // Sums and differences of numbers of order 0.1: 1e-15 m.
-  EXPECT_NEAR(support_margin(poly, {0.3, -0.1}), 0.05, 1e-15);    // centre: half the width
-  EXPECT_NEAR(support_margin(poly, {0.39, -0.1}), 0.01, 1e-15);   // near the toe
-  EXPECT_NEAR(support_margin(poly, {0.5, -0.1}), -0.1, 1e-15);    // 0.1 m beyond the toe
-  EXPECT_NEAR(support_margin(poly, {0.3, 0.0}), -0.05, 1e-15);    // beside it
+  EXPECT_NEAR(support_margin(poly, {0.3, -0.1}), 0.05, 1e-15);   // centre: half the width
+  EXPECT_NEAR(support_margin(poly, {0.39, -0.1}), 0.01, 1e-15);  // near the toe
+  EXPECT_NEAR(support_margin(poly, {0.5, -0.1}), -0.1, 1e-15);   // 0.1 m beyond the toe
+  EXPECT_NEAR(support_margin(poly, {0.3, 0.0}), -0.05, 1e-15);   // beside it
 }
 
 TEST(SupportPolygon, TwoSolesSideBySideMakeOneRectangle) {
@@ -59,7 +61,9 @@ TEST(SupportPolygon, ATurnedSoleTurnsItsCorners) {
   const auto turned = support_polygon({sole(0.0, 0.0, a)}, kLength, kWidth);
   bool found = false;
   for (const auto& c : turned)
-    found |= (c - Eigen::Vector2d(0.1 * std::cos(a) - 0.05 * std::sin(a), 0.1 * std::sin(a) + 0.05 * std::cos(a))).norm() < 1e-15;
+    found |=
+        (c - Eigen::Vector2d(0.1 * std::cos(a) - 0.05 * std::sin(a), 0.1 * std::sin(a) + 0.05 * std::cos(a))).norm() <
+        1e-15;
   EXPECT_TRUE(found);
 }
 

@@ -77,8 +77,9 @@ TEST(TerrainWalk, LoadedRobotWalksTheRampAndTheRoughFloor) {
   const char* data = std::getenv("FLEXGAIT_TEST_DATA");
   ASSERT_NE(data, nullptr);
   const std::filesystem::path file = std::filesystem::path(data) / "small_biped.yaml";
-  for (const auto& floor : {std::vector<std::string>{"terrain.kind=ramp", "terrain.ramp.angle=0.0349", "walk.steps=4"},
-                            std::vector<std::string>{"terrain.kind=rough", "terrain.rough.amplitude=0.005", "walk.steps=2"}}) {
+  for (const auto& floor :
+       {std::vector<std::string>{"terrain.kind=ramp", "terrain.ramp.angle=0.0349", "walk.steps=4"},
+        std::vector<std::string>{"terrain.kind=rough", "terrain.rough.amplitude=0.005", "walk.steps=2"}}) {
     const WalkRunParams p = walk_run_from_config(resolve_config(walk_run_schema(), file, floor));
     ASSERT_TRUE(p.loaded);
     const WalkMetrics m = run_walk(p).metrics;
@@ -142,13 +143,19 @@ TEST(TerrainWalk, LandingOrientationControlWalksTheOneCentimetreRoughFloorBlind)
   // (landing_adaptation.hpp) the sole settles on the bumps after each touchdown and the twin walks
   // all 10 steps, blind (terrain.known_heights=false), with both compensators and no MuJoCo warning.
   // (Not every seed: the fall table is in README.md, "rough floor".)
-  std::vector<std::string> keys = {"terrain.kind=rough",    "terrain.rough.amplitude=0.01", "terrain.rough.correlation=0.1",
-                                   "terrain.rough.seed=2",  "walk.steps=10",                "walk.step_time=1",
+  std::vector<std::string> keys = {"terrain.kind=rough",
+                                   "terrain.rough.amplitude=0.01",
+                                   "terrain.rough.correlation=0.1",
+                                   "terrain.rough.seed=2",
+                                   "walk.steps=10",
+                                   "walk.step_time=1",
                                    "control.compensation=both"};
-  const WalkMetrics level = run_walk(walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, keys))).metrics;
+  const WalkMetrics level =
+      run_walk(walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, keys))).metrics;
   EXPECT_TRUE(level.fell);
   keys.emplace_back("balance.landing_admittance=0.01");
-  const WalkMetrics adapted = run_walk(walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, keys))).metrics;
+  const WalkMetrics adapted =
+      run_walk(walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, keys))).metrics;
   EXPECT_TRUE(adapted.completed()) << adapted.fall_text() << " at " << adapted.fall_time;
   EXPECT_EQ(adapted.steps_completed, 10);
   EXPECT_FALSE(adapted.failure.has_value()) << adapted.failure_text();
@@ -158,13 +165,14 @@ TEST(TerrainWalk, LandingOrientationControlWalksTheOneCentimetreRoughFloorBlind)
 TEST(TerrainWalk, StepBeyondTheLegsReachIsRefusedNamingTheKey) {
   // Standing at 0.723 m the builtin's hip-to-ankle line is 0.5155 m of 0.6 m: it reaches 8.45 cm down.
   try {
-    (void)walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, {"terrain.kind=step", "terrain.step.height=-0.09"}));
+    (void)walk_run_from_config(
+        resolve_config(walk_run_schema(), std::nullopt, {"terrain.kind=step", "terrain.step.height=-0.09"}));
     ADD_FAILURE() << "a 9 cm step down was accepted";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "terrain.step.height");
   }
-  EXPECT_NO_THROW(
-      (void)walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, {"terrain.kind=step", "terrain.step.height=-0.05"})));
+  EXPECT_NO_THROW((void)walk_run_from_config(
+      resolve_config(walk_run_schema(), std::nullopt, {"terrain.kind=step", "terrain.step.height=-0.05"})));
 }
 
 }  // namespace

@@ -39,8 +39,8 @@ TEST(WalkExperiment, FourStepsWithoutFalling) {
       const walking::Step& s = r.plan.steps[w.step];
       if (w.t < s.t_lift + 0.05 || w.t > s.t_land - 0.05) continue;
       const auto& sole = w.sole[1 - s.swing];
-      const auto poly = support_polygon({walking::Pose{Eigen::Vector3d(sole[0], sole[1], 0), walking::rot_z(s.stance.yaw)}},
-                                        0.22, 0.15);
+      const auto poly = support_polygon(
+          {walking::Pose{Eigen::Vector3d(sole[0], sole[1], 0), walking::rot_z(s.stance.yaw)}}, 0.22, 0.15);
       EXPECT_GT(support_margin(poly, Eigen::Vector2d(w.zmp_ref_x, w.zmp_ref_y)), 0.02) << "t = " << w.t;
     }
   }
@@ -57,7 +57,7 @@ TEST(WalkExperiment, CompensationCutsThePelvisRollErrorAndEstimatesTheLinks) {
   ASSERT_FALSE(on.fell);
   RecordProperty("roll_max_off", std::to_string(off.pelvis_roll_error_max));
   RecordProperty("roll_max_on", std::to_string(on.pelvis_roll_error_max));
-  EXPECT_GT(off.pelvis_roll_error_max, 0.03);  // the stance hip roll sags (thesis: ~0.04 rad)
+  EXPECT_GT(off.pelvis_roll_error_max, 0.03);                            // the stance hip roll sags (thesis: ~0.04 rad)
   EXPECT_LT(on.pelvis_roll_error_max, 0.3 * off.pelvis_roll_error_max);  // issue 7: at least 70 % less
   EXPECT_LT(on.link_error_rms, 0.3 * off.link_error_rms);
   // The output compensator: every period converged, and its estimate is several times closer to

@@ -11,9 +11,9 @@
 namespace flexgait::experiments {
 namespace {
 
-constexpr double kDt = 0.008;          // control period [s]
-constexpr double kHeight = 0.7;        // pelvis height [m]
-constexpr double kTolerance = 0.075;   // half a 0.15 m wide sole [m]
+constexpr double kDt = 0.008;         // control period [s]
+constexpr double kHeight = 0.7;       // pelvis height [m]
+constexpr double kTolerance = 0.075;  // half a 0.15 m wide sole [m]
 
 JudgeLimits limits() {
   JudgeLimits L;

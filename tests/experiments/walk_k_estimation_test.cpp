@@ -61,8 +61,12 @@ void expect_gyro_attitude_within(double step_time, double tolerance) {
     }
 }
 
-TEST(WalkKEstimation, TheGyrosAttitudeFindsTheStiffnessWithin5PercentAt3s) { expect_gyro_attitude_within(3.0, 0.05); }
-TEST(WalkKEstimation, TheGyrosAttitudeFindsTheStiffnessWithin7PercentAt1s) { expect_gyro_attitude_within(1.0, 0.07); }
+TEST(WalkKEstimation, TheGyrosAttitudeFindsTheStiffnessWithin5PercentAt3s) {
+  expect_gyro_attitude_within(3.0, 0.05);
+}
+TEST(WalkKEstimation, TheGyrosAttitudeFindsTheStiffnessWithin7PercentAt1s) {
+  expect_gyro_attitude_within(1.0, 0.07);
+}
 
 // A realistic gyro (issue 20): a bias of 0.001 rad/s on each axis and a bias walk of 1e-5 rad/s/√s. The gyro is
 // calibrated standing still (control.k_estimation_gyro_rest: 1 s of a 5 s start stance; the bias is the gyro's
@@ -204,7 +208,8 @@ TEST(WalkKEstimation, TheTwinsSolesTiltAsTheConfigSays) {
     for (int side = 0; side < 2; ++side)
       if (!compensation::firm_support(model, s.ft[side], walking::Matrix3d::Identity(), side, 0.05)) return;
     humanoid::JointVector ankles{};  // the ankles' torques alone: the regressor's columns of the sole's tilt
-    for (int j : {humanoid::kLeftAnkleRoll, humanoid::kRightAnkleRoll, humanoid::kLeftAnklePitch, humanoid::kRightAnklePitch})
+    for (int j :
+         {humanoid::kLeftAnkleRoll, humanoid::kRightAnkleRoll, humanoid::kLeftAnklePitch, humanoid::kRightAnklePitch})
       ankles[j] = g.gear_torque[j];
     Eigen::Vector2d y;
     const auto H = chain.regressor(g.link_angle, ankles, y);

@@ -44,7 +44,8 @@ TEST(WalkOutcome, SafeStopTextComesFromTheReason) {
   EXPECT_EQ(record_json(m)["safe_stop_reason"],
             "sensor ft_right nan for longer than health.hold_time = 0.3 s; walk cut to 3 of 10 steps");
   m.safe_stop_reason = SafeStopReason{humanoid::kGyro, walking::SignalFault::kStale, 0.05, 0, 4};
-  EXPECT_EQ(m.safe_stop_text(), "sensor gyro stale for longer than health.hold_time = 0.05 s; walk cut to 0 of 4 steps");
+  EXPECT_EQ(m.safe_stop_text(),
+            "sensor gyro stale for longer than health.hold_time = 0.05 s; walk cut to 0 of 4 steps");
 }
 
 }  // namespace

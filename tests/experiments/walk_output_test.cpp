@@ -68,7 +68,7 @@ TEST(WalkOutput, FootstepsListTheInitialFeetAndEveryStepWithItsLanding) {
   EXPECT_EQ(rows[1].rfind("initial,-1,left,", 0), 0u);
   EXPECT_EQ(rows[2].rfind("initial,-1,right,", 0), 0u);
   EXPECT_EQ(rows[3].rfind("step,0,", 0), 0u);
-  EXPECT_NE(rows[3].find(",0.25,"), std::string::npos) << rows[3];  // landed
+  EXPECT_NE(rows[3].find(",0.25,"), std::string::npos) << rows[3];   // landed
   EXPECT_EQ(rows[4].substr(rows[4].size() - 4), ",,,,") << rows[4];  // not landed: four empty cells
 }
 

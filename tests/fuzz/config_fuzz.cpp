@@ -17,8 +17,8 @@
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/config_file.hpp"
-#include "flexgait/twin/disturbance.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
+#include "flexgait/twin/disturbance.hpp"
 
 namespace {
 
@@ -34,12 +34,17 @@ struct PushList {
 };
 
 const std::vector<std::string> kTokens = {
-    "\n", ":", ": ", "- ", "&a ", "*a", "&b ", "*b", "{", "}", "[", "]", ",", "'", "\"", "#", "---\n", "...\n", "? ",
-    "!!str ", "!!map ", "<<: ", "|\n", ">\n", "\t", "\\", "\x00", "\xff", "\xc3", "~", "null", "nan", ".inf", "1e400",
-    "  ", "rimless.", "K", "mu_s", "legs", "%YAML 1.2\n"};
-const std::vector<std::string> kValues = {"", "nan", "inf", "-1", "0", "1e308", "1e-320", "abc", "1,2", "true", "rigid",
-                                          "3", "0.5", "+1", "1\n2", std::string(5000, '9'), "\x01", "=", "-0",
-                                          "[{time: 1, body: chest, force: [0, 1, 0], duration: 0.1}]", "[]", "[{", "[[1]]"};
+    "\n",     ":",    ": ",   "- ",    "&a ", "*a",       "&b ",   "*b",    "{",    "}",
+    "[",      "]",    ",",    "'",     "\"",  "#",        "---\n", "...\n", "? ",   "!!str ",
+    "!!map ", "<<: ", "|\n",  ">\n",   "\t",  "\\",       "\x00",  "\xff",  "\xc3", "~",
+    "null",   "nan",  ".inf", "1e400", "  ",  "rimless.", "K",     "mu_s",  "legs", "%YAML 1.2\n"};
+const std::vector<std::string> kValues = {
+    "",     "nan",   "inf",    "-1",
+    "0",    "1e308", "1e-320", "abc",
+    "1,2",  "true",  "rigid",  "3",
+    "0.5",  "+1",    "1\n2",   std::string(5000, '9'),
+    "\x01", "=",     "-0",     "[{time: 1, body: chest, force: [0, 1, 0], duration: 0.1}]",
+    "[]",   "[{",    "[[1]]"};
 
 std::string mutate(std::mt19937_64& rng, const std::vector<std::string>& corpus) {
   auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
@@ -48,9 +53,15 @@ std::string mutate(std::mt19937_64& rng, const std::vector<std::string>& corpus)
   for (int e = 0; e < edits; ++e) {
     const std::size_t at = text.empty() ? 0 : pick(text.size() + 1);
     switch (pick(5)) {
-      case 0: text.insert(at, kTokens[pick(kTokens.size())]); break;
-      case 1: if (at < text.size()) text[at] = static_cast<char>(rng()); break;
-      case 2: if (at < text.size()) text.erase(at, 1 + pick(16)); break;
+      case 0:
+        text.insert(at, kTokens[pick(kTokens.size())]);
+        break;
+      case 1:
+        if (at < text.size()) text[at] = static_cast<char>(rng());
+        break;
+      case 2:
+        if (at < text.size()) text.erase(at, 1 + pick(16));
+        break;
       case 3: {  // splice a chunk of another corpus entry
         const std::string& other = corpus[pick(corpus.size())];
         const std::size_t from = pick(other.size() + 1);
@@ -107,8 +118,9 @@ int main(int argc, char** argv) {
   for (const auto& entry : std::filesystem::directory_iterator(source / "configs"))
     if (entry.path().extension() == ".yaml") corpus.push_back(flexgait::read_text_file(entry.path()));
   corpus.push_back("a: &a\n  b: *a\n");
-  corpus.push_back("disturbance:\n  pushes:\n    - &p {time: 4.1, body: chest, force: [0, 120, 0], duration: 0.1}\n"
-                   "    - time: 5\n      body: pelvis\n      force: [1, 2, 3]\n      duration: 0.2\n    - *p\n");
+  corpus.push_back(
+      "disturbance:\n  pushes:\n    - &p {time: 4.1, body: chest, force: [0, 120, 0], duration: 0.1}\n"
+      "    - time: 5\n      body: pelvis\n      force: [1, 2, 3]\n      duration: 0.2\n    - *p\n");
   corpus.push_back("l0: &l0 {a: 1, b: 1}\nl1: &l1 {a: *l0, b: *l0}\nl2: {a: *l1, b: *l1}\n");
   flexgait::Schema schema = flexgait::rimless::rimless_analysis_schema();
   schema.merge(flexgait::schema_of<PushList>());

@@ -70,7 +70,8 @@ TEST(CompensationStage, TheStandingContextPutsBothSolesWhereTheEncodersDo) {
   EXPECT_NEAR(walking::roll_of(c.attitude), roll, 1e-12);
   // The symmetric pose: soles mirror each other about the pelvis's sagittal plane (in the pelvis
   // frame), and the reference ZMP is their midpoint.
-  const Eigen::Vector3d l = c.attitude.transpose() * c.support.soles[0].p, rr = c.attitude.transpose() * c.support.soles[1].p;
+  const Eigen::Vector3d l = c.attitude.transpose() * c.support.soles[0].p,
+                        rr = c.attitude.transpose() * c.support.soles[1].p;
   EXPECT_NEAR(l.x(), rr.x(), 1e-12);
   EXPECT_NEAR(l.y(), -rr.y(), 1e-12);
   EXPECT_NEAR(l.z(), rr.z(), 1e-12);

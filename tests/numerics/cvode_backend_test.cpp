@@ -61,7 +61,8 @@ TEST(CvodeBackend, KeplerOrbitKeepsItsInvariantsAndCloses) {
     const double tol = method == OdeMethod::Adams ? 1e-8 : 1e-6;
     EXPECT_NEAR(Kepler::energy(y), -0.5, tol) << name_of(method);
     EXPECT_NEAR(Kepler::momentum(y), std::sqrt(1 - e * e), tol) << name_of(method);
-    for (int i = 0; i < 4; ++i) EXPECT_NEAR(y[static_cast<std::size_t>(i)], y0[static_cast<std::size_t>(i)], 10 * tol) << i;
+    for (int i = 0; i < 4; ++i)
+      EXPECT_NEAR(y[static_cast<std::size_t>(i)], y0[static_cast<std::size_t>(i)], 10 * tol) << i;
   }
 }
 

@@ -125,7 +125,6 @@ TEST(Dop853Backend, MaxStepBoundsEveryStepAndMaxStepsStopsTheRun) {
     t_prev = integ.time();
   }
   EXPECT_GE(integ.stats().steps, 50);
-
 }
 
 TEST(Dop853Backend, ARightHandSideThatKeepsFailingEndsInAnError) {

@@ -22,7 +22,7 @@ TEST(Newton, AffineMapFixedPointJacobianAndMultipliers) {
   ASSERT_TRUE(r.converged) << r.failure();
   const Eigen::Vector3d exact = (Eigen::Matrix3d::Identity() - A).lu().solve(b);
   EXPECT_LE((r.z - exact).lpNorm<Eigen::Infinity>(), 1e-12);
-  EXPECT_LE(r.iterations, 2);  // exact Jacobian up to round-off: one step
+  EXPECT_LE(r.iterations, 2);                                   // exact Jacobian up to round-off: one step
   EXPECT_LE((r.jacobian - A).lpNorm<Eigen::Infinity>(), 1e-9);  // central differences are exact on affine maps
   const auto mult = floquet_multipliers(r.jacobian);
   ASSERT_EQ(mult.size(), 3u);

@@ -102,57 +102,57 @@ TEST(OdeIntegrator, EarliestOfTwoGuardsFiresFirst) {
 
 TEST(OdeIntegrator, GuardAtZeroOnRestartDoesNotFireThere) {
   for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
-  Oscillator osc;
-  OdeIntegrator integ(osc, 2, tight(method));
-  // Start exactly on the guard (y0 = 0.5, moving down): CVODE must not report t = 0.
-  const std::vector<double> y0{0.5, -std::sqrt(0.75)};
-  const std::vector<int> dirs{0};
-  integ.restart(0.0, y0, dirs);
-  double first = -1;
-  while (first < 0) {
-    if (integ.step(10.0) == StepStatus::Guard) first = integ.time();
-  }
-  EXPECT_NEAR(first, 4 * std::numbers::pi / 3, 1e-9);  // the next crossing, upward
+    Oscillator osc;
+    OdeIntegrator integ(osc, 2, tight(method));
+    // Start exactly on the guard (y0 = 0.5, moving down): CVODE must not report t = 0.
+    const std::vector<double> y0{0.5, -std::sqrt(0.75)};
+    const std::vector<int> dirs{0};
+    integ.restart(0.0, y0, dirs);
+    double first = -1;
+    while (first < 0) {
+      if (integ.step(10.0) == StepStatus::Guard) first = integ.time();
+    }
+    EXPECT_NEAR(first, 4 * std::numbers::pi / 3, 1e-9);  // the next crossing, upward
   }
 }
 
 TEST(OdeIntegrator, DenseOutputMatchesTheSolution) {
   for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
-  Oscillator osc;
-  OdeIntegrator integ(osc, 2, tight(method));
-  const std::vector<double> y0{1.0, 0.0};
-  integ.restart(0.0, y0, std::vector<int>{});
-  std::vector<double> y(2);
-  double t_prev = 0;
-  while (integ.time() < 3.0) {
-    integ.step(3.0);
-    const double tm = 0.5 * (t_prev + integ.time());
-    integ.interpolate(tm, y);
-    EXPECT_NEAR(y[0], std::cos(tm), 1e-9);
-    t_prev = integ.time();
-  }
-  EXPECT_GT(integ.stats().steps, 10);
+    Oscillator osc;
+    OdeIntegrator integ(osc, 2, tight(method));
+    const std::vector<double> y0{1.0, 0.0};
+    integ.restart(0.0, y0, std::vector<int>{});
+    std::vector<double> y(2);
+    double t_prev = 0;
+    while (integ.time() < 3.0) {
+      integ.step(3.0);
+      const double tm = 0.5 * (t_prev + integ.time());
+      integ.interpolate(tm, y);
+      EXPECT_NEAR(y[0], std::cos(tm), 1e-9);
+      t_prev = integ.time();
+    }
+    EXPECT_GT(integ.stats().steps, 10);
   }
 }
 
 // Forward sensitivities of the oscillator: ∂y(t)/∂y(0) is the rotation by -t.
 TEST(OdeIntegrator, SensitivitiesOfTheOscillatorAreARotation) {
   for (OdeMethod method : {OdeMethod::Adams, OdeMethod::Dop853}) {
-  Oscillator osc;
-  OdeIntegrator integ(osc, 2, tight(method, true));
-  const std::vector<double> y0{0.3, -0.7};
-  const std::vector<double> S0{1.0, 0.0, 0.0, 1.0};  // column-major identity
-  integ.restart(0.0, y0, std::vector<int>{}, S0);
-  while (integ.step(2.0) != StepStatus::StopTime) {
-  }
-  std::vector<double> S(4);
-  integ.sensitivities(S);
-  const double c = std::cos(2.0), s = std::sin(2.0);
-  // y(t) = [[c, s], [-s, c]] y0; column-major S = (c, -s, s, c). Tolerance: rtol 1e-12 over a third of a period.
-  EXPECT_NEAR(S[0], c, 1e-9);
-  EXPECT_NEAR(S[1], -s, 1e-9);
-  EXPECT_NEAR(S[2], s, 1e-9);
-  EXPECT_NEAR(S[3], c, 1e-9);
+    Oscillator osc;
+    OdeIntegrator integ(osc, 2, tight(method, true));
+    const std::vector<double> y0{0.3, -0.7};
+    const std::vector<double> S0{1.0, 0.0, 0.0, 1.0};  // column-major identity
+    integ.restart(0.0, y0, std::vector<int>{}, S0);
+    while (integ.step(2.0) != StepStatus::StopTime) {
+    }
+    std::vector<double> S(4);
+    integ.sensitivities(S);
+    const double c = std::cos(2.0), s = std::sin(2.0);
+    // y(t) = [[c, s], [-s, c]] y0; column-major S = (c, -s, s, c). Tolerance: rtol 1e-12 over a third of a period.
+    EXPECT_NEAR(S[0], c, 1e-9);
+    EXPECT_NEAR(S[1], -s, 1e-9);
+    EXPECT_NEAR(S[2], s, 1e-9);
+    EXPECT_NEAR(S[3], c, 1e-9);
   }
 }
 

@@ -45,9 +45,9 @@ TEST(Riccati, RandomSystemsHaveTinyResidualsAndStableClosedLoops) {
 }
 
 TEST(Riccati, RejectsMismatchedDimensions) {
-  EXPECT_THROW(solve_dare(MatrixXd::Identity(2, 2), MatrixXd::Ones(3, 1), MatrixXd::Identity(2, 2),
-                          MatrixXd::Identity(1, 1)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      solve_dare(MatrixXd::Identity(2, 2), MatrixXd::Ones(3, 1), MatrixXd::Identity(2, 2), MatrixXd::Identity(1, 1)),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -22,16 +22,20 @@ std::vector<T> decode(const nlohmann::json& s) {
 }
 
 TEST(Base64, Rfc4648VectorsBothWays) {
-  for (const auto& [in, out] : std::vector<std::pair<std::string, std::string>>{
-           {"", ""}, {"f", "Zg=="}, {"fo", "Zm8="}, {"foo", "Zm9v"}, {"foob", "Zm9vYg=="}, {"fooba", "Zm9vYmE="},
-           {"foobar", "Zm9vYmFy"}}) {
+  for (const auto& [in, out] : std::vector<std::pair<std::string, std::string>>{{"", ""},
+                                                                                {"f", "Zg=="},
+                                                                                {"fo", "Zm8="},
+                                                                                {"foo", "Zm9v"},
+                                                                                {"foob", "Zm9vYg=="},
+                                                                                {"fooba", "Zm9vYmE="},
+                                                                                {"foobar", "Zm9vYmFy"}}) {
     EXPECT_EQ(base64(in.data(), in.size()), out) << in;
     const auto back = unbase64(out);
     EXPECT_EQ(std::string(back.begin(), back.end()), in) << out;
   }
-  EXPECT_THROW(unbase64("Zm9"), std::invalid_argument);    // not a multiple of 4
-  EXPECT_THROW(unbase64("Zm=v"), std::invalid_argument);   // padding inside
-  EXPECT_THROW(unbase64("Zm9*"), std::invalid_argument);   // outside the alphabet
+  EXPECT_THROW(unbase64("Zm9"), std::invalid_argument);   // not a multiple of 4
+  EXPECT_THROW(unbase64("Zm=v"), std::invalid_argument);  // padding inside
+  EXPECT_THROW(unbase64("Zm9*"), std::invalid_argument);  // outside the alphabet
 }
 
 Scene two_frames() {
@@ -63,12 +67,12 @@ TEST(ReplayJson, RoundTripsThePerFrameArrays) {
   EXPECT_EQ(decode<float>(j["poses"]), s.poses);
   const auto items = decode<float>(j["layers"][0]["data"]);
   ASSERT_EQ(items.size(), 2u * 2u * 6u);
-  EXPECT_TRUE(std::isnan(items[0]));    // item 0 never set: hidden
-  EXPECT_EQ(items[6 + 5], 0.0F);        // frame 0, item 1, b.z
-  EXPECT_EQ(items[12 + 6 + 5], 0.5F);   // frame 1, item 1, b.z
+  EXPECT_TRUE(std::isnan(items[0]));   // item 0 never set: hidden
+  EXPECT_EQ(items[6 + 5], 0.0F);       // frame 0, item 1, b.z
+  EXPECT_EQ(items[12 + 6 + 5], 0.5F);  // frame 1, item 1, b.z
   EXPECT_EQ(decode<unsigned char>(j["layers"][0]["color"]), (std::vector<unsigned char>{0, 1, 0, 1}));
   EXPECT_EQ(decode<float>(j["signals"][0]["data"]), (std::vector<float>{3.0F, 3.25F}));
-  EXPECT_EQ(j["title"], "a </script> title");  // the escape "<\/" reads back as "</"
+  EXPECT_EQ(j["title"], "a </script> title");            // the escape "<\/" reads back as "</"
   EXPECT_EQ(replay_json(s), replay_json(two_frames()));  // same scene, same bytes
 }
 

@@ -120,8 +120,9 @@ TEST(PaperAnalysisOptions, EnergyLogIsOneStep) {
   ASSERT_EQ(cells.size(), 7u) << last;
   const double t_last = std::stod(cells[3]);  // mu, gait, phase, t
   const Config at = configured({"rimless.mu_s=0.6", "rimless.mu_k=0.6"});
-  const FixedPointReport r = find_fixed_point(wheel_from_config(at), simulation_from_config(at), analysis_from_config(at),
-                                              Model::Flexible, Section::Touchdown, initial_from_config(at));
+  const FixedPointReport r =
+      find_fixed_point(wheel_from_config(at), simulation_from_config(at), analysis_from_config(at), Model::Flexible,
+                       Section::Touchdown, initial_from_config(at));
   ASSERT_TRUE(r.converged) << r.failure();
   EXPECT_LE(t_last, r.period);
   EXPECT_GT(t_last, 0.5 * r.period);

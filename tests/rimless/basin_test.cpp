@@ -161,8 +161,7 @@ TEST(Basin, FailureOutcomes) {
         Case{FailureReason::RolledBack, BasinOutcome::RolledBack}, Case{FailureReason::AtRest, BasinOutcome::Stopped},
         Case{FailureReason::NoLanding, BasinOutcome::Stopped},
         Case{FailureReason::BalancedAtVertical, BasinOutcome::BalancedAtVertical},
-        Case{FailureReason::SlidAway, BasinOutcome::SlidAway},
-        Case{FailureReason::TimeLimit, BasinOutcome::TimeLimit},
+        Case{FailureReason::SlidAway, BasinOutcome::SlidAway}, Case{FailureReason::TimeLimit, BasinOutcome::TimeLimit},
         Case{FailureReason::SolverFailure, BasinOutcome::Failed},
         Case{FailureReason::InitialFootBelowGround, BasinOutcome::Failed}}) {
     EXPECT_EQ(failure_outcome(Failure{c.reason, "x", {}}), c.outcome) << name_of(c.reason);

@@ -35,8 +35,8 @@ void expect_lagrange_equations_hold(const WheelParams& w, const ContactSet& c, c
 TEST(Dynamics, LagrangeEquationsAndContactLawsHoldInEveryMode) {
   const WheelParams w = measured_wheel(0.6);
   const double a = w.alpha();
-  const double h1 = 0.99 * std::cos(0.1);    // one foot at β = 0.1, leg 1 % short
-  const double h2 = 0.995 * std::cos(a);     // two feet at β = ∓α, legs 0.5 % short
+  const double h1 = 0.99 * std::cos(0.1);  // one foot at β = 0.1, leg 1 % short
+  const double h2 = 0.995 * std::cos(a);   // two feet at β = ∓α, legs 0.5 % short
   struct Case {
     const char* name;
     testing::WheelState s;

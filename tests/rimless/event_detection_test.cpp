@@ -80,7 +80,8 @@ Comparison compare(const std::vector<EventRecord>& a, const std::vector<EventRec
   };
   text = "event " + std::to_string(i) + ": " + show(a) + "| " + show(b);
   if (diverged) return Comparison::Diverged;
-  if (i < a.size() && i < b.size() && a[i].kind == b[i].kind && std::abs(a[i].t - b[i].t) <= kTie) return Comparison::Tie;
+  if (i < a.size() && i < b.size() && a[i].kind == b[i].kind && std::abs(a[i].t - b[i].t) <= kTie)
+    return Comparison::Tie;
   return Comparison::Different;
 }
 
@@ -93,9 +94,9 @@ std::string sequence(const std::vector<EventRecord>& events) {
 using testing::Segment;
 
 struct Violation {
-  double cone = 0;    // worst (|T| - μ_s N) / (μ_s N) of a sticking foot
-  double tension = 0; // worst -N / (m g) of a foot on the ground
-  double depth = 0;   // worst -h of a free foot [m]
+  double cone = 0;     // worst (|T| - μ_s N) / (μ_s N) of a sticking foot
+  double tension = 0;  // worst -N / (m g) of a foot on the ground
+  double depth = 0;    // worst -h of a free foot [m]
 };
 
 // Every segment integrated again from its restart state to the next restart, the contacts' and free
@@ -224,7 +225,6 @@ TEST(EventDetection, RandomWheelsHaveTheEventsOfRtol1e12AndHoldTheirInvariants) 
       sets, counts[0], counts[1], counts[2], counts[3], worst.cone, worst.depth, worst.tension);
 }
 
-
 // Landings of feet that left the ground: a foot that rose above it lands at h = 0 (to 1e-12 m),
 // however little it rose, also one whose touchdown guard was never armed (it had not been 1e-9 m
 // above the ground at a step's end). Returns the landings checked (all, and the micro-bounces
@@ -278,7 +278,8 @@ TEST(EventDetection, MicroBouncesLandAtZeroHeight) {
     Record run;
     simulate_flexible(w, InitialState{s.omega0}, events_only(20), run);
     const Landings l = landings_at_zero(w, events_only(20), run);
-    if (l.micro > 0) std::printf("set %d: %d landings, %d micro-bounces, worst |h| %.3g m\n", i, l.checked, l.micro, l.worst);
+    if (l.micro > 0)
+      std::printf("set %d: %d landings, %d micro-bounces, worst |h| %.3g m\n", i, l.checked, l.micro, l.worst);
     all.checked += l.checked;
     all.micro += l.micro;
     all.worst = std::max(all.worst, l.worst);

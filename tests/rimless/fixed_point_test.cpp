@@ -50,9 +50,9 @@ TEST(FixedPoint, NoStartingPointIsANamedFailure) {
 TEST(FixedPoint, FailedJacobianGivesNoMultipliers) {
   // A tolerance below the map's integration noise keeps it failing: Newton with the variational
   // Jacobian, the fallback when a difference column fails (issue 18), converges here otherwise.
-  const FixedPointReport r = search({"rimless.mu_s=0.1559", "rimless.mu_k=0.1559", "initial.omega=1.5",
-                                     "analysis.transient_steps=60", "analysis.newton_tol=1e-15",
-                                     "analysis.max_iterations=3"});
+  const FixedPointReport r =
+      search({"rimless.mu_s=0.1559", "rimless.mu_k=0.1559", "initial.omega=1.5", "analysis.transient_steps=60",
+              "analysis.newton_tol=1e-15", "analysis.max_iterations=3"});
   if (r.converged) GTEST_SKIP() << "the search converges here now; nothing to check";
   expect_named_failure(r);
   const auto j = nlohmann::json::parse(fixed_point_json(r));

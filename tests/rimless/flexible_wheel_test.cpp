@@ -45,16 +45,15 @@ TEST_P(FlexibleWheelInvariants, EnergyBalanceFrictionConeAndNoDrift) {
     // μ just above tan φ it slides on two feet without turning and stalls.
     ASSERT_TRUE(r.failure.has_value());
     const FailureReason why = r.failure->reason;
-    const bool named =
-        why == FailureReason::AtRest || why == FailureReason::NoLanding || why == FailureReason::SlidAway ||
-        why == FailureReason::BalancedAtVertical;
+    const bool named = why == FailureReason::AtRest || why == FailureReason::NoLanding ||
+                       why == FailureReason::SlidAway || why == FailureReason::BalancedAtVertical;
     EXPECT_TRUE(named) << *r.failure;
   }
   EXPECT_LE(r.energy_balance_error, 1e-8);
   const double scale = r.energy_initial + r.work_damping + r.work_friction;  // >= m g L0 here
-  const double force_tol = 1e-9 * w.m * w.g;  // solver round-off on forces [N]
-  const double power_tol = 1e-10 * w.m * w.g * std::sqrt(w.g * w.L0);  // [W]
-  std::map<int, double> stick_anchor;          // leg -> c at the start of its stick interval
+  const double force_tol = 1e-9 * w.m * w.g;                                 // solver round-off on forces [N]
+  const double power_tol = 1e-10 * w.m * w.g * std::sqrt(w.g * w.L0);        // [W]
+  std::map<int, double> stick_anchor;  // leg -> c at the start of its stick interval
   for (const LogSample& s : r.samples) {
     EXPECT_LE(std::abs(s.energy.total() + s.w_damp + s.w_fric - r.energy_initial), 1e-8 * scale) << "t = " << s.t;
     std::map<int, double> still;
@@ -74,25 +73,27 @@ TEST_P(FlexibleWheelInvariants, EnergyBalanceFrictionConeAndNoDrift) {
         // Friction power T ċ <= 0. On the samples taken at an event CVODE returns the state just past
         // the crossing, so ċ (slip->stick) or T (lift-off) may sit past 0 by round-off: up to 1e-10 m/s
         // in ċ and 1e-10 of the power scale m g sqrt(g L0).
-        EXPECT_LE(c.T * c.cdot, 1e-10 * std::abs(c.T) + power_tol) << "friction does not oppose the slip at t = " << s.t;
+        EXPECT_LE(c.T * c.cdot, 1e-10 * std::abs(c.T) + power_tol)
+            << "friction does not oppose the slip at t = " << s.t;
       }
     }
     stick_anchor = still;
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    MuAndInertia, FlexibleWheelInvariants,
-    ::testing::Combine(
-        ::testing::Values(Case{0.05, 0.3, false}, Case{0.105, 0.3}, Case{0.13, 0.3}, Case{0.2, 0.3}, Case{0.6, 0.3},
-                          Case{1.5, 0.3}, Case{5.0, 0.3}, Case{100.0, 0.3}, Case{0.13, 0.05, false},
-                          Case{0.6, 0.05}, Case{5.0, 0.05}, Case{0.13, 1.0}, Case{0.6, 1.0}, Case{100.0, 1.0}),
-        ::testing::Values(numerics::OdeMethod::Adams, numerics::OdeMethod::Dop853)),
-    [](const auto& info) {
-      const Case& c = std::get<0>(info.param);
-      return "mu" + std::to_string(static_cast<int>(c.mu * 1000)) + "_I" + std::to_string(static_cast<int>(c.I * 100)) +
-             "_" + std::string(name_of(std::get<1>(info.param)));
-    });
+INSTANTIATE_TEST_SUITE_P(MuAndInertia, FlexibleWheelInvariants,
+                         ::testing::Combine(::testing::Values(Case{0.05, 0.3, false}, Case{0.105, 0.3}, Case{0.13, 0.3},
+                                                              Case{0.2, 0.3}, Case{0.6, 0.3}, Case{1.5, 0.3},
+                                                              Case{5.0, 0.3}, Case{100.0, 0.3}, Case{0.13, 0.05, false},
+                                                              Case{0.6, 0.05}, Case{5.0, 0.05}, Case{0.13, 1.0},
+                                                              Case{0.6, 1.0}, Case{100.0, 1.0}),
+                                            ::testing::Values(numerics::OdeMethod::Adams, numerics::OdeMethod::Dop853)),
+                         [](const auto& info) {
+                           const Case& c = std::get<0>(info.param);
+                           return "mu" + std::to_string(static_cast<int>(c.mu * 1000)) + "_I" +
+                                  std::to_string(static_cast<int>(c.I * 100)) + "_" +
+                                  std::string(name_of(std::get<1>(info.param)));
+                         });
 
 // Two independent integrators on the same model: CVODE Adams and DOP853 give the same events in
 // the same order, at times that agree to 1e-8 s (each integrator's global error at rtol 1e-10 over

@@ -15,7 +15,8 @@
 namespace flexgait::rimless::detail {
 namespace {
 
-std::shared_ptr<MapCache> slope_cache(const std::string& param = "rimless.slope", double from = 0.08, double to = 0.12) {
+std::shared_ptr<MapCache> slope_cache(const std::string& param = "rimless.slope", double from = 0.08,
+                                      double to = 0.12) {
   auto cache = std::make_shared<MapCache>();
   cache->base = resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "rimless.I=0"});
   cache->spec.param = param;
@@ -72,7 +73,8 @@ TEST(GaitBranchMaps, RigidFamilyMapsMcGeersFixedPointToItself) {
   const auto cache = slope_cache();
   const double q = 0.25;
   const WheelParams w = cache->wheel_at(q);
-  const FixedPointReport fp = find_fixed_point(w, cache->sim, cache->opt, Model::Rigid, Section::Touchdown, InitialState{});
+  const FixedPointReport fp =
+      find_fixed_point(w, cache->sim, cache->opt, Model::Rigid, Section::Touchdown, InitialState{});
   ASSERT_TRUE(fp.converged) << fp.failure();
   const numerics::MapFamily family = family_in_mode(cache, fp.point, false);
   Eigen::VectorXd out;

@@ -104,8 +104,10 @@ TEST(GaitBranch, FlexibleWheelLocatesTheStickToSlipStickChange) {
   EXPECT_EQ(changes[1]->event, "gait touchdown-stick slip-stick -> slip-stick");
   for (const auto& sp : b.branch.special) EXPECT_TRUE(sp.located) << b.stop_reason;
   const std::vector<std::tuple<const GaitBranchRow*, double, const char*>> sides{
-      {changes[0], 2e-4, "stick"}, {changes[0], -2e-4, "touchdown-stick slip-stick"},
-      {changes[1], 2e-4, "touchdown-stick slip-stick"}, {changes[1], -2e-4, "slip-stick"}};
+      {changes[0], 2e-4, "stick"},
+      {changes[0], -2e-4, "touchdown-stick slip-stick"},
+      {changes[1], 2e-4, "touchdown-stick slip-stick"},
+      {changes[1], -2e-4, "slip-stick"}};
   for (const auto& [change, dp, gait] : sides) {
     const Config c = config_at(base, "rimless.mu", format_number(change->p + dp), "test");
     const SimulationOptions sim = simulation_from_config(c);
@@ -212,8 +214,8 @@ TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {
   EXPECT_FALSE(few.branch.reached_end);
   EXPECT_EQ(few.branch.end, numerics::BranchEnd::MaxPoints) << few.stop_reason;
   try {
-    gait_continuation_from_config(resolve_config(rimless_analysis_schema(), std::nullopt,
-                                                 {"analysis.continuation.min_step=0.5"}));
+    gait_continuation_from_config(
+        resolve_config(rimless_analysis_schema(), std::nullopt, {"analysis.continuation.min_step=0.5"}));
     ADD_FAILURE() << "no ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "analysis.continuation.min_step");

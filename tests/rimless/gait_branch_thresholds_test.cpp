@@ -98,9 +98,11 @@ TEST(GaitBranchThresholds, MuContinuationPassesEveryFrictionThreshold) {
       }
     EXPECT_LE(best, 1e-6) << "threshold " << t << ", nearest event " << which;
   }
-  for (const char* boundary : {"section mode stick -> slip-", "section mode slip- -> stick", "section mode stick -> slip+"})
-    EXPECT_TRUE(std::any_of(events.begin(), events.end(), [&](const auto& e) { return e.second.starts_with(boundary); }))
-        << boundary;
+  for (const char* boundary :
+       {"section mode stick -> slip-", "section mode slip- -> stick", "section mode stick -> slip+"})
+    EXPECT_TRUE(std::any_of(events.begin(), events.end(), [&](const auto& e) {
+      return e.second.starts_with(boundary);
+    })) << boundary;
 
   // Direct Newton at branch points away from the boundaries: at least one per section mode.
   std::map<std::string, int> compared;

@@ -66,8 +66,10 @@ TEST(StepTracker, AStickInTheLandingDoubleSupportThenASlipIsNamed) {
     t.start(0.0, 0.0, 1.0, feet({{0, FootMode::Stick}}), 10);
     bool first = true;
     for (FootMode m : landing) {
-      if (first) t.touchdown(1.0, 0.1, 1.0, 9, feet({{0, FootMode::SlipForward}, {9, m}}));
-      else t.observe(feet({{0, FootMode::SlipForward}, {9, m}}));
+      if (first)
+        t.touchdown(1.0, 0.1, 1.0, 9, feet({{0, FootMode::SlipForward}, {9, m}}));
+      else
+        t.observe(feet({{0, FootMode::SlipForward}, {9, m}}));
       first = false;
     }
     for (FootMode m : single) t.observe(feet({{9, m}}));

@@ -34,10 +34,16 @@ std::string failure_text(const ModeDecision& d) {
   return ok(d) ? std::string() : std::string(name_of(*d.failure)) + ": " + d.detail;
 }
 
-double force_tol(const WheelParams& w) { return 1e-12 * w.m * w.g; }                // [N]
-double velocity_tol(const WheelParams& w) { return 1e-12 * std::sqrt(w.g * w.L0); }  // [m/s]
+double force_tol(const WheelParams& w) {
+  return 1e-12 * w.m * w.g;
+}  // [N]
+double velocity_tol(const WheelParams& w) {
+  return 1e-12 * std::sqrt(w.g * w.L0);
+}  // [m/s]
 
-std::vector<double> rest_state(const WheelParams& w) { return std::vector<double>(state_size(w), 0.0); }
+std::vector<double> rest_state(const WheelParams& w) {
+  return std::vector<double>(state_size(w), 0.0);
+}
 
 ContactSet contacts_of(const WheelParams& w, std::span<const double> y,
                        std::initializer_list<std::pair<int, FootMode>> feet) {
@@ -56,7 +62,9 @@ ModeDecision decide(const WheelParams& w, const ContactSet& current, std::vector
   return choose_modes(w, current, events, y);
 }
 
-FootMode mode_of_leg(const ModeDecision& d, int leg) { return d.contacts.mode[d.contacts.find(leg)]; }
+FootMode mode_of_leg(const ModeDecision& d, int leg) {
+  return d.contacts.mode[d.contacts.find(leg)];
+}
 
 // The spec's consistency conditions for the decided modes at the state after the event, with the
 // library's own forces (dynamics.hpp): N >= 0 on every foot kept; stick: ċ = 0 and |T| <= μ_s N;
@@ -116,7 +124,9 @@ struct DoubleSupportCase {
   FootMode trail_mode;  // when it stays
 };
 
-void PrintTo(const DoubleSupportCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const DoubleSupportCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class DoubleSupportNeedsNegativeN : public ::testing::TestWithParam<DoubleSupportCase> {};
 
@@ -169,12 +179,11 @@ TEST_P(DoubleSupportNeedsNegativeN, AnotherCombinationIsChosen) {
   expect_invariants(w, current, d, y);
 }
 
-INSTANTIATE_TEST_SUITE_P(Table, DoubleSupportNeedsNegativeN,
-                         ::testing::Values(DoubleSupportCase{"pressed_trailing_foot_slips_back", 1.0, false,
-                                                             FootMode::SlipBackward},
-                                           DoubleSupportCase{"pulling_trailing_foot_leaves", -1.0, true,
-                                                             FootMode::Stick}),
-                         [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(
+    Table, DoubleSupportNeedsNegativeN,
+    ::testing::Values(DoubleSupportCase{"pressed_trailing_foot_slips_back", 1.0, false, FootMode::SlipBackward},
+                      DoubleSupportCase{"pulling_trailing_foot_leaves", -1.0, true, FootMode::Stick}),
+    [](const auto& info) { return std::string(info.param.name); });
 
 // ---------------------------------------------------------------------------------------------
 // (b) Slip reversal and (d) the stick→slip direction, in single support on a vertical-to-slope
@@ -193,15 +202,17 @@ INSTANTIATE_TEST_SUITE_P(Table, DoubleSupportNeedsNegativeN,
 // (here by the consistency test s c̈ >= 0 that choose_modes applies).
 struct SingleSupportCase {
   const char* name;
-  double slope;           // φ [rad]
-  double yd, thetad;      // ẏ [m/s], θ̇ [rad/s]; ẋ = y θ̇ so that ċ = 0
+  double slope;       // φ [rad]
+  double yd, thetad;  // ẏ [m/s], θ̇ [rad/s]; ẋ = y θ̇ so that ċ = 0
   FootMode previous;
   EventKind event;
-  double mu_factor;       // μ = factor · |T*| / N
+  double mu_factor;  // μ = factor · |T*| / N
   FootMode expected;
 };
 
-void PrintTo(const SingleSupportCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const SingleSupportCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class SingleSupportEvent : public ::testing::TestWithParam<SingleSupportCase> {};
 
@@ -240,24 +251,23 @@ TEST_P(SingleSupportEvent, ModeFollowsTheStickMultiplier) {
   expect_invariants(w, current, d, y);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Table, SingleSupportEvent,
-    ::testing::Values(
-        // (b) slip reversal: the foot was slipping, ċ reached 0, the cone cannot hold it.
-        SingleSupportCase{"uphill_slip_reverses_downhill", 0.1, 0.0, 0.0, FootMode::SlipBackward,
-                          EventKind::SlipToStick, 0.9, FootMode::SlipForward},
-        SingleSupportCase{"uphill_slip_stops_in_the_cone", 0.1, 0.0, 0.0, FootMode::SlipBackward,
-                          EventKind::SlipToStick, 1.1, FootMode::Stick},
-        SingleSupportCase{"forward_slip_reverses_backward", 0.0, 0.1, 1.0, FootMode::SlipForward,
-                          EventKind::SlipToStick, 0.9, FootMode::SlipBackward},
-        SingleSupportCase{"forward_slip_stops_in_the_cone", 0.0, 0.1, 1.0, FootMode::SlipForward,
-                          EventKind::SlipToStick, 1.1, FootMode::Stick},
-        // (d) stick→slip: the foot slips against the friction force it had, s = -sign T.
-        SingleSupportCase{"stuck_on_slope_slips_downhill", 0.1, 0.0, 0.0, FootMode::Stick,
-                          EventKind::StickToSlip, 0.9, FootMode::SlipForward},
-        SingleSupportCase{"stuck_rolling_slips_backward", 0.0, 0.1, 1.0, FootMode::Stick, EventKind::StickToSlip,
-                          0.9, FootMode::SlipBackward}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Table, SingleSupportEvent,
+                         ::testing::Values(
+                             // (b) slip reversal: the foot was slipping, ċ reached 0, the cone cannot hold it.
+                             SingleSupportCase{"uphill_slip_reverses_downhill", 0.1, 0.0, 0.0, FootMode::SlipBackward,
+                                               EventKind::SlipToStick, 0.9, FootMode::SlipForward},
+                             SingleSupportCase{"uphill_slip_stops_in_the_cone", 0.1, 0.0, 0.0, FootMode::SlipBackward,
+                                               EventKind::SlipToStick, 1.1, FootMode::Stick},
+                             SingleSupportCase{"forward_slip_reverses_backward", 0.0, 0.1, 1.0, FootMode::SlipForward,
+                                               EventKind::SlipToStick, 0.9, FootMode::SlipBackward},
+                             SingleSupportCase{"forward_slip_stops_in_the_cone", 0.0, 0.1, 1.0, FootMode::SlipForward,
+                                               EventKind::SlipToStick, 1.1, FootMode::Stick},
+                             // (d) stick→slip: the foot slips against the friction force it had, s = -sign T.
+                             SingleSupportCase{"stuck_on_slope_slips_downhill", 0.1, 0.0, 0.0, FootMode::Stick,
+                                               EventKind::StickToSlip, 0.9, FootMode::SlipForward},
+                             SingleSupportCase{"stuck_rolling_slips_backward", 0.0, 0.1, 1.0, FootMode::Stick,
+                                               EventKind::StickToSlip, 0.9, FootMode::SlipBackward}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 // ---------------------------------------------------------------------------------------------
 // (c) Painlevé jam. Single support, leg 0 at β = 0.4 rad (θ = 0.4), δ = 0.01 m, hub moving
@@ -368,7 +378,9 @@ struct TieCase {
   int consistent;
 };
 
-void PrintTo(const TieCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const TieCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class TieRule : public ::testing::TestWithParam<TieCase> {};
 
@@ -400,13 +412,13 @@ TEST_P(TieRule, KeepsPreviousModesThenPrefersStick) {
   expect_invariants(w, current, d, y);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Table, TieRule,
-    ::testing::Values(TieCase{"landing_foot_sticks_rather_than_slips", false, FootMode::Stick, 4},
-                      TieCase{"stuck_foot_stays_stuck_rather_than_leave", true, FootMode::Stick, 16},
-                      TieCase{"backward_slip_is_kept", true, FootMode::SlipBackward, 16},
-                      TieCase{"forward_slip_is_kept", true, FootMode::SlipForward, 16}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Table, TieRule,
+                         ::testing::Values(TieCase{"landing_foot_sticks_rather_than_slips", false, FootMode::Stick, 4},
+                                           TieCase{"stuck_foot_stays_stuck_rather_than_leave", true, FootMode::Stick,
+                                                   16},
+                                           TieCase{"backward_slip_is_kept", true, FootMode::SlipBackward, 16},
+                                           TieCase{"forward_slip_is_kept", true, FootMode::SlipForward, 16}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace flexgait::rimless

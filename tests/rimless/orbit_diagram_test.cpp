@@ -75,8 +75,8 @@ TEST(OrbitDiagram, FlexibleWheelRecordsNewtonsFixedPoint) {
 
 TEST(OrbitDiagram, AValueThatFallsRecordsWhy) {
   // ω0 = -1 rad/s from β0 = -0.2 rad behind the top rolls back at once.
-  const Config base =
-      resolve_config(rimless_analysis_schema(), std::nullopt, {"sim.model=rigid", "initial.omega=-1", "initial.beta=-0.2"});
+  const Config base = resolve_config(rimless_analysis_schema(), std::nullopt,
+                                     {"sim.model=rigid", "initial.omega=-1", "initial.beta=-0.2"});
   OrbitDiagramSpec spec{{"rimless.slope", 0.05, 0.1, 2}, 5, 3};
   const std::string row = orbit_points_row(base, spec, 0);
   const std::string csv = orbit_csv("index," + orbit_points_header() + "\n0," + row + "\n");
@@ -132,8 +132,8 @@ TEST(OrbitDiagram, PastTheNeimarkSackerPointFollowsTheSimulatedOrbit) {
       // The transient ends at touchdown kTransient, the settled point is touchdown kTransient + 1,
       // crossing k + 1 is touchdown kTransient + 2 + k: step kTransient + 3 + k (1-based) starts there.
       const StepRecord& step = run.steps[static_cast<std::size_t>(kTransient + 2 + k)];
-      const auto at = std::find_if(run.restarts.begin(), run.restarts.end(),
-                                   [&](const Restart& x) { return x.t == step.t_start; });
+      const auto at =
+          std::find_if(run.restarts.begin(), run.restarts.end(), [&](const Restart& x) { return x.t == step.t_start; });
       ASSERT_NE(at, run.restarts.end()) << "no restart at t = " << step.t_start;
       const std::vector<double>& y = at->state;
       std::vector<double> expected{leg_angle(w, step.stance_leg, y[S::theta])};

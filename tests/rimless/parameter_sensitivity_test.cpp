@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <utility>
 #include <functional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "flexgait/rimless/fixed_point.hpp"
@@ -23,8 +23,10 @@ struct Parameter {
 
 WheelParams with(const WheelParams& w, const Parameter& p, double value) {
   WheelParams out = w;
-  if (std::string(p.key) == "rimless.mu") out.mu_s = out.mu_k = value;
-  else p.field(out) = value;
+  if (std::string(p.key) == "rimless.mu")
+    out.mu_s = out.mu_k = value;
+  else
+    p.field(out) = value;
   return out;
 }
 
@@ -91,7 +93,8 @@ double sensitivity_error(const WheelParams& w, SimulationOptions sim, Section se
 TEST(ParameterSensitivity, MatchesCentralDifferencesOfTheMapForEveryParameterAndBehaviour) {
   for (double mu : {0.105, 0.13, 0.2, 0.6}) {
     for (const Parameter& p : parameters()) {
-      const double error = sensitivity_error(testing::measured_wheel(mu), testing::run_options(1), Section::Touchdown, p);
+      const double error =
+          sensitivity_error(testing::measured_wheel(mu), testing::run_options(1), Section::Touchdown, p);
       EXPECT_LE(error, 2e-8) << "mu = " << mu << ", " << p.key;
       std::ostringstream at, err;
       at << "mu" << mu << "_" << p.key;
@@ -109,7 +112,8 @@ TEST(ParameterSensitivity, MatchesCentralDifferencesOfTheMapForEveryParameterAnd
 TEST(ParameterSensitivity, HoldsOnTheUprightSectionAndWithAdams) {
   SimulationOptions adams = testing::run_options(1);
   adams.method = numerics::OdeMethod::Adams;
-  for (const auto& [sim, section] : {std::pair{testing::run_options(1), Section::Upright}, std::pair{adams, Section::Touchdown}})
+  for (const auto& [sim, section] :
+       {std::pair{testing::run_options(1), Section::Upright}, std::pair{adams, Section::Touchdown}})
     for (const Parameter& p : parameters()) {
       const double error =
           sensitivity_error(testing::measured_wheel(0.13), sim, section, p, section == Section::Upright ? 1e-5 : 3e-5);

@@ -10,8 +10,8 @@
 
 #include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
-#include "flexgait/rimless/wheel_setup.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/wheel_setup.hpp"
 #include "test_support.hpp"
 
 namespace flexgait::rimless {
@@ -90,7 +90,9 @@ struct Reproducer {
   Wheel wheel;
   int steps;
 };
-void PrintTo(const Reproducer& r, std::ostream* os) { *os << r.name; }
+void PrintTo(const Reproducer& r, std::ostream* os) {
+  *os << r.name;
+}
 
 class Reproducers : public ::testing::TestWithParam<Reproducer> {};
 
@@ -195,8 +197,8 @@ TEST(ParameterSpace, GaitAgainstFrictionFindsTheFixedPointThatExists) {
 // leg 12 sticks; no impulse inside the cone stops both, and every mode without one slips with
 // D <= 0 or breaks a contact condition (Stribeck friction with a viscous rise, μ(v) > cot β).
 TEST(ParameterSpace, APainleveParadoxIsNamed) {
-  WheelParams w = params_of({4.448006436149931, 0.4832002941178817, 33.35890942087118, 2643.943475057392, 14,
-                             0.1104403197580766, 0});
+  WheelParams w = params_of(
+      {4.448006436149931, 0.4832002941178817, 33.35890942087118, 2643.943475057392, 14, 0.1104403197580766, 0});
   w.mu_k = 3.247251534215311;
   w.friction = Friction::Stribeck;
   w.stribeck_velocity = 1.1418969380024793;

@@ -35,7 +35,9 @@ TEST(Parameters, SchemaHoldsTheRecordsWithTheirDefaults) {
   EXPECT_EQ(simulation_from_config(c).steps, SimulationOptions{}.steps);
 }
 
-TEST(Parameters, DefaultsAreValid) { EXPECT_EQ(refused_key(WheelParams{}, InitialState{}), ""); }
+TEST(Parameters, DefaultsAreValid) {
+  EXPECT_EQ(refused_key(WheelParams{}, InitialState{}), "");
+}
 
 TEST(Parameters, KineticAboveStaticFrictionIsRefused) {
   WheelParams w;

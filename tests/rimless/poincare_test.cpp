@@ -12,7 +12,9 @@
 namespace flexgait::rimless {
 namespace {
 
-AnalysisOptions analysis() { return AnalysisOptions{}; }  // rtol 1e-12, Newton tolerance 1e-10
+AnalysisOptions analysis() {
+  return AnalysisOptions{};
+}  // rtol 1e-12, Newton tolerance 1e-10
 
 // The rigid wheel's simulated map has McGeer's fixed point and multiplier cos²(2α), to 1e-9.
 TEST(Poincare, RigidWheelFixedPointIsAnalytic) {
@@ -71,9 +73,11 @@ TEST_P(FlexibleFixedPoint, MapsToItselfAndAttractsPerturbations) {
 }
 
 INSTANTIATE_TEST_SUITE_P(FourBehaviours, FlexibleFixedPoint,
-                         ::testing::Values(Gait{0.105, "slip"}, Gait{0.13, "slip-stick-slip"},
-                                           Gait{0.2, "slip-stick"}, Gait{0.6, "stick"}),
-                         [](const auto& info) { return "mu" + std::to_string(static_cast<int>(info.param.mu * 1000)); });
+                         ::testing::Values(Gait{0.105, "slip"}, Gait{0.13, "slip-stick-slip"}, Gait{0.2, "slip-stick"},
+                                           Gait{0.6, "stick"}),
+                         [](const auto& info) {
+                           return "mu" + std::to_string(static_cast<int>(info.param.mu * 1000));
+                         });
 
 // The variational Jacobian (forward sensitivities, saltation matrices) agrees with finite
 // differences of the map to 1e-6 (the bound), for every behaviour, through jam impulses,
@@ -94,7 +98,9 @@ TEST(Poincare, VariationalJacobianMatchesFiniteDifferences) {
       map_opt.rtol = 1e-13;
       map_opt.atol = 1e-16;
       PoincareMap map(w, map_opt, Model::Flexible, section);
-      const numerics::VectorMap P = [&](const Eigen::VectorXd& z, Eigen::VectorXd& out) { return map(r.point, z, out); };
+      const numerics::VectorMap P = [&](const Eigen::VectorXd& z, Eigen::VectorXd& out) {
+        return map(r.point, z, out);
+      };
       Eigen::MatrixXd reference;
       const auto failure = numerics::central_difference_jacobian(P, r.point.z, 3e-5 * r.point.scale(w), reference);
       ASSERT_FALSE(failure.has_value()) << *failure;

@@ -14,8 +14,12 @@ namespace flexgait::rimless {
 namespace {
 
 // The paper's phenomenon: the measured wheel with mu just above tan(phi), started at beta0 = -0.2.
-WheelParams sliding_wheel() { return testing::measured_wheel(0.105); }
-InitialState start(double omega) { return InitialState{omega, -0.2}; }
+WheelParams sliding_wheel() {
+  return testing::measured_wheel(0.105);
+}
+InitialState start(double omega) {
+  return InitialState{omega, -0.2};
+}
 SimulationOptions sim(double rtol = 1e-10) {
   SimulationOptions o;
   o.rtol = rtol;

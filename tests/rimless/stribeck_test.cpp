@@ -50,7 +50,9 @@ std::string describe(const Law& l) {
          ", sigma " + std::to_string(l.sigma) + ", delta " + std::to_string(l.delta);
 }
 
-void PrintTo(const Law& l, std::ostream* os) { *os << describe(l); }
+void PrintTo(const Law& l, std::ostream* os) {
+  *os << describe(l);
+}
 
 TEST(StribeckLaw, StaticAtRestKineticFastViscousAlongTheSlip) {
   const WheelParams w = stribeck_wheel({0.5, 0.3, 0.1, 2.0, 2.0});
@@ -131,8 +133,8 @@ TEST_P(StribeckInvariants, EnergyBalanceSlipLawAndFrictionCone) {
   EXPECT_EQ(r.steps_completed, 20);
   EXPECT_LE(r.energy_balance_error, 1e-8);
   const double scale = r.energy_initial + r.work_damping + r.work_friction;  // >= m g L0 here
-  const double force_tol = 1e-9 * w.m * w.g;                              // solver round-off on forces [N]
-  const double power_tol = 1e-10 * w.m * w.g * std::sqrt(w.g * w.L0);     // [W]
+  const double force_tol = 1e-9 * w.m * w.g;                                 // solver round-off on forces [N]
+  const double power_tol = 1e-10 * w.m * w.g * std::sqrt(w.g * w.L0);        // [W]
   int slipping = 0;
   double worst_energy = 0;
   for (const LogSample& s : r.samples) {
@@ -165,19 +167,20 @@ TEST_P(StribeckInvariants, EnergyBalanceSlipLawAndFrictionCone) {
   RecordProperty("worst_sample_energy_error", sci(worst_energy));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Laws, StribeckInvariants,
-    ::testing::Values(Law{0.2, 0.11, 0.1}, Law{0.3, 0.12, 0.05, 0.5}, Law{0.15, 0.11, 1.0, 0.2},
-                      Law{0.2, 0.12, 0.1, 0.0, 1.0}, Law{0.14, 0.105, 0.02, 0.05, 0.5}, Law{0.13, 0.13, 0.1, 1.0},
-                      Law{0.6, 0.2, 0.5, 2.0}, Law{5.0, 4.0, 0.1, 1.0}),
-    [](const auto& info) { return "case" + std::to_string(info.index); });
+INSTANTIATE_TEST_SUITE_P(Laws, StribeckInvariants,
+                         ::testing::Values(Law{0.2, 0.11, 0.1}, Law{0.3, 0.12, 0.05, 0.5}, Law{0.15, 0.11, 1.0, 0.2},
+                                           Law{0.2, 0.12, 0.1, 0.0, 1.0}, Law{0.14, 0.105, 0.02, 0.05, 0.5},
+                                           Law{0.13, 0.13, 0.1, 1.0}, Law{0.6, 0.2, 0.5, 2.0}, Law{5.0, 4.0, 0.1, 1.0}),
+                         [](const auto& info) { return "case" + std::to_string(info.index); });
 
 struct Behaviour {
   Law law;
   const char* gait;
 };
 
-void PrintTo(const Behaviour& b, std::ostream* os) { *os << b.gait << ": " << describe(b.law); }
+void PrintTo(const Behaviour& b, std::ostream* os) {
+  *os << b.gait << ": " << describe(b.law);
+}
 
 class StribeckFixedPoint : public ::testing::TestWithParam<Behaviour> {};
 

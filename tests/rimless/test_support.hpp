@@ -27,7 +27,6 @@ inline SimulationOptions run_options(int steps, double rtol = 1e-10) {
   return o;
 }
 
-
 /// The random generator of the seeded random samples of wheels, written out (splitmix64, 53-bit
 /// uniforms) so that a sample is the same on every platform.
 struct SplitMix64 {

@@ -17,7 +17,9 @@ namespace {
 // A ball under gravity G from height h0 > 0 with velocity v0, bouncing once with restitution e:
 // its state (h, v) at time T (after the impact at t*).
 constexpr double G = 9.81, e = 0.7;
-double impact_time(double h0, double v0) { return (v0 + std::sqrt(v0 * v0 + 2 * G * h0)) / G; }
+double impact_time(double h0, double v0) {
+  return (v0 + std::sqrt(v0 * v0 + 2 * G * h0)) / G;
+}
 std::array<double, 2> ball_at(double h0, double v0, double T) {
   const double ts = impact_time(h0, v0);
   const double vplus = -e * (v0 - G * ts);
@@ -39,8 +41,8 @@ TEST(Variational, SaltationOfABouncingBallMatchesFiniteDifferencesOfItsMap) {
   const double vminus = v0 - G * ts;
   Eigen::Matrix2d Ry;
   Ry << 1, 0, 0, -e;
-  const Eigen::MatrixXd S = saltation(Ry, Eigen::Vector2d(vminus, -G), Eigen::Vector2d(-e * vminus, -G),
-                                      Eigen::RowVector2d(1, 0));
+  const Eigen::MatrixXd S =
+      saltation(Ry, Eigen::Vector2d(vminus, -G), Eigen::Vector2d(-e * vminus, -G), Eigen::RowVector2d(1, 0));
   const Eigen::Matrix2d J = flow(T - ts) * S * flow(ts);
   // Central differences of the closed form, step 1e-6: truncation ~1e-12·|∂³|, rounding
   // ~1e-16/1e-6 = 1e-10. Bound 1e-8.
@@ -78,8 +80,8 @@ TEST(Variational, CentralDifferencesAreExactOnQuadratics) {
   const std::vector<double> y{0.4, -1.3, 2.0};
   const Eigen::VectorXd h = Eigen::Vector3d(1e-3, 2e-3, 5e-4);
   // g = y₀² + 3 y₀ y₁ - y₂² + 2 y₂: ∇g = (2 y₀ + 3 y₁, 3 y₀, -2 y₂ + 2).
-  const Eigen::RowVectorXd grad = gradient(
-      [](std::span<const double> v) { return v[0] * v[0] + 3 * v[0] * v[1] - v[2] * v[2] + 2 * v[2]; }, y, h);
+  const Eigen::RowVectorXd grad =
+      gradient([](std::span<const double> v) { return v[0] * v[0] + 3 * v[0] * v[1] - v[2] * v[2] + 2 * v[2]; }, y, h);
   // Exact up to rounding of g (|g| ~ 5) over 2h (1e-3): 1e-11.
   EXPECT_NEAR(grad(0), 2 * 0.4 + 3 * -1.3, 1e-11);
   EXPECT_NEAR(grad(1), 3 * 0.4, 1e-11);

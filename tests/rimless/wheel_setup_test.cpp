@@ -32,7 +32,8 @@ TEST(WheelSetup, AnalysisSchemaHoldsTheWheelAndEveryAnalysis) {
 }
 
 TEST(WheelSetup, ReadsTheRecordsOfTheConfiguration) {
-  const WheelSetup s = wheel_setup(configured({"rimless.K=2000", "initial.omega=1.1", "sim.steps=7", "sim.model=rigid"}));
+  const WheelSetup s =
+      wheel_setup(configured({"rimless.K=2000", "initial.omega=1.1", "sim.steps=7", "sim.model=rigid"}));
   EXPECT_EQ(s.wheel.K, 2000.0);
   EXPECT_EQ(s.initial.omega, 1.1);
   EXPECT_EQ(s.sim.steps, 7);

@@ -30,7 +30,8 @@ TEST(BuiltinInertials, BodiesWeighTheTotalMassAndTheExtraIsSplitInTwo) {
     EXPECT_NEAR(total(b), total_mass, 1e-12) << total_mass;
     const double extra = total_mass - thormang3_mass();
     EXPECT_NEAR(b.pelvis.mass, thormang3_link("pelvis").mass + 0.5 * extra, 1e-12);
-    for (int i = 0; i < 7; ++i) EXPECT_EQ(b.leg[0][static_cast<std::size_t>(i)].mass, b.leg[1][static_cast<std::size_t>(i)].mass) << i;
+    for (int i = 0; i < 7; ++i)
+      EXPECT_EQ(b.leg[0][static_cast<std::size_t>(i)].mass, b.leg[1][static_cast<std::size_t>(i)].mass) << i;
     EXPECT_EQ(b.leg[0][6].mass, thormang3_link("l_leg_foot").mass);
   }
 }

@@ -14,9 +14,9 @@ namespace flexgait::humanoid {
 namespace {
 
 // The table's 36 rows, by name (thormang3-inertials.csv).
-constexpr const char* kSides[] = {"arm_sh_p1", "arm_sh_r", "arm_sh_p2", "arm_el_y", "arm_wr_r", "arm_wr_y", "arm_wr_p",
-                                  "arm_grip",  "arm_grip_1", "leg_hip_y", "leg_hip_r", "leg_hip_p", "leg_kn_p",
-                                  "leg_an_p",  "leg_an_r", "leg_foot"};
+constexpr const char* kSides[] = {"arm_sh_p1", "arm_sh_r", "arm_sh_p2",  "arm_el_y",  "arm_wr_r",  "arm_wr_y",
+                                  "arm_wr_p",  "arm_grip", "arm_grip_1", "leg_hip_y", "leg_hip_r", "leg_hip_p",
+                                  "leg_kn_p",  "leg_an_p", "leg_an_r",   "leg_foot"};
 constexpr const char* kMiddle[] = {"pelvis", "torso_y", "head_y", "head_p"};
 
 TEST(Thormang3Inertials, EveryLinkIsAPhysicalBodyAndTheSidesWeighTheSame) {

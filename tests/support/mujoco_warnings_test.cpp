@@ -44,7 +44,7 @@ void warn_then_check() {
 TEST(MujocoWarningCheck, HookRecordsTheWarningOfAStep) {
   step_mujoco(true);
   const auto messages = take_mujoco_warnings();  // taken: this test must not fail on them
-  ASSERT_FALSE(messages.empty());  // MuJoCo calls the hook the first time each kind occurs in an mjData
+  ASSERT_FALSE(messages.empty());                // MuJoCo calls the hook the first time each kind occurs in an mjData
   EXPECT_NE(messages[0].find("QVEL"), std::string::npos) << messages[0];
 }
 
@@ -65,8 +65,8 @@ struct ProbeRun {
 
 ProbeRun run_probe(const std::string& name) {
   const std::string exe = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = std::string(kProbeVariable) + "=1 '" + exe + "' --gtest_filter=MujocoWarningProbe." +
-                              name + " 2>&1";
+  const std::string command =
+      std::string(kProbeVariable) + "=1 '" + exe + "' --gtest_filter=MujocoWarningProbe." + name + " 2>&1";
   ProbeRun r;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return r;

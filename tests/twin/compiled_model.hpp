@@ -22,7 +22,9 @@ struct Compiled {
     mj_deleteData(d);
     mj_deleteModel(m);
   }
-  int dof(int joint) const { return m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[joint]).c_str())]; }
+  int dof(int joint) const {
+    return m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[joint]).c_str())];
+  }
   void set(const Pose& pelvis, const JointVector& q) {
     mj_resetData(m, d);
     for (int i = 0; i < 3; ++i) d->qpos[i] = pelvis.p(i);

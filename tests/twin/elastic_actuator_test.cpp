@@ -14,9 +14,9 @@ namespace {
 TEST(ElasticActuator, DeadBandIsCentredAndOfTotalWidthB) {
   ActuatorParams p;
   p.backlash = 0.02;
-  EXPECT_EQ(gear_deflection(p, 0.309, 0.30), 0.0);   // within b/2 = 0.01
+  EXPECT_EQ(gear_deflection(p, 0.309, 0.30), 0.0);  // within b/2 = 0.01
   EXPECT_EQ(gear_deflection(p, 0.291, 0.30), 0.0);
-  EXPECT_NEAR(gear_deflection(p, 0.35, 0.30), 0.04, 1e-15);   // beyond b/2 by 0.04
+  EXPECT_NEAR(gear_deflection(p, 0.35, 0.30), 0.04, 1e-15);  // beyond b/2 by 0.04
   EXPECT_NEAR(gear_deflection(p, 0.25, 0.30), -0.04, 1e-15);
   p.backlash = 0.0;
   EXPECT_EQ(gear_deflection(p, 0.35, 0.30), 0.35 - 0.30);

@@ -36,7 +36,8 @@ TEST(MujocoMessages, RoutingSetsTheHooksAndWarningsGoToStderrOnOneLine) {
 // The per-mjData count and text the plant reports (detail/mujoco.hpp), on counts set by hand (a
 // real warning would fail this test under the program's warning check).
 TEST(MujocoMessages, WarningCountAndTextSumTheKinds) {
-  mjModel* m = load_mjcf("<mujoco><worldbody><body><joint type=\"hinge\"/><geom size=\"0.1\"/></body></worldbody></mujoco>");
+  mjModel* m =
+      load_mjcf("<mujoco><worldbody><body><joint type=\"hinge\"/><geom size=\"0.1\"/></body></worldbody></mujoco>");
   mjData* d = mj_makeData(m);
   EXPECT_EQ(mujoco_warning_count(d), 0);
   EXPECT_EQ(mujoco_warnings_text(d), "");

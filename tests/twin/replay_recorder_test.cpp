@@ -54,7 +54,8 @@ TEST(ReplayRecorder, FramesHoldTheStatesBodyPoses) {
   mj_deleteData(k_data);
   // The root (the pelvis's free joint): its position is qpos's, as the walk's log has it.
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(now.scene().poses[static_cast<std::size_t>(i)], d->qpos[i], 1e-6);
-  EXPECT_FLOAT_EQ(s.signals[0].data[static_cast<std::size_t>(last)], s.poses[static_cast<std::size_t>(last) * s.bodies.size() * 7 + 2]);
+  EXPECT_FLOAT_EQ(s.signals[0].data[static_cast<std::size_t>(last)],
+                  s.poses[static_cast<std::size_t>(last) * s.bodies.size() * 7 + 2]);
   // The push: the renderer's arrow.
   const auto arrow = push_arrow(plant);
   ASSERT_TRUE(arrow);

@@ -11,29 +11,29 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <vector>
 #include <random>
 #include <string>
+#include <vector>
 
-#include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/twin/detail/mujoco.hpp"
-#include "flexgait/twin/model_xml.hpp"
-#include "flexgait/robot/urdf_export.hpp"
-#include "flexgait/twin/twin_mjcf.hpp"
-#include "flexgait/walking/robot_model.hpp"
 #include "../walking/model_agreement.hpp"
 #include "compiled_model.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
+#include "flexgait/robot/urdf_export.hpp"
+#include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/twin_mjcf.hpp"
+#include "flexgait/walking/robot_model.hpp"
 
 namespace flexgait::humanoid {
 namespace {
 
+using testing::Compiled;
+using testing::expect_model_agrees_with_mujoco;
+using testing::small_biped_walk;
 using walking::Matrix3d;
 using walking::Pose;
 using walking::RobotModel;
 using walking::Vector3d;
-using testing::Compiled;
-using testing::expect_model_agrees_with_mujoco;
-using testing::small_biped_walk;
 
 LoadedRobot builtin_loaded() {
   return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
@@ -197,13 +197,15 @@ TEST(RobotLoader, MissingMeshFilesAreDropped) {
   const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.xml";
   std::ifstream in(file);
   std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  xml.insert(xml.find("<worldbody>"), R"(<asset><mesh file="no_such_shell.stl"/><mesh name="hull" file="no/such/hull.stl"/></asset>)");
+  xml.insert(xml.find("<worldbody>"),
+             R"(<asset><mesh file="no_such_shell.stl"/><mesh name="hull" file="no/such/hull.stl"/></asset>)");
   const std::string base = R"(<geom type="box" size="0.08 0.1 0.05" mass="8"/>)";
   xml.insert(xml.find(base) + base.size(), R"(<geom mesh="no_such_shell" contype="0"/><geom mesh="hull"/>)");
   RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
   const LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);
   ASSERT_EQ(r.warnings.size(), 1u);
-  EXPECT_NE(r.warnings[0].find("2 mesh files not found (first: no_such_shell); they and the 2 geoms showing them are dropped"),
+  EXPECT_NE(r.warnings[0].find(
+                "2 mesh files not found (first: no_such_shell); they and the 2 geoms showing them are dropped"),
             std::string::npos)
       << r.warnings[0];
   EXPECT_EQ(r.bodies[0].geoms.size(), 1u);
@@ -236,7 +238,8 @@ TEST(RobotLoader, PrintedQuaternionsAreModelled) {
   EXPECT_TRUE(model.sole_tilted[1]);
   expect_model_agrees_with_mujoco(*walk.loaded);
   LoadedRobot tilted = *walk.loaded;
-  tilted.bodies[static_cast<std::size_t>(tilted.foot[1])].quat = {std::cos(0.0006), 0, std::sin(0.0006), 0};  // 1.2e-3 rad
+  tilted.bodies[static_cast<std::size_t>(tilted.foot[1])].quat = {std::cos(0.0006), 0, std::sin(0.0006),
+                                                                  0};  // 1.2e-3 rad
   try {
     (void)walking::make_robot_model(tilted);
     ADD_FAILURE() << "a tilted foot accepted";

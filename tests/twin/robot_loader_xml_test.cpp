@@ -15,7 +15,8 @@ TEST(RobotLoaderXml, AttributesWithTheirLinesCommentsSkipped) {
   const std::string text = "<a x=\"1\">\n<!-- <b y=\"nan\"/> -->\n<c\n  z='2 3'/><![CDATA[<d w=\"4\">]]></a>";
   std::vector<std::string> seen;
   for_each_xml_attribute(text, [&](const XmlAttribute& a) {
-    seen.push_back(std::string(a.element) + "." + std::string(a.name) + "=" + std::string(a.value) + "@" + std::to_string(a.line));
+    seen.push_back(std::string(a.element) + "." + std::string(a.name) + "=" + std::string(a.value) + "@" +
+                   std::to_string(a.line));
   });
   EXPECT_EQ(seen, (std::vector<std::string>{"a.x=1@1", "c.z=2 3@4"}));
 }
@@ -32,7 +33,8 @@ TEST(RobotLoaderXml, NonFiniteTokens) {
 
 TEST(RobotLoaderXml, MuJoCo3TranslatedInPlace) {
   const std::string text =
-      "<mujoco>\n<option integrator=\"implicitfast\"/>\n<worldbody><body><joint range=\"0 1\" actuatorfrcrange=\"-1 1\"/>"
+      "<mujoco>\n<option integrator=\"implicitfast\"/>\n<worldbody><body><joint range=\"0 1\" actuatorfrcrange=\"-1 "
+      "1\"/>"
       "</body></worldbody>\n</mujoco>";
   std::vector<std::string> warnings;
   const std::string out = translate_mujoco3(text, warnings);
@@ -58,7 +60,8 @@ TEST(RobotLoaderXml, MissingMeshesAndTheirGeomsDropped) {
             "<mujoco><compiler autolimits=\"true\" meshdir=\"assets\"/><asset></asset><worldbody><geom type=\"box\" "
             "size=\"1 1 1\"/></worldbody></mujoco>");
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("1 mesh files not found (first: m); they and the 1 geoms"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("1 mesh files not found (first: m); they and the 1 geoms"), std::string::npos)
+      << warnings[0];
 }
 
 }  // namespace

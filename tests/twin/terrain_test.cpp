@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
+#include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/plant.hpp"
 
 namespace flexgait::humanoid {
@@ -24,9 +24,12 @@ PlantParams on(const TerrainParams& t) {
 TerrainParams ramp(double angle, double start) {
   return {.kind = TerrainKind::kRamp, .ramp_angle = angle, .ramp_start = start};
 }
-TerrainParams step(double height, double x) { return {.kind = TerrainKind::kStep, .step_height = height, .step_x = x}; }
+TerrainParams step(double height, double x) {
+  return {.kind = TerrainKind::kStep, .step_height = height, .step_x = x};
+}
 TerrainParams rough(double amplitude, double correlation, int seed = 1) {
-  return {.kind = TerrainKind::kRough, .rough_amplitude = amplitude, .rough_correlation = correlation, .rough_seed = seed};
+  return {
+      .kind = TerrainKind::kRough, .rough_amplitude = amplitude, .rough_correlation = correlation, .rough_seed = seed};
 }
 
 /// The floor's height under (x, y) in MuJoCo: a ray down from 3 m. y is kept beside the robot
@@ -44,8 +47,11 @@ double mujoco_floor(const HumanoidPlant& plant, double x, double y) {
 
 TEST(Terrain, FlatFloorIsThePlaneOfEarlierVersions) {
   const std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
-  EXPECT_NE(xml.find(R"(    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="1 0.005 0.0001" solref="0.005 1" material="flexgait_floor"/>
-    <body name="pelvis")"), std::string::npos);
+  EXPECT_NE(
+      xml.find(
+          R"(    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="1 0.005 0.0001" solref="0.005 1" material="flexgait_floor"/>
+    <body name="pelvis")"),
+      std::string::npos);
   EXPECT_EQ(xml.find("<hfield"), std::string::npos);  // no height field (the assets are the look: sky, floor)
   EXPECT_EQ(Terrain(TerrainParams{}).height(1.3, -0.4), 0.0);
 }
@@ -139,7 +145,7 @@ GroundTruth stand(const TerrainParams& t) {
 }
 
 TEST(Terrain, TwinStandsOnARampAndARoughFloor) {
-  stand(ramp(2 * std::numbers::pi / 180, -1.0));   // both feet on a 2° slope
+  stand(ramp(2 * std::numbers::pi / 180, -1.0));  // both feet on a 2° slope
   stand(ramp(-2 * std::numbers::pi / 180, -1.0));
   stand(rough(0.01, 0.1));
   stand(step(0.03, 1.0));

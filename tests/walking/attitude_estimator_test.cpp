@@ -30,7 +30,9 @@ EstimatorParams test_gains() {
 }
 
 /// The accelerometer of a body at rest with attitude R: specific force Rᵀ g e_z.
-Vector3d at_rest(const Matrix3d& R) { return R.transpose() * Vector3d(0, 0, kG); }
+Vector3d at_rest(const Matrix3d& R) {
+  return R.transpose() * Vector3d(0, 0, kG);
+}
 
 /// Roll/pitch error between two attitudes [rad] (the angle between their "up" directions).
 double tilt_error(const Matrix3d& a, const Matrix3d& b) {
@@ -141,8 +143,10 @@ TEST(AttitudeEstimator, TakesThePlannedAccelerationOut) {
     const Vector3d a = Vector3d(0, 0, kG) + accel_world;  // level body: pelvis frame = world
     for (int k = 0; k < 15000; ++k) f.update(Vector3d::Zero(), &a, accel_world, kT);  // 60 s: e^{-0.113·60} = 1e-3
     const double e = tilt_error(f.attitude(), Matrix3d::Identity());
-    if (compensate) EXPECT_LT(e, 1e-9);
-    else EXPECT_NEAR(e, std::atan(1.0 / kG), 1e-3);
+    if (compensate)
+      EXPECT_LT(e, 1e-9);
+    else
+      EXPECT_NEAR(e, std::atan(1.0 / kG), 1e-3);
   }
 }
 
@@ -265,7 +269,8 @@ TEST(AttitudeEstimator, EndsTheAlignmentOnceThePlanAccelerates) {
   const Matrix3d R = rpy_to_matrix(0.03, -0.02, 0);
   const Vector3d first = R.transpose() * Vector3d(0, 0.5, kG);
   const Vector3d slow(0.15, 0, 0), planned(0, 0.3, 0);
-  const Vector3d creeping = R.transpose() * (slow + Vector3d(0, 0, kG)), moving = R.transpose() * (planned + Vector3d(0, 0, kG));
+  const Vector3d creeping = R.transpose() * (slow + Vector3d(0, 0, kG)),
+                 moving = R.transpose() * (planned + Vector3d(0, 0, kG));
   const Vector3d still = at_rest(R);
   for (AttitudeEstimator* f : {&early, &timed}) {
     f->update(Vector3d::Zero(), &first, Vector3d::Zero(), kT);

@@ -23,8 +23,8 @@ CalibrationMotion sixty_seconds() {
 }
 
 double magnitude(const CalibrationOffset& o) {
-  return std::abs(o.com_x) + std::abs(o.com_y) + std::abs(o.pelvis_z) + std::abs(o.pelvis_pitch) + std::abs(o.sole_roll[0]) +
-         std::abs(o.sole_roll[1]);
+  return std::abs(o.com_x) + std::abs(o.com_y) + std::abs(o.pelvis_z) + std::abs(o.pelvis_pitch) +
+         std::abs(o.sole_roll[0]) + std::abs(o.sole_roll[1]);
 }
 
 TEST(CalibrationMotion, NothingOutsideItsWindowOrWhenOff) {
@@ -118,7 +118,8 @@ TEST(CalibrationMotion, TheSoleRollsKeepClearOfTheOtherComponentsSecondOrderProd
     for (std::size_t i = 0; i < f.size(); ++i) {
       nearest = std::min({nearest, std::abs(soles[side] - f[i]), std::abs(soles[side] - 2 * f[i])});
       for (std::size_t j = i + 1; j < f.size(); ++j)
-        nearest = std::min({nearest, std::abs(soles[side] - (f[i] + f[j])), std::abs(soles[side] - std::abs(f[i] - f[j]))});
+        nearest =
+            std::min({nearest, std::abs(soles[side] - (f[i] + f[j])), std::abs(soles[side] - std::abs(f[i] - f[j]))});
     }
     EXPECT_GE(nearest, 0.1) << "side " << side;
   }

@@ -54,7 +54,8 @@ TEST(FootWrench, RecoversTheNormalForceCentreOfPressureAndTorque) {
 TEST(FootWrench, AFootInTheAirHasNoCentreOfPressure) {
   // Off the ground the sensor carries only the foot's weight.
   const Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  const FootContact c = foot_contact(reading(Eigen::Vector3d::Zero(), Eigen::Vector2d(0.03, 0.02), R), R, kDepth, kFootMass);
+  const FootContact c =
+      foot_contact(reading(Eigen::Vector3d::Zero(), Eigen::Vector2d(0.03, 0.02), R), R, kDepth, kFootMass);
   EXPECT_NEAR(c.normal_force, 0.0, 1e-12);
   EXPECT_EQ(c.cop, Eigen::Vector2d::Zero());
 }

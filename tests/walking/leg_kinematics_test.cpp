@@ -29,7 +29,8 @@ TEST(LegKinematics, InverseOfForwardIsIdentity) {
       const IkSolution ik = leg_inverse_kinematics(leg, target);
       ASSERT_EQ(ik.status, IkStatus::kOk);
       const Pose back = leg_forward_kinematics(leg, ik.q);
-      worst_pose = std::max({worst_pose, (back.p - target.p).cwiseAbs().maxCoeff(), (back.R - target.R).cwiseAbs().maxCoeff()});
+      worst_pose =
+          std::max({worst_pose, (back.p - target.p).cwiseAbs().maxCoeff(), (back.R - target.R).cwiseAbs().maxCoeff()});
       for (int j = 0; j < 6; ++j) worst_angle = std::max(worst_angle, std::abs(ik.q[j] - q[j]));
     }
     // FK∘IK: the 1e-10; in practice a few ulps of the 0.7 m reach (measured ~2e-16 m).
@@ -56,9 +57,10 @@ TEST(LegKinematics, OutOfReachIsClampedAndFlagged) {
 LegGeometry offset_pitch_leg() {
   LegGeometry leg;
   leg.analytic = false;
-  leg.axis = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
-  leg.anchor = {Vector3d(0, 0.075, -0.03), Vector3d(0, 0, -0.05), Vector3d(0.02, 0, 0), Vector3d(0, 0, -0.25),
-                Vector3d(0, 0, -0.25), Vector3d::Zero()};
+  leg.axis = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
+              Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
+  leg.anchor = {Vector3d(0, 0.075, -0.03), Vector3d(0, 0, -0.05), Vector3d(0.02, 0, 0),
+                Vector3d(0, 0, -0.25),     Vector3d(0, 0, -0.25), Vector3d::Zero()};
   leg.sole = Vector3d(0, 0, -0.06);
   return leg;
 }
@@ -87,9 +89,14 @@ TEST(LegKinematics, NumericAgreesWithAnalyticOnTheBuiltinLeg) {
   LegGeometry analytic = leg_geometry(humanoid::RobotParams{}, 1);
   LegGeometry chain = analytic;
   chain.analytic = false;
-  chain.axis = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
-  chain.anchor = {analytic.hip, Vector3d::Zero(), Vector3d::Zero(), Vector3d(0, 0, -analytic.thigh),
-                  Vector3d(0, 0, -analytic.shank), Vector3d::Zero()};
+  chain.axis = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
+                Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
+  chain.anchor = {analytic.hip,
+                  Vector3d::Zero(),
+                  Vector3d::Zero(),
+                  Vector3d(0, 0, -analytic.thigh),
+                  Vector3d(0, 0, -analytic.shank),
+                  Vector3d::Zero()};
   chain.sole = Vector3d(0, 0, -analytic.ankle_to_sole) + analytic.sole_shift;  // the sole 14 mm outward
   for (int i = 0; i < 500; ++i) {
     LegAngles q = random_angles(rng);

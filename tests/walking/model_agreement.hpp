@@ -35,7 +35,8 @@ inline void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
   std::uniform_real_distribution<double> a(-0.5, 0.5), small(-0.3, 0.3);
   std::vector<mjtNum> jacp(static_cast<std::size_t>(3 * twin.m->nv)), jacr(static_cast<std::size_t>(3 * twin.m->nv));
   for (int trial = 0; trial < 30; ++trial) {
-    const Pose pelvis{Vector3d(small(rng), small(rng), 0.8 + small(rng)), walking::rpy_to_matrix(small(rng), small(rng), small(rng))};
+    const Pose pelvis{Vector3d(small(rng), small(rng), 0.8 + small(rng)),
+                      walking::rpy_to_matrix(small(rng), small(rng), small(rng))};
     JointVector q;
     for (auto& v : q) v = a(rng);
     walking::forward_kinematics(model, data, pelvis, q);
@@ -65,7 +66,8 @@ inline void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
 }
 
 /// The walk of a fixture robot of tests/humanoid/data (its YAML mapping, with these overrides).
-inline experiments::WalkRunParams fixture_walk(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+inline experiments::WalkRunParams fixture_walk(const std::string& yaml,
+                                               const std::vector<std::string>& overrides = {}) {
   const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
   const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / yaml;
   return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), file, overrides));
@@ -74,6 +76,8 @@ inline experiments::WalkRunParams fixture_walk(const std::string& yaml, const st
 /// The second robot's walk (tests/humanoid/data/small_biped.yaml: the robot small_biped.xml with
 /// its own names and an offset hip pitch axis, 10 steps at 1 s/step); its description path is
 /// relative to the YAML file.
-inline experiments::WalkRunParams small_biped_walk() { return fixture_walk("small_biped.yaml"); }
+inline experiments::WalkRunParams small_biped_walk() {
+  return fixture_walk("small_biped.yaml");
+}
 
 }  // namespace flexgait::humanoid::testing

@@ -145,8 +145,8 @@ TEST(PlannedMotion, CentralDifferenceConvergesAsHSquared) {
     e_fine = std::max(e_fine, std::abs(fine.acceleration[j] - finest.acceleration[j]));
     largest = std::max(largest, std::abs(finest.acceleration[j]));
   }
-  EXPECT_GT(largest, 1.0);           // a swing: accelerations of rad/s²
-  EXPECT_LT(e_fine, 1e-3 * largest); // h = 0.01 s (the controller's): within 0.1 %
+  EXPECT_GT(largest, 1.0);            // a swing: accelerations of rad/s²
+  EXPECT_LT(e_fine, 1e-3 * largest);  // h = 0.01 s (the controller's): within 0.1 %
   // h² convergence: (0.02² − 0.005²) / (0.01² − 0.005²) = 5; allow 3.5-6.5 (fixed-point round-off)
   EXPECT_GT(e_coarse / e_fine, 3.5);
   EXPECT_LT(e_coarse / e_fine, 6.5);

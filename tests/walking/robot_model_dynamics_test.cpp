@@ -42,12 +42,16 @@ constexpr double kRelative = 1e-9;
 std::string mjcf_of(const RobotModel& model) {
   std::function<std::string(int)> body = [&](int i) {
     const auto& b = model.bodies[i];
-    std::string s = fmt::format("<body name=\"b{}\" pos=\"{:.17g} {:.17g} {:.17g}\">", i, b.offset.x(), b.offset.y(), b.offset.z());
-    if (i == 0) s += "<freejoint name=\"root\"/>";
+    std::string s =
+        fmt::format("<body name=\"b{}\" pos=\"{:.17g} {:.17g} {:.17g}\">", i, b.offset.x(), b.offset.y(), b.offset.z());
+    if (i == 0)
+      s += "<freejoint name=\"root\"/>";
     else if (b.joint >= 0)
-      s += fmt::format("<joint name=\"j{}\" axis=\"{:.17g} {:.17g} {:.17g}\"/>", b.joint, b.axis.x(), b.axis.y(), b.axis.z());
+      s += fmt::format("<joint name=\"j{}\" axis=\"{:.17g} {:.17g} {:.17g}\"/>", b.joint, b.axis.x(), b.axis.y(),
+                       b.axis.z());
     const Matrix3d& I = b.inertia;
-    s += fmt::format("<inertial pos=\"{:.17g} {:.17g} {:.17g}\" mass=\"{:.17g}\" ", b.com.x(), b.com.y(), b.com.z(), b.mass);
+    s += fmt::format("<inertial pos=\"{:.17g} {:.17g} {:.17g}\" mass=\"{:.17g}\" ", b.com.x(), b.com.y(), b.com.z(),
+                     b.mass);
     s += I.isZero() ? std::string("diaginertia=\"0 0 0\"/>")
                     : fmt::format("fullinertia=\"{:.17g} {:.17g} {:.17g} {:.17g} {:.17g} {:.17g}\"/>", I(0, 0), I(1, 1),
                                   I(2, 2), I(0, 1), I(0, 2), I(1, 2));
@@ -55,8 +59,8 @@ std::string mjcf_of(const RobotModel& model) {
       if (model.bodies[k].parent == i) s += body(k);
     return s + "</body>";
   };
-  return "<mujoco><compiler angle=\"radian\" boundinertia=\"1e-14\"/><option gravity=\"0 0 -9.81\"/><worldbody>" + body(0) +
-         "</worldbody></mujoco>";
+  return "<mujoco><compiler angle=\"radian\" boundinertia=\"1e-14\"/><option gravity=\"0 0 -9.81\"/><worldbody>" +
+         body(0) + "</worldbody></mujoco>";
 }
 
 /// A MuJoCo model and which of its joints each flexgait joint is.
@@ -132,7 +136,9 @@ double compare_with_mj_rne(const RobotModel& model, Reference& ref, unsigned see
   return worst;
 }
 
-RobotModel builtin() { return make_robot_model(humanoid::RobotParams{}); }
+RobotModel builtin() {
+  return make_robot_model(humanoid::RobotParams{});
+}
 
 /// MuJoCo stores a full inertia as its principal moments and axes (an iterative eigensolver, good
 /// to ~1e-9 relative): the model's inertias set to the ones MuJoCo simulates.
@@ -194,7 +200,8 @@ TEST(RobotModelDynamics, AtRestTheLegTorquesAreTheirGravityTorques) {
   const RobotModel model = builtin();
   const JointVector q = random_angles(4, 0.6);
   RobotModelData kin;
-  forward_kinematics(model, kin, Pose{Vector3d(0, 0, 0.7), Matrix3d(Eigen::AngleAxisd(0.2, Vector3d(1, 2, 0).normalized()))}, q);
+  forward_kinematics(model, kin,
+                     Pose{Vector3d(0, 0, 0.7), Matrix3d(Eigen::AngleAxisd(0.2, Vector3d(1, 2, 0).normalized()))}, q);
   RobotDynamicsData dyn;
   inverse_dynamics(model, kin, BaseMotion{}, JointVector{}, JointVector{}, dyn);
   for (int side = 0; side < 2; ++side) {
@@ -228,7 +235,8 @@ TEST(RobotModelDynamics, WithTheGroundForceGivenAtTheFeetItIsTheFullGravityTorqu
   }
   RobotDynamicsData dyn;
   inverse_dynamics(model, kin, BaseMotion{}, JointVector{}, JointVector{}, dyn, feet);
-  for (int j = humanoid::kLeftHipYaw; j < kJoints; ++j) EXPECT_NEAR(dyn.tau[j], expected[j], 1e-10) << j;  // rounding on O(100) Nm
+  for (int j = humanoid::kLeftHipYaw; j < kJoints; ++j)
+    EXPECT_NEAR(dyn.tau[j], expected[j], 1e-10) << j;  // rounding on O(100) Nm
 }
 
 // ---- ∂τ/∂q against central differences ----

@@ -54,7 +54,9 @@ TEST(RobotModelLoaded, BuiltinLoadedBackGivesTheSameControllerModel) {
   EXPECT_NEAR(a.sole_width, b.sole_width, 1e-15);
 }
 
-TEST(RobotModelLoaded, ControllerModelAgreesWithMuJoCo) { expect_model_agrees_with_mujoco(builtin_loaded()); }
+TEST(RobotModelLoaded, ControllerModelAgreesWithMuJoCo) {
+  expect_model_agrees_with_mujoco(builtin_loaded());
+}
 
 TEST(RobotModelLoaded, SecondRobotModelAgreesWithMuJoCo) {
   const experiments::WalkRunParams walk = small_biped_walk();

@@ -74,7 +74,8 @@ TEST(RobotModel, AgreesWithTheTwin) {
       const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R(twin.d->site_xmat + 9 * site);
       const Vector3d ankle(twin.d->site_xpos + 3 * site);
       const Pose sole = sole_pose(model, data, side);
-      EXPECT_LT((sole.p - (ankle - R.col(2) * model.leg[side].ankle_to_sole + R * model.leg[side].sole_shift)).norm(), 1e-12);
+      EXPECT_LT((sole.p - (ankle - R.col(2) * model.leg[side].ankle_to_sole + R * model.leg[side].sole_shift)).norm(),
+                1e-12);
       EXPECT_LT((sole.R - Matrix3d(R)).cwiseAbs().maxCoeff(), 1e-12);
       // The leg's own gravity torque against MuJoCo's: with the foot free, the pelvis held and
       // at rest, the bias force at each leg joint is the torque that holds the links below it.

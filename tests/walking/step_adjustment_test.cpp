@@ -50,9 +50,9 @@ TEST(StepAdjustment, LandingWithinReachNeverCrossing) {
     const Footprint to = adjusted_landing(planned, stance, swing, beyond, 3.5, 0.6 * (u(rng) + 1), limits);
     const double dx = to.x - stance.x, dy = to.y - stance.y;
     const double along = c * dx + s * dy, across = -s * dx + c * dy;
-    EXPECT_LE(std::hypot(dx, dy), limits.reach + 1e-12);              // within reach
-    EXPECT_GE(side * across, limits.min_width - 1e-12);               // on its own side, feet apart
-    EXPECT_LE(std::abs(along - ax), limits.limit + 1e-12);            // the bounded shift along the heading
+    EXPECT_LE(std::hypot(dx, dy), limits.reach + 1e-12);    // within reach
+    EXPECT_GE(side * across, limits.min_width - 1e-12);     // on its own side, feet apart
+    EXPECT_LE(std::abs(along - ax), limits.limit + 1e-12);  // the bounded shift along the heading
   }
 }
 

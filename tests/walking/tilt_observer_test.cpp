@@ -38,7 +38,8 @@ Sample sample(const Swing& s, double t) {
   const Vector3d omega(W(2, 1), W(0, 2), W(1, 0));
   const Vector3d pdd = (s.p(t + h) - 2 * s.p(t) + s.p(t - h)) / (h * h);
   const Vector3d anchor = R.transpose() * (Vector3d::Zero() - s.p(t));  // constant: (0, 0, −L)
-  return {omega, -omega.cross(anchor), R.transpose() * (pdd + kG * Vector3d::UnitZ()), R.transpose() * Vector3d::UnitZ()};
+  return {omega, -omega.cross(anchor), R.transpose() * (pdd + kG * Vector3d::UnitZ()),
+          R.transpose() * Vector3d::UnitZ()};
 }
 
 TEST(TiltObserver, StaysOnTheTruthAndConvergesToItFromAWrongTilt) {

@@ -24,12 +24,17 @@ void add_entries(const py::dict& dict, const std::string& prefix, std::vector<Co
     }
     std::string text;
     // numbers.Integral / Real: Python's and numpy's (numpy.int64, numpy.float32, ...) alike.
-    if (py::isinstance<py::bool_>(v)) text = v.cast<bool>() ? "true" : "false";
-    else if (py::isinstance(v, numbers.attr("Integral"))) text = py::str(py::int_(py::reinterpret_borrow<py::object>(v)));
-    else if (py::isinstance(v, numbers.attr("Real"))) text = py::repr(py::float_(py::reinterpret_borrow<py::object>(v)));
-    else if (py::isinstance<py::str>(v)) text = v.cast<std::string>();
+    if (py::isinstance<py::bool_>(v))
+      text = v.cast<bool>() ? "true" : "false";
+    else if (py::isinstance(v, numbers.attr("Integral")))
+      text = py::str(py::int_(py::reinterpret_borrow<py::object>(v)));
+    else if (py::isinstance(v, numbers.attr("Real")))
+      text = py::repr(py::float_(py::reinterpret_borrow<py::object>(v)));
+    else if (py::isinstance<py::str>(v))
+      text = v.cast<std::string>();
     else
-      throw py::value_error("config key '" + one_line(key) + "': value must be a float, int, bool, str or a dict of them, not " +
+      throw py::value_error("config key '" + one_line(key) +
+                            "': value must be a float, int, bool, str or a dict of them, not " +
                             std::string(py::str(v.get_type().attr("__name__"))));
     entries.push_back({key, text, "config"});
   }
@@ -93,19 +98,35 @@ py::dict table_columns(Table table) {
   return out;
 }
 
-py::object json_value(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+py::object json_value(const std::string& text) {
+  return py::module_::import("json").attr("loads")(text);
+}
 
 py::dict config_dict(const Config& config) {
   py::dict out;
   for (const auto& p : config.schema().params()) {
     switch (p.type) {
-      case ParamType::Real: out[py::str(p.key)] = config.real(p.key); break;
-      case ParamType::Integer: out[py::str(p.key)] = config.integer(p.key); break;
-      case ParamType::Boolean: out[py::str(p.key)] = config.boolean(p.key); break;
-      case ParamType::Choice: out[py::str(p.key)] = config.choice(p.key); break;
-      case ParamType::Text: out[py::str(p.key)] = config.text(p.key); break;
-      case ParamType::List: out[py::str(p.key)] = format_value(config.list(p.key), p.item_fields); break;  // flow YAML
-      case ParamType::Reals: out[py::str(p.key)] = py::cast(config.reals(p.key)); break;
+      case ParamType::Real:
+        out[py::str(p.key)] = config.real(p.key);
+        break;
+      case ParamType::Integer:
+        out[py::str(p.key)] = config.integer(p.key);
+        break;
+      case ParamType::Boolean:
+        out[py::str(p.key)] = config.boolean(p.key);
+        break;
+      case ParamType::Choice:
+        out[py::str(p.key)] = config.choice(p.key);
+        break;
+      case ParamType::Text:
+        out[py::str(p.key)] = config.text(p.key);
+        break;
+      case ParamType::List:
+        out[py::str(p.key)] = format_value(config.list(p.key), p.item_fields);
+        break;  // flow YAML
+      case ParamType::Reals:
+        out[py::str(p.key)] = py::cast(config.reals(p.key));
+        break;
     }
   }
   return out;

@@ -5,9 +5,9 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "flexgait/experiments/bench_output.hpp"
+#include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
-#include "flexgait/experiments/stiffness_bench.hpp"
 
 namespace flexgait::python {
 namespace {
@@ -32,7 +32,8 @@ py::dict bench(const py::object& config, const OptionalPath& config_file) {
   return out;
 }
 
-py::dict walk(const py::object& config, const OptionalPath& config_file, const std::optional<std::string>& compensation) {
+py::dict walk(const py::object& config, const OptionalPath& config_file,
+              const std::optional<std::string>& compensation) {
   py::dict overrides;
   if (!config.is_none()) overrides = py::dict(config);
   if (compensation) overrides["control.compensation"] = *compensation;

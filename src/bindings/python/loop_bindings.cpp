@@ -29,7 +29,8 @@ py::array_t<double> array_of(const std::array<double, N>& values) {
 template <std::size_t N, std::size_t M>
 py::array_t<double> array_of(const std::array<std::array<double, M>, N>& rows) {
   py::array_t<double> a({static_cast<py::ssize_t>(N), static_cast<py::ssize_t>(M)});
-  for (std::size_t i = 0; i < N; ++i) std::copy(rows[i].begin(), rows[i].end(), a.mutable_data(static_cast<py::ssize_t>(i), 0));
+  for (std::size_t i = 0; i < N; ++i)
+    std::copy(rows[i].begin(), rows[i].end(), a.mutable_data(static_cast<py::ssize_t>(i), 0));
   return a;
 }
 
@@ -41,8 +42,8 @@ humanoid::JointVector joint_command(const py::handle& value, const char* what) {
   } catch (const py::error_already_set&) {
   }
   if (!a || a.ndim() != 1 || a.shape(0) != kJoints)
-    throw py::value_error(fmt::format("{}: expected {} joint angles [rad] (HumanoidLoop.joint_names order), got {}", what,
-                                      kJoints, std::string(py::str(py::repr(value)))));
+    throw py::value_error(fmt::format("{}: expected {} joint angles [rad] (HumanoidLoop.joint_names order), got {}",
+                                      what, kJoints, std::string(py::str(py::repr(value)))));
   humanoid::JointVector q{};
   for (int j = 0; j < kJoints; ++j) {
     q[j] = a.at(j);
@@ -64,7 +65,8 @@ class PyController : public loop::Controller {
   }
   void sent(const humanoid::JointVector& command) override {
     py::gil_scoped_acquire gil;
-    if (const py::function f = py::get_override(static_cast<const loop::Controller*>(this), "sent")) f(array_of(command));
+    if (const py::function f = py::get_override(static_cast<const loop::Controller*>(this), "sent"))
+      f(array_of(command));
   }
 };
 
@@ -88,7 +90,8 @@ class PyHumanoidLoop {
 
   void reset(const std::optional<long long>& seed) {
     if (seed) {
-      if (*seed < 0 || *seed > 2147483647LL) throw py::value_error(fmt::format("seed: {} is not in [0, 2147483647]", *seed));
+      if (*seed < 0 || *seed > 2147483647LL)
+        throw py::value_error(fmt::format("seed: {} is not in [0, 2147483647]", *seed));
       params_.plant.noise_seed = static_cast<int>(*seed);
     }
     renderer_.reset();
@@ -106,11 +109,10 @@ class PyHumanoidLoop {
       failure = walk_.loop->step(q);
     }
     if (failure)
-      throw std::runtime_error(fmt::format("the simulation failed at t = {:.6g} s: {}{}", walk_.loop->time(),
-                                           name_of(*failure),
-                                           *failure == loop::SimulationFailure::kMuJoCoWarning
-                                               ? " (" + walk_.loop->plant().warnings_text() + ")"
-                                               : std::string()));
+      throw std::runtime_error(fmt::format(
+          "the simulation failed at t = {:.6g} s: {}{}", walk_.loop->time(), name_of(*failure),
+          *failure == loop::SimulationFailure::kMuJoCoWarning ? " (" + walk_.loop->plant().warnings_text() + ")"
+                                                              : std::string()));
   }
 
   /// Steps until time `until` [s] (default: the builtin plan's end) with the loop's controller.
@@ -131,7 +133,8 @@ class PyHumanoidLoop {
   }
 
   py::array render(int width, int height) {
-    if (width < 1 || height < 1) throw py::value_error(fmt::format("render: width and height must be >= 1, got {}x{}", width, height));
+    if (width < 1 || height < 1)
+      throw py::value_error(fmt::format("render: width and height must be >= 1, got {}x{}", width, height));
     if (!renderer_ || renderer_->width() != width || renderer_->height() != height)
       renderer_ = std::make_unique<humanoid::Renderer>(walk_.loop->plant(), width, height);
     std::vector<unsigned char> rgb;
@@ -166,41 +169,76 @@ py::list joint_names() {
 }
 
 void bind_records(py::module_& m) {
-  py::class_<humanoid::SensorReadings>(m, "SensorReadings",
-                                       "What a controller reads in one period (SI units): motor-side encoders, the ankle "
-                                       "F/T sensors (force on the foot from the leg, foot frame) and the pelvis IMU.")
-      .def_property_readonly("t", [](const humanoid::SensorReadings& s) { return s.t; }, "time [s]")
-      .def_property_readonly("encoder", [](const humanoid::SensorReadings& s) { return array_of(s.encoder); },
-                             "motor-side encoder angles [rad], joint_names order")
-      .def_property_readonly("encoder_stamp", [](const humanoid::SensorReadings& s) { return array_of(s.encoder_stamp); },
-                             "when each encoder was read [s]")
-      .def_property_readonly("ft_force", [](const humanoid::SensorReadings& s) {
-        return array_of(std::array<std::array<double, 3>, 2>{s.ft[0].force, s.ft[1].force}); }, "left, right ankle force [N] (2x3)")
-      .def_property_readonly("ft_torque", [](const humanoid::SensorReadings& s) {
-        return array_of(std::array<std::array<double, 3>, 2>{s.ft[0].torque, s.ft[1].torque}); }, "left, right ankle torque [N m] (2x3)")
-      .def_property_readonly("imu_quat", [](const humanoid::SensorReadings& s) { return array_of(s.imu.quat); },
-                             "AHRS pelvis orientation (w, x, y, z), world frame")
-      .def_property_readonly("gyro", [](const humanoid::SensorReadings& s) { return array_of(s.imu.gyro); },
-                             "pelvis angular rate, pelvis frame [rad/s]")
-      .def_property_readonly("accel", [](const humanoid::SensorReadings& s) { return array_of(s.imu.accel); },
-                             "specific force, pelvis frame [m/s^2] (+g up at rest)");
-  py::class_<humanoid::GroundTruth>(m, "GroundTruth", "The twin's true state (for evaluation; a controller is not given it).")
-      .def_property_readonly("t", [](const humanoid::GroundTruth& g) { return g.t; }, "time [s]")
-      .def_property_readonly("link_angle", [](const humanoid::GroundTruth& g) { return array_of(g.link_angle); }, "[rad]")
-      .def_property_readonly("link_velocity", [](const humanoid::GroundTruth& g) { return array_of(g.link_velocity); }, "[rad/s]")
-      .def_property_readonly("motor_angle", [](const humanoid::GroundTruth& g) { return array_of(g.motor_angle); }, "[rad]")
-      .def_property_readonly("gear_torque", [](const humanoid::GroundTruth& g) { return array_of(g.gear_torque); }, "[N m]")
-      .def_property_readonly("pelvis_pos", [](const humanoid::GroundTruth& g) { return array_of(g.pelvis_pos); }, "[m]")
-      .def_property_readonly("pelvis_quat", [](const humanoid::GroundTruth& g) { return array_of(g.pelvis_quat); }, "(w, x, y, z)")
-      .def_property_readonly("com", [](const humanoid::GroundTruth& g) { return array_of(g.com); }, "whole-body COM [m]")
-      .def_property_readonly("zmp", [](const humanoid::GroundTruth& g) { return array_of(g.zmp); }, "floor contacts' centre of pressure (x, y) [m]")
-      .def_property_readonly("sole_pos", [](const humanoid::GroundTruth& g) { return array_of(g.sole_pos); }, "left, right sole centres [m] (2x3)")
-      .def_property_readonly("sole_contact", [](const humanoid::GroundTruth& g) {
-        return std::vector<bool>{g.sole_contact[0], g.sole_contact[1]}; }, "each sole touches the floor")
-      .def_property_readonly("non_sole_contact", [](const humanoid::GroundTruth& g) { return g.non_sole_contact; },
-                             "a body other than a sole touches the floor")
-      .def_property_readonly("normal_force", [](const humanoid::GroundTruth& g) { return g.normal_force; }, "[N]")
-      .def_property_readonly("warnings", [](const humanoid::GroundTruth& g) { return g.warnings; }, "MuJoCo warnings so far");
+  py::class_<humanoid::SensorReadings>(
+      m, "SensorReadings",
+      "What a controller reads in one period (SI units): motor-side encoders, the ankle "
+      "F/T sensors (force on the foot from the leg, foot frame) and the pelvis IMU.")
+      .def_property_readonly(
+          "t", [](const humanoid::SensorReadings& s) { return s.t; }, "time [s]")
+      .def_property_readonly(
+          "encoder", [](const humanoid::SensorReadings& s) { return array_of(s.encoder); },
+          "motor-side encoder angles [rad], joint_names order")
+      .def_property_readonly(
+          "encoder_stamp", [](const humanoid::SensorReadings& s) { return array_of(s.encoder_stamp); },
+          "when each encoder was read [s]")
+      .def_property_readonly(
+          "ft_force",
+          [](const humanoid::SensorReadings& s) {
+            return array_of(std::array<std::array<double, 3>, 2>{s.ft[0].force, s.ft[1].force});
+          },
+          "left, right ankle force [N] (2x3)")
+      .def_property_readonly(
+          "ft_torque",
+          [](const humanoid::SensorReadings& s) {
+            return array_of(std::array<std::array<double, 3>, 2>{s.ft[0].torque, s.ft[1].torque});
+          },
+          "left, right ankle torque [N m] (2x3)")
+      .def_property_readonly(
+          "imu_quat", [](const humanoid::SensorReadings& s) { return array_of(s.imu.quat); },
+          "AHRS pelvis orientation (w, x, y, z), world frame")
+      .def_property_readonly(
+          "gyro", [](const humanoid::SensorReadings& s) { return array_of(s.imu.gyro); },
+          "pelvis angular rate, pelvis frame [rad/s]")
+      .def_property_readonly(
+          "accel", [](const humanoid::SensorReadings& s) { return array_of(s.imu.accel); },
+          "specific force, pelvis frame [m/s^2] (+g up at rest)");
+  py::class_<humanoid::GroundTruth>(m, "GroundTruth",
+                                    "The twin's true state (for evaluation; a controller is not given it).")
+      .def_property_readonly(
+          "t", [](const humanoid::GroundTruth& g) { return g.t; }, "time [s]")
+      .def_property_readonly(
+          "link_angle", [](const humanoid::GroundTruth& g) { return array_of(g.link_angle); }, "[rad]")
+      .def_property_readonly(
+          "link_velocity", [](const humanoid::GroundTruth& g) { return array_of(g.link_velocity); }, "[rad/s]")
+      .def_property_readonly(
+          "motor_angle", [](const humanoid::GroundTruth& g) { return array_of(g.motor_angle); }, "[rad]")
+      .def_property_readonly(
+          "gear_torque", [](const humanoid::GroundTruth& g) { return array_of(g.gear_torque); }, "[N m]")
+      .def_property_readonly(
+          "pelvis_pos", [](const humanoid::GroundTruth& g) { return array_of(g.pelvis_pos); }, "[m]")
+      .def_property_readonly(
+          "pelvis_quat", [](const humanoid::GroundTruth& g) { return array_of(g.pelvis_quat); }, "(w, x, y, z)")
+      .def_property_readonly(
+          "com", [](const humanoid::GroundTruth& g) { return array_of(g.com); }, "whole-body COM [m]")
+      .def_property_readonly(
+          "zmp", [](const humanoid::GroundTruth& g) { return array_of(g.zmp); },
+          "floor contacts' centre of pressure (x, y) [m]")
+      .def_property_readonly(
+          "sole_pos", [](const humanoid::GroundTruth& g) { return array_of(g.sole_pos); },
+          "left, right sole centres [m] (2x3)")
+      .def_property_readonly(
+          "sole_contact",
+          [](const humanoid::GroundTruth& g) {
+            return std::vector<bool>{g.sole_contact[0], g.sole_contact[1]};
+          },
+          "each sole touches the floor")
+      .def_property_readonly(
+          "non_sole_contact", [](const humanoid::GroundTruth& g) { return g.non_sole_contact; },
+          "a body other than a sole touches the floor")
+      .def_property_readonly(
+          "normal_force", [](const humanoid::GroundTruth& g) { return g.normal_force; }, "[N]")
+      .def_property_readonly(
+          "warnings", [](const humanoid::GroundTruth& g) { return g.warnings; }, "MuJoCo warnings so far");
 }
 
 }  // namespace
@@ -220,10 +258,11 @@ void bind_loop(py::module_& m) {
       "pushes, sensors with their faults), a controller (the builtin walking controller, or `controller`, a "
       "flexgait.Controller), and the deformation compensators on its command as `config` sets them "
       "(control.compensation). `config`: a dict of keys (nested dicts allowed) as for flexgait.humanoid.walk.")
-      .def(py::init<const py::object&, const std::optional<std::string>&, const py::object&>(), py::arg("config") = py::none(),
-           py::arg("config_file") = py::none(), py::arg("controller") = py::none())
+      .def(py::init<const py::object&, const std::optional<std::string>&, const py::object&>(),
+           py::arg("config") = py::none(), py::arg("config_file") = py::none(), py::arg("controller") = py::none())
       .def("reset", &PyHumanoidLoop::reset, py::arg("seed") = py::none(),
-           "Back to the start pose at t = 0 (a new twin; `seed` replaces plant.noise.seed: the same seed, the same run).")
+           "Back to the start pose at t = 0 (a new twin; `seed` replaces plant.noise.seed: the same seed, the same "
+           "run).")
       .def("step", &PyHumanoidLoop::step, py::arg("command") = py::none(),
            "One control period. command=None: the loop's controller decides; else 13 desired joint angles [rad] "
            "in joint_names order, passed through the compensators as configured. Releases the GIL. Raises "
@@ -231,18 +270,28 @@ void bind_loop(py::module_& m) {
            "any step after that until reset).")
       .def("run", &PyHumanoidLoop::run, py::arg("until") = py::none(),
            "Steps with the loop's controller until time `until` [s] (default: the builtin plan's end), GIL released.")
-      .def("sensors", [](const PyHumanoidLoop& l) { return l.loop().sensors(); }, "The sensors' readings now (SensorReadings).")
-      .def("truth", [](const PyHumanoidLoop& l) { return l.loop().truth(); }, "The twin's true state now (GroundTruth).")
-      .def("command", [](const PyHumanoidLoop& l) { return array_of(l.loop().command()); }, "The last command sent [rad].")
+      .def(
+          "sensors", [](const PyHumanoidLoop& l) { return l.loop().sensors(); },
+          "The sensors' readings now (SensorReadings).")
+      .def(
+          "truth", [](const PyHumanoidLoop& l) { return l.loop().truth(); }, "The twin's true state now (GroundTruth).")
+      .def(
+          "command", [](const PyHumanoidLoop& l) { return array_of(l.loop().command()); },
+          "The last command sent [rad].")
       .def("render", &PyHumanoidLoop::render, py::arg("width") = 640, py::arg("height") = 480,
            "The twin now as an RGB image, a uint8 array (height, width, 3) (MuJoCo offscreen, OSMesa).")
-      .def_property_readonly("time", [](const PyHumanoidLoop& l) { return l.loop().time(); }, "simulated time [s]")
-      .def_property_readonly("period", [](const PyHumanoidLoop& l) { return l.params().plant.control_period; }, "control period [s]")
-      .def_property_readonly("duration", [](const PyHumanoidLoop& l) { return l.builtin().plan().duration; },
-                             "the builtin walking plan's length [s]")
-      .def_property_readonly("initial_pose", [](const PyHumanoidLoop& l) { return array_of(l.builtin().initial_pose()); },
-                             "the start pose [rad]")
-      .def_property_readonly_static("joint_names", [](const py::object&) { return joint_names(); }, "the joints, in command order")
+      .def_property_readonly(
+          "time", [](const PyHumanoidLoop& l) { return l.loop().time(); }, "simulated time [s]")
+      .def_property_readonly(
+          "period", [](const PyHumanoidLoop& l) { return l.params().plant.control_period; }, "control period [s]")
+      .def_property_readonly(
+          "duration", [](const PyHumanoidLoop& l) { return l.builtin().plan().duration; },
+          "the builtin walking plan's length [s]")
+      .def_property_readonly(
+          "initial_pose", [](const PyHumanoidLoop& l) { return array_of(l.builtin().initial_pose()); },
+          "the start pose [rad]")
+      .def_property_readonly_static(
+          "joint_names", [](const py::object&) { return joint_names(); }, "the joints, in command order")
       .def_property_readonly("config", [](const PyHumanoidLoop& l) { return config_dict(l.config()); });
 }
 

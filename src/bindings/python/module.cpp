@@ -7,10 +7,10 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "flexgait/core/config.hpp"
-#include "flexgait/experiments/walk_experiment.hpp"
-#include "flexgait/twin/mujoco_messages.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
+#include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/rimless/wheel_setup.hpp"
+#include "flexgait/twin/mujoco_messages.hpp"
 #include "flexgait/version.hpp"
 
 namespace py = pybind11;
@@ -67,7 +67,8 @@ PYBIND11_MODULE(flexgait, m) {
   m.def(
       "defaults",
       [](const std::string& name) {
-        return flexgait::python::config_dict(flexgait::python::make_config(schema_named(name), py::none(), std::nullopt));
+        return flexgait::python::config_dict(
+            flexgait::python::make_config(schema_named(name), py::none(), std::nullopt));
       },
       py::arg("schema"),
       "The default configuration of 'rimless' (rimless.*, initial.*, sim.*, analysis.*), 'walk' (robot.*, "

@@ -120,9 +120,11 @@ py::dict poincare_map(const py::object& config, const OptionalPath& config_file,
     if (auto f = rimless::settle_on_section(s.wheel, sim, s.sim.model, sec, s.initial, opt.transient_steps, point))
       failure = f->text();
     if (!failure && z) {
-      if (z->size() != point.z.size()) failure = "z has " + std::to_string(z->size()) + " components, the section state " +
-                                                 std::to_string(point.z.size());
-      else point.z = *z;
+      if (z->size() != point.z.size())
+        failure =
+            "z has " + std::to_string(z->size()) + " components, the section state " + std::to_string(point.z.size());
+      else
+        point.z = *z;
     }
     if (!failure) {
       rimless::PoincareMap map(s.wheel, sim, s.sim.model, sec);

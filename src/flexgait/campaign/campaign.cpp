@@ -30,7 +30,8 @@ std::string cell_text(const nlohmann::ordered_json& v, int depth = 0) {
       return v.get<std::string>();
     case nlohmann::json::value_t::array: {
       std::string out;
-      for (std::size_t k = 0; k < v.size(); ++k) out += (k ? (depth == 0 ? ";" : ":") : "") + cell_text(v[k], depth + 1);
+      for (std::size_t k = 0; k < v.size(); ++k)
+        out += (k ? (depth == 0 ? ";" : ":") : "") + cell_text(v[k], depth + 1);
       return out;
     }
     default:
@@ -152,7 +153,9 @@ Config Campaign::point_config(int i) const {
   return c;
 }
 
-double Campaign::cost(int i) const { return experiment_.cost ? experiment_.cost(point_config(i)) : 1.0; }
+double Campaign::cost(int i) const {
+  return experiment_.cost ? experiment_.cost(point_config(i)) : 1.0;
+}
 
 std::string Campaign::header() const {
   std::string out;
@@ -176,7 +179,8 @@ std::string Campaign::point_text(int i) const {
   std::string out;
   for (std::size_t k = 0; k < values.size(); ++k) {
     const std::size_t axes = grid_.axes().size();
-    out += fmt::format("{}{}={}", k ? ", " : "", k < axes ? grid_.axes()[k].key : random_.axes()[k - axes].key, values[k]);
+    out +=
+        fmt::format("{}{}={}", k ? ", " : "", k < axes ? grid_.axes()[k].key : random_.axes()[k - axes].key, values[k]);
   }
   return out;
 }
@@ -222,9 +226,9 @@ std::string Campaign::config_yaml() const {
                                 experiment_.name, program_build());
   for (const GridAxis& axis : grid_.axes())
     out += fmt::format("#   --grid {}  ({} values{})\n", one_line(axis.given, 1000), axis.values.size(),
-                       is_sample_axis(random_, axis) ? fmt::format(": --samples {} --seed {}", random_.samples(),
-                                                                   random_.seed())
-                                                     : "");
+                       is_sample_axis(random_, axis)
+                           ? fmt::format(": --samples {} --seed {}", random_.samples(), random_.seed())
+                           : "");
   for (const RandomAxis& axis : random_.axes())
     out += fmt::format("#   --random {}  (drawn at each sample)\n", one_line(axis.given, 1000));
   return out + base_.to_yaml();
@@ -268,9 +272,7 @@ SweepOutcome run_campaign(const Campaign& campaign, const CampaignRun& run) {
     directory->write("config.yaml", campaign.config_yaml());
   };
   const std::filesystem::path runs = run.keep_runs ? run.dir / "runs" : std::filesystem::path();
-  job.row = [&campaign, runs](int i) {
-    return campaign.row(i, runs.empty() ? runs : runs / fmt::format("{:06d}", i));
-  };
+  job.row = [&campaign, runs](int i) { return campaign.row(i, runs.empty() ? runs : runs / fmt::format("{:06d}", i)); };
   return run_sweep(job);
 }
 

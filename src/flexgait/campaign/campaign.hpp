@@ -82,7 +82,7 @@ std::string summary_cells(const std::string& summary_json, const std::vector<std
 
 struct CampaignRun {
   std::filesystem::path dir;
-  int jobs = 0;          ///< threads per process; 0: all cores
+  int jobs = 0;  ///< threads per process; 0: all cores
   bool resume = false;
   bool keep_runs = false;
   PointDistributor* distributor = nullptr;  ///< nullptr: the threads of this process

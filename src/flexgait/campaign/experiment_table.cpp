@@ -127,8 +127,8 @@ Experiment rimless_fixed_point() {
   e.metric_types = json_types(fixed_point_summary(rimless::FixedPointReport{}), e.metrics);
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const rimless::WheelSetup s = rimless::wheel_setup(c);
-    const rimless::FixedPointReport r = rimless::find_fixed_point(
-        s.wheel, s.sim, rimless::analysis_from_config(c), s.sim.model, rimless::Section::Touchdown, s.initial);
+    const rimless::FixedPointReport r = rimless::find_fixed_point(s.wheel, s.sim, rimless::analysis_from_config(c),
+                                                                  s.sim.model, rimless::Section::Touchdown, s.initial);
     std::string summary = fixed_point_summary(r);
     if (const auto dir = kept_run(c, run_dir)) dir->write("fixed_point.json", rimless::fixed_point_json(r));
     return summary;

@@ -30,7 +30,8 @@ GridAxis parse_grid_axis(const std::string& text) {
     // 15 significant digits: 0.3:0.9:4 gives 0.5 and 0.7, not 0.7000000000000001 (the rounding of
     // A + (B - A) i / (N - 1) in doubles); the value text is what the configuration reads.
     for (int i = 0; i < count; ++i)
-      axis.values.push_back(fmt::format("{:.15g}", i == count - 1 && count > 1 ? *b : *a + (*b - *a) * i / std::max(1, count - 1)));
+      axis.values.push_back(
+          fmt::format("{:.15g}", i == count - 1 && count > 1 ? *b : *a + (*b - *a) * i / std::max(1, count - 1)));
     return axis;
   }
   if (range.size() != 1) throw fail(fmt::format("a range of {} needs exactly A:B:N", axis.key));
@@ -41,7 +42,8 @@ GridAxis parse_grid_axis(const std::string& text) {
 }
 
 Grid::Grid(std::vector<GridAxis> axes) : axes_(std::move(axes)) {
-  if (axes_.empty()) throw UsageError("campaign: no --grid or --random axis; give at least one, e.g. --grid rimless.mu=0.2:1:9");
+  if (axes_.empty())
+    throw UsageError("campaign: no --grid or --random axis; give at least one, e.g. --grid rimless.mu=0.2:1:9");
   std::set<std::string> keys;
   std::int64_t n = 1;
   for (const auto& a : axes_) {

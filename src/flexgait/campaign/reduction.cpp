@@ -16,7 +16,9 @@ namespace {
 
 enum class MetricKind { Fraction, Statistics, Skipped };
 
-bool is_boolean(const std::string& cell) { return cell == "true" || cell == "false"; }
+bool is_boolean(const std::string& cell) {
+  return cell == "true" || cell == "false";
+}
 
 // A number cell: finite, or nan/inf as format_number writes them (they count in no statistic).
 std::optional<double> number_cell(const std::string& cell) {
@@ -65,8 +67,10 @@ void check_reduction(const Grid& grid, const std::vector<std::string>& over) {
   for (std::size_t k = 0; k < over.size(); ++k) {
     const auto& all = grid.axes();
     if (std::none_of(all.begin(), all.end(), [&](const GridAxis& a) { return a.key == over[k]; }))
-      throw UsageError(fmt::format("--reduce: '{}' is not an axis of the campaign; allowed: {}", one_line(over[k]), axes));
-    if (std::find(over.begin(), over.begin() + static_cast<std::ptrdiff_t>(k), over[k]) != over.begin() + static_cast<std::ptrdiff_t>(k))
+      throw UsageError(
+          fmt::format("--reduce: '{}' is not an axis of the campaign; allowed: {}", one_line(over[k]), axes));
+    if (std::find(over.begin(), over.begin() + static_cast<std::ptrdiff_t>(k), over[k]) !=
+        over.begin() + static_cast<std::ptrdiff_t>(k))
       throw UsageError(fmt::format("--reduce: '{}' is given twice", one_line(over[k])));
   }
 }
@@ -148,11 +152,15 @@ std::string reduce_campaign_table(const Grid& grid, const std::vector<std::strin
     for (std::size_t m = 0; m < kinds.size(); ++m) {
       const Accumulator& a = acc[gi][m];
       if (kinds[m] == MetricKind::Fraction) {
-        if (a.cells > 0) out.cell(static_cast<double>(a.trues) / a.cells);
-        else out.cell("");
+        if (a.cells > 0)
+          out.cell(static_cast<double>(a.trues) / a.cells);
+        else
+          out.cell("");
       } else if (kinds[m] == MetricKind::Statistics) {
-        if (a.finite > 0) out.cell(a.sum / a.finite).cell(a.min).cell(a.max);
-        else out.cell("").cell("").cell("");
+        if (a.finite > 0)
+          out.cell(a.sum / a.finite).cell(a.min).cell(a.max);
+        else
+          out.cell("").cell("").cell("");
       }
     }
     out.end_row();

@@ -19,7 +19,7 @@ double sole_compliance(int joint, const CompensationParams& p) {
   using namespace humanoid;
   const double k = (joint == kLeftAnkleRoll || joint == kRightAnkleRoll)     ? p.sole_stiffness_roll
                    : (joint == kLeftAnklePitch || joint == kRightAnklePitch) ? p.sole_stiffness_pitch
-                                                                              : 0.0;
+                                                                             : 0.0;
   return k > 0 ? 1.0 / k : 0.0;
 }
 }  // namespace
@@ -81,7 +81,8 @@ double ChainStiffnessCalibration::relative_std(int joint) const {
 
 Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalibration::regressor(
     const humanoid::JointVector& encoder, const humanoid::JointVector& torque, Eigen::Vector2d& y) {
-  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()}, encoder);
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()},
+                              encoder);
   const walking::Pose left = walking::sole_pose(model_, data_, 0), right = walking::sole_pose(model_, data_, 1);
   const walking::Vector3d phi = walking::rotation_vector(left.R.transpose() * right.R);
   y = phi.head<2>();
@@ -104,7 +105,8 @@ Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalib
   return H;
 }
 
-int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& encoder,
+                                      const humanoid::JointVector& torque,
                                       const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support,
                                       bool sensors_ok) {
   if (t > end_ && !published_) {

@@ -21,11 +21,11 @@
 /// and the calibration motion moves the parallel joints' torques (hip pitch, knee, ankle pitch; hip and
 /// ankle roll) in different ratios. Least squares over the window with prior c₀ = 1/belief (100 % relative
 /// std), y₀ ~ N(0, (0.05 rad)²), observation noise control.k_estimation_noise, no forgetting (one batch:
-/// the slowest component's period is 13 s), in information form (information_least_squares.hpp). A sample is taken within the calibration window, both soles planned in
-/// support and firm by their F/T sensors (normal force ≥ 5 % of the weight, the centre of pressure in
-/// the sole's middle 60 %); bad data (stiffness_estimator.hpp's rule, or the controller's sensor check)
-/// is skipped and counted. The estimate stays within [0.1, 10] × the belief. The compensators keep the
-/// belief until the calibration ends, then take each joint's estimate whose relative std is ≤
+/// the slowest component's period is 13 s), in information form (information_least_squares.hpp). A sample is taken
+/// within the calibration window, both soles planned in support and firm by their F/T sensors (normal force ≥ 5 % of
+/// the weight, the centre of pressure in the sole's middle 60 %); bad data (stiffness_estimator.hpp's rule, or the
+/// controller's sensor check) is skipped and counted. The estimate stays within [0.1, 10] × the belief. The
+/// compensators keep the belief until the calibration ends, then take each joint's estimate whose relative std is ≤
 /// control.k_estimation_confidence. (Fed back while it runs, the estimate changes the modelled torque
 /// it is fitted to, sample by sample: on the twin the worst joint then ended 11 % off, against 6.4 %
 /// held; docs/guide/compensation.md.)
@@ -50,11 +50,11 @@ namespace flexgait::compensation {
 class ChainStiffnessCalibration {
  public:
   static constexpr int kMaxJoints = 2 * humanoid::kLegJoints;  ///< identified joints at most
-  static constexpr int kStates = kMaxJoints + 2;                ///< their c, then y₀'s roll and pitch
+  static constexpr int kStates = kMaxJoints + 2;               ///< their c, then y₀'s roll and pitch
 
   /// \param begin, end the calibration window [s] (walking::CalibrationMotion's start and end()).
-  ChainStiffnessCalibration(const walking::RobotModel& model, const CompensationParams& params, double period, double begin,
-                            double end);
+  ChainStiffnessCalibration(const walking::RobotModel& model, const CompensationParams& params, double period,
+                            double begin, double end);
 
   /// One control period. \param t now [s]; \param torque the modelled gear torque of every joint [Nm];
   /// \param sensors_ok false when the controller's sensor check flags a sensor. Returns 1 when it took a sample.
@@ -66,7 +66,9 @@ class ChainStiffnessCalibration {
   Eigen::Matrix<double, 2, kStates> regressor(const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
                                               Eigen::Vector2d& y);
 
-  const humanoid::JointVector& estimate() const { return estimate_; }    ///< 1/c (the belief where not identified) [Nm/rad]
+  const humanoid::JointVector& estimate() const {
+    return estimate_;
+  }  ///< 1/c (the belief where not identified) [Nm/rad]
   /// What the compensators use: the belief, after the calibration the confident estimates [Nm/rad].
   const humanoid::JointVector& stiffness() const { return stiffness_; }
   bool identified(int joint) const { return state_[joint] >= 0; }
@@ -79,9 +81,9 @@ class ChainStiffnessCalibration {
  private:
   walking::RobotModel model_;
   CompensationParams params_;
-  double period_;       ///< [s]
+  double period_;  ///< [s]
   double noise_variance_;
-  double begin_, end_;  ///< [s]
+  double begin_, end_;                     ///< [s]
   humanoid::JointVector lagged_torque_{};  ///< the modelled torque through the deflection's lag [Nm]
   bool lagged_ = false;
   humanoid::JointVector belief_, estimate_, stiffness_;
@@ -89,14 +91,15 @@ class ChainStiffnessCalibration {
   std::array<double, kStates> c_min_{}, c_max_{};
   InformationLeastSquares<kStates> fit_;
   walking::RobotModelData data_;
-  humanoid::JointVector sole_compliance_{};  ///< an ankle's sole in series (control.sole_stiffness_*), 0 elsewhere [rad/Nm]
-  bool published_ = false;  ///< the calibration is over and stiffness_ holds its result
+  humanoid::JointVector
+      sole_compliance_{};    ///< an ankle's sole in series (control.sole_stiffness_*), 0 elsewhere [rad/Nm]
+  bool published_ = false;   ///< the calibration is over and stiffness_ holds its result
   int pass_ = 0;             ///< the pass being fitted (control.k_calibration_passes)
   double settle_until_ = 0;  ///< no samples before this, after a pass published [s]
 
-  void start_fit();               ///< the fit afresh, its prior 1/stiffness_ (100 % relative std)
-  void publish();                 ///< stiffness_ takes each confident estimate
-  int pass(double t) const;       ///< the pass time t falls in (clamped to the window's)
+  void start_fit();          ///< the fit afresh, its prior 1/stiffness_ (100 % relative std)
+  void publish();            ///< stiffness_ takes each confident estimate
+  int pass(double t) const;  ///< the pass time t falls in (clamped to the window's)
   long samples_ = 0, bad_data_ = 0;
 };
 

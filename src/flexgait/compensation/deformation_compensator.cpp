@@ -86,7 +86,8 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     if (params_.load_model == LoadModel::kDynamic && support.motion.valid)
       ground.head<2>() = params_.plan_horizontal_force * load * support.motion.com_acceleration.head<2>();
     const walking::Pose sole = walking::sole_pose(model_, data_, side);
-    const walking::Vector3d cop = sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
+    const walking::Vector3d cop =
+        sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
     feet_.given[side] = true;
     feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }
@@ -99,7 +100,8 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
 
 void DeformationCompensator::split_by_plan(const SupportPlan& support) {
   if (params_.split == WeightSplit::kZmpReference)
-    plan_loads_ = support_loads(support.zmp_ref, support.soles, support.swinging, model_.sole_length, model_.sole_width);
+    plan_loads_ =
+        support_loads(support.zmp_ref, support.soles, support.swinging, model_.sole_length, model_.sole_width);
 }
 
 const humanoid::JointVector& DeformationCompensator::input(const humanoid::JointVector& desired,
@@ -155,8 +157,7 @@ double DeformationCompensator::lag_weight(int j) const {
 }
 
 const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector& encoder,
-                                                     const walking::Matrix3d& imu_R,
-                                                     const SupportPlan& support) {
+                                                     const walking::Matrix3d& imu_R, const SupportPlan& support) {
   split_by_plan(support);
   q_ = encoder;
   const double h = params_.fd_step;

@@ -90,10 +90,10 @@ constexpr std::array<EnumName<WeightSplit>, 2> enum_names(WeightSplit) {
 
 /// What the walking controller plans at this instant.
 struct SupportPlan {
-  std::array<bool, 2> swinging{};                                          ///< which feet swing
-  std::array<walking::Pose, 2> soles;                                      ///< planned sole poses (world)
-  Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();                       ///< reference ZMP (world) [m]
-  walking::Pose pelvis;                                                    ///< commanded pelvis pose (world; load_model dynamic)
+  std::array<bool, 2> swinging{};                     ///< which feet swing
+  std::array<walking::Pose, 2> soles;                 ///< planned sole poses (world)
+  Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();  ///< reference ZMP (world) [m]
+  walking::Pose pelvis;                               ///< commanded pelvis pose (world; load_model dynamic)
   double single_support_phase = -1;  ///< s ∈ [0, 1] from lift-off to touchdown, −1 outside single support (robotis)
   walking::PlannedMotion motion;     ///< the plan's joint and pelvis motion (load_model dynamic; not valid: at rest)
 };
@@ -102,7 +102,7 @@ struct CompensationParams {
   CompensationMode mode = CompensationMode::kBoth;
   GravityForm gravity = GravityForm::kFull;
   WeightSplit split = WeightSplit::kZmpReference;
-  double k_joint = 1000.0;  ///< the controller's belief of the gears' stiffness [Nm/rad], times k_scale per joint
+  double k_joint = 1000.0;    ///< the controller's belief of the gears' stiffness [Nm/rad], times k_scale per joint
   double gear_damping = 0.0;  ///< the belief of the gears' damping d [Nm s/rad]; 0: the static model (the thesis)
   humanoid::JointVector k_scale = [] {  ///< factor on k_joint for each joint (not a key)
     humanoid::JointVector ones;
@@ -110,7 +110,8 @@ struct CompensationParams {
     return ones;
   }();
   LoadModel load_model = LoadModel::kGravity;
-  double load_filter_time = 0.1;   ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
+  double load_filter_time =
+      0.1;  ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
   /// dynamic: the share f of the plan's horizontal ground force M c̈ (the cart-table's c̈) that the
   /// input compensator's stance feet carry beside the weight [-]; 0: the weight alone.
   double plan_horizontal_force = 0.0;
@@ -126,16 +127,19 @@ struct CompensationParams {
   /// calibrate: the window is split into this many passes, each fitted afresh with the torques modelled (the estimated
   /// pose, the gears' lag) at the previous pass's estimate [-]
   int k_calibration_passes = 1;
-  /// calibrate: the belief of the soles' rotational stiffness about the sole's x (roll) and y (pitch) axes, the foot pad
-  /// and the floor contact in series with the ankle gears [Nm/rad]; 0: rigid soles
+  /// calibrate: the belief of the soles' rotational stiffness about the sole's x (roll) and y (pitch) axes, the foot
+  /// pad and the floor contact in series with the ankle gears [Nm/rad]; 0: rigid soles
   double sole_stiffness_roll = 0.0;
   double sole_stiffness_pitch = 0.0;
-  double k_estimation_attitude_time = 0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
-  bool k_estimation_stance_offset = false;  ///< each stance's tilt has an unknown offset of its own (estimated beside 1/k)
-  double k_estimation_gyro_rest = 0.0;  ///< the gyro is calibrated over this long at rest before the COM moves; 0: none [s]
-  double robotis_hip_roll = 0.017; ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
-  double talos_cutoff = 1.0;       ///< TALOS's hip torque low-pass [Hz]
-  double talos_limit = 0.01;       ///< TALOS's hip roll correction saturation [rad]
+  double k_estimation_attitude_time =
+      0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
+  bool k_estimation_stance_offset =
+      false;  ///< each stance's tilt has an unknown offset of its own (estimated beside 1/k)
+  double k_estimation_gyro_rest =
+      0.0;                          ///< the gyro is calibrated over this long at rest before the COM moves; 0: none [s]
+  double robotis_hip_roll = 0.017;  ///< ROBOTIS's stance hip roll feed-forward at mid single support [rad] (1°)
+  double talos_cutoff = 1.0;        ///< TALOS's hip torque low-pass [Hz]
+  double talos_limit = 0.01;        ///< TALOS's hip roll correction saturation [rad]
   NewtonSettings newton;
   double fd_step = 1e-6;  ///< forward-difference step for G = ∂τ_g/∂θ with the gravity loads split about the COM [rad]
 
@@ -148,7 +152,8 @@ struct CompensationParams {
       {.doc = "actuator deformation compensation: none, the input compensator (eqs. 8-9), the output "
               "compensator (eqs. 10-13), both, or a field baseline: robotis (THORMANG3's fixed stance hip roll "
               "feed-forward) or talos (TALOS's stance hip roll tau/K, low-passed, saturated)"});
-    v("control.gravity_model", s.gravity, {.doc = "gravity torque: thesis = J^T F only (eq. 4), full = the legs' own weight too"});
+    v("control.gravity_model", s.gravity,
+      {.doc = "gravity torque: thesis = J^T F only (eq. 4), full = the legs' own weight too"});
     v("control.weight_split", s.split,
       {.doc = "split of the weight between the feet (eqs. 5-6) about: com = the pose's centre of mass (the "
               "thesis), zmp = the reference ZMP (continuous at lift-off in a dynamic gait)"});
@@ -173,13 +178,20 @@ struct CompensationParams {
               "start stance's calibration (calibration.*) from the two flat soles' relative tilt through the encoders, "
               "used once confident and kept while walking"});
     v("control.k_estimation_memory", s.k_estimation_memory,
-      {.unit = "s", .doc = "k_estimation on: forgetting time constant of the RLS (calibrate: none)", .bounds = closed(0.01, 1e6)});
+      {.unit = "s",
+       .doc = "k_estimation on: forgetting time constant of the RLS (calibrate: none)",
+       .bounds = closed(0.01, 1e6)});
     v("control.k_estimation_min_torque", s.k_estimation_min_torque,
-      {.unit = "Nm", .doc = "k_estimation: a sample is used when its torque regressor is at least this", .bounds = closed(0, 1e4)});
+      {.unit = "Nm",
+       .doc = "k_estimation: a sample is used when its torque regressor is at least this",
+       .bounds = closed(0, 1e4)});
     v("control.k_estimation_noise", s.k_estimation_noise,
-      {.unit = "rad", .doc = "k_estimation: standard deviation of the foot-tilt observation", .bounds = closed(1e-9, 1)});
+      {.unit = "rad",
+       .doc = "k_estimation: standard deviation of the foot-tilt observation",
+       .bounds = closed(1e-9, 1)});
     v("control.k_estimation_confidence", s.k_estimation_confidence,
-      {.doc = "k_estimation: the compensators use a group's estimate once its relative standard deviation is at most this",
+      {.doc =
+           "k_estimation: the compensators use a group's estimate once its relative standard deviation is at most this",
        .bounds = closed(1e-6, 1)});
     v("control.k_calibration_passes", s.k_calibration_passes,
       {.doc = "k_estimation calibrate: the calibration window is split into this many passes; each fits afresh, its "
@@ -192,8 +204,9 @@ struct CompensationParams {
        .bounds = closed(0, 1e9)});
     v("control.sole_stiffness_pitch", s.sole_stiffness_pitch,
       {.unit = "Nm/rad",
-       .doc = "k_estimation calibrate: the belief of each sole's pitch stiffness (pad and floor contact, in series with "
-              "the ankle pitch gear), taken out of the soles' relative tilt; 0 = rigid soles",
+       .doc =
+           "k_estimation calibrate: the belief of each sole's pitch stiffness (pad and floor contact, in series with "
+           "the ankle pitch gear), taken out of the soles' relative tilt; 0 = rigid soles",
        .bounds = closed(0, 1e9)});
     v("control.k_estimation_attitude_time", s.k_estimation_attitude_time,
       {.unit = "s",
@@ -212,9 +225,12 @@ struct CompensationParams {
        .bounds = closed(0, 100)});
     v("control.robotis_hip_roll", s.robotis_hip_roll,
       {.unit = "rad", .doc = "robotis: stance hip roll feed-forward at mid single support", .bounds = closed(0, 0.2)});
-    v("control.talos_cutoff", s.talos_cutoff, {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});
-    v("control.talos_limit", s.talos_limit, {.unit = "rad", .doc = "talos: hip roll correction saturation", .bounds = closed(0, 0.2)});
-    v("control.k_joint", s.k_joint, {.unit = "Nm/rad", .doc = "the controller's belief of the gears' stiffness", .bounds = closed(1, 1e7)});
+    v("control.talos_cutoff", s.talos_cutoff,
+      {.unit = "Hz", .doc = "talos: hip roll torque low-pass cut-off", .bounds = closed(0.01, 100)});
+    v("control.talos_limit", s.talos_limit,
+      {.unit = "rad", .doc = "talos: hip roll correction saturation", .bounds = closed(0, 0.2)});
+    v("control.k_joint", s.k_joint,
+      {.unit = "Nm/rad", .doc = "the controller's belief of the gears' stiffness", .bounds = closed(1, 1e7)});
     v("control.gear_damping", s.gear_damping,
       {.unit = "Nm s/rad",
        .doc = "the belief of the gears' damping d (Kelvin-Voigt, tau = k delta + d delta'): the deflection lags the "
@@ -235,22 +251,24 @@ struct CompensationParams {
 
 /// Keys control.compensation, control.gravity_model, control.weight_split, control.load_model,
 /// control.load_filter_time, control.robotis_hip_roll, control.talos_*, control.k_joint, control.newton_*.
-inline Schema compensation_schema() { return schema_of<CompensationParams>(); }
+inline Schema compensation_schema() {
+  return schema_of<CompensationParams>();
+}
 inline CompensationParams compensation_from_config(const Config& config) {
   return record_from_config<CompensationParams>(config);
 }
 
 inline constexpr int kLegDofs = 2 * humanoid::kLegJoints;  ///< the unknowns of the output compensator
-using LegVector = Eigen::Matrix<double, kLegDofs, 1>;       ///< left leg then right leg, kinematic order
+using LegVector = Eigen::Matrix<double, kLegDofs, 1>;      ///< left leg then right leg, kinematic order
 
 struct OutputEstimate {
-  humanoid::JointVector newton{};        ///< θ̂ by Newton (eq. 11; the fallback if not converged) [rad]
-  humanoid::JointVector one_step{};      ///< eq. 12 [rad]
-  humanoid::JointVector per_joint{};     ///< eq. 12 joint by joint, the thesis's scalar form (G's diagonal) [rad]
-  humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
-  humanoid::JointVector gravity_torque{};///< τ_g(θ̂) [Nm]
+  humanoid::JointVector newton{};          ///< θ̂ by Newton (eq. 11; the fallback if not converged) [rad]
+  humanoid::JointVector one_step{};        ///< eq. 12 [rad]
+  humanoid::JointVector per_joint{};       ///< eq. 12 joint by joint, the thesis's scalar form (G's diagonal) [rad]
+  humanoid::JointVector conventional{};    ///< θ_enc − τ_g(θ_enc)/k [rad]
+  humanoid::JointVector gravity_torque{};  ///< τ_g(θ̂) [Nm]
   int iterations = 0;
-  double residual = 0;                   ///< ||N(θ̂)||_inf [rad]
+  double residual = 0;  ///< ||N(θ̂)||_inf [rad]
   bool converged = false;
 };
 
@@ -290,7 +308,8 @@ class DeformationCompensator {
   /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).
   void split_by_plan(const SupportPlan& support);
   /// The field baselines' hip roll offsets on command_.
-  void apply_baseline(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R, const SupportPlan& support);
+  void apply_baseline(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R,
+                      const SupportPlan& support);
   /// τ_g with the loads of the last split_by_plan (kZmpReference) or of this pose (kCom).
   const humanoid::JointVector& torque_at(const humanoid::JointVector& q, const walking::Matrix3d& R,
                                          const SupportPlan& support);
@@ -298,7 +317,7 @@ class DeformationCompensator {
   walking::RobotModel model_;
   CompensationParams params_;
   double period_;
-  double filter_gain_;  ///< 1 − e^{−T/τ} of control.load_filter_time
+  double filter_gain_;               ///< 1 − e^{−T/τ} of control.load_filter_time
   humanoid::JointVector stiffness_;  ///< params_.stiffness(), computed once [Nm/rad]
   // control.gear_damping: the deflections of the last period (Kelvin–Voigt lag) [rad]
   bool input_lagged_ = false, output_lagged_ = false;  ///< a previous deflection exists
@@ -308,10 +327,10 @@ class DeformationCompensator {
   humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};
   OutputEstimate estimate_;
   // load_model measured/dynamic:
-  bool sensed_ = false;                      ///< a reading has arrived (the filter starts from it)
-  bool planned_cop_ = false;                 ///< evaluating for the input side: measured force at the plan's CoP
-  std::array<walking::Wrench, 2> ft_{};      ///< low-passed F/T wrenches, foot frame
-  walking::FootWrenches feet_;               ///< the same in the world for the pose being evaluated
+  bool sensed_ = false;                  ///< a reading has arrived (the filter starts from it)
+  bool planned_cop_ = false;             ///< evaluating for the input side: measured force at the plan's CoP
+  std::array<walking::Wrench, 2> ft_{};  ///< low-passed F/T wrenches, foot frame
+  walking::FootWrenches feet_;           ///< the same in the world for the pose being evaluated
   walking::RobotDynamicsData dynamics_;
   // baselines
   std::array<TalosHipRoll, 2> talos_;

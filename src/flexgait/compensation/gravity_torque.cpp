@@ -6,7 +6,6 @@ namespace flexgait::compensation {
 
 using walking::Vector3d;
 
-
 double weight_split(const Eigen::Vector2d& point, const Eigen::Vector2d& left, const Eigen::Vector2d& right) {
   const Eigen::Vector2d span = left - right;
   const double n2 = span.squaredNorm();
@@ -17,8 +16,10 @@ double weight_split(const Eigen::Vector2d& point, const Eigen::Vector2d& left, c
 FootLoads support_loads(const Eigen::Vector2d& point, const std::array<walking::Pose, 2>& soles,
                         const std::array<bool, 2>& swinging, double sole_length, double sole_width) {
   double mu = 0.5;
-  if (swinging[0] != swinging[1]) mu = swinging[1] ? 1.0 : 0.0;  // single support: all on the stance foot
-  else mu = weight_split(point, soles[0].p.head<2>(), soles[1].p.head<2>());
+  if (swinging[0] != swinging[1])
+    mu = swinging[1] ? 1.0 : 0.0;  // single support: all on the stance foot
+  else
+    mu = weight_split(point, soles[0].p.head<2>(), soles[1].p.head<2>());
   FootLoads loads;
   loads.share = {mu, 1.0 - mu};  // eq. 6
   const Eigen::Vector2d unexplained = point - (mu * soles[0].p.head<2>() + (1.0 - mu) * soles[1].p.head<2>());
@@ -47,8 +48,9 @@ humanoid::JointVector gravity_torque(const walking::RobotModel& model, const wal
     if (loads.share[side] > 0) {
       // Eq. 4: the ground's push F on the foot is carried by the joints as −Jᵀ F.
       const walking::Pose sole = walking::sole_pose(model, data, side);
-      const Vector3d point =
-          form == GravityForm::kThesis ? sole.p : Vector3d(sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
+      const Vector3d point = form == GravityForm::kThesis
+                                 ? sole.p
+                                 : Vector3d(sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
       const walking::LegJacobian J = walking::leg_jacobian(model, data, side, point);
       leg -= J.topRows<3>().transpose() * Vector3d(0, 0, loads.share[side] * weight);
     }

@@ -64,7 +64,8 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
   double residual = r.template lpNorm<Eigen::Infinity>();
   Vector best = theta;
   double best_residual = residual;
-  Eigen::PartialPivLU<Matrix> lu(Matrix::Identity().eval());  // (formed at the first step; set so no path reads it unset)
+  Eigen::PartialPivLU<Matrix> lu(
+      Matrix::Identity().eval());  // (formed at the first step; set so no path reads it unset)
   bool refresh = true;
   for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
     if (refresh || settings.jacobian == NewtonJacobian::kEachIteration) {

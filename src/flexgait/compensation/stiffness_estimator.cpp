@@ -8,11 +8,11 @@
 namespace flexgait::compensation {
 
 namespace {
-constexpr double kStaleAge = 0.05;        // an F/T reading older than this is stale [s]
-constexpr double kFirmWeightShare = 0.25; // firm support: normal force ≥ this × the weight
-constexpr double kFirmCopShare = 0.3;     // ... and |CoP − sole centre| ≤ this × the sole's length, width
-constexpr double kBoundFactor = 10.0;     // c ∈ [c₀/10, 10 c₀]
-constexpr double kOffsetStd = 0.05;       // prior std of a stance's tilt offset (stance_offset) [rad]
+constexpr double kStaleAge = 0.05;         // an F/T reading older than this is stale [s]
+constexpr double kFirmWeightShare = 0.25;  // firm support: normal force ≥ this × the weight
+constexpr double kFirmCopShare = 0.3;      // ... and |CoP − sole centre| ≤ this × the sole's length, width
+constexpr double kBoundFactor = 10.0;      // c ∈ [c₀/10, 10 c₀]
+constexpr double kOffsetStd = 0.05;        // prior std of a stance's tilt offset (stance_offset) [rad]
 }  // namespace
 
 bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
@@ -20,21 +20,23 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
   bool finite = true;
   for (int j = 0; j < humanoid::kJoints; ++j) finite = finite && std::isfinite(encoder[j]) && std::isfinite(torque[j]);
   for (int side = 0; side < 2; ++side)
-    for (int a = 0; a < 3; ++a) finite = finite && std::isfinite(ft[side].force[a]) && std::isfinite(ft[side].torque[a]);
+    for (int a = 0; a < 3; ++a)
+      finite = finite && std::isfinite(ft[side].force[a]) && std::isfinite(ft[side].torque[a]);
   return finite && t - ft[0].stamp <= kStaleAge && t - ft[1].stamp <= kStaleAge;
 }
 
-bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R, int side,
-                  double min_share) {
+bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R,
+                  int side, double min_share) {
   const walking::FootContact c = walking::foot_contact(ft, sole_R, model.leg[side].ankle_to_sole,
                                                        model.bodies[static_cast<std::size_t>(model.foot[side])].mass);
   const Eigen::Vector2d cop = c.cop - model.sole_offset[side].head<2>();
   return c.normal_force >= min_share * model.total_mass * walking::kGravity &&
-         std::abs(cop.x()) <= kFirmCopShare * model.sole_length && std::abs(cop.y()) <= kFirmCopShare * model.sole_width;
+         std::abs(cop.x()) <= kFirmCopShare * model.sole_length &&
+         std::abs(cop.y()) <= kFirmCopShare * model.sole_width;
 }
 
-StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period,
-                                       double rest_end)
+StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params,
+                                       double period, double rest_end)
     : model_(model),
       params_(params),
       noise_variance_(params.k_estimation_noise * params.k_estimation_noise),
@@ -79,7 +81,8 @@ double StiffnessEstimator::relative_std(int side, Group g) const {
 }
 
 void StiffnessEstimator::publish(int side) {
-  for (int g = 0; g < kGroups; ++g) confident_[side][g] = confident_[side][g] || relative_std(side, Group(g)) <= params_.k_estimation_confidence;
+  for (int g = 0; g < kGroups; ++g)
+    confident_[side][g] = confident_[side][g] || relative_std(side, Group(g)) <= params_.k_estimation_confidence;
   for (int i = 0; i < humanoid::kLegJoints; ++i) {
     const int j = humanoid::leg_first_joint(side) + i;
     if (group_[j] == kNone) continue;
@@ -100,14 +103,17 @@ void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const w
   const double turn = rate.norm() * period_;
   if (turn > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn, rate.normalized()).toRotationMatrix();
   const Eigen::AngleAxisd error(walking::Matrix3d(imu_R * attitude_.transpose()));
-  attitude_ = Eigen::AngleAxisd(error.angle() * std::min(1.0, period_ / time), error.axis()).toRotationMatrix() * attitude_;
+  attitude_ =
+      Eigen::AngleAxisd(error.angle() * std::min(1.0, period_ / time), error.axis()).toRotationMatrix() * attitude_;
   attitude_ = Eigen::Quaterniond(attitude_).normalized().toRotationMatrix();  // (round-off)
 }
 
-walking::Matrix3d StiffnessEstimator::soles_in_pelvis(const humanoid::JointVector& encoder, const humanoid::JointVector& torque) {
+walking::Matrix3d StiffnessEstimator::soles_in_pelvis(const humanoid::JointVector& encoder,
+                                                      const humanoid::JointVector& torque) {
   humanoid::JointVector q = encoder;
   for (int j = 0; j < humanoid::kJoints; ++j) q[j] -= torque[j] / belief_[j];  // the link angles (the belief)
-  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()}, q);
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()},
+                              q);
   // The two soles' mean: the normalised sum of their quaternions (same hemisphere).
   const Eigen::Quaterniond left(walking::Matrix3d(walking::sole_pose(model_, data_, 0).R));
   Eigen::Quaterniond right(walking::Matrix3d(walking::sole_pose(model_, data_, 1).R));
@@ -153,8 +159,8 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   // fitted over the window (s = t − its end), at the end; the yaw the controller's.
   const double mean_t = rest_.t / n, spread = rest_.tt - n * mean_t * mean_t;
   const walking::Vector3d mean_up = rest_.up / n;
-  const walking::Vector3d up_rate = spread > 0 ? walking::Vector3d((rest_.t_up - mean_t * rest_.up) / spread)
-                                               : walking::Vector3d::Zero();
+  const walking::Vector3d up_rate =
+      spread > 0 ? walking::Vector3d((rest_.t_up - mean_t * rest_.up) / spread) : walking::Vector3d::Zero();
   const walking::Vector3d up_end = (mean_up - up_rate * mean_t).normalized();
   const walking::Vector3d up_now = imu_R.transpose() * walking::Vector3d::UnitZ();
   attitude_ = imu_R * walking::Matrix3d(Eigen::Quaterniond::FromTwoVectors(up_end, up_now));  // R u_end = e_z
@@ -163,7 +169,8 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
 
 int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
                                const humanoid::Imu& imu, const humanoid::JointVector& torque,
-                               const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support, bool sensors_ok) {
+                               const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support,
+                               bool sensors_ok) {
   const walking::Vector3d gyro(imu.gyro[0], imu.gyro[1], imu.gyro[2]), accel(imu.accel[0], imu.accel[1], imu.accel[2]);
   const bool imu_finite = imu_R.allFinite() && gyro.allFinite() && accel.allFinite();
   if (!imu_finite || !identification_inputs_ok(t, encoder, torque, ft) || !sensors_ok) {

@@ -53,8 +53,8 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
 
 /// A sole in firm support by its F/T sensor: normal force ≥ min_share × the robot's weight and the centre of
 /// pressure within the middle 60 % of the sole's length and width. \param sole_R the sole's planned attitude.
-bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R, int side,
-                  double min_share);
+bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R,
+                  int side, double min_share);
 
 /// A joint whose axis (body frame) is mostly vertical, a yaw joint: its deflection barely tilts a sole, so neither
 /// identification sees it (it keeps the belief).
@@ -65,13 +65,14 @@ inline bool yaw_axis(const walking::Vector3d& axis) {
 
 class StiffnessEstimator {
  public:
-  static constexpr int kGroups = 2;  ///< per leg: roll, pitch
+  static constexpr int kGroups = 2;            ///< per leg: roll, pitch
   static constexpr int kStates = kGroups + 2;  ///< per leg: the groups' 1/k, then the stance's tilt offset (x, y)
   enum Group { kNone = -1, kRoll = 0, kPitch = 1 };
 
   /// \param rest_end when the robot leaves its start stance (the first step begins) [s]: the end of the gyro's
   /// calibration window (control.k_estimation_gyro_rest).
-  StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period, double rest_end = 0.0);
+  StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params, double period,
+                     double rest_end = 0.0);
 
   /// One control period. \param t now [s] (the F/T stamps' staleness); \param imu_R the controller's pelvis
   /// attitude (world); \param imu the IMU's readings (its gyro's rate [rad/s], and its accelerometer [m/s²] for the
@@ -92,8 +93,8 @@ class StiffnessEstimator {
   bool confident(int side, Group g) const { return confident_[side][g]; }
   /// Relative standard deviation sqrt(P_gg)/c_g of a group.
   double relative_std(int side, Group g) const;
-  long samples() const { return samples_; }     ///< foot samples used
-  long bad_data() const { return bad_data_; }   ///< periods skipped for bad data
+  long samples() const { return samples_; }    ///< foot samples used
+  long bad_data() const { return bad_data_; }  ///< periods skipped for bad data
   /// The gyro bias found at rest (pelvis frame) [rad/s]; zero before or without the calibration.
   const walking::Vector3d& gyro_bias() const { return gyro_bias_; }
 
@@ -102,8 +103,9 @@ class StiffnessEstimator {
   void follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro);
   /// control.k_estimation_gyro_rest: sums the gyro, the accelerometer and the legs' turn over the rest window;
   /// at its end, the static alignment (the bias, the attitude). False while it is still to come (no samples then).
-  bool calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro, const walking::Vector3d& accel,
-                         const humanoid::JointVector& encoder, const humanoid::JointVector& torque);
+  bool calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro,
+                         const walking::Vector3d& accel, const humanoid::JointVector& encoder,
+                         const humanoid::JointVector& torque);
   /// The mean of the two soles' attitudes in the pelvis frame, through the link angles θ_enc − τ/k (the belief).
   walking::Matrix3d soles_in_pelvis(const humanoid::JointVector& encoder, const humanoid::JointVector& torque);
 
@@ -125,10 +127,11 @@ class StiffnessEstimator {
   /// accelerometer's unit up), the last gyro reading, the soles' attitude in the pelvis frame first and last.
   struct RestSums {
     double n = 0, t = 0, tt = 0;
-    walking::Vector3d gyro = walking::Vector3d::Zero(), up = walking::Vector3d::Zero(), t_up = walking::Vector3d::Zero();
+    walking::Vector3d gyro = walking::Vector3d::Zero(), up = walking::Vector3d::Zero(),
+                      t_up = walking::Vector3d::Zero();
     walking::Vector3d last_gyro = walking::Vector3d::Zero();
-    walking::Matrix3d soles_first = walking::Matrix3d::Identity();   ///< soles_in_pelvis at the window's first sample
-    humanoid::JointVector encoder_last{}, torque_last{};               ///< its last sample's (soles_in_pelvis at the end)
+    walking::Matrix3d soles_first = walking::Matrix3d::Identity();  ///< soles_in_pelvis at the window's first sample
+    humanoid::JointVector encoder_last{}, torque_last{};            ///< its last sample's (soles_in_pelvis at the end)
   } rest_;
   std::array<std::array<bool, kGroups>, 2> confident_{};
   walking::RobotModelData data_;

@@ -179,7 +179,9 @@ AtomicFileWriter::AtomicFileWriter(std::filesystem::path path, Durability durabi
   tmp_ = name.data();
 }
 
-AtomicFileWriter::~AtomicFileWriter() { discard(); }
+AtomicFileWriter::~AtomicFileWriter() {
+  discard();
+}
 
 void AtomicFileWriter::discard() noexcept {
   if (fd_ < 0) return;

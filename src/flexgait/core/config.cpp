@@ -17,7 +17,9 @@
 namespace flexgait {
 namespace {
 
-std::string bound_text(double v) { return fmt::format("{}", v); }
+std::string bound_text(double v) {
+  return fmt::format("{}", v);
+}
 
 // "time, body, force, duration": the fields of a List's items.
 std::string field_names(const ParamSpec& list) {
@@ -158,8 +160,8 @@ std::string ParamSpec::allowed() const {
       const std::string what = type == ParamType::Real ? "a finite real number" : "an integer";
       const bool has_min = std::isfinite(min), has_max = std::isfinite(max);
       if (has_min && has_max)
-        return fmt::format("{} in {}{}, {}{}", what, min_inclusive ? "[" : "(", bound_text(min),
-                           bound_text(max), max_inclusive ? "]" : ")");
+        return fmt::format("{} in {}{}, {}{}", what, min_inclusive ? "[" : "(", bound_text(min), bound_text(max),
+                           max_inclusive ? "]" : ")");
       if (has_min) return fmt::format("{} {} {}", what, min_inclusive ? ">=" : ">", bound_text(min));
       if (has_max) return fmt::format("{} {} {}", what, max_inclusive ? "<=" : "<", bound_text(max));
       return what;
@@ -327,7 +329,8 @@ std::vector<std::vector<ConfigScalar>> parse_item(const ParamSpec& spec, std::si
   for (const ParamSpec& field : spec.item_fields) {
     ParamSpec named = field;
     named.key = item_key + "." + field.key;
-    const auto given = std::find_if(item.begin(), item.end(), [&](const ItemFieldText& f) { return f.name == field.key; });
+    const auto given =
+        std::find_if(item.begin(), item.end(), [&](const ItemFieldText& f) { return f.name == field.key; });
     if (given == item.end() && field.optional) {
       if (field.length != 0) throw std::logic_error("an optional list item field holds one value");
       named.length = 0;
@@ -335,16 +338,17 @@ std::vector<std::vector<ConfigScalar>> parse_item(const ParamSpec& spec, std::si
       continue;
     }
     if (given == item.end())
-      throw ConfigError(named.key, fmt::format("{}: key '{}' missing; allowed: {}{}", origin, named.key, named.allowed(),
-                                               named.unit.empty() ? "" : " (" + named.unit + ")"));
+      throw ConfigError(named.key, fmt::format("{}: key '{}' missing; allowed: {}{}", origin, named.key,
+                                               named.allowed(), named.unit.empty() ? "" : " (" + named.unit + ")"));
     std::string shown = given->values.empty() ? "" : given->values[0];
     if (given->list) {
       shown = "[";
       for (std::size_t j = 0; j < given->values.size(); ++j) shown += (j ? ", " : "") + given->values[j];
       shown += "]";
     }
-    const bool shape_ok = field.length == 0 ? !given->list
-                                            : given->list && given->values.size() == static_cast<std::size_t>(field.length);
+    const bool shape_ok = field.length == 0
+                              ? !given->list
+                              : given->list && given->values.size() == static_cast<std::size_t>(field.length);
     if (!shape_ok)
       throw ConfigError(named.key, error_text(origin, named.key, shown,
                                               field.length == 0 ? "a list where one value belongs"
@@ -403,7 +407,8 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
     }
     case ParamType::Real: {
       double v = 0;
-      if (!parse_double(text, v)) throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a number", &spec));
+      if (!parse_double(text, v))
+        throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a number", &spec));
       if (!std::isfinite(v)) throw ConfigError(spec.key, error_text(origin, spec.key, text, "not finite", &spec));
       check_range(spec, v, text, origin);
       return v;
@@ -423,10 +428,10 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
         if (c == text) return text;
       throw ConfigError(spec.key, error_text(origin, spec.key, text, "not an allowed value", &spec));
     case ParamType::Text:
-      if (text.empty() || std::any_of(text.begin(), text.end(), [](char c) {
-            return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-          }))
-        throw ConfigError(spec.key, error_text(origin, spec.key, text, "not a one-line text without control characters", &spec));
+      if (text.empty() || std::any_of(text.begin(), text.end(),
+                                      [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+        throw ConfigError(spec.key,
+                          error_text(origin, spec.key, text, "not a one-line text without control characters", &spec));
       return text;
   }
   throw std::logic_error("unhandled parameter type");
@@ -495,11 +500,15 @@ const ConfigValue& Config::value(const std::string& key, ParamType expected) con
   return values_.at(key);
 }
 
-double Config::real(const std::string& key) const { return std::get<double>(value(key, ParamType::Real)); }
+double Config::real(const std::string& key) const {
+  return std::get<double>(value(key, ParamType::Real));
+}
 std::int64_t Config::integer(const std::string& key) const {
   return std::get<std::int64_t>(value(key, ParamType::Integer));
 }
-bool Config::boolean(const std::string& key) const { return std::get<bool>(value(key, ParamType::Boolean)); }
+bool Config::boolean(const std::string& key) const {
+  return std::get<bool>(value(key, ParamType::Boolean));
+}
 const std::string& Config::choice(const std::string& key) const {
   return std::get<std::string>(value(key, ParamType::Choice));
 }
@@ -512,7 +521,9 @@ const ConfigList& Config::list(const std::string& key) const {
 const std::vector<double>& Config::reals(const std::string& key) const {
   return std::get<std::vector<double>>(value(key, ParamType::Reals));
 }
-const std::string& Config::origin(const std::string& key) const { return origins_.at(key); }
+const std::string& Config::origin(const std::string& key) const {
+  return origins_.at(key);
+}
 
 void Config::set(const std::string& key, const std::string& text, const std::string& origin, bool list) {
   if (const ParamAlias* alias = schema_.find_alias(key)) {

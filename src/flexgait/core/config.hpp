@@ -11,8 +11,8 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <set>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -32,8 +32,7 @@ class UsageError : public std::runtime_error {
 /// Bad configuration: a key, a value or a file. A UsageError that names the key.
 class ConfigError : public UsageError {
  public:
-  ConfigError(std::string key, const std::string& message)
-      : UsageError(message), key_(std::move(key)) {}
+  ConfigError(std::string key, const std::string& message) : UsageError(message), key_(std::move(key)) {}
   /// The offending dotted key ("" when the error concerns a whole file).
   const std::string& key() const noexcept { return key_; }
 
@@ -49,16 +48,16 @@ enum class ParamType { Real, Integer, Boolean, Choice, Text, List, Reals };
 
 /// One documented configuration parameter.
 struct ParamSpec {
-  std::string key;       ///< dotted key, e.g. "rimless.K"
+  std::string key;  ///< dotted key, e.g. "rimless.K"
   ParamType type = ParamType::Real;
-  std::string fallback;  ///< default value, as written in YAML
-  std::string unit;      ///< SI unit, "" for dimensionless
-  std::string doc;       ///< one line: what it is
+  std::string fallback;                                   ///< default value, as written in YAML
+  std::string unit;                                       ///< SI unit, "" for dimensionless
+  std::string doc;                                        ///< one line: what it is
   double min = -std::numeric_limits<double>::infinity();  ///< lower bound (Real, Integer, each of Reals)
   double max = std::numeric_limits<double>::infinity();   ///< upper bound (Real, Integer, each of Reals)
   bool min_inclusive = true;
   bool max_inclusive = true;
-  std::vector<std::string> choices;  ///< allowed values (Choice)
+  std::vector<std::string> choices;    ///< allowed values (Choice)
   std::vector<ParamSpec> item_fields;  ///< List: the fields of one item (key: the field's name)
   int length = 0;  ///< a field of a List item: 0 one value, n > 0 a list of exactly n values of `type`
   /// A field of a List item that may be left out: it then takes `fallback`, and a configuration

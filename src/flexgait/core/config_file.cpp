@@ -37,10 +37,14 @@ struct Node {
 
 const char* kind_name(Node::Kind k) {
   switch (k) {
-    case Node::Kind::Null: return "null";
-    case Node::Kind::Scalar: return "a name";
-    case Node::Kind::Map: return "a mapping";
-    case Node::Kind::Sequence: return "a list";
+    case Node::Kind::Null:
+      return "null";
+    case Node::Kind::Scalar:
+      return "a name";
+    case Node::Kind::Map:
+      return "a mapping";
+    case Node::Kind::Sequence:
+      return "a list";
   }
   return "?";
 }
@@ -68,7 +72,8 @@ class TreeBuilder : public YAML::EventHandler {
     open(Node::Kind::Sequence, mark, anchor);
   }
   void OnSequenceEnd() override { close(); }
-  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                  YAML::EmitterStyle::value) override {
     open(Node::Kind::Map, mark, anchor);
   }
   void OnMapEnd() override { close(); }
@@ -147,13 +152,15 @@ struct Flattener {
       const std::string origin = fmt::format("{}:{}", name, v.line);
       if (++visited > kMaxConfigNodes)
         throw ConfigError("", fmt::format("{}: aliases expand to more than {} values (a configuration has a few "
-                                          "hundred)", origin, kMaxConfigNodes));
+                                          "hundred)",
+                                          origin, kMaxConfigNodes));
       const std::string key = prefix.empty() ? k.node->scalar : prefix + "." + k.node->scalar;
       const std::string shown = one_line(key);
       switch (v.node->kind) {
         case Node::Kind::Map:
           if (depth >= kMaxConfigDepth)
-            throw ConfigError(key, fmt::format("{}: key '{}' nested deeper than {} levels", origin, shown, kMaxConfigDepth));
+            throw ConfigError(key,
+                              fmt::format("{}: key '{}' nested deeper than {} levels", origin, shown, kMaxConfigDepth));
           map(*v.node, key, depth + 1);
           break;
         case Node::Kind::Scalar: {
@@ -183,10 +190,15 @@ struct Flattener {
   void emit(YAML::Emitter& text, const Node& node, const std::string& origin) {
     if (++visited > kMaxConfigNodes)
       throw ConfigError("", fmt::format("{}: aliases expand to more than {} values (a configuration has a few "
-                                        "hundred)", origin, kMaxConfigNodes));
+                                        "hundred)",
+                                        origin, kMaxConfigNodes));
     switch (node.kind) {
-      case Node::Kind::Null: text << YAML::Null; break;
-      case Node::Kind::Scalar: text << node.scalar; break;
+      case Node::Kind::Null:
+        text << YAML::Null;
+        break;
+      case Node::Kind::Scalar:
+        text << node.scalar;
+        break;
       case Node::Kind::Sequence:
         text << YAML::BeginSeq;
         for (const auto& [k, v] : node.entries) emit(text, *v.node, origin);
@@ -237,7 +249,8 @@ std::vector<std::vector<ItemFieldText>> parse_list_text(std::string_view text) {
   for (const auto& [unused, item] : root->node->entries) {
     count();
     if (item.node->kind != Node::Kind::Map)
-      throw ConfigError("", fmt::format("item {} is {}, not a mapping of fields", items.size(), kind_name(item.node->kind)));
+      throw ConfigError(
+          "", fmt::format("item {} is {}, not a mapping of fields", items.size(), kind_name(item.node->kind)));
     std::vector<ItemFieldText> fields;
     for (const auto& [k, v] : item.node->entries) {
       count();
@@ -287,8 +300,8 @@ std::vector<ConfigEntry> read_config_file(const std::filesystem::path& file) {
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(in.gcount()));
   if (text.size() > kMaxConfigBytes)
-    throw ConfigError("", fmt::format("{}: larger than {} bytes; a configuration file is a few kilobytes", name,
-                                      kMaxConfigBytes));
+    throw ConfigError(
+        "", fmt::format("{}: larger than {} bytes; a configuration file is a few kilobytes", name, kMaxConfigBytes));
   return parse_config_yaml(text, name);
 }
 

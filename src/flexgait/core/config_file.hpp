@@ -16,8 +16,8 @@
 namespace flexgait {
 
 inline constexpr std::size_t kMaxConfigBytes = 1 << 20;  ///< a configuration file's size limit [bytes]
-inline constexpr int kMaxConfigDepth = 32;                ///< mappings nested deeper are refused
-inline constexpr std::size_t kMaxConfigNodes = 10000;     ///< nodes visited, aliases expanded
+inline constexpr int kMaxConfigDepth = 32;               ///< mappings nested deeper are refused
+inline constexpr std::size_t kMaxConfigNodes = 10000;    ///< nodes visited, aliases expanded
 
 /// One field of one item of a list value, as text: one scalar, or a list of scalars.
 struct ItemFieldText {

@@ -26,7 +26,9 @@ struct EnumName {
 
 /// An enum with a name table.
 template <class E>
-concept NamedEnum = std::is_enum_v<E> && requires(E e) { enum_names(e); };
+concept NamedEnum = std::is_enum_v<E> && requires(E e) {
+  enum_names(e);
+};
 
 /// The name of a value; throws std::logic_error for a value missing from the table (a bug).
 template <NamedEnum E>

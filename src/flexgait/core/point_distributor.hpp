@@ -21,8 +21,8 @@ class PointDistributor {
   /// True in the one process that reads and writes files (MPI rank 0; always true for threads).
   virtual bool coordinator() const = 0;
   /// Coordinator: computes the points `todo` with `threads` threads here (and the other workers,
-  /// if any), handing them out in `todo`'s order, and calls `done` once per point. Worker processes: compute the points the coordinator
-  /// hands out until it says stop (`todo` and `done` are not used). Returns when all are done.
+  /// if any), handing them out in `todo`'s order, and calls `done` once per point. Worker processes: compute the points
+  /// the coordinator hands out until it says stop (`todo` and `done` are not used). Returns when all are done.
   virtual void run(const std::vector<int>& todo, int threads, const PointFunction& point, const PointDone& done) = 0;
 };
 

@@ -8,9 +8,13 @@
 namespace flexgait {
 
 ProgressBar::ProgressBar(double total, std::string unit, double already_done, bool tenths_when_not_tty)
-    : total_(total), start_done_(already_done), unit_(std::move(unit)), tty_(isatty(STDERR_FILENO) != 0),
+    : total_(total),
+      start_done_(already_done),
+      unit_(std::move(unit)),
+      tty_(isatty(STDERR_FILENO) != 0),
       tenths_(tenths_when_not_tty),
-      start_(std::chrono::steady_clock::now()), last_(start_ - std::chrono::seconds(1)) {}
+      start_(std::chrono::steady_clock::now()),
+      last_(start_ - std::chrono::seconds(1)) {}
 
 void ProgressBar::show(double done) {
   if ((!tty_ && !tenths_) || finished_) return;
@@ -24,7 +28,8 @@ void ProgressBar::show(double done) {
     if (tenth <= tenths_shown_) return;
     tenths_shown_ = tenth;
     finished_ = end;
-    fmt::print(stderr, "{:3d} % ({:.0f}/{:.0f} {}), {:.1f} s, ETA {:.0f} s\n", 10 * tenth, done, total_, unit_, seconds, eta);
+    fmt::print(stderr, "{:3d} % ({:.0f}/{:.0f} {}), {:.1f} s, ETA {:.0f} s\n", 10 * tenth, done, total_, unit_, seconds,
+               eta);
     return;
   }
   if (!end && now - last_ < std::chrono::milliseconds(100)) return;

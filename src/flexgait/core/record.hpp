@@ -19,10 +19,10 @@
 /// default member initialiser: there is no second copy to drift.
 ///
 /// Field types: double, int, std::int64_t, bool, an enum with a name table (enum_names.hpp),
-/// std::string (a parameter of type text: a name or a path) and, for results only, std::optional<std::string> (null when empty) and
-/// std::vector<std::string>; std::vector<double> (a parameter of type reals: one or more numbers,
-/// each within the bounds); and a list of structured items, std::vector<Item> (a parameter of type
-/// list), where Item declares its fields with short names in
+/// std::string (a parameter of type text: a name or a path) and, for results only, std::optional<std::string> (null
+/// when empty) and std::vector<std::string>; std::vector<double> (a parameter of type reals: one or more numbers, each
+/// within the bounds); and a list of structured items, std::vector<Item> (a parameter of type list), where Item
+/// declares its fields with short names in
 ///
 ///     template <class Self, class Visitor>
 ///     static void visit_item_fields(Self& self, Visitor& visit) {
@@ -54,28 +54,44 @@ struct Bounds {
   bool max_inclusive = true;
 };
 /// [a, b]
-constexpr Bounds closed(double a, double b) { return {a, b, true, true}; }
+constexpr Bounds closed(double a, double b) {
+  return {a, b, true, true};
+}
 /// (a, b]
-constexpr Bounds left_open(double a, double b) { return {a, b, false, true}; }
+constexpr Bounds left_open(double a, double b) {
+  return {a, b, false, true};
+}
 /// [a, b)
-constexpr Bounds right_open(double a, double b) { return {a, b, true, false}; }
+constexpr Bounds right_open(double a, double b) {
+  return {a, b, true, false};
+}
 /// (a, b)
-constexpr Bounds open(double a, double b) { return {a, b, false, false}; }
+constexpr Bounds open(double a, double b) {
+  return {a, b, false, false};
+}
 /// [a, ∞)
-constexpr Bounds at_least(double a) { return {a, std::numeric_limits<double>::infinity(), true, true}; }
+constexpr Bounds at_least(double a) {
+  return {a, std::numeric_limits<double>::infinity(), true, true};
+}
 /// (a, ∞)
-constexpr Bounds above(double a) { return {a, std::numeric_limits<double>::infinity(), false, true}; }
+constexpr Bounds above(double a) {
+  return {a, std::numeric_limits<double>::infinity(), false, true};
+}
 /// (0, ∞)
-constexpr Bounds positive() { return above(0.0); }
+constexpr Bounds positive() {
+  return above(0.0);
+}
 /// [0, ∞)
-constexpr Bounds non_negative() { return at_least(0.0); }
+constexpr Bounds non_negative() {
+  return at_least(0.0);
+}
 
 /// What a record says about one of its fields.
 struct FieldInfo {
-  std::string_view unit{};  ///< SI unit; "" when dimensionless
-  std::string_view doc{};   ///< one line: what it is
-  Bounds bounds{};          ///< allowed values of a parameter
-  bool present = true;      ///< results: false when the field does not apply to this value (left out of JSON)
+  std::string_view unit{};     ///< SI unit; "" when dimensionless
+  std::string_view doc{};      ///< one line: what it is
+  Bounds bounds{};             ///< allowed values of a parameter
+  bool present = true;         ///< results: false when the field does not apply to this value (left out of JSON)
   std::string_view derived{};  ///< a parameter derived unless set (ParamSpec::derived): how
   bool optional = false;       ///< a field of a List item that may be left out (ParamSpec::optional)
 };
@@ -159,7 +175,9 @@ struct ItemReader {
 template <class T>
 struct IsItemList : std::false_type {};
 template <class Item>
-  requires requires(const Item& item, ItemSpecBuilder& b) { Item::visit_item_fields(item, b); }
+requires requires(const Item& item, ItemSpecBuilder& b) {
+  Item::visit_item_fields(item, b);
+}
 struct IsItemList<std::vector<Item>> : std::true_type {};
 
 template <class Item>

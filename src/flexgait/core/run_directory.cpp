@@ -39,7 +39,8 @@ RunDirectory::~RunDirectory() {
   try {
     write_file_atomic(path_ / kCompleteMarker, "");
   } catch (const std::exception& e) {  // a destructor must not throw; the run's files are written
-    fmt::print(stderr, "warning: cannot mark {} complete: {}\n", one_line(path_.string(), 1000), one_line(e.what(), 1000));
+    fmt::print(stderr, "warning: cannot mark {} complete: {}\n", one_line(path_.string(), 1000),
+               one_line(e.what(), 1000));
   }
 }
 

@@ -9,8 +9,8 @@
 #include <exception>
 #include <map>
 #include <mutex>
-#include <thread>
 #include <stdexcept>
+#include <thread>
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/progress.hpp"
@@ -107,7 +107,7 @@ class DurableAppender {
   std::condition_variable wake_;
   std::string pending_;
   bool stopping_ = false;
-  std::exception_ptr failure_;  // written by the thread only, read after it is joined
+  std::exception_ptr failure_;              // written by the thread only, read after it is joined
   std::thread thread_{[this] { loop(); }};  // last: starts once the members above exist
 };
 

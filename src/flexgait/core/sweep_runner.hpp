@@ -20,14 +20,14 @@ namespace flexgait {
 inline constexpr int kMaxSweepPoints = 1'000'000;
 
 struct SweepJob {
-  std::filesystem::path dir;      ///< output directory
-  std::string name = "sweep";     ///< files: NAME.csv (final), NAME.partial.csv, NAME.signature
-  std::string noun = "sweep";     ///< what the messages call it ("no sweep to resume", "campaign")
-  std::string header;             ///< CSV header, without "index" (added first)
-  int count = 0;                  ///< points 0 .. count-1
-  int jobs = 0;                   ///< worker threads (per process); 0: all cores
-  bool resume = false;            ///< keep the finished points of an earlier run with the same signature
-  std::string signature;          ///< what defines the sweep (parameters, configuration); checked on resume
+  std::filesystem::path dir;   ///< output directory
+  std::string name = "sweep";  ///< files: NAME.csv (final), NAME.partial.csv, NAME.signature
+  std::string noun = "sweep";  ///< what the messages call it ("no sweep to resume", "campaign")
+  std::string header;          ///< CSV header, without "index" (added first)
+  int count = 0;               ///< points 0 .. count-1
+  int jobs = 0;                ///< worker threads (per process); 0: all cores
+  bool resume = false;         ///< keep the finished points of an earlier run with the same signature
+  std::string signature;       ///< what defines the sweep (parameters, configuration); checked on resume
   /// Computes point i; returns its CSV cells (no index, no newline). Must be thread-safe.
   PointFunction row;
   /// Whether `cells` (a resumed row's fields after the index, as many as the header has) are what
@@ -54,7 +54,9 @@ struct SweepOutcome {
 };
 
 /// The header of a sweep's final CSV file: an index column, then the job's header.
-inline std::string sweep_file_header(const std::string& job_header) { return "index," + job_header; }
+inline std::string sweep_file_header(const std::string& job_header) {
+  return "index," + job_header;
+}
 
 /// Throws UsageError if `job.resume` is set but its directory holds no sweep with the
 /// same signature. Call it before writing anything.

@@ -45,9 +45,12 @@ std::string Table::csv() const {
   CsvWriter out(names);
   for (std::size_t r = 0; r < rows_; ++r) {
     for (const auto& c : columns_) {
-      if (c.kind == Kind::Text) out.cell(c.text[r]);
-      else if (c.kind == Kind::Integer) out.cell(static_cast<long long>(c.numbers[r]));
-      else out.cell(c.numbers[r]);
+      if (c.kind == Kind::Text)
+        out.cell(c.text[r]);
+      else if (c.kind == Kind::Integer)
+        out.cell(static_cast<long long>(c.numbers[r]));
+      else
+        out.cell(c.numbers[r]);
     }
     out.end_row();
   }

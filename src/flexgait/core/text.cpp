@@ -33,8 +33,10 @@ bool count_text(std::string_view text, long long max) {
 std::vector<std::string> split_text(std::string_view text, char separator) {
   std::vector<std::string> out(1);
   for (const char ch : text) {
-    if (ch == separator) out.emplace_back();
-    else out.back() += ch;
+    if (ch == separator)
+      out.emplace_back();
+    else
+      out.back() += ch;
   }
   return out;
 }
@@ -65,13 +67,23 @@ std::string one_line(std::string_view text, std::size_t max_bytes) {
   for (const char ch : text.substr(0, keep)) {
     const auto byte = static_cast<unsigned char>(ch);
     switch (ch) {
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      case '\0': out += "\\0"; break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\0':
+        out += "\\0";
+        break;
       default:
-        if (byte < 0x20 || byte == 0x7f) out += fmt::format("\\x{:02x}", byte);
-        else out += ch;
+        if (byte < 0x20 || byte == 0x7f)
+          out += fmt::format("\\x{:02x}", byte);
+        else
+          out += ch;
     }
   }
   if (keep < text.size()) out += fmt::format("... ({} bytes)", text.size());
@@ -92,8 +104,8 @@ std::string csv_field(std::string_view text) {
 void for_each_csv_record(std::string_view text, const std::function<void(CsvRecord&)>& visit, std::size_t max_fields) {
   CsvRecord current;
   std::string field;
-  bool quoted = false;       // inside a quoted field
-  std::size_t start = 0;     // where the current record's text starts
+  bool quoted = false;    // inside a quoted field
+  std::size_t start = 0;  // where the current record's text starts
   const auto end_field = [&] {
     if (current.fields.size() <= max_fields) current.fields.push_back(std::move(field));
     field.clear();

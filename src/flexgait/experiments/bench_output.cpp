@@ -18,6 +18,8 @@ std::string bench_csv(const BenchResult& r) {
   return csv.str();
 }
 
-std::string bench_summary_json(const BenchResult& r) { return record_json(r).dump(2) + "\n"; }
+std::string bench_summary_json(const BenchResult& r) {
+  return record_json(r).dump(2) + "\n";
+}
 
 }  // namespace flexgait::experiments

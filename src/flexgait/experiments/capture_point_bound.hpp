@@ -21,10 +21,10 @@ double distance_to_edge(const std::vector<Eigen::Vector2d>& polygon, const Eigen
                         const Eigen::Vector2d& direction);
 
 struct CapturePointBound {
-  double omega0 = 0;     ///< √(g / z_c) [1/s]
-  double distance = 0;   ///< d: COM ground projection to the polygon's edge along the push [m]
-  double delta_v = 0;    ///< ω0 d [m/s]
-  double impulse = 0;    ///< m ω0 d [N s]
+  double omega0 = 0;    ///< √(g / z_c) [1/s]
+  double distance = 0;  ///< d: COM ground projection to the polygon's edge along the push [m]
+  double delta_v = 0;   ///< ω0 d [m/s]
+  double impulse = 0;   ///< m ω0 d [N s]
 };
 
 /// \param mass m [kg]; \param com_height z_c above the floor [m]; \param gravity g [m/s^2]

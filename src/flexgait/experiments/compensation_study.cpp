@@ -48,7 +48,9 @@ const WalkResult& result_of(const std::vector<StudyCase>& cases, const std::vect
 }
 
 /// 1 − on/off: the share of an error that compensation removes.
-double cut(double off, double on) { return off > 0 ? 1.0 - on / off : 0.0; }
+double cut(double off, double on) {
+  return off > 0 ? 1.0 - on / off : 0.0;
+}
 
 /// The same member of off and on as KEY_off, KEY_on, KEY the member's own key in WalkMetrics
 /// (declared once there).
@@ -113,9 +115,10 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   j["k_joint_true"] = cases.front().params.plant.gear_stiffness()[humanoid::kLeftHipRoll];
   j["k_joint_belief"] = cases.front().params.control.stiffness()[humanoid::kLeftHipRoll];
   j["weight_split"] = std::string(name_of(cases.front().params.control.split));
-  for (const Compared& c : {Compared{&WalkMetrics::pelvis_roll_error_max, true, true}, Compared{&WalkMetrics::pelvis_pitch_error_max},
-                            Compared{&WalkMetrics::zmp_single_support_rms_y, true}, Compared{&WalkMetrics::zmp_rms_x},
-                            Compared{&WalkMetrics::landing_error_mean}, Compared{&WalkMetrics::link_error_rms, false, true}})
+  for (const Compared& c :
+       {Compared{&WalkMetrics::pelvis_roll_error_max, true, true}, Compared{&WalkMetrics::pelvis_pitch_error_max},
+        Compared{&WalkMetrics::zmp_single_support_rms_y, true}, Compared{&WalkMetrics::zmp_rms_x},
+        Compared{&WalkMetrics::landing_error_mean}, Compared{&WalkMetrics::link_error_rms, false, true}})
     add_compared(j, c, off, on, &thesis);
   j["deflection_rms"] = on.deflection_rms;
   j["estimate_error_rms"] = on.estimate_error_rms;
@@ -150,7 +153,8 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   j["fell"] = fell;
   j["table"] = table;
   nlohmann::ordered_json all;
-  for (std::size_t i = 0; i < cases.size(); ++i) all[cases[i].name] = nlohmann::ordered_json::parse(walk_summary_json(results[i]));
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    all[cases[i].name] = nlohmann::ordered_json::parse(walk_summary_json(results[i]));
   j["cases"] = all;
   return j.dump(2) + "\n";
 }
@@ -167,8 +171,8 @@ std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const 
     add_off_on(r, &WalkMetrics::fell, off, on);
     r["steps_off"] = off.steps_completed;  // (the key predates WalkMetrics' steps_completed)
     r["steps_on"] = on.steps_completed;
-    for (const Compared& c : {Compared{&WalkMetrics::pelvis_roll_error_max, true}, Compared{&WalkMetrics::zmp_single_support_rms_y},
-                              Compared{&WalkMetrics::link_error_rms}})
+    for (const Compared& c : {Compared{&WalkMetrics::pelvis_roll_error_max, true},
+                              Compared{&WalkMetrics::zmp_single_support_rms_y}, Compared{&WalkMetrics::link_error_rms}})
       add_compared(r, c, off, on);
     rows.push_back(r);
   }

@@ -39,10 +39,14 @@ PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d&
 
 Eigen::Vector2d push_direction_vector(PushDirection d) {
   switch (d) {
-    case PushDirection::kForward: return {1, 0};
-    case PushDirection::kBackward: return {-1, 0};
-    case PushDirection::kLeft: return {0, 1};
-    case PushDirection::kRight: return {0, -1};
+    case PushDirection::kForward:
+      return {1, 0};
+    case PushDirection::kBackward:
+      return {-1, 0};
+    case PushDirection::kLeft:
+      return {0, 1};
+    case PushDirection::kRight:
+      return {0, -1};
   }
   throw std::logic_error("push_direction_vector: unknown direction");
 }
@@ -52,8 +56,8 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
   p.run = walk_run_from_config(config);
   p.test = record_from_config<PushRecoveryParams>(config);
   check_with_origin(config, [&] {
-    for (const char* key : {"disturbance.push.force_x", "disturbance.push.force_y", "disturbance.push.force_z",
-                            "disturbance.push.time"})
+    for (const char* key :
+         {"disturbance.push.force_x", "disturbance.push.force_y", "disturbance.push.force_z", "disturbance.push.time"})
       if (config.real(key) != 0)
         throw ConfigError(key, std::string(key) + ": set by the push-recovery test (push_recovery.*); leave it 0");
     if (config.integer("disturbance.push.step") != 0)
@@ -62,9 +66,9 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
     if (p.run.push.duration <= 0)
       throw ConfigError("disturbance.push.duration", "disturbance.push.duration: the push needs a duration > 0");
     if (p.test.situation == PushSituation::kWalking && p.test.step >= p.run.walk.steps)
-      throw ConfigError("push_recovery.step", "push_recovery.step: " + std::to_string(p.test.step) +
-                                                  " must be a step before the last, below walk.steps = " +
-                                                  std::to_string(p.run.walk.steps));
+      throw ConfigError("push_recovery.step",
+                        "push_recovery.step: " + std::to_string(p.test.step) +
+                            " must be a step before the last, below walk.steps = " + std::to_string(p.run.walk.steps));
   });
   return p;
 }

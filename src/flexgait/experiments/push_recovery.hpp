@@ -53,26 +53,29 @@ Eigen::Vector2d push_direction_vector(PushDirection d);
 struct PushRecoveryParams {
   PushSituation situation = PushSituation::kStanding;
   PushDirection direction = PushDirection::kForward;
-  double stand_time = 4.0;    ///< standing: the push starts then (the dcm mode's COM bias has settled) [s]
-  double settle_time = 3.0;   ///< standing: simulated after the push starts (a fall shows within it) [s]
-  int step = 3;               ///< walking: the push starts at mid single support of this step (1 = the first)
-  double upper = 100.0;       ///< first upper end of the bisection; doubled while recovered, at most 3 times [N s]
-  double tolerance = 1.0;     ///< bisection to this width [N s]
+  double stand_time = 4.0;   ///< standing: the push starts then (the dcm mode's COM bias has settled) [s]
+  double settle_time = 3.0;  ///< standing: simulated after the push starts (a fall shows within it) [s]
+  int step = 3;              ///< walking: the push starts at mid single support of this step (1 = the first)
+  double upper = 100.0;      ///< first upper end of the bisection; doubled while recovered, at most 3 times [N s]
+  double tolerance = 1.0;    ///< bisection to this width [N s]
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("push_recovery.situation", s.situation,
       {.doc = "standing (walk.steps 0, the push at stand_time) or walking (the push at mid single support of step)"});
     v("push_recovery.direction", s.direction, {.doc = "horizontal push direction, world frame (the walk goes +x)"});
-    v("push_recovery.stand_time", s.stand_time, {.unit = "s", .doc = "standing: start of the push", .bounds = closed(0.5, 100)});
+    v("push_recovery.stand_time", s.stand_time,
+      {.unit = "s", .doc = "standing: start of the push", .bounds = closed(0.5, 100)});
     v("push_recovery.settle_time", s.settle_time,
       {.unit = "s", .doc = "standing: simulated after the push starts", .bounds = closed(0.5, 100)});
-    v("push_recovery.step", s.step, {.doc = "walking: the push starts at mid single support of this step (1: the first)",
-                                     .bounds = closed(1, 1000)});
+    v("push_recovery.step", s.step,
+      {.doc = "walking: the push starts at mid single support of this step (1: the first)", .bounds = closed(1, 1000)});
     v("push_recovery.upper", s.upper,
-      {.unit = "N s", .doc = "first upper end of the bisection (doubled while recovered, at most 3 times)",
+      {.unit = "N s",
+       .doc = "first upper end of the bisection (doubled while recovered, at most 3 times)",
        .bounds = closed(1, 1e4)});
-    v("push_recovery.tolerance", s.tolerance, {.unit = "N s", .doc = "width the bisection ends at", .bounds = closed(0.01, 100)});
+    v("push_recovery.tolerance", s.tolerance,
+      {.unit = "N s", .doc = "width the bisection ends at", .bounds = closed(0.01, 100)});
   }
 };
 
@@ -88,7 +91,9 @@ struct PushRecoveryRunParams {
   }
 };
 
-inline Schema push_recovery_schema() { return schema_of<PushRecoveryRunParams>(); }
+inline Schema push_recovery_schema() {
+  return schema_of<PushRecoveryRunParams>();
+}
 
 /// The measurement's parameters; throws ConfigError as walk_run_from_config, and naming the key
 /// when disturbance.push.force_* or disturbance.push.time is set (the test sets them), when
@@ -100,12 +105,12 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config);
 struct PushRecoveryResult {
   PushSituation situation = PushSituation::kStanding;
   PushDirection direction = PushDirection::kForward;
-  double push_time = 0;   ///< [s]
-  double recovered = 0;   ///< largest impulse recovered [N s]
-  double fell_at = 0;     ///< smallest impulse seen to fall [N s]; null if none fell (recovered is then a lower bound)
-  double bound = 0;       ///< capture-point bound of the situation in the push's direction [N s]
-  double fraction = 0;    ///< recovered / bound
-  int runs = 0;           ///< runs of the twin
+  double push_time = 0;  ///< [s]
+  double recovered = 0;  ///< largest impulse recovered [N s]
+  double fell_at = 0;    ///< smallest impulse seen to fall [N s]; null if none fell (recovered is then a lower bound)
+  double bound = 0;      ///< capture-point bound of the situation in the push's direction [N s]
+  double fraction = 0;   ///< recovered / bound
+  int runs = 0;          ///< runs of the twin
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {

@@ -24,10 +24,10 @@ void check_push_timing(const humanoid::Push& push, const walking::WalkPlan& plan
                                                        "{}step and {}phase, not both",
                                                        key_prefix, push.time, key_prefix, key_prefix));
   if (static_cast<std::size_t>(push.step) > plan.steps.size())
-    throw ConfigError(key_prefix + "step", fmt::format("key '{}step' = '{}': the walk has {} steps; allowed: 0 (timed "
-                                                       "by {}time) to {}",
-                                                       key_prefix, push.step, plan.steps.size(), key_prefix,
-                                                       plan.steps.size()));
+    throw ConfigError(key_prefix + "step",
+                      fmt::format("key '{}step' = '{}': the walk has {} steps; allowed: 0 (timed "
+                                  "by {}time) to {}",
+                                  key_prefix, push.step, plan.steps.size(), key_prefix, plan.steps.size()));
 }
 
 }  // namespace flexgait::experiments

@@ -15,8 +15,9 @@ namespace flexgait::experiments {
 BenchParams bench_from_config(const Config& c) {
   BenchParams p = record_from_config<BenchParams>(c);
   if (p.angle_max <= p.angle_min)
-    throw ConfigError("bench.angle_max", fmt::format("key 'bench.angle_max' = '{}': must exceed bench.angle_min = {} (rad)",
-                                                     p.angle_max, p.angle_min));
+    throw ConfigError(
+        "bench.angle_max",
+        fmt::format("key 'bench.angle_max' = '{}': must exceed bench.angle_min = {} (rad)", p.angle_max, p.angle_min));
   return p;
 }
 
@@ -27,7 +28,8 @@ std::string BenchFailure::text() const {
       return fmt::format("{} sweep, pose {}: {}", sweep_name, pose,
                          WalkFailure{SimulationFailure::kMuJoCoWarning, detail}.text());
     case BenchFailureReason::kDiverged:
-      return fmt::format("{} sweep, pose {}: {}", sweep_name, pose, WalkFailure{SimulationFailure::kDiverged, {}}.text());
+      return fmt::format("{} sweep, pose {}: {}", sweep_name, pose,
+                         WalkFailure{SimulationFailure::kDiverged, {}}.text());
     case BenchFailureReason::kNoFit:
       return fmt::format("no finite positive stiffness fits the sweep (k_fit = {})", detail);
   }
@@ -37,7 +39,7 @@ std::string BenchFailure::text() const {
 BenchResult run_stiffness_bench(const BenchParams& p, const std::function<void()>& poll) {
   const humanoid::ActuatorRigParams rig{p.actuator, p.arm_length, p.load_mass, p.physics_dt};
   const double weight_arm = p.load_mass * 9.81 * p.arm_length;  // m g l [Nm]
-  std::optional<BenchFailure> failure;  // the first sweep's failure ends the bench
+  std::optional<BenchFailure> failure;                          // the first sweep's failure ends the bench
   auto sweep = [&](BenchSweep which, double k_comp) {
     humanoid::ActuatorRig bench(rig, p.angle_min);
     std::vector<BenchSample> out;
@@ -100,7 +102,8 @@ BenchResult run_stiffness_bench(const BenchParams& p, const std::function<void()
   }
   r.min_residual_compensated = INFINITY;
   r.max_residual_compensated = -INFINITY;
-  for (const auto& b : r.uncompensated) r.max_error_uncompensated = std::max(r.max_error_uncompensated, std::abs(b.link - b.command));
+  for (const auto& b : r.uncompensated)
+    r.max_error_uncompensated = std::max(r.max_error_uncompensated, std::abs(b.link - b.command));
   for (const auto& b : r.compensated) {
     const double e = b.link - b.command;
     r.max_error_compensated = std::max(r.max_error_compensated, std::abs(e));
@@ -120,7 +123,8 @@ BenchResult run_stiffness_bench(const BenchParams& p, const std::function<void()
       b.newton_iterations = e.iterations;
       r.max_error_newton = std::max(r.max_error_newton, std::abs(b.estimate_newton - b.link));
       r.max_error_conventional = std::max(r.max_error_conventional, std::abs(b.estimate_conventional - b.link));
-      r.max_newton_conventional = std::max(r.max_newton_conventional, std::abs(b.estimate_newton - b.estimate_conventional));
+      r.max_newton_conventional =
+          std::max(r.max_newton_conventional, std::abs(b.estimate_newton - b.estimate_conventional));
       r.max_newton_iterations = std::max(r.max_newton_iterations, e.iterations);
     }
   }

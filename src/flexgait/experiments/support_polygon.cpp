@@ -12,7 +12,8 @@ std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& s
     for (double sx : {-0.5, 0.5})
       for (double sy : {-0.5, 0.5}) pts.push_back((s.p + s.R * Eigen::Vector3d(sx * length, sy * width, 0)).head<2>());
   // Andrew's monotone chain.
-  std::sort(pts.begin(), pts.end(), [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  std::sort(pts.begin(), pts.end(),
+            [](const auto& a, const auto& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   if (pts.size() < 3) return pts;
   const auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/push_timing.hpp"
@@ -81,10 +81,12 @@ void check_reach(const WalkRunParams& p, const walking::RobotModel& model) {
   const double L = reach.length, leg = walking::hip_to_ankle(reach, p.walk.pelvis_height);
   const double lowest = reach.stretched_height - 0.55 * L, highest = reach.stretched_height - 0.025 * L;
   if (leg < 0.45 * L || leg > 0.975 * L)
-    throw ConfigError("walk.pelvis_height",
-                      fmt::format("key 'walk.pelvis_height' = '{}': this robot's legs ({:.4f} m thigh + shank, {:.4f} m "
-                                  "stretched) stand with the pelvis from {:.4f} to {:.4f} m (hip to ankle 45-97.5 % of "
-                                  "the leg)", p.walk.pelvis_height, L, reach.stretched_height, lowest, highest));
+    throw ConfigError(
+        "walk.pelvis_height",
+        fmt::format("key 'walk.pelvis_height' = '{}': this robot's legs ({:.4f} m thigh + shank, {:.4f} m "
+                    "stretched) stand with the pelvis from {:.4f} to {:.4f} m (hip to ankle 45-97.5 % of "
+                    "the leg)",
+                    p.walk.pelvis_height, L, reach.stretched_height, lowest, highest));
   if (p.walk.step_width <= model.sole_width)
     throw ConfigError("walk.step_width", fmt::format("key 'walk.step_width' = '{}': the soles ({:.4f} m wide) would "
                                                      "overlap; allowed: more than {:.4f} m",
@@ -95,7 +97,8 @@ void check_reach(const WalkRunParams& p, const walking::RobotModel& model) {
   if (t.step_height > up || -t.step_height > down)
     throw ConfigError("terrain.step.height",
                       fmt::format("key 'terrain.step.height' = '{}': beyond the legs' reach at walk.pelvis_height = {} "
-                                  "(from {:.4f} to {:.4f} m)", t.step_height, p.walk.pelvis_height, -down, up));
+                                  "(from {:.4f} to {:.4f} m)",
+                                  t.step_height, p.walk.pelvis_height, -down, up));
 }
 
 }  // namespace
@@ -111,9 +114,8 @@ WalkRunParams walk_run_from_config(const Config& c) {
     const std::filesystem::path path(p.description.description);
     if (path.is_relative() && colon != std::string::npos && std::filesystem::is_regular_file(origin.substr(0, colon)))
       p.description.description = (std::filesystem::path(origin.substr(0, colon)).parent_path() / path).string();
-    check_with_origin(c, [&] {
-      p.loaded = std::make_shared<const humanoid::LoadedRobot>(humanoid::load_robot(p.description));
-    });
+    check_with_origin(
+        c, [&] { p.loaded = std::make_shared<const humanoid::LoadedRobot>(humanoid::load_robot(p.description)); });
   }
   check_with_origin(c, [&] {
     const walking::RobotModel model = walk_controller_model(p);  // refuses a foot the controller cannot handle
@@ -150,12 +152,13 @@ WalkRunParams walk_run_from_config(const Config& c) {
   // (the gyro's rest: the still start stance, after the calibration's motion)
   const double still = p.walk.start_time - p.walk.preview_time - calibration.end();
   if (p.control.k_estimation_gyro_rest > 0 && p.control.k_estimation_gyro_rest > still)
-    throw ConfigError("control.k_estimation_gyro_rest",
-                      fmt::format("key 'control.k_estimation_gyro_rest' = '{}' is longer than the still start stance (the "
-                                  "COM moves from walk.preview_time before the first step, and the calibration's motion "
-                                  "ends at calibration.start + calibration.time); allowed: 0 to {:.6g} s (lengthen "
-                                  "walk.start_time)",
-                                  p.control.k_estimation_gyro_rest, still));
+    throw ConfigError(
+        "control.k_estimation_gyro_rest",
+        fmt::format("key 'control.k_estimation_gyro_rest' = '{}' is longer than the still start stance (the "
+                    "COM moves from walk.preview_time before the first step, and the calibration's motion "
+                    "ends at calibration.start + calibration.time); allowed: 0 to {:.6g} s (lengthen "
+                    "walk.start_time)",
+                    p.control.k_estimation_gyro_rest, still));
   check_with_origin(c, [&] {
     const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
     for (std::size_t i = 0; i < p.pushes.size(); ++i)
@@ -196,7 +199,8 @@ walking::RobotModel walk_controller_model(const WalkRunParams& params) {
   return params.loaded ? walking::make_robot_model(*params.loaded) : walking::make_robot_model(params.controller_robot);
 }
 
-loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::RobotModel& model, const walking::WalkPlan& plan) {
+loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::RobotModel& model,
+                                const walking::WalkPlan& plan) {
   loop::LoopSetup setup{walk_twin(params), params.plant, model, params.control, {}, static_cast<bool>(params.loaded)};
   // (the start stance is still until the preview sees the first step: the end of the gyro's calibration at rest)
   setup.windows.rest_end = plan.steps.empty() ? plan.duration : plan.steps.front().t_begin - params.walk.preview_time;

@@ -31,8 +31,9 @@
 namespace flexgait::experiments {
 
 struct WalkRunParams {
-  humanoid::RobotParams robot;             ///< the twin (truth) of the builtin robot; sole_friction for any robot
-  humanoid::RobotDescriptionParams description;  ///< robot.description and its mapping (robot.joints.*, robot.feet.*, ...)
+  humanoid::RobotParams robot;  ///< the twin (truth) of the builtin robot; sole_friction for any robot
+  humanoid::RobotDescriptionParams
+      description;  ///< robot.description and its mapping (robot.joints.*, robot.feet.*, ...)
   /// The loaded description (null for the builtin robot): the twin and the controller's model are
   /// made from it (walk_run_from_config loads it).
   std::shared_ptr<const humanoid::LoadedRobot> loaded;
@@ -41,19 +42,19 @@ struct WalkRunParams {
   walking::WalkParams walk;
   walking::BalanceParams balance;
   compensation::CompensationParams control;  ///< the deformation compensators (control.*)
-  walking::EstimatorParams estimator;      ///< the controller's attitude estimator (estimator.*)
-  walking::HealthParams health;            ///< the controller's sensor health checks (health.*)
-  humanoid::Push push;                     ///< a push on the twin (disturbance.push.*; none by default)
-  std::vector<humanoid::Push> pushes;      ///< more pushes (disturbance.pushes; the single push is added after them)
-  double log_period = 0.02;                ///< log sample period [s] (a multiple of the control period)
-  double fall_height = 0.2;                ///< fallen when the pelvis sinks this far below its height [m]
-  double fall_tilt = 0.6;                  ///< or tilts this far [rad]
+  walking::EstimatorParams estimator;        ///< the controller's attitude estimator (estimator.*)
+  walking::HealthParams health;              ///< the controller's sensor health checks (health.*)
+  humanoid::Push push;                       ///< a push on the twin (disturbance.push.*; none by default)
+  std::vector<humanoid::Push> pushes;        ///< more pushes (disturbance.pushes; the single push is added after them)
+  double log_period = 0.02;                  ///< log sample period [s] (a multiple of the control period)
+  double fall_height = 0.2;                  ///< fallen when the pelvis sinks this far below its height [m]
+  double fall_tilt = 0.6;                    ///< or tilts this far [rad]
   /// The keys left `auto` and the values walk_run_from_config derived for them from the robot, in
   /// derivation order (with_derived_values writes them into config.yaml); not keys themselves.
   std::vector<std::pair<std::string, double>> derived;
 
-  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*, disturbance.pushes, output.log_period (the controller's
-  /// belief of the robot and the fall thresholds are not keys).
+  /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*,
+  /// disturbance.pushes, output.log_period (the controller's belief of the robot and the fall thresholds are not keys).
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     humanoid::RobotParams::visit_fields(s.robot, v);
@@ -65,9 +66,11 @@ struct WalkRunParams {
     walking::EstimatorParams::visit_fields(s.estimator, v);
     walking::HealthParams::visit_fields(s.health, v);
     humanoid::Push::visit_fields(s.push, v);
-    v("disturbance.pushes", s.pushes, {.doc = "pushes on the twin, each {time [s] (or step, phase), body, force [N, world], duration [s]}; "
-                                              "disturbance.push.* adds one more"});
-    v("output.log_period", s.log_period, {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
+    v("disturbance.pushes", s.pushes,
+      {.doc = "pushes on the twin, each {time [s] (or step, phase), body, force [N, world], duration [s]}; "
+              "disturbance.push.* adds one more"});
+    v("output.log_period", s.log_period,
+      {.unit = "s", .doc = "period of the logged samples", .bounds = closed(1e-4, 10)});
   }
 };
 
@@ -87,35 +90,35 @@ walking::RobotModel walk_controller_model(const WalkRunParams& params);
 struct WalkSample {
   double t = 0;
   int step = -1;
-  double zmp_ref_x = 0, zmp_ref_y = 0;    ///< [m]
-  double zmp_ft_x = 0, zmp_ft_y = 0;      ///< from the F/T sensors (the controller's) [m]
-  double zmp_true_x = 0, zmp_true_y = 0;  ///< from the contact forces [m]
-  double com_ref_x = 0, com_ref_y = 0;    ///< planned [m]
-  double com_x = 0, com_y = 0, com_z = 0; ///< true [m]
-  double pelvis_z = 0;                    ///< true [m]
-  double imu_roll = 0, imu_pitch = 0;     ///< the controller's estimate [rad]
-  double roll_true = 0, pitch_true = 0;   ///< the twin's pelvis attitude [rad]
-  unsigned sensor_faults = 0;             ///< bit i: sensor i (humanoid::SensorId) bad in a period since the last sample
-  bool safe_stop = false;                 ///< the controller is stopping the walk for a failed sensor
+  double zmp_ref_x = 0, zmp_ref_y = 0;     ///< [m]
+  double zmp_ft_x = 0, zmp_ft_y = 0;       ///< from the F/T sensors (the controller's) [m]
+  double zmp_true_x = 0, zmp_true_y = 0;   ///< from the contact forces [m]
+  double com_ref_x = 0, com_ref_y = 0;     ///< planned [m]
+  double com_x = 0, com_y = 0, com_z = 0;  ///< true [m]
+  double pelvis_z = 0;                     ///< true [m]
+  double imu_roll = 0, imu_pitch = 0;      ///< the controller's estimate [rad]
+  double roll_true = 0, pitch_true = 0;    ///< the twin's pelvis attitude [rad]
+  unsigned sensor_faults = 0;  ///< bit i: sensor i (humanoid::SensorId) bad in a period since the last sample
+  bool safe_stop = false;      ///< the controller is stopping the walk for a failed sensor
   double roll_correction = 0, pitch_correction = 0;  ///< balance controller [rad]
-  double support_margin = 0;              ///< true ZMP to the edge of the true support polygon (soles on the floor) [m]
+  double support_margin = 0;  ///< true ZMP to the edge of the true support polygon (soles on the floor) [m]
   std::array<std::array<double, 3>, 2> sole{};  ///< true sole centres [m]
   // The deformation model (all joints; the estimates only when the output compensator runs):
-  humanoid::JointVector desired{};       ///< θ_d from the IK [rad]
-  humanoid::JointVector command{};       ///< θ_cmd sent to the servos [rad]
-  humanoid::JointVector encoder{};       ///< θ_enc [rad]
-  humanoid::JointVector link{};          ///< the twin's true link angles [rad]
-  humanoid::JointVector estimate{};      ///< θ̂ by Newton (eq. 11) [rad]
-  humanoid::JointVector conventional{};  ///< θ_enc − τ_g(θ_enc)/k [rad]
-  humanoid::JointVector per_joint{};     ///< eq. 12 joint by joint (the thesis's scalar form) [rad]
-  humanoid::JointVector torque_model{};  ///< τ_g of the input compensator (desired pose) [Nm]
+  humanoid::JointVector desired{};          ///< θ_d from the IK [rad]
+  humanoid::JointVector command{};          ///< θ_cmd sent to the servos [rad]
+  humanoid::JointVector encoder{};          ///< θ_enc [rad]
+  humanoid::JointVector link{};             ///< the twin's true link angles [rad]
+  humanoid::JointVector estimate{};         ///< θ̂ by Newton (eq. 11) [rad]
+  humanoid::JointVector conventional{};     ///< θ_enc − τ_g(θ_enc)/k [rad]
+  humanoid::JointVector per_joint{};        ///< eq. 12 joint by joint (the thesis's scalar form) [rad]
+  humanoid::JointVector torque_model{};     ///< τ_g of the input compensator (desired pose) [Nm]
   humanoid::JointVector torque_estimate{};  ///< τ_g of the output compensator (estimated pose) [Nm]
-  humanoid::JointVector torque_true{};   ///< the twin's gear torques [Nm]
-  humanoid::JointVector k_estimate{};    ///< control.k_estimation on: each joint's stiffness estimate [Nm/rad]
+  humanoid::JointVector torque_true{};      ///< the twin's gear torques [Nm]
+  humanoid::JointVector k_estimate{};       ///< control.k_estimation on: each joint's stiffness estimate [Nm/rad]
   /// Pelvis roll by kinematics from the stance sole (flat on the floor) through the encoders and
   /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.
   double roll_kin_encoder = 0, roll_kin_estimate = 0;
-  std::array<double, 3> push_force{};     ///< push force applied in the last physics step (world) [N]
+  std::array<double, 3> push_force{};  ///< push force applied in the last physics step (world) [N]
   /// balance.mode = dcm: the controller's DCM ξ (its COM estimate) and the plan's ξ_ref, in its
   /// own frame (0 in pd mode, where it computes none) [m].
   std::array<double, 2> dcm{}, dcm_ref{};
@@ -132,14 +135,14 @@ struct Landing {
 /// `timing.json` only, so that summary.json is the same bytes on every run).
 struct WalkMetrics {
   compensation::CompensationMode compensation = compensation::CompensationMode::kOff;  ///< control.compensation
-  compensation::GravityForm gravity_model = compensation::GravityForm::kFull;           ///< control.gravity_model
+  compensation::GravityForm gravity_model = compensation::GravityForm::kFull;          ///< control.gravity_model
   bool fell = false;
   std::optional<FallReason> fall_reason;  ///< empty when it did not fall
-  double fall_time = 0;            ///< [s]
+  double fall_time = 0;                   ///< [s]
   /// Why the simulation itself failed (empty when it did not): a MuJoCo warning (an unstable or
   /// overfull simulation) or a non-finite state. The walk ends there; its scores cover what ran.
   std::optional<WalkFailure> failure;
-  double failure_time = 0;         ///< [s]
+  double failure_time = 0;  ///< [s]
   int steps_planned = 0, steps_completed = 0;
   double zmp_rms_x = 0, zmp_rms_y = 0;  ///< true ZMP − reference over the walk [m]
   double zmp_max_x = 0, zmp_max_y = 0;
@@ -147,42 +150,43 @@ struct WalkMetrics {
   double zmp_ft_rms_error = 0;          ///< F/T ZMP (soles where they are) against the contact forces' [m]
   double zmp_controller_rms_error = 0;  ///< the controller's F/T ZMP (soles where planned) against the true [m]
   double support_margin_min = 0;        ///< smallest margin of the true ZMP inside the true support polygon [m]
-  double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;   ///< true pelvis attitude against level [rad]
+  double pelvis_roll_error_max = 0, pelvis_roll_error_rms = 0;  ///< true pelvis attitude against level [rad]
   double pelvis_pitch_error_max = 0, pelvis_pitch_error_rms = 0;
-  double landing_error_max = 0, landing_error_mean = 0;          ///< [m]
-  double com_error_rms = 0, com_error_max = 0;                   ///< true COM − planned (xy) [m]
-  double support_error_max = 0;         ///< largest slide of a standing sole from where it came down [m]
-  int ik_clamped = 0;                   ///< control periods with a leg target out of reach
-  int joint_limit_hits = 0;             ///< commanded joint angles clamped into their ranges (a loaded robot)
-  bool joint_ranges = false;            ///< a loaded robot: its joint ranges bound the commands
-  int mujoco_warnings = 0;              ///< MuJoCo warnings
-  double simulated_time = 0;            ///< [s]
-  double wall_time = 0;                 ///< [s] (timing.json)
-  double real_time_factor = 0;          ///< (timing.json)
+  double landing_error_max = 0, landing_error_mean = 0;  ///< [m]
+  double com_error_rms = 0, com_error_max = 0;           ///< true COM − planned (xy) [m]
+  double support_error_max = 0;  ///< largest slide of a standing sole from where it came down [m]
+  int ik_clamped = 0;            ///< control periods with a leg target out of reach
+  int joint_limit_hits = 0;      ///< commanded joint angles clamped into their ranges (a loaded robot)
+  bool joint_ranges = false;     ///< a loaded robot: its joint ranges bound the commands
+  int mujoco_warnings = 0;       ///< MuJoCo warnings
+  double simulated_time = 0;     ///< [s]
+  double wall_time = 0;          ///< [s] (timing.json)
+  double real_time_factor = 0;   ///< (timing.json)
   double riccati_residual = 0;
   // Deformation (leg joints, over the walk): deflection = θ_enc − θ_link (true).
-  double deflection_rms = 0, deflection_max = 0;             ///< [rad]
-  double estimate_error_rms = 0, estimate_error_max = 0;     ///< θ̂ (Newton) − θ_link [rad]
-  double one_step_error_rms = 0;                             ///< eq. 12 − θ_link [rad]
+  double deflection_rms = 0, deflection_max = 0;                  ///< [rad]
+  double estimate_error_rms = 0, estimate_error_max = 0;          ///< θ̂ (Newton) − θ_link [rad]
+  double one_step_error_rms = 0;                                  ///< eq. 12 − θ_link [rad]
   double conventional_error_rms = 0, conventional_error_max = 0;  ///< [rad]
-  double newton_conventional_max = 0;                        ///< max |θ̂ − conventional| [rad]
-  double per_joint_conventional_max = 0;                     ///< max |per-joint eq. 12 − conventional| [rad]
-  double link_error_rms = 0, link_error_max = 0;             ///< θ_link − θ_d: what input compensation removes [rad]
-  double pelvis_roll_kinematic_encoder_rms = 0, pelvis_roll_kinematic_estimate_rms = 0;  ///< single support, against the IMU [rad]
+  double newton_conventional_max = 0;                             ///< max |θ̂ − conventional| [rad]
+  double per_joint_conventional_max = 0;                          ///< max |per-joint eq. 12 − conventional| [rad]
+  double link_error_rms = 0, link_error_max = 0;  ///< θ_link − θ_d: what input compensation removes [rad]
+  double pelvis_roll_kinematic_encoder_rms = 0,
+         pelvis_roll_kinematic_estimate_rms = 0;  ///< single support, against the IMU [rad]
   int newton_iterations_max = 0;
   double newton_iterations_mean = 0;
-  int newton_failures = 0;                                   ///< control periods not converged (fallback used)
+  int newton_failures = 0;  ///< control periods not converged (fallback used)
   // Sensors (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate").
-  double attitude_error_rms = 0, attitude_error_max = 0;     ///< controller's roll/pitch − true (norm of both) [rad]
-  int sensor_fault_episodes = 0;                             ///< times a sensor turned bad (all sensors)
-  double sensor_fault_time = 0;                              ///< total time sensors were bad (summed over sensors) [s]
-  std::vector<std::string> sensor_faults;                    ///< "<sensor>: <episodes> x, <time> s" for each flagged sensor
-  bool safe_stop = false;                                    ///< the controller stopped the walk for a failed sensor
-  std::optional<SafeStopReason> safe_stop_reason;            ///< none without a safe stop
-  double safe_stop_time = 0;                                 ///< [s]
-  bool pushed = false;                                       ///< a push was configured (disturbance.push.*)
-  double push_impulse = 0;                                   ///< |applied push impulse| [N s]
-  double capture_point_bound = 0;                            ///< the bound for the push's direction at its start [N s]
+  double attitude_error_rms = 0, attitude_error_max = 0;  ///< controller's roll/pitch − true (norm of both) [rad]
+  int sensor_fault_episodes = 0;                          ///< times a sensor turned bad (all sensors)
+  double sensor_fault_time = 0;                           ///< total time sensors were bad (summed over sensors) [s]
+  std::vector<std::string> sensor_faults;          ///< "<sensor>: <episodes> x, <time> s" for each flagged sensor
+  bool safe_stop = false;                          ///< the controller stopped the walk for a failed sensor
+  std::optional<SafeStopReason> safe_stop_reason;  ///< none without a safe stop
+  double safe_stop_time = 0;                       ///< [s]
+  bool pushed = false;                             ///< a push was configured (disturbance.push.*)
+  double push_impulse = 0;                         ///< |applied push impulse| [N s]
+  double capture_point_bound = 0;                  ///< the bound for the push's direction at its start [N s]
 
   /// The walk ran to its planned end: every step landed, no fall, no safe stop, no failure.
   bool completed() const { return !fell && !failure && !safe_stop && steps_completed == steps_planned; }
@@ -202,10 +206,13 @@ struct WalkMetrics {
   std::string safe_stop_text() const { return safe_stop_reason ? safe_stop_reason->text() : std::string(); }
   /// The output compensator ran: its estimator's scores apply.
   bool has_estimate() const {
-    return compensation == compensation::CompensationMode::kOutput || compensation == compensation::CompensationMode::kBoth;
+    return compensation == compensation::CompensationMode::kOutput ||
+           compensation == compensation::CompensationMode::kBoth;
   }
   /// rms estimator error over rms deflection (0 without deflection).
-  double estimate_error_share_of_deflection() const { return deflection_rms > 0 ? estimate_error_rms / deflection_rms : 0.0; }
+  double estimate_error_share_of_deflection() const {
+    return deflection_rms > 0 ? estimate_error_rms / deflection_rms : 0.0;
+  }
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -228,17 +235,22 @@ struct WalkMetrics {
       {.unit = "s", .doc = "when the simulation failed (left out when it did not)", .present = s.failure.has_value()});
     v("steps_planned", s.steps_planned, {.doc = "footsteps in the plan"});
     v("steps_completed", s.steps_completed,
-      {.doc = "footsteps landed on the floor where planned relative to the standing sole (within half the sole's width)"});
+      {.doc =
+           "footsteps landed on the floor where planned relative to the standing sole (within half the sole's width)"});
     v("zmp_rms_x", s.zmp_rms_x, {.unit = "m", .doc = "rms of true ZMP − reference, x"});
     v("zmp_rms_y", s.zmp_rms_y, {.unit = "m", .doc = "rms of true ZMP − reference, y"});
     v("zmp_max_x", s.zmp_max_x, {.unit = "m", .doc = "max |true ZMP − reference|, x"});
     v("zmp_max_y", s.zmp_max_y, {.unit = "m", .doc = "max |true ZMP − reference|, y"});
-    v("zmp_single_support_rms_y", s.zmp_single_support_rms_y, {.unit = "m", .doc = "rms of true ZMP − reference, y, single support"});
-    v("zmp_ft_rms_error", s.zmp_ft_rms_error, {.unit = "m", .doc = "F/T ZMP (soles where they are) against the contact forces'"});
+    v("zmp_single_support_rms_y", s.zmp_single_support_rms_y,
+      {.unit = "m", .doc = "rms of true ZMP − reference, y, single support"});
+    v("zmp_ft_rms_error", s.zmp_ft_rms_error,
+      {.unit = "m", .doc = "F/T ZMP (soles where they are) against the contact forces'"});
     v("zmp_controller_rms_error", s.zmp_controller_rms_error,
       {.unit = "m", .doc = "the controller's F/T ZMP (soles where planned) against the true"});
-    v("support_margin_min", s.support_margin_min, {.unit = "m", .doc = "smallest margin of the true ZMP inside the true support polygon"});
-    v("pelvis_roll_error_max", s.pelvis_roll_error_max, {.unit = "rad", .doc = "max |true pelvis roll| (level commanded)"});
+    v("support_margin_min", s.support_margin_min,
+      {.unit = "m", .doc = "smallest margin of the true ZMP inside the true support polygon"});
+    v("pelvis_roll_error_max", s.pelvis_roll_error_max,
+      {.unit = "rad", .doc = "max |true pelvis roll| (level commanded)"});
     v("pelvis_roll_error_rms", s.pelvis_roll_error_rms, {.unit = "rad", .doc = "rms true pelvis roll"});
     v("pelvis_pitch_error_max", s.pelvis_pitch_error_max, {.unit = "rad", .doc = "max |true pelvis pitch|"});
     v("pelvis_pitch_error_rms", s.pelvis_pitch_error_rms, {.unit = "rad", .doc = "rms true pelvis pitch"});
@@ -256,35 +268,47 @@ struct WalkMetrics {
     v("link_error_rms", s.link_error_rms, {.unit = "rad", .doc = "rms θ_link − θ_d (what input compensation removes)"});
     v("link_error_max", s.link_error_max, {.unit = "rad", .doc = "max |θ_link − θ_d|"});
     const bool estimate = s.has_estimate();
-    v("estimate_error_rms", s.estimate_error_rms, {.unit = "rad", .doc = "rms θ̂ (Newton, eq. 11) − θ_link", .present = estimate});
+    v("estimate_error_rms", s.estimate_error_rms,
+      {.unit = "rad", .doc = "rms θ̂ (Newton, eq. 11) − θ_link", .present = estimate});
     v("estimate_error_max", s.estimate_error_max, {.unit = "rad", .doc = "max |θ̂ − θ_link|", .present = estimate});
     double share = s.estimate_error_share_of_deflection();
     v("estimate_error_share_of_deflection", share,
       {.doc = "estimate_error_rms / deflection_rms (derived)", .present = estimate});
-    v("one_step_error_rms", s.one_step_error_rms, {.unit = "rad", .doc = "rms of the one-step estimate (eq. 12) − θ_link", .present = estimate});
+    v("one_step_error_rms", s.one_step_error_rms,
+      {.unit = "rad", .doc = "rms of the one-step estimate (eq. 12) − θ_link", .present = estimate});
     v("conventional_error_rms", s.conventional_error_rms,
       {.unit = "rad", .doc = "rms of θ_enc − τ_g(θ_enc)/k − θ_link", .present = estimate});
-    v("conventional_error_max", s.conventional_error_max, {.unit = "rad", .doc = "max of the same", .present = estimate});
-    v("newton_conventional_max", s.newton_conventional_max, {.unit = "rad", .doc = "max |θ̂ − conventional|", .present = estimate});
+    v("conventional_error_max", s.conventional_error_max,
+      {.unit = "rad", .doc = "max of the same", .present = estimate});
+    v("newton_conventional_max", s.newton_conventional_max,
+      {.unit = "rad", .doc = "max |θ̂ − conventional|", .present = estimate});
     v("per_joint_conventional_max", s.per_joint_conventional_max,
-      {.unit = "rad", .doc = "max |eq. 12 joint by joint − conventional| (thesis Fig. 15 per joint)", .present = estimate});
-    v("newton_iterations_max", s.newton_iterations_max, {.doc = "Newton iterations, most in one period", .present = estimate});
-    v("newton_iterations_mean", s.newton_iterations_mean, {.doc = "Newton iterations per period, mean", .present = estimate});
-    v("newton_failures", s.newton_failures, {.doc = "control periods Newton did not converge (fallback used)", .present = estimate});
+      {.unit = "rad",
+       .doc = "max |eq. 12 joint by joint − conventional| (thesis Fig. 15 per joint)",
+       .present = estimate});
+    v("newton_iterations_max", s.newton_iterations_max,
+      {.doc = "Newton iterations, most in one period", .present = estimate});
+    v("newton_iterations_mean", s.newton_iterations_mean,
+      {.doc = "Newton iterations per period, mean", .present = estimate});
+    v("newton_failures", s.newton_failures,
+      {.doc = "control periods Newton did not converge (fallback used)", .present = estimate});
     v("pelvis_roll_kinematic_estimate_rms", s.pelvis_roll_kinematic_estimate_rms,
       {.unit = "rad", .doc = "pelvis roll by kinematics through θ̂ − IMU, single support, rms", .present = estimate});
     v("pelvis_roll_kinematic_encoder_rms", s.pelvis_roll_kinematic_encoder_rms,
       {.unit = "rad", .doc = "pelvis roll by kinematics through the encoders − IMU, single support, rms"});
-    v("sensor_fault_episodes", s.sensor_fault_episodes, {.doc = "times a sensor reading turned bad (NaN, stale or stuck)"});
+    v("sensor_fault_episodes", s.sensor_fault_episodes,
+      {.doc = "times a sensor reading turned bad (NaN, stale or stuck)"});
     v("sensor_fault_time", s.sensor_fault_time, {.unit = "s", .doc = "time sensors were bad, summed over sensors"});
     v("sensor_faults", s.sensor_faults, {.doc = "each flagged sensor: episodes and time bad"});
     v("safe_stop", s.safe_stop, {.doc = "the controller stopped the walk because a sensor stayed bad"});
     std::string safe_stop_reason = s.safe_stop_text();
     v("safe_stop_reason", safe_stop_reason, {.doc = "which sensor failed, how, when; empty without a safe stop"});
     v("safe_stop_time", s.safe_stop_time, {.unit = "s", .doc = "when the safe stop began"});
-    v("push_impulse", s.push_impulse, {.unit = "N s", .doc = "magnitude of the push impulse applied", .present = s.pushed});
+    v("push_impulse", s.push_impulse,
+      {.unit = "N s", .doc = "magnitude of the push impulse applied", .present = s.pushed});
     v("capture_point_bound", s.capture_point_bound,
-      {.unit = "N s", .doc = "largest impulse an ankle strategy absorbs in the push's direction at its start (m ω0 d)",
+      {.unit = "N s",
+       .doc = "largest impulse an ankle strategy absorbs in the push's direction at its start (m ω0 d)",
        .present = s.pushed});
     v("ik_clamped", s.ik_clamped, {.doc = "control periods with a leg target out of reach"});
     v("joint_limit_hits", s.joint_limit_hits,
@@ -298,11 +322,11 @@ struct WalkMetrics {
 
 struct WalkResult {
   WalkMetrics metrics;
-  bool k_estimation = false;            ///< control.k_estimation was on: the fields below apply
-  humanoid::JointVector k_estimate{};   ///< the final stiffness estimate of each joint [Nm/rad]
+  bool k_estimation = false;                           ///< control.k_estimation was on: the fields below apply
+  humanoid::JointVector k_estimate{};                  ///< the final stiffness estimate of each joint [Nm/rad]
   std::array<bool, humanoid::kJoints> k_identified{};  ///< the joints the estimation identifies (leg roll and pitch)
-  std::vector<WalkSample> log;          ///< the logged samples (empty when run_walk's `record` took them)
-  bool log_streamed = false;            ///< the samples went to run_walk's `record`, not to `log`
+  std::vector<WalkSample> log;  ///< the logged samples (empty when run_walk's `record` took them)
+  bool log_streamed = false;    ///< the samples went to run_walk's `record`, not to `log`
   std::vector<Landing> landings;
   walking::WalkPlan plan;
 };
@@ -310,7 +334,8 @@ struct WalkResult {
 /// The loop's parts of the run for any controller: the twin of the run's robot, its plant, the
 /// controller's `model` of the robot, the compensators (control.*), the commands clamped into a
 /// loaded robot's joint ranges; the stiffness identification's still stances from `plan`'s timing.
-loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::RobotModel& model, const walking::WalkPlan& plan);
+loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::RobotModel& model,
+                                const walking::WalkPlan& plan);
 
 /// The walk's closed loop: the builtin walking controller on the twin of the run's robot, the
 /// compensators as configured, reset to the controller's start pose, the pushes timed against its plan.

@@ -6,7 +6,8 @@
 /// `position_tolerance` of the plan's step — and the robot stayed supported: some body touches
 /// the floor at least every `airborne_time`, no standing sole slides more than
 /// `position_tolerance` from where it came down, the pelvis is neither sunk nor tilted nor upside
-/// down, and at the end every sole the plan stands on is on the floor. The first violation is the walk's named outcome (FallReason); the walk ends there.
+/// down, and at the end every sole the plan stands on is on the floor. The first violation is the walk's named outcome
+/// (FallReason); the walk ends there.
 ///
 /// Steps are judged relative to the standing sole, not in the world: the controller walks in its
 /// own frame (it has no global position), so a walk that drifts as a whole — 4.5 cm over 10 steps
@@ -42,13 +43,13 @@ struct JudgeLimits {
 
 /// The ground truth of one control period, in the plan's frame (horizontal positions).
 struct SupportSample {
-  double t = 0;                               ///< [s]
-  std::array<bool, 2> sole_contact{};         ///< each sole touches the floor
-  bool other_contact = false;                 ///< a body other than a sole touches the floor
-  double pelvis_height = 0;                   ///< pelvis above the floor under it [m]
+  double t = 0;                                            ///< [s]
+  std::array<bool, 2> sole_contact{};                      ///< each sole touches the floor
+  bool other_contact = false;                              ///< a body other than a sole touches the floor
+  double pelvis_height = 0;                                ///< pelvis above the floor under it [m]
   Eigen::Matrix3d pelvis_R = Eigen::Matrix3d::Identity();  ///< pelvis attitude (world)
   std::array<Eigen::Vector2d, 2> sole{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};  ///< true sole centres [m]
-  std::array<double, 2> sole_height{};        ///< each sole centre above the floor under it [m]
+  std::array<double, 2> sole_height{};  ///< each sole centre above the floor under it [m]
 };
 
 /// The plan at that period: where each sole should be, and which swings.
@@ -83,8 +84,9 @@ class WalkJudge {
  private:
   JudgeLimits limits_;
   std::optional<double> last_contact_;  ///< time of the last period with a body on the floor [s]
-  std::array<Eigen::Vector2d, 2> anchor_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};  ///< where each standing sole came down [m]
-  std::array<bool, 2> anchored_{};      ///< the sole is down and standing: anchor_ holds
+  std::array<Eigen::Vector2d, 2> anchor_{Eigen::Vector2d::Zero(),
+                                         Eigen::Vector2d::Zero()};  ///< where each standing sole came down [m]
+  std::array<bool, 2> anchored_{};                                  ///< the sole is down and standing: anchor_ holds
   double support_error_max_ = 0;
 };
 

@@ -52,11 +52,11 @@ struct WalkFailure {
 /// Why the controller stopped the walk safely (walking::SafeStop): a sensor it uses stayed bad for
 /// longer than health.hold_time; the plan was cut at the next double support.
 struct SafeStopReason {
-  humanoid::SensorId sensor = humanoid::kSensors;  ///< the sensor that failed
+  humanoid::SensorId sensor = humanoid::kSensors;          ///< the sensor that failed
   walking::SignalFault fault = walking::SignalFault::kOk;  ///< how it failed (nan, stale, stuck)
-  double hold_time = 0;   ///< health.hold_time [s]
-  int steps_kept = 0;     ///< steps of the plan still taken
-  int steps_planned = 0;  ///< steps of the plan
+  double hold_time = 0;                                    ///< health.hold_time [s]
+  int steps_kept = 0;                                      ///< steps of the plan still taken
+  int steps_planned = 0;                                   ///< steps of the plan
   /// summary.json's safe_stop_reason: "sensor ft_right nan for longer than health.hold_time =
   /// 0.3 s; walk cut to 3 of 10 steps".
   std::string text() const;

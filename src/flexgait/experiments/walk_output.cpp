@@ -15,11 +15,45 @@ namespace {
 // The columns and rows of log.csv and joints.csv, into a CsvWriter (the files, whole or streamed)
 // or a Table (the bindings).
 std::vector<std::string> log_header() {
-  return {"t", "step", "zmp_ref_x", "zmp_ref_y", "zmp_ft_x", "zmp_ft_y", "zmp_true_x", "zmp_true_y",
-          "com_ref_x", "com_ref_y", "com_x", "com_y", "com_z", "pelvis_z", "imu_roll", "imu_pitch",
-          "roll_correction", "pitch_correction", "support_margin", "roll_kin_encoder", "roll_kin_estimate", "l_sole_x", "l_sole_y", "l_sole_z",
-          "r_sole_x", "r_sole_y", "r_sole_z", "roll_true", "pitch_true", "sensor_faults", "safe_stop",
-          "push_force_x", "push_force_y", "push_force_z", "dcm_x", "dcm_y", "dcm_ref_x", "dcm_ref_y", "dcm_error_x",
+  return {"t",
+          "step",
+          "zmp_ref_x",
+          "zmp_ref_y",
+          "zmp_ft_x",
+          "zmp_ft_y",
+          "zmp_true_x",
+          "zmp_true_y",
+          "com_ref_x",
+          "com_ref_y",
+          "com_x",
+          "com_y",
+          "com_z",
+          "pelvis_z",
+          "imu_roll",
+          "imu_pitch",
+          "roll_correction",
+          "pitch_correction",
+          "support_margin",
+          "roll_kin_encoder",
+          "roll_kin_estimate",
+          "l_sole_x",
+          "l_sole_y",
+          "l_sole_z",
+          "r_sole_x",
+          "r_sole_y",
+          "r_sole_z",
+          "roll_true",
+          "pitch_true",
+          "sensor_faults",
+          "safe_stop",
+          "push_force_x",
+          "push_force_y",
+          "push_force_z",
+          "dcm_x",
+          "dcm_y",
+          "dcm_ref_x",
+          "dcm_ref_y",
+          "dcm_error_x",
           "dcm_error_y"};
 }
 
@@ -33,13 +67,18 @@ void log_row(Writer& csv, const WalkSample& w) {
   csv.cell(w.roll_true).cell(w.pitch_true).cell(static_cast<long long>(w.sensor_faults));
   csv.cell(static_cast<long long>(w.safe_stop ? 1 : 0));
   for (const double f : w.push_force) csv.cell(f);
-  csv.cell(w.dcm[0]).cell(w.dcm[1]).cell(w.dcm_ref[0]).cell(w.dcm_ref[1]).cell(w.dcm[0] - w.dcm_ref[0]).cell(w.dcm[1] - w.dcm_ref[1]);
+  csv.cell(w.dcm[0])
+      .cell(w.dcm[1])
+      .cell(w.dcm_ref[0])
+      .cell(w.dcm_ref[1])
+      .cell(w.dcm[0] - w.dcm_ref[0])
+      .cell(w.dcm[1] - w.dcm_ref[1]);
   csv.end_row();
 }
 
-constexpr std::array<std::string_view, 10> kJointFields = {"desired",   "command",      "encoder",      "link",
-                                                            "estimate",  "conventional", "per_joint",    "torque_model",
-                                                            "torque_estimate", "torque_true"};
+constexpr std::array<std::string_view, 10> kJointFields = {
+    "desired",   "command",      "encoder",         "link",       "estimate", "conventional",
+    "per_joint", "torque_model", "torque_estimate", "torque_true"};
 
 std::vector<std::string> joints_header(bool k_estimation) {
   std::vector<std::string> header{"t"};
@@ -47,7 +86,8 @@ std::vector<std::string> joints_header(bool k_estimation) {
     for (const auto f : kJointFields) header.push_back(std::string(humanoid::kJointNames[j]) + "_" + std::string(f));
   // control.k_estimation on: each leg joint's stiffness estimate over time.
   if (k_estimation)
-    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j) header.push_back("k_est_" + std::string(humanoid::kJointNames[j]));
+    for (int j = humanoid::kLeftHipYaw; j < humanoid::kJoints; ++j)
+      header.push_back("k_est_" + std::string(humanoid::kJointNames[j]));
   return header;
 }
 
@@ -80,10 +120,18 @@ Writer walk_joints_rows(const WalkResult& r) {
 
 }  // namespace
 
-std::string walk_log_csv(const WalkResult& r) { return walk_log_rows<CsvWriter>(r).str(); }
-std::string walk_joints_csv(const WalkResult& r) { return walk_joints_rows<CsvWriter>(r).str(); }
-Table walk_log_table(const WalkResult& r) { return walk_log_rows<Table>(r); }
-Table walk_joints_table(const WalkResult& r) { return walk_joints_rows<Table>(r); }
+std::string walk_log_csv(const WalkResult& r) {
+  return walk_log_rows<CsvWriter>(r).str();
+}
+std::string walk_joints_csv(const WalkResult& r) {
+  return walk_joints_rows<CsvWriter>(r).str();
+}
+Table walk_log_table(const WalkResult& r) {
+  return walk_log_rows<Table>(r);
+}
+Table walk_joints_table(const WalkResult& r) {
+  return walk_joints_rows<Table>(r);
+}
 
 std::string walk_footsteps_csv(const WalkResult& r) {
   CsvWriter csv({"kind", "step", "side", "x", "y", "yaw", "landed_x", "landed_y", "landed_yaw", "error"});

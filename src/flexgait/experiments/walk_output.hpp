@@ -6,8 +6,8 @@
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/run_directory.hpp"
-#include "flexgait/core/text.hpp"
 #include "flexgait/core/table.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 
 namespace flexgait::experiments {

@@ -13,7 +13,8 @@ namespace flexgait::experiments {
 namespace {
 
 /// The ground truth the walk's judge reads, with the soles in the plan's frame.
-SupportSample support_sample(const humanoid::GroundTruth& g, const humanoid::Terrain& terrain, const Eigen::Vector2d& offset) {
+SupportSample support_sample(const humanoid::GroundTruth& g, const humanoid::Terrain& terrain,
+                             const Eigen::Vector2d& offset) {
   SupportSample s;
   s.t = g.t;
   s.sole_contact = g.sole_contact;
@@ -51,8 +52,10 @@ JudgeLimits judge_limits(const WalkRunParams& p, const walking::RobotModel& mode
 }  // namespace
 
 Eigen::Vector2d plan_offset(const humanoid::GroundTruth& g, const walking::WalkPlan& plan) {
-  return 0.5 * (Eigen::Vector2d(g.sole_pos[0][0], g.sole_pos[0][1]) + Eigen::Vector2d(g.sole_pos[1][0], g.sole_pos[1][1])) -
-         0.5 * (Eigen::Vector2d(plan.initial[0].x, plan.initial[0].y) + Eigen::Vector2d(plan.initial[1].x, plan.initial[1].y));
+  return 0.5 * (Eigen::Vector2d(g.sole_pos[0][0], g.sole_pos[0][1]) +
+                Eigen::Vector2d(g.sole_pos[1][0], g.sole_pos[1][1])) -
+         0.5 * (Eigen::Vector2d(plan.initial[0].x, plan.initial[0].y) +
+                Eigen::Vector2d(plan.initial[1].x, plan.initial[1].y));
 }
 
 double landing_settle(const WalkRunParams& params) {
@@ -65,7 +68,9 @@ void WalkScorer::Accumulator::add(double v) {
   ++n;
 }
 
-double WalkScorer::Accumulator::rms() const { return n > 0 ? std::sqrt(sum2 / n) : 0.0; }
+double WalkScorer::Accumulator::rms() const {
+  return n > 0 ? std::sqrt(sum2 / n) : 0.0;
+}
 
 WalkScorer::WalkScorer(const WalkRunParams& params, const walking::WalkingController& controller,
                        const humanoid::GroundTruth& initial, const std::vector<humanoid::Push>& pushes,
@@ -80,8 +85,8 @@ WalkScorer::WalkScorer(const WalkRunParams& params, const walking::WalkingContro
   const walking::RobotModel& model = controller.model();
   m.steps_planned = static_cast<int>(out_.plan.steps.size());
   m.joint_ranges = params.loaded && std::any_of(model.range.begin(), model.range.end(), [](const auto& r) {
-    return std::isfinite(r[0]) || std::isfinite(r[1]);
-  });
+                     return std::isfinite(r[0]) || std::isfinite(r[1]);
+                   });
   m.riccati_residual = controller.gains().riccati_residual;
   m.compensation = params.control.mode;
   m.gravity_model = params.control.gravity;
@@ -136,13 +141,15 @@ void WalkScorer::score_sensing(const loop::LoopStep& step) {
     std::vector<walking::Pose> soles;
     for (int side = 0; side < 2; ++side)
       if (before.sole_contact[side])
-        soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0), walking::rot_z(before.sole_yaw[side])});
+        soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0),
+                         walking::rot_z(before.sole_yaw[side])});
     const humanoid::HumanoidPlant& plant = step.plant;
     if (direction.norm() > 0)
-      m.capture_point_bound = capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
-                                                  plant.gravity(), support_polygon(soles, model.sole_length, model.sole_width),
-                                                  Eigen::Vector2d(before.com[0], before.com[1]), direction)
-                                  .impulse;
+      m.capture_point_bound =
+          capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
+                              plant.gravity(), support_polygon(soles, model.sole_length, model.sole_width),
+                              Eigen::Vector2d(before.com[0], before.com[1]), direction)
+              .impulse;
   }
   if (estimate) {
     ++newton_calls_;
@@ -194,7 +201,8 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
 
   // Falls and lost support (walk_judge.hpp).
   const SupportSample sample = support_sample(g, step.plant.terrain(), offset_);
-  const PlannedSupport planned = planned_support(walking::feet_target(controller_.plan(), params_.walk.swing_height, t_now));
+  const PlannedSupport planned =
+      planned_support(walking::feet_target(controller_.plan(), params_.walk.swing_height, t_now));
   fall(judge_.check(sample, planned), t_now);
 
   // Scores over the walk (from the first step's double support on).
@@ -219,16 +227,17 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
     Eigen::Vector2d moment = Eigen::Vector2d::Zero();
     for (int side = 0; side < 2; ++side) {
       const Eigen::Matrix3d R = walking::rot_z(g.sole_yaw[side]);
-      const walking::FootContact c = walking::foot_contact(step.plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
-                                                           model.bodies[static_cast<std::size_t>(model.foot[side])].mass,
-                                                           model.sole_offset[side].head<2>());
+      const walking::FootContact c = walking::foot_contact(
+          step.plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
+          model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.sole_offset[side].head<2>());
       if (c.normal_force <= 1.0) continue;
-      moment += c.normal_force * (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset_ +
-                                  R.topLeftCorner<2, 2>() * c.cop);
+      moment += c.normal_force *
+                (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset_ + R.topLeftCorner<2, 2>() * c.cop);
       fz += c.normal_force;
     }
     const unsigned ft_bits = (1U << humanoid::kFtLeft) | (1U << humanoid::kFtRight);
-    if (fz > params_.balance.contact_force && (st.sensor_flags & ft_bits) == 0) zft_.add((moment / fz - zmp_true).norm());
+    if (fz > params_.balance.contact_force && (st.sensor_flags & ft_bits) == 0)
+      zft_.add((moment / fz - zmp_true).norm());
     roll_.add(roll_true_);
     pitch_.add(pitch_true_);
     com_.add((com_true - st.com_ref).norm());
@@ -258,8 +267,8 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
   if (step.k % log_every_ == 0 || m.fell) log_sample(step, zmp_true, com_true, margin);
 }
 
-void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& zmp_true, const Eigen::Vector2d& com_true,
-                            double margin) {
+void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& zmp_true,
+                            const Eigen::Vector2d& com_true, double margin) {
   const walking::ControllerStatus& st = controller_.status();
   const humanoid::GroundTruth& g = step.after;
   const compensation::OutputEstimate* estimate = step.compensation.estimate();
@@ -324,7 +333,8 @@ WalkResult WalkScorer::finish(const loop::HumanoidLoop& loop) {
   // (a missed step's landing is logged in footsteps.csv but not completed)
   m.steps_completed = static_cast<int>(out_.landings.size()) - (m.fall_reason == FallReason::kMissedStep ? 1 : 0);
   m.support_error_max = judge_.support_error_max();
-  m.steps_planned = std::max(m.steps_planned, static_cast<int>(controller_.plan().steps.size()));  // with a recovery step
+  m.steps_planned =
+      std::max(m.steps_planned, static_cast<int>(controller_.plan().steps.size()));  // with a recovery step
   m.joint_limit_hits = static_cast<int>(loop.joint_limit_hits());
   m.zmp_rms_x = zx_.rms();
   m.zmp_rms_y = zy_.rms();
@@ -362,7 +372,8 @@ WalkResult WalkScorer::finish(const loop::HumanoidLoop& loop) {
     if (health.episodes(i) == 0) continue;
     m.sensor_fault_episodes += health.episodes(i);
     m.sensor_fault_time += health.bad_time(i);
-    m.sensor_faults.push_back(fmt::format("{}: {} x, {:.3f} s", humanoid::kSensorNames[i], health.episodes(i), health.bad_time(i)));
+    m.sensor_faults.push_back(
+        fmt::format("{}: {} x, {:.3f} s", humanoid::kSensorNames[i], health.episodes(i), health.bad_time(i)));
   }
   const walking::SafeStop& stop = controller_.safe_stop();
   m.safe_stop = stop.active;

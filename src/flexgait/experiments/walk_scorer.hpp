@@ -25,8 +25,9 @@ class WalkScorer final : public loop::LoopObserver {
   /// \param controller the walking controller of the loop (its status and plan are read each period)
   /// \param initial the twin's truth at the start (the plan's frame is found from its feet)
   /// \param pushes the pushes applied (timed); \param record takes each logged sample (else WalkResult::log)
-  WalkScorer(const WalkRunParams& params, const walking::WalkingController& controller, const humanoid::GroundTruth& initial,
-             const std::vector<humanoid::Push>& pushes, std::function<void(const WalkSample&)> record);
+  WalkScorer(const WalkRunParams& params, const walking::WalkingController& controller,
+             const humanoid::GroundTruth& initial, const std::vector<humanoid::Push>& pushes,
+             std::function<void(const WalkSample&)> record);
 
   void observe(const loop::LoopStep& step) override;
   /// The walk must end: the robot fell or lost its support.

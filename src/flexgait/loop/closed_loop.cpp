@@ -38,14 +38,19 @@ void HumanoidLoop::reset(const humanoid::JointVector& pose) {
   failure_.reset();
 }
 
-std::optional<SimulationFailure> HumanoidLoop::step() { return advance(nullptr); }
+std::optional<SimulationFailure> HumanoidLoop::step() {
+  return advance(nullptr);
+}
 
-std::optional<SimulationFailure> HumanoidLoop::step(const humanoid::JointVector& desired) { return advance(&desired); }
+std::optional<SimulationFailure> HumanoidLoop::step(const humanoid::JointVector& desired) {
+  return advance(&desired);
+}
 
 std::optional<SimulationFailure> HumanoidLoop::advance(const humanoid::JointVector* given) {
   if (failure_)
-    throw std::logic_error(fmt::format("the simulation failed at t = {:.6g} s ({}); reset the loop before stepping again",
-                                       truth_.t, name_of(*failure_)));
+    throw std::logic_error(
+        fmt::format("the simulation failed at t = {:.6g} s ({}); reset the loop before stepping again", truth_.t,
+                    name_of(*failure_)));
   const double t = static_cast<double>(k_) * plant_.params().control_period;
   const humanoid::SensorReadings readings = stage_.feedback(plant_.sensors());
   humanoid::JointVector desired;
@@ -73,7 +78,8 @@ std::optional<SimulationFailure> HumanoidLoop::advance(const humanoid::JointVect
   std::swap(before_, truth_);
   plant_.step(command_);
   truth_ = plant_.truth();
-  const LoopStep record{k_, t, readings, stage_.sensors(), desired, command_, stage_, before_, truth_, plant_, failure_};
+  const LoopStep record{k_,     t,       readings, stage_.sensors(), desired, command_,
+                        stage_, before_, truth_,   plant_,           failure_};
   ++k_;
   // MuJoCo's warnings (it has already reset an unstable state or dropped contacts), or a state that
   // is no longer finite, end the loop.

@@ -23,16 +23,16 @@ namespace flexgait::loop {
 
 /// One control period as observers see it (references valid during the observer's call).
 struct LoopStep {
-  long k = 0;    ///< the period's index since reset
-  double t = 0;  ///< its start time [s]
-  const humanoid::SensorReadings& readings;   ///< what the controller was given
-  const humanoid::SensorReadings& sensors;    ///< as the controller used them (bad values held), encoders' own values
-  const humanoid::JointVector& desired;       ///< the controller's output [rad]
-  const humanoid::JointVector& command;       ///< sent to the servos [rad]
-  const CompensationStage& compensation;      ///< its estimate, torques, stiffness estimates
-  const humanoid::GroundTruth& before;        ///< the state the sensors read
-  const humanoid::GroundTruth& after;         ///< the state at the period's end
-  const humanoid::HumanoidPlant& plant;       ///< the twin after the period (evaluation code only)
+  long k = 0;                                ///< the period's index since reset
+  double t = 0;                              ///< its start time [s]
+  const humanoid::SensorReadings& readings;  ///< what the controller was given
+  const humanoid::SensorReadings& sensors;   ///< as the controller used them (bad values held), encoders' own values
+  const humanoid::JointVector& desired;      ///< the controller's output [rad]
+  const humanoid::JointVector& command;      ///< sent to the servos [rad]
+  const CompensationStage& compensation;     ///< its estimate, torques, stiffness estimates
+  const humanoid::GroundTruth& before;       ///< the state the sensors read
+  const humanoid::GroundTruth& after;        ///< the state at the period's end
+  const humanoid::HumanoidPlant& plant;      ///< the twin after the period (evaluation code only)
   const std::optional<SimulationFailure>& failure;  ///< the simulation failed in this period
 };
 
@@ -44,12 +44,12 @@ class LoopObserver {
 
 /// The loop's parts that are not the controller.
 struct LoopSetup {
-  humanoid::TwinModel twin;                 ///< the twin's MJCF and sole centres
-  humanoid::PlantParams plant;              ///< plant.* (its true stiffness, sensors, faults, terrain)
-  walking::RobotModel model;                ///< the controller's belief of the robot (compensators, joint ranges)
-  compensation::CompensationParams control; ///< control.*
-  StiffnessWindows windows;                 ///< the still stances of the stiffness identification
-  bool clamp_to_ranges = false;             ///< clamp commands into the model's joint ranges (a loaded robot)
+  humanoid::TwinModel twin;                  ///< the twin's MJCF and sole centres
+  humanoid::PlantParams plant;               ///< plant.* (its true stiffness, sensors, faults, terrain)
+  walking::RobotModel model;                 ///< the controller's belief of the robot (compensators, joint ranges)
+  compensation::CompensationParams control;  ///< control.*
+  StiffnessWindows windows;                  ///< the still stances of the stiffness identification
+  bool clamp_to_ranges = false;              ///< clamp commands into the model's joint ranges (a loaded robot)
 };
 
 class HumanoidLoop {

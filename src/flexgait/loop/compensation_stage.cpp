@@ -8,7 +8,8 @@ namespace flexgait::loop {
 CompensationStage::CompensationStage(const walking::RobotModel& model, const compensation::CompensationParams& params,
                                      double period, const StiffnessWindows& windows)
     : compensator_(model, params, period) {
-  if (params.k_estimation == compensation::KEstimation::kOn) estimator_.emplace(model, params, period, windows.rest_end);
+  if (params.k_estimation == compensation::KEstimation::kOn)
+    estimator_.emplace(model, params, period, windows.rest_end);
   if (params.k_estimation == compensation::KEstimation::kCalibrate)
     calibration_.emplace(model, params, period, windows.calibration_begin, windows.calibration_end);
 }
@@ -20,8 +21,8 @@ humanoid::SensorReadings CompensationStage::feedback(const humanoid::SensorReadi
   return readings;
 }
 
-const humanoid::JointVector& CompensationStage::command(const humanoid::JointVector& desired, const ControlContext& context,
-                                                        double t) {
+const humanoid::JointVector& CompensationStage::command(const humanoid::JointVector& desired,
+                                                        const ControlContext& context, double t) {
   const compensation::CompensationParams& params = compensator_.params();
   const compensation::SupportPlan& support = context.support;
   sensors_ = context.sensors;
@@ -60,7 +61,8 @@ bool CompensationStage::k_identified(int joint) const {
   return false;
 }
 
-ControlContext CompensationStage::standing_context(const walking::RobotModel& model, const humanoid::SensorReadings& sensors) {
+ControlContext CompensationStage::standing_context(const walking::RobotModel& model,
+                                                   const humanoid::SensorReadings& sensors) {
   ControlContext c;
   c.sensors = sensors;
   c.attitude = walking::quat_to_matrix(sensors.imu.quat.data());

@@ -23,8 +23,8 @@ namespace flexgait::loop {
 
 /// When the robot stands still for the stiffness identification [s].
 struct StiffnessWindows {
-  double rest_end = 0;                                      ///< the start stance ends (the gyro's rest: StiffnessEstimator)
-  double calibration_begin = 0, calibration_end = 0;        ///< the calibration motion (ChainStiffnessCalibration)
+  double rest_end = 0;                                ///< the start stance ends (the gyro's rest: StiffnessEstimator)
+  double calibration_begin = 0, calibration_end = 0;  ///< the calibration motion (ChainStiffnessCalibration)
 };
 
 class CompensationStage {
@@ -58,8 +58,8 @@ class CompensationStage {
 
  private:
   compensation::DeformationCompensator compensator_;
-  std::optional<compensation::StiffnessEstimator> estimator_;          ///< control.k_estimation on
-  std::optional<compensation::ChainStiffnessCalibration> calibration_; ///< control.k_estimation calibrate
+  std::optional<compensation::StiffnessEstimator> estimator_;           ///< control.k_estimation on
+  std::optional<compensation::ChainStiffnessCalibration> calibration_;  ///< control.k_estimation calibrate
   humanoid::JointVector deflection_estimate_{};  ///< θ̂ − θ_enc of the last period (compensated_feedback)
   humanoid::JointVector command_{};
   humanoid::SensorReadings sensors_;

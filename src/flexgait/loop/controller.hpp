@@ -21,7 +21,7 @@ struct ControlContext {
   humanoid::SensorReadings sensors;   ///< the readings as the controller used them
   compensation::SupportPlan support;  ///< swinging feet, planned soles, reference ZMP, pelvis, plan's motion
   Eigen::Matrix3d attitude = Eigen::Matrix3d::Identity();  ///< the controller's pelvis attitude (pelvis to world)
-  bool sensors_good = true;           ///< no reading was flagged bad this period (stiffness identification uses only these)
+  bool sensors_good = true;  ///< no reading was flagged bad this period (stiffness identification uses only these)
 };
 
 /// A controller of the twin. The loop calls `update` once per control period, then `sent` with

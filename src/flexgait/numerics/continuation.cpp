@@ -128,7 +128,9 @@ Error correct(const MapFamily& f, const Eigen::VectorXd& x0, const Eigen::Vector
   }
 }
 
-double fold_test(const Solved& s) { return s.t(s.t.size() - 1); }
+double fold_test(const Solved& s) {
+  return s.t(s.t.size() - 1);
+}
 double branch_point_test(const Solved& s) {
   const Eigen::Index n = s.J.rows();
   Eigen::MatrixXd A(n + 1, n + 1);
@@ -149,7 +151,9 @@ double neimark_sacker_test(const std::vector<std::complex<double>>& m) {
     for (std::size_t j = i + 1; j < m.size(); ++j) product *= m[i] * m[j] - 1.0;
   return product.real();  // real: the multipliers come in conjugate pairs
 }
-double neimark_sacker_test(const Solved& s) { return neimark_sacker_test(floquet_multipliers(state_jacobian(s))); }
+double neimark_sacker_test(const Solved& s) {
+  return neimark_sacker_test(floquet_multipliers(state_jacobian(s)));
+}
 
 BranchPoint make_point(const MapFamily& f, const Solved& s, double arclength) {
   const Eigen::Index n = s.x.size() - 1;
@@ -316,7 +320,8 @@ struct Walker {
           at = b;
           sp.label_after = lb;
           sp.located = false;
-          branch.stop_reason += (branch.stop_reason.empty() ? "" : "; ") + std::string("label change not located: ") + *e;
+          branch.stop_reason +=
+              (branch.stop_reason.empty() ? "" : "; ") + std::string("label change not located: ") + *e;
         }
         sp.point = make_point(f, at, s0 + s);
         found.emplace_back(s, std::move(sp));
@@ -364,7 +369,7 @@ struct Walker {
       }
       // Leaving [lo, hi]: the end point is located on the bound (ψ = p - bound).
       const double pb = b.x(n);
-      const bool out_low = pb < lo, out_high = pb > hi;
+      const bool out_low = pb<lo, out_high = pb> hi;
       if (out_low || out_high) {
         const double bound = out_low ? lo : hi;
         const auto psi = [&](const Solved& s) { return s.x(n) - bound; };
@@ -447,11 +452,16 @@ struct Walker {
 
 std::string to_string(SpecialKind kind) {
   switch (kind) {
-    case SpecialKind::Fold: return "fold";
-    case SpecialKind::BranchPoint: return "branch point";
-    case SpecialKind::PeriodDoubling: return "period doubling";
-    case SpecialKind::NeimarkSacker: return "Neimark-Sacker";
-    case SpecialKind::LabelChange: return "label change";
+    case SpecialKind::Fold:
+      return "fold";
+    case SpecialKind::BranchPoint:
+      return "branch point";
+    case SpecialKind::PeriodDoubling:
+      return "period doubling";
+    case SpecialKind::NeimarkSacker:
+      return "Neimark-Sacker";
+    case SpecialKind::LabelChange:
+      return "label change";
   }
   return "?";
 }
@@ -610,8 +620,10 @@ Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, dou
     if (!e) {
       // Off the period-1 branch: P(z) ≠ z by more than the corrector's tolerance.
       Eigen::VectorXd F;
-      if (auto e1 = residual(f, first.x, F)) e = "the period-1 map: " + *e1;
-      else if (F.lpNorm<Eigen::Infinity>() <= 100 * opt.tolerance) e = std::string("landed on the period-1 branch");
+      if (auto e1 = residual(f, first.x, F))
+        e = "the period-1 map: " + *e1;
+      else if (F.lpNorm<Eigen::Infinity>() <= 100 * opt.tolerance)
+        e = std::string("landed on the period-1 branch");
     }
     if (!e) break;
     why = *e;
@@ -628,8 +640,9 @@ Branch switch_at_period_doubling(const MapFamily& f, const SpecialPoint& pd, dou
   const double p0 = pd.point.p;
   if ((first.x(n) - p0) * (p_end - p0) < 0) {
     branch.end = BranchEnd::OtherSide;
-    branch.stop_reason = "the period-2 branch lies on the other side of the period doubling (p = " +
-                         number(first.x(n)) + "), away from p_end";
+    branch.stop_reason =
+        "the period-2 branch lies on the other side of the period doubling (p = " + number(first.x(n)) +
+        "), away from p_end";
     return branch;
   }
   Walker w{g, opt, branch};

@@ -33,8 +33,8 @@
 /// Jacobians: F_z by central differences (newton.hpp) unless an exact ∂P/∂z is supplied; F_p by
 /// central differences unless ∂P/∂p is supplied with it (MapFamily::jacobians: by sensitivity, so
 /// that no evaluation leaves the point: a corrector can then reach a non-smooth boundary of the
-/// map to its own step, not to the difference step). Period-k orbits are fixed points of P^k (iterate()); at a period doubling
-/// the period-2 branch is switched to along the critical eigenvector (switch_at_period_doubling()).
+/// map to its own step, not to the difference step). Period-k orbits are fixed points of P^k (iterate()); at a period
+/// doubling the period-2 branch is switched to along the critical eigenvector (switch_at_period_doubling()).
 #include <Eigen/Dense>
 
 #include <array>
@@ -87,21 +87,21 @@ MapFamily iterate(const MapFamily& family, int k);
 struct BranchPoint;
 
 struct ContinuationOptions {
-  double initial_step = 1e-2;   ///< Δs of the first step (units of |(z, p)|)
-  double min_step = 1e-9;       ///< the branch ends when a step this small fails
+  double initial_step = 1e-2;  ///< Δs of the first step (units of |(z, p)|)
+  double min_step = 1e-9;      ///< the branch ends when a step this small fails
   double max_step = 0.1;
-  int max_points = 1000;        ///< points on the branch, the start included
-  double tolerance = 1e-11;     ///< a point is accepted when ||F||_inf <= tolerance (state units)
+  int max_points = 1000;     ///< points on the branch, the start included
+  double tolerance = 1e-11;  ///< a point is accepted when ||F||_inf <= tolerance (state units)
   int max_corrector_iterations = 10;
-  double max_turn = 0.3;        ///< largest angle between consecutive tangents [rad]
+  double max_turn = 0.3;  ///< largest angle between consecutive tangents [rad]
   /// Central-difference step h = this · max(|z_i|, state_scale_i) (and max(|p|, parameter_scale)).
   /// 1e-6 suits maps evaluated to round-off; a map integrated to rtol 1e-12 wants ~3e-5 (newton.hpp).
   double fd_relative_step = 1e-6;
-  Eigen::VectorXd state_scale;  ///< typical |z_i| (empty: ones)
-  double parameter_scale = 1;   ///< typical |p|
+  Eigen::VectorXd state_scale;      ///< typical |z_i| (empty: ones)
+  double parameter_scale = 1;       ///< typical |p|
   double locate_tolerance = 1e-10;  ///< special points located to this in s (so in p)
   double label_tolerance = 1e-8;    ///< label changes located to this in s
-  bool detect = true;           ///< detect and locate special points
+  bool detect = true;               ///< detect and locate special points
   /// Called with each point accepted on the branch, the start included (e.g. to show progress).
   std::function<void(const BranchPoint& point)> on_point = {};
 };
@@ -112,24 +112,24 @@ std::string to_string(SpecialKind kind);
 
 struct BranchPoint {
   double p = 0;
-  Eigen::VectorXd z;                            ///< (dim n)
-  double arclength = 0;                         ///< s from the branch's start
-  double residual = 0;                          ///< ||P(z, p) - z||_inf
+  Eigen::VectorXd z;     ///< (dim n)
+  double arclength = 0;  ///< s from the branch's start
+  double residual = 0;   ///< ||P(z, p) - z||_inf
   int corrector_iterations = 0;
-  Eigen::VectorXd tangent;                      ///< unit (dz/ds, dp/ds) (dim n + 1)
-  Eigen::MatrixXd jacobian;                     ///< ∂P/∂z (n x n)
+  Eigen::VectorXd tangent;                        ///< unit (dz/ds, dp/ds) (dim n + 1)
+  Eigen::MatrixXd jacobian;                       ///< ∂P/∂z (n x n)
   std::vector<std::complex<double>> multipliers;  ///< eigenvalues of ∂P/∂z, largest modulus first
-  bool stable = false;                          ///< every multiplier strictly inside the unit circle
+  bool stable = false;                            ///< every multiplier strictly inside the unit circle
   std::string label;
 };
 
 struct SpecialPoint {
   SpecialKind kind = SpecialKind::Fold;
-  BranchPoint point;            ///< the located point
-  std::size_t after = 0;        ///< index of the branch point before it
-  Eigen::VectorXd eigenvector;  ///< fold: null vector of P_z − I; period doubling: of P_z + I (unit)
-  double angle = 0;             ///< Neimark–Sacker: argument of the critical multiplier in (0, π) [rad]
-  double test_value = 0;        ///< the test function at the located point
+  BranchPoint point;                      ///< the located point
+  std::size_t after = 0;                  ///< index of the branch point before it
+  Eigen::VectorXd eigenvector;            ///< fold: null vector of P_z − I; period doubling: of P_z + I (unit)
+  double angle = 0;                       ///< Neimark–Sacker: argument of the critical multiplier in (0, π) [rad]
+  double test_value = 0;                  ///< the test function at the located point
   std::string label_before, label_after;  ///< label change only
   bool located = true;  ///< false: detected, not located (at the step's end; why in Branch::stop_reason)
 };
@@ -169,7 +169,8 @@ enum class StartFailure {
 inline constexpr std::array<ReasonEntry<StartFailure>, 5> kStartFailureTable{{
     {StartFailure::EmptyInterval, "empty_interval", "the parameter interval is empty ({})"},
     {StartFailure::NoFixedPoint, "no_fixed_point", "no fixed point at p = {}"},
-    {StartFailure::NoPeriodDoubling, "no_period_doubling", "branch switching needs a period doubling with its eigenvector"},
+    {StartFailure::NoPeriodDoubling, "no_period_doubling",
+     "branch switching needs a period doubling with its eigenvector"},
     {StartFailure::PeriodDoublingNotFixed, "period_doubling_not_fixed",
      "the period-doubling point is not a fixed point of P²: {}"},
     {StartFailure::NoPeriodTwoPoint, "no_period_two_point", "no period-2 point next to the period doubling at p = {}"},
@@ -181,8 +182,8 @@ constexpr std::array<EnumName<StartFailure>, kStartFailureTable.size()> enum_nam
 struct Branch {
   int period = 1;
   std::vector<BranchPoint> points;
-  std::vector<SpecialPoint> special;  ///< in the order met
-  bool reached_end = false;           ///< the branch reached p = p_end
+  std::vector<SpecialPoint> special;      ///< in the order met
+  bool reached_end = false;               ///< the branch reached p = p_end
   BranchEnd end = BranchEnd::NotStarted;  ///< how it ended
   std::string stop_reason;  ///< why it ended (also when reached_end), then notes (a special point not located)
   std::optional<StartFailure> start_failure;  ///< set when not even the start converged (end = NotStarted)

@@ -8,8 +8,8 @@
 /// step. Such a crossing ends the step there (time(), state() and the sensitivities interpolated to
 /// it); CVODE itself stays at its step's end, so the caller restarts at the crossing, as after any
 /// guard.
-#include "flexgait/numerics/ode_backend.hpp"
 #include "flexgait/numerics/guard_crossings.hpp"
+#include "flexgait/numerics/ode_backend.hpp"
 
 #include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
@@ -33,9 +33,9 @@ struct CvodeSolver {
   SUNContext ctx = nullptr;
   void* cvode = nullptr;
   N_Vector y = nullptr;
-  int columns = 0;         // sensitivity columns: n states, then OdeOptions::parameter_columns
-  N_Vector* yS = nullptr;  // sensitivity columns when enabled
-  N_Vector work = nullptr; // scratch for the sensitivity right-hand side
+  int columns = 0;          // sensitivity columns: n states, then OdeOptions::parameter_columns
+  N_Vector* yS = nullptr;   // sensitivity columns when enabled
+  N_Vector work = nullptr;  // scratch for the sensitivity right-hand side
   N_Vector work2 = nullptr;
   SUNNonlinearSolver sens_solver = nullptr;
   SUNMatrix jac = nullptr;
@@ -171,7 +171,8 @@ struct CvodeSolver {
 class CvodeBackend final : public OdeBackend {
  public:
   CvodeBackend(OdeSystem& system, int n, const OdeOptions& options);
-  void restart(double t, std::span<const double> y, std::span<const int> directions, std::span<const double> S) override;
+  void restart(double t, std::span<const double> y, std::span<const int> directions,
+               std::span<const double> S) override;
   void sensitivities(std::span<double> S) const override;
   StepStatus step(double t_stop) override;
   double time() const override { return impl_->t; }
@@ -187,7 +188,8 @@ class CvodeBackend final : public OdeBackend {
   std::unique_ptr<CvodeSolver> impl_;
 };
 
-CvodeBackend::CvodeBackend(OdeSystem& system, int n, const OdeOptions& options) : impl_(std::make_unique<CvodeSolver>()) {
+CvodeBackend::CvodeBackend(OdeSystem& system, int n, const OdeOptions& options)
+    : impl_(std::make_unique<CvodeSolver>()) {
   CvodeSolver& m = *impl_;
   m.system = &system;
   m.n = n;

@@ -136,9 +136,9 @@ class Dop853Backend final : public OdeBackend {
   }
 
   OdeSystem& system_;
-  std::size_t n_;       // state dimension
-  bool sensitivities_;  // the stepper's state is (y, S)
-  std::size_t columns_; // S's columns: n states, then OdeOptions::parameter_columns
+  std::size_t n_;        // state dimension
+  bool sensitivities_;   // the stepper's state is (y, S)
+  std::size_t columns_;  // S's columns: n states, then OdeOptions::parameter_columns
   Dop853 stepper_;
   GuardCrossings guards_;
   GuardCrossings::Values guard_values_;  // guard values on the dense output

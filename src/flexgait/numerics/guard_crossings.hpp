@@ -99,9 +99,8 @@ class GuardCrossings {
   long long interior_evaluations() const { return interior_evaluations_; }
 
  private:
-
   static constexpr int kProbeLevels = 12;  // probes down to h / 4096
-  bool first_step_ = false;      // the next check() is the first step after (re)arming
+  bool first_step_ = false;                // the next check() is the first step after (re)arming
 
   double t_ = 0.0;               // where watching (re)started: the last step's end or crossing [s]
   std::vector<int> directions_;  // per guard: +1, -1, 0
@@ -113,9 +112,9 @@ class GuardCrossings {
   std::vector<double> scratch_;  // guard values at one time
   std::vector<double> samples_;  // (kSamples - 1) × count(): the guards at the interior samples
   std::vector<double> lo_t_, lo_g_, hi_t_, hi_g_;  // per guard: its bracket in the current step
-  std::vector<double> curvature_;  // per guard: M of the bound above, for the current step
-  std::vector<double> roots_;      // per guard: its root in the current step (infinity: none)
-  int budget_ = 0;                  // refinement evaluations left in the current step
+  std::vector<double> curvature_;                  // per guard: M of the bound above, for the current step
+  std::vector<double> roots_;                      // per guard: its root in the current step (infinity: none)
+  int budget_ = 0;                                 // refinement evaluations left in the current step
   long long interior_evaluations_ = 0;
 };
 

@@ -22,12 +22,12 @@ namespace flexgait::numerics {
 using VectorMap = std::function<std::optional<std::string>(const Eigen::VectorXd& z, Eigen::VectorXd& out)>;
 
 struct NewtonOptions {
-  double tolerance = 1e-10;    ///< converged when ||P(z) - z||_inf <= tolerance (state units)
+  double tolerance = 1e-10;  ///< converged when ||P(z) - z||_inf <= tolerance (state units)
   int max_iterations = 30;
   /// Central-difference step h_i = this · max(|z_i|, scale_i). 3e-5 balances the map's integration
   /// noise (~1e-11 at rtol 1e-12) against the truncation error (measured ~170 h² on the wheel).
   double fd_relative_step = 3e-5;
-  double min_damping = 1.0 / 1024; ///< smallest line-search factor before giving up
+  double min_damping = 1.0 / 1024;  ///< smallest line-search factor before giving up
 };
 
 struct NewtonIteration {
@@ -66,11 +66,11 @@ std::string newton_failure_text(NewtonFailure reason, std::string_view detail);
 
 struct NewtonResult {
   bool converged = false;
-  Eigen::VectorXd z;              ///< last iterate (the fixed point when converged)
-  double residual = 0;            ///< ||P(z) - z||_inf at z
+  Eigen::VectorXd z;    ///< last iterate (the fixed point when converged)
+  double residual = 0;  ///< ||P(z) - z||_inf at z
   int iterations = 0;
   std::vector<NewtonIteration> history;
-  Eigen::MatrixXd jacobian;       ///< ∂P/∂z at z (central differences)
+  Eigen::MatrixXd jacobian;                     ///< ∂P/∂z at z (central differences)
   std::optional<NewtonFailure> failure_reason;  ///< empty when converged
   std::string failure_detail;                   ///< the numbers or the map's message behind the reason
 

@@ -26,12 +26,12 @@ constexpr std::array<EnumName<OdeMethod>, 3> enum_names(OdeMethod) {
 }
 
 struct OdeOptions {
-  double rtol = 1e-10;      ///< relative tolerance
-  double atol = 1e-12;      ///< absolute tolerance (state units)
-  double max_step = 0.0;    ///< largest internal step [s]; 0: no limit
+  double rtol = 1e-10;    ///< relative tolerance
+  double atol = 1e-12;    ///< absolute tolerance (state units)
+  double max_step = 0.0;  ///< largest internal step [s]; 0: no limit
   OdeMethod method = OdeMethod::Adams;
   std::int64_t max_steps = 1'000'000;  ///< internal steps allowed per step() call
-  int max_order = 0;        ///< largest method order (CVODE only); 0: CVODE's default (12 Adams, 5 BDF)
+  int max_order = 0;                   ///< largest method order (CVODE only); 0: CVODE's default (12 Adams, 5 BDF)
   /// Integrate the variational equation Ṡ = (∂f/∂y) S as well, one column per state, outside the
   /// error test (CVODES forward sensitivities with the staggered corrector; DOP853: the same
   /// Runge–Kutta steps on the augmented state). ∂f/∂y·s comes from centered directional
@@ -50,16 +50,16 @@ struct OdeOptions {
 };
 
 struct OdeStats {
-  std::int64_t steps = 0;       ///< internal solver steps
-  std::int64_t rhs_evals = 0;   ///< right-hand-side evaluations
-  std::int64_t guard_evals = 0; ///< guard evaluations
-  std::int64_t restarts = 0;    ///< restarts (mode changes)
+  std::int64_t steps = 0;        ///< internal solver steps
+  std::int64_t rhs_evals = 0;    ///< right-hand-side evaluations
+  std::int64_t guard_evals = 0;  ///< guard evaluations
+  std::int64_t restarts = 0;     ///< restarts (mode changes)
 };
 
 enum class StepStatus {
-  Step,     ///< one internal step taken; no guard crossed
-  Guard,    ///< a guard crossed; time() is the crossing, guards_fired() says which
-  StopTime, ///< reached the stop time
+  Step,      ///< one internal step taken; no guard crossed
+  Guard,     ///< a guard crossed; time() is the crossing, guards_fired() says which
+  StopTime,  ///< reached the stop time
 };
 
 class OdeBackend;

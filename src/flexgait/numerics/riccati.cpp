@@ -13,7 +13,9 @@ MatrixXd riccati_map(const MatrixXd& A, const MatrixXd& B, const MatrixXd& Q, co
   return A.transpose() * P * A - BtPA.transpose() * (R + B.transpose() * P * B).ldlt().solve(BtPA) + Q;
 }
 
-MatrixXd symmetric(const MatrixXd& M) { return 0.5 * (M + M.transpose()); }
+MatrixXd symmetric(const MatrixXd& M) {
+  return 0.5 * (M + M.transpose());
+}
 
 }  // namespace
 

@@ -13,10 +13,10 @@
 namespace flexgait::numerics {
 
 struct DareResult {
-  Eigen::MatrixXd P;        ///< stabilising solution (n x n), symmetric
-  Eigen::MatrixXd K;        ///< optimal gain (m x n): u = −K x, K = (R + BᵀPB)⁻¹ BᵀPA
-  double residual = 0;      ///< ||P − (AᵀPA − AᵀPB(R+BᵀPB)⁻¹BᵀPA + Q)||_max
-  int iterations = 0;       ///< doubling iterations
+  Eigen::MatrixXd P;    ///< stabilising solution (n x n), symmetric
+  Eigen::MatrixXd K;    ///< optimal gain (m x n): u = −K x, K = (R + BᵀPB)⁻¹ BᵀPA
+  double residual = 0;  ///< ||P − (AᵀPA − AᵀPB(R+BᵀPB)⁻¹BᵀPA + Q)||_max
+  int iterations = 0;   ///< doubling iterations
 };
 
 /// Solves the DARE for A (n x n), B (n x m), Q (n x n, symmetric ≥ 0), R (m x m, symmetric > 0).

@@ -20,28 +20,41 @@ extern const std::size_t kReplayTemplateSize;
 
 const char* geom_type_name(GeomType type) {
   switch (type) {
-    case GeomType::Plane: return "plane";
-    case GeomType::Sphere: return "sphere";
-    case GeomType::Capsule: return "capsule";
-    case GeomType::Ellipsoid: return "ellipsoid";
-    case GeomType::Cylinder: return "cylinder";
-    case GeomType::Box: return "box";
-    case GeomType::Mesh: return "mesh";
+    case GeomType::Plane:
+      return "plane";
+    case GeomType::Sphere:
+      return "sphere";
+    case GeomType::Capsule:
+      return "capsule";
+    case GeomType::Ellipsoid:
+      return "ellipsoid";
+    case GeomType::Cylinder:
+      return "cylinder";
+    case GeomType::Box:
+      return "box";
+    case GeomType::Mesh:
+      return "mesh";
   }
   return "sphere";
 }
 
 const char* layer_kind_name(LayerKind kind) {
   switch (kind) {
-    case LayerKind::Segments: return "segments";
-    case LayerKind::Springs: return "springs";
-    case LayerKind::Arrows: return "arrows";
-    case LayerKind::Points: return "points";
+    case LayerKind::Segments:
+      return "segments";
+    case LayerKind::Springs:
+      return "springs";
+    case LayerKind::Arrows:
+      return "arrows";
+    case LayerKind::Points:
+      return "points";
   }
   return "segments";
 }
 
-int layer_item_floats(LayerKind kind) { return kind == LayerKind::Points ? 3 : 6; }
+int layer_item_floats(LayerKind kind) {
+  return kind == LayerKind::Points ? 3 : 6;
+}
 
 int Scene::add_frame(double t) {
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -107,7 +120,8 @@ void Scene::check() const {
         l.color.size() != f * static_cast<std::size_t>(l.count))
       throw std::logic_error("replay scene: layer " + l.name + " does not match the frames");
     for (std::uint8_t c : l.color)
-      if (c >= l.palette.size()) throw std::logic_error("replay scene: layer " + l.name + " colour outside its palette");
+      if (c >= l.palette.size())
+        throw std::logic_error("replay scene: layer " + l.name + " colour outside its palette");
   }
   for (const Signal& s : signals)
     if (s.data.size() != f) throw std::logic_error("replay scene: signal " + s.name + " does not match the frames");
@@ -165,7 +179,8 @@ template <class T>
 std::vector<T> from_b64(const nlohmann::json& j, const char* what) {
   if (!j.is_string()) throw std::invalid_argument(std::string("replay: ") + what + " is not a base64 string");
   const auto bytes = unbase64(j.get<std::string>());
-  if (bytes.size() % sizeof(T) != 0) throw std::invalid_argument(std::string("replay: ") + what + " has a partial value");
+  if (bytes.size() % sizeof(T) != 0)
+    throw std::invalid_argument(std::string("replay: ") + what + " has a partial value");
   std::vector<T> v(bytes.size() / sizeof(T));
   std::memcpy(v.data(), bytes.data(), bytes.size());
   return v;
@@ -239,7 +254,8 @@ std::string replay_json(const Scene& scene) {
     j["layers"].push_back(lj);
   }
   j["signals"] = nlohmann::ordered_json::array();
-  for (const Signal& s : scene.signals) j["signals"].push_back({{"name", s.name}, {"unit", s.unit}, {"data", b64(s.data)}});
+  for (const Signal& s : scene.signals)
+    j["signals"].push_back({{"name", s.name}, {"unit", s.unit}, {"data", b64(s.data)}});
   std::string text = j.dump();
   // Inside <script>: "</" could end the element early; "<\/" is the same JSON string.
   std::string out;
@@ -320,7 +336,8 @@ Scene parse_replay_html(std::string_view html) {
       s.layers.push_back(std::move(l));
     }
     for (const auto& sj : j.at("signals"))
-      s.signals.push_back({sj.at("name").get<std::string>(), sj.value("unit", ""), from_b64<float>(sj.at("data"), "a signal")});
+      s.signals.push_back(
+          {sj.at("name").get<std::string>(), sj.value("unit", ""), from_b64<float>(sj.at("data"), "a signal")});
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("replay data block: ") + e.what());
   }
@@ -332,7 +349,9 @@ Scene parse_replay_html(std::string_view html) {
   return s;
 }
 
-bool replay_page_available() { return detail::kReplayTemplateSize > 1; }
+bool replay_page_available() {
+  return detail::kReplayTemplateSize > 1;
+}
 
 std::string replay_html(const Scene& scene) {
   if (!replay_page_available())

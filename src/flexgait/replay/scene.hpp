@@ -25,12 +25,12 @@ const char* geom_type_name(GeomType type);
 struct Geom {
   GeomType type = GeomType::Sphere;
   std::array<double, 3> size{0.05, 0.05, 0.05};  ///< half-lengths as above [m]
-  std::array<double, 3> pos{0, 0, 0};             ///< in the body's frame (statics: the world's) [m]
-  std::array<double, 4> quat{1, 0, 0, 0};         ///< (w, x, y, z), body frame
+  std::array<double, 3> pos{0, 0, 0};            ///< in the body's frame (statics: the world's) [m]
+  std::array<double, 4> quat{1, 0, 0, 0};        ///< (w, x, y, z), body frame
   std::array<float, 4> rgba{0.7F, 0.7F, 0.7F, 1.0F};
-  bool checker = false;                ///< plane only: 1 m checker squares with a grid line every 2 m
-  std::vector<float> vertices;         ///< Mesh only: (nvert × 3) [m], in the geom's frame
-  std::vector<std::uint32_t> faces;    ///< Mesh only: (nface × 3) vertex indices
+  bool checker = false;              ///< plane only: 1 m checker squares with a grid line every 2 m
+  std::vector<float> vertices;       ///< Mesh only: (nvert × 3) [m], in the geom's frame
+  std::vector<std::uint32_t> faces;  ///< Mesh only: (nface × 3) vertex indices
 };
 
 /// A rigid body: its geoms move with its pose.
@@ -50,14 +50,14 @@ int layer_item_floats(LayerKind kind);
 struct Layer {
   std::string name;
   LayerKind kind = LayerKind::Segments;
-  int count = 0;                                 ///< items per frame
-  double width = 0.02;                           ///< segment/point radius, spring coil radius [m]
-  int turns = 10;                                ///< Springs only: coil turns
+  int count = 0;        ///< items per frame
+  double width = 0.02;  ///< segment/point radius, spring coil radius [m]
+  int turns = 10;       ///< Springs only: coil turns
   std::vector<std::array<float, 4>> palette{{1.0F, 0.5F, 0.0F, 1.0F}};  ///< the items' colours
-  std::vector<std::string> legend;               ///< a name per palette colour (optional)
-  bool visible = true;                           ///< shown when the page opens
-  std::vector<float> data;                       ///< (frames × count × layer_item_floats)
-  std::vector<std::uint8_t> color;               ///< (frames × count) palette indices
+  std::vector<std::string> legend;                                      ///< a name per palette colour (optional)
+  bool visible = true;                                                  ///< shown when the page opens
+  std::vector<float> data;                                              ///< (frames × count × layer_item_floats)
+  std::vector<std::uint8_t> color;                                      ///< (frames × count) palette indices
 };
 
 struct Signal {

@@ -68,8 +68,8 @@ PaperAnalysisOptions paper_analysis_from_config(const Config& config) {
     if (o.epsilon_max < o.epsilon_min)
       throw ConfigError("analysis.robustness.epsilon_max",
                         fmt::format("key 'analysis.robustness.epsilon_max' = '{}': below analysis.robustness."
-                                    "epsilon_min = {}; allowed: a value >= it", format_number(o.epsilon_max),
-                                    format_number(o.epsilon_min)));
+                                    "epsilon_min = {}; allowed: a value >= it",
+                                    format_number(o.epsilon_max), format_number(o.epsilon_min)));
   });
   return o;
 }
@@ -78,7 +78,8 @@ std::vector<double> robustness_epsilons(const PaperAnalysisOptions& o) {
   std::vector<double> eps;
   const int n = o.epsilon_count;
   const double decades = std::log10(o.epsilon_max) - std::log10(o.epsilon_min);
-  for (int k = 0; k < n; ++k) eps.push_back(n == 1 ? o.epsilon_min : o.epsilon_min * std::pow(10.0, k * decades / (n - 1)));
+  for (int k = 0; k < n; ++k)
+    eps.push_back(n == 1 ? o.epsilon_min : o.epsilon_min * std::pow(10.0, k * decades / (n - 1)));
   return eps;
 }
 
@@ -161,7 +162,8 @@ std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<d
     std::vector<const FrictionGait*> near;
     for (int d = 1; d < n && near.size() < 2; ++d) {
       for (int j : {i - d, i + d})
-        if (j >= 0 && j < n && out[static_cast<std::size_t>(j)].converged) near.push_back(&out[static_cast<std::size_t>(j)]);
+        if (j >= 0 && j < n && out[static_cast<std::size_t>(j)].converged)
+          near.push_back(&out[static_cast<std::size_t>(j)]);
     }
     for (const FrictionGait* nb : near) {
       if (auto g = continued(base, out[static_cast<std::size_t>(i)].mu, *nb, options.continuation_steps)) {
@@ -176,8 +178,13 @@ std::vector<FrictionGait> friction_gaits(const Config& base, const std::vector<d
 std::string friction_gaits_csv(const std::vector<FrictionGait>& gaits) {
   CsvWriter csv({"mu", "gait", "converged", "stable", "max_multiplier", "source"});
   for (const FrictionGait& g : gaits)
-    csv.cell(g.mu).cell(g.gait).cell(g.converged ? "true" : "false").cell(g.stable ? "true" : "false")
-        .cell(g.max_multiplier).cell(g.source).end_row();
+    csv.cell(g.mu)
+        .cell(g.gait)
+        .cell(g.converged ? "true" : "false")
+        .cell(g.stable ? "true" : "false")
+        .cell(g.max_multiplier)
+        .cell(g.source)
+        .end_row();
   return csv.str();
 }
 
@@ -187,8 +194,8 @@ namespace {
 // one continued from the bracket's ends (the nearer first), the start's own (with its transients)
 // only when neither continues: within it the start finds what continuation does, at a fraction of
 // the cost.
-FrictionGait bracket_gait(const Config& base, double mu, Section section, const FrictionGait& lo, const FrictionGait& hi,
-                          const PaperAnalysisOptions& options) {
+FrictionGait bracket_gait(const Config& base, double mu, Section section, const FrictionGait& lo,
+                          const FrictionGait& hi, const PaperAnalysisOptions& options) {
   if (hi.mu - lo.mu <= options.continued_bracket) {
     const bool lo_first = mu - lo.mu <= hi.mu - mu;
     // One Newton from each end (no intermediate steps: across a change of the section's mode the
@@ -273,7 +280,10 @@ std::string behaviour_fixed_points_csv(const Config& base, const std::vector<dou
     const FixedPointReport r = find_fixed_point(s.w, s.sim, s.opt, Model::Flexible, section, s.initial);
     double largest = 0;
     const std::string m = multipliers_text(r, largest);
-    csv.cell(mu).cell(r.gait).cell(r.converged ? "true" : "false").cell(r.point.flight ? "flight" : mode_name(r.point.mode));
+    csv.cell(mu)
+        .cell(r.gait)
+        .cell(r.converged ? "true" : "false")
+        .cell(r.point.flight ? "flight" : mode_name(r.point.mode));
     csv.cell(state_text(r.point.z)).cell(largest).cell(m).cell(r.stable ? "true" : "false").cell(r.period);
     csv.cell(r.speed).cell(r.dissipated).cell(r.failure()).end_row();
   }

@@ -32,14 +32,14 @@ struct PaperAnalysisOptions {
   std::vector<double> transient_factors{1, 3, 9};
   /// gait-vs-friction: natural-parameter continuation from a neighbour in each number of equal steps of μ, in turn
   std::vector<double> continuation_steps{1, 4, 16};
-  std::vector<double> energy_mu{0.6, 0.105};               ///< energy: μ of each periodic step logged
+  std::vector<double> energy_mu{0.6, 0.105};                   ///< energy: μ of each periodic step logged
   std::vector<double> fixed_points_mu{0.105, 0.13, 0.2, 0.6};  ///< fixed-points: μ of each row
-  std::vector<double> robustness_mu{0.105, 0.6};           ///< robustness: μ of each fixed point perturbed
-  double epsilon_min = 1e-3;        ///< robustness: smallest perturbation, a fraction of the component's scale
-  double epsilon_max = 1.0;         ///< robustness: largest perturbation
-  int epsilon_count = 13;           ///< robustness: perturbations, log-spaced, ends included (4 per decade)
-  int max_steps = 300;              ///< robustness: map iterations allowed to return
-  double return_tol = 1e-6;         ///< robustness: returned when every component is within this × its scale
+  std::vector<double> robustness_mu{0.105, 0.6};               ///< robustness: μ of each fixed point perturbed
+  double epsilon_min = 1e-3;  ///< robustness: smallest perturbation, a fraction of the component's scale
+  double epsilon_max = 1.0;   ///< robustness: largest perturbation
+  int epsilon_count = 13;     ///< robustness: perturbations, log-spaced, ends included (4 per decade)
+  int max_steps = 300;        ///< robustness: map iterations allowed to return
+  double return_tol = 1e-6;   ///< robustness: returned when every component is within this × its scale
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -88,7 +88,9 @@ struct PaperAnalysisOptions {
        .bounds = open(0, 1)});
   }
 };
-inline Schema paper_analysis_schema() { return schema_of<PaperAnalysisOptions>(); }
+inline Schema paper_analysis_schema() {
+  return schema_of<PaperAnalysisOptions>();
+}
 /// The options of a resolved configuration; throws ConfigError (key named) if epsilon_max < epsilon_min
 /// or a factor or step count is not a whole number.
 PaperAnalysisOptions paper_analysis_from_config(const Config& config);
@@ -100,13 +102,13 @@ std::vector<double> robustness_epsilons(const PaperAnalysisOptions& options);
 /// The periodic gait at μ = μ_s = μ_k, found as robustly as the map allows.
 struct FrictionGait {
   double mu = 0;
-  bool converged = false;      ///< a fixed point was found
-  bool stable = false;         ///< ... with every multiplier inside the unit circle
-  double max_multiplier = 0;   ///< its largest |multiplier|
-  std::string gait;            ///< the fixed point's label ("(unstable)" appended when unstable), else the
-                               ///< transient's with " (no fixed point)", else "none"
-  std::string source;          ///< how it was found: "start", "start, N transient steps", "continued from mu = …"
-  SectionState point;          ///< the fixed point (when converged)
+  bool converged = false;     ///< a fixed point was found
+  bool stable = false;        ///< ... with every multiplier inside the unit circle
+  double max_multiplier = 0;  ///< its largest |multiplier|
+  std::string gait;           ///< the fixed point's label ("(unstable)" appended when unstable), else the
+                              ///< transient's with " (no fixed point)", else "none"
+  std::string source;         ///< how it was found: "start", "start, N transient steps", "continued from mu = …"
+  SectionState point;         ///< the fixed point (when converged)
 };
 
 /// The gait at μ: Newton from the configured start after analysis.transient_steps times each of

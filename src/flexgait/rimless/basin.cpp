@@ -32,15 +32,18 @@ Config cell_config(const Config& base, const BasinSpec& spec, int ix, int iy) {
 
 BasinAxis parse_basin_axis(const std::string& option, const std::string& key, const std::string& text) {
   const auto bad = [&](const std::string& why) {
-    return UsageError(fmt::format("{}: '{}' {}; allowed: FROM:TO:COUNT, finite numbers FROM != TO, an integer "
-                                  "COUNT >= 2 (e.g. 0.5:2.5:100)", option, one_line(text), why));
+    return UsageError(
+        fmt::format("{}: '{}' {}; allowed: FROM:TO:COUNT, finite numbers FROM != TO, an integer "
+                    "COUNT >= 2 (e.g. 0.5:2.5:100)",
+                    option, one_line(text), why));
   };
   const std::vector<std::string> f = split_text(text, ':');
   if (f.size() != 3) throw bad("does not have three fields");
   const auto from = parse_finite_number(f[0]), to = parse_finite_number(f[1]), n = parse_finite_number(f[2]);
   if (!from || !to) throw bad("has a bound that is not a finite number");
   if (*from == *to) throw bad("is an empty range (FROM = TO)");
-  if (!n || *n != std::floor(*n) || *n < 2 || *n > 100000) throw bad("has a COUNT that is not an integer in [2, 100000]");
+  if (!n || *n != std::floor(*n) || *n < 2 || *n > 100000)
+    throw bad("has a COUNT that is not an integer in [2, 100000]");
   return {key, *from, *to, static_cast<int>(*n)};
 }
 
@@ -51,11 +54,12 @@ void check_basin(const Config& base, const BasinSpec& spec) {
     const ParamSpec* p = initial.find(a->key);
     if (p == nullptr || p->type != ParamType::Real)
       throw ConfigError(a->key, fmt::format("{}: '{}' is not a key of the initial state; allowed: initial.omega, "
-                                            "initial.beta", option, one_line(a->key)));
+                                            "initial.beta",
+                                            option, one_line(a->key)));
   }
   if (spec.x.key == spec.y.key)
-    throw ConfigError(spec.y.key, fmt::format("--y: '{}' is --x's key too; allowed: the other key of the initial state",
-                                              spec.y.key));
+    throw ConfigError(
+        spec.y.key, fmt::format("--y: '{}' is --x's key too; allowed: the other key of the initial state", spec.y.key));
   if (spec.steps_limit < 1)
     throw ConfigError("--steps-limit", fmt::format("--steps-limit: {}; allowed: an integer >= 1", spec.steps_limit));
   if (!(spec.tolerance > 0) || !std::isfinite(spec.tolerance))
@@ -103,7 +107,9 @@ BasinOutcome failure_outcome(const Failure& failure) {
   }
 }
 
-std::string basin_header() { return "x,y,outcome,gait,steps,distance,failure"; }
+std::string basin_header() {
+  return "x,y,outcome,gait,steps,distance,failure";
+}
 
 std::string basin_row(const Config& base, const BasinSpec& spec, const BasinReference& ref, int cell) {
   const int ix = cell % spec.x.count, iy = cell / spec.x.count;

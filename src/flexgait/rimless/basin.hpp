@@ -43,11 +43,13 @@ struct BasinOptions {
        .bounds = positive()});
   }
 };
-inline Schema basin_schema() { return schema_of<BasinOptions>(); }
+inline Schema basin_schema() {
+  return schema_of<BasinOptions>();
+}
 
 /// One axis of the grid: `count` values of `key` from `from` to `to`, ends included.
 struct BasinAxis {
-  std::string key;   ///< a real key of the initial state (initial.omega, initial.beta)
+  std::string key;  ///< a real key of the initial state (initial.omega, initial.beta)
   double from = 0, to = 0;
   int count = 0;
   double value(int i) const { return from + (to - from) * i / (count - 1); }
@@ -56,8 +58,8 @@ struct BasinAxis {
 
 struct BasinSpec {
   BasinAxis x, y;
-  int steps_limit = BasinOptions{}.steps_limit;  ///< section crossings simulated per cell at most
-  double tolerance = BasinOptions{}.tolerance;   ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance
+  int steps_limit = BasinOptions{}.steps_limit;               ///< section crossings simulated per cell at most
+  double tolerance = BasinOptions{}.tolerance;                ///< converged: max_i |z_i - z*_i| / scale_i <= tolerance
   double no_landing_limit = BasinOptions{}.no_landing_limit;  ///< [s] the cells' sim.max_step_time
   Section section = Section::Touchdown;
   /// x.count × y.count in 64 bits (each count is at most 100000: up to 1e10).
@@ -82,7 +84,7 @@ void check_basin(const Config& base, const BasinSpec& spec);
 /// The gait the cells are compared with.
 struct BasinReference {
   bool found = false;
-  SectionState point;   ///< the fixed point (when found)
+  SectionState point;  ///< the fixed point (when found)
   std::string gait;
   bool stable = false;
   double max_multiplier = 0;
@@ -96,9 +98,9 @@ BasinReference basin_reference(const Config& base, Section section);
 ///                 farther than 100 × tolerance from the reference);
 ///   rolled_back — fell back onto the previous leg; stopped — came to rest or no leg landed within
 ///   no_landing_limit in double support; balanced_at_vertical — no leg landed within
-///   no_landing_limit, the wheel on one foot (at its unstable equilibrium); slid_away; time_limit; failed — any other failure (named in `failure`);
-///   step_limit  — none of these within steps_limit crossings;
-///   infeasible  — the initial state cannot be simulated (a foot below the ground; in `failure`).
+///   no_landing_limit, the wheel on one foot (at its unstable equilibrium); slid_away; time_limit; failed — any other
+///   failure (named in `failure`); step_limit  — none of these within steps_limit crossings; infeasible  — the initial
+///   state cannot be simulated (a foot below the ground; in `failure`).
 enum class BasinOutcome {
   Converged,
   OtherGait,

@@ -6,9 +6,12 @@ namespace flexgait::rimless {
 
 const char* mode_name(FootMode m) {
   switch (m) {
-    case FootMode::Stick: return "stick";
-    case FootMode::SlipForward: return "slip+";
-    case FootMode::SlipBackward: return "slip-";
+    case FootMode::Stick:
+      return "stick";
+    case FootMode::SlipForward:
+      return "slip+";
+    case FootMode::SlipBackward:
+      return "slip-";
   }
   return "?";
 }

@@ -42,7 +42,7 @@ struct Dynamics {
   /// Empty when the mode has a consistent motion; otherwise why not (a slip jam D <= 0,
   /// or a singular constrained system, which happens only for I = 0).
   std::optional<FailureReason> failure;
-  bool jammed = false;  ///< a slipping foot has D <= 0 (the failure is then the Painlevé jam)
+  bool jammed = false;          ///< a slipping foot has D <= 0 (the failure is then the Painlevé jam)
   std::array<double, 3> qdd{};  ///< (ẍ, ÿ, θ̈)
   std::array<ContactForce, kMaxContacts> force{};
   std::array<LegKinematics, kMaxContacts> leg{};

@@ -128,7 +128,9 @@ std::string fixed_point_json(const FixedPointReport& r) {
   j["state_names"] = r.point.names();
   const std::vector<double> z(r.point.z.data(), r.point.z.data() + r.point.z.size());
   // Figures of a fixed point: null when the search failed (never numbers of no meaning).
-  auto if_converged = [&](auto value) { return r.converged ? nlohmann::ordered_json(value) : nlohmann::ordered_json(); };
+  auto if_converged = [&](auto value) {
+    return r.converged ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
+  };
   auto pairs = [](const std::vector<std::complex<double>>& ms) {
     nlohmann::ordered_json a = nlohmann::ordered_json::array();
     for (const auto& m : ms) a.push_back({m.real(), m.imag()});
@@ -148,7 +150,8 @@ std::string fixed_point_json(const FixedPointReport& r) {
   j["dissipated_per_cycle"] = if_converged(r.dissipated);
   nlohmann::ordered_json hist = nlohmann::ordered_json::array();
   for (const auto& h : r.history)
-    hist.push_back({{"iteration", h.iteration}, {"residual", h.residual}, {"step", h.step_norm}, {"damping", h.damping}});
+    hist.push_back(
+        {{"iteration", h.iteration}, {"residual", h.residual}, {"step", h.step_norm}, {"damping", h.damping}});
   j["history"] = hist;
   const std::string failure = r.failure();
   j["failure"] = failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(failure);

@@ -16,23 +16,32 @@ namespace flexgait::rimless {
 
 /// How fixed points are searched (config keys `analysis.*`).
 struct AnalysisOptions {
-  int transient_steps = 20;    ///< steps simulated from the initial state before Newton starts
-  double rtol = 1e-12;         ///< CVODE tolerance of every map evaluation
+  int transient_steps = 20;  ///< steps simulated from the initial state before Newton starts
+  double rtol = 1e-12;       ///< CVODE tolerance of every map evaluation
   double atol = 1e-15;
   numerics::NewtonOptions newton;  ///< tolerance 1e-10, 30 iterations
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("analysis.transient_steps", s.transient_steps,
-      {.doc = "steps simulated from the initial state before the Newton iteration starts", .bounds = closed(0, 100000)});
-    v("analysis.rtol", s.rtol, {.doc = "CVODE relative tolerance of every Poincare-map evaluation", .bounds = closed(1e-14, 1e-4)});
-    v("analysis.atol", s.atol, {.doc = "CVODE absolute tolerance of every Poincare-map evaluation", .bounds = closed(1e-17, 1e-4)});
-    v("analysis.newton_tol", s.newton.tolerance, {.doc = "Newton convergence: max-norm of P(z) - z", .bounds = closed(1e-15, 1e-2)});
-    v("analysis.max_iterations", s.newton.max_iterations, {.doc = "Newton iterations allowed", .bounds = closed(1, 1000)});
+      {.doc = "steps simulated from the initial state before the Newton iteration starts",
+       .bounds = closed(0, 100000)});
+    v("analysis.rtol", s.rtol,
+      {.doc = "CVODE relative tolerance of every Poincare-map evaluation", .bounds = closed(1e-14, 1e-4)});
+    v("analysis.atol", s.atol,
+      {.doc = "CVODE absolute tolerance of every Poincare-map evaluation", .bounds = closed(1e-17, 1e-4)});
+    v("analysis.newton_tol", s.newton.tolerance,
+      {.doc = "Newton convergence: max-norm of P(z) - z", .bounds = closed(1e-15, 1e-2)});
+    v("analysis.max_iterations", s.newton.max_iterations,
+      {.doc = "Newton iterations allowed", .bounds = closed(1, 1000)});
   }
 };
-inline Schema analysis_schema() { return schema_of<AnalysisOptions>(); }
-inline AnalysisOptions analysis_from_config(const Config& config) { return record_from_config<AnalysisOptions>(config); }
+inline Schema analysis_schema() {
+  return schema_of<AnalysisOptions>();
+}
+inline AnalysisOptions analysis_from_config(const Config& config) {
+  return record_from_config<AnalysisOptions>(config);
+}
 /// The simulation options of a Poincaré-map evaluation: the analysis tolerances, no log.
 SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOptions& opt);
 
@@ -42,25 +51,25 @@ SimulationOptions map_options(const SimulationOptions& sim, const AnalysisOption
 /// Newton iterate, or an empty z when the transient never reached the section.
 struct FixedPointReport {
   bool converged = false;
-  std::optional<Failure> transient_failure;  ///< why the transient gave Newton no initial guess
+  std::optional<Failure> transient_failure;               ///< why the transient gave Newton no initial guess
   std::optional<numerics::NewtonFailure> newton_failure;  ///< else why Newton found no fixed point
-  std::string newton_failure_detail;         ///< ... and its detail (NewtonResult::failure_detail)
+  std::string newton_failure_detail;                      ///< ... and its detail (NewtonResult::failure_detail)
   int iterations = 0;
-  double residual = 0;                 ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)
+  double residual = 0;  ///< ||P(z) - z||_inf at `point` (0 when there is no iterate)
   std::vector<numerics::NewtonIteration> history;
-  SectionState point;                  ///< the fixed point (or the last iterate; z empty: none)
-  Eigen::MatrixXd jacobian;            ///< ∂P/∂z: variational (exact) when available, else central differences
-  bool jacobian_exact = false;         ///< from forward sensitivities and saltation matrices
-  Eigen::MatrixXd jacobian_fd;         ///< ∂P/∂z by central differences (Newton's)
-  double jacobian_difference = -1;     ///< max |exact - central differences| (-1: no exact Jacobian)
-  std::string jacobian_note;           ///< why there is no exact Jacobian
-  std::vector<std::complex<double>> multipliers;  ///< eigenvalues of `jacobian`, largest modulus first
+  SectionState point;               ///< the fixed point (or the last iterate; z empty: none)
+  Eigen::MatrixXd jacobian;         ///< ∂P/∂z: variational (exact) when available, else central differences
+  bool jacobian_exact = false;      ///< from forward sensitivities and saltation matrices
+  Eigen::MatrixXd jacobian_fd;      ///< ∂P/∂z by central differences (Newton's)
+  double jacobian_difference = -1;  ///< max |exact - central differences| (-1: no exact Jacobian)
+  std::string jacobian_note;        ///< why there is no exact Jacobian
+  std::vector<std::complex<double>> multipliers;     ///< eigenvalues of `jacobian`, largest modulus first
   std::vector<std::complex<double>> multipliers_fd;  ///< eigenvalues of jacobian_fd
-  bool stable = false;                 ///< every multiplier strictly inside the unit circle
-  std::string gait;                    ///< stance-foot phases of the periodic step
-  double period = 0;                   ///< [s]
-  double speed = 0;                    ///< mean hub speed along the slope [m/s]
-  double dissipated = 0;               ///< energy dissipated per cycle [J]
+  bool stable = false;                               ///< every multiplier strictly inside the unit circle
+  std::string gait;                                  ///< stance-foot phases of the periodic step
+  double period = 0;                                 ///< [s]
+  double speed = 0;                                  ///< mean hub speed along the slope [m/s]
+  double dissipated = 0;                             ///< energy dissipated per cycle [J]
 
   /// "" when converged; else why not, as files show it: "no initial guess: " and the transient's
   /// failure, or Newton's (numerics::newton_failure_text).

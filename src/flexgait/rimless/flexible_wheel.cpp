@@ -63,7 +63,8 @@ class WheelFlow final : public numerics::OdeSystem {
     }
     const ContactSet c = linearization_contacts(y);
     plus_.resize(y.size());
-    if (!flow_derivative(parameter_->plus, c, y, plus_) || !flow_derivative(parameter_->minus, c, y, dfdp)) return false;
+    if (!flow_derivative(parameter_->plus, c, y, plus_) || !flow_derivative(parameter_->minus, c, y, dfdp))
+      return false;
     for (std::size_t i = 0; i < y.size(); ++i) dfdp[i] = (plus_[i] - dfdp[i]) / (2.0 * parameter_->step);
     return true;
   }
@@ -153,7 +154,7 @@ class WheelFlow final : public numerics::OdeSystem {
   const WheelParams& w_;
   LegOffsets offsets_;  // the free feet's heights by angle addition (flow.hpp)
   ContactSet contacts_;
-  double clearance_;           // [m]
+  double clearance_;            // [m]
   std::vector<char> clearing_;  // per leg: 1 while a foot that left has not cleared the ground
   int upright_leg_ = -1;
   const ParameterDirection* parameter_ = nullptr;  // the sensitivities' parameter column, if any
@@ -197,10 +198,11 @@ std::vector<double> initial_state(const WheelParams& w, const InitialState& init
 void check_initial_state(const WheelParams& w, const InitialState& init) {
   const double delta = w.m * w.g * std::cos(w.slope) / w.K;  // as initial_state()
   if (!(delta < w.L0))
-    throw ConfigError("rimless.K", fmt::format("rimless.K = {} with rimless.m = {}, rimless.g = {}, rimless.slope = {}: "
-                                               "the stance leg's static compression m g cos(slope) / K = {:.6g} m is not "
-                                               "below rimless.L0 = {} m (a stiffer leg or a lighter wheel is needed)",
-                                               w.K, w.m, w.g, w.slope, delta, w.L0));
+    throw ConfigError("rimless.K",
+                      fmt::format("rimless.K = {} with rimless.m = {}, rimless.g = {}, rimless.slope = {}: "
+                                  "the stance leg's static compression m g cos(slope) / K = {:.6g} m is not "
+                                  "below rimless.L0 = {} m (a stiffer leg or a lighter wheel is needed)",
+                                  w.K, w.m, w.g, w.slope, delta, w.L0));
   const std::vector<double> y = initial_state(w, init);
   for (int k = 1; k < w.legs; ++k) {
     const double h = foot_height(w, k, y);
@@ -219,7 +221,9 @@ namespace {
 
 // How far a foot that left the ground must rise before its touchdown guard is armed (WheelFlow):
 // ten times the integration error of the foot height, never below 1e-9 L0 [m].
-double foot_clearance(const WheelParams& w, const SimulationOptions& o) { return std::max(1e-9, 10.0 * o.rtol) * w.L0; }
+double foot_clearance(const WheelParams& w, const SimulationOptions& o) {
+  return std::max(1e-9, 10.0 * o.rtol) * w.L0;
+}
 
 // What makes a flow stiff here: the leg's fastest mode, the larger root of m s² + C s + K = 0,
 // |λ| = C/2m + sqrt((C/2m)² + K/m) [1/s]. An explicit or Adams method's step stays below
@@ -270,8 +274,8 @@ struct FlexibleWheelSimulator::Impl {
   numerics::OdeIntegrator integrator;
   numerics::HybridSimulation loop;  // the event-driven loop on `integrator`
   std::vector<int> directions;
-  std::vector<double> y;       // scratch state
-  std::vector<double> y_minus; // scratch: the state before a reset
+  std::vector<double> y;           // scratch state
+  std::vector<double> y_minus;     // scratch: the state before a reset
   std::vector<GuardEvent> events;  // scratch: the events of one instant
 
   Impl(const WheelParams& wheel, const SimulationOptions& options, std::optional<ParameterDirection> dp)
@@ -292,7 +296,9 @@ struct FlexibleWheelSimulator::Impl {
     return o;
   }
   // Sensitivity columns: the states, then the parameter's (ParameterDirection) if any.
-  Eigen::Index columns() const { return static_cast<Eigen::Index>(y.size()) + (parameter && opt.sensitivities ? 1 : 0); }
+  Eigen::Index columns() const {
+    return static_cast<Eigen::Index>(y.size()) + (parameter && opt.sensitivities ? 1 : 0);
+  }
   // ∂g_index/∂p at s (ParameterDirection): the mode's guard with the wheel at p ± h. The clearance
   // offset of a clearing foot and the upright guard do not depend on p.
   double guard_parameter_derivative(int index, std::span<const double> s) const {
@@ -332,7 +338,8 @@ struct FlexibleWheelSimulator::Impl {
   }
   // ∂(reset)/∂y with the mode decision held at `decided` (the one choose_modes made at s).
   std::optional<std::string> reset_jacobian(const ContactSet& before, const std::vector<GuardEvent>& events,
-                                            const ModeDecision& decided, std::span<const double> s, Eigen::MatrixXd& R) {
+                                            const ModeDecision& decided, std::span<const double> s,
+                                            Eigen::MatrixXd& R) {
     return jacobian(
         [&](std::span<const double> in, std::span<double> out) {
           std::copy(in.begin(), in.end(), out.begin());
@@ -481,20 +488,20 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   const bool upright_stop, touchdown_stop;
   bool hit = false;
   bool logged_any = false;
-  double last_logged_t = 0;      // [s]
-  double last_touchdown = 0.0;   // [s]
-  double translating_since = -1.0;  // [s], -1: not translating
-  double ke0 = 0;                // kinetic energy at t = 0, after the modes were chosen [J]
-  double step_begin = 0, step_end = 0;  // the latest integrator step's ends [s]
+  double last_logged_t = 0;                        // [s]
+  double last_touchdown = 0.0;                     // [s]
+  double translating_since = -1.0;                 // [s], -1: not translating
+  double ke0 = 0;                                  // kinetic energy at t = 0, after the modes were chosen [J]
+  double step_begin = 0, step_end = 0;             // the latest integrator step's ends [s]
   static constexpr double kTranslationHold = 1.0;  // s a rigid translation must last to end the run
   StepTracker tracker;
-  Eigen::MatrixXd sens;          // ∂y/∂y(0), with sensitivities (n×n)
+  Eigen::MatrixXd sens;  // ∂y/∂y(0), with sensitivities (n×n)
   // At a guard crossing, before the reset:
-  ContactSet before;             // the feet on the ground
-  Eigen::MatrixXd S_minus;       // with sensitivities: ∂y/∂y(0) at the crossing
-  Eigen::VectorXd f_minus;       // the flow there
-  Eigen::RowVectorXd g_y;        // the first fired guard's gradient there
-  double g_p = 0;                // and its derivative in the parameter (ParameterDirection)
+  ContactSet before;        // the feet on the ground
+  Eigen::MatrixXd S_minus;  // with sensitivities: ∂y/∂y(0) at the crossing
+  Eigen::VectorXd f_minus;  // the flow there
+  Eigen::RowVectorXd g_y;   // the first fired guard's gradient there
+  double g_p = 0;           // and its derivative in the parameter (ParameterDirection)
 
   Run(Impl& impl, const RunSpec& s, SectionHit* hit_out, RunSink& out, SimulationResult& result)
       : m(impl),
@@ -876,8 +883,10 @@ numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<doub
       new_step = true;
     }
   }
-  if (new_step) release_steps();
-  else tracker.observe(dec.contacts);
+  if (new_step)
+    release_steps();
+  else
+    tracker.observe(dec.contacts);
   if (m.opt.log) log_sample(t, m.y);
   std::copy(m.y.begin(), m.y.end(), y.begin());
   return numerics::HybridNext::Restart;
@@ -923,7 +932,8 @@ void FlexibleWheelSimulator::run_into(const RunSpec& spec, SectionHit* section, 
   res.rhs_evals = st.rhs_evals - stats0.rhs_evals;
 }
 
-SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial, const SimulationOptions& options) {
+SimulationResult simulate_flexible(const WheelParams& w, const InitialState& initial,
+                                   const SimulationOptions& options) {
   FlexibleWheelSimulator sim(w, options);
   return sim.run(default_run(w, initial));
 }

@@ -34,15 +34,15 @@ numerics::OdeOptions integrator_options(const WheelParams& w, const SimulationOp
 
 /// Where and how a run starts and stops.
 struct RunSpec {
-  std::vector<double> y0;            ///< full state (dim state_size(w))
-  ContactSet contacts;               ///< feet on the ground at t = 0, before `pending`
-  std::vector<GuardEvent> pending;   ///< events handled at t = 0 (e.g. a touchdown at the section)
-  int steps = 0;                     ///< stop after this many touchdowns of new legs (0: options.steps)
+  std::vector<double> y0;           ///< full state (dim state_size(w))
+  ContactSet contacts;              ///< feet on the ground at t = 0, before `pending`
+  std::vector<GuardEvent> pending;  ///< events handled at t = 0 (e.g. a touchdown at the section)
+  int steps = 0;                    ///< stop after this many touchdowns of new legs (0: options.steps)
   /// The stance leg of the step under way at t = 0, which decides which legs are new (-1: the
   /// leg landing at t = 0, else the oldest foot on the ground). A run that continues another
   /// passes that run's last stance leg, so that a bounce of it is not taken for a new step.
   int stance_leg = -1;
-  std::optional<Section> stop_at;    ///< stop at the first crossing of this section instead
+  std::optional<Section> stop_at;  ///< stop at the first crossing of this section instead
   /// With stop_at = Touchdown: a leg behind the stance leg landing (the wheel fell back onto it)
   /// is a crossing too (the first stage of the stagnation experiment ends on either neighbour).
   bool section_includes_legs_behind = false;
@@ -81,7 +81,8 @@ class FlexibleWheelSimulator {
  public:
   FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options);
   /// With sensitivities in a parameter as well (SectionHit::S gets its column).
-  FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options, const ParameterDirection& parameter);
+  FlexibleWheelSimulator(const WheelParams& wheel, const SimulationOptions& options,
+                         const ParameterDirection& parameter);
   ~FlexibleWheelSimulator();
   FlexibleWheelSimulator(const FlexibleWheelSimulator&) = delete;
   FlexibleWheelSimulator& operator=(const FlexibleWheelSimulator&) = delete;

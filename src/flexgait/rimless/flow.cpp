@@ -90,10 +90,14 @@ void guard_values(const WheelParams& w, const LegOffsets& offsets, const Contact
 
 EventKind guard_event(int slot, bool on_ground, FootMode mode) {
   switch (slot) {
-    case 0: return on_ground ? EventKind::LiftOff : EventKind::Touchdown;
-    case 1: return mode == FootMode::Stick ? EventKind::StickToSlip : EventKind::SlipToStick;
-    case 2: return EventKind::FallOver;
-    default: return EventKind::SlipJam;
+    case 0:
+      return on_ground ? EventKind::LiftOff : EventKind::Touchdown;
+    case 1:
+      return mode == FootMode::Stick ? EventKind::StickToSlip : EventKind::SlipToStick;
+    case 2:
+      return EventKind::FallOver;
+    default:
+      return EventKind::SlipJam;
   }
 }
 

@@ -18,7 +18,9 @@
 namespace flexgait::rimless {
 
 inline constexpr int kGuardsPerLeg = 4;
-inline int guard_count(const WheelParams& w) { return kGuardsPerLeg * w.legs; }
+inline int guard_count(const WheelParams& w) {
+  return kGuardsPerLeg * w.legs;
+}
 
 /// ẏ for state y (dim state_size(w)), including the dissipated-work rates
 /// Ẇ_damp = Σ C δ̇², Ẇ_fric = -Σ T ċ and the free legs' relaxation K δ + C δ̇ = 0.

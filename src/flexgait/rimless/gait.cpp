@@ -7,15 +7,20 @@ void append(std::vector<Phase>& v, Phase p) {
   if (v.empty() || v.back() != p) v.push_back(p);
 }
 
-Phase phase_of(FootMode m) { return m == FootMode::Stick ? Phase::Stick : Phase::Slip; }
+Phase phase_of(FootMode m) {
+  return m == FootMode::Stick ? Phase::Stick : Phase::Slip;
+}
 
 }  // namespace
 
 const char* phase_name(Phase p) {
   switch (p) {
-    case Phase::Stick: return "stick";
-    case Phase::Slip: return "slip";
-    case Phase::Flight: return "flight";
+    case Phase::Stick:
+      return "stick";
+    case Phase::Slip:
+      return "slip";
+    case Phase::Flight:
+      return "flight";
   }
   return "?";
 }
@@ -31,7 +36,9 @@ std::string step_gait(const StepRecord& step, const std::vector<Phase>& single_s
   const bool touchdown_stick = step.landing_stick && !single_support.empty() && single_support.front() == Phase::Slip;
   return (touchdown_stick ? "touchdown-stick " : "") + gait_label(single_support);
 }
-std::string step_gait(const StepRecord& step) { return step_gait(step, step.single_support); }
+std::string step_gait(const StepRecord& step) {
+  return step_gait(step, step.single_support);
+}
 
 void StepTracker::start(double t, double x, double energy, const ContactSet& contacts, int legs, int stance_leg) {
   steps_.clear();

@@ -39,16 +39,16 @@ std::string step_gait(const StepRecord& step, const std::vector<Phase>& single_s
 std::string step_gait(const StepRecord& step);
 
 struct StepRecord {
-  int index = 0;         ///< 1-based; step 1 starts at the initial state
+  int index = 0;  ///< 1-based; step 1 starts at the initial state
   int stance_leg = 0;
-  double t_start = 0, t_end = 0;  ///< [s]
-  double x_start = 0, x_end = 0;  ///< hub position [m]
-  double energy_start = 0;        ///< mechanical energy at the start [J]
+  double t_start = 0, t_end = 0;      ///< [s]
+  double x_start = 0, x_end = 0;      ///< hub position [m]
+  double energy_start = 0;            ///< mechanical energy at the start [J]
   std::vector<Phase> single_support;  ///< stance-foot phases while it is the only foot down
   std::vector<Phase> contact;         ///< stance-foot phases over its whole contact
   /// The stance foot stuck in the double support after its landing (before single support).
   bool landing_stick = false;
-  bool complete = false;              ///< ended by the next touchdown
+  bool complete = false;  ///< ended by the next touchdown
 };
 
 /// Follows the steps of a run. It holds the last two steps only once the caller takes the final

@@ -42,7 +42,8 @@ void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>
 
 /// The branch from `like` (a fixed point of P^k at q = 0) into `out`: its segments, one per section
 /// mode, joined where the fixed point is continuous across the change, and its rows.
-void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::ContinuationOptions o, GaitBranch& out) {
+void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::ContinuationOptions o,
+           GaitBranch& out) {
   const GaitContinuationSpec& spec = cache->spec;
   const WheelParams w0 = cache->wheel_at(0.0);
   std::vector<Segment> segments;
@@ -60,8 +61,8 @@ void build(const std::shared_ptr<MapCache>& cache, SectionState like, numerics::
         out.failure = seg.branch.failure();
         return;
       }
-      end_note = fmt::format("the section's mode changes to {} but the new segment does not start: {}",
-                             mode_text(like), seg.branch.failure());
+      end_note = fmt::format("the section's mode changes to {} but the new segment does not start: {}", mode_text(like),
+                             seg.branch.failure());
       break;
     }
     points += static_cast<int>(seg.branch.points.size());
@@ -143,7 +144,8 @@ void assemble(const std::shared_ptr<MapCache>& cache, const std::vector<Segment>
       out.end = GaitBranchEnd::SlideBalance;
       out.branch.stop_reason = fmt::format(
           "mu_k = tan(slope) = {}: kinetic friction on the sliding foot balances gravity along the slope, so a slide "
-          "at any speed is a gait (a multiplier +1, the branch vertical) and below it the slide accelerates: no gait; {}",
+          "at any speed is a gait (a multiplier +1, the branch vertical) and below it the slide accelerates: no gait; "
+          "{}",
           format_number(std::tan(w.slope)), tail.stop_reason);
     }
   }
@@ -221,13 +223,14 @@ void switch_at_first_period_doubling(const std::shared_ptr<MapCache>& cache, con
     if (!b.start_failure && b.points.size() < 3 && b.end == numerics::BranchEnd::OtherSide && pd.point.p > 0)
       b = numerics::switch_at_period_doubling(f, pd, 0.0, oc);
     if (b.start_failure) {
-      child.failure = fmt::format("no period-{} branch at the period doubling at {} = {}: {}", child.period,
-                                  out.param, format_number(r.p), b.failure());
+      child.failure = fmt::format("no period-{} branch at the period doubling at {} = {}: {}", child.period, out.param,
+                                  format_number(r.p), b.failure());
     } else {
       std::vector<Segment> one{Segment{r.section, std::move(b), ""}};
       one.front().like.z = pd.point.z;
       assemble(cache, one, "", child);
-      if (!child.rows.empty()) child.rows.front().event = fmt::format("period doubling of the period-{} branch", out.period);
+      if (!child.rows.empty())
+        child.rows.front().event = fmt::format("period doubling of the period-{} branch", out.period);
     }
     out.switched.push_back(std::move(child));
     return;
@@ -302,8 +305,8 @@ GaitContinuationOptions gait_continuation_from_config(const Config& config) {
     if (o.min_step > o.initial_step)
       throw ConfigError("analysis.continuation.min_step",
                         fmt::format("key 'analysis.continuation.min_step' = '{}': above analysis.continuation."
-                                    "initial_step = {}; allowed: a value <= it", format_number(o.min_step),
-                                    format_number(o.initial_step)));
+                                    "initial_step = {}; allowed: a value <= it",
+                                    format_number(o.min_step), format_number(o.initial_step)));
   });
   return o;
 }
@@ -340,8 +343,8 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   numerics::ContinuationOptions o = continuation_options(spec, cache->opt);
   SectionState like;
   if (spec.period == 1) {
-    const FixedPointReport start = find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section,
-                                                    initial_from_config(start_config));
+    const FixedPointReport start =
+        find_fixed_point(w0, cache->sim, cache->opt, cache->model, spec.section, initial_from_config(start_config));
     out.state_names = start.point.names();
     out.mode = mode_text(start.point);
     if (!start.converged) {
@@ -375,7 +378,6 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec) {
   if (spec.switch_at_period_doubling) switch_at_first_period_doubling(cache, o, out);
   return out;
 }
-
 
 std::string gait_branch_csv(const GaitBranch& b) {
   std::vector<std::string> cols{"parameter"};

@@ -38,21 +38,21 @@ namespace flexgait::rimless {
 /// normalised parameter q = (p - from)/(to - from): the defaults are the values it always used.
 /// Guards against round-off (a division by zero, a grid's last bit) stay literals.
 struct GaitContinuationOptions {
-  int max_points = 2000;            ///< points on the branch, all segments together, at most
-  double initial_step = 0.02;       ///< first arclength step without --step (0.02: 50 steps over the interval)
-  double max_step_factor = 2;       ///< the step adapts up to this × the first
-  double min_step = 1e-9;           ///< the branch ends where a step this small fails; a segment's end at a
-                                    ///< change of the section's mode is within it of the boundary
-  double locate_tolerance = 1e-9;   ///< folds, period doublings, Neimark-Sacker points located to this in q
-  double label_tolerance = 1e-7;    ///< gait changes located to this in q
-  double parameter_step = 6e-6;     ///< ∂P/∂p by sensitivity: the wheel at p ± this × max(|p|, |to - from|)
+  int max_points = 2000;               ///< points on the branch, all segments together, at most
+  double initial_step = 0.02;          ///< first arclength step without --step (0.02: 50 steps over the interval)
+  double max_step_factor = 2;          ///< the step adapts up to this × the first
+  double min_step = 1e-9;              ///< the branch ends where a step this small fails; a segment's end at a
+                                       ///< change of the section's mode is within it of the boundary
+  double locate_tolerance = 1e-9;      ///< folds, period doublings, Neimark-Sacker points located to this in q
+  double label_tolerance = 1e-7;       ///< gait changes located to this in q
+  double parameter_step = 6e-6;        ///< ∂P/∂p by sensitivity: the wheel at p ± this × max(|p|, |to - from|)
   double mode_change_distance = 1e-3;  ///< a segment ends at a change of the section's mode when the map
                                        ///< arrived in the other mode within this (in q) of its last point
   std::vector<double> mode_probes{3e-4, 1e-3, 3e-3, 1e-2};  ///< Newton in the new mode this far (in q) beyond
                                                             ///< the boundary, each in turn
-  double back_distance = 0.05;      ///< the new mode's branch is continued back to the boundary, at most this behind it
-  int back_max_points = 200;        ///< ... in at most this many points
-  double join_tolerance = 1e-3;     ///< both ends meet: in q, and in the state scaled by its typical size
+  double back_distance = 0.05;   ///< the new mode's branch is continued back to the boundary, at most this behind it
+  int back_max_points = 200;     ///< ... in at most this many points
+  double join_tolerance = 1e-3;  ///< both ends meet: in q, and in the state scaled by its typical size
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -96,16 +96,18 @@ struct GaitContinuationOptions {
        .bounds = open(0, 1)});
   }
 };
-inline Schema gait_continuation_schema() { return schema_of<GaitContinuationOptions>(); }
+inline Schema gait_continuation_schema() {
+  return schema_of<GaitContinuationOptions>();
+}
 /// The tuning of a resolved configuration; throws ConfigError (key named) if min_step exceeds initial_step.
 GaitContinuationOptions gait_continuation_from_config(const Config& config);
 
 struct GaitContinuationSpec {
-  std::string param;                 ///< a real configuration key, or "rimless.mu" (μ_s = μ_k)
-  double from = 0, to = 0;           ///< the interval, in the key's unit; the start at `from`
-  double step = 0;                   ///< first step in the key's unit (0: |to - from| / 50)
+  std::string param;        ///< a real configuration key, or "rimless.mu" (μ_s = μ_k)
+  double from = 0, to = 0;  ///< the interval, in the key's unit; the start at `from`
+  double step = 0;          ///< first step in the key's unit (0: |to - from| / 50)
   Section section = Section::Touchdown;
-  int period = 1;                    ///< continue fixed points of P^period (a period-k orbit)
+  int period = 1;                          ///< continue fixed points of P^period (a period-k orbit)
   bool switch_at_period_doubling = false;  ///< also the period-2k branch born at the first period doubling
   /// ∂P/∂p by sensitivity (the variational equations' parameter column) where the map has an
   /// exact Jacobian and the key is a wheel parameter; false: central differences of the map.
@@ -117,15 +119,15 @@ struct GaitContinuationSpec {
 
 /// One row of branch.csv: a point of the branch or a special point on it.
 struct GaitBranchRow {
-  double p = 0;                      ///< parameter value (key's unit)
-  numerics::BranchPoint point;       ///< z, multipliers, stability (its p is q)
-  SectionState section;              ///< the point on the section (its mode; z as in point)
-  Eigen::VectorXd state;             ///< the point in the branch's columns (state_names)
+  double p = 0;                 ///< parameter value (key's unit)
+  numerics::BranchPoint point;  ///< z, multipliers, stability (its p is q)
+  SectionState section;         ///< the point on the section (its mode; z as in point)
+  Eigen::VectorXd state;        ///< the point in the branch's columns (state_names)
   std::string gait;
-  double period = 0;                 ///< [s]
-  double speed = 0;                  ///< mean hub speed along the slope [m/s]
-  double dissipated = 0;             ///< energy dissipated per step [J]
-  std::string event;                 ///< "start", "end: …", a special point's kind, or empty
+  double period = 0;      ///< [s]
+  double speed = 0;       ///< mean hub speed along the slope [m/s]
+  double dissipated = 0;  ///< energy dissipated per step [J]
+  std::string event;      ///< "start", "end: …", a special point's kind, or empty
 };
 
 /// Why a gait branch ended where the numerics' end (branch.end) does not say it all.
@@ -144,18 +146,18 @@ struct GaitBranch {
   std::string param;
   std::vector<std::string> state_names;  ///< the columns: the largest mode's components (a sticking
                                          ///< point's ẋ is the one ċ = 0 gives)
-  std::string mode;                  ///< the section's discrete mode at the start
+  std::string mode;                      ///< the section's discrete mode at the start
   bool exact_jacobian = false;
-  numerics::Branch branch;           ///< in q, all segments joined (z in each segment's mode)
-  int segments = 1;                  ///< pieces of the branch between changes of the section's mode
-  int period = 1;                    ///< fixed points of P^period
-  std::vector<GaitBranch> switched;  ///< the period-2k branch switched to at the first period doubling
-  std::vector<GaitBranchRow> rows;   ///< points and special points in the order of arclength
+  numerics::Branch branch;                         ///< in q, all segments joined (z in each segment's mode)
+  int segments = 1;                                ///< pieces of the branch between changes of the section's mode
+  int period = 1;                                  ///< fixed points of P^period
+  std::vector<GaitBranch> switched;                ///< the period-2k branch switched to at the first period doubling
+  std::vector<GaitBranchRow> rows;                 ///< points and special points in the order of arclength
   GaitBranchEnd end = GaitBranchEnd::AsContinued;  ///< with branch.end: how the branch ended
-  std::string stop_reason;           ///< why the branch ended, in the key's unit
-  std::string failure;               ///< nonempty when the start has no fixed point
-  Section section = Section::Touchdown;  ///< the Poincaré section of its fixed points
-  std::string computed_at;               ///< branch_computed_at of the configuration it was continued in
+  std::string stop_reason;                         ///< why the branch ended, in the key's unit
+  std::string failure;                             ///< nonempty when the start has no fixed point
+  Section section = Section::Touchdown;            ///< the Poincaré section of its fixed points
+  std::string computed_at;                         ///< branch_computed_at of the configuration it was continued in
 };
 
 /// What identifies a branch besides its key and section: sim.model and the wheel's keys

@@ -10,9 +10,13 @@
 
 namespace flexgait::rimless::detail {
 
-Config MapCache::config_at(double p) const { return sweep_point_config(base, SweepSpec{spec.param, p, p, 1}, 0); }
+Config MapCache::config_at(double p) const {
+  return sweep_point_config(base, SweepSpec{spec.param, p, p, 1}, 0);
+}
 
-WheelParams MapCache::wheel_at(double q) const { return wheel_from_config(config_at(value(q))); }
+WheelParams MapCache::wheel_at(double q) const {
+  return wheel_from_config(config_at(value(q)));
+}
 
 bool MapCache::valid(double q) const {
   try {
@@ -28,7 +32,8 @@ PoincareMap* MapCache::at(double q, std::string& why) {
     if (key == q) return map.get();
   try {
     const Config c = config_at(value(q));
-    maps.emplace_back(q, std::make_unique<PoincareMap>(wheel_from_config(c), map_options(sim, opt), model, spec.section));
+    maps.emplace_back(q,
+                      std::make_unique<PoincareMap>(wheel_from_config(c), map_options(sim, opt), model, spec.section));
     if (const auto d = direction_at(q)) maps.back().second->set_parameter(*d);
   } catch (const ConfigError& e) {
     why = fmt::format("{} = {} is not valid: {}", spec.param, format_number(value(q)), e.what());
@@ -92,7 +97,8 @@ numerics::MapFamily family_in_mode(const std::shared_ptr<MapCache>& cache, const
     return s.failure ? "failed" : s.gait;
   };
   if (exact) {
-    family.state_jacobian = [cache, like](const Eigen::VectorXd& z, double q, Eigen::MatrixXd& J) -> std::optional<std::string> {
+    family.state_jacobian = [cache, like](const Eigen::VectorXd& z, double q,
+                                          Eigen::MatrixXd& J) -> std::optional<std::string> {
       std::string why;
       SectionState pt;
       PoincareMap* m = map_and_point(*cache, like, z, q, pt, why);
@@ -140,7 +146,8 @@ numerics::MapFamily family_for(const std::shared_ptr<MapCache>& cache, const Sec
   numerics::MapFamily family;
   family.period = k;
   family.valid = [cache](double q) { return cache->valid(q); };
-  family.map = [cache, like, steps, k](const Eigen::VectorXd& z, double q, Eigen::VectorXd& o) -> std::optional<std::string> {
+  family.map = [cache, like, steps, k](const Eigen::VectorXd& z, double q,
+                                       Eigen::VectorXd& o) -> std::optional<std::string> {
     SectionState end;
     std::string gait;
     if (auto e = steps(z, q, end, gait)) return e;
@@ -161,13 +168,12 @@ numerics::MapFamily family_for(const std::shared_ptr<MapCache>& cache, const Sec
   return family;
 }
 
-
 /// Carries the branch across a change of the section's mode after `from` ended at its last point
 /// (mode `to` is where the map arrived). Returns the new segment's start (the new mode's end at
 /// the boundary), or why the branch ends there.
 std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& cache, const Segment& from,
-                                              const SectionState& to, bool exact, const numerics::ContinuationOptions& o,
-                                              numerics::BranchPoint& start) {
+                                              const SectionState& to, bool exact,
+                                              const numerics::ContinuationOptions& o, numerics::BranchPoint& start) {
   const numerics::BranchPoint& a = from.branch.points.back();
   const double qa = a.p;
   const Eigen::Index n = a.z.size();
@@ -206,10 +212,10 @@ std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& c
   const double gap_q = std::abs(end.p - qa);
   const double gap_z = (end.z - guess.z).cwiseQuotient(scale).lpNorm<Eigen::Infinity>();
   if (gap_q > tuning.join_tolerance || gap_z > tuning.join_tolerance)
-    return fmt::format("the fixed point is not continuous there: the new mode's ({}) branch ends at {} = {} with a "
-                       "state {} (scaled) away ({})",
-                       mode_text(to), cache->spec.param, format_number(cache->value(end.p)), format_number(gap_z),
-                       b.stop_reason);
+    return fmt::format(
+        "the fixed point is not continuous there: the new mode's ({}) branch ends at {} = {} with a "
+        "state {} (scaled) away ({})",
+        mode_text(to), cache->spec.param, format_number(cache->value(end.p)), format_number(gap_z), b.stop_reason);
   start = end;
   return std::nullopt;
 }

@@ -37,8 +37,8 @@ struct MapCache {
   /// The map at q, or why the parameter value is not valid. A map of a wheel parameter (a
   /// rimless.* key) carries its ParameterDirection in q (∂P/∂q by sensitivity) when q ± h are valid.
   PoincareMap* at(double q, std::string& why);
-  /// The wheel at q ± h (h = analysis.continuation.parameter_step ≈ ε^(1/3) relative in p), or nothing when the key is not a wheel
-  /// parameter or either value is not valid.
+  /// The wheel at q ± h (h = analysis.continuation.parameter_step ≈ ε^(1/3) relative in p), or nothing when the key is
+  /// not a wheel parameter or either value is not valid.
   std::optional<ParameterDirection> direction_at(double q) const;
 };
 
@@ -59,7 +59,7 @@ numerics::MapFamily family_for(const std::shared_ptr<MapCache>& cache, const Sec
 /// (mode `to` is where the map arrived). Returns the new segment's start (the new mode's end at
 /// the boundary) in `start`, or why the branch ends there.
 std::optional<std::string> cross_section_mode(const std::shared_ptr<MapCache>& cache, const Segment& from,
-                                              const SectionState& to, bool exact, const numerics::ContinuationOptions& o,
-                                              numerics::BranchPoint& start);
+                                              const SectionState& to, bool exact,
+                                              const numerics::ContinuationOptions& o, numerics::BranchPoint& start);
 
 }  // namespace flexgait::rimless::detail

@@ -43,7 +43,7 @@ struct Foot {
   bool was_on_ground = false;
   FootMode previous = FootMode::Stick;
   double anchor = 0;
-  Options options;  // in order of preference
+  Options options;                    // in order of preference
   const GuardEvent* event = nullptr;  // this foot's own event, if one fired
 };
 
@@ -68,9 +68,13 @@ Option option_of(FootMode m) {
   return m == FootMode::Stick ? Option::Stick : m == FootMode::SlipForward ? Option::SlipForward : Option::SlipBackward;
 }
 FootMode mode_of(Option o) {
-  return o == Option::Stick ? FootMode::Stick : o == Option::SlipForward ? FootMode::SlipForward : FootMode::SlipBackward;
+  return o == Option::Stick         ? FootMode::Stick
+         : o == Option::SlipForward ? FootMode::SlipForward
+                                    : FootMode::SlipBackward;
 }
-const char* option_name(Option o) { return o == Option::Leave ? "leave" : mode_name(mode_of(o)); }
+const char* option_name(Option o) {
+  return o == Option::Leave ? "leave" : mode_name(mode_of(o));
+}
 
 const GuardEvent* event_of(std::span<const GuardEvent> events, int leg) {
   for (const auto& e : events)
@@ -179,12 +183,18 @@ void apply_reset(const WheelParams& w, const ContactSet& current, std::span<cons
 
 const char* event_name(EventKind kind) {
   switch (kind) {
-    case EventKind::Touchdown: return "touchdown";
-    case EventKind::LiftOff: return "liftoff";
-    case EventKind::StickToSlip: return "stick_to_slip";
-    case EventKind::SlipToStick: return "slip_to_stick";
-    case EventKind::SlipJam: return "slip_jam";
-    case EventKind::FallOver: return "fall_over";
+    case EventKind::Touchdown:
+      return "touchdown";
+    case EventKind::LiftOff:
+      return "liftoff";
+    case EventKind::StickToSlip:
+      return "stick_to_slip";
+    case EventKind::SlipToStick:
+      return "slip_to_stick";
+    case EventKind::SlipJam:
+      return "slip_jam";
+    case EventKind::FallOver:
+      return "fall_over";
   }
   return "?";
 }
@@ -282,7 +292,8 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
     } else if (e != nullptr && e->kind == EventKind::LiftOff) {
       preferred = {Option::Leave, Option::Stick, Option::SlipForward, Option::SlipBackward};
     } else {
-      for (Option o : {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave}) add_unique(preferred, o);
+      for (Option o : {Option::Stick, Option::SlipForward, Option::SlipBackward, Option::Leave})
+        add_unique(preferred, o);
     }
     const bool must_change = e != nullptr && e->kind != EventKind::Touchdown && e->kind != EventKind::SlipJam &&
                              e->kind != EventKind::SlipToStick;
@@ -350,9 +361,12 @@ ModeDecision choose_modes(const WheelParams& w, const ContactSet& current, std::
       const ContactForce& cf = d.force[j];
       const LegKinematics& g = d.leg[j];
       const double cdot = tested_cdot(feet[i], g);
-      if (cf.N < -tol.force) why = "negative normal force";
-      else if (o == Option::Stick && std::abs(cf.T) > w.mu_s * cf.N + tol.force) why = "stick outside the friction cone";
-      else if (o == Option::Stick && std::abs(cdot) > tol.velocity) why = "a sticking foot would move";
+      if (cf.N < -tol.force)
+        why = "negative normal force";
+      else if (o == Option::Stick && std::abs(cf.T) > w.mu_s * cf.N + tol.force)
+        why = "stick outside the friction cone";
+      else if (o == Option::Stick && std::abs(cdot) > tol.velocity)
+        why = "a sticking foot would move";
       else if (o != Option::Stick && std::abs(cdot) > tol.velocity) {
         if (slip_sign(mode_of(o)) * cdot < 0) why = "friction would not oppose the slip";
       } else if (o != Option::Stick && !direction_decided(w, feet[i])) {

@@ -6,7 +6,8 @@
 /// Each foot on the ground may stick, slip forward, slip backward, or leave. A combination is
 /// consistent when, with the forces it implies:
 ///   stick: ċ = 0, N >= 0, |T| <= μ_s N;
-///   slip s: N >= 0, D = cos β - μ(ċ) s sin β > 0 (μ_k, or Stribeck's μ(ċ), μ(0) = μ_s), and friction opposes the motion
+///   slip s: N >= 0, D = cos β - μ(ċ) s sin β > 0 (μ_k, or Stribeck's μ(ċ), μ(0) = μ_s), and friction opposes the
+///   motion
 ///           (s = sign ċ, or s·c̈ >= 0 when the foot starts from rest);
 ///   leave: the leg force with the foot held down is f <= 0 (the foot moves off the ground).
 /// Every combination is enumerated; the foot whose guard fired may not keep its mode. Of the
@@ -53,11 +54,11 @@ struct ModeTolerances {
 struct ModeDecision {
   std::optional<FailureReason> failure;  ///< empty, or why no motion can continue
   std::string detail;                    ///< the report behind a failure
-  ContactSet contacts;            ///< the feet on the ground from now on, with their modes
-  int consistent = 0;             ///< how many combinations were consistent (> 1: the rule decided)
-  int jammed_feet = 0;            ///< feet stopped by a jam impulse at this event
-  double impulse_energy = 0;      ///< kinetic energy removed by jam impulses [J]
-  std::vector<int> impulse_legs;  ///< the feet that took jam impulses (decided at this event)
+  ContactSet contacts;                   ///< the feet on the ground from now on, with their modes
+  int consistent = 0;                    ///< how many combinations were consistent (> 1: the rule decided)
+  int jammed_feet = 0;                   ///< feet stopped by a jam impulse at this event
+  double impulse_energy = 0;             ///< kinetic energy removed by jam impulses [J]
+  std::vector<int> impulse_legs;         ///< the feet that took jam impulses (decided at this event)
 };
 
 /// Decides the modes after `events` fired at state y. On return y's velocities include any jam

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "flexgait/core/text.hpp"
@@ -20,7 +20,9 @@ void check_orbit_diagram(const Config& base, const OrbitDiagramSpec& spec) {
   check_sweep(base, spec.sweep);
 }
 
-std::string orbit_points_header() { return "value,recorded,modes,gaits,thetad,states,failure"; }
+std::string orbit_points_header() {
+  return "value,recorded,modes,gaits,thetad,states,failure";
+}
 
 std::string orbit_points_row(const Config& base, const OrbitDiagramSpec& spec, int i) {
   const Config c = sweep_point_config(base, spec.sweep, i);
@@ -130,8 +132,10 @@ std::string orbit_summary_json(const std::string& points_csv) {
     v["thetad_max"] = w.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(w.back());
     v["failure"] = f.at(7).empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(f.at(7));
     values.push_back(v);
-    if (period_one && distinct == 1 && f.at(7).empty()) until = p;
-    else period_one = false;
+    if (period_one && distinct == 1 && f.at(7).empty())
+      until = p;
+    else
+      period_one = false;
     if (distinct > 1 && first_multiple.is_null()) first_multiple = p;
   }
   nlohmann::ordered_json j;

@@ -32,10 +32,12 @@ struct OrbitDiagramOptions {
       {.doc = "orbit-diagram: section crossings recorded at each value (--record)", .bounds = closed(1, 1000000)});
   }
 };
-inline Schema orbit_diagram_schema() { return schema_of<OrbitDiagramOptions>(); }
+inline Schema orbit_diagram_schema() {
+  return schema_of<OrbitDiagramOptions>();
+}
 
 struct OrbitDiagramSpec {
-  SweepSpec sweep;     ///< the key, its values (from, to, count) and the section
+  SweepSpec sweep;                                  ///< the key, its values (from, to, count) and the section
   int transient = OrbitDiagramOptions{}.transient;  ///< steps simulated before the first recorded crossing
   int record = OrbitDiagramOptions{}.record;        ///< section crossings recorded at each value
 };

@@ -7,7 +7,9 @@
 
 namespace flexgait::rimless {
 
-std::string_view failure_sentence(FailureReason reason) { return numerics::reason_sentence(kFailureTable, reason); }
+std::string_view failure_sentence(FailureReason reason) {
+  return numerics::reason_sentence(kFailureTable, reason);
+}
 
 FailureReason loop_failure_reason(numerics::LoopFailure what) {
   switch (what) {

@@ -103,7 +103,8 @@ inline constexpr std::array<FailureEntry, 32> kFailureTable{{
      "slid away: the wheel slides down the slope on its feet without turning, ever faster"},
     {FailureReason::NoLanding, "no_landing", "stopped: no new leg landed within sim.max_step_time"},
     {FailureReason::BalancedAtVertical, "balanced_at_vertical",
-     "balanced at the vertical: no new leg landed within sim.max_step_time, the wheel at rest on one foot at the vertical"},
+     "balanced at the vertical: no new leg landed within sim.max_step_time, the wheel at rest on one foot at the "
+     "vertical"},
     {FailureReason::TimeLimit, "time_limit", "time limit sim.max_time reached"},
     {FailureReason::UprightOutsideSingleSupport, "upright_outside_single_support",
      "the upright section was crossed outside single support on that leg"},

@@ -22,8 +22,9 @@ std::vector<std::string> log_columns() {
   return cols;
 }
 const std::vector<std::string> kEventColumns{"t", "kind", "leg", "modes"};
-const std::vector<std::string> kStepColumns{"step",  "stance_leg", "t_start",      "t_end", "duration",       "x_start",
-                                            "x_end", "speed",      "energy_start", "gait",  "contact_phases", "complete"};
+const std::vector<std::string> kStepColumns{"step",         "stance_leg", "t_start",        "t_end",
+                                            "duration",     "x_start",    "x_end",          "speed",
+                                            "energy_start", "gait",       "contact_phases", "complete"};
 
 // One row of log.csv; e0 = the run's initial mechanical energy [J]. Writer: CsvWriter or Table.
 template <class Writer>
@@ -104,12 +105,24 @@ void check_log_size(const SimulationOptions& o) {
                   format_number(o.sample_dt), bytes, format_number(log_horizon(o)), o.steps, o.max_log_bytes, bytes));
 }
 
-std::string log_csv(const SimulationResult& r) { return log_rows<CsvWriter>(r).str(); }
-std::string events_csv(const SimulationResult& r) { return event_rows<CsvWriter>(r).str(); }
-std::string steps_csv(const SimulationResult& r) { return step_rows<CsvWriter>(r).str(); }
-Table log_table(const SimulationResult& r) { return log_rows<Table>(r); }
-Table events_table(const SimulationResult& r) { return event_rows<Table>(r); }
-Table steps_table(const SimulationResult& r) { return step_rows<Table>(r); }
+std::string log_csv(const SimulationResult& r) {
+  return log_rows<CsvWriter>(r).str();
+}
+std::string events_csv(const SimulationResult& r) {
+  return event_rows<CsvWriter>(r).str();
+}
+std::string steps_csv(const SimulationResult& r) {
+  return step_rows<CsvWriter>(r).str();
+}
+Table log_table(const SimulationResult& r) {
+  return log_rows<Table>(r);
+}
+Table events_table(const SimulationResult& r) {
+  return event_rows<Table>(r);
+}
+Table steps_table(const SimulationResult& r) {
+  return step_rows<Table>(r);
+}
 
 std::string summary_json(const SimulationResult& r, const std::string& model) {
   nlohmann::ordered_json j;
@@ -148,7 +161,9 @@ RunFiles::RunFiles(const RunDirectory& dir)
 
 RunFiles::~RunFiles() = default;
 
-void RunFiles::on_start(double energy_initial) { energy_initial_ = energy_initial; }
+void RunFiles::on_start(double energy_initial) {
+  energy_initial_ = energy_initial;
+}
 
 void RunFiles::on_sample(const LogSample& sample) {
   log_row(log_->csv, sample, energy_initial_);

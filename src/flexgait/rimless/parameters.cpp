@@ -30,7 +30,8 @@ void validate(const WheelParams& w, const InitialState& s) {
     for (const auto& [key, value] : stribeck)
       if (value.first != value.second)
         throw ConfigError(key, fmt::format("key '{}' = '{}': applies only with rimless.friction = stribeck "
-                                           "(it is coulomb)", key, value.first));
+                                           "(it is coulomb)",
+                                           key, value.first));
   }
   // The wheel's scales (inertia about the foot m L0² + I, weight moment m g L0, leg spring and
   // damper moments K L0², C L0) must be finite and the first two positive: beyond them the
@@ -55,8 +56,8 @@ void validate(const WheelParams& w, const InitialState& s) {
                                   worst->first, worst->second, scales[0], scales[1], scales[2], scales[3]));
   }
   if (std::abs(s.beta) >= w.alpha())
-    throw ConfigError("initial.beta",
-                      fmt::format("key 'initial.beta' = '{}': allowed: |beta| < pi/legs = {} (rad)", s.beta, w.alpha()));
+    throw ConfigError("initial.beta", fmt::format("key 'initial.beta' = '{}': allowed: |beta| < pi/legs = {} (rad)",
+                                                  s.beta, w.alpha()));
 }
 
 }  // namespace flexgait::rimless

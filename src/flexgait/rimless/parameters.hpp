@@ -28,20 +28,20 @@ constexpr std::array<EnumName<Friction>, 2> enum_names(Friction) {
 
 /// The wheel. Immutable for a run.
 struct WheelParams {
-  double m = 1.0;      ///< total mass [kg]
-  double I = 0.3;      ///< moment of inertia about the hub [kg m^2]; 0 = point mass
-  int legs = 10;       ///< number of spokes N; α = π/N
-  double slope = 0.1;  ///< slope angle φ [rad]
-  double L0 = 1.0;     ///< leg rest length [m]
-  double K = 1000.0;   ///< leg spring stiffness [N/m]
-  double C = 30.0;     ///< leg damper [N s/m]
-  double mu_s = 0.6;   ///< static friction coefficient
-  double mu_k = 0.6;   ///< kinetic friction coefficient, <= mu_s
+  double m = 1.0;                         ///< total mass [kg]
+  double I = 0.3;                         ///< moment of inertia about the hub [kg m^2]; 0 = point mass
+  int legs = 10;                          ///< number of spokes N; α = π/N
+  double slope = 0.1;                     ///< slope angle φ [rad]
+  double L0 = 1.0;                        ///< leg rest length [m]
+  double K = 1000.0;                      ///< leg spring stiffness [N/m]
+  double C = 30.0;                        ///< leg damper [N s/m]
+  double mu_s = 0.6;                      ///< static friction coefficient
+  double mu_k = 0.6;                      ///< kinetic friction coefficient, <= mu_s
   Friction friction = Friction::Coulomb;  ///< the slip law
-  double stribeck_velocity = 0.1;  ///< Stribeck velocity v_s [m/s], > 0 (Stribeck only)
-  double stribeck_exponent = 2.0;  ///< Stribeck exponent δ, > 0 (Stribeck only)
-  double viscous = 0.0;            ///< viscous rise σ of the slip friction coefficient [s/m], >= 0 (Stribeck only)
-  double g = 9.81;     ///< gravity [m/s^2]
+  double stribeck_velocity = 0.1;         ///< Stribeck velocity v_s [m/s], > 0 (Stribeck only)
+  double stribeck_exponent = 2.0;         ///< Stribeck exponent δ, > 0 (Stribeck only)
+  double viscous = 0.0;  ///< viscous rise σ of the slip friction coefficient [s/m], >= 0 (Stribeck only)
+  double g = 9.81;       ///< gravity [m/s^2]
 
   /// Half the angle between spokes, α = π/N [rad].
   double alpha() const { return std::numbers::pi / legs; }
@@ -49,7 +49,8 @@ struct WheelParams {
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("rimless.m", s.m, {.unit = "kg", .doc = "total mass", .bounds = positive()});
-    v("rimless.I", s.I, {.unit = "kg m^2", .doc = "moment of inertia about the hub (0: point mass)", .bounds = non_negative()});
+    v("rimless.I", s.I,
+      {.unit = "kg m^2", .doc = "moment of inertia about the hub (0: point mass)", .bounds = non_negative()});
     v("rimless.legs", s.legs, {.doc = "number of legs N (alpha = pi/N)", .bounds = closed(3, 100)});
     v("rimless.slope", s.slope, {.unit = "rad", .doc = "slope angle phi", .bounds = closed(0, std::numbers::pi / 4)});
     v("rimless.L0", s.L0, {.unit = "m", .doc = "leg rest length", .bounds = positive()});
@@ -58,13 +59,16 @@ struct WheelParams {
     v("rimless.mu_s", s.mu_s, {.doc = "static friction coefficient", .bounds = non_negative()});
     v("rimless.mu_k", s.mu_k, {.doc = "kinetic friction coefficient (<= mu_s)", .bounds = non_negative()});
     v("rimless.friction", s.friction,
-      {.doc = "slip friction law: coulomb (mu_k) or stribeck (mu_k + (mu_s - mu_k) exp(-(|v|/v_s)^delta), plus sigma |v|)"});
+      {.doc = "slip friction law: coulomb (mu_k) or stribeck (mu_k + (mu_s - mu_k) exp(-(|v|/v_s)^delta), plus sigma "
+              "|v|)"});
     v("rimless.stribeck_velocity", s.stribeck_velocity,
       {.unit = "m/s", .doc = "Stribeck velocity v_s (friction = stribeck only)", .bounds = positive()});
     v("rimless.stribeck_exponent", s.stribeck_exponent,
       {.doc = "Stribeck exponent delta (friction = stribeck only)", .bounds = positive()});
     v("rimless.viscous", s.viscous,
-      {.unit = "s/m", .doc = "viscous rise sigma of a slipping foot's friction coefficient, mu(v) + sigma |v| (friction = stribeck only)",
+      {.unit = "s/m",
+       .doc =
+           "viscous rise sigma of a slipping foot's friction coefficient, mu(v) + sigma |v| (friction = stribeck only)",
        .bounds = non_negative()});
     v("rimless.g", s.g, {.unit = "m/s^2", .doc = "gravitational acceleration", .bounds = positive()});
   }
@@ -77,9 +81,11 @@ struct InitialState {
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
-    v("initial.omega", s.omega, {.unit = "rad/s", .doc = "initial wheel angular velocity", .bounds = closed(-100, 100)});
+    v("initial.omega", s.omega,
+      {.unit = "rad/s", .doc = "initial wheel angular velocity", .bounds = closed(-100, 100)});
     v("initial.beta", s.beta,
-      {.unit = "rad", .doc = "initial stance-leg angle from the slope normal, |beta| < pi/N",
+      {.unit = "rad",
+       .doc = "initial stance-leg angle from the slope normal, |beta| < pi/N",
        .bounds = open(-std::numbers::pi / 2, std::numbers::pi / 2)});
   }
 };
@@ -93,9 +99,9 @@ constexpr std::array<EnumName<Model>, 2> enum_names(Model) {
 /// How the hybrid simulation runs.
 struct SimulationOptions {
   Model model = Model::Flexible;  ///< which model the run simulates
-  int steps = 20;               ///< steps to simulate (touchdowns of new legs)
-  double max_time = 120.0;      ///< simulated-time limit [s]
-  double max_step_time = 10.0;  ///< a step longer than this counts as stopped [s]
+  int steps = 20;                 ///< steps to simulate (touchdowns of new legs)
+  double max_time = 120.0;        ///< simulated-time limit [s]
+  double max_step_time = 10.0;    ///< a step longer than this counts as stopped [s]
   /// Wall-clock limit of one run [s]: a run that makes no progress (a stiff flow on an explicit
   /// or Adams method) ends with a named failure instead of running for hours. Machine-dependent
   /// by nature: a run it ends is not reproducible bytes; one it does not end is unaffected.
@@ -107,17 +113,17 @@ struct SimulationOptions {
   /// first step. A walking wheel at the spec's parameters takes ~10²–10³ steps per simulated
   /// second. Deterministic, unlike max_wall_time.
   double max_step_rate = 1e6;
-  double sample_dt = 1e-3;      ///< log sampling interval [s]; events are logged as well
+  double sample_dt = 1e-3;  ///< log sampling interval [s]; events are logged as well
   /// Cap on the sampled log's projected size [bytes] (output.hpp, check_log_size): a run whose
   /// log could exceed it is refused before it starts.
   double max_log_bytes = 1e9;
-  double rtol = 1e-10;          ///< the integrator's relative tolerance
-  double atol = 1e-12;          ///< the integrator's absolute tolerance
+  double rtol = 1e-10;  ///< the integrator's relative tolerance
+  double atol = 1e-12;  ///< the integrator's absolute tolerance
   /// DOP853 (6–7× faster than Adams here, the same events to 1e-8 s); Adams and BDF stay for
   /// comparison and for stiff flows (BDF).
   numerics::OdeMethod method = numerics::OdeMethod::Dop853;
-  bool log = true;              ///< keep the sampled log (off for maps and sweeps; not a key)
-  bool sensitivities = false;   ///< carry ∂y/∂y0 through flows and events (variational.hpp; not a key)
+  bool log = true;             ///< keep the sampled log (off for maps and sweeps; not a key)
+  bool sensitivities = false;  ///< carry ∂y/∂y0 through flows and events (variational.hpp; not a key)
   /// Called now and then during every run of these options (numerics::HybridLimits::poll: Ctrl-C
   /// from Python); may throw to abandon the run. Not a key.
   std::function<void()> poll;
@@ -128,7 +134,8 @@ struct SimulationOptions {
     v("sim.steps", s.steps, {.doc = "steps to simulate (touchdowns of new legs)", .bounds = closed(1, 1e6)});
     v("sim.max_time", s.max_time, {.unit = "s", .doc = "simulated-time limit", .bounds = positive()});
     v("sim.max_wall_time", s.max_wall_time,
-      {.unit = "s", .doc = "wall-clock limit of one run (ends a run that makes no progress, e.g. a stiff flow)",
+      {.unit = "s",
+       .doc = "wall-clock limit of one run (ends a run that makes no progress, e.g. a stiff flow)",
        .bounds = positive()});
     v("sim.max_step_rate", s.max_step_rate,
       {.unit = "1/s",
@@ -153,8 +160,12 @@ struct SimulationOptions {
 
 /// The configuration keys of the wheel, the initial state, and the simulation.
 Schema rimless_schema();
-inline WheelParams wheel_from_config(const Config& config) { return record_from_config<WheelParams>(config); }
-inline InitialState initial_from_config(const Config& config) { return record_from_config<InitialState>(config); }
+inline WheelParams wheel_from_config(const Config& config) {
+  return record_from_config<WheelParams>(config);
+}
+inline InitialState initial_from_config(const Config& config) {
+  return record_from_config<InitialState>(config);
+}
 inline SimulationOptions simulation_from_config(const Config& config) {
   return record_from_config<SimulationOptions>(config);
 }

@@ -10,7 +10,9 @@
 namespace flexgait::rimless {
 namespace {
 
-bool sticks(const SectionState& p) { return !p.flight && p.mode == FootMode::Stick; }
+bool sticks(const SectionState& p) {
+  return !p.flight && p.mode == FootMode::Stick;
+}
 
 // Phases of two partial steps, joined and merged ("stick" + "stick-slip" -> "stick-slip"), labelled
 // as the first (the one that began with a landing).
@@ -31,7 +33,9 @@ std::string cycle_gait(Section section, const SimulationResult& r) {
 
 }  // namespace
 
-std::string mode_text(const SectionState& p) { return p.flight ? "flight" : mode_name(p.mode); }
+std::string mode_text(const SectionState& p) {
+  return p.flight ? "flight" : mode_name(p.mode);
+}
 
 SectionState in_mode(const WheelParams& w, const SectionState& point, const SectionState& like) {
   using S = StateIndex;
@@ -215,10 +219,12 @@ std::optional<std::string> PoincareMap::jacobian_and_parameter_derivative(const 
 std::optional<std::string> PoincareMap::linearise(const SectionState& p, Eigen::MatrixXd& J, Eigen::VectorXd* J_p) {
   using S = StateIndex;
   if (model_ == Model::Rigid) {
-    if (section_ != Section::Touchdown) return std::string("the rigid wheel's exact Jacobian is given at the touchdown section");
+    if (section_ != Section::Touchdown)
+      return std::string("the rigid wheel's exact Jacobian is given at the touchdown section");
     J = Eigen::MatrixXd::Constant(1, 1, rigid_step_map(w_).derivative(p.z(0)));
     if (J_p != nullptr) {
-      const double up = rigid_step_map(parameter_->plus).next(p.z(0)), down = rigid_step_map(parameter_->minus).next(p.z(0));
+      const double up = rigid_step_map(parameter_->plus).next(p.z(0)),
+                   down = rigid_step_map(parameter_->minus).next(p.z(0));
       *J_p = Eigen::VectorXd::Constant(1, (up - down) / (2.0 * parameter_->step));
     }
     return std::nullopt;
@@ -235,7 +241,8 @@ std::optional<std::string> PoincareMap::linearise(const SectionState& p, Eigen::
     a.z(i) += h;
     b.z(i) -= h;
     const RunSpec ra = section_run(w_, a), rb = section_run(w_, b);
-    for (Eigen::Index r = 0; r < n; ++r) Yz(r, i) = (ra.y0[static_cast<std::size_t>(r)] - rb.y0[static_cast<std::size_t>(r)]) / (2 * h);
+    for (Eigen::Index r = 0; r < n; ++r)
+      Yz(r, i) = (ra.y0[static_cast<std::size_t>(r)] - rb.y0[static_cast<std::size_t>(r)]) / (2 * h);
   }
   if (!sens_sim_) {
     SimulationOptions o = options_;
@@ -305,7 +312,8 @@ std::optional<Failure> SectionWalk::to_section(const SimulationResult& r, const 
   next_.contacts = hit.contacts;
   if (section == Section::Touchdown)
     next_.pending = {{hit.leg, EventKind::Touchdown}};
-  else next_.stance_leg = r.last_step.stance_leg;
+  else
+    next_.stance_leg = r.last_step.stance_leg;
   next_.stop_at = section;
   next_.steps = 3;  // a cycle holds one touchdown (upright) or none (touchdown), as the map's
   point_ = out;

@@ -28,9 +28,9 @@ namespace flexgait::rimless {
 struct SectionState {
   Model model = Model::Flexible;
   Section section = Section::Touchdown;
-  bool flight = false;                 ///< no foot down before the touchdown (touchdown only)
-  FootMode mode = FootMode::Stick;     ///< the stance foot's mode at the section
-  Eigen::VectorXd z;                   ///< reduced state, see the header
+  bool flight = false;              ///< no foot down before the touchdown (touchdown only)
+  FootMode mode = FootMode::Stick;  ///< the stance foot's mode at the section
+  Eigen::VectorXd z;                ///< reduced state, see the header
 
   /// Names of z's components, e.g. {"beta", "yd", "thetad"}.
   std::vector<std::string> names() const;
@@ -60,11 +60,11 @@ std::optional<std::string> reduce_crossing(const WheelParams& w, Section section
 struct MapStep {
   std::optional<Failure> failure;  ///< why the next crossing was not reached
   SectionState next;
-  std::string gait;                    ///< stance-foot phases over the cycle
-  double period = 0;                   ///< time between the crossings [s]
-  double distance = 0;                 ///< hub travel along the slope [m]
-  double dissipated = 0;               ///< energy that left the body over the cycle [J]: W_damp + W_fric
-                                       ///< + the free legs' spring energy at the end
+  std::string gait;       ///< stance-foot phases over the cycle
+  double period = 0;      ///< time between the crossings [s]
+  double distance = 0;    ///< hub travel along the slope [m]
+  double dissipated = 0;  ///< energy that left the body over the cycle [J]: W_damp + W_fric
+                          ///< + the free legs' spring energy at the end
   int jams = 0;
 };
 
@@ -110,7 +110,7 @@ class PoincareMap {
   Section section_;
   std::unique_ptr<FlexibleWheelSimulator> sim_;
   std::unique_ptr<FlexibleWheelSimulator> sens_sim_;  // with sensitivities, made on first use
-  std::optional<ParameterDirection> parameter_;      // set_parameter()
+  std::optional<ParameterDirection> parameter_;       // set_parameter()
   std::optional<std::string> linearise(const SectionState& point, Eigen::MatrixXd& J, Eigen::VectorXd* J_p);
 };
 
@@ -143,9 +143,9 @@ class SectionWalk {
   const std::vector<double>& state() const { return next_.y0; }
 
  private:
-  PoincareMap map_;                     // the wheel, options, model, section and simulator; the rigid wheel's step
-  SectionState point_;                  // the last crossing, reduced
-  RunSpec next_;                        // the run from the last crossing (flexible)
+  PoincareMap map_;     // the wheel, options, model, section and simulator; the rigid wheel's step
+  SectionState point_;  // the last crossing, reduced
+  RunSpec next_;        // the run from the last crossing (flexible)
   std::optional<Failure> to_section(const SimulationResult& r, const SectionHit& hit, SectionState& out);
 };
 

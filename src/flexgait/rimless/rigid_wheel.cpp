@@ -22,9 +22,15 @@ namespace {
 //   touchdown  g = β - α ↑ 0, reset impact_reset();
 //   roll-back  g = β + α ↓ 0, the wheel fell back onto the previous foot: a failure, no reset;
 //   upright    g = β ↑ 0, the stance leg passes the slope normal: the upright section, no reset.
-double touchdown_guard(const WheelParams& w, double beta) { return beta - w.alpha(); }
-double rollback_guard(const WheelParams& w, double beta) { return beta + w.alpha(); }
-double upright_guard(double beta) { return beta; }
+double touchdown_guard(const WheelParams& w, double beta) {
+  return beta - w.alpha();
+}
+double rollback_guard(const WheelParams& w, double beta) {
+  return beta + w.alpha();
+}
+double upright_guard(double beta) {
+  return beta;
+}
 enum Guard : std::size_t { kTouchdown = 0, kRollback = 1, kUpright = 2 };
 constexpr std::array<int, 3> kGuardDirections{+1, -1, +1};
 
@@ -39,8 +45,8 @@ std::array<double, 2> impact_reset(const WheelParams& w, double J, const std::ar
   const std::array<double, 2> plus{minus[0] - 2.0 * alpha, omega_plus};
   const double before = (ml2_cos + w.I) * minus[1], after = J * plus[1];
   if (!(std::abs(plus[0] + alpha) <= 1e-8) || !(std::abs(after - before) <= 1e-12 * std::abs(before)))
-    throw std::logic_error(fmt::format("rigid impact reset: beta+ = {} (want {}), momentum {} -> {}", plus[0], -alpha,
-                                       before, after));
+    throw std::logic_error(
+        fmt::format("rigid impact reset: beta+ = {} (want {}), momentum {} -> {}", plus[0], -alpha, before, after));
   return plus;
 }
 
@@ -70,8 +76,12 @@ void simulate_rigid_into(const WheelParams& w, const InitialState& init, const S
 
 }  // namespace
 
-double RigidStepMap::next(double omega_plus) const { return r * std::sqrt(omega_plus * omega_plus + a); }
-double RigidStepMap::fixed_point() const { return r * std::sqrt(a / (1.0 - r * r)); }
+double RigidStepMap::next(double omega_plus) const {
+  return r * std::sqrt(omega_plus * omega_plus + a);
+}
+double RigidStepMap::fixed_point() const {
+  return r * std::sqrt(a / (1.0 - r * r));
+}
 double RigidStepMap::derivative(double omega_plus) const {
   return r * omega_plus / std::sqrt(omega_plus * omega_plus + a);
 }
@@ -103,8 +113,8 @@ namespace {
 // One run of the rigid wheel as a model of the hybrid loop (numerics/hybrid_simulation.hpp).
 class RigidRun final : public numerics::HybridModel {
  public:
-  RigidRun(const WheelParams& w, const InitialState& init, const SimulationOptions& opt,
-           std::optional<Section> stop_at, RunSink& sink, SimulationResult& res, double J)
+  RigidRun(const WheelParams& w, const InitialState& init, const SimulationOptions& opt, std::optional<Section> stop_at,
+           RunSink& sink, SimulationResult& res, double J)
       : w_(w), opt_(opt), stop_at_(stop_at), sink_(sink), res_(res), J_(J), y_{init.beta, init.omega} {
     contacts_.count = 1;
     contacts_.leg[0] = 0;
@@ -123,8 +133,8 @@ class RigidRun final : public numerics::HybridModel {
     // Ground reaction from the hub's acceleration: R = m a - m g (sin φ, -cos φ).
     const double ax = w_.L0 * (bdd * std::cos(b) - bd * bd * std::sin(b));
     const double ay = w_.L0 * (-bdd * std::sin(b) - bd * bd * std::cos(b));
-    out.contact[0] = {stance_leg(), FootMode::Stick, w_.m * ay + w_.m * w_.g * cphi, w_.m * ax - w_.m * w_.g * sphi,
-                      foot_, 0.0};
+    out.contact[0] = {
+        stance_leg(), FootMode::Stick, w_.m * ay + w_.m * w_.g * cphi, w_.m * ax - w_.m * w_.g * sphi, foot_, 0.0};
     out.energy.kinetic = 0.5 * J_ * bd * bd;
     out.energy.gravity = w_.m * w_.g * (yy * cphi - x * sphi);
     out.w_damp = w_impact_;
@@ -237,7 +247,9 @@ class RigidRun final : public numerics::HybridModel {
     else
       fail(FailureReason::StepRate, fmt::format("{:.3g} solver steps per simulated second at t = {} s", measured, t));
   }
-  std::string describe(const numerics::HybridEvent& e) const override { return fmt::format("leg {} touchdown", e.unit); }
+  std::string describe(const numerics::HybridEvent& e) const override {
+    return fmt::format("leg {} touchdown", e.unit);
+  }
 
  private:
   const WheelParams& w_;

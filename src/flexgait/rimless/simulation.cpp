@@ -16,11 +16,16 @@ static_assert(static_cast<int>(RunEvent::FallOver) == static_cast<int>(EventKind
 
 const char* run_event_name(RunEvent kind) {
   switch (kind) {
-    case RunEvent::Start: return "start";
-    case RunEvent::Jam: return "jam";
-    case RunEvent::Section: return "section";
-    case RunEvent::Failure: return "failure";
-    default: return event_name(static_cast<EventKind>(kind));
+    case RunEvent::Start:
+      return "start";
+    case RunEvent::Jam:
+      return "jam";
+    case RunEvent::Section:
+      return "section";
+    case RunEvent::Failure:
+      return "failure";
+    default:
+      return event_name(static_cast<EventKind>(kind));
   }
 }
 
@@ -31,9 +36,15 @@ std::string describe_contacts(const ContactSet& c) {
   return s;
 }
 
-void RunCollector::on_sample(const LogSample& sample) { result_.samples.push_back(sample); }
-void RunCollector::on_event(const EventRecord& event) { result_.events.push_back(event); }
-void RunCollector::on_step(const StepRecord& step) { result_.steps.push_back(step); }
+void RunCollector::on_sample(const LogSample& sample) {
+  result_.samples.push_back(sample);
+}
+void RunCollector::on_event(const EventRecord& event) {
+  result_.events.push_back(event);
+}
+void RunCollector::on_step(const StepRecord& step) {
+  result_.steps.push_back(step);
+}
 
 bool balanced_at_vertical(const WheelParams& w, double beta, double omega) {
   return std::abs(beta + w.slope) <= 1e-3 && std::abs(omega) <= 1e-3 * std::sqrt(w.g / w.L0);

@@ -29,40 +29,47 @@ constexpr std::array<EnumName<Section>, 2> enum_names(Section) {
 }
 
 struct ContactSample {
-  int leg = -1;                       ///< -1: slot empty
+  int leg = -1;  ///< -1: slot empty
   FootMode mode = FootMode::Stick;
-  double N = 0, T = 0;                ///< ground reaction [N]
-  double c = 0, cdot = 0;             ///< foot position [m] and velocity [m/s] along the slope
+  double N = 0, T = 0;     ///< ground reaction [N]
+  double c = 0, cdot = 0;  ///< foot position [m] and velocity [m/s] along the slope
 };
 
 struct LogSample {
-  double t = 0;                       ///< [s]
-  std::array<double, 6> q{};          ///< (x, y, θ, ẋ, ẏ, θ̇)
+  double t = 0;               ///< [s]
+  std::array<double, 6> q{};  ///< (x, y, θ, ẋ, ẏ, θ̇)
   std::array<ContactSample, kMaxContacts> contact{};
   EnergyTerms energy;
-  double w_damp = 0, w_fric = 0;      ///< dissipated work since t = 0 [J]
+  double w_damp = 0, w_fric = 0;  ///< dissipated work since t = 0 [J]
 };
 
 /// What a run records at an event: the guard events of mode_selection.hpp (first, in
 /// EventKind's order and with its names), and the run's own marks.
 enum class RunEvent : std::uint8_t {
-  Touchdown, LiftOff, StickToSlip, SlipToStick, SlipJam, FallOver,  // = EventKind
-  Start,    ///< t = 0, after the modes at t = 0 were chosen
-  Jam,      ///< feet stopped by a jam impulse at this event
-  Section,  ///< the run crossed its stop section (RunSpec::stop_at)
-  Failure,  ///< the run stopped early; EventRecord::message says why
+  Touchdown,
+  LiftOff,
+  StickToSlip,
+  SlipToStick,
+  SlipJam,
+  FallOver,  // = EventKind
+  Start,     ///< t = 0, after the modes at t = 0 were chosen
+  Jam,       ///< feet stopped by a jam impulse at this event
+  Section,   ///< the run crossed its stop section (RunSpec::stop_at)
+  Failure,   ///< the run stopped early; EventRecord::message says why
 };
-inline RunEvent run_event(EventKind kind) { return static_cast<RunEvent>(kind); }
+inline RunEvent run_event(EventKind kind) {
+  return static_cast<RunEvent>(kind);
+}
 /// "touchdown", "stick_to_slip", ..., "start", "jam", "section", "failure" (events.csv's kind).
 const char* run_event_name(RunEvent kind);
 
 /// One row of events.csv, as numbers: its text is made only when it is written.
 struct EventRecord {
-  double t = 0;                   ///< [s]
+  double t = 0;  ///< [s]
   RunEvent kind = RunEvent::Start;
   int leg = -1;
-  ContactSet contacts;            ///< feet on the ground after the event
-  std::string message;            ///< Failure only: why the run stopped (made once, at the stop)
+  ContactSet contacts;  ///< feet on the ground after the event
+  std::string message;  ///< Failure only: why the run stopped (made once, at the stop)
 };
 
 /// The hybrid state at the start of a smooth segment (after the reset at an event).
@@ -113,22 +120,22 @@ struct SimulationResult {
   std::vector<LogSample> samples;
   std::vector<EventRecord> events;
   std::vector<StepRecord> steps;
-  std::optional<Failure> failure;      ///< why the run stopped early; empty if it completed
-  int steps_completed = 0;             ///< touchdowns of new legs
-  long long event_count = 0;           ///< events recorded (events.csv's rows), kept or streamed
-  std::vector<std::string> gaits;      ///< the gait label of every completed step, in order
-  StepRecord last_step;                ///< the step under way at the end (or the last one)
-  double t_final = 0;                  ///< [s]
+  std::optional<Failure> failure;               ///< why the run stopped early; empty if it completed
+  int steps_completed = 0;                      ///< touchdowns of new legs
+  long long event_count = 0;                    ///< events recorded (events.csv's rows), kept or streamed
+  std::vector<std::string> gaits;               ///< the gait label of every completed step, in order
+  StepRecord last_step;                         ///< the step under way at the end (or the last one)
+  double t_final = 0;                           ///< [s]
   double energy_initial = 0, energy_final = 0;  ///< mechanical energy [J]
   double work_damping = 0, work_friction = 0;   ///< [J]
   /// |E_final + W_damp + W_fric - E_initial| / (KE_0 + m g L0 + W_damp + W_fric): relative to the
   /// energy that flowed, independent of where the potential's zero is.
   double energy_balance_error = 0;
-  double mean_speed = 0;               ///< hub displacement along the slope / time, to the last touchdown [m/s]
-  int jams = 0;                        ///< feet stopped by jam impulses
-  int ambiguous_choices = 0;           ///< events where more than one mode combination was consistent
+  double mean_speed = 0;      ///< hub displacement along the slope / time, to the last touchdown [m/s]
+  int jams = 0;               ///< feet stopped by jam impulses
+  int ambiguous_choices = 0;  ///< events where more than one mode combination was consistent
   long long solver_steps = 0, rhs_evals = 0;
-  std::vector<double> final_state;     ///< full state vector at t_final
+  std::vector<double> final_state;  ///< full state vector at t_final
   ContactSet final_contacts;
 
   /// The fields of `summary.json` (after the model's name), in order.
@@ -136,7 +143,8 @@ struct SimulationResult {
   static void visit_fields(Self& s, Visit& v) {
     v("steps", s.steps_completed, {.doc = "touchdowns of new legs"});
     v("gaits", s.gaits, {.doc = "gait label of every completed step (stance-foot phases in single support)"});
-    v("mean_speed", s.mean_speed, {.unit = "m/s", .doc = "hub displacement along the slope over time, to the last touchdown"});
+    v("mean_speed", s.mean_speed,
+      {.unit = "m/s", .doc = "hub displacement along the slope over time, to the last touchdown"});
     v("t_final", s.t_final, {.unit = "s", .doc = "simulated time"});
     v("energy_initial", s.energy_initial, {.unit = "J", .doc = "mechanical energy at the start"});
     v("energy_final", s.energy_final, {.unit = "J", .doc = "mechanical energy at the end"});
@@ -145,7 +153,8 @@ struct SimulationResult {
     v("energy_balance_error", s.energy_balance_error,
       {.doc = "|E_final + W_damp + W_fric − E_initial| over the energy that flowed"});
     v("jams", s.jams, {.doc = "feet stopped by jam impulses"});
-    v("ambiguous_mode_choices", s.ambiguous_choices, {.doc = "events where more than one mode combination was consistent"});
+    v("ambiguous_mode_choices", s.ambiguous_choices,
+      {.doc = "events where more than one mode combination was consistent"});
     std::int64_t events = s.event_count;
     v("events", events, {.doc = "hybrid events"});
     std::int64_t solver_steps = s.solver_steps, rhs_evals = s.rhs_evals;

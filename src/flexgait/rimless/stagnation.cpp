@@ -17,7 +17,8 @@ namespace {
 void check_start(double slope, double beta) {
   if (beta > -slope)
     throw ConfigError("initial.beta", fmt::format("key 'initial.beta' = '{}': the stagnation stage starts on or "
-                                                  "before the vertical, beta <= -rimless.slope = {} (rad)", beta, -slope));
+                                                  "before the vertical, beta <= -rimless.slope = {} (rad)",
+                                                  beta, -slope));
 }
 
 }  // namespace
@@ -27,10 +28,12 @@ StagnationOptions stagnation_from_config(const Config& config) {
   check_start(config.real("rimless.slope"), config.real("initial.beta"));
   if (!(o.omega_from < o.omega_to))
     throw ConfigError("stagnation.omega_to", fmt::format("key 'stagnation.omega_to' = '{}': must exceed "
-                                                         "stagnation.omega_from = {}", o.omega_to, o.omega_from));
+                                                         "stagnation.omega_from = {}",
+                                                         o.omega_to, o.omega_from));
   if (o.offset_min > o.offset_max)
     throw ConfigError("stagnation.offset_min", fmt::format("key 'stagnation.offset_min' = '{}': must not exceed "
-                                                           "stagnation.offset_max = {}", o.offset_min, o.offset_max));
+                                                           "stagnation.offset_max = {}",
+                                                           o.offset_min, o.offset_max));
   return o;
 }
 
@@ -63,8 +66,10 @@ double hermite_time_within(double t0, double g0, double gd0, double t1, double g
       if (flo * fhi >= 0) continue;
       for (int it = 0; it < 200 && hi - lo > 1e-16; ++it) {
         const double mid = 0.5 * (lo + hi);
-        if ((p(mid) - level) * flo > 0) lo = mid;
-        else hi = mid;
+        if ((p(mid) - level) * flo > 0)
+          lo = mid;
+        else
+          hi = mid;
       }
       cuts.push_back(0.5 * (lo + hi));
     }
@@ -214,7 +219,8 @@ StagnationScan scan_stagnation(const WheelParams& w, const InitialState& start, 
 
   // Bisection on the stage's end.
   sum.critical_found = true;
-  double lo = scan.grid[static_cast<std::size_t>(bracket)].omega0, hi = scan.grid[static_cast<std::size_t>(bracket) + 1].omega0;
+  double lo = scan.grid[static_cast<std::size_t>(bracket)].omega0,
+         hi = scan.grid[static_cast<std::size_t>(bracket) + 1].omega0;
   while (hi - lo > opt.bisection_tol * std::abs(hi)) {
     const double mid = 0.5 * (lo + hi);
     if (mid <= lo || mid >= hi) break;
@@ -296,7 +302,8 @@ StagnationScan scan_stagnation(const WheelParams& w, const InitialState& start, 
   sum.growth_stick = slope_of(x, stick);
   const double growth = std::max(sum.growth_slide, sum.growth_stick);
   // A stagnation grows by a sizeable fraction of the pendulum estimate per decade; below that it is noise.
-  if (growth > opt.kind_fraction * sum.estimate_sliding) sum.kind = sum.growth_slide >= sum.growth_stick ? "sliding" : "sticking";
+  if (growth > opt.kind_fraction * sum.estimate_sliding)
+    sum.kind = sum.growth_slide >= sum.growth_stick ? "sliding" : "sticking";
   return scan;
 }
 
@@ -309,14 +316,17 @@ std::string stagnation_csv(const StagnationScan& scan) {
   for (const Stage& s : scan.grid) rows.push_back({&s, "grid"});
   for (const Stage& s : scan.above) rows.push_back({&s, "scan"});
   for (const Stage& s : scan.below) rows.push_back({&s, "scan"});
-  std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.stage->omega0 < b.stage->omega0; });
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const Row& a, const Row& b) { return a.stage->omega0 < b.stage->omega0; });
   CsvWriter csv({"omega0", "offset", "part", "end", "slide_near_vertical", "stick_near_vertical", "slide_total",
                  "duration", "energy_end", "kinetic_end", "beta_end", "failure"});
   for (const Row& r : rows) {
     const Stage& s = *r.stage;
     csv.cell(s.omega0);
-    if (scan.summary.critical_found) csv.cell(s.omega0 - scan.summary.omega_c);
-    else csv.cell("");
+    if (scan.summary.critical_found)
+      csv.cell(s.omega0 - scan.summary.omega_c);
+    else
+      csv.cell("");
     csv.cell(r.part).cell(name_of(s.end)).cell(s.slide_near_vertical).cell(s.stick_near_vertical).cell(s.slide_total);
     csv.cell(s.duration).cell(s.energy_end).cell(s.kinetic_end).cell(s.beta_end).cell(s.failure).end_row();
   }

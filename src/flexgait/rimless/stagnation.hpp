@@ -51,19 +51,19 @@ namespace flexgait::rimless {
 
 /// The experiment's parameters (keys stagnation.*).
 struct StagnationOptions {
-  double window = 0.02;        ///< half-width of the near-vertical window |β + φ| < window [rad]
-  double time_limit = 30.0;    ///< a stage still going at this time is a stagnation [s]
-  double omega_from = 0.2;     ///< coarse grid of ω0, first value [rad/s]
-  double omega_to = 1.2;       ///< coarse grid of ω0, last value [rad/s]
-  int count = 41;              ///< coarse grid of ω0, number of values (ends included)
+  double window = 0.02;          ///< half-width of the near-vertical window |β + φ| < window [rad]
+  double time_limit = 30.0;      ///< a stage still going at this time is a stagnation [s]
+  double omega_from = 0.2;       ///< coarse grid of ω0, first value [rad/s]
+  double omega_to = 1.2;         ///< coarse grid of ω0, last value [rad/s]
+  int count = 41;                ///< coarse grid of ω0, number of values (ends included)
   double bisection_tol = 1e-12;  ///< bisection on the stage's end stops at this width / ω_c
-  double offset_max = 1e-1;    ///< largest |ω0 − ω_c| of the log scan [rad/s]
-  double offset_min = 1e-9;    ///< smallest |ω0 − ω_c| of the log scan [rad/s]
-  int per_decade = 2;          ///< offsets per decade of the log scan
-  double factor = 5.0;         ///< the interval: near-vertical time > factor × its typical value
-  double fit_offset = 1e-3;    ///< the growth per decade is fitted over offsets d <= this [rad/s]
-  double kind_fraction = 0.25; ///< a growth above this × the sliding estimate names a kind, else "none"
-  double rest_energy = 1e-9;   ///< came to rest: kinetic energy below this × m g L0 at the end
+  double offset_max = 1e-1;      ///< largest |ω0 − ω_c| of the log scan [rad/s]
+  double offset_min = 1e-9;      ///< smallest |ω0 − ω_c| of the log scan [rad/s]
+  int per_decade = 2;            ///< offsets per decade of the log scan
+  double factor = 5.0;           ///< the interval: near-vertical time > factor × its typical value
+  double fit_offset = 1e-3;      ///< the growth per decade is fitted over offsets d <= this [rad/s]
+  double kind_fraction = 0.25;   ///< a growth above this × the sliding estimate names a kind, else "none"
+  double rest_energy = 1e-9;     ///< came to rest: kinetic energy below this × m g L0 at the end
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -72,10 +72,13 @@ struct StagnationOptions {
     v("stagnation.time_limit", s.time_limit,
       {.unit = "s", .doc = "a stage still near the vertical at this time is a stagnation", .bounds = positive()});
     v("stagnation.omega_from", s.omega_from,
-      {.unit = "rad/s", .doc = "coarse grid of the initial angular velocity: first value", .bounds = closed(-100, 100)});
+      {.unit = "rad/s",
+       .doc = "coarse grid of the initial angular velocity: first value",
+       .bounds = closed(-100, 100)});
     v("stagnation.omega_to", s.omega_to,
       {.unit = "rad/s", .doc = "coarse grid of the initial angular velocity: last value", .bounds = closed(-100, 100)});
-    v("stagnation.count", s.count, {.doc = "coarse grid: number of values, ends included", .bounds = closed(2, 100000)});
+    v("stagnation.count", s.count,
+      {.doc = "coarse grid: number of values, ends included", .bounds = closed(2, 100000)});
     v("stagnation.bisection_tol", s.bisection_tol,
       {.doc = "bisection for the critical omega0 stops at this relative width", .bounds = closed(1e-15, 1e-2)});
     v("stagnation.offset_max", s.offset_max,
@@ -86,16 +89,22 @@ struct StagnationOptions {
     v("stagnation.factor", s.factor,
       {.doc = "stagnation interval: near-vertical time above this multiple of its typical value", .bounds = above(1)});
     v("stagnation.fit_offset", s.fit_offset,
-      {.unit = "rad/s", .doc = "growth per decade: least-squares fit over the scan's offsets |omega0 - omega_c| <= this "
-                               "(the asymptotic regime)", .bounds = open(0, 10)});
+      {.unit = "rad/s",
+       .doc = "growth per decade: least-squares fit over the scan's offsets |omega0 - omega_c| <= this "
+              "(the asymptotic regime)",
+       .bounds = open(0, 10)});
     v("stagnation.kind_fraction", s.kind_fraction,
       {.doc = "kind: the larger growth (slip or stick) names it when above this fraction of the sliding pendulum "
-              "estimate, else none (noise)", .bounds = non_negative()});
+              "estimate, else none (noise)",
+       .bounds = non_negative()});
     v("stagnation.rest_energy", s.rest_energy,
-      {.doc = "a stage that stops with kinetic energy below this fraction of m g L0 came to rest", .bounds = open(0, 1)});
+      {.doc = "a stage that stops with kinetic energy below this fraction of m g L0 came to rest",
+       .bounds = open(0, 1)});
   }
 };
-inline Schema stagnation_schema() { return schema_of<StagnationOptions>(); }
+inline Schema stagnation_schema() {
+  return schema_of<StagnationOptions>();
+}
 /// The options of a resolved configuration; throws ConfigError (key named) if inconsistent
 /// (omega_from >= omega_to, offset_min > offset_max, initial.beta > -rimless.slope).
 StagnationOptions stagnation_from_config(const Config& config);
@@ -113,7 +122,7 @@ constexpr std::array<EnumName<StageEnd>, 6> enum_names(StageEnd) {
 
 /// One stage (the first single support from the start).
 struct Stage {
-  double omega0 = 0;               ///< initial angular velocity [rad/s]
+  double omega0 = 0;  ///< initial angular velocity [rad/s]
   StageEnd end = StageEnd::Failed;
   std::string failure;             ///< the simulation's message when end = failed
   double slide_near_vertical = 0;  ///< time the stance foot slips with |β + φ| < window [s]
@@ -140,31 +149,31 @@ double hermite_time_within(double t0, double g0, double gd0, double t1, double g
 
 /// What the scan found (stagnation.json). Offsets d = |ω0 − ω_c|.
 struct StagnationSummary {
-  double beta_start = 0;        ///< β0 [rad]
-  double beta_vertical = 0;     ///< −φ [rad]
+  double beta_start = 0;          ///< β0 [rad]
+  double beta_vertical = 0;       ///< −φ [rad]
   double beta_friction_edge = 0;  ///< −atan μ_k: where a forward-slipping foot's force lies along the leg [rad]
-  double window = 0;            ///< [rad]
-  bool critical_found = false;  ///< the grid bracketed a flip from rolled_back to next_leg_landed
-  double omega_c = 0;           ///< critical ω0 [rad/s]
+  double window = 0;              ///< [rad]
+  bool critical_found = false;    ///< the grid bracketed a flip from rolled_back to next_leg_landed
+  double omega_c = 0;             ///< critical ω0 [rad/s]
   double omega_c_low = 0, omega_c_high = 0;  ///< final bisection bracket [rad/s]
   int bisection_steps = 0;
-  std::string bisection_note;   ///< why the bisection stopped early (a stage neither passed nor rolled back)
-  int flips = 0;                ///< outcome changes along the grid
-  double typical_time = 0;      ///< near-vertical time at ω_c + offset_max [s]
-  double threshold = 0;         ///< factor × typical_time [s]
+  std::string bisection_note;  ///< why the bisection stopped early (a stage neither passed nor rolled back)
+  int flips = 0;               ///< outcome changes along the grid
+  double typical_time = 0;     ///< near-vertical time at ω_c + offset_max [s]
+  double threshold = 0;        ///< factor × typical_time [s]
   double interval_low = 0, interval_high = 0;  ///< the stagnation interval of ω0 [rad/s]
-  double interval_width = 0;    ///< [rad/s]
-  double growth_above = 0;      ///< d(near-vertical time)/d log10(1/d), ω0 > ω_c, d <= fit_offset [s per decade]
-  double growth_below = 0;      ///< the same, ω0 < ω_c [s per decade]
-  double growth_slide = 0;      ///< slip part of it, both sides pooled [s per decade]
-  double growth_stick = 0;      ///< stick part of it, both sides pooled [s per decade]
-  std::string kind;             ///< sliding | sticking | none (which part grows)
-  double estimate_sliding = 0;  ///< ln 10 · sqrt(I / (m g L0)): toppling about the hub [s per decade]
-  double estimate_sticking = 0; ///< ln 10 · sqrt((I + m L0²) / (m g L0)): toppling about the foot [s per decade]
-  double slide_far = 0;         ///< slip time near the vertical at ω_c + offset_max [s]
-  double slide_near = 0;        ///< the largest slip time near the vertical in the scan [s]
-  double near_time_max = 0;     ///< the largest near-vertical time in the scan [s]
-  int stages = 0;               ///< stages simulated (grid, bisection, scan)
+  double interval_width = 0;                   ///< [rad/s]
+  double growth_above = 0;       ///< d(near-vertical time)/d log10(1/d), ω0 > ω_c, d <= fit_offset [s per decade]
+  double growth_below = 0;       ///< the same, ω0 < ω_c [s per decade]
+  double growth_slide = 0;       ///< slip part of it, both sides pooled [s per decade]
+  double growth_stick = 0;       ///< stick part of it, both sides pooled [s per decade]
+  std::string kind;              ///< sliding | sticking | none (which part grows)
+  double estimate_sliding = 0;   ///< ln 10 · sqrt(I / (m g L0)): toppling about the hub [s per decade]
+  double estimate_sticking = 0;  ///< ln 10 · sqrt((I + m L0²) / (m g L0)): toppling about the foot [s per decade]
+  double slide_far = 0;          ///< slip time near the vertical at ω_c + offset_max [s]
+  double slide_near = 0;         ///< the largest slip time near the vertical in the scan [s]
+  double near_time_max = 0;      ///< the largest near-vertical time in the scan [s]
+  int stages = 0;                ///< stages simulated (grid, bisection, scan)
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -175,10 +184,13 @@ struct StagnationSummary {
     v("window", s.window, {.unit = "rad", .doc = "half-width of the near-vertical window"});
     v("critical_found", s.critical_found, {.doc = "the grid bracketed a flip from rolled_back to next_leg_landed"});
     v("omega_c", s.omega_c, {.unit = "rad/s", .doc = "critical initial angular velocity", .present = s.critical_found});
-    v("omega_c_low", s.omega_c_low, {.unit = "rad/s", .doc = "bisection bracket: rolls back", .present = s.critical_found});
-    v("omega_c_high", s.omega_c_high, {.unit = "rad/s", .doc = "bisection bracket: passes", .present = s.critical_found});
+    v("omega_c_low", s.omega_c_low,
+      {.unit = "rad/s", .doc = "bisection bracket: rolls back", .present = s.critical_found});
+    v("omega_c_high", s.omega_c_high,
+      {.unit = "rad/s", .doc = "bisection bracket: passes", .present = s.critical_found});
     v("bisection_steps", s.bisection_steps, {.doc = "bisection stages"});
-    v("bisection_note", s.bisection_note, {.doc = "why the bisection stopped early; empty if it reached its tolerance"});
+    v("bisection_note", s.bisection_note,
+      {.doc = "why the bisection stopped early; empty if it reached its tolerance"});
     v("flips", s.flips, {.doc = "changes of the stage's end along the grid"});
     const bool c = s.critical_found;
     v("typical_time", s.typical_time, {.unit = "s", .doc = "near-vertical time at omega_c + offset_max", .present = c});
@@ -187,9 +199,13 @@ struct StagnationSummary {
     v("interval_high", s.interval_high, {.unit = "rad/s", .doc = "stagnation interval: upper bound", .present = c});
     v("interval_width", s.interval_width, {.unit = "rad/s", .doc = "stagnation interval: width", .present = c});
     v("growth_above", s.growth_above,
-      {.unit = "s", .doc = "near-vertical time per decade of omega0 - omega_c (above), d <= stagnation.fit_offset", .present = c});
+      {.unit = "s",
+       .doc = "near-vertical time per decade of omega0 - omega_c (above), d <= stagnation.fit_offset",
+       .present = c});
     v("growth_below", s.growth_below,
-      {.unit = "s", .doc = "near-vertical time per decade of omega_c - omega0 (below), d <= stagnation.fit_offset", .present = c});
+      {.unit = "s",
+       .doc = "near-vertical time per decade of omega_c - omega0 (below), d <= stagnation.fit_offset",
+       .present = c});
     v("growth_slide", s.growth_slide, {.unit = "s", .doc = "slip part of the growth per decade", .present = c});
     v("growth_stick", s.growth_stick, {.unit = "s", .doc = "stick part of the growth per decade", .present = c});
     v("kind", s.kind, {.doc = "sliding, sticking or none: which part of the near-vertical time grows"});
@@ -197,8 +213,10 @@ struct StagnationSummary {
       {.unit = "s", .doc = "ln10 sqrt(I/(m g L0)): per decade when toppling about the hub"});
     v("estimate_sticking", s.estimate_sticking,
       {.unit = "s", .doc = "ln10 sqrt((I + m L0^2)/(m g L0)): per decade when toppling about the foot"});
-    v("slide_far", s.slide_far, {.unit = "s", .doc = "slip time near the vertical at omega_c + offset_max", .present = c});
-    v("slide_near", s.slide_near, {.unit = "s", .doc = "largest slip time near the vertical in the scan", .present = c});
+    v("slide_far", s.slide_far,
+      {.unit = "s", .doc = "slip time near the vertical at omega_c + offset_max", .present = c});
+    v("slide_near", s.slide_near,
+      {.unit = "s", .doc = "largest slip time near the vertical in the scan", .present = c});
     v("near_time_max", s.near_time_max, {.unit = "s", .doc = "largest near-vertical time in the scan", .present = c});
     v("stages", s.stages, {.doc = "stages simulated"});
   }
@@ -206,10 +224,10 @@ struct StagnationSummary {
 
 /// Every stage of a scan, and what it found.
 struct StagnationScan {
-  std::vector<Stage> grid;     ///< the coarse grid of ω0
-  std::vector<double> offsets; ///< d, largest first [rad/s]
-  std::vector<Stage> above;    ///< at ω_c + d (empty without a critical value)
-  std::vector<Stage> below;    ///< at ω_c − d
+  std::vector<Stage> grid;      ///< the coarse grid of ω0
+  std::vector<double> offsets;  ///< d, largest first [rad/s]
+  std::vector<Stage> above;     ///< at ω_c + d (empty without a critical value)
+  std::vector<Stage> below;     ///< at ω_c − d
   StagnationSummary summary;
 };
 

@@ -17,7 +17,8 @@ void check_sweep_param(const Schema& schema, const std::string& param) {
   const ParamSpec* p = schema.find(param);
   if (p == nullptr)
     throw ConfigError(param, fmt::format("--param: unknown key '{}'; allowed: a real-valued key of config.yaml, or "
-                                         "rimless.mu (sets mu_s and mu_k)", param));
+                                         "rimless.mu (sets mu_s and mu_k)",
+                                         param));
   if (p->type != ParamType::Real)
     throw ConfigError(param, fmt::format("--param: key '{}' is not a real number; allowed: a real-valued key", param));
 }
@@ -58,7 +59,8 @@ std::string sweep_row(const Config& base, const SweepSpec& spec, int i, const st
   sim.log = false;
   sim.poll = poll;
   sim.steps = std::max(1, opt.transient_steps);
-  const SimulationResult r = sim.model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
+  const SimulationResult r =
+      sim.model == Model::Rigid ? simulate_rigid(w, initial, sim) : simulate_flexible(w, initial, sim);
   std::string transient_gait;
   for (const auto& s : r.steps)
     if (s.complete) transient_gait = step_gait(s);

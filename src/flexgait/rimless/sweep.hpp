@@ -13,7 +13,7 @@
 namespace flexgait::rimless {
 
 struct SweepSpec {
-  std::string param;   ///< a configuration key, or "rimless.mu" for mu_s = mu_k
+  std::string param;  ///< a configuration key, or "rimless.mu" for mu_s = mu_k
   double from = 0, to = 0;
   int count = 1;
   Section section = Section::Touchdown;

@@ -10,10 +10,10 @@ Eigen::VectorXd state_steps(const WheelParams& w, std::span<const double> y) {
   const double v = std::sqrt(w.g * w.L0);
   Eigen::VectorXd h(static_cast<Eigen::Index>(y.size()));
   for (std::size_t j = 0; j < y.size(); ++j) {
-    double scale = w.L0;                                          // positions, compressions
-    if (j == StateIndex::theta) scale = 1.0;                      // rad
-    if (j == StateIndex::xd || j == StateIndex::yd) scale = v;    // m/s
-    if (j == StateIndex::thetad) scale = v / w.L0;                // rad/s
+    double scale = w.L0;                                                               // positions, compressions
+    if (j == StateIndex::theta) scale = 1.0;                                           // rad
+    if (j == StateIndex::xd || j == StateIndex::yd) scale = v;                         // m/s
+    if (j == StateIndex::thetad) scale = v / w.L0;                                     // rad/s
     if (j == StateIndex::w_damp || j == StateIndex::w_fric) scale = w.m * w.g * w.L0;  // J
     h(static_cast<Eigen::Index>(j)) = 6e-6 * std::max(std::abs(y[j]), scale);
   }
@@ -48,7 +48,8 @@ std::optional<std::string> jacobian(const std::function<bool(std::span<const dou
     yp[j] = y[j] - hj;
     const bool ok_down = R(yp, down);
     yp[j] = y[j];
-    if (!ok_up || !ok_down) return "the reset's mode decision changes under a perturbation of state " + std::to_string(j);
+    if (!ok_up || !ok_down)
+      return "the reset's mode decision changes under a perturbation of state " + std::to_string(j);
     for (std::size_t i = 0; i < n; ++i)
       J(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = (up[i] - down[i]) / (2 * hj);
   }

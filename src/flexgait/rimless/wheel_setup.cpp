@@ -4,10 +4,10 @@
 
 #include "flexgait/rimless/analyses.hpp"
 #include "flexgait/rimless/basin.hpp"
-#include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/gait_branch.hpp"
+#include "flexgait/rimless/orbit_diagram.hpp"
 #include "flexgait/rimless/stagnation.hpp"
 
 namespace flexgait::rimless {
@@ -32,8 +32,8 @@ WheelSetup wheel_setup(Config config) {
         check_initial_state(s.wheel, s.initial);
       } catch (const ConfigError& e) {  // blame the first of the keys involved that the user set
         std::string key = e.key();
-        for (const char* k : {"rimless.legs", "rimless.K", "rimless.m", "rimless.g", "rimless.L0", "rimless.slope",
-                              "initial.beta"})
+        for (const char* k :
+             {"rimless.legs", "rimless.K", "rimless.m", "rimless.g", "rimless.L0", "rimless.slope", "initial.beta"})
           if (s.config.origin(k) != "default") {
             key = k;
             break;

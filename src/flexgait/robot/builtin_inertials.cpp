@@ -81,9 +81,17 @@ std::vector<Placed> arm(double s) {
   const Vector3d grip = wr_p + Vector3d(0.088, s * 0.058, 0), grip_1 = wr_p + Vector3d(0.088, s * 0.032, 0);
   // Upper arm along ±y in the zero pose: −90° (left) / +90° (right) about x brings it to −z.
   const Matrix3d R = Eigen::AngleAxisd(-s * 0.5 * std::numbers::pi, Vector3d::UnitX()).toRotationMatrix();
-  auto turned = [&](const char* link, const Vector3d& origin) { return Placed{p + link, sh_r + R * (origin - sh_r), R}; };
-  return {Placed{p + "sh_p1", sh_p1, Matrix3d::Identity()}, turned("sh_r", sh_r), turned("sh_p2", sh_p2),
-          turned("el_y", el_y), turned("wr_r", wr_r), turned("wr_y", wr_y), turned("wr_p", wr_p), turned("grip", grip),
+  auto turned = [&](const char* link, const Vector3d& origin) {
+    return Placed{p + link, sh_r + R * (origin - sh_r), R};
+  };
+  return {Placed{p + "sh_p1", sh_p1, Matrix3d::Identity()},
+          turned("sh_r", sh_r),
+          turned("sh_p2", sh_p2),
+          turned("el_y", el_y),
+          turned("wr_r", wr_r),
+          turned("wr_y", wr_y),
+          turned("wr_p", wr_p),
+          turned("grip", grip),
           turned("grip_1", grip_1)};
 }
 
@@ -94,7 +102,8 @@ BuiltinInertials builtin_inertials(const RobotParams& r) {
   if (extra < -1e-9) throw std::invalid_argument("robot.total_mass is below THORMANG3's links' 42.533 kg");
   BuiltinInertials b;
   b.pelvis = lump({{"pelvis"}}, {{0.5 * extra, com_of("pelvis")}});
-  std::vector<Placed> upper = {{"torso_y"}, {"head_y", Vector3d(0, 0, 0.229)}, {"head_p", Vector3d(0, -0.045, 0.229 + 0.039)}};
+  std::vector<Placed> upper = {
+      {"torso_y"}, {"head_y", Vector3d(0, 0, 0.229)}, {"head_p", Vector3d(0, -0.045, 0.229 + 0.039)}};
   for (double s : {1.0, -1.0})
     for (const Placed& p : arm(s)) upper.push_back(p);
   b.chest = lump(upper, {{0.5 * extra, com_of("torso_y")}});

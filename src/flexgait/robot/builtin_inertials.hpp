@@ -20,9 +20,9 @@
 namespace flexgait::humanoid {
 
 struct BodyInertial {
-  double mass = 0;                ///< [kg]
-  std::array<double, 3> com{};    ///< in the body frame [m]
-  std::array<double, 6> inertia{};///< about the centre of mass, body axes: ixx, ixy, ixz, iyy, iyz, izz [kg m^2]
+  double mass = 0;                  ///< [kg]
+  std::array<double, 3> com{};      ///< in the body frame [m]
+  std::array<double, 6> inertia{};  ///< about the centre of mass, body axes: ixx, ixy, ixz, iyy, iyz, izz [kg m^2]
 };
 
 struct BuiltinInertials {

@@ -12,18 +12,29 @@ inline constexpr int kLegJoints = 6;
 
 enum Joint : int {
   kWaistYaw = 0,
-  kLeftHipYaw, kLeftHipRoll, kLeftHipPitch, kLeftKnee, kLeftAnklePitch, kLeftAnkleRoll,
-  kRightHipYaw, kRightHipRoll, kRightHipPitch, kRightKnee, kRightAnklePitch, kRightAnkleRoll,
+  kLeftHipYaw,
+  kLeftHipRoll,
+  kLeftHipPitch,
+  kLeftKnee,
+  kLeftAnklePitch,
+  kLeftAnkleRoll,
+  kRightHipYaw,
+  kRightHipRoll,
+  kRightHipPitch,
+  kRightKnee,
+  kRightAnklePitch,
+  kRightAnkleRoll,
 };
 
 inline constexpr std::array<std::string_view, kJoints> kJointNames = {
-    "waist_yaw",
-    "l_hip_yaw", "l_hip_roll", "l_hip_pitch", "l_knee", "l_ankle_pitch", "l_ankle_roll",
-    "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee", "r_ankle_pitch", "r_ankle_roll",
+    "waist_yaw", "l_hip_yaw",  "l_hip_roll",  "l_hip_pitch", "l_knee",        "l_ankle_pitch", "l_ankle_roll",
+    "r_hip_yaw", "r_hip_roll", "r_hip_pitch", "r_knee",      "r_ankle_pitch", "r_ankle_roll",
 };
 
 /// First joint of a leg (side 0: left, 1: right); the leg's joints follow in kinematic order.
-inline constexpr int leg_first_joint(int side) { return side == 0 ? kLeftHipYaw : kRightHipYaw; }
+inline constexpr int leg_first_joint(int side) {
+  return side == 0 ? kLeftHipYaw : kRightHipYaw;
+}
 /// Whether a joint is one of a leg's (side 0: left, 1: right).
 inline constexpr bool in_leg(int joint, int side) {
   return joint >= leg_first_joint(side) && joint < leg_first_joint(side) + kLegJoints;

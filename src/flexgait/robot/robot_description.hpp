@@ -21,9 +21,9 @@ namespace flexgait::humanoid {
 
 /// One foot: the body that carries the sole and the sole rectangle.
 struct FootMapping {
-  std::string body;                ///< body below the ankle-roll joint that carries the sole
-  std::string sole_geom = "none";  ///< a box geom of that body whose bottom face is the sole, or none
-  std::string sole_size = "none";  ///< "length width" [m] of the sole rectangle (when sole_geom is none)
+  std::string body;                   ///< body below the ankle-roll joint that carries the sole
+  std::string sole_geom = "none";     ///< a box geom of that body whose bottom face is the sole, or none
+  std::string sole_size = "none";     ///< "length width" [m] of the sole rectangle (when sole_geom is none)
   std::string sole_center = "0 0 0";  ///< centre of the sole rectangle in the foot body's frame "x y z" [m]
 };
 
@@ -52,13 +52,18 @@ struct RobotDescriptionParams {
                                : "name in the description file of this hinge joint"});
     for (int side = 0; side < 2; ++side) {
       const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
-      v(f + ".body", s.feet[side].body, {.doc = "foot body (below the ankle-roll joint; the F/T sensor sits at its joint to its parent)"});
-      v(f + ".sole_geom", s.feet[side].sole_geom, {.doc = "box geom of the foot whose bottom face is the sole, or none"});
-      v(f + ".sole_size", s.feet[side].sole_size, {.unit = "m", .doc = "'length width' of the sole when sole_geom is none, or none"});
-      v(f + ".sole_center", s.feet[side].sole_center, {.unit = "m", .doc = "'x y z' centre of the sole in the foot body's frame (with sole_size)"});
+      v(f + ".body", s.feet[side].body,
+        {.doc = "foot body (below the ankle-roll joint; the F/T sensor sits at its joint to its parent)"});
+      v(f + ".sole_geom", s.feet[side].sole_geom,
+        {.doc = "box geom of the foot whose bottom face is the sole, or none"});
+      v(f + ".sole_size", s.feet[side].sole_size,
+        {.unit = "m", .doc = "'length width' of the sole when sole_geom is none, or none"});
+      v(f + ".sole_center", s.feet[side].sole_center,
+        {.unit = "m", .doc = "'x y z' centre of the sole in the foot body's frame (with sole_size)"});
     }
     v("robot.imu_body", s.imu_body, {.doc = "body carrying the IMU (root: the root body)"});
-    v("robot.exclude_contacts", s.exclude_contacts, {.doc = "'a:b,c:d' body pairs whose contacts are ignored, or none"});
+    v("robot.exclude_contacts", s.exclude_contacts,
+      {.doc = "'a:b,c:d' body pairs whose contacts are ignored, or none"});
   }
 };
 
@@ -69,7 +74,7 @@ struct LoadedJoint {
   std::array<double, 3> pos{};          ///< anchor in the body frame [m]
   std::array<double, 3> axis{0, 0, 1};  ///< unit axis in the body frame
   bool limited = false;
-  std::array<double, 2> range{};        ///< [rad]
+  std::array<double, 2> range{};  ///< [rad]
   double armature = 0, frictionloss = 0;
   /// The largest torque the file's actuators on this joint can apply [Nm]: gear × force range, or
   /// gear × gain × control range for a motor without a force range; 0: the file sets none.
@@ -78,8 +83,8 @@ struct LoadedJoint {
 
 struct LoadedGeom {
   std::string name;
-  std::string type;                     ///< MJCF type: plane, sphere, capsule, ellipsoid, cylinder, box
-  std::array<double, 3> size{};         ///< MuJoCo's size [m]
+  std::string type;              ///< MJCF type: plane, sphere, capsule, ellipsoid, cylinder, box
+  std::array<double, 3> size{};  ///< MuJoCo's size [m]
   std::array<double, 3> pos{};
   std::array<double, 4> quat{1, 0, 0, 0};
   int contype = 1, conaffinity = 1, condim = 3;
@@ -92,36 +97,38 @@ struct LoadedGeom {
 
 struct LoadedBody {
   std::string name;
-  int parent = -1;                      ///< index in LoadedRobot::bodies; −1: the root
-  std::array<double, 3> pos{};          ///< in the parent frame [m]
+  int parent = -1;              ///< index in LoadedRobot::bodies; −1: the root
+  std::array<double, 3> pos{};  ///< in the parent frame [m]
   std::array<double, 4> quat{1, 0, 0, 0};
-  double mass = 0;                      ///< [kg]
-  std::array<double, 3> ipos{};         ///< centre of mass in the body frame [m]
+  double mass = 0;                          ///< [kg]
+  std::array<double, 3> ipos{};             ///< centre of mass in the body frame [m]
   std::array<double, 4> iquat{1, 0, 0, 0};  ///< principal axes of inertia in the body frame
-  std::array<double, 3> inertia{};      ///< principal moments [kg m^2]
-  std::vector<LoadedJoint> joints;      ///< hinges and slides of this body (a free joint is dropped)
+  std::array<double, 3> inertia{};          ///< principal moments [kg m^2]
+  std::vector<LoadedJoint> joints;          ///< hinges and slides of this body (a free joint is dropped)
   std::vector<LoadedGeom> geoms;
 };
 
 /// The sole rectangle of one foot, in the foot body's frame.
 struct Sole {
-  int geom = -1;                        ///< index in the foot body's geoms, −1: added by the twin
-  std::array<double, 3> center{};       ///< centre of the rectangle [m]
-  double length = 0, width = 0;         ///< [m]
+  int geom = -1;                   ///< index in the foot body's geoms, −1: added by the twin
+  std::array<double, 3> center{};  ///< centre of the rectangle [m]
+  double length = 0, width = 0;    ///< [m]
 };
 
 struct LoadedRobot {
-  std::string source;                   ///< the file
-  std::vector<LoadedBody> bodies;       ///< the robot's tree, parents before children; bodies[0] is the root
-  std::array<std::array<int, 2>, kJoints> joint{};  ///< each flexgait joint: (body, joint in that body); body −1: absent
-  std::array<int, 2> foot{};            ///< foot body of each side
+  std::string source;              ///< the file
+  std::vector<LoadedBody> bodies;  ///< the robot's tree, parents before children; bodies[0] is the root
+  std::array<std::array<int, 2>, kJoints>
+      joint{};                ///< each flexgait joint: (body, joint in that body); body −1: absent
+  std::array<int, 2> foot{};  ///< foot body of each side
   /// Each leg's joints from the root to the foot, as roles (0 hip yaw, 1 hip roll, 2 hip pitch,
   /// 3 knee, 4 ankle pitch, 5 ankle roll): the hips' three in any order, the knee, the ankle's two.
   std::array<std::array<int, kLegJoints>, 2> leg_order{{{0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5}}};
   std::array<Sole, 2> sole{};
   int imu_body = 0;
-  std::vector<std::array<int, 2>> exclude;  ///< body pairs whose contacts are ignored (the file's and robot.exclude_contacts)
-  std::vector<std::string> warnings;        ///< what the loader translated or dropped, one line each
+  std::vector<std::array<int, 2>>
+      exclude;                        ///< body pairs whose contacts are ignored (the file's and robot.exclude_contacts)
+  std::vector<std::string> warnings;  ///< what the loader translated or dropped, one line each
 
   bool has_joint(int j) const { return joint[j][0] >= 0; }
 };

@@ -11,9 +11,9 @@ namespace flexgait::humanoid {
 
 struct Thormang3Link {
   std::string_view name;
-  double mass;                     ///< [kg]
-  std::array<double, 3> com;       ///< in the link frame [m]
-  std::array<double, 6> inertia;   ///< about the centre of mass: ixx, ixy, ixz, iyy, iyz, izz [kg m^2]
+  double mass;                    ///< [kg]
+  std::array<double, 3> com;      ///< in the link frame [m]
+  std::array<double, 6> inertia;  ///< about the centre of mass: ixx, ixy, ixz, iyy, iyz, izz [kg m^2]
 };
 
 /// The row of that link (r_leg_hip_p, torso_y, ...); throws std::logic_error if there is none.

@@ -11,8 +11,12 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
-Vector3d vec(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
-Matrix3d rotation(const std::array<double, 4>& q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix(); }
+Vector3d vec(const std::array<double, 3>& v) {
+  return {v[0], v[1], v[2]};
+}
+Matrix3d rotation(const std::array<double, 4>& q) {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+}
 
 /// URDF's rpy: R = Rz(yaw) Ry(pitch) Rx(roll).
 std::string rpy(const Matrix3d& R) {
@@ -20,7 +24,9 @@ std::string rpy(const Matrix3d& R) {
   const double roll = std::atan2(R(2, 1), R(2, 2)), yaw = std::atan2(R(1, 0), R(0, 0));
   return fmt::format("{} {} {}", roll + 0.0, pitch + 0.0, yaw + 0.0);  // no "-0"
 }
-std::string xyz(const Vector3d& v) { return fmt::format("{} {} {}", v.x(), v.y(), v.z()); }
+std::string xyz(const Vector3d& v) {
+  return fmt::format("{} {} {}", v.x(), v.y(), v.z());
+}
 
 /// The anchor of a body's link frame in the body frame: its first kept joint's anchor.
 Vector3d anchor(const LoadedBody& b) {
@@ -40,22 +46,26 @@ std::string shape(const LoadedGeom& g) {
 }  // namespace
 
 std::string robot_urdf(const LoadedRobot& r) {
-  std::string out = "<?xml version=\"1.0\"?>\n<!-- written by flexgait humanoid export --format urdf -->\n<robot name=\"flexgait_robot\">\n";
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<!-- written by flexgait humanoid export --format urdf -->\n<robot "
+      "name=\"flexgait_robot\">\n";
   for (std::size_t b = 0; b < r.bodies.size(); ++b) {
     const LoadedBody& body = r.bodies[b];
     const Vector3d o = anchor(body);
     out += fmt::format("  <link name=\"{}\">\n", body.name);
     if (body.mass > 0) {
-      out += fmt::format("    <inertial>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <mass value=\"{}\"/>\n", xyz(vec(body.ipos) - o),
-                         rpy(rotation(body.iquat)), body.mass);
-      out += fmt::format("      <inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/>\n    </inertial>\n",
-                         body.inertia[0], body.inertia[1], body.inertia[2]);
+      out += fmt::format("    <inertial>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <mass value=\"{}\"/>\n",
+                         xyz(vec(body.ipos) - o), rpy(rotation(body.iquat)), body.mass);
+      out += fmt::format(
+          "      <inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/>\n    </inertial>\n",
+          body.inertia[0], body.inertia[1], body.inertia[2]);
     }
     for (const LoadedGeom& g : body.geoms) {
       const std::string s = shape(g);
       if (s.empty()) continue;
-      out += fmt::format("    <visual>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <geometry>{}</geometry>\n    </visual>\n",
-                         xyz(vec(g.pos) - o), rpy(rotation(g.quat)), s);
+      out += fmt::format(
+          "    <visual>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <geometry>{}</geometry>\n    </visual>\n",
+          xyz(vec(g.pos) - o), rpy(rotation(g.quat)), s);
     }
     out += "  </link>\n";
   }
@@ -74,7 +84,8 @@ std::string robot_urdf(const LoadedRobot& r) {
     if (joint) {
       out += fmt::format("    <axis xyz=\"{}\"/>\n", xyz(vec(joint->axis)));
       if (joint->limited)
-        out += fmt::format("    <limit lower=\"{}\" upper=\"{}\" effort=\"1000\" velocity=\"100\"/>\n", joint->range[0], joint->range[1]);
+        out += fmt::format("    <limit lower=\"{}\" upper=\"{}\" effort=\"1000\" velocity=\"100\"/>\n", joint->range[0],
+                           joint->range[1]);
     }
     out += "  </joint>\n";
   }

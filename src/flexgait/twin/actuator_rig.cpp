@@ -55,10 +55,20 @@ ActuatorRig::ActuatorRig(const ActuatorRigParams& params, double link_angle) : i
 
 ActuatorRig::~ActuatorRig() = default;
 
-void ActuatorRig::step(double command) { impl_->drive.step(impl_->m, impl_->d, impl_->motor, &command); }
-double ActuatorRig::link_angle() const { return impl_->d->qpos[0]; }
-const ActuatorState& ActuatorRig::motor() const { return impl_->motor[0]; }
-int ActuatorRig::warnings() const { return mujoco_warning_count(impl_->d); }
-std::string ActuatorRig::warnings_text() const { return mujoco_warnings_text(impl_->d); }
+void ActuatorRig::step(double command) {
+  impl_->drive.step(impl_->m, impl_->d, impl_->motor, &command);
+}
+double ActuatorRig::link_angle() const {
+  return impl_->d->qpos[0];
+}
+const ActuatorState& ActuatorRig::motor() const {
+  return impl_->motor[0];
+}
+int ActuatorRig::warnings() const {
+  return mujoco_warning_count(impl_->d);
+}
+std::string ActuatorRig::warnings_text() const {
+  return mujoco_warnings_text(impl_->d);
+}
 
 }  // namespace flexgait::humanoid

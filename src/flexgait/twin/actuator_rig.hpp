@@ -28,10 +28,10 @@ class ActuatorRig {
 
   /// One physics step with this motor-side position command [rad].
   void step(double command);
-  double link_angle() const;                 ///< [rad]
+  double link_angle() const;  ///< [rad]
   const ActuatorState& motor() const;
-  int warnings() const;                      ///< MuJoCo warnings so far
-  std::string warnings_text() const;         ///< as one line ("" if none)
+  int warnings() const;               ///< MuJoCo warnings so far
+  std::string warnings_text() const;  ///< as one line ("" if none)
 
  private:
   struct Impl;

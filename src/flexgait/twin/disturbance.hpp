@@ -28,12 +28,12 @@ constexpr std::array<EnumName<PushBody>, 2> enum_names(PushBody) {
 }
 
 struct Push {
-  double time = 0.0;                     ///< start [s] (step 0)
+  double time = 0.0;  ///< start [s] (step 0)
   PushBody body = PushBody::kChest;
-  std::array<double, 3> force{};         ///< world frame [N]
-  double duration = 0.1;                 ///< [s]
-  int step = 0;                          ///< ≥ 1: start in this step's single support instead (1: the first step)
-  double phase = 0.5;                    ///< step ≥ 1: where in its single support (0 lift-off, 1 touchdown)
+  std::array<double, 3> force{};  ///< world frame [N]
+  double duration = 0.1;          ///< [s]
+  int step = 0;                   ///< ≥ 1: start in this step's single support instead (1: the first step)
+  double phase = 0.5;             ///< step ≥ 1: where in its single support (0 lift-off, 1 touchdown)
 
   /// A push happens: some force over some time.
   bool active() const { return duration > 0 && (force[0] != 0 || force[1] != 0 || force[2] != 0); }
@@ -43,11 +43,16 @@ struct Push {
   /// The fields of one item of disturbance.pushes.
   template <class Self, class Visit>
   static void visit_item_fields(Self& s, Visit& v) {
-    v("time", s.time, {.unit = "s", .doc = "start of the push (simulated time)", .bounds = non_negative(), .optional = true});
-    v("step", s.step, {.doc = "0: start at time; n >= 1: in the single support of the walk's n-th step", .bounds = closed(0, 100000),
-                       .optional = true});
-    v("phase", s.phase, {.doc = "step >= 1: where in its single support the push starts (0 lift-off, 1 touchdown)",
-                         .bounds = closed(0, 1), .optional = true});
+    v("time", s.time,
+      {.unit = "s", .doc = "start of the push (simulated time)", .bounds = non_negative(), .optional = true});
+    v("step", s.step,
+      {.doc = "0: start at time; n >= 1: in the single support of the walk's n-th step",
+       .bounds = closed(0, 100000),
+       .optional = true});
+    v("phase", s.phase,
+      {.doc = "step >= 1: where in its single support the push starts (0 lift-off, 1 touchdown)",
+       .bounds = closed(0, 1),
+       .optional = true});
     v("body", s.body, {.doc = "body the push acts on (at its centre of mass)"});
     v("force", s.force, {.unit = "N", .doc = "push force, world frame [x, y, z]", .bounds = closed(-1e5, 1e5)});
     v("duration", s.duration, {.unit = "s", .doc = "how long the force acts", .bounds = closed(0, 1e4)});
@@ -55,7 +60,8 @@ struct Push {
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
-    v("disturbance.push.time", s.time, {.unit = "s", .doc = "start of the push (simulated time)", .bounds = non_negative()});
+    v("disturbance.push.time", s.time,
+      {.unit = "s", .doc = "start of the push (simulated time)", .bounds = non_negative()});
     v("disturbance.push.step", s.step,
       {.doc = "0: the push starts at disturbance.push.time; n >= 1: in the single support of the walk's n-th step",
        .bounds = closed(0, 100000)});
@@ -63,11 +69,12 @@ struct Push {
       {.doc = "disturbance.push.step >= 1: where in its single support the push starts (0 lift-off, 1 touchdown)",
        .bounds = closed(0, 1)});
     v("disturbance.push.body", s.body, {.doc = "body the push acts on (at its centre of mass)"});
-    v("disturbance.push.force_x", s.force[0], {.unit = "N", .doc = "push force, world x (0 in all three: no push)",
-                                               .bounds = closed(-1e5, 1e5)});
+    v("disturbance.push.force_x", s.force[0],
+      {.unit = "N", .doc = "push force, world x (0 in all three: no push)", .bounds = closed(-1e5, 1e5)});
     v("disturbance.push.force_y", s.force[1], {.unit = "N", .doc = "push force, world y", .bounds = closed(-1e5, 1e5)});
     v("disturbance.push.force_z", s.force[2], {.unit = "N", .doc = "push force, world z", .bounds = closed(-1e5, 1e5)});
-    v("disturbance.push.duration", s.duration, {.unit = "s", .doc = "how long the force acts", .bounds = closed(0, 1e4)});
+    v("disturbance.push.duration", s.duration,
+      {.unit = "s", .doc = "how long the force acts", .bounds = closed(0, 1e4)});
   }
 };
 

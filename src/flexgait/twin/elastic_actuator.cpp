@@ -20,7 +20,8 @@ double gear_torque(const ActuatorParams& p, const ActuatorState& s, double theta
 
 void step_motor(const ActuatorParams& p, ActuatorState& s, double command, double theta_l, double omega_l, double dt) {
   const double w = 2.0 * std::numbers::pi * p.bandwidth;
-  const double kp = p.rotor_inertia * w * w, kd = 2.0 * p.rotor_inertia * w, ki = p.integral_time > 0 ? kp / p.integral_time : 0.0;
+  const double kp = p.rotor_inertia * w * w, kd = 2.0 * p.rotor_inertia * w,
+               ki = p.integral_time > 0 ? kp / p.integral_time : 0.0;
   const double e = command - s.theta_m;
   double servo = kp * e + ki * s.integral - kd * s.omega_m;
   const double limited = std::clamp(servo, -p.torque_limit, p.torque_limit);

@@ -17,14 +17,14 @@
 namespace flexgait::humanoid {
 
 struct ActuatorParams {
-  double k = 1000.0;             ///< gear stiffness [Nm/rad]
-  double d = 80.0;               ///< gear damping [Nm s/rad]
-  double backlash = 0.0;         ///< dead band, total width [rad]
-  double torque_limit = 100.0;   ///< servo torque limit [Nm]
-  double rotor_inertia = 0.8;    ///< J_m [kg m^2]
-  double bandwidth = 30.0;       ///< servo bandwidth [Hz]
-  double integral_time = 0.0;    ///< servo integral time [s]; 0: none (the spec's stiff PD)
-  double encoder_steps = 501923; ///< steps per output turn
+  double k = 1000.0;              ///< gear stiffness [Nm/rad]
+  double d = 80.0;                ///< gear damping [Nm s/rad]
+  double backlash = 0.0;          ///< dead band, total width [rad]
+  double torque_limit = 100.0;    ///< servo torque limit [Nm]
+  double rotor_inertia = 0.8;     ///< J_m [kg m^2]
+  double bandwidth = 30.0;        ///< servo bandwidth [Hz]
+  double integral_time = 0.0;     ///< servo integral time [s]; 0: none (the spec's stiff PD)
+  double encoder_steps = 501923;  ///< steps per output turn
 };
 
 struct ActuatorState {

@@ -34,8 +34,8 @@ std::string inertial(const BodyInertial& b) {
   if (axes.determinant() < 0) axes.col(2) *= -1;
   const Eigen::Quaterniond q(axes);
   const Eigen::Vector3d d = eig.eigenvalues();
-  return fmt::format(R"(<inertial pos="{} {} {}" mass="{}" quat="{} {} {} {}" diaginertia="{} {} {}"/>)", c[0], c[1], c[2], b.mass,
-                     q.w(), q.x(), q.y(), q.z(), d[0], d[1], d[2]);
+  return fmt::format(R"(<inertial pos="{} {} {}" mass="{}" quat="{} {} {} {}" diaginertia="{} {} {}"/>)", c[0], c[1],
+                     c[2], b.mass, q.w(), q.x(), q.y(), q.z(), d[0], d[1], d[2]);
 }
 
 std::string leg(const RobotParams& r, const PlantParams& p, const std::array<BodyInertial, 7>& in, int side) {
@@ -82,22 +82,23 @@ std::string leg(const RobotParams& r, const PlantParams& p, const std::array<Bod
           </body>
         </body>
       </body>)",
-      fmt::arg("s", s), fmt::arg("y", y), fmt::arg("zy", -r.hip_yaw_offset_z),
-      fmt::arg("i0", inertial(in[0])), fmt::arg("i1", inertial(in[1])), fmt::arg("i2", inertial(in[2])),
-      fmt::arg("i3", inertial(in[3])), fmt::arg("i4", inertial(in[4])), fmt::arg("i5", inertial(in[5])),
-      fmt::arg("i6", inertial(in[6])),
-      fmt::arg("j_yaw", joint(std::string(s) + "_hip_yaw", "0 0 1", k[j0 + 0], d)),
-      fmt::arg("zr", -(r.hip_axes_depth - r.hip_yaw_offset_z)),
-      fmt::arg("j_roll", joint(std::string(s) + "_hip_roll", "1 0 0", k[j0 + 1], d)),
-      fmt::arg("j_pitch", joint(std::string(s) + "_hip_pitch", "0 1 0", k[j0 + 2], d)),
-      fmt::arg("thigh_end", -r.thigh + 0.04), fmt::arg("thigh", -r.thigh),
-      fmt::arg("j_knee", joint(std::string(s) + "_knee", "0 1 0", k[j0 + 3], d)),
-      fmt::arg("shank_end", -r.shank + 0.04), fmt::arg("shank", -r.shank),
-      fmt::arg("j_ap", joint(std::string(s) + "_ankle_pitch", "0 1 0", k[j0 + 4], d)),
-      fmt::arg("j_ar", joint(std::string(s) + "_ankle_roll", "1 0 0", k[j0 + 5], d)),
-      fmt::arg("sole_y", side == 0 ? r.sole_offset_y : -r.sole_offset_y), fmt::arg("sole_z", -(r.ankle_to_sole - 0.5 * sole_h)),
-      fmt::arg("half_l", 0.5 * r.sole_length), fmt::arg("half_w", 0.5 * r.sole_width), fmt::arg("half_h", 0.5 * sole_h),
-      fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant));
+                     fmt::arg("s", s), fmt::arg("y", y), fmt::arg("zy", -r.hip_yaw_offset_z),
+                     fmt::arg("i0", inertial(in[0])), fmt::arg("i1", inertial(in[1])), fmt::arg("i2", inertial(in[2])),
+                     fmt::arg("i3", inertial(in[3])), fmt::arg("i4", inertial(in[4])), fmt::arg("i5", inertial(in[5])),
+                     fmt::arg("i6", inertial(in[6])),
+                     fmt::arg("j_yaw", joint(std::string(s) + "_hip_yaw", "0 0 1", k[j0 + 0], d)),
+                     fmt::arg("zr", -(r.hip_axes_depth - r.hip_yaw_offset_z)),
+                     fmt::arg("j_roll", joint(std::string(s) + "_hip_roll", "1 0 0", k[j0 + 1], d)),
+                     fmt::arg("j_pitch", joint(std::string(s) + "_hip_pitch", "0 1 0", k[j0 + 2], d)),
+                     fmt::arg("thigh_end", -r.thigh + 0.04), fmt::arg("thigh", -r.thigh),
+                     fmt::arg("j_knee", joint(std::string(s) + "_knee", "0 1 0", k[j0 + 3], d)),
+                     fmt::arg("shank_end", -r.shank + 0.04), fmt::arg("shank", -r.shank),
+                     fmt::arg("j_ap", joint(std::string(s) + "_ankle_pitch", "0 1 0", k[j0 + 4], d)),
+                     fmt::arg("j_ar", joint(std::string(s) + "_ankle_roll", "1 0 0", k[j0 + 5], d)),
+                     fmt::arg("sole_y", side == 0 ? r.sole_offset_y : -r.sole_offset_y),
+                     fmt::arg("sole_z", -(r.ankle_to_sole - 0.5 * sole_h)), fmt::arg("half_l", 0.5 * r.sole_length),
+                     fmt::arg("half_w", 0.5 * r.sole_width), fmt::arg("half_h", 0.5 * sole_h),
+                     fmt::arg("mu", r.sole_friction), fmt::arg("tc", p.contact_time_constant));
 }
 
 }  // namespace
@@ -105,7 +106,8 @@ std::string leg(const RobotParams& r, const PlantParams& p, const std::array<Bod
 std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
   const JointVector k = p.gear_stiffness();
   const BuiltinInertials in = builtin_inertials(r);
-  const std::string pelvis = fmt::format(R"(    <body name="pelvis" pos="0 0 1">
+  const std::string pelvis = fmt::format(
+      R"(    <body name="pelvis" pos="0 0 1">
       <freejoint name="root"/>
       {i_pelvis}
       <site name="imu" pos="0 0 0" size="0.01"/>
@@ -120,12 +122,11 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
       </body>{left}{right}
     </body>
 )",
-                                         fmt::arg("i_pelvis", inertial(in.pelvis)), fmt::arg("i_chest", inertial(in.chest)),
-                                         fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[kWaistYaw], p.gear_damping)),
-                                         fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z),
-                                         fmt::arg("arm_y", r.arm_y), fmt::arg("arm_top", r.arm_com_z + 0.24),
-                                         fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),
-                                         fmt::arg("left", leg(r, p, in.leg[0], 0)), fmt::arg("right", leg(r, p, in.leg[1], 1)));
+      fmt::arg("i_pelvis", inertial(in.pelvis)), fmt::arg("i_chest", inertial(in.chest)),
+      fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[kWaistYaw], p.gear_damping)),
+      fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z), fmt::arg("arm_y", r.arm_y),
+      fmt::arg("arm_top", r.arm_com_z + 0.24), fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),
+      fmt::arg("left", leg(r, p, in.leg[0], 0)), fmt::arg("right", leg(r, p, in.leg[1], 1)));
   return twin_document("flexgait_thormang_twin", false, r.sole_friction, p, pelvis, "");
 }
 
@@ -174,9 +175,8 @@ std::string twin_document(const std::string& model, bool inertia_from_geom, doub
 </mujoco>
 )",
                      fmt::arg("asset", floor.asset), fmt::arg("visual", look_visual_mjcf(1280, 720)),
-                     fmt::arg("look", look_assets_mjcf()),
-                     fmt::arg("floor", floor.geoms), fmt::arg("model", model), fmt::arg("ifg", inertia_from_geom ? "true" : "false"),
-                     fmt::arg("dt", p.physics_dt),
+                     fmt::arg("look", look_assets_mjcf()), fmt::arg("floor", floor.geoms), fmt::arg("model", model),
+                     fmt::arg("ifg", inertia_from_geom ? "true" : "false"), fmt::arg("dt", p.physics_dt),
                      fmt::arg("bodies", bodies), fmt::arg("contact", contact));
 }
 

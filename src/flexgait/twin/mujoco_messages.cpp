@@ -36,7 +36,9 @@ void route_mujoco_messages_to_stderr() {
   mju_user_error = error_to_stderr;
 }
 
-bool mujoco_messages_hooked() { return mju_user_warning != nullptr || mju_user_error != nullptr; }
+bool mujoco_messages_hooked() {
+  return mju_user_warning != nullptr || mju_user_error != nullptr;
+}
 
 int mujoco_warning_count(const mjData* d) {
   int n = 0;

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "flexgait/twin/sensor_faults.hpp"
 #include "flexgait/twin/detail/elastic_drives.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
+#include "flexgait/twin/sensor_faults.hpp"
 
 namespace flexgait::humanoid {
 namespace {
@@ -30,7 +30,9 @@ int twin_joint(const mjModel* m, int j) {
   return require(m, mjOBJ_JOINT, name);
 }
 
-int sensor_adr(const mjModel* m, const char* name) { return m->sensor_adr[require(m, mjOBJ_SENSOR, name)]; }
+int sensor_adr(const mjModel* m, const char* name) {
+  return m->sensor_adr[require(m, mjOBJ_SENSOR, name)];
+}
 
 /// MuJoCo's state of one model, copied with mj_copyData.
 class Data {
@@ -58,7 +60,7 @@ struct PlantState {
   SensorReadings sensors;
   std::mt19937_64 rng;
   std::array<double, 3> gyro_drift{}, accel_drift{};  ///< bias random walks [rad/s], [m/s^2]
-  std::array<FaultChannel<6>, 2> ft_fault;             ///< left, right: force then torque
+  std::array<FaultChannel<6>, 2> ft_fault;            ///< left, right: force then torque
   FaultChannel<3> gyro_fault, accel_fault;
   FaultChannel<4> ahrs_fault;
   FaultChannel<1> encoder_fault;
@@ -92,14 +94,21 @@ struct PlantAccess {
   static const mjModel* model(const HumanoidPlant& p) { return p.impl_->model.get(); }
   static const mjData* data(const HumanoidPlant& p) { return p.impl_->state.data.get(); }
 };
-const mjModel* plant_model(const HumanoidPlant& plant) { return PlantAccess::model(plant); }
-const mjData* plant_data(const HumanoidPlant& plant) { return PlantAccess::data(plant); }
+const mjModel* plant_model(const HumanoidPlant& plant) {
+  return PlantAccess::model(plant);
+}
+const mjData* plant_data(const HumanoidPlant& plant) {
+  return PlantAccess::data(plant);
+}
 
 JointVector standing_pose(const RobotParams& r, double pelvis_height) {
   const double leg = pelvis_height - r.hip_axes_depth - r.ankle_to_sole;  // hip axes to ankle axes
   const double reach = r.thigh + r.shank;
   if (leg <= 0.05 * reach || leg >= reach)
-    throw ConfigError("walk.pelvis_height", fmt::format("key 'walk.pelvis_height' = '{}': out of the legs' reach (hip axes to ankle axes must be between 5 % and 100 % of thigh + shank)", pelvis_height));
+    throw ConfigError("walk.pelvis_height",
+                      fmt::format("key 'walk.pelvis_height' = '{}': out of the legs' reach (hip axes to ankle axes "
+                                  "must be between 5 % and 100 % of thigh + shank)",
+                                  pelvis_height));
   // Law of cosines with the hip-ankle line vertical.
   const double c_knee = (r.thigh * r.thigh + r.shank * r.shank - leg * leg) / (2 * r.thigh * r.shank);
   const double knee = std::numbers::pi - std::acos(c_knee);
@@ -204,13 +213,27 @@ HumanoidPlant& HumanoidPlant::operator=(const HumanoidPlant& other) {
   return *this;
 }
 
-double HumanoidPlant::time() const { return impl_->state.data.get()->time; }
-double HumanoidPlant::total_mass() const { return impl_->model->body_subtreemass[0]; }
-double HumanoidPlant::gravity() const { return -impl_->model->opt.gravity[2]; }
-std::string HumanoidPlant::warnings_text() const { return mujoco_warnings_text(impl_->state.data.get()); }
-const SensorReadings& HumanoidPlant::sensors() const { return impl_->state.sensors; }
-const PlantParams& HumanoidPlant::params() const { return impl_->params; }
-const Terrain& HumanoidPlant::terrain() const { return impl_->terrain; }
+double HumanoidPlant::time() const {
+  return impl_->state.data.get()->time;
+}
+double HumanoidPlant::total_mass() const {
+  return impl_->model->body_subtreemass[0];
+}
+double HumanoidPlant::gravity() const {
+  return -impl_->model->opt.gravity[2];
+}
+std::string HumanoidPlant::warnings_text() const {
+  return mujoco_warnings_text(impl_->state.data.get());
+}
+const SensorReadings& HumanoidPlant::sensors() const {
+  return impl_->state.sensors;
+}
+const PlantParams& HumanoidPlant::params() const {
+  return impl_->params;
+}
+const Terrain& HumanoidPlant::terrain() const {
+  return impl_->terrain;
+}
 
 void HumanoidPlant::reset(const JointVector& pose) {
   Impl& p = *impl_;
@@ -279,7 +302,9 @@ void HumanoidPlant::step(const JointVector& command) {
   p.read_sensors();
 }
 
-void HumanoidPlant::set_pushes(std::vector<Push> pushes) { impl_->state.pushes = std::move(pushes); }
+void HumanoidPlant::set_pushes(std::vector<Push> pushes) {
+  impl_->state.pushes = std::move(pushes);
+}
 
 void HumanoidPlant::Impl::apply_push() {
   mjData* d = state.data.get();
@@ -289,7 +314,8 @@ void HumanoidPlant::Impl::apply_push() {
     for (int i = 0; i < 6; ++i) d->xfrc_applied[6 * b + i] = 0.0;
   state.push_force = {};
   for (const Push& push : state.pushes) {
-    const bool on = push.active() && n >= std::lround(push.time / dt) && n < std::lround((push.time + push.duration) / dt);
+    const bool on =
+        push.active() && n >= std::lround(push.time / dt) && n < std::lround((push.time + push.duration) / dt);
     if (!on) continue;
     const int body = push_body[static_cast<int>(push.body)];
     for (int i = 0; i < 3; ++i) {
@@ -339,10 +365,9 @@ void HumanoidPlant::Impl::read_sensors() {
     const std::array<double, 3> d = {noisy(0, imu.ahrs_noise), noisy(0, imu.ahrs_noise), noisy(0, imu.ahrs_noise)};
     const auto q = s.imu.quat;
     const std::array<double, 4> e = {1.0, 0.5 * d[0], 0.5 * d[1], 0.5 * d[2]};
-    std::array<double, 4> r = {q[0] * e[0] - q[1] * e[1] - q[2] * e[2] - q[3] * e[3],
-                               q[0] * e[1] + q[1] * e[0] + q[2] * e[3] - q[3] * e[2],
-                               q[0] * e[2] - q[1] * e[3] + q[2] * e[0] + q[3] * e[1],
-                               q[0] * e[3] + q[1] * e[2] - q[2] * e[1] + q[3] * e[0]};
+    std::array<double, 4> r = {
+        q[0] * e[0] - q[1] * e[1] - q[2] * e[2] - q[3] * e[3], q[0] * e[1] + q[1] * e[0] + q[2] * e[3] - q[3] * e[2],
+        q[0] * e[2] - q[1] * e[3] + q[2] * e[0] + q[3] * e[1], q[0] * e[3] + q[1] * e[2] - q[2] * e[1] + q[3] * e[0]};
     const double n = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
     for (int i = 0; i < 4; ++i) s.imu.quat[i] = r[i] / n;
   }

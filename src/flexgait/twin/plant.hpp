@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "flexgait/twin/disturbance.hpp"
 #include "flexgait/robot/joints.hpp"
 #include "flexgait/robot/robot_params.hpp"
-#include "flexgait/twin/plant_params.hpp"
 #include "flexgait/robot/sensors.hpp"
+#include "flexgait/twin/disturbance.hpp"
+#include "flexgait/twin/plant_params.hpp"
 #include "flexgait/twin/terrain.hpp"
 
 namespace flexgait::humanoid {
@@ -31,18 +31,18 @@ struct GroundTruth {
   JointVector gear_torque{};                  ///< [Nm]
   std::array<double, 3> pelvis_pos{};         ///< [m]
   std::array<double, 4> pelvis_quat{1, 0, 0, 0};
-  std::array<double, 3> com{};                ///< whole-body centre of mass [m]
-  std::array<double, 2> zmp{};                ///< centre of pressure of the floor contacts (x, y) [m]
+  std::array<double, 3> com{};                      ///< whole-body centre of mass [m]
+  std::array<double, 2> zmp{};                      ///< centre of pressure of the floor contacts (x, y) [m]
   std::array<std::array<double, 3>, 2> sole_pos{};  ///< left, right: sole centre (TwinModel::sole_center) [m]
-  std::array<double, 2> sole_yaw{};           ///< heading of each sole [rad]
-  std::array<bool, 2> sole_contact{};         ///< the sole touches the floor
-  double normal_force = 0;                    ///< total floor normal force [N]
-  bool non_sole_contact = false;              ///< a body other than a sole touches the floor
-  int warnings = 0;                           ///< MuJoCo warnings raised so far
-  std::array<double, 3> push_force{};         ///< push force of the last physics step (world) [N]
-  std::array<double, 3> push_impulse{};       ///< push impulse applied so far (world) [N s]
-  std::array<double, 3> floor_impulse{};      ///< impulse of the floor's contact forces so far (world) [N s]
-  std::array<double, 3> linear_momentum{};    ///< total linear momentum of the robot (world) [kg m/s]
+  std::array<double, 2> sole_yaw{};                 ///< heading of each sole [rad]
+  std::array<bool, 2> sole_contact{};               ///< the sole touches the floor
+  double normal_force = 0;                          ///< total floor normal force [N]
+  bool non_sole_contact = false;                    ///< a body other than a sole touches the floor
+  int warnings = 0;                                 ///< MuJoCo warnings raised so far
+  std::array<double, 3> push_force{};               ///< push force of the last physics step (world) [N]
+  std::array<double, 3> push_impulse{};             ///< push impulse applied so far (world) [N s]
+  std::array<double, 3> floor_impulse{};            ///< impulse of the floor's contact forces so far (world) [N s]
+  std::array<double, 3> linear_momentum{};          ///< total linear momentum of the robot (world) [kg m/s]
 };
 
 /// The twin's model: its MJCF (model_xml.hpp's names: joints by kJointNames, sole geoms l_sole /

@@ -248,13 +248,20 @@ std::string scene_model(int width, int height) {
 
 int mj_type(replay::GeomType t) {
   switch (t) {
-    case replay::GeomType::Plane: return mjGEOM_PLANE;
-    case replay::GeomType::Sphere: return mjGEOM_SPHERE;
-    case replay::GeomType::Capsule: return mjGEOM_CAPSULE;
-    case replay::GeomType::Ellipsoid: return mjGEOM_ELLIPSOID;
-    case replay::GeomType::Cylinder: return mjGEOM_CYLINDER;
-    case replay::GeomType::Box: return mjGEOM_BOX;
-    case replay::GeomType::Mesh: return mjGEOM_NONE;  // drawn as its bounding box below
+    case replay::GeomType::Plane:
+      return mjGEOM_PLANE;
+    case replay::GeomType::Sphere:
+      return mjGEOM_SPHERE;
+    case replay::GeomType::Capsule:
+      return mjGEOM_CAPSULE;
+    case replay::GeomType::Ellipsoid:
+      return mjGEOM_ELLIPSOID;
+    case replay::GeomType::Cylinder:
+      return mjGEOM_CYLINDER;
+    case replay::GeomType::Box:
+      return mjGEOM_BOX;
+    case replay::GeomType::Mesh:
+      return mjGEOM_NONE;  // drawn as its bounding box below
   }
   return mjGEOM_SPHERE;
 }
@@ -320,7 +327,8 @@ const std::vector<unsigned char>& SceneRenderer::render(const replay::Scene& sce
   o.light_near(cam.lookat);
 
   auto add_geom = [&](const replay::Geom& g, const mjtNum body_pos[3], const mjtNum body_quat[4]) {
-    mjtNum pos[3], quat[4], gq[4] = {g.quat[0], g.quat[1], g.quat[2], g.quat[3]}, gp[3] = {g.pos[0], g.pos[1], g.pos[2]};
+    mjtNum pos[3], quat[4], gq[4] = {g.quat[0], g.quat[1], g.quat[2], g.quat[3]},
+                            gp[3] = {g.pos[0], g.pos[1], g.pos[2]};
     mju_normalize4(gq);
     mju_rotVecQuat(pos, gp, body_quat);
     for (int i = 0; i < 3; ++i) pos[i] += body_pos[i];
@@ -333,7 +341,8 @@ const std::vector<unsigned char>& SceneRenderer::render(const replay::Scene& sce
       type = mjGEOM_BOX;
       mjtNum lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
       for (std::size_t v = 0; v + 2 < g.vertices.size(); v += 3)
-        for (int i = 0; i < 3; ++i) lo[i] = std::min<mjtNum>(lo[i], g.vertices[v + i]), hi[i] = std::max<mjtNum>(hi[i], g.vertices[v + i]);
+        for (int i = 0; i < 3; ++i)
+          lo[i] = std::min<mjtNum>(lo[i], g.vertices[v + i]), hi[i] = std::max<mjtNum>(hi[i], g.vertices[v + i]);
       mjtNum centre[3], shifted[3];
       for (int i = 0; i < 3; ++i) size[i] = 0.5 * (hi[i] - lo[i]), centre[i] = 0.5 * (hi[i] + lo[i]);
       mju_rotVecQuat(shifted, centre, quat);

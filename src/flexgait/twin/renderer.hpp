@@ -37,8 +37,8 @@ struct RenderView {
 
 /// A sole's rectangle on the floor.
 struct FootprintMarker {
-  std::array<double, 3> centre{};     ///< [m]
-  double yaw = 0;                     ///< [rad]
+  std::array<double, 3> centre{};                 ///< [m]
+  double yaw = 0;                                 ///< [rad]
   double half_length = 0.11, half_width = 0.065;  ///< [m]
 };
 
@@ -67,8 +67,8 @@ inline constexpr std::array<std::array<float, 4>, 6> kMarkerColours{{{0.2F, 0.45
 /// A push drawn as an arrow: along the force, ending kPushGap [m] before the pushed body's centre
 /// of mass (outside the torso), 0.1 m + kPushScale per newton long, at most 1 m (a 10 N push:
 /// 0.16 m, ~60 pixels at 1280 × 720 from the side camera).
-inline constexpr double kPushGap = 0.3;       ///< [m]
-inline constexpr double kPushScale = 0.006;   ///< [m/N]
+inline constexpr double kPushGap = 0.3;      ///< [m]
+inline constexpr double kPushScale = 0.006;  ///< [m/N]
 struct PushArrow {
   std::array<double, 3> from{}, to{};  ///< [m], world
   double newtons = 0;                  ///< |F| [N]

@@ -35,12 +35,25 @@ bool shape(const mjModel* m, int i, replay::Geom& g) {
   const mjtNum* s = m->geom_size + 3 * i;
   g.size = {s[0], s[1], s[2]};
   switch (m->geom_type[i]) {
-    case mjGEOM_PLANE: g.type = replay::GeomType::Plane; g.checker = true; break;
-    case mjGEOM_SPHERE: g.type = replay::GeomType::Sphere; break;
-    case mjGEOM_CAPSULE: g.type = replay::GeomType::Capsule; break;
-    case mjGEOM_ELLIPSOID: g.type = replay::GeomType::Ellipsoid; break;
-    case mjGEOM_CYLINDER: g.type = replay::GeomType::Cylinder; break;
-    case mjGEOM_BOX: g.type = replay::GeomType::Box; break;
+    case mjGEOM_PLANE:
+      g.type = replay::GeomType::Plane;
+      g.checker = true;
+      break;
+    case mjGEOM_SPHERE:
+      g.type = replay::GeomType::Sphere;
+      break;
+    case mjGEOM_CAPSULE:
+      g.type = replay::GeomType::Capsule;
+      break;
+    case mjGEOM_ELLIPSOID:
+      g.type = replay::GeomType::Ellipsoid;
+      break;
+    case mjGEOM_CYLINDER:
+      g.type = replay::GeomType::Cylinder;
+      break;
+    case mjGEOM_BOX:
+      g.type = replay::GeomType::Box;
+      break;
     case mjGEOM_MESH: {
       g.type = replay::GeomType::Mesh;
       const int k = m->geom_dataid[i];
@@ -106,7 +119,7 @@ ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title,
   std::vector<int> scene_body(static_cast<std::size_t>(m->nbody), -1);
   for (int i = 0; i < m->ngeom; ++i) {
     if (m->geom_rgba[4 * i + 3] <= 0 && m->geom_matid[i] < 0) continue;  // invisible (collision-only) geoms
-    if (m->geom_group[i] > 2) continue;                                    // MuJoCo hides groups 3-5 by default
+    if (m->geom_group[i] > 2) continue;                                  // MuJoCo hides groups 3-5 by default
     replay::Geom g;
     if (!shape(m, i, g)) continue;
     const int b = m->geom_bodyid[i];

@@ -40,9 +40,9 @@ std::string name_of(const mjModel* m, mjtObj type, int id) {
 /// solver).
 void check_text(const std::string& text, const std::string& source) {
   if (text.find('<') == std::string::npos)
-    fail("robot.description", source, text.find_first_not_of(" \t\r\n") == std::string::npos
-                                          ? "the file is empty"
-                                          : "not an MJCF or URDF file (no XML element)");
+    fail("robot.description", source,
+         text.find_first_not_of(" \t\r\n") == std::string::npos ? "the file is empty"
+                                                                : "not an MJCF or URDF file (no XML element)");
   for_each_xml_attribute(text, [&](const XmlAttribute& a) {
     if (names_something(a.name)) return;
     const std::string bad = non_finite_token(a.value);
@@ -55,7 +55,8 @@ void check_text(const std::string& text, const std::string& source) {
     const std::optional<double> x = mass ? parse_finite_number(a.value) : std::nullopt;
     if (x && *x < 0)
       fail("robot.description", source,
-           fmt::format("line {}: <{} {}=\"{}\">: a mass must be >= 0 kg", a.line, a.element, a.name, one_line(a.value, 60)));
+           fmt::format("line {}: <{} {}=\"{}\">: a mass must be >= 0 kg", a.line, a.element, a.name,
+                       one_line(a.value, 60)));
   });
 }
 
@@ -79,8 +80,9 @@ ModelPtr compile(const std::string& text, const std::string& format, const std::
                  std::vector<std::string>& warnings) {
   check_text(text, source);
   std::error_code ec;
-  const std::string dir =
-      std::filesystem::is_regular_file(source, ec) ? std::filesystem::path(source).parent_path().string() : std::string();
+  const std::string dir = std::filesystem::is_regular_file(source, ec)
+                              ? std::filesystem::path(source).parent_path().string()
+                              : std::string();
   std::string xml = format == "xml" ? translate_mujoco3(text, warnings, dir) : text;
   if (format == "urdf") {
     // Keep bodies on fixed joints (the feet, sensor frames): MuJoCo fuses them by default for URDF.
@@ -103,18 +105,29 @@ ModelPtr compile(const std::string& text, const std::string& format, const std::
   return {m, mj_deleteModel};
 }
 
-std::array<double, 3> vec3(const mjtNum* v) { return {v[0], v[1], v[2]}; }
-std::array<double, 4> vec4(const mjtNum* v) { return {v[0], v[1], v[2], v[3]}; }
+std::array<double, 3> vec3(const mjtNum* v) {
+  return {v[0], v[1], v[2]};
+}
+std::array<double, 4> vec4(const mjtNum* v) {
+  return {v[0], v[1], v[2], v[3]};
+}
 
 const char* geom_type_name(int type) {
   switch (type) {
-    case mjGEOM_PLANE: return "plane";
-    case mjGEOM_SPHERE: return "sphere";
-    case mjGEOM_CAPSULE: return "capsule";
-    case mjGEOM_ELLIPSOID: return "ellipsoid";
-    case mjGEOM_CYLINDER: return "cylinder";
-    case mjGEOM_BOX: return "box";
-    default: return nullptr;  // meshes and height fields: not carried into the twin
+    case mjGEOM_PLANE:
+      return "plane";
+    case mjGEOM_SPHERE:
+      return "sphere";
+    case mjGEOM_CAPSULE:
+      return "capsule";
+    case mjGEOM_ELLIPSOID:
+      return "ellipsoid";
+    case mjGEOM_CYLINDER:
+      return "cylinder";
+    case mjGEOM_BOX:
+      return "box";
+    default:
+      return nullptr;  // meshes and height fields: not carried into the twin
   }
 }
 
@@ -173,7 +186,8 @@ void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
   if (!pair.empty())
     fail("robot.exclude_contacts", exclude,
          fmt::format("the bodies {} collide at zero joint angles; exclude the pair (robot.exclude_contacts={}) or "
-                     "give their geoms no contact", pair, pair));
+                     "give their geoms no contact",
+                     pair, pair));
 }
 
 }  // namespace
@@ -207,7 +221,8 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     const std::string key = "robot.joints." + std::string(kJointNames[j]);
     const std::string& name = params.joints[j];
     // A trunk without a waist (none, or left unmapped): the chest is rigid on the pelvis.
-    if (j == kWaistYaw && (name == "none" || (name == kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0))) {
+    if (j == kWaistYaw &&
+        (name == "none" || (name == kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0))) {
       jid[j] = -1;
       continue;
     }
@@ -249,7 +264,8 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       joint.armature = m->dof_armature[m->jnt_dofadr[k]];
       joint.frictionloss = m->dof_frictionloss[m->jnt_dofadr[k]];
       joint.force_limit = actuator_force_limit(m, k);
-      if (joint.mapped >= 0) out.joint[joint.mapped] = {static_cast<int>(out.bodies.size()), static_cast<int>(body.joints.size())};
+      if (joint.mapped >= 0)
+        out.joint[joint.mapped] = {static_cast<int>(out.bodies.size()), static_cast<int>(body.joints.size())};
       body.joints.push_back(joint);
     }
     for (int g = m->body_geomadr[b]; g >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
@@ -298,12 +314,14 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       if (path.front() == jid[kWaistYaw])
         fail("robot.joints.waist_yaw", params.joints[kWaistYaw],
              fmt::format("this joint is between the root and the leg to {}; flexgait's legs hang from the root: map "
-                         "robot.joints.waist_yaw=none to hold it rigid", f.body));
+                         "robot.joints.waist_yaw=none to hold it rigid",
+                         f.body));
       path.erase(path.begin());
     }
     if (path.size() != kLegJoints)
       fail(prefix + ".body", f.body,
-           fmt::format("the leg from the root to this foot has {} joints; flexgait's legs have {}", path.size(), kLegJoints));
+           fmt::format("the leg from the root to this foot has {} joints; flexgait's legs have {}", path.size(),
+                       kLegJoints));
     // The leg's joints by role, whatever their order within the hip and within the ankle.
     const int j0 = leg_first_joint(side);
     for (int i = 0; i < kLegJoints; ++i) {
@@ -329,7 +347,8 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       if (group != at)
         fail("robot.joints." + std::string(kJointNames[role]), params.joints[role],
              fmt::format("joint {} of the leg to {}; a leg's joints from the root are the three hip joints (any "
-                         "order), the knee, then the two ankle joints (any order)", i + 1, f.body));
+                         "order), the knee, then the two ankle joints (any order)",
+                         i + 1, f.body));
       out.leg_order[side][static_cast<std::size_t>(i)] = r;
     }
     out.foot[side] = index[static_cast<std::size_t>(b)];
@@ -357,7 +376,8 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       sole.length = size[0];
       sole.width = size[1];
     } else {
-      fail(prefix + ".sole_geom", f.sole_geom, fmt::format("the foot {} has no sole: name its box geom or give {}.sole_size", f.body, prefix));
+      fail(prefix + ".sole_geom", f.sole_geom,
+           fmt::format("the foot {} has no sole: name its box geom or give {}.sole_size", f.body, prefix));
     }
   }
   if (params.imu_body != "root") {
@@ -377,7 +397,8 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
         if (ia >= 0 && ib >= 0) ids = {index[static_cast<std::size_t>(ia)], index[static_cast<std::size_t>(ib)]};
       }
       if (ids[0] < 0 || ids[1] < 0)
-        fail("robot.exclude_contacts", params.exclude_contacts, fmt::format("'{}' is not a pair body:body of the robot", pair));
+        fail("robot.exclude_contacts", params.exclude_contacts,
+             fmt::format("'{}' is not a pair body:body of the robot", pair));
       out.exclude.push_back(ids);
     }
   }
@@ -414,7 +435,8 @@ LoadedRobot load_robot(const RobotDescriptionParams& params) {
          fmt::format("larger than {} bytes; a robot description is at most a few megabytes (meshes are separate files)",
                      kMaxDescriptionBytes));
   LoadedRobot robot = load_robot_text(text, ext.substr(1), path, params);
-  for (const std::string& w : robot.warnings) fmt::print(stderr, "warning: robot.description {}: {}\n", one_line(path), w);
+  for (const std::string& w : robot.warnings)
+    fmt::print(stderr, "warning: robot.description {}: {}\n", one_line(path), w);
   return robot;
 }
 

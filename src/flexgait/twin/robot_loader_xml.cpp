@@ -14,7 +14,9 @@
 namespace flexgait::humanoid {
 namespace {
 
-bool space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+bool space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
 bool name_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == ':' || c == '-' || c == '.';
 }
@@ -26,7 +28,8 @@ void for_each_xml_attribute(std::string_view text, const std::function<void(cons
   int line = 1;
   auto advance_to = [&](std::size_t to) {  // moves i to `to`, counting line ends
     to = std::min(to, text.size());
-    line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i), text.begin() + static_cast<std::ptrdiff_t>(to), '\n'));
+    line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(i),
+                                        text.begin() + static_cast<std::ptrdiff_t>(to), '\n'));
     i = to;
   };
   auto skip_past = [&](std::string_view close) {
@@ -84,10 +87,10 @@ void for_each_xml_attribute(std::string_view text, const std::function<void(cons
 
 bool names_something(std::string_view a) {
   static constexpr std::array<std::string_view, 33> kNames = {
-      "name",    "class",    "childclass", "file",     "filename", "link",    "mesh",       "material", "texture",
-      "hfield",  "joint",    "joint1",     "joint2",   "body",     "body1",   "body2",      "geom",     "geom1",
-      "geom2",   "site",     "tendon",     "actuator", "target",   "objname", "model",      "prefix",   "meshdir",
-      "texturedir", "assetdir", "parent", "child", "version", "xmlns"};
+      "name",       "class",    "childclass", "file",     "filename", "link",    "mesh",  "material", "texture",
+      "hfield",     "joint",    "joint1",     "joint2",   "body",     "body1",   "body2", "geom",     "geom1",
+      "geom2",      "site",     "tendon",     "actuator", "target",   "objname", "model", "prefix",   "meshdir",
+      "texturedir", "assetdir", "parent",     "child",    "version",  "xmlns"};
   return std::find(kNames.begin(), kNames.end(), a) != kNames.end();
 }
 
@@ -165,13 +168,16 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
   if (!missing.empty()) {
     int geoms = 0;
     for_each_xml_attribute(text, [&](const XmlAttribute& a) {
-      if (a.element == "geom" && a.name == "mesh" && std::find(missing.begin(), missing.end(), a.value) != missing.end()) {
+      if (a.element == "geom" && a.name == "mesh" &&
+          std::find(missing.begin(), missing.end(), a.value) != missing.end()) {
         edits.push_back({a.tag, end_of_tag(a.tag), ""});
         ++geoms;
       }
     });
-    warnings.push_back(fmt::format("line {}: {} mesh files not found (first: {}); they and the {} geoms showing them "
-                                   "are dropped", missing_line, missing.size(), missing.front(), geoms));
+    warnings.push_back(
+        fmt::format("line {}: {} mesh files not found (first: {}); they and the {} geoms showing them "
+                    "are dropped",
+                    missing_line, missing.size(), missing.front(), geoms));
   }
   for_each_xml_attribute(text, [&](const XmlAttribute& a) {
     if (a.element == "compiler") {
@@ -182,8 +188,8 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
       const std::size_t v = text.find(a.value, a.begin);
       edits.push_back({v, v + a.value.size(), "implicit"});
       note(a, "taken as \"implicit\" (MuJoCo 2.2.2 has no implicitfast; the twin sets its own integrator)");
-    } else if ((a.element == "joint" && (a.name == "actuatorfrcrange" || a.name == "actuatorfrclimited" ||
-                                         a.name == "actuatorgravcomp")) ||
+    } else if ((a.element == "joint" &&
+                (a.name == "actuatorfrcrange" || a.name == "actuatorfrclimited" || a.name == "actuatorgravcomp")) ||
                a.name == "inheritrange" || a.name == "kv" || (a.element == "global" && a.name == "ellipsoidinertia")) {
       edits.push_back({a.begin, a.end, ""});
       note(a, "dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)");

@@ -79,10 +79,12 @@ struct ImuModel {
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
-    v("plant.imu.gyro_bias", s.gyro_bias, {.unit = "rad/s", .doc = "gyro bias on each axis", .bounds = closed(-10, 10)});
+    v("plant.imu.gyro_bias", s.gyro_bias,
+      {.unit = "rad/s", .doc = "gyro bias on each axis", .bounds = closed(-10, 10)});
     v("plant.imu.gyro_bias_walk", s.gyro_bias_walk,
       {.unit = "rad/s/sqrt(s)", .doc = "gyro bias random walk (drift) density", .bounds = closed(0, 10)});
-    v("plant.imu.accel_bias", s.accel_bias, {.unit = "m/s^2", .doc = "accelerometer bias on each axis", .bounds = closed(-100, 100)});
+    v("plant.imu.accel_bias", s.accel_bias,
+      {.unit = "m/s^2", .doc = "accelerometer bias on each axis", .bounds = closed(-100, 100)});
     v("plant.imu.accel_bias_walk", s.accel_bias_walk,
       {.unit = "m/s^2/sqrt(s)", .doc = "accelerometer bias random walk (drift) density", .bounds = closed(0, 100)});
     v("plant.imu.ahrs_noise", s.ahrs_noise,
@@ -98,8 +100,7 @@ class FaultChannel {
   FaultChannel() = default;  ///< no fault
   /// \param period the interval between samples [s] (sizes the latency buffer)
   FaultChannel(const FaultSpec& spec, double period) : spec_(spec) {
-    if (spec_.kind == FaultKind::kLatency)
-      history_.resize(static_cast<std::size_t>(spec_.delay / period) + 3);
+    if (spec_.kind == FaultKind::kLatency) history_.resize(static_cast<std::size_t>(spec_.delay / period) + 3);
   }
 
   /// Turns the sample (values, stamp) taken at time t into what the sensor delivers.

@@ -17,7 +17,8 @@ constexpr double kBoxHalfHeight = 0.5;   ///< [m]
 std::string level_box(const std::string& name, double x0, double x1, double top, const std::string& contact) {
   return fmt::format(R"(    <geom name="{}" type="box" size="{} {} {}" pos="{} 0 {}" {}/>
 )",
-                     name, 0.5 * (x1 - x0), kBoxHalfWidth, kBoxHalfHeight, 0.5 * (x0 + x1), top - kBoxHalfHeight, contact);
+                     name, 0.5 * (x1 - x0), kBoxHalfWidth, kBoxHalfHeight, 0.5 * (x0 + x1), top - kBoxHalfHeight,
+                     contact);
 }
 
 /// The nodes of the rough floor (terrain.hpp: smoothed white noise scaled to max |h| = A).
@@ -31,7 +32,8 @@ HeightGrid rough_grid(const TerrainParams& p) {
   const double sigma = 0.5 * p.rough_correlation / g.cell;
   const int radius = static_cast<int>(std::ceil(3 * sigma));
   std::vector<double> kernel(static_cast<std::size_t>(2 * radius + 1));
-  for (int i = -radius; i <= radius; ++i) kernel[static_cast<std::size_t>(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
+  for (int i = -radius; i <= radius; ++i)
+    kernel[static_cast<std::size_t>(i + radius)] = std::exp(-0.5 * i * i / (sigma * sigma));
   const int rows = g.nrow + 2 * radius, cols = g.ncol + 2 * radius;
   std::vector<double> noise(static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols));
   std::mt19937_64 rng(static_cast<std::uint64_t>(p.rough_seed));
@@ -42,7 +44,8 @@ HeightGrid rough_grid(const TerrainParams& p) {
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < g.ncol; ++c) {
       double s = 0;
-      for (int i = 0; i <= 2 * radius; ++i) s += kernel[static_cast<std::size_t>(i)] * noise[static_cast<std::size_t>(r * cols + c + i)];
+      for (int i = 0; i <= 2 * radius; ++i)
+        s += kernel[static_cast<std::size_t>(i)] * noise[static_cast<std::size_t>(r * cols + c + i)];
       along_x[static_cast<std::size_t>(r * g.ncol + c)] = s;
     }
   g.height.assign(static_cast<std::size_t>(g.nrow) * static_cast<std::size_t>(g.ncol), 0.0);
@@ -61,7 +64,9 @@ HeightGrid rough_grid(const TerrainParams& p) {
 
 }  // namespace
 
-double rough_cell(const TerrainParams& p) { return std::min(0.02, 0.5 * p.rough_correlation); }
+double rough_cell(const TerrainParams& p) {
+  return std::min(0.02, 0.5 * p.rough_correlation);
+}
 
 Terrain::Terrain(const TerrainParams& params) : params_(params) {
   if (params_.kind == TerrainKind::kRough) grid_ = rough_grid(params_);
@@ -83,14 +88,16 @@ double Terrain::height(double x, double y) const {
       const int c = std::min(static_cast<int>(u), grid_.ncol - 2), r = std::min(static_cast<int>(v), grid_.nrow - 2);
       const double fu = u - c, fv = v - r;
       auto at = [&](int rr, int cc) { return grid_.height[static_cast<std::size_t>(rr * grid_.ncol + cc)]; };
-      return (1 - fv) * ((1 - fu) * at(r, c) + fu * at(r, c + 1)) + fv * ((1 - fu) * at(r + 1, c) + fu * at(r + 1, c + 1));
+      return (1 - fv) * ((1 - fu) * at(r, c) + fu * at(r, c + 1)) +
+             fv * ((1 - fu) * at(r + 1, c) + fu * at(r + 1, c + 1));
     }
   }
   return 0.0;
 }
 
 TerrainMjcf terrain_mjcf(const TerrainParams& p, double mu, double tc) {
-  const std::string contact = fmt::format(R"(contype="1" conaffinity="1" friction="{} 0.005 0.0001" solref="{} 1" material="flexgait_floor")", mu, tc);
+  const std::string contact = fmt::format(
+      R"(contype="1" conaffinity="1" friction="{} 0.005 0.0001" solref="{} 1" material="flexgait_floor")", mu, tc);
   TerrainMjcf out;
   switch (p.kind) {
     case TerrainKind::kFlat:
@@ -102,9 +109,11 @@ TerrainMjcf terrain_mjcf(const TerrainParams& p, double mu, double tc) {
       const double a = p.ramp_angle, c = std::cos(a), s = std::sin(a);
       const double cx = p.ramp_start + kBoxHalfLength * c + kBoxHalfHeight * s;
       const double cz = kBoxHalfLength * s - kBoxHalfHeight * c;
-      out.geoms = level_box("floor", p.ramp_start - 2 * kBoxHalfLength, p.ramp_start, 0.0, contact) +
-                  fmt::format("    <geom name=\"floor_1\" type=\"box\" size=\"{} {} {}\" pos=\"{} 0 {}\" axisangle=\"0 1 0 {}\" {}/>\n",
-                              kBoxHalfLength, kBoxHalfWidth, kBoxHalfHeight, cx, cz, -a, contact);
+      out.geoms =
+          level_box("floor", p.ramp_start - 2 * kBoxHalfLength, p.ramp_start, 0.0, contact) +
+          fmt::format(
+              "    <geom name=\"floor_1\" type=\"box\" size=\"{} {} {}\" pos=\"{} 0 {}\" axisangle=\"0 1 0 {}\" {}/>\n",
+              kBoxHalfLength, kBoxHalfWidth, kBoxHalfHeight, cx, cz, -a, contact);
       break;
     }
     case TerrainKind::kStep:
@@ -116,10 +125,11 @@ TerrainMjcf terrain_mjcf(const TerrainParams& p, double mu, double tc) {
       const double cell = rough_cell(p);
       const int ncol = static_cast<int>(std::lround((kRoughXMax - kRoughXMin) / cell)) + 1;
       const int nrow = static_cast<int>(std::lround(2 * kRoughHalfWidth / cell)) + 1;
-      out.asset = fmt::format("    <hfield name=\"{}\" nrow=\"{}\" ncol=\"{}\" size=\"{} {} {} 0.1\"/>\n", kTerrainHfield, nrow, ncol,
-                              0.5 * (kRoughXMax - kRoughXMin), kRoughHalfWidth, 2 * p.rough_amplitude);
-      out.geoms = fmt::format("    <geom name=\"floor\" type=\"hfield\" hfield=\"{}\" pos=\"{} 0 {}\" {}/>\n", kTerrainHfield,
-                              0.5 * (kRoughXMin + kRoughXMax), -p.rough_amplitude, contact);
+      out.asset =
+          fmt::format("    <hfield name=\"{}\" nrow=\"{}\" ncol=\"{}\" size=\"{} {} {} 0.1\"/>\n", kTerrainHfield, nrow,
+                      ncol, 0.5 * (kRoughXMax - kRoughXMin), kRoughHalfWidth, 2 * p.rough_amplitude);
+      out.geoms = fmt::format("    <geom name=\"floor\" type=\"hfield\" hfield=\"{}\" pos=\"{} 0 {}\" {}/>\n",
+                              kTerrainHfield, 0.5 * (kRoughXMin + kRoughXMax), -p.rough_amplitude, contact);
       break;
     }
   }

@@ -27,36 +27,46 @@ namespace flexgait::humanoid {
 
 enum class TerrainKind { kFlat, kRamp, kStep, kRough };
 constexpr std::array<EnumName<TerrainKind>, 4> enum_names(TerrainKind) {
-  return {{{TerrainKind::kFlat, "flat"}, {TerrainKind::kRamp, "ramp"}, {TerrainKind::kStep, "step"}, {TerrainKind::kRough, "rough"}}};
+  return {{{TerrainKind::kFlat, "flat"},
+           {TerrainKind::kRamp, "ramp"},
+           {TerrainKind::kStep, "step"},
+           {TerrainKind::kRough, "rough"}}};
 }
 
 struct TerrainParams {
   TerrainKind kind = TerrainKind::kFlat;
-  double ramp_angle = 0.0;          ///< α [rad], > 0: uphill along +x
-  double ramp_start = 0.2;          ///< x_r, where the ramp begins [m]
-  double step_height = 0.0;         ///< h_s [m], < 0: a step down
-  double step_x = 0.35;             ///< x_s, the step's edge [m]
-  double rough_amplitude = 0.01;    ///< A, largest |h| [m]
-  double rough_correlation = 0.1;   ///< ℓ [m]
+  double ramp_angle = 0.0;         ///< α [rad], > 0: uphill along +x
+  double ramp_start = 0.2;         ///< x_r, where the ramp begins [m]
+  double step_height = 0.0;        ///< h_s [m], < 0: a step down
+  double step_x = 0.35;            ///< x_s, the step's edge [m]
+  double rough_amplitude = 0.01;   ///< A, largest |h| [m]
+  double rough_correlation = 0.1;  ///< ℓ [m]
   int rough_seed = 1;
-  bool known_heights = false;       ///< the walking controller is told the floor's heights at its footprints
+  bool known_heights = false;  ///< the walking controller is told the floor's heights at its footprints
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
-    v("terrain.kind", s.kind, {.doc = "floor: flat, ramp (terrain.ramp.*), step (terrain.step.*) or rough (terrain.rough.*)"});
+    v("terrain.kind", s.kind,
+      {.doc = "floor: flat, ramp (terrain.ramp.*), step (terrain.step.*) or rough (terrain.rough.*)"});
     v("terrain.ramp.angle", s.ramp_angle,
       {.unit = "rad", .doc = "ramp slope (> 0: uphill along +x; 0.0349 = 2 deg)", .bounds = closed(-0.35, 0.35)});
-    v("terrain.ramp.start", s.ramp_start, {.unit = "m", .doc = "x where the ramp begins (level floor before)", .bounds = closed(-5, 5)});
+    v("terrain.ramp.start", s.ramp_start,
+      {.unit = "m", .doc = "x where the ramp begins (level floor before)", .bounds = closed(-5, 5)});
     v("terrain.step.height", s.step_height,
-      {.unit = "m", .doc = "height of the step (< 0: a step down; within the legs' reach)", .bounds = closed(-0.3, 0.3)});
+      {.unit = "m",
+       .doc = "height of the step (< 0: a step down; within the legs' reach)",
+       .bounds = closed(-0.3, 0.3)});
     v("terrain.step.x", s.step_x, {.unit = "m", .doc = "x of the step's edge", .bounds = closed(-5, 5)});
     v("terrain.rough.amplitude", s.rough_amplitude,
       {.unit = "m", .doc = "rough floor: largest |height|", .bounds = left_open(0, 0.1)});
     v("terrain.rough.correlation", s.rough_correlation,
-      {.unit = "m", .doc = "rough floor: correlation length (autocorrelation exp(-r^2/l^2))", .bounds = closed(0.02, 1)});
+      {.unit = "m",
+       .doc = "rough floor: correlation length (autocorrelation exp(-r^2/l^2))",
+       .bounds = closed(0.02, 1)});
     v("terrain.rough.seed", s.rough_seed, {.doc = "rough floor: seed of its heights", .bounds = closed(0, 2147483647)});
     v("terrain.known_heights", s.known_heights,
-      {.doc = "the controller is told the floor's heights at its footprints (else it feels the floor through its sensors only)"});
+      {.doc = "the controller is told the floor's heights at its footprints (else it feels the floor through its "
+              "sensors only)"});
   }
 };
 

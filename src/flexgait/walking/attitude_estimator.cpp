@@ -23,8 +23,8 @@ void AttitudeEstimator::level(const Vector3d& a, const Vector3d& planned_accel, 
   // taken level: the error is the tilt times it, second order)
   wait_sum_ += a - planned_accel;
   const bool near_g = std::abs(a.norm() - g) <= 0.05 * g;
-  const bool along = level_count_ == 0 ||
-                     std::atan2(a.cross(level_sum_).norm(), a.dot(level_sum_)) <= params_.level_tolerance;
+  const bool along =
+      level_count_ == 0 || std::atan2(a.cross(level_sum_).norm(), a.dot(level_sum_)) <= params_.level_tolerance;
   if (!(near_g && along)) {  // not steady: the window starts again (at this reading if it can)
     level_sum_.setZero();
     level_count_ = 0;

@@ -56,10 +56,10 @@ constexpr std::array<EnumName<AttitudeSource>, 3> enum_names(AttitudeSource) {
 
 struct EstimatorParams {
   AttitudeSource source = AttitudeSource::kMahony;  ///< Mahony filter, or the IMU's AHRS output
-  double kp = 0.1;                  ///< k_P: accelerometer correction gain [rad/s]
-  double ki = 0.002;                ///< k_I: gyro bias integral gain [rad/s^2]
-  double align_time = 1.0;          ///< alignment after the start: gain align_kp, no bias integration [s]
-  double align_kp = 5.0;            ///< k_P while aligning [rad/s]
+  double kp = 0.1;                                  ///< k_P: accelerometer correction gain [rad/s]
+  double ki = 0.002;                                ///< k_I: gyro bias integral gain [rad/s^2]
+  double align_time = 1.0;  ///< alignment after the start: gain align_kp, no bias integration [s]
+  double align_kp = 5.0;    ///< k_P while aligning [rad/s]
   /// The alignment ends early once the planned horizontal acceleration exceeds this [m/s^2]:
   /// once the plan moves at all. The compliant twin does not follow the plan's acceleration
   /// while the weight shifts before the first step: over 1.2–1.3 s of configs/walk-robotis.yaml
@@ -79,43 +79,56 @@ struct EstimatorParams {
   /// 8 and 0.0157; the earlier 0.1 with align_accel 0.2: 5 and 0.0173. Flat walks: unchanged to
   /// 1e-4 rad.
   double level_time = 0.3;
-  double level_tolerance = 0.02;    ///< levelling: a steady reading's largest angle to the window's mean [rad]
-  bool accel_compensation = true;   ///< subtract the planned COM acceleration from the accelerometer
-  double gravity = 9.81;            ///< [m/s^2]
+  double level_tolerance = 0.02;   ///< levelling: a steady reading's largest angle to the window's mean [rad]
+  bool accel_compensation = true;  ///< subtract the planned COM acceleration from the accelerometer
+  double gravity = 9.81;           ///< [m/s^2]
   // The kinematic–inertial tilt observer (source tilt; tilt_observer.hpp (T3)).
-  double tilt_alpha = 50.0;         ///< α: velocity correction [1/s]
+  double tilt_alpha = 50.0;  ///< α: velocity correction [1/s]
   /// β: tilt correction from the velocity error [1/s]. The encoders miss the gears' deflection rate
   /// (the body rocks ~0.02 rad at 0.5 Hz on them), which the velocity error carries into the tilt:
   /// measured at 1 s/step, attitude error rms 0.043 rad at β = 5, 0.0117 at 1, 0.0064 at 0.2,
   /// 0.0088 at 0.05 (the Mahony filter: 0.0127).
   double tilt_beta = 0.2;
-  double tilt_gamma = 15.0;         ///< γ: pull of the unit tilt toward the corrected one [1/s]
+  double tilt_gamma = 15.0;  ///< γ: pull of the unit tilt toward the corrected one [1/s]
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("estimator.source", s.source,
       {.doc = "pelvis attitude: mahony (filter on gyro and accelerometer), ahrs (the IMU's orientation output) or tilt "
               "(kinematic-inertial observer: gyro, accelerometer and the stance legs' kinematics; Benallegue 2020)"});
-    v("estimator.kp", s.kp, {.unit = "rad/s", .doc = "Mahony filter: accelerometer correction gain k_P", .bounds = closed(0, 100)});
-    v("estimator.ki", s.ki, {.unit = "rad/s^2", .doc = "Mahony filter: gyro bias integral gain k_I", .bounds = closed(0, 100)});
+    v("estimator.kp", s.kp,
+      {.unit = "rad/s", .doc = "Mahony filter: accelerometer correction gain k_P", .bounds = closed(0, 100)});
+    v("estimator.ki", s.ki,
+      {.unit = "rad/s^2", .doc = "Mahony filter: gyro bias integral gain k_I", .bounds = closed(0, 100)});
     v("estimator.align_time", s.align_time,
-      {.unit = "s", .doc = "Mahony filter: alignment time after the start (gain estimator.align_kp, no bias integration)",
+      {.unit = "s",
+       .doc = "Mahony filter: alignment time after the start (gain estimator.align_kp, no bias integration)",
        .bounds = closed(0, 100)});
-    v("estimator.align_kp", s.align_kp, {.unit = "rad/s", .doc = "Mahony filter: k_P while aligning", .bounds = closed(0, 100)});
+    v("estimator.align_kp", s.align_kp,
+      {.unit = "rad/s", .doc = "Mahony filter: k_P while aligning", .bounds = closed(0, 100)});
     v("estimator.align_accel", s.align_accel,
-      {.unit = "m/s^2", .doc = "Mahony filter: the alignment ends early once the planned horizontal COM acceleration exceeds this",
+      {.unit = "m/s^2",
+       .doc = "Mahony filter: the alignment ends early once the planned horizontal COM acceleration exceeds this",
        .bounds = closed(0, 100)});
     v("estimator.level_time", s.level_time,
-      {.unit = "s", .doc = "Mahony filter: start from the mean accelerometer over a steady window this long (0: the first reading near 1 g)",
+      {.unit = "s",
+       .doc = "Mahony filter: start from the mean accelerometer over a steady window this long (0: the first reading "
+              "near 1 g)",
        .bounds = closed(0, 10)});
     v("estimator.level_tolerance", s.level_tolerance,
-      {.unit = "rad", .doc = "Mahony filter: a steady reading's largest angle to the levelling window's mean direction",
+      {.unit = "rad",
+       .doc = "Mahony filter: a steady reading's largest angle to the levelling window's mean direction",
        .bounds = closed(0, 1)});
     v("estimator.accel_compensation", s.accel_compensation,
       {.doc = "Mahony filter: subtract the planned COM acceleration from the accelerometer"});
-    v("estimator.tilt_alpha", s.tilt_alpha, {.unit = "1/s", .doc = "tilt observer: velocity correction gain", .bounds = closed(0, 1000)});
-    v("estimator.tilt_beta", s.tilt_beta, {.unit = "1/s", .doc = "tilt observer: tilt correction from the velocity error", .bounds = closed(0, 1000)});
-    v("estimator.tilt_gamma", s.tilt_gamma, {.unit = "1/s", .doc = "tilt observer: pull of the unit tilt toward the corrected one", .bounds = closed(0, 1000)});
+    v("estimator.tilt_alpha", s.tilt_alpha,
+      {.unit = "1/s", .doc = "tilt observer: velocity correction gain", .bounds = closed(0, 1000)});
+    v("estimator.tilt_beta", s.tilt_beta,
+      {.unit = "1/s", .doc = "tilt observer: tilt correction from the velocity error", .bounds = closed(0, 1000)});
+    v("estimator.tilt_gamma", s.tilt_gamma,
+      {.unit = "1/s",
+       .doc = "tilt observer: pull of the unit tilt toward the corrected one",
+       .bounds = closed(0, 1000)});
   }
 };
 

@@ -31,20 +31,20 @@
 namespace flexgait::walking {
 
 struct CalibrationMotion {
-  double time = 0.0;        ///< duration, fades included; 0: no calibration [s]
-  double start = 1.0;       ///< when it begins [s]
-  double period = 5.0;      ///< period of the COM's sideways motion (the others in fixed ratios) [s]
-  double ramp = 3.0;        ///< fade in and fade out [s]
-  double com_y = 0.07;      ///< sideways COM (ZMP reference) amplitude [m]
-  double com_x = 0.03;      ///< forward COM amplitude [m]
-  double squat = 0.04;      ///< deepest lowering of the pelvis [m]
+  double time = 0.0;          ///< duration, fades included; 0: no calibration [s]
+  double start = 1.0;         ///< when it begins [s]
+  double period = 5.0;        ///< period of the COM's sideways motion (the others in fixed ratios) [s]
+  double ramp = 3.0;          ///< fade in and fade out [s]
+  double com_y = 0.07;        ///< sideways COM (ZMP reference) amplitude [m]
+  double com_x = 0.03;        ///< forward COM amplitude [m]
+  double squat = 0.04;        ///< deepest lowering of the pelvis [m]
   double pelvis_pitch = 0.1;  ///< pelvis pitch amplitude [rad]
   double sole_roll = 0.01;    ///< each sole's commanded roll amplitude [rad]
 
   // Each component's period over calibration.period (the squat's is that of its sin², a full dip).
-  static constexpr double kForwardRatio = 1.4;       ///< the COM forward and back
-  static constexpr double kSquatRatio = 2.2;         ///< the squat
-  static constexpr double kPelvisPitchRatio = 2.6;   ///< the pelvis pitch
+  static constexpr double kForwardRatio = 1.4;          ///< the COM forward and back
+  static constexpr double kSquatRatio = 2.2;            ///< the squat
+  static constexpr double kPelvisPitchRatio = 2.6;      ///< the pelvis pitch
   static constexpr double kLeftSoleRollRatio = 0.633;   ///< left sole roll's period over calibration.period
   static constexpr double kRightSoleRollRatio = 0.543;  ///< right sole roll's period over calibration.period
 
@@ -53,32 +53,39 @@ struct CalibrationMotion {
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("calibration.time", s.time,
-      {.unit = "s", .doc = "stiffness calibration in the start stance: its duration (0 = none; walk.start_time must "
-                           "leave walk.preview_time after it)",
+      {.unit = "s",
+       .doc = "stiffness calibration in the start stance: its duration (0 = none; walk.start_time must "
+              "leave walk.preview_time after it)",
        .bounds = closed(0, 3600)});
     v("calibration.start", s.start, {.unit = "s", .doc = "calibration: when it begins", .bounds = closed(0, 100)});
     v("calibration.period", s.period,
-      {.unit = "s", .doc = "calibration: period of the COM's sideways motion (forward 1.4x, squat 2.2x, pelvis pitch 2.6x, "
-                           "the soles' rolls 0.633x and 0.543x)",
+      {.unit = "s",
+       .doc = "calibration: period of the COM's sideways motion (forward 1.4x, squat 2.2x, pelvis pitch 2.6x, "
+              "the soles' rolls 0.633x and 0.543x)",
        .bounds = closed(1, 100)});
-    v("calibration.ramp", s.ramp, {.unit = "s", .doc = "calibration: fade in and fade out", .bounds = closed(0.1, 100)});
-    v("calibration.com_y", s.com_y, {.unit = "m", .doc = "calibration: sideways COM amplitude", .bounds = closed(0, 0.3)});
-    v("calibration.com_x", s.com_x, {.unit = "m", .doc = "calibration: forward COM amplitude", .bounds = closed(0, 0.2)});
-    v("calibration.squat", s.squat, {.unit = "m", .doc = "calibration: deepest lowering of the pelvis", .bounds = closed(0, 0.2)});
+    v("calibration.ramp", s.ramp,
+      {.unit = "s", .doc = "calibration: fade in and fade out", .bounds = closed(0.1, 100)});
+    v("calibration.com_y", s.com_y,
+      {.unit = "m", .doc = "calibration: sideways COM amplitude", .bounds = closed(0, 0.3)});
+    v("calibration.com_x", s.com_x,
+      {.unit = "m", .doc = "calibration: forward COM amplitude", .bounds = closed(0, 0.2)});
+    v("calibration.squat", s.squat,
+      {.unit = "m", .doc = "calibration: deepest lowering of the pelvis", .bounds = closed(0, 0.2)});
     v("calibration.pelvis_pitch", s.pelvis_pitch,
       {.unit = "rad", .doc = "calibration: pelvis pitch amplitude", .bounds = closed(0, 0.3)});
     v("calibration.sole_roll", s.sole_roll,
-      {.unit = "rad", .doc = "calibration: each sole's commanded roll amplitude (the foot presses on an edge)",
+      {.unit = "rad",
+       .doc = "calibration: each sole's commanded roll amplitude (the foot presses on an edge)",
        .bounds = closed(0, 0.02)});
   }
 };
 
 /// The calibration's offsets on the standing pose at time t (all zero outside it).
 struct CalibrationOffset {
-  double com_x = 0, com_y = 0;    ///< on the ZMP reference [m]
-  double pelvis_z = 0;            ///< on the pelvis height (≤ 0) [m]
-  double pelvis_pitch = 0;        ///< on the pelvis pitch command [rad]
-  double sole_roll[2] = {0, 0};   ///< on the left, right sole's commanded roll [rad]
+  double com_x = 0, com_y = 0;   ///< on the ZMP reference [m]
+  double pelvis_z = 0;           ///< on the pelvis height (≤ 0) [m]
+  double pelvis_pitch = 0;       ///< on the pelvis pitch command [rad]
+  double sole_roll[2] = {0, 0};  ///< on the left, right sole's commanded roll [rad]
 };
 
 CalibrationOffset calibration_offset(const CalibrationMotion& m, double t);

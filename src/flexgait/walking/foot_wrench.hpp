@@ -17,10 +17,11 @@
 namespace flexgait::walking {
 
 struct FootContact {
-  double normal_force = 0;                             ///< ground force along the sole normal [N]
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();     ///< the ground's force on the sole, sole frame [N]
-  Eigen::Vector2d cop = Eigen::Vector2d::Zero();       ///< centre of pressure in the sole frame [m] (valid if normal_force > 0)
-  Eigen::Vector2d torque = Eigen::Vector2d::Zero();    ///< ground torque about the sole centre, sole x and y [Nm]
+  double normal_force = 0;                          ///< ground force along the sole normal [N]
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  ///< the ground's force on the sole, sole frame [N]
+  Eigen::Vector2d cop =
+      Eigen::Vector2d::Zero();  ///< centre of pressure in the sole frame [m] (valid if normal_force > 0)
+  Eigen::Vector2d torque = Eigen::Vector2d::Zero();  ///< ground torque about the sole centre, sole x and y [Nm]
 };
 
 /// \param sole_R orientation of the sole (world), for the foot's weight

@@ -8,13 +8,17 @@
 namespace flexgait::walking {
 namespace {
 
-Eigen::Vector2d xy(const Footprint& f) { return {f.x, f.y}; }
+Eigen::Vector2d xy(const Footprint& f) {
+  return {f.x, f.y};
+}
 
 Eigen::Vector2d blend(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double s) {
   return a + quintic_blend(s) * (b - a);
 }
 
-Pose pose_of(const Footprint& f) { return {Vector3d(f.x, f.y, f.z), sole_attitude(f.slope, f.yaw)}; }
+Pose pose_of(const Footprint& f) {
+  return {Vector3d(f.x, f.y, f.z), sole_attitude(f.slope, f.yaw)};
+}
 
 // The step whose interval holds t, for t within the walk (steps are contiguous and equally long).
 std::size_t step_at(const WalkPlan& plan, double t) {

@@ -27,20 +27,20 @@ struct Footprint {
 };
 
 struct Step {
-  int swing = 0;           ///< side that swings (0 left, 1 right)
-  double t_begin = 0;      ///< start of the double support [s]
-  double t_lift = 0;       ///< lift-off of the swing foot [s]
-  double t_land = 0;       ///< touchdown [s]
-  Footprint from, to;      ///< swing foot before and after
-  Footprint stance;        ///< the other foot
+  int swing = 0;       ///< side that swings (0 left, 1 right)
+  double t_begin = 0;  ///< start of the double support [s]
+  double t_lift = 0;   ///< lift-off of the swing foot [s]
+  double t_land = 0;   ///< touchdown [s]
+  Footprint from, to;  ///< swing foot before and after
+  Footprint stance;    ///< the other foot
 };
 
 struct WalkPlan {
   std::array<Footprint, 2> initial;  ///< left, right at the start
   std::array<Footprint, 2> final;    ///< at the end
   std::vector<Step> steps;
-  double t_settle = 0;   ///< end of the last double support (ZMP back between the feet) [s]
-  double duration = 0;   ///< t_settle + end_time [s]
+  double t_settle = 0;  ///< end of the last double support (ZMP back between the feet) [s]
+  double duration = 0;  ///< t_settle + end_time [s]
 };
 
 /// The plan of `params`. The first swing foot is the right one, or the left one when turning left.
@@ -53,7 +53,7 @@ Eigen::Vector2d zmp_reference(const WalkPlan& plan, double t);
 struct FeetTarget {
   std::array<Pose, 2> sole;
   std::array<bool, 2> swinging{};
-  int step = -1;  ///< index of the current step, −1 before the first, steps.size() after the last
+  int step = -1;       ///< index of the current step, −1 before the first, steps.size() after the last
   double floor_z = 0;  ///< mean floor height under the feet (the swing foot's blended, without its arc) [m]
 };
 /// With footprint heights (Footprint::z) the swing blends from.z to to.z and its arc rises
@@ -68,7 +68,9 @@ void set_footprint_heights(WalkPlan& plan, const Height& height) {
   constexpr double h = 1e-3;  // [m]
   auto set = [&](Footprint& f) {
     f.z = height(f.x, f.y);
-    f.slope = Eigen::Vector2d(height(f.x + h, f.y) - height(f.x - h, f.y), height(f.x, f.y + h) - height(f.x, f.y - h)) / (2 * h);
+    f.slope =
+        Eigen::Vector2d(height(f.x + h, f.y) - height(f.x - h, f.y), height(f.x, f.y + h) - height(f.x, f.y - h)) /
+        (2 * h);
   };
   for (Footprint& f : plan.initial) set(f);
   for (Footprint& f : plan.final) set(f);

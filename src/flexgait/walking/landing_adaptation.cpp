@@ -2,8 +2,8 @@
 
 namespace flexgait::walking {
 
-void LandingAdaptation::update(int side, double t, double period, bool swinging, bool contact, const Eigen::Vector2d& torque,
-                               bool live) {
+void LandingAdaptation::update(int side, double t, double period, bool swinging, bool contact,
+                               const Eigen::Vector2d& torque, bool live) {
   Eigen::Vector2d& d = tilt_[side];
   if (gains_.admittance <= 0) return;
   if (swinging) {  // back to level in the air
@@ -15,7 +15,7 @@ void LandingAdaptation::update(int side, double t, double period, bool swinging,
     landed_[side] = true;
     touchdown_[side] = t;
   }
-  if (!landed_[side] || !live || t - touchdown_[side] > gains_.window - 0.5 * period) return;  // held
+  if (!landed_[side] || !live || t - touchdown_[side] > gains_.window - 0.5 * period) return;    // held
   d = (d + period * gains_.admittance * torque).cwiseMax(-gains_.limit).cwiseMin(gains_.limit);  // (L1)
 }
 

@@ -23,10 +23,10 @@
 namespace flexgait::walking {
 
 struct LandingGains {
-  double admittance = 0;    ///< A [rad/(N m s)]; 0: off
-  double window = 0.1;      ///< how long after touchdown δ follows τ [s]
-  double limit = 0.15;      ///< δ_max per axis [rad]
-  double return_time = 0.1; ///< T_r, while swinging [s]
+  double admittance = 0;     ///< A [rad/(N m s)]; 0: off
+  double window = 0.1;       ///< how long after touchdown δ follows τ [s]
+  double limit = 0.15;       ///< δ_max per axis [rad]
+  double return_time = 0.1;  ///< T_r, while swinging [s]
 };
 
 /// The adapted sole tilts of both feet (no allocation; one value per controller).

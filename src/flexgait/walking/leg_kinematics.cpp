@@ -50,7 +50,8 @@ IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& so
   IkSolution out;
   LegAngles& q = out.q;
   // Start from the analytic solution of the nearest analytic leg (hip at the first three anchors,
-  // thigh and shank as the chain's lengths, the sole where it is from the last anchor): the forward-bent branch, a few Newton steps away.
+  // thigh and shank as the chain's lengths, the sole where it is from the last anchor): the forward-bent branch, a few
+  // Newton steps away.
   LegGeometry near;
   near.hip = leg.anchor[0] + leg.anchor[1] + leg.anchor[2];
   near.thigh = leg.anchor[3].norm();

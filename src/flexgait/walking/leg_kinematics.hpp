@@ -19,8 +19,8 @@
 /// room in the range: forward, knee ≥ 0 in the layout's angles, unless the range only allows the
 /// other way).
 ///
-/// A leg of another layout (a loaded description, docs/guide/robot.md: axes not along the layout's, offsets between the hip or ankle axes,
-/// the hip or ankle joints in another order from the pelvis) is a general chain of six revolute
+/// A leg of another layout (a loaded description, docs/guide/robot.md: axes not along the layout's, offsets between the
+/// hip or ankle axes, the hip or ankle joints in another order from the pelvis) is a general chain of six revolute
 /// joints (axes and anchors at zero angles, frames parallel to the pelvis, in the chain's order;
 /// role[i] names the joint at chain position i); its inverse is numeric: damped least squares on
 /// the sole's pose error (Wampler 1986; Buss 2004),

@@ -59,10 +59,9 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const
   for (int i : {1, 0, 2}) {  // the centre first: its Jacobian serves all three
     const double s = (i - 1) * h;
     const FeetTarget feet = feet_target(*in.plan, in.swing_height, t + s);
-    const Eigen::Vector2d target =
-        Eigen::Vector2d(in.cart[0](0) + s * in.cart[0](1) + 0.5 * s * s * in.cart[0](2),
-                        in.cart[1](0) + s * in.cart[1](1) + 0.5 * s * s * in.cart[1](2)) +
-        in.com_offset;
+    const Eigen::Vector2d target = Eigen::Vector2d(in.cart[0](0) + s * in.cart[0](1) + 0.5 * s * s * in.cart[0](2),
+                                                   in.cart[1](0) + s * in.cart[1](1) + 0.5 * s * s * in.cart[1](2)) +
+                                   in.com_offset;
     yaw[i] = heading_of(feet.sole);
     Pose& p = pelvis[i];
     p.R = rot_z(yaw[i]) * in.tilt;

@@ -27,11 +27,11 @@
 namespace flexgait::walking {
 
 struct PlannedMotion {
-  bool valid = false;                          ///< computed this period
-  humanoid::JointVector velocity{};            ///< q̇ of the plan [rad/s]
-  humanoid::JointVector acceleration{};        ///< q̈ of the plan [rad/s^2]
-  BaseMotion pelvis;                           ///< the pelvis's planned motion (world)
-  Vector3d com_acceleration = Vector3d::Zero();///< the cart-table's c̈ (horizontal; world) [m/s^2]
+  bool valid = false;                            ///< computed this period
+  humanoid::JointVector velocity{};              ///< q̇ of the plan [rad/s]
+  humanoid::JointVector acceleration{};          ///< q̈ of the plan [rad/s^2]
+  BaseMotion pelvis;                             ///< the pelvis's planned motion (world)
+  Vector3d com_acceleration = Vector3d::Zero();  ///< the cart-table's c̈ (horizontal; world) [m/s^2]
 };
 
 /// Pelvis position (its attitude pelvis.R given) and joint angles that put the soles at `soles`
@@ -48,11 +48,11 @@ double heading_of(const std::array<Pose, 2>& soles);
 struct PlanPoseInputs {
   const RobotModel* model = nullptr;
   const WalkPlan* plan = nullptr;
-  double swing_height = 0;             ///< walk.swing_height [m]
-  double pelvis_height = 0;            ///< walk.pelvis_height [m]
-  std::array<Eigen::Vector3d, 2> cart; ///< (c, ċ, c̈) of x and y at time t [m, m/s, m/s^2]
+  double swing_height = 0;                               ///< walk.swing_height [m]
+  double pelvis_height = 0;                              ///< walk.pelvis_height [m]
+  std::array<Eigen::Vector3d, 2> cart;                   ///< (c, ċ, c̈) of x and y at time t [m, m/s, m/s^2]
   Eigen::Vector2d com_offset = Eigen::Vector2d::Zero();  ///< constant shift of the COM (balance) [m]
-  Matrix3d tilt = Matrix3d::Identity(); ///< constant pelvis tilt after the heading (balance)
+  Matrix3d tilt = Matrix3d::Identity();                  ///< constant pelvis tilt after the heading (balance)
 };
 
 /// The plan's motion at time t by central differences of step h [s] (h > 0), each pose's

@@ -22,16 +22,16 @@
 namespace flexgait::walking {
 
 struct PreviewGains {
-  double period = 0;                        ///< T [s]
-  double com_height = 0;                    ///< z_c [m]
-  Eigen::Matrix3d A;                        ///< cart-table transition
-  Eigen::Vector3d B;                        ///< jerk input
-  Eigen::RowVector3d C;                     ///< ZMP output
-  double G_i = 0;                           ///< integral gain [1/(m s^3)... per sample]
-  Eigen::RowVector3d G_x;                   ///< state gain
-  std::vector<double> G_p;                  ///< preview gains G_p(1..N), index j−1
-  Eigen::Matrix4d P;                        ///< DARE solution of the augmented system
-  double riccati_residual = 0;              ///< max-norm residual of P in its DARE
+  double period = 0;            ///< T [s]
+  double com_height = 0;        ///< z_c [m]
+  Eigen::Matrix3d A;            ///< cart-table transition
+  Eigen::Vector3d B;            ///< jerk input
+  Eigen::RowVector3d C;         ///< ZMP output
+  double G_i = 0;               ///< integral gain [1/(m s^3)... per sample]
+  Eigen::RowVector3d G_x;       ///< state gain
+  std::vector<double> G_p;      ///< preview gains G_p(1..N), index j−1
+  Eigen::Matrix4d P;            ///< DARE solution of the augmented system
+  double riccati_residual = 0;  ///< max-norm residual of P in its DARE
 };
 
 /// Gains for period T [s], COM height z_c [m], horizon [s] (N = round(horizon / T) samples),
@@ -49,6 +49,8 @@ struct CartTable {
 double preview_step(const PreviewGains& gains, CartTable& cart, const double* p_ref);
 
 /// The ZMP of the cart-table state, C x [m].
-inline double cart_zmp(const PreviewGains& g, const CartTable& cart) { return g.C * cart.x; }
+inline double cart_zmp(const PreviewGains& g, const CartTable& cart) {
+  return g.C * cart.x;
+}
 
 }  // namespace flexgait::walking

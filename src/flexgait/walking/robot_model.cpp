@@ -37,8 +37,11 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
                                           Vector3d::UnitY(), Vector3d::UnitX(), Vector3d::Zero()};
     const std::array<Vector3d, 7> offsets = {Vector3d(0, y, -r.hip_yaw_offset_z),
                                              Vector3d(0, 0, -(r.hip_axes_depth - r.hip_yaw_offset_z)),
-                                             Vector3d::Zero(), Vector3d(0, 0, -r.thigh), Vector3d(0, 0, -r.shank),
-                                             Vector3d::Zero(), Vector3d::Zero()};
+                                             Vector3d::Zero(),
+                                             Vector3d(0, 0, -r.thigh),
+                                             Vector3d(0, 0, -r.shank),
+                                             Vector3d::Zero(),
+                                             Vector3d::Zero()};
     for (int i = 0; i < 7; ++i) {
       auto& b = m.bodies[b0 + i];
       b.parent = i == 0 ? 0 : b0 + i - 1;

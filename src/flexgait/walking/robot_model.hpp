@@ -4,10 +4,10 @@
 /// of the pelvis, the waist and the two legs with the links' masses at their centres — from
 /// RobotParams (the builtin robot, THORMANG3's inertials: builtin_inertials.hpp) or from a loaded description
 /// (docs/guide/robot.md: each
-/// link the file's bodies it moves, lumped with their inertias; the rest lumped into the trunk). It gives the whole-body centre of mass, each leg's sole Jacobian and the leg
-/// links' own gravity torque — what the COM planner and the deformation model (spec eqs. 4-6 and
-/// the full form) need. Model (immutable) and Data (frames, scratch) apart; no allocation after
-/// construction.
+/// link the file's bodies it moves, lumped with their inertias; the rest lumped into the trunk). It gives the
+/// whole-body centre of mass, each leg's sole Jacobian and the leg links' own gravity torque — what the COM planner and
+/// the deformation model (spec eqs. 4-6 and the full form) need. Model (immutable) and Data (frames, scratch) apart; no
+/// allocation after construction.
 #include <array>
 #include <string>
 
@@ -18,25 +18,26 @@
 
 namespace flexgait::walking {
 
-inline constexpr int kBodies = 16;  ///< pelvis, chest, 2 × (hip yaw, hip roll, thigh, shank, ankle pitch, ankle roll, foot)
+inline constexpr int kBodies =
+    16;  ///< pelvis, chest, 2 × (hip yaw, hip roll, thigh, shank, ankle pitch, ankle roll, foot)
 inline constexpr double kGravity = 9.81;  ///< [m/s^2], the twin's
 
 /// Every body frame is parallel to the pelvis frame at zero joint angles; a body's origin is its
 /// joint's anchor (a point of the joint axis).
 struct RobotModel {
   struct Body {
-    int parent = -1;                   ///< index of the parent body (−1: the pelvis)
-    int joint = -1;                    ///< actuated joint (humanoid::Joint) between parent and body, −1: rigid
-    Vector3d axis = Vector3d::Zero();  ///< unit joint axis in the body frame
-    Vector3d offset = Vector3d::Zero();///< body origin in the parent frame at zero angle [m]
-    double mass = 0;                   ///< [kg]
-    Vector3d com = Vector3d::Zero();   ///< centre of mass in the body frame [m]
+    int parent = -1;                      ///< index of the parent body (−1: the pelvis)
+    int joint = -1;                       ///< actuated joint (humanoid::Joint) between parent and body, −1: rigid
+    Vector3d axis = Vector3d::Zero();     ///< unit joint axis in the body frame
+    Vector3d offset = Vector3d::Zero();   ///< body origin in the parent frame at zero angle [m]
+    double mass = 0;                      ///< [kg]
+    Vector3d com = Vector3d::Zero();      ///< centre of mass in the body frame [m]
     Matrix3d inertia = Matrix3d::Zero();  ///< about the centre of mass, body frame [kg m^2]
   };
-  std::array<Body, kBodies> bodies;    ///< parents before children
-  std::array<int, 2> foot{};           ///< foot body of each leg
-  std::array<LegGeometry, 2> leg;      ///< per side
-  double total_mass = 0;               ///< [kg]
+  std::array<Body, kBodies> bodies;        ///< parents before children
+  std::array<int, 2> foot{};               ///< foot body of each leg
+  std::array<LegGeometry, 2> leg;          ///< per side
+  double total_mass = 0;                   ///< [kg]
   double sole_length = 0, sole_width = 0;  ///< the sole rectangle [m]
   std::array<Vector3d, 2> sole_offset{};   ///< sole centre in the foot frame [m]
   /// The sole's orientation in the foot link's frame: a loaded foot whose frame is tilted from the
@@ -63,8 +64,8 @@ RobotModel make_robot_model(const humanoid::RobotParams& robot);
 /// The model of a loaded description. Each leg's IK is analytic when the leg has its layout
 /// (leg_kinematics.hpp: hip yaw (z), roll (x), pitch (y) axes meeting in a point, knee (y)
 /// straight below, ankle pitch (y) and roll (x) meeting straight below the knee, the sole centre
-/// below the ankle (a horizontal shift allowed, LegGeometry::sole_shift); checked to 1e-9 m), numeric otherwise (leg[side].analytic, and
-/// analytic_ik_mismatch says why). Throws ConfigError (robot.feet.<side>.body) when a foot's
+/// below the ankle (a horizontal shift allowed, LegGeometry::sole_shift); checked to 1e-9 m), numeric otherwise
+/// (leg[side].analytic, and analytic_ik_mismatch says why). Throws ConfigError (robot.feet.<side>.body) when a foot's
 /// frame is tilted from the root's at zero angles by kMaxFootTilt or more.
 RobotModel make_robot_model(const humanoid::LoadedRobot& robot);
 /// Why the analytic IK does not apply to leg `side` of a loaded description ("" when it does).
@@ -73,8 +74,8 @@ std::string analytic_ik_mismatch(const humanoid::LoadedRobot& robot, int side);
 void fill_leg_chain(RobotModel& model, int side);
 
 struct RobotModelData {
-  std::array<Pose, kBodies> frame;         ///< world pose of each body
-  std::array<Vector3d, kBodies> com_world; ///< world position of each body's centre of mass [m]
+  std::array<Pose, kBodies> frame;          ///< world pose of each body
+  std::array<Vector3d, kBodies> com_world;  ///< world position of each body's centre of mass [m]
 };
 
 /// World frames of every body for this pelvis pose and these joint angles.

@@ -54,8 +54,8 @@ struct RobotDynamicsData {
   std::array<Vector3d, kBodies> velocity;              ///< v_i of the body origin, world [m/s]
   std::array<Vector3d, kBodies> angular_acceleration;  ///< α_i, world [rad/s^2]
   std::array<Vector3d, kBodies> acceleration;          ///< a_i of the body origin, world, gravity taken out [m/s^2]
-  std::array<Wrench, kBodies> joint_wrench;            ///< (f_i, n_i): the parent's wrench on body i's subtree, about p_i
-  humanoid::JointVector tau{};                         ///< τ of every actuated joint [Nm]
+  std::array<Wrench, kBodies> joint_wrench;  ///< (f_i, n_i): the parent's wrench on body i's subtree, about p_i
+  humanoid::JointVector tau{};               ///< τ of every actuated joint [Nm]
 };
 
 /// Feet whose wrench is given (the leg's wrench on the foot at the foot origin, world; e.g. an

@@ -18,8 +18,12 @@ namespace {
 using humanoid::LoadedBody;
 using humanoid::LoadedRobot;
 
-Matrix3d rotation(const std::array<double, 4>& q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix(); }
-Vector3d vec(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
+Matrix3d rotation(const std::array<double, 4>& q) {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+}
+Vector3d vec(const std::array<double, 3>& v) {
+  return {v[0], v[1], v[2]};
+}
 
 /// Pose of body b in the frame of its ancestor a (a == b: identity), composed down the chain.
 Pose relative(const LoadedRobot& r, int a, int b) {
@@ -34,12 +38,14 @@ Pose relative(const LoadedRobot& r, int a, int b) {
   return out;
 }
 
-bool close(const Vector3d& a, const Vector3d& b) { return (a - b).cwiseAbs().maxCoeff() < 1e-9; }
+bool close(const Vector3d& a, const Vector3d& b) {
+  return (a - b).cwiseAbs().maxCoeff() < 1e-9;
+}
 
 /// One link of the model: a point of a file body (its joint's anchor) and the file bodies lumped on it.
 struct Anchor {
-  int body = 0;                         ///< file body
-  Vector3d point = Vector3d::Zero();    ///< anchor in that body's frame
+  int body = 0;                       ///< file body
+  Vector3d point = Vector3d::Zero();  ///< anchor in that body's frame
 };
 
 /// The layout's axes (leg_kinematics.hpp), by role.
@@ -54,7 +60,8 @@ std::string layout_mismatch(const RobotModel& m, int side) {
   for (int i = 0; i < 6; ++i)
     if (m.bodies[static_cast<std::size_t>(b0 + i)].joint != j0 + i)
       return fmt::format("joint {} from the root is {}, not {}", i + 1,
-                         humanoid::kJointNames[m.bodies[static_cast<std::size_t>(b0 + i)].joint], humanoid::kJointNames[j0 + i]);
+                         humanoid::kJointNames[m.bodies[static_cast<std::size_t>(b0 + i)].joint],
+                         humanoid::kJointNames[j0 + i]);
   for (int i = 0; i < 6; ++i) {
     const Vector3d& a = m.bodies[static_cast<std::size_t>(b0 + i)].axis;
     if (!close(a, kLayoutAxes[static_cast<std::size_t>(i)]) && !close(a, -kLayoutAxes[static_cast<std::size_t>(i)]))
@@ -67,13 +74,16 @@ std::string layout_mismatch(const RobotModel& m, int side) {
   if (!vertical(offset(3))) return "the knee is not straight below the hip";
   if (!vertical(offset(4)) || !close(offset(5), Vector3d::Zero()))
     return "the ankle pitch and roll axes do not meet straight below the knee";
-  if (!((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z() < 0)) return "the sole centre is not below the ankle";
+  if (!((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z() < 0))
+    return "the sole centre is not below the ankle";
   return {};
 }
 
 }  // namespace
 
-std::string analytic_ik_mismatch(const LoadedRobot& r, int side) { return layout_mismatch(make_robot_model(r), side); }
+std::string analytic_ik_mismatch(const LoadedRobot& r, int side) {
+  return layout_mismatch(make_robot_model(r), side);
+}
 
 RobotModel make_robot_model(const LoadedRobot& r) {
   const int n = static_cast<int>(r.bodies.size());
@@ -91,7 +101,8 @@ RobotModel make_robot_model(const LoadedRobot& r) {
   };
   auto joint_axis = [&](int j) {
     const auto [body, k] = r.joint[j];
-    return Vector3d(R0[static_cast<std::size_t>(body)] * vec(r.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)].axis));
+    return Vector3d(R0[static_cast<std::size_t>(body)] *
+                    vec(r.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)].axis));
   };
   m.bodies[1].parent = 0;
   if (r.has_joint(humanoid::kWaistYaw)) {
@@ -124,7 +135,8 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     const Anchor& a = anchor[static_cast<std::size_t>(k)];
     const Anchor& p = anchor[static_cast<std::size_t>(m.bodies[static_cast<std::size_t>(k)].parent)];
     const Pose rel = relative(r, p.body, a.body);
-    m.bodies[static_cast<std::size_t>(k)].offset = R0[static_cast<std::size_t>(p.body)] * (rel.p + rel.R * a.point - p.point);
+    m.bodies[static_cast<std::size_t>(k)].offset =
+        R0[static_cast<std::size_t>(p.body)] * (rel.p + rel.R * a.point - p.point);
   }
   // Each file body's link: the nearest anchor at or above it (of anchors in one body, the last).
   std::vector<int> link(static_cast<std::size_t>(n), -1);
@@ -167,7 +179,8 @@ RobotModel make_robot_model(const LoadedRobot& r) {
   for (const auto& b : m.bodies) m.total_mass += b.mass;
   for (int j = 0; j < humanoid::kJoints; ++j) {
     if (!r.has_joint(j)) continue;
-    const humanoid::LoadedJoint& lj = r.bodies[static_cast<std::size_t>(r.joint[j][0])].joints[static_cast<std::size_t>(r.joint[j][1])];
+    const humanoid::LoadedJoint& lj =
+        r.bodies[static_cast<std::size_t>(r.joint[j][0])].joints[static_cast<std::size_t>(r.joint[j][1])];
     if (lj.limited) m.range[static_cast<std::size_t>(j)] = {lj.range[0], lj.range[1]};
   }
 
@@ -179,9 +192,10 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     const Matrix3d& Rf = R0[static_cast<std::size_t>(fb)];
     const double tilt = Eigen::AngleAxisd(Rf).angle();
     if (!(tilt < kMaxFootTilt))
-      throw ConfigError(foot_key, fmt::format("key '{}' = '{}': the foot's frame is tilted {:.3g} rad from the root's at zero "
-                                              "joint angles; allowed: less than {} rad (a level sole, printed digits)",
-                                              foot_key, r.bodies[static_cast<std::size_t>(fb)].name, tilt, kMaxFootTilt));
+      throw ConfigError(foot_key,
+                        fmt::format("key '{}' = '{}': the foot's frame is tilted {:.3g} rad from the root's at zero "
+                                    "joint angles; allowed: less than {} rad (a level sole, printed digits)",
+                                    foot_key, r.bodies[static_cast<std::size_t>(fb)].name, tilt, kMaxFootTilt));
     // A tilt within the printed digits: the sole's frame is the foot body's, modelled as such.
     m.sole_tilted[side] = Rf != Matrix3d::Identity();
     m.sole_rotation[side] = Rf;
@@ -193,7 +207,8 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     for (int i = 0; i < 6; ++i) {
       const auto& body = m.bodies[static_cast<std::size_t>(b0 + i)];
       const int role = body.joint - humanoid::leg_first_joint(side);
-      leg.sign[static_cast<std::size_t>(role)] = body.axis.dot(kLayoutAxes[static_cast<std::size_t>(role)]) < 0 ? -1.0 : 1.0;
+      leg.sign[static_cast<std::size_t>(role)] =
+          body.axis.dot(kLayoutAxes[static_cast<std::size_t>(role)]) < 0 ? -1.0 : 1.0;
       leg.lower[static_cast<std::size_t>(role)] = m.range[static_cast<std::size_t>(body.joint)][0];
       leg.upper[static_cast<std::size_t>(role)] = m.range[static_cast<std::size_t>(body.joint)][1];
     }
@@ -205,8 +220,9 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     leg.ankle_to_sole = leg.analytic ? -(offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z()
                                      : -m.sole_offset[static_cast<std::size_t>(side)].z();
     // For the analytic layout, the sole centre's horizontal shift from below the ankle.
-    if (leg.analytic) leg.sole_shift = Vector3d((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).x(),
-                                                (offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).y(), 0);
+    if (leg.analytic)
+      leg.sole_shift = Vector3d((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).x(),
+                                (offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).y(), 0);
   }
   // One sole rectangle for both feet (the plan's support polygons, the CoP limits): a robot
   // whose soles differ is refused rather than walked on the left foot's numbers.

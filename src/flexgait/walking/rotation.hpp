@@ -36,7 +36,9 @@ struct Pose {
 };
 
 /// R = Rz(yaw) Ry(pitch) Rx(roll).
-inline Matrix3d rpy_to_matrix(double roll, double pitch, double yaw) { return rot_z(yaw) * rot_y(pitch) * rot_x(roll); }
+inline Matrix3d rpy_to_matrix(double roll, double pitch, double yaw) {
+  return rot_z(yaw) * rot_y(pitch) * rot_x(roll);
+}
 /// The rotation vector φ = θ a of R (SO(3)'s log), |φ| ≤ π.
 inline Vector3d rotation_vector(const Matrix3d& R) {
   const Eigen::AngleAxisd a(R);
@@ -51,14 +53,20 @@ inline Matrix3d left_jacobian_inverse(const Vector3d& phi) {
   Matrix3d W;
   W << 0, -phi.z(), phi.y(), phi.z(), 0, -phi.x(), -phi.y(), phi.x(), 0;
   const double b = theta < 1e-4 ? 1.0 / 12.0 + theta * theta / 720.0
-                                 : 1.0 / (theta * theta) - (1 + std::cos(theta)) / (2 * theta * std::sin(theta));
+                                : 1.0 / (theta * theta) - (1 + std::cos(theta)) / (2 * theta * std::sin(theta));
   return Matrix3d::Identity() - 0.5 * W + b * W * W;
 }
 
 /// Roll and pitch of R = Rz(yaw) Ry(pitch) Rx(roll) (|pitch| < π/2) [rad].
-inline double roll_of(const Matrix3d& R) { return std::atan2(R(2, 1), R(2, 2)); }
-inline double pitch_of(const Matrix3d& R) { return std::asin(std::clamp(-R(2, 0), -1.0, 1.0)); }
-inline double yaw_of(const Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+inline double roll_of(const Matrix3d& R) {
+  return std::atan2(R(2, 1), R(2, 2));
+}
+inline double pitch_of(const Matrix3d& R) {
+  return std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
+}
+inline double yaw_of(const Matrix3d& R) {
+  return std::atan2(R(1, 0), R(0, 0));
+}
 /// Rotation matrix of a unit quaternion (w, x, y, z).
 inline Matrix3d quat_to_matrix(const double* q) {
   return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();

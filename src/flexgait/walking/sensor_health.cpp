@@ -12,15 +12,19 @@ SignalFault SignalMonitor::check(const HealthParams& p, double t, double T, doub
   bool finite = true;
   for (int i = 0; i < n; ++i) finite = finite && std::isfinite(values[i]);
   // Bitwise repeat of the reading before (NaN never repeats: it is caught as nan first).
-  const bool repeat = has_previous_ && std::memcmp(values, previous_.data(), sizeof(double) * static_cast<std::size_t>(n)) == 0;
+  const bool repeat =
+      has_previous_ && std::memcmp(values, previous_.data(), sizeof(double) * static_cast<std::size_t>(n)) == 0;
   repeats_ = repeat ? repeats_ + 1 : 0;
   std::memcpy(previous_.data(), values, sizeof(double) * static_cast<std::size_t>(n));
   has_previous_ = true;
 
   SignalFault f = SignalFault::kOk;
-  if (!finite) f = SignalFault::kNan;
-  else if (!(t - stamp <= p.max_age)) f = SignalFault::kStale;
-  else if (frozen || (detect_stuck && p.stuck_samples > 0 && repeats_ + 1 >= p.stuck_samples)) f = SignalFault::kStuck;
+  if (!finite)
+    f = SignalFault::kNan;
+  else if (!(t - stamp <= p.max_age))
+    f = SignalFault::kStale;
+  else if (frozen || (detect_stuck && p.stuck_samples > 0 && repeats_ + 1 >= p.stuck_samples))
+    f = SignalFault::kStuck;
 
   if (f == SignalFault::kOk) {
     std::memcpy(good_.data(), values, sizeof(double) * static_cast<std::size_t>(n));

@@ -28,21 +28,24 @@
 namespace flexgait::walking {
 
 struct HealthParams {
-  double max_age = 0.01;    ///< a reading older than this is stale [s]
-  double hold_time = 0.3;   ///< longest a last good value stands in for a bad reading [s]
-  int stuck_samples = 10;   ///< identical consecutive readings that make a live sensor stuck (0: not checked)
+  double max_age = 0.01;   ///< a reading older than this is stale [s]
+  double hold_time = 0.3;  ///< longest a last good value stands in for a bad reading [s]
+  int stuck_samples = 10;  ///< identical consecutive readings that make a live sensor stuck (0: not checked)
   double encoder_stuck_motion = 0.02;  ///< command motion with an unchanged encoder that makes it stuck [rad]
-  double fade_time = 0.5;   ///< after a failure, the loops fed by that sensor fade out with this time constant [s]
-  bool safe_stop = true;    ///< a failed sensor ends the walk (safe stop); off: hold and fade only
+  double fade_time = 0.5;  ///< after a failure, the loops fed by that sensor fade out with this time constant [s]
+  bool safe_stop = true;   ///< a failed sensor ends the walk (safe stop); off: hold and fade only
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
-    v("health.max_age", s.max_age, {.unit = "s", .doc = "a sensor reading older than this is stale", .bounds = closed(0, 10)});
+    v("health.max_age", s.max_age,
+      {.unit = "s", .doc = "a sensor reading older than this is stale", .bounds = closed(0, 10)});
     v("health.hold_time", s.hold_time,
-      {.unit = "s", .doc = "longest the last good value stands in for a bad reading; then the sensor has failed",
+      {.unit = "s",
+       .doc = "longest the last good value stands in for a bad reading; then the sensor has failed",
        .bounds = closed(0, 1000)});
     v("health.stuck_samples", s.stuck_samples,
-      {.doc = "identical consecutive readings that make a gyro, accelerometer, AHRS or F/T sensor stuck (0: not checked)",
+      {.doc =
+           "identical consecutive readings that make a gyro, accelerometer, AHRS or F/T sensor stuck (0: not checked)",
        .bounds = closed(0, 100000)});
     v("health.encoder_stuck_motion", s.encoder_stuck_motion,
       {.unit = "rad",
@@ -50,7 +53,8 @@ struct HealthParams {
               "checked); above the servo's largest tracking error",
        .bounds = closed(0, 10)});
     v("health.fade_time", s.fade_time,
-      {.unit = "s", .doc = "after a failure the balance loops fed by that sensor fade out with this time constant",
+      {.unit = "s",
+       .doc = "after a failure the balance loops fed by that sensor fade out with this time constant",
        .bounds = left_open(0, 100)});
     v("health.safe_stop", s.safe_stop, {.doc = "a failed sensor ends the walk at the next double support (safe stop)"});
   }
@@ -58,7 +62,10 @@ struct HealthParams {
 
 enum class SignalFault : std::uint8_t { kOk, kNan, kStale, kStuck };
 constexpr std::array<EnumName<SignalFault>, 4> enum_names(SignalFault) {
-  return {{{SignalFault::kOk, "ok"}, {SignalFault::kNan, "nan"}, {SignalFault::kStale, "stale"}, {SignalFault::kStuck, "stuck"}}};
+  return {{{SignalFault::kOk, "ok"},
+           {SignalFault::kNan, "nan"},
+           {SignalFault::kStale, "stale"},
+           {SignalFault::kStuck, "stuck"}}};
 }
 
 /// One signal of up to kMaxValues values.
@@ -76,17 +83,17 @@ class SignalMonitor {
   /// The value a bad reading is replaced by until the signal gives a good one (n values).
   void set_nominal(const double* values, int n);
 
-  SignalFault fault() const { return fault_; }      ///< of the last check
+  SignalFault fault() const { return fault_; }  ///< of the last check
   bool bad() const { return fault_ != SignalFault::kOk; }
-  bool failed() const { return failed_; }            ///< bad for longer than hold_time once (latched)
-  int episodes() const { return episodes_; }         ///< times it turned bad
-  double bad_time() const { return bad_time_; }      ///< total time bad [s]
+  bool failed() const { return failed_; }        ///< bad for longer than hold_time once (latched)
+  int episodes() const { return episodes_; }     ///< times it turned bad
+  double bad_time() const { return bad_time_; }  ///< total time bad [s]
 
  private:
   std::array<double, kMaxValues> good_{}, previous_{};  ///< good_: the last good values, or the nominal ones
   bool has_previous_ = false;
-  int repeats_ = 0;            ///< consecutive readings equal to the one before
-  double bad_since_ = 0;       ///< [s]
+  int repeats_ = 0;       ///< consecutive readings equal to the one before
+  double bad_since_ = 0;  ///< [s]
   SignalFault fault_ = SignalFault::kOk;
   bool failed_ = false;
   int episodes_ = 0;
@@ -114,11 +121,11 @@ class SensorHealth {
   void check(const humanoid::SensorReadings& s, double t);
   const humanoid::SensorReadings& clean() const { return clean_; }
 
-  bool bad(int sensor) const;                ///< this period
-  bool failed(int sensor) const;             ///< once bad beyond hold_time (latched)
-  SignalFault fault(int sensor) const;       ///< this period (the first bad signal's, encoders)
-  int episodes(int sensor) const;            ///< times it turned bad (encoders: over all joints)
-  double bad_time(int sensor) const;         ///< total time bad [s] (encoders: any joint)
+  bool bad(int sensor) const;           ///< this period
+  bool failed(int sensor) const;        ///< once bad beyond hold_time (latched)
+  SignalFault fault(int sensor) const;  ///< this period (the first bad signal's, encoders)
+  int episodes(int sensor) const;       ///< times it turned bad (encoders: over all joints)
+  double bad_time(int sensor) const;    ///< total time bad [s] (encoders: any joint)
   /// Bit i set when sensor i is bad this period.
   unsigned flags() const;
   const HealthParams& params() const { return params_; }
@@ -128,7 +135,7 @@ class SensorHealth {
   double period_;
   std::array<SignalMonitor, humanoid::kSensors - 1> monitor_{};  ///< all but the encoders
   std::array<SignalMonitor, humanoid::kJoints> encoder_{};
-  humanoid::JointVector command_{};         ///< the last commands sent [rad]
+  humanoid::JointVector command_{};  ///< the last commands sent [rad]
   bool has_command_ = false;
   humanoid::JointVector encoder_previous_{};  ///< each encoder's last raw reading [rad]
   humanoid::JointVector command_anchor_{};    ///< the command when that reading last changed [rad]

@@ -14,7 +14,9 @@ namespace flexgait::walking {
 namespace {
 
 /// Rounded to the millimetre, so a derived default reads as a number a user would type.
-double to_millimetre(double x) { return std::round(x * 1000.0) / 1000.0; }
+double to_millimetre(double x) {
+  return std::round(x * 1000.0) / 1000.0;
+}
 
 }  // namespace
 
@@ -48,7 +50,8 @@ humanoid::JointVector standing_angles(const RobotModel& model, double pelvis_hei
   for (int side = 0; side < 2; ++side) {
     const Pose sole{Vector3d(0, (side == 0 ? 0.5 : -0.5) * step_width, -pelvis_height), Matrix3d::Identity()};
     const IkSolution s = leg_inverse_kinematics(model.leg[static_cast<std::size_t>(side)], sole);
-    for (int i = 0; i < humanoid::kLegJoints; ++i) q[humanoid::leg_first_joint(side) + i] = s.q[static_cast<std::size_t>(i)];
+    for (int i = 0; i < humanoid::kLegJoints; ++i)
+      q[humanoid::leg_first_joint(side) + i] = s.q[static_cast<std::size_t>(i)];
   }
   return q;
 }

@@ -27,7 +27,8 @@ Eigen::Vector2d dcm_error_beyond_sole(const Eigen::Vector2d& e, const Footprint&
 Footprint adjusted_landing(const Footprint& planned, const Footprint& stance, int swing, const Eigen::Vector2d& beyond,
                            double omega, double tau, const StepLimits& limits) {
   const Eigen::Vector2d shift = to_local(beyond * std::exp(omega * std::max(tau, 0.0)), stance.yaw);  // (S2)
-  const Eigen::Vector2d planned_local = to_local(Eigen::Vector2d(planned.x - stance.x, planned.y - stance.y), stance.yaw);
+  const Eigen::Vector2d planned_local =
+      to_local(Eigen::Vector2d(planned.x - stance.x, planned.y - stance.y), stance.yaw);
   Eigen::Vector2d land = planned_local + shift.cwiseMax(-limits.limit).cwiseMin(limits.limit);
   // The swing foot on its own side (left: +y of the stance heading), at least min_width across.
   const double side = swing == 0 ? 1.0 : -1.0;

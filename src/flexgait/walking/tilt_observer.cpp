@@ -12,7 +12,8 @@ void TiltObserver::reset(const Eigen::Vector3d& x1, const Eigen::Vector3d& x2) {
   started_ = true;
 }
 
-void TiltObserver::update(const Eigen::Vector3d& y_v, const Eigen::Vector3d& y_a, const Eigen::Vector3d& omega, double dt) {
+void TiltObserver::update(const Eigen::Vector3d& y_v, const Eigen::Vector3d& y_a, const Eigen::Vector3d& omega,
+                          double dt) {
   const TiltObserverGains& k = gains_;
   const Eigen::Vector3d e = y_v - x1_;  // (T3)
   const Eigen::Vector3d dx1 = x1_.cross(omega) - k.gravity * x2_prime_ + y_a + k.alpha * e;

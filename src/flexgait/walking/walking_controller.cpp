@@ -14,14 +14,17 @@ namespace {
 constexpr double kReplanDistance = 0.005;
 /// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
 constexpr double kLastAdjustment = 0.75;
-constexpr double kCaptureSettle = 0.5;  ///< after a capture step the ZMP moves from the landed foot to the feet's middle in this [s]
+constexpr double kCaptureSettle =
+    0.5;  ///< after a capture step the ZMP moves from the landed foot to the feet's middle in this [s]
 /// Once the stance leg could not carry the load alone, the capture step's foot lifts after the
 /// load has been within its joints' limit this long [s]: three periods, a few of the contact's
 /// (plant.contact_time_constant 5 ms) and the servos' (30 Hz) time constants, over which the
 /// vertical load rings during a push.
 constexpr double kCaptureLiftHold = 0.012;
 /// kCaptureLiftHold in control periods (whole ones, at least the time).
-int capture_lift_hold_periods(double period) { return static_cast<int>(std::ceil(kCaptureLiftHold / period - 1e-9)); }
+int capture_lift_hold_periods(double period) {
+  return static_cast<int>(std::ceil(kCaptureLiftHold / period - 1e-9));
+}
 /// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
 /// < 1e-3 of the swing's accelerations (planned_motion_test).
 constexpr double kPlanStep = 0.01;
@@ -29,10 +32,13 @@ constexpr double kPlanStep = 0.01;
 constexpr int kPlanJacobianPeriods = 25;
 
 /// Each component clamped to [−limit, limit].
-Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) { return v.cwiseMax(-limit).cwiseMin(limit); }
+Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) {
+  return v.cwiseMax(-limit).cwiseMin(limit);
+}
 
 /// The point of the box of half-extents `half` (along and across `yaw`) about `centre` nearest `x` [m].
-Eigen::Vector2d nearest_in_box(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector2d& half, const Eigen::Vector2d& x) {
+Eigen::Vector2d nearest_in_box(const Eigen::Vector2d& centre, double yaw, const Eigen::Vector2d& half,
+                               const Eigen::Vector2d& x) {
   const Eigen::Rotation2Dd heading(yaw);
   return centre + heading * (heading.inverse() * (x - centre)).cwiseMax(-half).cwiseMin(half);
 }
@@ -100,8 +106,8 @@ Eigen::Vector2d WalkingController::planned_zmp(double t) const {
   return zmp_reference(plan_, t) + Eigen::Vector2d(c.com_x, c.com_y);
 }
 
-void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
-                                   int iterations) {
+void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles,
+                                   const Matrix3d& pelvis_R, int iterations) {
   pelvis_.R = pelvis_R;
   solve_com_pose(model_, data_, com, soles, pelvis_, desired_, status_.ik, iterations);
 }
@@ -152,7 +158,8 @@ void WalkingController::update_foot_lift(const FeetTarget& feet, const Eigen::Ve
     const double desired = (side == 0 ? share_left : 1.0 - share_left) * load;
     double& z = foot_lift_[side];
     // With an F/T reading held, only the return term acts.
-    const double force_term = ft_live_ ? (std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping : 0.0;
+    const double force_term =
+        ft_live_ ? (std::max(0.0, status_.foot_force[side]) - desired) / balance_.foot_force_damping : 0.0;
     z += period_ * (force_term - z / balance_.foot_return_time);
     if (!balance_.enabled) z = 0;
     z = std::clamp(z, -balance_.foot_lift_limit, balance_.foot_lift_limit);
@@ -165,7 +172,7 @@ Eigen::Vector2d WalkingController::zmp_feedback() {
   // the commanded COM until the measured ZMP follows the reference (PI, clamped, anti-windup).
   if (!balance_.enabled || balance_.mode != BalanceMode::kPd) return Eigen::Vector2d::Zero();
   if (ft_failed_) zmp_integral_ *= 1.0 - period_ / (health_.params().fade_time + period_);  // fades out
-  if (!status_.zmp_valid || !ft_live_) return zmp_integral_;  // held
+  if (!status_.zmp_valid || !ft_live_) return zmp_integral_;                                // held
   // The measured ZMP carries −(z/g) c̈ (it leads the COM with the opposite sign at high
   // frequency): filter it twice (first order, balance.zmp_filter_time each) before use.
   const double a = period_ / (balance_.zmp_filter_time + period_);
@@ -202,14 +209,16 @@ void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const Fee
   status_.com_estimate = com;
   const double omega = std::sqrt(kGravity / gains_.com_height);
   status_.dcm = dcm_of(com, com_velocity_, omega);
-  status_.dcm_ref = dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)), Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
+  status_.dcm_ref =
+      dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)), Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
   const Eigen::Vector2d p = dcm_.zmp_command(status_.dcm, status_.dcm_ref, status_.zmp_ref, omega, period_, !ft_live_);
   status_.zmp_command = p;
   // Distribution: the load shares follow load_split_point() along the line between the soles
   // (update_foot_lift); what is off it goes under each loaded sole as its centre of pressure.
   const Eigen::Vector2d left = feet.sole[0].p.head<2>(), right = feet.sole[1].p.head<2>();
   Eigen::Vector2d base = feet.swinging[0] ? right : left;
-  if (!feet.swinging[0] && !feet.swinging[1]) base = right + left_share(left, right, load_split_point()) * (left - right);
+  if (!feet.swinging[0] && !feet.swinging[1])
+    base = right + left_share(left, right, load_split_point()) * (left - right);
   const double half_l = 0.5 * model_.sole_length, half_w = 0.5 * model_.sole_width;
   for (int side = 0; side < 2; ++side) {
     if (feet.swinging[side] || !status_.contact[side] || !ft_live_) continue;
@@ -256,7 +265,8 @@ void WalkingController::check_sensors(const humanoid::SensorReadings& raw, doubl
       const Vector3d accel(s.imu.accel[0], s.imu.accel[1], s.imu.accel[2]);
       const Vector3d planned(cart_[0].x(2), cart_[1].x(2), 0.0);  // the COM's acceleration now
       estimator_.update(gyro, health_.bad(kAccel) ? nullptr : &accel, planned, period_);
-      if (estimator_params_.source == AttitudeSource::kTilt) update_tilt(s, gyro, health_.bad(kAccel) ? nullptr : &accel);
+      if (estimator_params_.source == AttitudeSource::kTilt)
+        update_tilt(s, gyro, health_.bad(kAccel) ? nullptr : &accel);
     }
     attitude_ = estimator_.attitude();
     if (tilt_.started()) {
@@ -354,7 +364,8 @@ void WalkingController::begin_capture_transfer(double t, std::size_t k, int swin
   const std::array<Footprint, 2>& f = plan_.initial;
   const Eigen::Vector2d mid(0.5 * (f[0].x + f[1].x), 0.5 * (f[0].y + f[1].y));
   const double width = std::hypot(f[0].x - f[1].x, f[0].y - f[1].y);
-  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin, 0.5 * (model_.sole_width + width) - kCaptureMargin);
+  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin,
+                             0.5 * (model_.sole_width + width) - kCaptureMargin);
   const Eigen::Vector2d p = nearest_in_box(mid, f[1 - swing].yaw, half, status_.dcm);
   for (int a = 0; a < 2; ++a) {
     const double c = status_.com_estimate(a);
@@ -409,8 +420,8 @@ void WalkingController::begin_capture_step(double t, std::size_t k, double omega
   // less: 0.89–0.93 of the capture-point bound against 1.09–0.99 at T = 0.3–0.35 s.)
   const int swing = capture_.swing;
   const Footprint& stance = plan_.initial[1 - swing];
-  const Eigen::Vector2d xi0 = dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)),
-                                     Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
+  const Eigen::Vector2d xi0 =
+      dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)), Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
   const Eigen::Vector2d centre(stance.x, stance.y), p = capture_cop(1 - swing, xi0);
   for (int a = 0; a < 2; ++a) cart_[a].x(2) = omega * omega * (cart_[a].x(0) - p(a));
   capture_.transfer = false;
@@ -463,7 +474,8 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
   const double omega = std::sqrt(kGravity / gains_.com_height);
   const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
   if (capture_.active) {  // a capture step's landing is set when its foot lifts
-    if (capture_.transfer && capture_lift_due(t)) begin_capture_step(t, k, omega, balance_.recovery_step_time, kCaptureSettle, limits);
+    if (capture_.transfer && capture_lift_due(t))
+      begin_capture_step(t, k, omega, balance_.recovery_step_time, kCaptureSettle, limits);
     return;
   }
   const Eigen::Vector2d e = status_.dcm - status_.dcm_ref;
@@ -480,9 +492,9 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
       planned_landing_ = s.to;
     }
     const Eigen::Vector2d beyond = dcm_error_beyond_sole(e, s.stance, half);
-    const Footprint to = beyond.squaredNorm() > 0
-                             ? adjusted_landing(planned_landing_, s.stance, s.swing, beyond, omega, s.t_land - t, limits)
-                             : planned_landing_;
+    const Footprint to = beyond.squaredNorm() > 0 ? adjusted_landing(planned_landing_, s.stance, s.swing, beyond, omega,
+                                                                     s.t_land - t, limits)
+                                                  : planned_landing_;
     const Eigen::Vector2d d(to.x - s.to.x, to.y - s.to.y);
     if (d.norm() < kReplanDistance) return;
     status_.step_shift = Eigen::Vector2d(to.x - planned_landing_.x, to.y - planned_landing_.y);
@@ -516,11 +528,13 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
     const double T = balance_.recovery_step_time;
     const double settle = kCaptureSettle;
     // The ZMP reference must hold the transfer, the step and its settling (with the preview horizon).
-    if (static_cast<std::size_t>(std::ceil((t + 2 * T + settle) / period_)) + gains_.G_p.size() + 1 >= ref_x_.size()) return;
+    if (static_cast<std::size_t>(std::ceil((t + 2 * T + settle) / period_)) + gains_.G_p.size() + 1 >= ref_x_.size())
+      return;
     recovery_step_ = true;
     // The foot on the side the error leaves by steps; straight ahead or back, the less loaded one.
-    const int swing = std::abs(beyond.y()) > 1e-3 ? (beyond.y() > 0 ? 0 : 1)
-                                                  : (foot_contact_[0].normal_force < foot_contact_[1].normal_force ? 0 : 1);
+    const int swing = std::abs(beyond.y()) > 1e-3
+                          ? (beyond.y() > 0 ? 0 : 1)
+                          : (foot_contact_[0].normal_force < foot_contact_[1].normal_force ? 0 : 1);
     begin_capture_transfer(t, k, swing, omega);
     if (capture_lift_due(t)) begin_capture_step(t, k, omega, T, settle, limits);
     return;
@@ -562,8 +576,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   status_.imu_pitch = pitch_of(attitude_);
   measure_zmp(s);
   for (int side = 0; side < 2; ++side)
-    landing_.update(side, t, period_, feet.swinging[side] || !balance_.enabled, status_.contact[side], foot_contact_[side].torque,
-                    ft_live_);
+    landing_.update(side, t, period_, feet.swinging[side] || !balance_.enabled, status_.contact[side],
+                    foot_contact_[side].torque, ft_live_);
   // Pelvis heading: the mean of the feet's headings (as unit vectors, so no wrap at ±π).
   const double yaw = heading_of(feet.sole);
   const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
@@ -581,8 +595,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   if (balance_.enabled) {
     d_roll = std::clamp(-(balance_.imu_kp * status_.imu_roll + balance_.imu_kd * s.imu.gyro[0]), -balance_.imu_limit,
                         balance_.imu_limit);
-    d_pitch = std::clamp(-(balance_.imu_kp * status_.imu_pitch + balance_.imu_kd * s.imu.gyro[1]),
-                         -balance_.imu_limit, balance_.imu_limit);
+    d_pitch = std::clamp(-(balance_.imu_kp * status_.imu_pitch + balance_.imu_kd * s.imu.gyro[1]), -balance_.imu_limit,
+                         balance_.imu_limit);
   }
   d_roll *= imu_fade_;
   d_pitch *= imu_fade_;
@@ -598,8 +612,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   if (gyro_live_)  // held while the gyro is bad
     gyro_filtered_ += period_ / (balance_.gyro_filter_time + period_) *
                       (Eigen::Vector2d(s.imu.gyro[0], s.imu.gyro[1]) - gyro_filtered_);
-  const Eigen::Vector2d sway =
-      balance_.enabled ? Eigen::Vector2d(imu_fade_ * balance_.ankle_gyro_gain * gyro_filtered_) : Eigen::Vector2d::Zero();
+  const Eigen::Vector2d sway = balance_.enabled ? Eigen::Vector2d(imu_fade_ * balance_.ankle_gyro_gain * gyro_filtered_)
+                                                : Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
     Eigen::Vector2d r =
         clamp_abs(foot_rotation_[side] + (feet.swinging[side] ? Eigen::Vector2d::Zero() : sway), balance_.ankle_limit);
@@ -637,7 +651,8 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     in.tilt = rot_y(d_pitch + calibration.pelvis_pitch) * rot_x(d_roll);
     const bool refresh = motion_jacobian_age_ <= 0;
     motion_jacobian_age_ = refresh ? kPlanJacobianPeriods : motion_jacobian_age_ - 1;
-    status_.motion = planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
+    status_.motion =
+        planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
   }
   status_.desired = desired_;
   return desired_;

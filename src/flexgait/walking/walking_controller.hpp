@@ -30,8 +30,8 @@
 /// command from ξ = c + ċ/ω against the plan's ξ_ref is distributed to the feet (load shares
 /// along the line between the soles — by the command while standing where the robot began, by
 /// the ZMP reference once the plan steps (load_split_point) — the remainder as a centre of
-/// pressure under each loaded sole, clamped to the sole) and each loaded foot's rotation follows its torque error about the
-/// sole centre with the CoP admittance A (Caron et al. 2019): δ̇ = A (τ − τ_d), clamped.
+/// pressure under each loaded sole, clamped to the sole) and each loaded foot's rotation follows its torque error about
+/// the sole centre with the CoP admittance A (Caron et al. 2019): δ̇ = A (τ − τ_d), clamped.
 ///
 /// Sensors (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate"): every reading passes SensorHealth
 /// first (NaN, stale, stuck →
@@ -49,17 +49,17 @@
 #include <vector>
 
 #include "flexgait/robot/joints.hpp"
-#include "flexgait/robot/sensors.hpp"
 #include "flexgait/robot/robot_params.hpp"
+#include "flexgait/robot/sensors.hpp"
 #include "flexgait/walking/attitude_estimator.hpp"
 #include "flexgait/walking/dcm_stabiliser.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
+#include "flexgait/walking/landing_adaptation.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
 #include "flexgait/walking/planned_motion.hpp"
 #include "flexgait/walking/preview_control.hpp"
 #include "flexgait/walking/robot_model.hpp"
-#include "flexgait/walking/landing_adaptation.hpp"
 #include "flexgait/walking/sensor_health.hpp"
 #include "flexgait/walking/step_adjustment.hpp"
 #include "flexgait/walking/tilt_observer.hpp"
@@ -69,26 +69,27 @@ namespace flexgait::walking {
 
 /// What the controller decided in its last update (for logs and evaluation).
 struct ControllerStatus {
-  double t = 0;                                       ///< time of the update [s]
-  int step = -1;                                      ///< current step (see FeetTarget::step)
-  Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();  ///< reference ZMP at t [m]
+  double t = 0;                                            ///< time of the update [s]
+  int step = -1;                                           ///< current step (see FeetTarget::step)
+  Eigen::Vector2d zmp_ref = Eigen::Vector2d::Zero();       ///< reference ZMP at t [m]
   Eigen::Vector2d zmp_measured = Eigen::Vector2d::Zero();  ///< from the F/T sensors [m]
-  bool zmp_valid = false;                             ///< enough normal force to define it
-  Eigen::Vector2d com_ref = Eigen::Vector2d::Zero();  ///< planned COM at t + T [m]
-  Pose pelvis;                                        ///< commanded pelvis pose (with the balance correction)
-  double imu_roll = 0, imu_pitch = 0;                 ///< estimated pelvis attitude [rad]
-  double roll_correction = 0, pitch_correction = 0;   ///< balance: pelvis counter-tilt [rad]
-  Eigen::Vector2d com_shift = Eigen::Vector2d::Zero(); ///< balance: COM shift of the ZMP feedback [m]
-  std::array<Pose, 2> sole;                           ///< planned sole poses (world)
-  std::array<bool, 2> swinging{};                     ///< which feet the plan swings now
-  std::array<bool, 2> contact{};                      ///< foot loaded above balance.contact_force
-  std::array<Eigen::Vector2d, 2> foot_rotation{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};///< balance: foot roll, pitch offsets [rad]
-  std::array<double, 2> foot_force{};                 ///< vertical ground force on each foot (F/T) [N]
-  std::array<double, 2> foot_lift{};                  ///< balance: foot height offsets of the force control [m]
+  bool zmp_valid = false;                                  ///< enough normal force to define it
+  Eigen::Vector2d com_ref = Eigen::Vector2d::Zero();       ///< planned COM at t + T [m]
+  Pose pelvis;                                             ///< commanded pelvis pose (with the balance correction)
+  double imu_roll = 0, imu_pitch = 0;                      ///< estimated pelvis attitude [rad]
+  double roll_correction = 0, pitch_correction = 0;        ///< balance: pelvis counter-tilt [rad]
+  Eigen::Vector2d com_shift = Eigen::Vector2d::Zero();     ///< balance: COM shift of the ZMP feedback [m]
+  std::array<Pose, 2> sole;                                ///< planned sole poses (world)
+  std::array<bool, 2> swinging{};                          ///< which feet the plan swings now
+  std::array<bool, 2> contact{};                           ///< foot loaded above balance.contact_force
+  std::array<Eigen::Vector2d, 2> foot_rotation{Eigen::Vector2d::Zero(),
+                                               Eigen::Vector2d::Zero()};  ///< balance: foot roll, pitch offsets [rad]
+  std::array<double, 2> foot_force{};  ///< vertical ground force on each foot (F/T) [N]
+  std::array<double, 2> foot_lift{};   ///< balance: foot height offsets of the force control [m]
   std::array<IkStatus, 2> ik{IkStatus::kOk, IkStatus::kOk};
-  humanoid::JointVector desired{};                    ///< joint angles from the IK (θ_d) [rad]
-  unsigned sensor_flags = 0;                          ///< bit i: sensor i (humanoid::SensorId) bad this period
-  bool safe_stop = false;                             ///< the walk is being stopped for a failed sensor
+  humanoid::JointVector desired{};  ///< joint angles from the IK (θ_d) [rad]
+  unsigned sensor_flags = 0;        ///< bit i: sensor i (humanoid::SensorId) bad this period
+  bool safe_stop = false;           ///< the walk is being stopped for a failed sensor
   // balance.mode = dcm:
   Eigen::Vector2d com_estimate = Eigen::Vector2d::Zero();  ///< COM by kinematics [m]
   Eigen::Vector2d dcm = Eigen::Vector2d::Zero();           ///< ξ of the estimate [m]
@@ -102,9 +103,9 @@ struct ControllerStatus {
 struct SafeStop {
   bool active = false;
   humanoid::SensorId sensor = humanoid::kSensors;  ///< the sensor that failed (kSensors: none)
-  SignalFault fault = SignalFault::kOk;       ///< its fault when it failed
-  double t = 0;                               ///< [s]
-  int steps_kept = 0;                         ///< steps of the plan still taken
+  SignalFault fault = SignalFault::kOk;            ///< its fault when it failed
+  double t = 0;                                    ///< [s]
+  int steps_kept = 0;                              ///< steps of the plan still taken
 };
 
 class WalkingController {
@@ -209,43 +210,45 @@ class WalkingController {
   LandingAdaptation landing_;                  ///< each sole's tilt adapted to the floor at touchdown
   std::array<FootContact, 2> foot_contact_{};  ///< each foot's ground wrench from its F/T sensor
   DcmStabiliser dcm_;
-  RobotModelData estimate_data_;               ///< the COM estimate's kinematics
+  RobotModelData estimate_data_;                            ///< the COM estimate's kinematics
   Eigen::Vector2d com_velocity_ = Eigen::Vector2d::Zero();  ///< estimated, low-passed [m/s]
   Eigen::Vector2d com_bias_ = Eigen::Vector2d::Zero();      ///< correction of the kinematic COM [m]
   bool com_estimated_ = false;
   Eigen::Vector2d gyro_filtered_ = Eigen::Vector2d::Zero();  ///< IMU roll/pitch rate, low-passed [rad/s]
-  Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();  ///< ZMP feedback's integral [m]
-  std::array<Eigen::Vector2d, 2> zmp_filtered_{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()}; ///< the measured ZMP, low-passed [m]
+  Eigen::Vector2d zmp_integral_ = Eigen::Vector2d::Zero();   ///< ZMP feedback's integral [m]
+  std::array<Eigen::Vector2d, 2> zmp_filtered_{Eigen::Vector2d::Zero(),
+                                               Eigen::Vector2d::Zero()};  ///< the measured ZMP, low-passed [m]
   EstimatorParams estimator_params_;
   AttitudeEstimator estimator_;
-  TiltObserver tilt_;                          ///< estimator.source tilt
-  RobotModelData tilt_data_;                   ///< its leg kinematics
-  std::array<Vector3d, 2> anchor_{Vector3d::Zero(), Vector3d::Zero()};  ///< each sole centre, pelvis frame, last period [m]
+  TiltObserver tilt_;         ///< estimator.source tilt
+  RobotModelData tilt_data_;  ///< its leg kinematics
+  std::array<Vector3d, 2> anchor_{Vector3d::Zero(),
+                                  Vector3d::Zero()};  ///< each sole centre, pelvis frame, last period [m]
   bool anchors_known_ = false;
   SensorHealth health_;
   Matrix3d attitude_ = Matrix3d::Identity();
-  bool ft_live_ = true;     ///< both F/T sensors good this period
-  bool gyro_live_ = true;   ///< the gyro good this period
+  bool ft_live_ = true;                ///< both F/T sensors good this period
+  bool gyro_live_ = true;              ///< the gyro good this period
   double ft_fade_ = 1, imu_fade_ = 1;  ///< 1, fading to 0 after a failure of the F/T or IMU
   bool ft_failed_ = false, imu_failed_ = false;
   SafeStop safe_stop_;
-  int adjusted_step_ = -1;        ///< the step whose landing is being adjusted
-  Footprint planned_landing_;     ///< its landing before adjustment
-  bool recovery_step_ = false;    ///< a recovery step was inserted (standing)
+  int adjusted_step_ = -1;      ///< the step whose landing is being adjusted
+  Footprint planned_landing_;   ///< its landing before adjustment
+  bool recovery_step_ = false;  ///< a recovery step was inserted (standing)
   struct CaptureStep {
     bool active = false;
-    bool transfer = false;                           ///< both feet still down (the weight transfer before lift-off)
-    int swing = 0;                                   ///< the stepping foot
-    double t_begin = 0;                              ///< when the capture point left the feet [s]
-    Eigen::Vector2d p = Eigen::Vector2d::Zero();     ///< its centre of pressure (world) [m]
-    int feasible_periods = 0;                        ///< (C0): periods in a row the stance leg could carry the load
-  } capture_;                                        ///< the standing capture step under way
-  static constexpr double kCaptureMargin = 0.02;     ///< the capture step's CoP stays this far inside the sole [m]
+    bool transfer = false;                        ///< both feet still down (the weight transfer before lift-off)
+    int swing = 0;                                ///< the stepping foot
+    double t_begin = 0;                           ///< when the capture point left the feet [s]
+    Eigen::Vector2d p = Eigen::Vector2d::Zero();  ///< its centre of pressure (world) [m]
+    int feasible_periods = 0;                     ///< (C0): periods in a row the stance leg could carry the load
+  } capture_;                                     ///< the standing capture step under way
+  static constexpr double kCaptureMargin = 0.02;  ///< the capture step's CoP stays this far inside the sole [m]
   ControllerStatus status_;
   bool plan_motion_ = false;
-  RobotModelData motion_data_;  ///< the planned motion's scratch
+  RobotModelData motion_data_;                                             ///< the planned motion's scratch
   Eigen::Matrix2d motion_jacobian_inverse_ = Eigen::Matrix2d::Identity();  ///< its pelvis Newton step per COM miss
-  int motion_jacobian_age_ = 0;  ///< periods until that is taken again
+  int motion_jacobian_age_ = 0;                                            ///< periods until that is taken again
 };
 
 }  // namespace flexgait::walking

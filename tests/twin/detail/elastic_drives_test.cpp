@@ -54,13 +54,14 @@ TEST(ElasticDrives, StepAppliesTheGearSpringAndTheMotorSideDamping) {
     drives.step(m, d, states, commands);
     EXPECT_EQ(states[0].theta_m, expected.theta_m) << k;
     EXPECT_EQ(d->qfrc_applied[drives.dof_index()[0]],
-              p.k * gear_deflection(p, expected.theta_m, theta_l) + p.d * expected.omega_m) << k;
+              p.k * gear_deflection(p, expected.theta_m, theta_l) + p.d * expected.omega_m)
+        << k;
     EXPECT_EQ(d->qfrc_applied[1], 0.0);  // the slide carries no drive
     EXPECT_EQ(states[1].theta_m, 0.0);
   }
   EXPECT_EQ(mujoco_warning_count(d), 0);
   mj_deleteData(d);
-  EXPECT_THROW(ElasticDrives(m, {1}, {p}), std::invalid_argument);   // a slide joint
+  EXPECT_THROW(ElasticDrives(m, {1}, {p}), std::invalid_argument);     // a slide joint
   EXPECT_THROW(ElasticDrives(m, {0}, {p, p}), std::invalid_argument);  // one parameter set per joint
   mj_deleteModel(m);
 }

@@ -32,7 +32,8 @@ std::vector<ActuatorState> ElasticDrives::at_rest(const mjData* d) const {
   return states;
 }
 
-void ElasticDrives::step(const mjModel* m, mjData* d, std::vector<ActuatorState>& states, const double* commands) const {
+void ElasticDrives::step(const mjModel* m, mjData* d, std::vector<ActuatorState>& states,
+                         const double* commands) const {
   const double dt = m->opt.timestep;
   for (std::size_t i = 0; i < states.size(); ++i) {
     if (qpos_[i] < 0) continue;  // absent: its motor stays at rest
