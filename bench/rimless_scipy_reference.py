@@ -17,7 +17,11 @@ Usage:
 --config/--set take flexgait's keys (rimless.*, initial.omega, initial.beta, sim.steps,
 solver.rtol, solver.atol); --compare RUN_DIR holds the run to a `flexgait rimless simulate` run
 directory (events.csv, log.csv) and prints the largest differences; --time R runs the simulation
-R times and prints the best wall time per wheel step (Python's start-up and imports excluded).
+R times and prints the CPU and wall time per wheel step, median and best (Python's start-up and
+imports excluded).
+Example (the engine's side: build/release/bench/rimless_bench --benchmark_filter=FlexibleWheelStepDop853):
+    bench/rimless_scipy_reference.py --config configs/rimless.yaml --set rimless.mu_s=0.13 \
+        --set rimless.mu_k=0.13 --time 5
 
 The model, as implemented here (slope frame: x down the slope, y along its normal; gravity
 g (sin φ, -cos φ); q = (x, y, θ) the hub and the wheel's angle; leg k at β_k = θ + 2αk, α = π/N):
@@ -31,11 +35,17 @@ g (sin φ, -cos φ); q = (x, y, θ) the hub and the wheel's angle; leg k at β_k
 - a free leg relaxes, K δ + C δ̇ = 0, in closed form: δ(t) = δ(t_off) exp(-K (t - t_off) / C);
 - events (located by solve_ivp on DOP853's dense output): touchdown (y - (L0 - δ_k) cos β_k
   crosses 0 downward), lift-off (N_k crosses 0 downward), stick→slip (|T_k|/N_k - μ_s crosses 0
-  upward), slip→stick (ċ_k crosses 0), a slip's denominator cos β - μ_k s sin β reaching 0 (jam),
-  a stance leg reaching |β| = π/2 (failure);
+  upward, as atan2(|T_k|, N_k) - atan μ_s), slip→stick (ċ_k crosses 0), a slip's denominator
+  cos β - μ_k s sin β reaching 0 (jam), a stance leg reaching |β| = π/2 (failure); only at the
+  ends of DOP853's steps, as solve_ivp does: a crossing and its return inside one step is not seen;
+- between events the touchdown guards of the free legs that could reach cos β > 0 are watched,
+  chosen again after every rotation of the wheel by 2α;
 - a landing foot slips in the direction it moves; if that slip's denominator is ≤ 0 (a
-  Painlevé jam) a tangential impulse perpendicular to its leg stops it (the other feet carry no
-  impulse: their legs' springs cannot) and the lost kinetic energy is booked as friction work;
+  Painlevé jam) a tangential impulse perpendicular to its leg stops it (M Δq̇ = A^T Π, no
+  impulse along the spring leg); a foot on the ground that this would set slipping with a
+  non-positive denominator (a sticking trailing foot at a landing, at large μ) is stopped by the
+  same impulse problem; a foot with a positive one carries no impulse (a perpendicular impulse
+  lies outside its friction cone). The lost kinetic energy is booked as friction work;
 - modes at an event: the foot whose guard fired is decided by its event (stick→slip: slip with
   s = -sign T_stick; lift-off: leaves; slip→stick: stick, else slip either way; touchdown: slip
   with s = sign ċ); every other foot keeps its mode if the combination is consistent, else the
@@ -578,17 +588,18 @@ def main(argv=None):
         for line in report["lines"]:
             print(line)
     if a.time:
-        # wall and CPU time of the simulation alone (the imports and Python's start-up excluded);
-        # the CPU time is the figure to hold against Google Benchmark's (its us/step counter is a
-        # rate over CPU time), the best of R runs against a busy machine.
-        wall = cpu = math.inf
+        # CPU and wall time of the simulation alone (imports and Python's start-up excluded), per
+        # wheel step; the CPU time is the figure to hold against Google Benchmark's us/step (a rate
+        # over CPU time). Median and best of R runs.
+        cpu, wall = [], []
         for _ in range(a.time):
             w0, c0 = time.perf_counter(), time.process_time()
             s = Simulation(p).run()
-            wall = min(wall, (time.perf_counter() - w0) / s.steps)
-            cpu = min(cpu, (time.process_time() - c0) / s.steps)
-        print(f"time per step: {cpu * 1e6:.0f} us CPU, {wall * 1e6:.0f} us wall "
-              f"(best of {a.time} runs of {s.steps} steps)")
+            cpu.append((time.process_time() - c0) / s.steps)
+            wall.append((time.perf_counter() - w0) / s.steps)
+        print(f"time per step over {a.time} runs of {s.steps} steps: CPU median {np.median(cpu) * 1e6:.0f} us, "
+              f"best {min(cpu) * 1e6:.0f} us; wall median {np.median(wall) * 1e6:.0f} us, "
+              f"best {min(wall) * 1e6:.0f} us")
     return 0
 
 
@@ -638,11 +649,11 @@ def compare(sim, run_dir):
     if mismatch:
         lines.append(f"first difference: event {mismatch[0]}: reference {mismatch[1]}, engine {mismatch[2]}")
     lines.append(f"largest event-time difference (matching events): {dt:.3e} s")
-    lines.append(f"touchdowns compared: {pairs} of {len([e for e in eng_td if e[0] > 0])}, largest time difference {dtd:.3e} s, largest state difference "
-                 f"(x, y, θ, ẋ, ẏ, θ̇) before the reset {dq[0]:.3e}, after it {dq[1]:.3e}")
+    n_eng = len([e for e in eng_td if e[0] > 0])
+    lines.append(f"touchdowns compared: {pairs} of {n_eng}, largest time difference {dtd:.3e} s, largest state "
+                 f"difference (x, y, θ, ẋ, ẏ, θ̇) before the reset {dq[0]:.3e}, after it {dq[1]:.3e}")
     return {"lines": lines, "mismatch": mismatch, "dt": dt, "touchdown_dt": dtd, "touchdown_dq": dq,
-            "touchdowns": pairs, "touchdowns_eng": len([e for e in eng_td if e[0] > 0]), "events_ref": len(ref),
-            "events_eng": len(eng)}
+            "touchdowns": pairs, "touchdowns_eng": n_eng, "events_ref": len(ref), "events_eng": len(eng)}
 
 
 if __name__ == "__main__":
