@@ -53,8 +53,9 @@ def code(value):
 
 CONFIG_TITLES = {
     "rimless": "The rimless wheel (`rimless` commands, campaign experiments `rimless-*`)",
-    "humanoid-walk": "The humanoid walk (`humanoid walk`, `compensation`, `mismatch`, `export`; campaign `humanoid-walk`, `humanoid-push-recovery`)",
+    "humanoid-walk": "The humanoid walk (`humanoid walk`, `compensation`, `mismatch`, `export`; campaign `humanoid-walk`)",
     "humanoid-bench": "The stiffness bench (`humanoid bench`; campaign `humanoid-bench`)",
+    "humanoid-push-recovery": "The largest recoverable push (campaign `humanoid-push-recovery`)",
 }
 
 
@@ -64,10 +65,17 @@ def configuration_page(schema):
            "`--config` YAML file or with `--set key=value`; *allowed* is the domain the program checks",
            "(a value outside it is exit 2 naming the key). A default written `auto` is derived from",
            "other keys by the rule given under *derived*.", ""]
+    listed = {}  # key -> the configuration whose section lists it
     for name, keys in schema["configurations"].items():
         out += [f"## {CONFIG_TITLES.get(name, name)}", ""]
+        shared = sorted({listed[k["key"]] for k in keys if k["key"] in listed})
+        if shared:
+            out += ["It takes every key of " + ", ".join(f"`{s}`" for s in shared) + " (above), and these:", ""]
         groups = {}
         for k in keys:
+            if k["key"] in listed:
+                continue
+            listed[k["key"]] = name
             groups.setdefault(k["key"].split(".")[0], []).append(k)
         for group, members in groups.items():
             out += [f"### {name}: `{group}.*`", "",

@@ -355,6 +355,18 @@ def replays(root, run_dir):
     return [f for f in files_ending(root, run_dir, ".html") if f == "replay.html"]
 
 
+def embedded_replays(runs):
+    """The runs whose replay the page embeds: the first run with a replay of each study (the run
+    directory's first word: rimless, humanoid), in manifest order; the others are linked."""
+    seen, embed = set(), set()
+    for r in runs:
+        study = r["dir"].split("-")[0]
+        if r["replays"] and study not in seen:
+            seen.add(study)
+            embed.add(r["dir"])
+    return embed
+
+
 def caption(captions, run_dir, name):
     """The caption of figure NAME of a run: the first pattern matching RUN/NAME, else NAME."""
     for pattern in (f"{run_dir}/{name}", name):
@@ -395,6 +407,8 @@ def render_page(root, references_path, template_path):
              "videos": videos(root, r["dir"]), "replays": replays(root, r["dir"])} for r in manifest["runs"]]
     if problems:
         raise ReportError("\n".join(problems))
+    embed = embedded_replays(runs)
+    runs = [{**r, "embed_replay": r["dir"] in embed} for r in runs]
     template = env.get_template(os.path.basename(template_path))
     return template.render(quick=manifest["quick"], sections=sections, runs=runs)
 

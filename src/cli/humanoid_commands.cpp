@@ -10,6 +10,7 @@
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/progress.hpp"
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/run_directory.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/bench_output.hpp"
@@ -80,12 +81,11 @@ int compensation_study(const RunOptions& run) {
   dir.write_config(experiments::with_derived_values(config, params));
   const auto cases = experiments::compensation_cases(params);
   const auto results = run_study(dir, cases);
-  const std::string comparison = experiments::compensation_comparison_json(cases, results);
-  dir.write("comparison.json", comparison);
+  const nlohmann::ordered_json j = experiments::compensation_comparison(cases, results);
+  dir.write("comparison.json", json_file_text(j));
   if (run.plot) run_plot_script("plot_compensation.py", {dir.path().string()});
-  const auto j = nlohmann::json::parse(comparison);
   if (run.json) {
-    fmt::print("{}", comparison);
+    fmt::print("{}", json_file_text(j));
   } else {
     fmt::print(
         "{:.1f} s/step, {} steps: peak pelvis roll error {:.4f} rad off, {:.4f} rad compensated ({:.0f} % less; "
@@ -131,14 +131,13 @@ int mismatch_study(const RunOptions& run, const std::vector<double>& scales) {
   dir.write_config(experiments::with_derived_values(config, params));
   const auto cases = experiments::mismatch_cases(params, scales);
   const auto results = run_study(dir, cases);
-  const std::string comparison = experiments::mismatch_comparison_json(cases, results);
-  dir.write("comparison.json", comparison);
+  const nlohmann::ordered_json comparison = experiments::mismatch_comparison(cases, results);
+  dir.write("comparison.json", json_file_text(comparison));
   if (run.plot) run_plot_script("plot_mismatch.py", {dir.path().string()});
   if (run.json) {
-    fmt::print("{}", comparison);
+    fmt::print("{}", json_file_text(comparison));
   } else {
-    const auto parsed = nlohmann::json::parse(comparison);
-    for (const auto& row : parsed["rows"])
+    for (const auto& row : comparison["rows"])
       fmt::print("true k {:6.0f} (belief {:4.0f}) Nm/rad: peak roll error {:.4f} rad off{}, {:.4f} rad compensated{}\n",
                  row["k_joint_true"].get<double>(), row["k_joint_belief"].get<double>(),
                  row["pelvis_roll_error_max_off"].get<double>(), row["fell_off"].get<bool>() ? " (fell)" : "",
@@ -225,7 +224,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
   if (drawn->replay()) dir.write("replay.html", replay::replay_html(drawn->replay()->scene()));
-  const std::string summary = experiments::write_walk(dir, "", r);
+  const std::string summary = json_file_text(experiments::write_walk(dir, "", r));
   if (run.plot) run_plot_script("plot_walk.py", {dir.path().string()});
   const auto& m = r.metrics;
   // A walk that did not complete (a failure, a fall, a safe stop, a step left unlanded) is exit 1

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "flexgait/core/config.hpp"
+#include "flexgait/core/enum_names.hpp"
 
 namespace flexgait::cli {
 
@@ -31,6 +32,17 @@ Config resolve(const Schema& schema, const RunOptions& options, const std::vecto
 /// An option's value as a ConfigEntry for resolve(), or none when the option was not given.
 void add_option_value(std::vector<ConfigEntry>& out, const CLI::App& cmd, const std::string& option,
                       const std::string& key, const std::string& text);
+
+/// An option taking one of a named enum's names (core/enum_names.hpp), stored as the enum: the help and a
+/// wrong value's error (exit 2) list the names; the default shown is the value's name.
+template <NamedEnum E>
+CLI::Option* add_enum_option(CLI::App& cmd, const std::string& name, E& value, const std::string& doc) {
+  return cmd
+      .add_option_function<std::string>(
+          name, [&value](const std::string& text) { value = enum_from_name<E>(text).value(); }, doc)
+      ->check(CLI::IsMember(enum_name_list<E>()))
+      ->default_str(std::string(name_of(value)));
+}
 
 /// CLI11 check of a number option: rejects empty text, junk, NaN and infinities, naming the option.
 CLI::Validator finite_number();

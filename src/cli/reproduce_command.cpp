@@ -60,7 +60,7 @@ std::vector<Step> steps(bool quick) {
   s.push_back({"rimless-stagnation-map",
                "Rimless wheel: stagnation interval against mu - tan(phi), I, C and K",
                {"rimless", "analysis", "stagnation-map", "--config", stagnation}});
-  // Issue 18: the gait continued in mu through the behaviour thresholds, across the changes of the
+  // Bifurcations: the gait continued in mu through the behaviour thresholds, across the changes of the
   // touchdown section's foot mode, to its end at mu = tan(phi); the orbit diagram over the slope
   // with the continued branch over it (it crosses the section's mode change at slope 0.2193); a basin of the gait.
   s.push_back(
@@ -138,7 +138,7 @@ std::vector<Step> steps(bool quick) {
        "the 3rd step (left foot in stance; a push to the right, toward the swinging foot, is caught by the "
        "step that lands 0.4 s later, so it can exceed the bound, which assumes no step)."});
   // One push, seen (docs/guide/campaigns.md): the full variant renders the 1 s/step walk pushed outward at mid single
-  // support of its 3rd step (the example push of the issue), frames and video.mp4 (ffmpeg).
+  // support of its 3rd step (the example push of docs/guide/campaigns.md), frames and video.mp4 (ffmpeg).
   if (!quick)
     s.push_back({"humanoid-push-video",
                  "Humanoid: a 12 N s chest push at mid single support, 1.0 s/step (video)",

@@ -82,7 +82,7 @@ int simulate(const SimulateArgs& a, const CLI::App& cmd) {
 struct FixedPointArgs {
   RunOptions run;
   std::string model;
-  std::string section = "touchdown";
+  rimless::Section section = rimless::Section::Touchdown;
 };
 
 using rimless::WheelSetup;
@@ -97,21 +97,21 @@ WheelSetup wheel_setup(const RunOptions& run, const CLI::App& cmd, const std::st
 int fixed_point(const FixedPointArgs& a, const CLI::App& cmd) {
   const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   const rimless::AnalysisOptions opt = rimless::analysis_from_config(s.config);
-  const rimless::Section section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
   const RunDirectory dir(a.run.out);  // --out before the computation
   dir.write_config(s.config);
-  const rimless::FixedPointReport rep = rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, section, s.initial);
+  const rimless::FixedPointReport rep =
+      rimless::find_fixed_point(s.wheel, s.sim, opt, s.sim.model, a.section, s.initial);
   const std::string json = rimless::fixed_point_json(rep);
   dir.write("fixed_point.json", json);
   if (a.run.json) fmt::print("{}", json);
   if (!rep.converged) {  // a named failure: exit 1, the report (state and multipliers null) kept
     fmt::print(stderr, "error: no fixed point ({} wheel, {} section): {}; report in {}\n", s.config.choice("sim.model"),
-               a.section, one_line(rep.failure(), 1000), (dir.path() / "fixed_point.json").string());
+               name_of(a.section), one_line(rep.failure(), 1000), (dir.path() / "fixed_point.json").string());
     return 1;
   }
   if (a.run.json) return 0;
   fmt::print("{} wheel, {} section: fixed point after {} Newton iterations, residual {:.2e}\n",
-             s.config.choice("sim.model"), a.section, rep.iterations, rep.residual);
+             s.config.choice("sim.model"), name_of(a.section), rep.iterations, rep.residual);
   const auto names = rep.point.names();
   for (Eigen::Index i = 0; i < rep.point.z.size(); ++i)
     fmt::print("  {:8s} = {:.12g}\n", names.at(static_cast<std::size_t>(i)), rep.point.z(i));
@@ -126,7 +126,7 @@ int fixed_point(const FixedPointArgs& a, const CLI::App& cmd) {
 struct SweepArgs {
   RunOptions run;
   std::string model;
-  std::string section = "touchdown";
+  rimless::Section section = rimless::Section::Touchdown;
   std::string param;
   double from = 0, to = 0;
   int count = 0;
@@ -137,8 +137,7 @@ struct SweepArgs {
 int sweep(const SweepArgs& a, const CLI::App& cmd) {
   const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   rimless::check_sweep_param(s.config.schema(), a.param);
-  rimless::SweepSpec spec{a.param, a.from, a.to, a.count,
-                          a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown};
+  rimless::SweepSpec spec{a.param, a.from, a.to, a.count, a.section};
   rimless::check_sweep(s.config, spec);  // its ends and every point valid first
   SweepJob job;
   job.dir = a.run.out;
@@ -147,7 +146,7 @@ int sweep(const SweepArgs& a, const CLI::App& cmd) {
   job.jobs = a.jobs;
   job.resume = a.resume;
   job.signature = fmt::format("param {} from {} to {} count {} section {}\n{}", spec.param, spec.from, spec.to,
-                              spec.count, a.section, s.config.to_yaml());
+                              spec.count, name_of(a.section), s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
   job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
@@ -172,7 +171,7 @@ struct AnalysisArgs {
   int count = 0;
   int jobs = 0;
   bool resume = false;
-  std::string section = "touchdown";
+  rimless::Section section = rimless::Section::Touchdown;
   std::vector<std::string> vary;
   MapOptions map;  ///< orbit-diagram and basin (rimless_map_commands.hpp)
 };
@@ -245,8 +244,8 @@ std::vector<std::string> gait_vs_friction(const AnalysisContext& c, const RunDir
   job.count = spec.count;
   job.jobs = c.args.jobs;
   job.resume = c.args.resume;
-  job.signature = fmt::format("gait-vs-friction {} {} {} {}\n{}", spec.from, spec.to, spec.count, c.args.section,
-                              c.setup.config.to_yaml());
+  job.signature = fmt::format("gait-vs-friction {} {} {} {}\n{}", spec.from, spec.to, spec.count,
+                              name_of(c.args.section), c.setup.config.to_yaml());
   const Config base = c.setup.config;
   job.row = [base, spec](int i) { return rimless::sweep_row(base, spec, i); };
   job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
@@ -294,7 +293,7 @@ std::vector<std::string> stagnation(const AnalysisContext& c, const RunDirectory
   const WheelSetup& s = c.setup;
   const rimless::StagnationScan scan = rimless::scan_stagnation(s.wheel, s.initial, s.sim, c.stagnation);
   dir.write("stagnation.csv", rimless::stagnation_csv(scan));
-  dir.write("stagnation.json", record_json(scan.summary).dump(2) + "\n");
+  dir.write("stagnation.json", json_file_text(record_json(scan.summary)));
   const rimless::StagnationSummary& r = scan.summary;
   if (r.critical_found) {
     fmt::print("critical omega0 = {:.12f} rad/s (bracket {:.3e} wide after {} bisection stages){}\n", r.omega_c,
@@ -450,12 +449,7 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
   const rimless::PaperAnalysisOptions paper = rimless::paper_analysis_from_config(s.config);
   const rimless::StagnationOptions stagnation =
       entry->reads_stagnation ? rimless::stagnation_from_config(s.config) : rimless::StagnationOptions{};
-  const AnalysisContext context{a,
-                                s,
-                                paper,
-                                stagnation,
-                                a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown,
-                                a.vary.empty() ? default_stagnation_map() : a.vary};
+  const AnalysisContext context{a, s, paper, stagnation, a.section, a.vary.empty() ? default_stagnation_map() : a.vary};
   if (entry->check != nullptr) entry->check(context, *entry);
   // A resumed sweep must match the one in --out: check before anything is written.
   if (a.resume && !entry->sweep_name.empty()) {
@@ -478,7 +472,7 @@ int analysis(const AnalysisArgs& a, const CLI::App& cmd) {
 struct ContinuationArgs {
   RunOptions run;
   std::string model;
-  std::string section = "touchdown";
+  rimless::Section section = rimless::Section::Touchdown;
   std::string param;
   double from = 0, to = 0, step = 0;
   int period = 1;
@@ -488,7 +482,7 @@ struct ContinuationArgs {
 int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   const WheelSetup s = wheel_setup(a.run, cmd, a.model);
   rimless::GaitContinuationSpec spec{.param = a.param, .from = a.from, .to = a.to, .step = a.step};
-  spec.section = a.section == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
+  spec.section = a.section;
   spec.period = a.period;
   spec.switch_at_period_doubling = a.switch_at_pd;
   spec.tuning = rimless::gait_continuation_from_config(s.config);
@@ -547,6 +541,12 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   return 0;
 }
 // --- end rimless continuation ---
+
+/// --model: a wheel model's name (rimless::Model), kept as text and set as sim.model (checked as
+/// --set checks it).
+void add_model_option(CLI::App& cmd, std::string& model, const std::string& doc) {
+  cmd.add_option("--model", model, doc)->check(CLI::IsMember(enum_name_list<rimless::Model>()));
+}
 }  // namespace
 
 void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
@@ -557,9 +557,8 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   CLI::App* sim =
       rimless->add_subcommand("simulate", "Simulate the wheel for a number of steps and write a run directory");
   add_run_options(*sim, args->run, "runs/rimless-simulate");
-  sim->add_option("--model", args->model,
-                  "flexible (spring-damper legs, stick-slip) or rigid (McGeer's wheel); sets sim.model")
-      ->check(CLI::IsMember({"flexible", "rigid"}));
+  add_model_option(*sim, args->model,
+                   "flexible (spring-damper legs, stick-slip) or rigid (McGeer's wheel); sets sim.model");
   sim->add_option("--steps", args->steps, "number of steps (touchdowns of new legs); sets sim.steps")->type_name("INT");
   sim->add_option("--omega0", args->omega0, "initial angular velocity (rad/s); sets initial.omega")->type_name("FLOAT");
   sim->callback([args, sim, &action] { action = [args, sim] { return simulate(*args, *sim); }; });
@@ -569,11 +568,9 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
                                          "Find a periodic gait: Newton-Raphson on the Poincare map, "
                                          "Floquet multipliers, stability");
   add_run_options(*fp, fp_args->run, "runs/rimless-fixed-point");
-  fp->add_option("--model", fp_args->model, "flexible or rigid; sets sim.model")
-      ->check(CLI::IsMember({"flexible", "rigid"}));
-  fp->add_option("--section", fp_args->section, "Poincare section: touchdown of a new leg, or stance leg upright")
-      ->check(CLI::IsMember({"touchdown", "upright"}))
-      ->capture_default_str();
+  add_model_option(*fp, fp_args->model, "flexible or rigid; sets sim.model");
+  add_enum_option(*fp, "--section", fp_args->section,
+                  "Poincare section: touchdown of a new leg, or stance leg upright");
   fp->callback([fp_args, fp, &action] { action = [fp_args, fp] { return fixed_point(*fp_args, *fp); }; });
 
   auto sw = std::make_shared<SweepArgs>();
@@ -594,11 +591,8 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   swc->add_flag("--resume", sw->resume, "keep the finished points of an interrupted sweep in --out");
-  swc->add_option("--model", sw->model, "flexible or rigid; sets sim.model")
-      ->check(CLI::IsMember({"flexible", "rigid"}));
-  swc->add_option("--section", sw->section, "Poincare section of the fixed points")
-      ->check(CLI::IsMember({"touchdown", "upright"}))
-      ->capture_default_str();
+  add_model_option(*swc, sw->model, "flexible or rigid; sets sim.model");
+  add_enum_option(*swc, "--section", sw->section, "Poincare section of the fixed points");
   swc->callback([sw, swc, &action] { action = [sw, swc] { return sweep(*sw, *swc); }; });
 
   auto ct = std::make_shared<ContinuationArgs>();
@@ -629,11 +623,8 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
   ctc->add_flag("--switch-at-pd", ct->switch_at_pd,
                 "at the branch's first period doubling, switch to the period-2K "
                 "branch born there and continue it too (branch_period2K.csv)");
-  ctc->add_option("--model", ct->model, "flexible or rigid; sets sim.model")
-      ->check(CLI::IsMember({"flexible", "rigid"}));
-  ctc->add_option("--section", ct->section, "Poincare section of the fixed points")
-      ->check(CLI::IsMember({"touchdown", "upright"}))
-      ->capture_default_str();
+  add_model_option(*ctc, ct->model, "flexible or rigid; sets sim.model");
+  add_enum_option(*ctc, "--section", ct->section, "Poincare section of the fixed points");
   ctc->callback([ct, ctc, &action] { action = [ct, ctc] { return continuation(*ct, *ctc); }; });
 
   auto an = std::make_shared<AnalysisArgs>();
@@ -659,9 +650,7 @@ void add_rimless_commands(CLI::App& app, std::function<int()>& action) {
       ->check(CLI::Range(1, 1000000));
   anc->add_option("--jobs", an->jobs, "worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   anc->add_flag("--resume", an->resume, "keep the finished points of an interrupted run in --out");
-  anc->add_option("--section", an->section, "Poincare section of the fixed points")
-      ->check(CLI::IsMember({"touchdown", "upright"}))
-      ->capture_default_str();
+  add_enum_option(*anc, "--section", an->section, "Poincare section of the fixed points");
   anc->add_option("--vary", an->vary,
                   "stagnation-map: one map point, KEY=VALUE[,KEY=VALUE...] set on the "
                   "configuration (rimless.mu sets mu_s and mu_k); repeat for more points; default: "

@@ -21,10 +21,6 @@
 namespace flexgait::cli {
 namespace {
 
-rimless::Section section_of(const std::string& name) {
-  return name == "upright" ? rimless::Section::Upright : rimless::Section::Touchdown;
-}
-
 /// A resumed sweep must match the one in --out: checked before anything is written.
 void check_resume(const MapRun& a, const std::string& name) {
   if (!a.resume) return;
@@ -121,11 +117,11 @@ CheckedOrbit checked_orbit(const MapRun& a, const CLI::App& cmd) {
   if (a.from == a.to)
     throw UsageError(fmt::format("--to: {} equals --from; allowed: a value other than --from", format_number(a.to)));
   if (a.count < 2) throw UsageError(fmt::format("--count: {}; allowed: an integer >= 2", a.count));
-  rimless::OrbitDiagramSpec spec{
-      {a.map.param, a.from, a.to, a.count, section_of(a.section)}, lengths.transient, lengths.record};
+  rimless::OrbitDiagramSpec spec{{a.map.param, a.from, a.to, a.count, a.section}, lengths.transient, lengths.record};
   rimless::check_orbit_diagram(s.config, spec);
   std::vector<std::string> branches;
-  for (const auto& file : a.map.branches) branches.push_back(read_branch(file, a.map.param, a.section, s.config));
+  for (const auto& file : a.map.branches)
+    branches.push_back(read_branch(file, a.map.param, std::string(name_of(a.section)), s.config));
   return {std::move(s), spec, std::move(branches)};
 }
 
@@ -171,8 +167,8 @@ int orbit_diagram(const MapRun& a, const CLI::App& cmd) {
   job.jobs = a.jobs > 0 ? a.jobs : (mpi ? 1 : 0);
   job.resume = a.resume;
   job.signature = fmt::format("orbit-diagram {} {} {} {} {} transient {} record {}\n{}", spec.sweep.param,
-                              format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count, a.section,
-                              spec.transient, spec.record, s.config.to_yaml());
+                              format_number(spec.sweep.from), format_number(spec.sweep.to), spec.sweep.count,
+                              name_of(a.section), spec.transient, spec.record, s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec](int i) { return rimless::orbit_points_row(base, spec, i); };
   job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
@@ -211,7 +207,7 @@ std::pair<rimless::WheelSetup, rimless::BasinSpec> checked_basin(const MapRun& a
   spec.steps_limit = limits.steps_limit;
   spec.tolerance = limits.tolerance;
   spec.no_landing_limit = limits.no_landing_limit;
-  spec.section = section_of(a.section);
+  spec.section = a.section;
   rimless::check_basin(s.config, spec);
   return {std::move(s), spec};
 }
@@ -239,7 +235,7 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   job.signature = fmt::format("basin {} {}:{}:{} {} {}:{}:{} steps {} tolerance {} {}\n{}", spec.x.key,
                               format_number(spec.x.from), format_number(spec.x.to), spec.x.count, spec.y.key,
                               format_number(spec.y.from), format_number(spec.y.to), spec.y.count, spec.steps_limit,
-                              format_number(spec.tolerance), a.section, s.config.to_yaml());
+                              format_number(spec.tolerance), name_of(a.section), s.config.to_yaml());
   const Config base = s.config;
   job.row = [base, spec, ref](int i) { return rimless::basin_row(base, spec, ref, i); };
   job.valid_row = [spec](int i, const std::vector<std::string>& cells) {
@@ -251,7 +247,7 @@ int basin(const MapRun& a, const CLI::App& cmd) {
   const auto counts = rimless::basin_counts(read_text_file(dir.path() / "basin.csv"));
   const std::string area_unit =
       fmt::format("({}) x ({})", s.config.schema().find(spec.x.key)->unit, s.config.schema().find(spec.y.key)->unit);
-  dir.write("summary.json", rimless::basin_summary_json(spec, a.section, ref, counts, area_unit));
+  dir.write("summary.json", rimless::basin_summary_json(spec, ref, counts, area_unit));
   const rimless::BasinSize size = rimless::basin_size(spec, counts);
   if (a.run.plot) run_plot_script("plot_analysis.py", {"basin", dir.path().string()});
   if (!ref.found)

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "flexgait/rimless/simulation.hpp"
 #include "options.hpp"
 
 namespace flexgait::cli {
@@ -35,7 +36,7 @@ struct MapRun {
   int count = 0;
   int jobs = 0;
   bool resume = false;
-  std::string section;
+  rimless::Section section = rimless::Section::Touchdown;
 };
 
 /// Runs orbit-diagram or basin; every option checked before anything is written (options the

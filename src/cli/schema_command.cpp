@@ -16,6 +16,7 @@
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
+#include "flexgait/experiments/push_recovery.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_output.hpp"
@@ -213,11 +214,11 @@ nlohmann::ordered_json written_fields_json(const std::string& document) {
 void add_study_results(nlohmann::ordered_json& results) {
   const experiments::WalkRunParams base;
   const auto compensation = experiments::compensation_cases(base);
-  results["humanoid compensation: comparison.json"] = written_fields_json(experiments::compensation_comparison_json(
-      compensation, std::vector<experiments::WalkResult>(compensation.size())));
+  results["humanoid compensation: comparison.json"] = written_fields_json(json_file_text(
+      experiments::compensation_comparison(compensation, std::vector<experiments::WalkResult>(compensation.size()))));
   const auto mismatch = experiments::mismatch_cases(base, {1.0});
-  results["humanoid mismatch: comparison.json"] = written_fields_json(
-      experiments::mismatch_comparison_json(mismatch, std::vector<experiments::WalkResult>(mismatch.size())));
+  results["humanoid mismatch: comparison.json"] = written_fields_json(json_file_text(
+      experiments::mismatch_comparison(mismatch, std::vector<experiments::WalkResult>(mismatch.size()))));
 }
 
 /// summary.json of the basin and of the orbit diagram, from their writers on an empty map.
@@ -228,7 +229,7 @@ void add_map_results(nlohmann::ordered_json& results) {
   std::map<std::string, int> none;
   for (const std::string& outcome : rimless::basin_outcomes()) none[outcome] = 0;
   results["rimless analysis basin: summary.json"] =
-      written_fields_json(rimless::basin_summary_json(basin, "touchdown", rimless::BasinReference{}, none, ""));
+      written_fields_json(rimless::basin_summary_json(basin, rimless::BasinReference{}, none, ""));
   results["rimless analysis orbit-diagram: summary.json"] =
       written_fields_json(rimless::orbit_summary_json(sweep_file_header(rimless::orbit_points_header()) + "\n"));
 }
@@ -257,6 +258,7 @@ std::string schema_document() {
   doc["configurations"]["rimless"] = configuration_json(rimless::rimless_analysis_schema());
   doc["configurations"]["humanoid-walk"] = configuration_json(experiments::walk_run_schema());
   doc["configurations"]["humanoid-bench"] = configuration_json(experiments::bench_schema());
+  doc["configurations"]["humanoid-push-recovery"] = configuration_json(experiments::push_recovery_schema());
   doc["aliases"]["rimless"] = aliases_json(rimless::rimless_analysis_schema());
   doc["aliases"]["humanoid-walk"] = aliases_json(experiments::walk_run_schema());
   doc["aliases"]["humanoid-bench"] = aliases_json(experiments::bench_schema());
@@ -277,7 +279,7 @@ std::string schema_document() {
   nlohmann::ordered_json runs = nlohmann::ordered_json::object();
   for (const ReproduceRun& r : reproduce_runs()) runs[r.dir] = r.command;
   doc["reproduce"] = std::move(runs);
-  return doc.dump(2) + "\n";
+  return json_file_text(doc);
 }
 
 void add_schema_command(CLI::App& app, std::function<int()>& action) {

@@ -14,12 +14,13 @@ namespace flexgait::campaign {
 namespace {
 
 TEST(SummaryCells, FlattensUnderTheSummarysKeys) {
-  const std::string json =
-      R"({"a": 1, "b": 0.1, "c": null, "d": true, "e": "x, y", "f": ["p", "q"], "g": [[0.5, -1], [2, 0]]})";
+  const auto json = nlohmann::ordered_json::parse(
+      R"({"a": 1, "b": 0.1, "c": null, "d": true, "e": "x, y", "f": ["p", "q"], "g": [[0.5, -1], [2, 0]]})");
   EXPECT_EQ(summary_cells(json, {"a", "b", "c", "d", "e", "f", "g", "missing"}),
             "1,0.1,,true,\"x, y\",p;q,0.5:-1;2:0,");
   // Doubles round-trip: the cell is format_number of the value.
-  EXPECT_EQ(summary_cells(R"({"v": 0.30000000000000004})", {"v"}), format_number(0.30000000000000004));
+  EXPECT_EQ(summary_cells(nlohmann::ordered_json::parse(R"({"v": 0.30000000000000004})"), {"v"}),
+            format_number(0.30000000000000004));
 }
 
 // A two-key experiment whose run fails for x = 3 and whose check refuses x + y > 10.
@@ -31,9 +32,9 @@ Experiment toy() {
   e.check = [](const Config& c) {
     if (c.real("x") + c.real("y") > 10) throw ConfigError("y", c.origin("y") + ": x + y > 10");
   };
-  e.run = [](const Config& c, const std::filesystem::path&) -> std::string {
+  e.run = [](const Config& c, const std::filesystem::path&) {
     if (c.real("x") == 3) throw std::runtime_error("diverged");
-    return fmt::format(R"({{"sum": {}, "note": null}})", c.real("x") + c.real("y"));
+    return nlohmann::ordered_json{{"sum", c.real("x") + c.real("y")}, {"note", nullptr}};
   };
   return e;
 }

@@ -16,7 +16,7 @@ std::vector<std::string> summary_keys(const Experiment& e, const std::vector<std
   const Config c = resolve_config(e.schema, std::nullopt, overrides);
   e.check(c);
   std::vector<std::string> keys;
-  const auto json = nlohmann::ordered_json::parse(e.run(c, {}));
+  const nlohmann::ordered_json json = e.run(c, {});
   for (const auto& item : json.items()) keys.push_back(item.key());
   return keys;
 }

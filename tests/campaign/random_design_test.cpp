@@ -76,9 +76,7 @@ Experiment echo() {
   Experiment e{"echo", "summary.json", s, {}, {}, {"y"}, {}};
   e.set = [](Config& c, const std::string& k, const std::string& v, const std::string& origin) { c.set(k, v, origin); };
   e.check = [](const Config&) {};
-  e.run = [](const Config& c, const std::filesystem::path&) -> std::string {
-    return fmt::format(R"({{"y": {}}})", format_number(c.real("y")));
-  };
+  e.run = [](const Config& c, const std::filesystem::path&) { return nlohmann::ordered_json{{"y", c.real("y")}}; };
   return e;
 }
 

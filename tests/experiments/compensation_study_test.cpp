@@ -78,7 +78,7 @@ TEST(CompensationStudy, ComparisonCutsAreOneMinusOnOverOff) {
   results[1].metrics.pelvis_roll_error_max = 0.004;  // both
   results[0].metrics.zmp_single_support_rms_y = 0.02;
   results[1].metrics.zmp_single_support_rms_y = 0.015;
-  const nlohmann::json j = nlohmann::json::parse(compensation_comparison_json(cases, results));
+  const nlohmann::ordered_json j = compensation_comparison(cases, results);
   EXPECT_NEAR(j["pelvis_roll_error_max_cut"].get<double>(), 1 - 0.004 / 0.05, 1e-15);
   EXPECT_NEAR(j["zmp_single_support_rms_y_cut"].get<double>(), 1 - 0.015 / 0.02, 1e-15);
   EXPECT_EQ(j["pelvis_roll_error_max_off"], 0.05);

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "flexgait/core/atomic_file.hpp"
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 
@@ -97,7 +98,7 @@ TEST(WalkOutput, WriteWalkWritesTheFiveFilesUnderItsSubfolder) {
   std::string summary;
   {
     const RunDirectory run(dir);
-    summary = write_walk(run, "case/", r);
+    summary = json_file_text(write_walk(run, "case/", r));
   }
   for (const char* f : {"log.csv", "footsteps.csv", "joints.csv", "summary.json", "timing.json"})
     EXPECT_TRUE(std::filesystem::is_regular_file(dir / "case" / f)) << f;

@@ -76,6 +76,27 @@ TEST(ReplayJson, RoundTripsThePerFrameArrays) {
   EXPECT_EQ(replay_json(s), replay_json(two_frames()));  // same scene, same bytes
 }
 
+TEST(Scene, AGrownLayerKeepsItsItemsAndHidesTheNewOnesInEarlierFrames) {
+  Scene s = two_frames();
+  const std::vector<float> before = s.layers[0].data;  // 2 frames × 2 items × 6 floats
+  s.grow_layer(0, 3);
+  s.check();
+  ASSERT_EQ(s.layers[0].count, 3);
+  for (int f = 0; f < 2; ++f)
+    for (int i = 0; i < 12; ++i) {
+      const float was = before[static_cast<std::size_t>(12 * f + i)];
+      const float now = s.layers[0].data[static_cast<std::size_t>(18 * f + i)];
+      EXPECT_TRUE(now == was || (std::isnan(now) && std::isnan(was))) << "frame " << f << ", float " << i;
+      EXPECT_TRUE(std::isnan(s.layers[0].data[static_cast<std::size_t>(18 * f + 12 + i % 6)]));  // the new item
+    }
+  EXPECT_EQ(s.layers[0].color, (std::vector<std::uint8_t>{0, 1, 0, 0, 1, 0}));
+  s.set_item(0, s.add_frame(2.0), 2, {1, 2, 3}, {4, 5, 6});
+  s.check();
+  EXPECT_EQ(s.layers[0].data.back(), 6.0F);
+  s.grow_layer(0, 1);  // never shrinks
+  EXPECT_EQ(s.layers[0].count, 3);
+}
+
 TEST(ReplayJson, RefusesInconsistentSizes) {
   Scene s = two_frames();
   s.poses.pop_back();

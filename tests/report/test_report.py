@@ -189,6 +189,18 @@ class RenderTest(unittest.TestCase):
         self.assertNotIn("run-a/replay.html", text)
         self.assertEqual(page_check.page_problems(tree.page), [])
 
+    def test_the_first_replay_of_each_study_is_embedded_the_others_linked(self):
+        tree = RunTree(self.tmp.name)
+        for run in ("run-a", "run-b"):
+            write(os.path.join(tree.root, run, "replay.html"), "<!doctype html><title>replay</title>")
+        result = tree.render()
+        self.assertEqual(result.returncode, 0, result.stderr)
+        text = tree.page_text()
+        self.assertEqual(text.count("<iframe "), 1)  # run-a and run-b are one study ("run")
+        self.assertIn('<iframe src="run-a/replay.html"', text)
+        self.assertIn('<a href="run-b/replay.html">', text)
+        self.assertEqual(page_check.page_problems(tree.page), [])
+
     def test_values_and_titles_are_escaped(self):
         summary = dict(SUMMARY, name="<script>alert(1)</script>")
         points = 'mu,gait,stable,lam\n0.1,"<script>x</script> & ""quoted""",true,0.9\n'

@@ -125,5 +125,27 @@ TEST(ReplayRecorder, PlannedFootprintsAreStaticBoxes) {
   EXPECT_NEAR(2 * std::atan2(g.quat[3], g.quat[0]), 0.3, 1e-12);  // the yaw about z
 }
 
+// A recovery step lands beyond the plan's footprints: the actual footprints' layer grows to hold it,
+// and the frames before it show it hidden.
+TEST(ReplayRecorder, ActualFootprintsBeyondThePlanAreRecorded) {
+  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  ReplayRecorder rec(plant, "recovery", {}, 0.01);
+  rec.set_planned_footprints({FootprintMarker{{0.2, 0.1, 0}, 0}});
+  RenderMarkers markers;
+  markers.actual = {FootprintMarker{{0.2, 0.1, 0}, 0}};
+  rec.record(plant, 0.0, markers);
+  markers.actual.push_back(FootprintMarker{{0.5, -0.1, 0}, 0});
+  markers.actual.push_back(FootprintMarker{{0.7, 0.1, 0}, 0});  // beyond the plan
+  rec.record(plant, 0.01, markers);
+  const auto& layer = std::find_if(rec.scene().layers.begin(), rec.scene().layers.end(),
+                                   [](const replay::Layer& l) { return l.name == "actual footprints"; });
+  ASSERT_NE(layer, rec.scene().layers.end());
+  ASSERT_EQ(layer->count, 3);
+  ASSERT_EQ(layer->data.size(), 2u * 3u * 6u);
+  EXPECT_TRUE(std::isnan(layer->data[2 * 6]));                  // frame 0: the third not yet landed
+  EXPECT_NEAR(layer->data[(3 + 2) * 6 + 0], 0.7 - 0.11, 1e-6);  // frame 1: its heel, x (float32)
+  EXPECT_NEAR(layer->data[(3 + 2) * 6 + 3], 0.7 + 0.11, 1e-6);  // and its toe
+}
+
 }  // namespace
 }  // namespace flexgait::humanoid

@@ -88,8 +88,7 @@ void check_axes_apart(const std::vector<AxisKeys>& written, const Config& base) 
 
 }  // namespace
 
-std::string summary_cells(const std::string& summary_json, const std::vector<std::string>& metrics) {
-  const auto j = nlohmann::ordered_json::parse(summary_json);
+std::string summary_cells(const nlohmann::ordered_json& j, const std::vector<std::string>& metrics) {
   std::string out;
   for (std::size_t k = 0; k < metrics.size(); ++k) {
     if (k) out += ',';

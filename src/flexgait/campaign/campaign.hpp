@@ -77,8 +77,8 @@ double kept_runs_bytes(const Campaign& campaign);
 /// Throws UsageError naming --keep-runs and --max-run-bytes if kept_runs_bytes exceeds `max_bytes`.
 void check_kept_runs_size(const Campaign& campaign, double max_bytes);
 
-/// The summary's keys `metrics` of a JSON object's text as CSV cells (see the file comment).
-std::string summary_cells(const std::string& summary_json, const std::vector<std::string>& metrics);
+/// The summary record's values under `metrics` as CSV cells (see the file comment).
+std::string summary_cells(const nlohmann::ordered_json& summary, const std::vector<std::string>& metrics);
 
 struct CampaignRun {
   std::filesystem::path dir;

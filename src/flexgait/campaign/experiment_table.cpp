@@ -44,10 +44,9 @@ std::vector<std::string> record_types() {
   return types;
 }
 
-/// The types of a JSON object's values (as FieldDescription::type), `keys` in order: "" for a
-/// null, a text, a list or an object (kinds a value may change between runs).
-std::vector<std::string> json_types(const std::string& text, const std::vector<std::string>& keys) {
-  const auto json = nlohmann::ordered_json::parse(text);
+/// The types of a record's values (as FieldDescription::type), `keys` in order: "" for a null, a
+/// text, a list or an object (kinds a value may change between runs).
+std::vector<std::string> json_types(const nlohmann::ordered_json& json, const std::vector<std::string>& keys) {
   std::vector<std::string> types;
   for (const auto& k : keys) {
     const auto it = json.find(k);
@@ -63,10 +62,9 @@ std::vector<std::string> json_types(const std::string& text, const std::vector<s
   return types;
 }
 
-/// The keys of a JSON object's text, in order, less `skip`.
-std::vector<std::string> json_keys(const std::string& text, const std::vector<std::string>& skip) {
+/// The keys of a record, in order, less `skip`.
+std::vector<std::string> json_keys(const nlohmann::ordered_json& json, const std::vector<std::string>& skip) {
   std::vector<std::string> keys;
-  const auto json = nlohmann::ordered_json::parse(text);  // alive while items() is walked
   for (const auto& item : json.items())
     if (std::find(skip.begin(), skip.end(), item.key()) == skip.end()) keys.push_back(item.key());
   return keys;
@@ -96,7 +94,7 @@ Experiment rimless_simulate() {
                                             : rimless::simulate_flexible(s.wheel, s.initial, s.sim);
     const std::string model = c.choice("sim.model");
     if (dir) rimless::write_run(*dir, r, model);
-    return rimless::summary_json(r, model);
+    return rimless::simulation_summary(r, model);
   };
   // log.csv as rimless::check_log_size projects it, plus events, steps, summary and config.
   e.run_bytes = [](const Config& c) {
@@ -110,13 +108,13 @@ Experiment rimless_simulate() {
 /// section is not an axis: on the upright section one orbit has the same multipliers, gait,
 /// period and speed (conjugate return maps), only `state` differs, and gaits with flight never
 /// reach it (docs/guide/campaigns.md).
-std::string fixed_point_summary(const rimless::FixedPointReport& r) {
-  auto j = nlohmann::ordered_json::parse(rimless::fixed_point_json(r));
+nlohmann::ordered_json fixed_point_summary(const rimless::FixedPointReport& r) {
+  nlohmann::ordered_json j = rimless::fixed_point_record(r);
   j.erase("history");
   double largest = 0;
   for (const auto& m : r.multipliers) largest = std::max(largest, std::abs(m));
   j["max_multiplier"] = r.converged ? nlohmann::ordered_json(largest) : nlohmann::ordered_json();
-  return j.dump(2) + "\n";
+  return j;
 }
 
 Experiment rimless_fixed_point() {
@@ -129,7 +127,7 @@ Experiment rimless_fixed_point() {
     const rimless::WheelSetup s = rimless::wheel_setup(c);
     const rimless::FixedPointReport r = rimless::find_fixed_point(s.wheel, s.sim, rimless::analysis_from_config(c),
                                                                   s.sim.model, rimless::Section::Touchdown, s.initial);
-    std::string summary = fixed_point_summary(r);
+    nlohmann::ordered_json summary = fixed_point_summary(r);
     if (const auto dir = kept_run(c, run_dir)) dir->write("fixed_point.json", rimless::fixed_point_json(r));
     return summary;
   };
@@ -148,7 +146,7 @@ Experiment humanoid_walk() {
     const experiments::WalkResult r = experiments::run_walk(params);
     if (const auto dir = kept_run(experiments::with_derived_values(c, params), run_dir))
       return experiments::write_walk(*dir, "", r);
-    return experiments::walk_summary_json(r);
+    return experiments::walk_summary(r);
   };
   // log.csv and joints.csv get a row every output.log_period over the plan's duration: measured
   // on the builtin robot (13 joints) 457 + 2233 bytes a row; 3 kB a row with room for more joints.
@@ -168,10 +166,10 @@ Experiment humanoid_bench() {
   e.metric_types = record_types<experiments::BenchResult>();
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::BenchResult r = experiments::run_stiffness_bench(experiments::bench_from_config(c));
-    std::string summary = experiments::bench_summary_json(r);
+    nlohmann::ordered_json summary = record_json(r);
     if (const auto dir = kept_run(c, run_dir)) {
       dir->write("bench.csv", experiments::bench_csv(r));
-      dir->write("summary.json", summary);
+      dir->write("summary.json", json_file_text(summary));
     }
     return summary;
   };
@@ -193,8 +191,8 @@ Experiment humanoid_push_recovery() {
   };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::PushRecoveryResult r = experiments::run_push_recovery(experiments::push_recovery_from_config(c));
-    std::string summary = record_json(r).dump(2) + "\n";
-    if (const auto dir = kept_run(c, run_dir)) dir->write("summary.json", summary);
+    nlohmann::ordered_json summary = record_json(r);
+    if (const auto dir = kept_run(c, run_dir)) dir->write("summary.json", json_file_text(summary));
     return summary;
   };
   return e;

@@ -6,6 +6,7 @@
 /// summary.json) and the run of one point. Adding an experiment to campaigns is one entry here.
 #include <filesystem>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,10 @@ struct Experiment {
   std::function<void(const Config& config)> check;
   /// The summary's keys, in the summary's order (the metric columns).
   std::vector<std::string> metrics;
-  /// Runs one point: returns the summary as JSON text (an object). If `run_dir` is not empty, the
-  /// run's files go there too (config.yaml and the summary at least). Thread-safe.
-  std::function<std::string(const Config& config, const std::filesystem::path& run_dir)> run;
+  /// Runs one point: returns its summary record (an object: the metrics by key, with their JSON
+  /// types; the same record the experiment's own summary file holds). If `run_dir` is not empty,
+  /// the run's files go there too (config.yaml and the summary at least). Thread-safe.
+  std::function<nlohmann::ordered_json(const Config& config, const std::filesystem::path& run_dir)> run;
   /// The estimated cost of a point, in any unit (humanoid-walk: the simulated time it plans);
   /// empty: all points alike. Only the order the points are handed out depends on it.
   std::function<double(const Config& config)> cost = {};

@@ -40,6 +40,12 @@ nlohmann::ordered_json record_json(const R& record) {
   return json;
 }
 
+/// A JSON file's text: two-space indents, keys in the object's order, a final newline (numbers
+/// round-trip exactly). Every summary.json of the project is written so.
+inline std::string json_file_text(const nlohmann::ordered_json& json) {
+  return json.dump(2) + "\n";
+}
+
 /// `schema.json`'s entry of a record: {"fields": [{"key", "type", "unit", "doc"[, "choices"]}, ...]}.
 template <class R>
 nlohmann::ordered_json record_schema_json() {

@@ -19,7 +19,7 @@ std::string bench_csv(const BenchResult& r) {
 }
 
 std::string bench_summary_json(const BenchResult& r) {
-  return record_json(r).dump(2) + "\n";
+  return json_file_text(record_json(r));
 }
 
 }  // namespace flexgait::experiments

@@ -9,7 +9,8 @@ namespace flexgait::experiments {
 
 /// One row per pose of both sweeps: command, encoder, true link, gravity torque, errors, estimates.
 std::string bench_csv(const BenchResult& result);
-/// k_fit against the true k, R², errors uncompensated and compensated, the output estimates' errors.
+/// summary.json: the BenchResult record (k_fit against the true k, R², errors uncompensated and
+/// compensated, the output estimates' errors) as text (json_file_text).
 std::string bench_summary_json(const BenchResult& result);
 
 }  // namespace flexgait::experiments

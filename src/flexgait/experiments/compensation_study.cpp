@@ -105,7 +105,8 @@ std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vect
   return cases;
 }
 
-std::string compensation_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results) {
+nlohmann::ordered_json compensation_comparison(const std::vector<StudyCase>& cases,
+                                               const std::vector<WalkResult>& results) {
   const WalkMetrics& off = result_of(cases, results, "off").metrics;
   const WalkMetrics& on = result_of(cases, results, "both").metrics;
   const WalkMetrics& thesis = result_of(cases, results, "both-thesis-form").metrics;
@@ -153,13 +154,13 @@ std::string compensation_comparison_json(const std::vector<StudyCase>& cases, co
   j["fell"] = fell;
   j["table"] = table;
   nlohmann::ordered_json all;
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    all[cases[i].name] = nlohmann::ordered_json::parse(walk_summary_json(results[i]));
+  for (std::size_t i = 0; i < cases.size(); ++i) all[cases[i].name] = walk_summary(results[i]);
   j["cases"] = all;
-  return j.dump(2) + "\n";
+  return j;
 }
 
-std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results) {
+nlohmann::ordered_json mismatch_comparison(const std::vector<StudyCase>& cases,
+                                           const std::vector<WalkResult>& results) {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (std::size_t i = 0; i + 1 < cases.size(); i += 2) {
     const WalkRunParams& p = cases[i].params;
@@ -181,7 +182,7 @@ std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const 
   j["steps"] = cases.front().params.walk.steps;
   j["balance_enabled"] = cases.front().params.balance.enabled;
   j["rows"] = rows;
-  return j.dump(2) + "\n";
+  return j;
 }
 
 }  // namespace flexgait::experiments

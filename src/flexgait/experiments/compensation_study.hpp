@@ -9,6 +9,7 @@
 ///    the measured and dynamic loads (docs/guide/compensation.md), in one table;
 ///  - stiffness mismatch: the twin's true stiffness scaled against the controller's belief
 ///    (control.k_joint), compensation off and both, balance controller as configured.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,11 @@ std::vector<StudyCase> compensation_cases(const WalkRunParams& base);
 /// For each scale s: the twin's k_joint = s × its configured value, compensation off and both.
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales);
 
-/// comparison.json of a compensation study: each case's summary and the headline numbers (cut of
-/// the peak pelvis roll error, single-support ZMP tracking, the estimator's error share).
-std::string compensation_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results);
-/// comparison.json of a mismatch study: per scale, off against both.
-std::string mismatch_comparison_json(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results);
+/// A compensation study's record (its comparison.json): each case's summary and the headline
+/// numbers (cut of the peak pelvis roll error, single-support ZMP tracking, the estimator's error share).
+nlohmann::ordered_json compensation_comparison(const std::vector<StudyCase>& cases,
+                                               const std::vector<WalkResult>& results);
+/// A mismatch study's record (its comparison.json): per scale, off against both.
+nlohmann::ordered_json mismatch_comparison(const std::vector<StudyCase>& cases, const std::vector<WalkResult>& results);
 
 }  // namespace flexgait::experiments

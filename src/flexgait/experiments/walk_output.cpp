@@ -155,7 +155,7 @@ std::string walk_footsteps_csv(const WalkResult& r) {
   return csv.str();
 }
 
-std::string walk_summary_json(const WalkResult& r) {
+nlohmann::ordered_json walk_summary(const WalkResult& r) {
   nlohmann::ordered_json j = record_json(r.metrics);
   if (r.k_estimation) {
     // The identified joints' final estimates (the leg roll and pitch joints) and their mean
@@ -172,7 +172,11 @@ std::string walk_summary_json(const WalkResult& r) {
     j["k_estimate"] = k;
     j["k_estimate_mean"] = n > 0 ? sum / n : 0.0;
   }
-  return j.dump(2) + "\n";
+  return j;
+}
+
+std::string walk_summary_json(const WalkResult& r) {
+  return json_file_text(walk_summary(r));
 }
 
 std::string walk_timing_json(const WalkResult& r) {
@@ -180,7 +184,7 @@ std::string walk_timing_json(const WalkResult& r) {
   j["simulated_time"] = r.metrics.simulated_time;
   j["wall_time"] = r.metrics.wall_time;
   j["real_time_factor"] = r.metrics.real_time_factor;
-  return j.dump(2) + "\n";
+  return json_file_text(j);
 }
 
 WalkLogWriter::WalkLogWriter(const RunDirectory& dir, const std::string& sub, bool k_estimation)
@@ -215,15 +219,15 @@ void WalkLogWriter::commit() {
   joints_.commit();
 }
 
-std::string write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& r) {
+nlohmann::ordered_json write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& r) {
   if (!sub.empty()) std::filesystem::create_directories(dir.path() / sub);
   if (!r.log_streamed) {
     dir.write(sub + "log.csv", walk_log_csv(r));
     dir.write(sub + "joints.csv", walk_joints_csv(r));
   }
   dir.write(sub + "footsteps.csv", walk_footsteps_csv(r));
-  std::string summary = walk_summary_json(r);
-  dir.write(sub + "summary.json", summary);
+  nlohmann::ordered_json summary = walk_summary(r);
+  dir.write(sub + "summary.json", json_file_text(summary));
   dir.write(sub + "timing.json", walk_timing_json(r));
   return summary;
 }

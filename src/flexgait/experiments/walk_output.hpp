@@ -2,6 +2,7 @@
 /// \file walk_output.hpp
 /// A walk's files: log.csv (one row per logged sample), footsteps.csv (planned and landed
 /// footprints) and summary.json (the metrics), as text.
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -21,8 +22,10 @@ std::string walk_footsteps_csv(const WalkResult& result);
 /// the Python bindings, whose arrays then need no text round trip.
 Table walk_log_table(const WalkResult& result);
 Table walk_joints_table(const WalkResult& result);
-/// The metrics as a JSON object (the names: fell, steps_completed, zmp_rms_x, ...).
-/// Deterministic: the same configuration gives the same bytes.
+/// The walk's summary record: the WalkMetrics fields (fell, steps_completed, zmp_rms_x, ...), and
+/// with online stiffness identification `k_estimate` (per identified joint) and `k_estimate_mean`.
+nlohmann::ordered_json walk_summary(const WalkResult& result);
+/// summary.json: walk_summary's text. Deterministic: the same configuration gives the same bytes.
 std::string walk_summary_json(const WalkResult& result);
 /// Wall-clock time and real-time factor (timing.json; differs run to run).
 std::string walk_timing_json(const WalkResult& result);
@@ -49,7 +52,7 @@ class WalkLogWriter {
 
 /// Writes the walk's files (log.csv, footsteps.csv, joints.csv, summary.json, timing.json) under
 /// `dir`/`sub` (sub "" or "name/"; log.csv and joints.csv only when the walk kept its log in
-/// memory, not when a WalkLogWriter streamed them); returns summary.json's text.
-std::string write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& result);
+/// memory, not when a WalkLogWriter streamed them); returns the summary record (walk_summary).
+nlohmann::ordered_json write_walk(const RunDirectory& dir, const std::string& sub, const WalkResult& result);
 
 }  // namespace flexgait::experiments

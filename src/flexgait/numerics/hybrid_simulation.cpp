@@ -80,7 +80,7 @@ double HybridSimulation::run(HybridModel& model, const HybridLimits& limits, dou
     if (next == HybridNext::Continue) continue;
     bool stop = false;
     for (const HybridEvent& e : events_) {
-      // Spec rimless.md, "Events": an event must not fire again at its own restart point.
+      // docs/theory/rimless.md, "Events and contact modes": an event must not fire again at its own restart point.
       if (e.unit == last_event.unit && e.kind == last_event.kind && t - last_event_time < kRepeatWindow) {
         model.loop_failed(LoopFailure::RepeatedEvent, t, model.describe(e));
         stop = true;

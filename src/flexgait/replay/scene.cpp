@@ -81,6 +81,24 @@ void keep_even_blocks(std::vector<T>& v, std::size_t stride) {
 }
 }  // namespace
 
+void Scene::grow_layer(int layer, int count) {
+  Layer& l = layers.at(static_cast<std::size_t>(layer));
+  if (count <= l.count) return;
+  const auto n = static_cast<std::size_t>(layer_item_floats(l.kind));
+  const auto old_count = static_cast<std::size_t>(l.count), new_count = static_cast<std::size_t>(count);
+  std::vector<float> data(static_cast<std::size_t>(frames()) * new_count * n, std::numeric_limits<float>::quiet_NaN());
+  std::vector<std::uint8_t> color(static_cast<std::size_t>(frames()) * new_count, 0);
+  for (std::size_t f = 0; f < static_cast<std::size_t>(frames()); ++f) {
+    std::copy_n(l.data.begin() + static_cast<std::ptrdiff_t>(f * old_count * n), old_count * n,
+                data.begin() + static_cast<std::ptrdiff_t>(f * new_count * n));
+    std::copy_n(l.color.begin() + static_cast<std::ptrdiff_t>(f * old_count), old_count,
+                color.begin() + static_cast<std::ptrdiff_t>(f * new_count));
+  }
+  l.count = count;
+  l.data = std::move(data);
+  l.color = std::move(color);
+}
+
 void Scene::drop_odd_frames() {
   keep_even_blocks(time, 1);
   keep_even_blocks(poses, bodies.size() * 7);

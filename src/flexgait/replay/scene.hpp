@@ -94,6 +94,9 @@ struct Scene {
   void set_item(int layer, int frame, int k, const std::array<double, 3>& a, const std::array<double, 3>& b,
                 int color = 0);
   void set_signal(int signal, int frame, double value);
+  /// Makes layer `layer` hold `count` items per frame (at least its count now): the frames so far
+  /// keep their items, the new items are hidden (NaN) in them.
+  void grow_layer(int layer, int count);
   /// Keeps frames 0, 2, 4, ... (halves the frame rate: a recorder's bound on memory).
   void drop_odd_frames();
   /// Throws std::logic_error if an array's size disagrees with the frames, bodies and layers.

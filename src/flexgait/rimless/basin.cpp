@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/sweep.hpp"
@@ -182,13 +183,13 @@ BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& co
   return b;
 }
 
-std::string basin_summary_json(const BasinSpec& spec, const std::string& section, const BasinReference& ref,
+std::string basin_summary_json(const BasinSpec& spec, const BasinReference& ref,
                                const std::map<std::string, int>& counts, const std::string& area_unit) {
   const BasinSize size = basin_size(spec, counts);
   nlohmann::ordered_json j;
   j["x"] = {{"key", spec.x.key}, {"from", spec.x.from}, {"to", spec.x.to}, {"count", spec.x.count}};
   j["y"] = {{"key", spec.y.key}, {"from", spec.y.from}, {"to", spec.y.to}, {"count", spec.y.count}};
-  j["section"] = section;
+  j["section"] = std::string(name_of(spec.section));
   j["steps_limit"] = spec.steps_limit;
   j["tolerance"] = spec.tolerance;
   j["no_landing_limit"] = spec.no_landing_limit;
@@ -215,7 +216,7 @@ std::string basin_summary_json(const BasinSpec& spec, const std::string& section
   j["cell_area"] = size.cell_area;
   j["basin_area"] = size.area();
   j["area_unit"] = area_unit;
-  return j.dump(2) + "\n";
+  return json_file_text(j);
 }
 
 }  // namespace flexgait::rimless

@@ -157,7 +157,7 @@ BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& co
 /// failure), the `outcomes` counted (basin_counts), `cells`, `basin_fraction` (converged cells over
 /// all), `cell_area` (one grid spacing by the other), `basin_area` (converged cells × cell_area) in
 /// `area_unit`.
-std::string basin_summary_json(const BasinSpec& spec, const std::string& section, const BasinReference& ref,
+std::string basin_summary_json(const BasinSpec& spec, const BasinReference& ref,
                                const std::map<std::string, int>& counts, const std::string& area_unit);
 
 }  // namespace flexgait::rimless

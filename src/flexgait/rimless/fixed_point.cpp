@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/numerics/continuation.hpp"
 
 namespace flexgait::rimless {
@@ -117,7 +118,7 @@ FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions&
   return find_fixed_point_from(w, sim, opt, guess);
 }
 
-std::string fixed_point_json(const FixedPointReport& r) {
+nlohmann::ordered_json fixed_point_record(const FixedPointReport& r) {
   nlohmann::ordered_json j;
   j["converged"] = r.converged;
   j["iterations"] = r.iterations;
@@ -155,7 +156,11 @@ std::string fixed_point_json(const FixedPointReport& r) {
   j["history"] = hist;
   const std::string failure = r.failure();
   j["failure"] = failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(failure);
-  return j.dump(2) + "\n";
+  return j;
+}
+
+std::string fixed_point_json(const FixedPointReport& r) {
+  return json_file_text(fixed_point_record(r));
 }
 
 }  // namespace flexgait::rimless

@@ -3,6 +3,7 @@
 /// Periodic gaits of the rimless wheel: a fixed point of the Poincaré map by Newton-Raphson,
 /// its Floquet multipliers (eigenvalues of the map's Jacobian) and a stability verdict.
 #include <complex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -84,10 +85,12 @@ FixedPointReport find_fixed_point(const WheelParams& w, const SimulationOptions&
 FixedPointReport find_fixed_point_from(const WheelParams& w, const SimulationOptions& sim, const AnalysisOptions& opt,
                                        const SectionState& guess);
 
-/// The report as JSON (keys: converged, iterations, residual, state, state_names, mode, multipliers
+/// The report as a record (keys: converged, iterations, residual, state, state_names, mode, multipliers
 /// as [re, im] pairs, stable, gait, period, speed, dissipated_per_cycle, history, failure). A failed
 /// search has null state, multipliers, gait, period, speed and dissipated_per_cycle, and its last
 /// Newton iterate (if any) under last_iterate.
+nlohmann::ordered_json fixed_point_record(const FixedPointReport& report);
+/// fixed_point.json: fixed_point_record's text.
 std::string fixed_point_json(const FixedPointReport& report);
 
 }  // namespace flexgait::rimless

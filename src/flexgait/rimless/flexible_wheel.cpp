@@ -605,7 +605,7 @@ struct FlexibleWheelSimulator::Run final : numerics::HybridModel {
   numerics::HybridNext guards_crossed(double t, std::span<const double> y, std::span<const int> fired,
                                       const numerics::OdeIntegrator& integrator,
                                       std::vector<numerics::HybridEvent>& events) override;
-  // Spec rimless.md, "Events": rolled back, a landing with β > 0 while θ̇ < 0 and ẋ < 0.
+  // docs/theory/rimless.md, "Events and contact modes": rolled back, a landing with β > 0 while θ̇ < 0 and ẋ < 0.
   bool admissible(double t, std::span<const double>, const numerics::HybridEvent& e) override {
     if (static_cast<EventKind>(e.kind) != EventKind::Touchdown) return true;
     const double beta = leg_angle(w, e.unit, m.y[S::theta]);

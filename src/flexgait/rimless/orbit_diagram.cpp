@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "flexgait/core/record_json.hpp"
 #include "flexgait/core/text.hpp"
 #include "flexgait/rimless/poincare.hpp"
 
@@ -143,7 +144,7 @@ std::string orbit_summary_json(const std::string& points_csv) {
   j["period_one_until"] = until;
   j["first_multiple"] = first_multiple;
   j["values"] = values;
-  return j.dump(2) + "\n";
+  return json_file_text(j);
 }
 
 }  // namespace flexgait::rimless

@@ -124,11 +124,15 @@ Table steps_table(const SimulationResult& r) {
   return step_rows<Table>(r);
 }
 
-std::string summary_json(const SimulationResult& r, const std::string& model) {
+nlohmann::ordered_json simulation_summary(const SimulationResult& r, const std::string& model) {
   nlohmann::ordered_json j;
   j["model"] = model;
   add_record_json(j, r);
-  return j.dump(2) + "\n";
+  return j;
+}
+
+std::string summary_json(const SimulationResult& r, const std::string& model) {
+  return json_file_text(simulation_summary(r, model));
 }
 
 void write_run(const RunDirectory& dir, const SimulationResult& result, const std::string& model) {

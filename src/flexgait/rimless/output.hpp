@@ -3,6 +3,7 @@
 /// A rimless-wheel run as files: log.csv, events.csv, steps.csv and summary.json — from a
 /// finished in-memory result, or written while the run goes (RunFiles) with the same bytes.
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "flexgait/core/run_directory.hpp"
@@ -18,7 +19,9 @@ std::string log_csv(const SimulationResult& result);
 std::string events_csv(const SimulationResult& result);
 /// steps.csv: one row per step with its gait label and energy.
 std::string steps_csv(const SimulationResult& result);
-/// summary.json (pretty-printed, keys in a fixed order; numbers round-trip exactly).
+/// The run's summary record: `model`, then the SimulationResult's fields in declaration order.
+nlohmann::ordered_json simulation_summary(const SimulationResult& result, const std::string& model);
+/// summary.json: simulation_summary's text (json_file_text).
 std::string summary_json(const SimulationResult& result, const std::string& model);
 /// The same three tables as typed columns (their csv() is the text above, byte for byte): for
 /// the Python bindings, whose arrays then need no text round trip.

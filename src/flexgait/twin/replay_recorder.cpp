@@ -166,7 +166,6 @@ ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title,
 
 void ReplayRecorder::set_planned_footprints(const std::vector<FootprintMarker>& footprints) {
   if (scene_.frames() > 0) throw std::logic_error("ReplayRecorder::set_planned_footprints: after the first frame");
-  scene_.layers[kActual].count = static_cast<int>(footprints.size());
   for (const auto& f : footprints) {
     replay::Geom g;
     g.type = replay::GeomType::Box;
@@ -202,8 +201,8 @@ void ReplayRecorder::record(const HumanoidPlant& plant, double t, const RenderMa
   if (markers.capture_point) scene_.set_item(kCapture, f, 0, *markers.capture_point, *markers.capture_point);
   if (const auto arrow = push_arrow(plant)) scene_.set_item(kPush, f, 0, arrow->from, arrow->to);
   if (markers.zmp_ref) scene_.set_item(kZmpRef, f, 0, *markers.zmp_ref, *markers.zmp_ref);
-  const std::size_t actual = std::min(markers.actual.size(), static_cast<std::size_t>(scene_.layers[kActual].count));
-  for (std::size_t k = 0; k < actual; ++k) {  // heel to toe, 3 mm above the floor
+  scene_.grow_layer(kActual, static_cast<int>(markers.actual.size()));
+  for (std::size_t k = 0; k < markers.actual.size(); ++k) {  // heel to toe, 3 mm above the floor
     const FootprintMarker& m = markers.actual[k];
     const double c = m.half_length * std::cos(m.yaw), s = m.half_length * std::sin(m.yaw), z = m.centre[2] + 0.003;
     scene_.set_item(kActual, f, static_cast<int>(k), {m.centre[0] - c, m.centre[1] - s, z},

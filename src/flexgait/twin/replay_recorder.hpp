@@ -33,14 +33,14 @@ class ReplayRecorder {
   ReplayRecorder(const ReplayRecorder&) = delete;
   ReplayRecorder& operator=(const ReplayRecorder&) = delete;
 
-  /// Draws these footprints (the plan's) as flat translucent boxes on the floor, from the start,
-  /// and makes room for as many actual footprints per frame (RenderMarkers::actual beyond that
-  /// number are not drawn). Before the first frame (std::logic_error after it).
+  /// Draws these footprints (the plan's) as flat translucent boxes on the floor, from the start.
+  /// Before the first frame (std::logic_error after it).
   void set_planned_footprints(const std::vector<FootprintMarker>& footprints);
 
   /// Appends a frame at simulated time t [s] if one is due: every recorded body's pose, the
-  /// markers' points and actual footprints (the planned ones and the overlay are not per frame:
-  /// see set_planned_footprints), the push arrow (as Renderer draws it) and `values` (one per signal).
+  /// markers' points and every actual footprint, recovery steps beyond the plan included (the
+  /// planned ones and the overlay are not per frame: see set_planned_footprints), the push arrow (as Renderer draws it)
+  /// and `values` (one per signal).
   void record(const HumanoidPlant& plant, double t, const RenderMarkers& markers = {},
               std::span<const double> values = {});
 
