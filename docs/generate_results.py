@@ -6,13 +6,16 @@ Usage: generate_results.py RUN_ROOT OUT_DIR
 RUN_ROOT is the --out of `flexgait reproduce` (results/reproduce after ./scripts/demo). The page,
 OUT_DIR/index.md, holds the reproduction report's tables (the rows of data/report/references.yaml,
 read by python/report.py from the run's own files: our number, the thesis's or the paper's, the
-verdict and its tolerance) and every figure of the runs with its caption; the figures are copied
-under OUT_DIR. Nothing on it is typed by hand.
+verdict and its tolerance), the tables the user guide points to (TABLES below: the located events
+of the continued rimless branches, the walking envelope and the push-recovery campaign point by
+point) and every figure of the runs with its caption; the figures are copied under OUT_DIR.
+Nothing on it is typed by hand.
 
 Without a run (RUN_ROOT is missing or holds no reproduce.json) the page says how to make one;
 the documentation builds either way. A run the report cannot read (an older version's, or one
 stopped early) gives a page that says why, and a note on stderr.
 """
+import csv
 import html
 import json
 import os
@@ -31,6 +34,77 @@ paper's, each with a verdict (reproduced or differs) and the tolerance it was ju
 generated: `scripts/docs` reads the run directory of `flexgait reproduce` that `./scripts/demo`
 writes (`results/reproduce`), or the one `FLEXGAIT_RESULTS` names.
 """
+
+
+# The run tables: each TITLE, a sentence on how to read it, and its rows read from one file of the
+# run directories `flexgait reproduce` writes (the files the commands write themselves, as the
+# report's rows read them): (run, file, keep(row) or None, [(header, column, format)]). A format is
+# a Python format spec for numbers or "text"; an empty or NaN cell shows as "–".
+TABLES = [
+    ("Located events of the continued gait branches",
+     "The rows of `branch.csv` with an `event` (gait and section-mode changes, folds, Neimark–Sacker "
+     "points, the branch's end) of the runs `rimless-mu-continuation` and `rimless-slope-branch` (`rimless "
+     "continuation` in μ and in the slope; their commands under Figures); `gait` and `stable` are those of the "
+     "fixed point at the event.",
+     [("rimless-mu-continuation", "branch.csv"), ("rimless-slope-branch", "branch.csv")],
+     lambda r: r["event"] != "",
+     [("key", "key", "text"), ("value", "parameter", ".10g"), ("event", "event", "text"),
+      ("gait", "gait", "text"), ("stable", "stable", "text")]),
+    ("Walking envelope, point by point",
+     "One walk per row of `campaign.csv` (campaign `humanoid-walk`): step length [m], step time [s], "
+     "compensation, whether the twin fell, its steps, the peak pelvis roll error [rad] (of a fall: up to the "
+     "fall) and the ZMP rms in y [m] (true against reference).",
+     [("humanoid-envelope", "campaign.csv")],
+     None,
+     [("step length", "walk.step_length", ".3g"), ("step time", "walk.step_time", ".3g"),
+      ("compensation", "control.compensation", "text"), ("fell", "fell", "text"),
+      ("steps", "steps_completed", "text"), ("peak roll error", "pelvis_roll_error_max", ".3f"),
+      ("ZMP rms y", "zmp_rms_y", ".4f")]),
+    ("Largest recoverable push, point by point",
+     "One bisection per row of `campaign.csv` (campaign `humanoid-push-recovery`): the largest impulse "
+     "recovered and the smallest seen to fall [N s], the capture-point bound [N s] and recovered / bound; "
+     "a push toward the swinging foot can exceed the bound (the next step catches it).",
+     [("humanoid-push-recovery", "campaign.csv")],
+     None,
+     [("situation", "push_recovery.situation", "text"), ("direction", "push_recovery.direction", "text"),
+      ("compensation", "control.compensation", "text"), ("balance", "balance.mode", "text"),
+      ("recovered", "recovered", ".1f"), ("fell at", "fell_at", ".1f"), ("bound", "bound", ".1f"),
+      ("fraction", "fraction", ".2f"), ("runs", "runs", "text")]),
+]
+
+
+def cell_text(value, spec):
+    if value == "" or value.lower() == "nan":
+        return "–"
+    return value if spec == "text" else format(float(value), spec)
+
+
+def run_tables(root, exit_codes):
+    """The TABLES as page text; a run that exited non-zero gives a line saying so, a missing file or
+    column of a run that succeeded is a ReportError."""
+    text = ["\n## Tables of the runs\n"]
+    for title, how, sources, keep, columns in TABLES:
+        text.append(f"\n### {title}\n\n{how}\n")
+        rows, failed = [], []
+        for run, name in sources:
+            if exit_codes.get(run, 0) != 0:
+                failed.append(f"`{run}`: no result, the run exited with {exit_codes[run]}")
+                continue
+            path = Path(root) / run / name
+            try:
+                with open(path, newline="", encoding="utf-8") as f:
+                    for row in csv.DictReader(f):
+                        if keep is None or keep(row):
+                            rows.append([cell_text(row[column], spec) for _, column, spec in columns])
+            except KeyError as e:
+                raise report.ReportError(f"{run}/{name}: no column {e}") from None
+        for line in failed:
+            text.append(f"\n{line}\n")
+        if rows:
+            head = "".join(f"<th>{html.escape(h)}</th>" for h, _, _ in columns)
+            body = "\n".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>" for r in rows)
+            text.append(f"\n```{{raw}} html\n<table class=\"docutils\">\n<tr>{head}</tr>\n{body}\n</table>\n```\n")
+    return "".join(text)
 
 
 def missing_page(reason):
@@ -74,6 +148,7 @@ def results_page(root, out):
                     "walking envelope; the full run's numbers differ where those matter.\n")
     for section in sections:
         text.append(f"\n## {section['title']}\n\n```{{raw}} html\n{table(section)}\n```\n")
+    text.append(run_tables(root, exit_codes))
     text.append("\n## Figures\n")
     for run in manifest["runs"]:
         shown = report.captioned_figures(root, run["dir"], captions, problems)
