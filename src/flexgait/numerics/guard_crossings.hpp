@@ -137,9 +137,10 @@ class GuardCrossings {
   std::vector<double> lo_t_, lo_g_, hi_t_, hi_g_;  // per guard: its bracket in the current step
   std::vector<double> curvature_;                  // per guard: M of the bound above, for the current step
   std::vector<double> roots_;                      // per guard: its root in the current step (infinity: none)
-  bool has_prev_ = false;       // the previous step is in this segment (no crossing, no restart since)
+  bool lo_at_start_ = false;                       // every guard is active and its bracket starts at t_ (t_lo_ = t_)
+  bool has_prev_ = false;       // the previous step is in this segment, every guard watched from its start
   double prev_t_ = 0.0;         // the previous step's start [s]
-  std::vector<double> prev_g_;  // per guard: its value there (NaN: not watched from there)
+  std::vector<double> prev_g_;  // per guard: its value there
   int budget_ = 0;              // refinement evaluations left in the current step
   long long interior_evaluations_ = 0;
 };
