@@ -43,10 +43,10 @@
 /// sampled at once.
 ///
 /// Before the midpoint, a step that follows a step of the same segment (no crossing, no restart
-/// since) is first bounded without any evaluation, from the guards' values at the three step ends
-/// it already has: the previous step's start a, this step's start b and its end c. Where, for
-/// every guard, a, b and c lie on one side of 0, the previous step is at most kPreviousStepRatio
-/// times as long as this one, and the same bound over the step [b, c], with M = 2x the |g''| the
+/// since; every guard watched from that step's start, none activated or probed later) is first bounded without any
+/// evaluation, from the guards' values at the three step ends it already has: the previous step's start a, this step's
+/// start b and its end c. Where, for every guard, a, b and c lie on one side of 0, the previous step is at most
+/// kPreviousStepRatio times as long as this one, and the same bound over the step [b, c], with M = 2x the |g''| the
 /// second divided difference g[a, b, c] shows and kCoarseMargin times more margin,
 ///   min(|g(b)|, |g(c)|) > kCoarseMargin M (c - b)^2 / 8,
 /// excludes a root, the step takes no sample and the integrator's dense output is not prepared.
