@@ -141,7 +141,8 @@ TEST(GuardCrossings, ADipBetweenTheSamplesOfALaterStepIsFound) {
   // at −1): above 0 at both ends and at the interior samples 0.25, 0.5, 0.75, below 0 on
   // (0.52, 0.58). The samples' second differences give g'' = 2 exactly (a parabola), and the
   // chord bound min(g(0.5), g(0.75)) − 2·2·0.25²/8 < 0 sends the bisection into (0.5, 0.75):
-  // it finds g(0.5625) < 0 and the crossing at 0.52.
+  // it finds g(0.5625) < 0 and the crossing at 0.52. (The two-step bound does not skip the
+  // samples: g(-1) = 2.40, g(0) = 0.3016, g(1) = 0.2016 show g'' = 2 too, and 4·4·1²/8 = 2 > 0.2016.)
   Watch w({[](double t) { return (t - 0.52) * (t - 0.58); }});
   w.start(-1.0, {-1});
   EXPECT_FALSE(w.check(0.0).has_value());
@@ -174,6 +175,14 @@ TEST(GuardCrossings, AGuardThatStaysAwayFromZeroCostsTheSamplesAlone) {
   nearer.start(0.0, {-1});
   EXPECT_FALSE(nearer.check(1.0).has_value());
   EXPECT_EQ(nearer.crossings.interior_evaluations(), GuardCrossings::kSamples - 1);
+  // The next step [1, 2] of 2 + sin 3t has the previous step's start: g(0) = 2, g(1) = 2.141,
+  // g(2) = 1.721, second divided difference -0.281, M = 4·0.281 = 1.12; the two-step bound
+  // 4 M 1²/8 = 0.56 < 1.721 = min(g(1), g(2)): no evaluation at all.
+  EXPECT_FALSE(w.check(2.0).has_value());
+  EXPECT_EQ(w.crossings.interior_evaluations(), 1);
+  // A step half as long as its predecessor (past kPreviousStepRatio) takes the samples again.
+  EXPECT_FALSE(w.check(2.5).has_value());
+  EXPECT_GE(w.crossings.interior_evaluations(), 2);
 }
 
 TEST(GuardCrossings, StartRejectsMismatchedSizes) {

@@ -36,7 +36,7 @@ void GuardCrossings::start(double t, std::span<const int> directions, std::span<
   active_.resize(g.size());
   scratch_.resize(g.size());
   samples_.resize(g.size() * (kSamples - 1));
-  for (auto* v : {&lo_t_, &lo_g_, &hi_t_, &hi_g_, &curvature_, &roots_}) v->resize(g.size());
+  for (auto* v : {&lo_t_, &lo_g_, &hi_t_, &hi_g_, &curvature_, &roots_, &prev_g_}) v->resize(g.size());
   fired_.assign(g.size(), 0);
   rearm(t, g);
 }
@@ -44,6 +44,7 @@ void GuardCrossings::start(double t, std::span<const int> directions, std::span<
 void GuardCrossings::rearm(double t, std::span<const double> g) {
   t_ = t;
   first_step_ = true;
+  has_prev_ = false;
   inactive_ = 0;
   for (std::size_t i = 0; i < g.size(); ++i) {
     g_lo_[i] = g[i];
@@ -51,6 +52,7 @@ void GuardCrossings::rearm(double t, std::span<const double> g) {
     active_[i] = g[i] != 0.0;
     inactive_ += g[i] == 0.0;
   }
+  lo_at_start_ = inactive_ == 0;
 }
 
 void GuardCrossings::probe_unarmed(double t1, std::span<const double> g1, const Values& g_at) {
@@ -65,6 +67,7 @@ void GuardCrossings::probe_unarmed(double t1, std::span<const double> g1, const 
       if (d * scratch_[i] < 0) {  // on the side before the crossing: the bracket starts here
         g_lo_[i] = scratch_[i];
         t_lo_[i] = s;
+        lo_at_start_ = false;
         break;
       }
     }
@@ -116,6 +119,22 @@ bool GuardCrossings::coarse_excludes(double t1, std::span<const double> g1, doub
   return true;
 }
 
+bool GuardCrossings::previous_step_excludes(double t1, std::span<const double> g1) const {
+  const double h = t1 - t_, h_prev = t_ - prev_t_;
+  if (!(h_prev > 0.0 && h_prev <= kPreviousStepRatio * h)) return false;
+  // kCoarseMargin M h²/8 with M = 4 |g[a, b, c]| (twice the |g''| it shows, above):
+  // reach · |(g(c) - g(b))/h - (g(b) - g(a))/h_prev|.
+  const double reach = kCoarseMargin * 0.5 * h * h / (h + h_prev), w = 1.0 / h, w_prev = 1.0 / h_prev;
+  bool excluded = true;
+  for (std::size_t i = 0; i < directions_.size(); ++i) {
+    const double a = prev_g_[i], b = g_lo_[i], c = g1[i];
+    const bool one_side = ((a > 0) & (b > 0) & (c > 0)) | ((a < 0) & (b < 0) & (c < 0));  // branch-free
+    excluded =
+        excluded & one_side & (std::min(std::abs(b), std::abs(c)) > reach * std::abs((c - b) * w - (b - a) * w_prev));
+  }
+  return excluded;
+}
+
 bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, const Values& g_at) {
   const std::size_t n = directions_.size();
   const std::size_t inner = kSamples - 1;
@@ -131,6 +150,9 @@ bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, cons
     whole_step();
     return true;
   }
+  // The previous step's end and this step's ends first (no evaluation): where they show every
+  // guard far from 0 for its curvature, no sample (above).
+  if (has_prev_ && lo_at_start_ && previous_step_excludes(t1, g1)) return false;
   std::array<double, kSamples - 1> times{};
   for (std::size_t j = 0; j < inner; ++j) times[j] = t_ + h * static_cast<double>(j + 1) / kSamples;
   const auto sample = [&](std::size_t j) {
@@ -235,6 +257,11 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
     }
   }
   if (first_guard < 0) {
+    // This step's start, for the next step's bound (above), where every guard was watched from there.
+    has_prev_ = lo_at_start_;
+    prev_t_ = t_;
+    if (has_prev_) prev_g_.swap(g_lo_);
+    lo_at_start_ = inactive_ == 0;
     if (inactive_ == 0) {
       std::copy(g1.begin(), g1.end(), g_lo_.begin());
       std::fill(t_lo_.begin(), t_lo_.end(), t1);

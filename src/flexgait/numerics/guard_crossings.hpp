@@ -41,6 +41,24 @@
 /// guard far from 0 (CVODE's short steps almost always); a guard near 0 for its curvature, or a
 /// step with a crossing, still gets all the samples, with the same brackets and roots as if
 /// sampled at once.
+///
+/// Before the midpoint, a step that follows a step of the same segment (no crossing, no restart
+/// since; every guard watched from that step's start, none activated or probed later) is first bounded without any
+/// evaluation, from the guards' values at the three step ends it already has: the previous step's start a, this step's
+/// start b and its end c. Where, for every guard, a, b and c lie on one side of 0, the previous step is at most
+/// kPreviousStepRatio times as long as this one, and the same bound over the step [b, c], with M = 2x the |g''| the
+/// second divided difference g[a, b, c] shows and kCoarseMargin times more margin,
+///   min(|g(b)|, |g(c)|) > kCoarseMargin M (c - b)^2 / 8,
+/// excludes a root, the step takes no sample and the integrator's dense output is not prepared.
+/// This is the midpoint rule's assumption, that g'' over the step stays within 8x (the factor 2 in
+/// M times the margin) of what one second difference shows, taken over a window of two steps
+/// (at most (1 + kPreviousStepRatio) h) instead of one: the window is still a fraction of the
+/// state's time scale, which the step resolves. A step that shrank more than that against its
+/// predecessor (the controller meeting faster dynamics) takes the samples. For the same measured
+/// curvature the bound asks 4x more distance from 0 than the midpoint rule's (one part of length
+/// h instead of two of h/2). What either rule can miss is a dip whose curvature shows at none of
+/// its points: for this one, a feature that arises within the step and is absent at its ends and
+/// at the previous step's start.
 #include <functional>
 #include <optional>
 #include <span>
@@ -85,6 +103,9 @@ class GuardCrossings {
   /// Whether the midpoint sample (samples_ row mid, at t_mid) and the step's ends exclude a root
   /// of every guard by the coarse bound (above).
   bool coarse_excludes(double t1, std::span<const double> g1, double t_mid, std::size_t mid) const;
+  /// Whether the previous step's start, this step's start and its end t1 (g1) exclude a root of
+  /// every guard in the step by the two-step bound (above).
+  bool previous_step_excludes(double t1, std::span<const double> g1) const;
   /// Between a and b (no crossing from a to b): bisects while the curvature bound (above) does not
   /// exclude a root; true with the bracket in `lo`, `hi` where a sample crosses.
   bool refine(std::size_t i, Point a, Point b, int depth, const Values& g_at, Point& lo, Point& hi);
@@ -95,6 +116,8 @@ class GuardCrossings {
   static constexpr int kRefineBudget = 24;  ///< extra evaluations of the guards per step, at most
   /// The coarse bound's margin over the curvature its one second difference shows (above).
   static constexpr double kCoarseMargin = 4.0;
+  /// The two-step bound (above) needs the previous step no longer than this many times this one.
+  static constexpr double kPreviousStepRatio = 1.5;
   /// The guards' evaluations of the interior samples so far (the cost of the rule above).
   long long interior_evaluations() const { return interior_evaluations_; }
 
@@ -114,7 +137,11 @@ class GuardCrossings {
   std::vector<double> lo_t_, lo_g_, hi_t_, hi_g_;  // per guard: its bracket in the current step
   std::vector<double> curvature_;                  // per guard: M of the bound above, for the current step
   std::vector<double> roots_;                      // per guard: its root in the current step (infinity: none)
-  int budget_ = 0;                                 // refinement evaluations left in the current step
+  bool lo_at_start_ = false;                       // every guard is active and its bracket starts at t_ (t_lo_ = t_)
+  bool has_prev_ = false;       // the previous step is in this segment, every guard watched from its start
+  double prev_t_ = 0.0;         // the previous step's start [s]
+  std::vector<double> prev_g_;  // per guard: its value there
+  int budget_ = 0;              // refinement evaluations left in the current step
   long long interior_evaluations_ = 0;
 };
 
