@@ -301,6 +301,8 @@ int export_robot(const ExportOptions& options) {
     mapping = humanoid::urdf_mapping(loaded);
   }
   Config again = config;
+  // The compensation keys resolved for the default case, so that it loads back to the same compensation.
+  for (const auto& [key, value] : params.case_defaults) again.set(key, value, "default (the compensation case)");
   again.set("robot.description", std::filesystem::path(options.out).filename().string(), "humanoid export");
   for (const std::string& line : split_text(mapping, '\n'))
     if (const auto eq = line.find('='); eq != std::string::npos)

@@ -397,7 +397,7 @@ expect_usage_error horizontal-force-needs-dynamic "key 'control.plan_horizontal_
 expect_usage_error horizontal-force-bounds "control.plan_horizontal_force" humanoid walk --set control.plan_horizontal_force=1.5 --set control.load_model=dynamic
 expect_usage_error gyro-rest-longer-than-the-still-stance "key 'control.k_estimation_gyro_rest' = '1' is longer than the still start stance" humanoid walk --set control.k_estimation_gyro_rest=1
 expect_usage_error calibrate-needs-the-calibration "key 'control.k_estimation' = 'calibrate' needs the calibration in the start stance" humanoid walk --set control.k_estimation=calibrate --set control.load_model=measured
-expect_usage_error calibrate-needs-measured-loads "key 'control.k_estimation' = 'calibrate' needs each foot's measured load" humanoid walk --set control.k_estimation=calibrate --set calibration.time=10 --set walk.start_time=14
+expect_usage_error calibrate-needs-measured-loads "key 'control.k_estimation' = 'calibrate' needs each foot's measured load" humanoid walk --set control.load_model=gravity --set control.k_estimation=calibrate --set calibration.time=10 --set walk.start_time=14
 expect_usage_error calibration-longer-than-the-start-stance "key 'calibration.time' = '10' does not end before the COM moves" humanoid walk --set calibration.time=10
 expect_usage_error walk-height-not-auto "key 'walk.steps'" humanoid walk --set walk.steps=auto
 check "builtin walk height is written derived" grep -q "pelvis_height: 0.723" "$work/walk/config.yaml"

@@ -149,48 +149,58 @@ TEST(LoadModel, DynamicAtRestIsMeasured) {
   for (int j = 0; j < kJoints; ++j) EXPECT_EQ(dynamic.input_torque()[j], measured.input_torque()[j]) << j;
 }
 
-TEST(LoadModel, PlanHorizontalForceAddsMinusJacobianTransposeOfItsShareAtTheCentreOfPressure) {
-  // control.plan_horizontal_force f: the input side's ground force on a stance foot gains
-  // share · M · f · c̈_xy at the split's centre of pressure, so each joint's torque gains
-  // −Jᵀ(cop) (share M f c̈_x, share M f c̈_y, 0) (eq. 4's virtual work) and nothing else; linear in f.
-  // Left foot in single support, the reference ZMP off its centre, so the point is not the sole's.
+TEST(LoadModel, PlanGroundWrenchClosesTheWholeBodysNewtonEuler) {
+  // control.plan_horizontal_force f > 0: the input side's ground wrench is the plan's own — the whole body's
+  // Newton–Euler of the planned motion with no foot loaded gives the wrench W = (f₀, n₀) the world must supply at the
+  // pelvis. In single support (its centre of pressure inside the stance sole) all of W goes through the stance foot,
+  // so each stance joint i carries the body above it: τ_i = u_i · (n_i − n_W(p_i)), with (f_i, n_i) the free
+  // recursion's wrench of the subtree below joint i and n_W(p_i) = n₀ + (p₀ − p_i) × f₀ (Featherstone 2008, §5.3).
+  // The swing leg is its own Newton–Euler. The pelvis accelerates towards the right so that the plan's centre of
+  // pressure, p = c − (z_c/g) c̈ for a point mass, lies under the left sole.
   const Stance s;
   SupportPlan plan = s.plan();
   plan.swinging = {false, true};
-  plan.zmp_ref = s.soles[0].p.head<2>() + Eigen::Vector2d(0.02, -0.01);
   plan.pelvis = Pose{Vector3d(0, 0, 0.72), Matrix3d::Identity()};
-  plan.motion.com_acceleration = Vector3d(0.3, -0.6, 0.0);  // [m/s²]
   plan.motion.valid = true;
-  JointVector torque[3];
-  const double shares[3] = {0.0, 0.5, 1.0};
-  for (int i = 0; i < 3; ++i) {
-    CompensationParams p = params(LoadModel::kDynamic);
-    p.plan_horizontal_force = shares[i];
-    DeformationCompensator c(s.model, p, kPeriod);
-    c.sense(s.readings());
-    c.input(s.q, Matrix3d::Identity(), plan);
-    torque[i] = c.input_torque();
+  plan.motion.pelvis.acceleration = Vector3d(0.2, -1.25, 0.3);         // [m/s²]
+  plan.motion.pelvis.angular_velocity = Vector3d(0.05, -0.1, 0.02);    // [rad/s]
+  plan.motion.pelvis.angular_acceleration = Vector3d(0.3, 0.2, -0.1);  // [rad/s²]
+  for (int j = 0; j < kJoints; ++j) {
+    plan.motion.velocity[j] = 0.1 * std::sin(j + 1.0);      // [rad/s]
+    plan.motion.acceleration[j] = 0.5 * std::cos(2.0 * j);  // [rad/s²]
   }
+  CompensationParams p = params(LoadModel::kDynamic);
+  p.plan_horizontal_force = 1.0;
+  DeformationCompensator c(s.model, p, kPeriod);
+  c.sense(s.readings());
+  c.input(s.q, Matrix3d::Identity(), plan);
+  const JointVector& tau = c.input_torque();
+
   walking::RobotModelData data;
   walking::forward_kinematics(s.model, data, Pose{Vector3d::Zero(), Matrix3d::Identity()}, s.q);
-  const FootLoads loads =
-      support_loads(plan.zmp_ref, plan.soles, plan.swinging, s.model.sole_length, s.model.sole_width);
-  ASSERT_EQ(loads.share[0], 1.0);
+  walking::RobotDynamicsData free;
+  walking::inverse_dynamics(s.model, data, plan.motion.pelvis, plan.motion.velocity, plan.motion.acceleration, free);
+  const Vector3d f0 = free.joint_wrench[0].force, n0 = free.joint_wrench[0].moment, p0 = data.frame[0].p;
+  // The centre of pressure lies inside the left sole (else the split would clamp it and the identity not hold).
   const Pose sole = walking::sole_pose(s.model, data, 0);
-  const Vector3d cop = sole.p + sole.R * Vector3d(loads.cop[0].x(), loads.cop[0].y(), 0);
-  ASSERT_GT((cop - sole.p).norm(), 0.01);
-  const Vector3d force(s.model.total_mass * 0.3, s.model.total_mass * -0.6, 0.0);  // f = 1 [N]
-  const walking::LegJacobian J = walking::leg_jacobian(s.model, data, 0, cop);
-  const walking::LegTorque expected = -J.topRows<3>().transpose() * force;
-  for (int i = 0; i < humanoid::kLegJoints; ++i) {
-    const int j = humanoid::leg_first_joint(0) + i;
-    // 1e-9 Nm: rounding of sums of O(100) Nm
-    EXPECT_NEAR(torque[2][j] - torque[0][j], expected(i), 1e-9) << j;
-    EXPECT_NEAR(torque[1][j] - torque[0][j], 0.5 * expected(i), 1e-9) << j;
-    const int r = humanoid::leg_first_joint(1) + i;  // the swing leg carries no ground force
-    EXPECT_EQ(torque[2][r], torque[0][r]) << r;
+  const Vector3d n = n0 + p0.cross(f0);
+  const Vector3d cop((sole.p.z() * f0.x() - n.y()) / f0.z(), (n.x() + sole.p.z() * f0.y()) / f0.z(), sole.p.z());
+  const Vector3d local = sole.R.transpose() * (cop - sole.p);
+  ASSERT_LT(std::abs(local.x()), 0.4 * s.model.sole_length);
+  ASSERT_LT(std::abs(local.y()), 0.4 * s.model.sole_width);
+  for (int b = 0; b < walking::kBodies; ++b) {
+    const auto& body = s.model.bodies[static_cast<std::size_t>(b)];
+    if (body.joint < 0 || body.joint == humanoid::kWaistYaw) continue;
+    const bool left = body.joint >= humanoid::leg_first_joint(0) && body.joint < humanoid::leg_first_joint(0) + 6;
+    const bool right = body.joint >= humanoid::leg_first_joint(1) && body.joint < humanoid::leg_first_joint(1) + 6;
+    if (!left && !right) continue;
+    const Vector3d u = data.frame[b].R * body.axis;
+    const Vector3d ground = left ? Vector3d(n0 + (p0 - data.frame[b].p).cross(f0)) : Vector3d::Zero();
+    const Vector3d carried = free.joint_wrench[b].moment - ground;
+    // 1e-9 Nm: the same sums in another order (torques O(10-100) Nm)
+    EXPECT_NEAR(tau[body.joint], u.dot(carried), 1e-9) << body.joint;
   }
-  EXPECT_GT(std::abs(expected(1)), 10.0);  // the stance hip roll's share is not negligible
+  EXPECT_GT(std::abs(tau[humanoid::kLeftHipRoll]), 10.0);  // the stance hip roll carries the body above it
 }
 
 }  // namespace

@@ -63,6 +63,9 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
   }
   // Each foot's F/T wrench (foot frame) turned into the world by this pose's foot frame.
   if (params_.split == WeightSplit::kCom && planned_cop_) plan_loads_ = com_loads(model_, data_, support.swinging);
+  // control.plan_horizontal_force f > 0: the input side's ground wrench is the plan's own (plan_ground_wrench).
+  const bool whole_body = planned_cop_ && params_.load_model == LoadModel::kDynamic && support.motion.valid &&
+                          params_.plan_horizontal_force > 0 && plan_ground_wrench(support);
   for (int side = 0; side < 2; ++side) {
     const walking::Pose& foot = data_.frame[model_.foot[side]];
     // A stance foot's wrench is read; a swinging foot is the model's (its reading, a few tens of
@@ -71,23 +74,31 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     feet_.given[side] = sensed_ && !support.swinging[side];
     feet_.wrench[side] = {foot.R * ft_[side].force, foot.R * ft_[side].moment};
     if (!planned_cop_) continue;
+    const walking::Pose sole = walking::sole_pose(model_, data_, side);
+    const walking::Vector3d cop =
+        sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
+    if (whole_body) {
+      // The foot's own Newton–Euler less its share of the plan's ground wrench: the force at its centre of
+      // pressure (its horizontal part times f), the free moment about the vertical shared alike.
+      walking::Vector3d ground = plan_loads_.share[side] * plan_ground_.force;
+      ground.head<2>() *= params_.plan_horizontal_force;
+      const walking::Vector3d free(0, 0, plan_loads_.share[side] * plan_ground_.moment.z());
+      feet_.given[side] = true;
+      feet_.wrench[side] = {foot_need_[side].force - ground,
+                            foot_need_[side].moment - (cop - foot.p).cross(ground) - free};
+      continue;
+    }
     // The input side (a feed-forward): the plan's ground force, the weight shared as the split
     // says, at the split's centres of pressure. Not the F/T reading: fed into the commands it
     // closes a loop of gain ≈ 1 through the gears (a flat foot's ankle torque is k times the
     // command's change; in double support the feet's loads follow the legs' lengths), and the 1 s
     // walk falls. Nor M (g + a) with a the commanded pelvis's acceleration: that doubles the
-    // 1 s walk's peak roll error, as the whole of the plan's own horizontal force M c̈ does
-    // (docs/guide/compensation.md). With control.plan_horizontal_force f, f M c̈ (the cart-table's c̈, smooth), shared
-    // as the weight.
+    // 1 s walk's peak roll error (docs/guide/compensation.md). With control.plan_horizontal_force f > 0 the plan's
+    // own ground wrench above.
     const auto& b = model_.bodies[static_cast<std::size_t>(model_.foot[side])];
     const walking::Vector3d weight(0, 0, -b.mass * walking::kGravity);
     const double load = plan_loads_.share[side] * model_.total_mass;
-    walking::Vector3d ground(0, 0, load * walking::kGravity);
-    if (params_.load_model == LoadModel::kDynamic && support.motion.valid)
-      ground.head<2>() = params_.plan_horizontal_force * load * support.motion.com_acceleration.head<2>();
-    const walking::Pose sole = walking::sole_pose(model_, data_, side);
-    const walking::Vector3d cop =
-        sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
+    const walking::Vector3d ground(0, 0, load * walking::kGravity);
     feet_.given[side] = true;
     feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }
@@ -96,6 +107,29 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
   tau_ = dynamics_.tau;
   tau_[humanoid::kWaistYaw] = 0.0;  // the waist carries no modelled load (as in the gravity form)
   return tau_;
+}
+
+bool DeformationCompensator::plan_ground_wrench(const SupportPlan& support) {
+  // The whole body's Newton–Euler of the planned motion with no foot loaded: (f₀, n₀) at the pelvis is the wrench
+  // the world must supply, i.e. the ground's (Featherstone 2008, §5.3; Sardain and Bessonnet 2004: its zero-moment
+  // point is the plan's ZMP). Each foot's own need is kept for its given wrench.
+  walking::inverse_dynamics(model_, data_, support.motion.pelvis, support.motion.velocity, support.motion.acceleration,
+                            dynamics_);
+  for (int side = 0; side < 2; ++side) foot_need_[side] = dynamics_.joint_wrench[model_.foot[side]];
+  const walking::Vector3d f = dynamics_.joint_wrench[0].force;
+  if (!(f.z() > 0)) return false;  // no push on the ground (a plan in free fall): the weight's split instead
+  // Its centre of pressure p on the stance sole's plane: the moment about p has no horizontal part.
+  const int anchor = support.swinging[0] ? 1 : 0;
+  const walking::Pose sole = walking::sole_pose(model_, data_, anchor);
+  const walking::Vector3d n = dynamics_.joint_wrench[0].moment + data_.frame[0].p.cross(f);  // about the origin
+  const double z = sole.p.z();
+  const walking::Vector3d p((z * f.x() - n.y()) / f.z(), (n.x() + z * f.y()) / f.z(), z);
+  plan_ground_ = {f, n - p.cross(f)};
+  // The same point in the world through the plan's sole, the split about it.
+  const walking::Vector3d world =
+      support.soles[anchor].p + support.soles[anchor].R * (sole.R.transpose() * (p - sole.p));
+  plan_loads_ = support_loads(world.head<2>(), support.soles, support.swinging, model_.sole_length, model_.sole_width);
+  return true;
 }
 
 void DeformationCompensator::split_by_plan(const SupportPlan& support) {

@@ -29,11 +29,15 @@
 /// add the legs' inertial torques of the planned motion — the plan's joint and pelvis velocities
 /// and accelerations (SupportPlan::motion, walking/planned_motion.hpp: central differences of the
 /// plan's IK, without the balance loops) through the recursive Newton–Euler. With
-/// control.plan_horizontal_force f > 0 the input side's ground force on each stance foot is
-///     F = share · M (f c̈_x, f c̈_y, g)   at the split's centre of pressure,
-/// c̈ the preview controller's cart-table acceleration: the plan's ground force leans along the line
-/// from the ZMP to the COM (f = 1), which the vertical weight alone leaves out — at 1 s/step it is
-/// ~15 Nm of the stance hip roll's ~50 Nm in mid single support.
+/// control.plan_horizontal_force f > 0 the input side's ground wrench is the plan's own: the whole
+/// body's Newton–Euler of the planned motion with no foot loaded gives the wrench (F, N) the ground
+/// must supply; its centre of pressure p (the plan's multibody ZMP) is where the split is made, and
+/// each stance foot carries share · F (its horizontal part times f) at its centre of pressure and
+/// the share of the free moment about the vertical, beside its own Newton–Euler. The weight alone
+/// at the reference ZMP (f = 0) leaves out the horizontal force (~15 Nm of the stance hip roll's
+/// ~50 Nm at 1 s/step), and the cart-table's force M c̈ at the reference ZMP misplaces the
+/// plan's centre of pressure by up to 1.7 cm (rms 0.8 cm at 1 s/step): ~10 Nm too much at the stance
+/// hip roll, which made f = 1 overshoot in closed loop.
 ///
 /// control.compensation = robotis | talos: the field's baselines (field_baselines.hpp), input side
 /// only. Allocation-free after construction.
@@ -98,6 +102,15 @@ struct SupportPlan {
   walking::PlannedMotion motion;     ///< the plan's joint and pelvis motion (load_model dynamic; not valid: at rest)
 };
 
+/// control.load_filter_time of the static model (no gear damping believed): the 1 s walk's best estimate there
+/// (20 % of the deflection against 28 % at 0.02 s) [s].
+inline constexpr double kStaticLoadFilterTime = 0.1;
+/// control.load_filter_time with the gears' lag believed: the F/T low-pass can be short [s].
+inline constexpr double kLagLoadFilterTime = 0.02;
+
+/// The members' defaults are the thesis's static model (the keys' schema defaults); `humanoid walk` resolves the
+/// compensation keys left unset to the default case both-dynamic-horizontal-lag when its own compensators run
+/// (experiments::walk_run_from_config; docs/guide/compensation.md, "The default case").
 struct CompensationParams {
   CompensationMode mode = CompensationMode::kBoth;
   GravityForm gravity = GravityForm::kFull;
@@ -110,10 +123,9 @@ struct CompensationParams {
     return ones;
   }();
   LoadModel load_model = LoadModel::kGravity;
-  double load_filter_time =
-      0.1;  ///< time constant of the F/T low-pass [s] (0.1: the 1 s walk's best estimate, 20 % against 28 % at 0.02 s)
+  double load_filter_time = kStaticLoadFilterTime;  ///< time constant of the F/T low-pass [s]
   /// dynamic: the share f of the plan's horizontal ground force M c̈ (the cart-table's c̈) that the
-  /// input compensator's stance feet carry beside the weight [-]; 0: the weight alone.
+  /// input compensator's stance feet carry beside the weight [-]; 1: the whole (the physics), 0: the weight alone.
   double plan_horizontal_force = 0.0;
   KEstimation k_estimation = KEstimation::kOff;
   /// The controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the
@@ -160,13 +172,18 @@ struct CompensationParams {
     v("control.load_model", s.load_model,
       {.doc = "the compensators' load: gravity = the weight split (the thesis), measured = the output compensator "
               "reads each foot's ankle F/T wrench (plus the legs' own weight), dynamic = measured plus, in both "
-              "compensators, the legs' inertial torques of the planned motion"});
+              "compensators, the legs' inertial torques of the planned motion (left unset, humanoid walk's own "
+              "compensators take dynamic: the default case both-dynamic-horizontal-lag)"});
     v("control.load_filter_time", s.load_filter_time,
-      {.unit = "s", .doc = "measured/dynamic: time constant of the F/T low-pass (0: none)", .bounds = closed(0, 1)});
+      {.unit = "s",
+       .doc = "measured/dynamic: time constant of the F/T low-pass (0: none; left unset with the gears' damping "
+              "believed, humanoid walk takes 0.02)",
+       .bounds = closed(0, 1)});
     v("control.plan_horizontal_force", s.plan_horizontal_force,
-      {.doc = "dynamic: share of the plan's horizontal ground force M c'' (the preview controller's COM acceleration) "
-              "in the input compensator's foot loads, shared as the weight; 0 = the weight alone, 1 = the whole "
-              "force (right in open loop, overshoots in closed loop: docs/guide/compensation.md)",
+      {.doc = "dynamic: share of the plan's horizontal ground force in the input compensator's foot loads; f > 0: "
+              "the plan's whole ground wrench (the whole body's Newton-Euler of the planned motion) at its own "
+              "centre of pressure, its horizontal force times f; 0 = the weight alone at the reference ZMP; 1 = the "
+              "physics (left unset with dynamic loads, humanoid walk takes 1)",
        .bounds = closed(0, 1)});
     v("control.compensated_feedback", s.compensated_feedback,
       {.doc = "the controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the encoders "
@@ -234,7 +251,8 @@ struct CompensationParams {
     v("control.gear_damping", s.gear_damping,
       {.unit = "Nm s/rad",
        .doc = "the belief of the gears' damping d (Kelvin-Voigt, tau = k delta + d delta'): the deflection lags the "
-              "torque by d/k in both compensators; 0 = the static model delta = tau/k (the thesis)",
+              "torque by d/k in both compensators; 0 = the static model delta = tau/k (the thesis); left unset, "
+              "humanoid walk's own compensators take plant.gear_damping",
        .bounds = closed(0, 1e5)});
     v("control.newton_max_iterations", s.newton.max_iterations,
       {.doc = "output compensator: Newton steps at most", .bounds = closed(1, 100)});
@@ -305,6 +323,10 @@ class DeformationCompensator {
  private:
   /// The Kelvin–Voigt lag's weight of this period's torque for joint j, a = T / (T + d/k_j) (1 without damping).
   double lag_weight(int j) const;
+  /// control.plan_horizontal_force > 0, the input side: the plan's ground wrench (plan_ground_, about its centre of
+  /// pressure), each foot's own Newton–Euler (foot_need_) and the split about that centre (plan_loads_), for the pose
+  /// in data_; false (nothing set) if the plan pushes nothing on the ground.
+  bool plan_ground_wrench(const SupportPlan& support);
   /// With kZmpReference: the loads about the plan's reference ZMP (the same for every pose).
   void split_by_plan(const SupportPlan& support);
   /// The field baselines' hip roll offsets on command_.
@@ -323,7 +345,9 @@ class DeformationCompensator {
   bool input_lagged_ = false, output_lagged_ = false;  ///< a previous deflection exists
   humanoid::JointVector input_deflection_{}, output_deflection_{};
   walking::RobotModelData data_;
-  FootLoads plan_loads_;  ///< the split about the reference ZMP (kZmpReference), from the plan
+  FootLoads plan_loads_;                      ///< the split about the reference ZMP (kZmpReference), from the plan
+  walking::Wrench plan_ground_;               ///< the plan's ground wrench, about its centre of pressure (world)
+  std::array<walking::Wrench, 2> foot_need_;  ///< each foot's own Newton–Euler wrench of the plan, at its origin
   humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};
   OutputEstimate estimate_;
   // load_model measured/dynamic:

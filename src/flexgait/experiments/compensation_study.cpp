@@ -13,30 +13,18 @@ namespace {
 using compensation::CompensationMode;
 using compensation::GravityForm;
 
-/// control.plan_horizontal_force of the study's case both-dynamic-horizontal: half the plan's
-/// horizontal ground force, the closed-loop best measured at 0.8-3 s/step (docs/guide/compensation.md: the whole force
-/// is right in open loop and overshoots in closed loop).
-constexpr double kStudyHorizontalForce = 0.5;
-/// control.load_filter_time of the case both-dynamic-horizontal-lag: with the gears' lag believed, the F/T
-/// low-pass can be short (docs/guide/compensation.md, "Loads and the field's baselines": 0.02 s) [s].
-constexpr double kStudyLagFilterTime = 0.02;
-
-/// The case both-dynamic-horizontal with the gears' Kelvin–Voigt lag believed as the twin's damping
-/// (control.gear_damping = plant.gear_damping), the configuration that met the
-/// estimate's and the roll cut's targets (docs/guide/compensation.md).
-WalkRunParams with_gear_lag(WalkRunParams p) {
-  p.control.gear_damping = p.plant.gear_damping;
-  p.control.load_filter_time = kStudyLagFilterTime;
-  return p;
-}
-
+/// A case: the compensation keys that name it, the rest the base's. `lag`: the gears' Kelvin–Voigt lag believed as
+/// the twin's damping (control.gear_damping = plant.gear_damping) with the short F/T low-pass.
 WalkRunParams with(const WalkRunParams& base, CompensationMode mode, GravityForm form,
-                   compensation::LoadModel load = compensation::LoadModel::kGravity, double horizontal_force = 0.0) {
+                   compensation::LoadModel load = compensation::LoadModel::kGravity, double horizontal_force = 0.0,
+                   bool lag = false) {
   WalkRunParams p = base;
   p.control.mode = mode;
   p.control.gravity = form;
   p.control.load_model = load;
   p.control.plan_horizontal_force = horizontal_force;
+  p.control.gear_damping = lag ? p.plant.gear_damping : 0.0;
+  p.control.load_filter_time = lag ? compensation::kLagLoadFilterTime : compensation::kStaticLoadFilterTime;
   return p;
 }
 
@@ -78,19 +66,34 @@ void add_compared(nlohmann::ordered_json& j, const Compared& c, const WalkMetric
 
 }  // namespace
 
+std::string compensation_case_name(const WalkRunParams& params) {
+  const compensation::CompensationParams& c = params.control;
+  if (!c.input() && !c.output()) return std::string(name_of(c.mode));
+  std::string name(name_of(c.mode));
+  if (c.gravity == GravityForm::kThesis) name += "-thesis-form";
+  if (c.load_model != compensation::LoadModel::kGravity) name += "-" + std::string(name_of(c.load_model));
+  if (c.load_model == compensation::LoadModel::kDynamic && c.plan_horizontal_force > 0)
+    name += c.plan_horizontal_force == 1.0 ? "-horizontal" : fmt::format("-horizontal-{:g}", c.plan_horizontal_force);
+  if (c.gear_damping > 0)
+    name += c.gear_damping == params.plant.gear_damping ? "-lag" : fmt::format("-lag-{:g}", c.gear_damping);
+  return name;
+}
+
 std::vector<StudyCase> compensation_cases(const WalkRunParams& base) {
   using compensation::LoadModel;
-  return {{"off", with(base, CompensationMode::kOff, base.control.gravity)},
-          {"both", with(base, CompensationMode::kBoth, GravityForm::kFull)},
-          {"both-thesis-form", with(base, CompensationMode::kBoth, GravityForm::kThesis)},
-          {"robotis", with(base, CompensationMode::kRobotis, GravityForm::kFull)},
-          {"talos", with(base, CompensationMode::kTalos, GravityForm::kFull)},
-          {"both-measured", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kMeasured)},
-          {"both-dynamic", with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic)},
-          {"both-dynamic-horizontal",
-           with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic, kStudyHorizontalForce)},
-          {"both-dynamic-horizontal-lag", with_gear_lag(with(base, CompensationMode::kBoth, GravityForm::kFull,
-                                                             LoadModel::kDynamic, kStudyHorizontalForce))}};
+  const std::vector<WalkRunParams> runs = {
+      with(base, CompensationMode::kOff, base.control.gravity),
+      with(base, CompensationMode::kBoth, GravityForm::kFull),
+      with(base, CompensationMode::kBoth, GravityForm::kThesis),
+      with(base, CompensationMode::kRobotis, GravityForm::kFull),
+      with(base, CompensationMode::kTalos, GravityForm::kFull),
+      with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kMeasured),
+      with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic),
+      with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic, 1.0),
+      with(base, CompensationMode::kBoth, GravityForm::kFull, LoadModel::kDynamic, 1.0, true)};
+  std::vector<StudyCase> cases;
+  for (const WalkRunParams& p : runs) cases.push_back({compensation_case_name(p), p});
+  return cases;
 }
 
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales) {

@@ -22,10 +22,19 @@ struct StudyCase {
   WalkRunParams params;
 };
 
+/// The name of the compensation case a run's settings make (summary.json's compensation_case, the
+/// compensation study's directories): off, robotis, talos, or the compensators (input, output, both)
+/// followed by what they believe beyond the thesis's gravity loads — -thesis-form (eq. 4 only), -measured or
+/// -dynamic (control.load_model), -horizontal (control.plan_horizontal_force 1; another share f: -horizontal-f),
+/// -lag (control.gear_damping at plant.gear_damping; another value d: -lag-d). The default of
+/// `humanoid walk` is both-dynamic-horizontal-lag.
+std::string compensation_case_name(const WalkRunParams& params);
+
 /// off, both (full form), both (thesis form), robotis, talos, both-measured, both-dynamic,
-/// both-dynamic-horizontal (control.plan_horizontal_force 0.5) and both-dynamic-horizontal-lag (the same
+/// both-dynamic-horizontal (control.plan_horizontal_force 1) and both-dynamic-horizontal-lag (the same
 /// with the gears' lag believed: control.gear_damping = plant.gear_damping, control.load_filter_time
-/// 0.02 s), from `base` (its other settings kept).
+/// 0.02 s: the default of `humanoid walk`), from `base`. Each case sets every compensation key that names it
+/// (the cases without the lag: no damping believed, the F/T low-pass 0.1 s); the other settings are the base's.
 std::vector<StudyCase> compensation_cases(const WalkRunParams& base);
 /// For each scale s: the twin's k_joint = s × its configured value, compensation off and both.
 std::vector<StudyCase> mismatch_cases(const WalkRunParams& base, const std::vector<double>& scales);

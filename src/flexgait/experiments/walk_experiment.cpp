@@ -71,6 +71,29 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
   if (c.derived("walk.step_width")) p.walk.step_width = resolved.real("walk.step_width");
 }
 
+/// The default compensation case of `humanoid walk`, both-dynamic-horizontal-lag (docs/guide/compensation.md, "The
+/// default case"): when the compensators of ours run (control.compensation input, output, both), their keys left
+/// unset take the physics the 1 s walk needs — the dynamic loads, the plan's whole ground wrench
+/// (control.plan_horizontal_force 1, with the dynamic loads only), the gears' damping believed at the plant's, the F/T
+/// low-pass short (kLagLoadFilterTime) when that damping is believed. Off and the field's baselines keep the
+/// schema's defaults (the thesis's static model): they run none of it.
+void resolve_compensation_defaults(const Config& c, WalkRunParams& p) {
+  compensation::CompensationParams& k = p.control;
+  if (!k.input() && !k.output()) return;
+  const auto resolve = [&](const std::string& key, auto& field, auto value, const std::string& text) {
+    if (c.origin(key) != "default") return;
+    field = value;
+    p.case_defaults.emplace_back(key, text);
+  };
+  resolve("control.load_model", k.load_model, compensation::LoadModel::kDynamic, "dynamic");
+  if (k.load_model == compensation::LoadModel::kDynamic)
+    resolve("control.plan_horizontal_force", k.plan_horizontal_force, 1.0, "1");
+  resolve("control.gear_damping", k.gear_damping, p.plant.gear_damping, format_number(p.plant.gear_damping));
+  if (k.gear_damping > 0)
+    resolve("control.load_filter_time", k.load_filter_time, compensation::kLagLoadFilterTime,
+            format_number(compensation::kLagLoadFilterTime));
+}
+
 /// A stance the legs cannot take: hip to ankle between 45 % and 97.5 % of thigh + shank (the
 /// builtin: pelvis 0.478–0.793 m), soles apart. And a step the legs cannot take: the controller
 /// walks at walk.pelvis_height above z = 0 (it is not told of the step), so a foot landing on a
@@ -123,6 +146,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
     check_reach(p, model);
     walking::check_standing_pose(model, p.walk.pelvis_height, p.walk.step_width);
   });
+  resolve_compensation_defaults(c, p);
   if (p.control.compensated_feedback && !p.control.output())
     throw ConfigError("control.compensated_feedback",
                       "key 'control.compensated_feedback' = 'true' needs the output compensator's estimate; allowed "
@@ -172,6 +196,7 @@ Config with_derived_values(const Config& config, const WalkRunParams& params) {
   Config out = config;
   for (const auto& [key, value] : params.derived)
     if (out.derived(key)) out.set(key, format_number(value), "auto (from the robot)");
+  for (const auto& [key, value] : params.case_defaults) out.set(key, value, "default (the compensation case)");
   return out;
 }
 

@@ -52,6 +52,10 @@ struct WalkRunParams {
   /// The keys left `auto` and the values walk_run_from_config derived for them from the robot, in
   /// derivation order (with_derived_values writes them into config.yaml); not keys themselves.
   std::vector<std::pair<std::string, double>> derived;
+  /// The compensation keys left at their defaults that walk_run_from_config resolved for the compensation mode
+  /// (off and the field's baselines keep the thesis's gravity loads, no horizontal force without the dynamic loads,
+  /// the gears' damping believed at the plant's), with their values' text; with_derived_values writes them too.
+  std::vector<std::pair<std::string, std::string>> case_defaults;
 
   /// Keys robot.*, plant.*, walk.*, balance.*, control.*, estimator.*, health.*, disturbance.push.*,
   /// disturbance.pushes, output.log_period (the controller's belief of the robot and the fall thresholds are not keys).
@@ -136,6 +140,7 @@ struct Landing {
 struct WalkMetrics {
   compensation::CompensationMode compensation = compensation::CompensationMode::kOff;  ///< control.compensation
   compensation::GravityForm gravity_model = compensation::GravityForm::kFull;          ///< control.gravity_model
+  std::string compensation_case;  ///< the compensation case the run's settings make (compensation_case_name)
   bool fell = false;
   std::optional<FallReason> fall_reason;  ///< empty when it did not fall
   double fall_time = 0;                   ///< [s]
@@ -223,6 +228,10 @@ struct WalkMetrics {
               "missed_step, unsupported), safe_stop, simulation_failure, incomplete"});
     v("compensation", s.compensation, {.doc = "control.compensation of the run"});
     v("gravity_model", s.gravity_model, {.doc = "control.gravity_model of the run"});
+    v("compensation_case", s.compensation_case,
+      {.doc = "the compensation case the run's control.* keys make, as the compensation study names it (off, "
+              "robotis, talos, or input/output/both with -thesis-form, -measured/-dynamic, -horizontal, -lag; the "
+              "default both-dynamic-horizontal-lag)"});
     v("fell", s.fell,
       {.doc = "the robot fell or lost its support (pelvis too low, tilted or upside down, a body other than a sole on "
               "the floor, airborne, a sole slid or a step missed): outcome names which"});

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "flexgait/experiments/capture_point_bound.hpp"
+#include "flexgait/experiments/compensation_study.hpp"
 #include "flexgait/experiments/support_polygon.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
 
@@ -90,6 +91,7 @@ WalkScorer::WalkScorer(const WalkRunParams& params, const walking::WalkingContro
   m.riccati_residual = controller.gains().riccati_residual;
   m.compensation = params.control.mode;
   m.gravity_model = params.control.gravity;
+  m.compensation_case = compensation_case_name(params);
   m.pushed = !pushes.empty();
   m.support_margin_min = INFINITY;
   first_push_ = pushes.empty() ? params.push
