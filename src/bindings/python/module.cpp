@@ -26,7 +26,7 @@ flexgait::Schema schema_named(const std::string& name) {
 
 }  // namespace
 
-PYBIND11_MODULE(flexgait, m) {
+PYBIND11_MODULE(_flexgait, m) {
   m.doc() =
       "flexgait: legged locomotion with compliance, from Python.\n\n"
       "Two studies on one C++20 core (the same code as the `flexgait` command line):\n"
@@ -93,4 +93,5 @@ PYBIND11_MODULE(flexgait, m) {
   flexgait::python::bind_rimless(m);
   flexgait::python::bind_humanoid(m);
   flexgait::python::bind_loop(m);
+  flexgait::python::bind_campaign(m);
 }
