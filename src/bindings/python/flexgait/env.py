@@ -13,7 +13,7 @@ from typing import Any, Callable, Mapping, Optional
 
 import numpy as np
 
-from . import _flexgait
+from . import HumanoidLoop
 
 # The observation: what a controller reads (SensorReadings), flattened in this order.
 OBSERVATION = (("encoder", 13), ("ft_force", 6), ("ft_torque", 6), ("imu_quat", 4), ("gyro", 3), ("accel", 3))
@@ -41,7 +41,7 @@ class HumanoidEnv:
     def __init__(self, config: Optional[Mapping[str, Any]] = None, config_file: Optional[str] = None,
                  max_time: Optional[float] = None,
                  reward: Callable[[Any, float], float] = upright_reward):
-        self.loop = _flexgait.HumanoidLoop(config, config_file)
+        self.loop = HumanoidLoop(config, config_file)
         self.max_time = self.loop.duration if max_time is None else float(max_time)
         self.reward = reward
         self.observation_size = sum(n for _, n in OBSERVATION)
