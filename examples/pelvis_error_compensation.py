@@ -21,7 +21,7 @@ def main(out_dir=".", steps=4):
     fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
     for mode, colour in (("off", "tab:red"), ("both", "tab:blue")):
         run = flexgait.humanoid.walk(config, compensation=mode)
-        m = run["metrics"]
+        m = run["summary"]
         ax.plot(run["log"]["t"], run["log"]["imu_roll"], color=colour,
                 label=f"compensation {mode}: peak {m['pelvis_roll_error_max']:.4f} rad")
         print(f"compensation {mode}: peak pelvis roll error {m['pelvis_roll_error_max']:.4f} rad, "

@@ -25,12 +25,10 @@ def main(out_dir=".", count=24):
         parts = list(pool.map(lambda h: flexgait.rimless.sweep("rimless.mu", *h), halves))
     mu = np.concatenate([p["value"] for p in parts])
     speed = np.concatenate([p["speed"] for p in parts])
-    multiplier = np.concatenate([p["max_multiplier"] if isinstance(p["max_multiplier"], np.ndarray)
-                                 else np.array([float(v) if v else np.nan for v in p["max_multiplier"]]) for p in parts])
+    multiplier = np.concatenate([p["max_multiplier"] for p in parts])  # NaN where no fixed point
     gait = sum((list(p["gait"]) for p in parts), [])
-    converged = np.array(sum((list(p["converged"]) for p in parts), [])) == "true"
+    converged = np.concatenate([p["converged"] for p in parts])  # bool
     speed[~converged] = np.nan  # no periodic gait there
-    multiplier[~converged] = np.nan
 
     fig, axes = plt.subplots(2, 1, figsize=(8, 6), sharex=True, constrained_layout=True)
     for name in sorted(set(gait)):

@@ -15,15 +15,12 @@
 #include "flexgait/core/text.hpp"
 #include "flexgait/experiments/bench_output.hpp"
 #include "flexgait/experiments/compensation_study.hpp"
+#include "flexgait/experiments/robot_export.hpp"
 #include "flexgait/experiments/stiffness_bench.hpp"
 #include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/experiments/walk_pictures.hpp"
 #include "flexgait/replay/scene.hpp"
-#include "flexgait/robot/urdf_export.hpp"
-#include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/renderer.hpp"
-#include "flexgait/twin/robot_loader.hpp"
-#include "flexgait/twin/twin_mjcf.hpp"
 #include "options.hpp"
 #include "render_command.hpp"
 
@@ -283,34 +280,12 @@ int export_robot(const ExportOptions& options) {
   run.config_file = options.config_file;
   run.overrides = options.overrides;
   const Config config = resolve(experiments::walk_run_schema(), run);
-  const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
-  // The robot through the loader (the builtin: its twin's MJCF with the builtin mapping).
-  humanoid::LoadedRobot loaded;
-  if (params.loaded)
-    loaded = *params.loaded;
-  else
-    loaded = humanoid::load_robot_text(humanoid::humanoid_mjcf(params.robot, params.plant), "xml", "builtin",
-                                       humanoid::RobotDescriptionParams{});
-  const bool mjcf = options.format == "mjcf";
-  std::string text, mapping;
-  if (mjcf) {
-    text = experiments::walk_twin(params).mjcf;
-    mapping = humanoid::twin_mjcf_mapping(loaded);
-  } else {
-    text = humanoid::robot_urdf(loaded);
-    mapping = humanoid::urdf_mapping(loaded);
-  }
-  Config again = config;
-  // The compensation keys resolved for the default case, so that it loads back to the same compensation.
-  for (const auto& [key, value] : params.case_defaults) again.set(key, value, "default (the compensation case)");
-  again.set("robot.description", std::filesystem::path(options.out).filename().string(), "humanoid export");
-  for (const std::string& line : split_text(mapping, '\n'))
-    if (const auto eq = line.find('='); eq != std::string::npos)
-      again.set(line.substr(0, eq), line.substr(eq + 1), "humanoid export");
-  write_file_atomic(options.out, text);
-  write_file_atomic(
-      reload, fmt::format("# Loads {} back: flexgait humanoid walk --config {}\n{}",
-                          std::filesystem::path(options.out).filename().string(), reload.string(), again.to_yaml()));
+  const experiments::RobotExport exported =
+      experiments::export_robot(config, options.format, std::filesystem::path(options.out).filename().string());
+  write_file_atomic(options.out, exported.text);
+  write_file_atomic(reload, fmt::format("# Loads {} back: flexgait humanoid walk --config {}\n{}",
+                                        std::filesystem::path(options.out).filename().string(), reload.string(),
+                                        exported.reload.to_yaml()));
   fmt::print("wrote {} ({}) and {} (load it back with --config {})\n", options.out, options.format, reload.string(),
              reload.string());
   return 0;

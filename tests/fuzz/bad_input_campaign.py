@@ -636,6 +636,20 @@ PYTHON_CALLS = [
     "flexgait.defaults('nothing')", "flexgait.describe('nothing')",
     "flexgait.rimless.sweep('rimless.mu', 0.1, 1.0, 1000001)", "flexgait.rimless.simulate({'sim.sample_dt': 1e-6})",
     "flexgait.rimless.simulate({'sim.sample_dt': 1e-4, 'sim.max_log_bytes': 1e6})",
+    "flexgait.rimless.continuation('rimless.nothing', 0.05, 0.1)",
+    "flexgait.rimless.continuation('rimless.slope', 0.1, 0.1)",
+    "flexgait.rimless.basin('initial.omega', (1, 2, 1), 'initial.beta', (-0.3, -0.1, 2))",
+    "flexgait.rimless.basin('initial.omega', 'one:two:3', 'initial.beta', (-0.3, -0.1, 2))",
+    "flexgait.rimless.basin('rimless.K', (1, 2, 2), 'initial.beta', (-0.3, -0.1, 2))",
+    "flexgait.rimless.orbit_diagram('rimless.slope', 0.1, 0.1, 3)",
+    "flexgait.rimless.orbit_diagram('rimless.slope', 0.1, 0.2, 1)",
+    "flexgait.rimless.gait_vs_friction(-1, 0.5, 3)", "flexgait.rimless.gait_vs_friction(0.1, 0.5, 0)",
+    "flexgait.rimless.stagnation({'stagnation.window': -1})",
+    "flexgait.campaign('nothing', {'rimless.mu': [0.3]})",
+    "flexgait.campaign('rimless-simulate', {'rimless.nothing': [1, 2]})",
+    "flexgait.campaign('rimless-simulate', {'rimless.mu': [float('nan')]})",
+    "flexgait.campaign('rimless-simulate', {})",
+    "flexgait.humanoid.compensation({'walk.steps': -1})", "flexgait.humanoid.export('sdf')",
 ]
 
 

@@ -75,11 +75,29 @@ execute_process(COMMAND ${only_prefix} flexgait rimless simulate --config rimles
 if(rc OR NOT EXISTS "${WORK_DIR}/elsewhere/run/summary.json")
   message(FATAL_ERROR "rimless simulate --config rimless from an empty directory failed (${rc}): ${err}")
 endif()
+# The Python package: flexgait/ (__init__.py, the compiled _flexgait, the stubs, py.typed) in the
+# prefix's dist-packages, imported by the system python3 from there (not from the build tree) and
+# run: a rimless simulation, and `import flexgait.rimless` as a submodule.
 if(PYTHON_DIR)
+  foreach(f __init__.py __init__.pyi rimless.pyi humanoid.pyi env.py py.typed)
+    if(NOT EXISTS "${WORK_DIR}/prefix/${PYTHON_DIR}/flexgait/${f}")
+      message(FATAL_ERROR "not installed: ${PYTHON_DIR}/flexgait/${f}")
+    endif()
+  endforeach()
+  set(script [=[
+import os, sys
+import flexgait, flexgait.rimless
+prefix = os.path.realpath(sys.argv[1])
+assert os.path.realpath(flexgait.__file__).startswith(prefix), flexgait.__file__
+assert os.path.realpath(flexgait._flexgait.__file__).startswith(prefix), flexgait._flexgait.__file__
+run = flexgait.rimless.simulate({"sim": {"steps": 1}})
+assert run["summary"]["steps"] == 1, run["summary"]
+print(flexgait.__version__)
+]=])
   execute_process(COMMAND ${CMAKE_COMMAND} -E env "PYTHONPATH=${WORK_DIR}/prefix/${PYTHON_DIR}" /usr/bin/python3 -c
-                          "import flexgait; print(len(flexgait.rimless.simulate({'sim.steps': 1})['summary']))"
+                          "${script}" "${WORK_DIR}/prefix"
                   WORKING_DIRECTORY "${WORK_DIR}/elsewhere" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(rc)
-    message(FATAL_ERROR "the installed Python module does not import: ${err}")
+    message(FATAL_ERROR "the installed Python package does not import and run: ${err}")
   endif()
 endif()

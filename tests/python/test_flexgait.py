@@ -158,11 +158,11 @@ class Humanoid(unittest.TestCase):
         runs = {mode: flexgait.humanoid.walk({"walk.steps": 2, "walk.step_time": 3.0}, compensation=mode)
                 for mode in ("off", "both")}
         for mode, run in runs.items():
-            self.assertFalse(run["metrics"]["fell"])
-            self.assertEqual(run["metrics"]["compensation"], mode)
+            self.assertFalse(run["summary"]["fell"])
+            self.assertEqual(run["summary"]["compensation"], mode)
             self.assertEqual(len(run["log"]["t"]), len(run["joints"]["l_hip_roll_link"]))
-        self.assertLess(runs["both"]["metrics"]["pelvis_roll_error_max"],
-                        0.3 * runs["off"]["metrics"]["pelvis_roll_error_max"])
+        self.assertLess(runs["both"]["summary"]["pelvis_roll_error_max"],
+                        0.3 * runs["off"]["summary"]["pelvis_roll_error_max"])
 
     def test_walk_arrays_are_the_command_lines_files_to_the_last_digit(self):
         with tempfile.TemporaryDirectory() as out:

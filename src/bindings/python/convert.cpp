@@ -3,12 +3,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <charconv>
+#include <limits>
 #include <vector>
 
 #include "flexgait/core/text.hpp"
 
 namespace flexgait::python {
+
+using namespace pybind11::literals;
 
 namespace {
 
@@ -53,7 +57,18 @@ Config make_config(const Schema& schema, const py::object& overrides, const std:
   return resolve_config(schema, file, {}, entries);
 }
 
-py::dict csv_columns(const std::string& csv) {
+py::dict config_with(const py::object& config, const py::dict& extra) {
+  py::dict out;
+  if (!config.is_none()) {
+    if (!py::isinstance<py::dict>(config)) throw py::type_error("config must be a dict of key: value, or None");
+    for (const auto& [k, v] : config.cast<py::dict>()) out[k] = v;
+  }
+  for (const auto& [k, v] : extra) out[k] = v;
+  return out;
+}
+
+py::dict csv_columns(const std::string& csv, const std::vector<std::string>& vectors,
+                     const std::vector<std::string>& complex_vectors) {
   const std::vector<CsvRecord> records = parse_csv(csv);  // RFC 4180, the writer's own reader
   std::vector<std::string> names;
   std::vector<std::vector<std::string>> cells;
@@ -64,23 +79,104 @@ py::dict csv_columns(const std::string& csv) {
     for (std::size_t i = 0; i < names.size(); ++i) cells[i].push_back(i < row.size() ? row[i] : "");
   }
   py::dict out;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    std::vector<double> values(cells[i].size());
-    bool numeric = true;
-    for (std::size_t r = 0; r < cells[i].size() && numeric; ++r) {
-      const std::string& s = cells[i][r];
+  const auto among = [](const std::vector<std::string>& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out[py::str(names[i])] = among(vectors, names[i])           ? vector_rows(cells[i])
+                             : among(complex_vectors, names[i]) ? complex_rows(cells[i])
+                                                                : typed_column(cells[i]);
+  return out;
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double number_or_nan(std::string_view text) {
+  double v = kNaN;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  return ec == std::errc() && end == text.data() + text.size() ? v : kNaN;
+}
+
+}  // namespace
+
+py::array_t<double> padded_matrix(const std::vector<std::vector<double>>& rows) {
+  std::size_t width = 0;
+  for (const auto& r : rows) width = std::max(width, r.size());
+  py::array_t<double> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(width)});
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < width; ++j)
+      a.mutable_at(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = j < rows[i].size() ? rows[i][j] : kNaN;
+  return a;
+}
+
+py::array_t<double> vector_rows(const std::vector<std::string>& cells) {
+  std::vector<std::vector<double>> rows;
+  for (const std::string& cell : cells) {
+    rows.emplace_back();
+    if (!cell.empty())
+      for (const std::string& item : split_text(cell, ';')) rows.back().push_back(number_or_nan(item));
+  }
+  return padded_matrix(rows);
+}
+
+py::array complex_rows(const std::vector<std::string>& cells) {
+  std::vector<std::vector<std::complex<double>>> rows;
+  std::size_t width = 0;
+  for (const std::string& cell : cells) {
+    rows.emplace_back();
+    if (!cell.empty())
+      for (const std::string& item : split_text(cell, ';')) {
+        const auto colon = item.find(':');
+        const std::string_view text(item);
+        rows.back().emplace_back(number_or_nan(text.substr(0, colon)),
+                                 colon == std::string::npos ? kNaN : number_or_nan(text.substr(colon + 1)));
+      }
+    width = std::max(width, rows.back().size());
+  }
+  py::array_t<std::complex<double>> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(width)});
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < width; ++j)
+      a.mutable_at(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) =
+          j < rows[i].size() ? rows[i][j] : std::complex<double>(kNaN, kNaN);
+  return a;
+}
+
+py::object typed_column(const std::vector<std::string>& cells) {
+  std::vector<double> values(cells.size(), std::numeric_limits<double>::quiet_NaN());
+  bool numeric = true, boolean = true, any = false, missing = false;
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    const std::string& s = cells[r];
+    if (s.empty()) {
+      missing = true;
+      continue;
+    }
+    any = true;
+    boolean = boolean && (s == "true" || s == "false");
+    if (numeric) {
       const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), values[r]);
       numeric = ec == std::errc() && end == s.data() + s.size();
     }
-    if (numeric) {
-      py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
-      std::copy(values.begin(), values.end(), a.mutable_data());
-      out[py::str(names[i])] = a;
-    } else {
-      out[py::str(names[i])] = py::cast(cells[i]);
-    }
   }
-  return out;
+  if (any && numeric) {
+    py::array_t<double> a(static_cast<py::ssize_t>(values.size()));
+    std::copy(values.begin(), values.end(), a.mutable_data());
+    return a;
+  }
+  if (any && boolean) {
+    const py::module_ np = py::module_::import("numpy");
+    py::list list;
+    for (const std::string& s : cells) list.append(s.empty() ? py::object(py::none()) : py::bool_(s == "true"));
+    return np.attr("array")(list, "dtype"_a = missing ? np.attr("object_") : np.attr("bool_"));
+  }
+  return py::cast(cells);
+}
+
+py::array complex_array(const std::vector<std::complex<double>>& values) {
+  py::array_t<std::complex<double>> a(static_cast<py::ssize_t>(values.size()));
+  std::copy(values.begin(), values.end(), a.mutable_data());
+  return a;
 }
 
 py::dict table_columns(Table table) {
@@ -98,8 +194,33 @@ py::dict table_columns(Table table) {
   return out;
 }
 
-py::object json_value(const std::string& text) {
-  return py::module_::import("json").attr("loads")(text);
+py::object json_value(const nlohmann::ordered_json& j) {
+  switch (j.type()) {
+    case nlohmann::ordered_json::value_t::null:
+      return py::none();
+    case nlohmann::ordered_json::value_t::boolean:
+      return py::bool_(j.get<bool>());
+    case nlohmann::ordered_json::value_t::number_integer:
+      return py::int_(j.get<std::int64_t>());
+    case nlohmann::ordered_json::value_t::number_unsigned:
+      return py::int_(j.get<std::uint64_t>());
+    case nlohmann::ordered_json::value_t::number_float:
+      return py::float_(j.get<double>());
+    case nlohmann::ordered_json::value_t::string:
+      return py::str(j.get_ref<const std::string&>());
+    case nlohmann::ordered_json::value_t::array: {
+      py::list out;
+      for (const auto& item : j) out.append(json_value(item));
+      return out;
+    }
+    case nlohmann::ordered_json::value_t::object: {
+      py::dict out;
+      for (const auto& [key, value] : j.items()) out[py::str(key)] = json_value(value);
+      return out;
+    }
+    default:
+      throw std::logic_error("json_value: a binary or discarded JSON value");
+  }
 }
 
 py::dict config_dict(const Config& config) {

@@ -26,27 +26,34 @@ flexgait::Schema schema_named(const std::string& name) {
 
 }  // namespace
 
-PYBIND11_MODULE(flexgait, m) {
+PYBIND11_MODULE(_flexgait, m) {
   m.doc() =
       "flexgait: legged locomotion with compliance, from Python.\n\n"
       "Two studies on one C++20 core (the same code as the `flexgait` command line):\n"
       "  flexgait.rimless  - the flexible-leg rimless wheel with stick-slip friction: simulate, poincare_map,\n"
-      "                      fixed_point, sweep.\n"
+      "                      fixed_point, sweep, continuation, basin, orbit_diagram, gait_vs_friction,\n"
+      "                      stagnation.\n"
       "  flexgait.humanoid - a THORMANG-class humanoid twin (MuJoCo) with elastic gears: bench (stiffness\n"
       "                      identification), walk (ZMP preview control with the actuator deformation\n"
-      "                      compensators on or off).\n\n"
+      "                      compensators on or off), compensation (the study), export (MJCF, URDF).\n"
+      "  flexgait.HumanoidLoop, flexgait.Controller - the humanoid's closed loop stepped from Python;\n"
+      "                      flexgait.env.HumanoidEnv - the same with Gymnasium's reset/step.\n"
+      "  flexgait.campaign - any experiment over a grid of keys (`flexgait campaign`).\n\n"
       "Configuration: every function takes `config`, a dict {key: value} over the defaults (and over\n"
-      "`config_file`, a YAML file as written by the command line), validated as on the command line;\n"
-      "a bad key or value raises ValueError naming the key. flexgait.defaults('walk') lists the keys.\n\n"
-      "Results: dicts of numpy arrays (the columns of the CSV files the command line writes, to the last\n"
-      "digit) and of summaries (the command line's summary.json). SI units throughout.\n\n"
+      "`config_file`, a YAML file as written by the command line), nested dicts as YAML nests, validated\n"
+      "as on the command line; a bad key or value raises ValueError naming the key. flexgait.defaults('walk')\n"
+      "lists the keys.\n\n"
+      "Results: dicts. Tables are dicts of columns (the command line's CSV files to the last digit): numbers\n"
+      "as float arrays with NaN where a point failed, true/false as bool arrays, states as 2-D float arrays,\n"
+      "Floquet multipliers as complex arrays. The record a command writes as its summary is 'summary'. SI\n"
+      "units throughout.\n\n"
       "Threads: the GIL is released while C++ computes, so Python threads can run sweeps side by side.\n\n"
       "Example:\n"
       "    import flexgait\n"
       "    run = flexgait.rimless.simulate({'rimless.mu_s': 0.4, 'rimless.mu_k': 0.4})\n"
       "    run['summary']['energy_balance_error'], run['log']['t']\n"
       "    walk = flexgait.humanoid.walk({'walk.steps': 4}, compensation='off')\n"
-      "    walk['metrics']['pelvis_roll_error_max']\n";
+      "    walk['summary']['pelvis_roll_error_max']\n";
   m.attr("__version__") = flexgait::kVersion;
   // MuJoCo's messages to stderr, not to stdout and MUJOCO_LOG.TXT; hooks another module (MuJoCo's
   // own Python bindings) has set are left alone.
@@ -93,4 +100,5 @@ PYBIND11_MODULE(flexgait, m) {
   flexgait::python::bind_rimless(m);
   flexgait::python::bind_humanoid(m);
   flexgait::python::bind_loop(m);
+  flexgait::python::bind_campaign(m);
 }

@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "flexgait/core/sweep_runner.hpp"
+#include "flexgait/core/text.hpp"
 #include "flexgait/rimless/fixed_point.hpp"
 #include "flexgait/rimless/flexible_wheel.hpp"
 #include "flexgait/rimless/output.hpp"
@@ -23,12 +24,6 @@ using rimless::WheelSetup;
 
 WheelSetup wheel_setup(const Schema& schema, const py::object& overrides, const OptionalPath& file) {
   return rimless::wheel_setup(make_config(schema, overrides, file));
-}
-
-rimless::Section section_of(const std::string& name) {
-  if (name == "touchdown") return rimless::Section::Touchdown;
-  if (name == "upright") return rimless::Section::Upright;
-  throw py::value_error("section: '" + name + "' is not one of touchdown, upright");
 }
 
 /// The in-memory record of a run (RunCollector) that also lets Ctrl-C stop it (InterruptCheck).
@@ -58,7 +53,7 @@ py::dict simulate(const py::object& config, const OptionalPath& config_file) {
   check_with_origin(s.config, [&] { rimless::check_log_size(s.sim); });  // the log is kept in memory
   const std::string model = s.config.choice("sim.model");
   Table log({}), events({}), steps({});
-  std::string summary;
+  nlohmann::ordered_json summary;
   {
     py::gil_scoped_release release;
     rimless::SimulationResult kept;  // samples, events and steps
@@ -72,7 +67,7 @@ py::dict simulate(const py::object& config, const OptionalPath& config_file) {
     log = rimless::log_table(r);
     events = rimless::events_table(r);
     steps = rimless::steps_table(r);
-    summary = rimless::summary_json(r, model);
+    summary = rimless::simulation_summary(r, model);
   }
   py::dict out;
   out["log"] = table_columns(std::move(log));
@@ -95,10 +90,13 @@ py::dict fixed_point(const py::object& config, const OptionalPath& config_file, 
     sim.poll = [&interrupted] { interrupted(); };
     rep = rimless::find_fixed_point(s.wheel, sim, opt, s.sim.model, sec, s.initial);
   }
-  py::dict out = json_value(rimless::fixed_point_json(rep));
+  py::dict out = json_value(rimless::fixed_point_record(rep));
   // A failed search (converged False, failure saying why) has no fixed point and no Jacobian.
   out["z"] = rep.converged ? py::cast(Eigen::VectorXd(rep.point.z)) : py::none();
+  out["state"] = out["z"];
   out["jacobian"] = rep.converged ? py::cast(Eigen::MatrixXd(rep.jacobian)) : py::none();
+  out["multipliers"] = rep.converged ? py::object(complex_array(rep.multipliers)) : py::none();
+  out["multipliers_fd"] = rep.converged ? py::object(complex_array(rep.multipliers_fd)) : py::none();
   return out;
 }
 
@@ -166,10 +164,16 @@ py::dict sweep(const std::string& param, double start, double stop, int count, c
       csv += std::to_string(i) + "," + rimless::sweep_row(s.config, spec, i, poll) + "\n";
     }
   }
-  return csv_columns(csv);
+  return csv_columns(csv, {"state"}, {"multipliers"});
 }
 
 }  // namespace
+
+rimless::Section section_of(const std::string& name) {
+  if (name == "touchdown") return rimless::Section::Touchdown;
+  if (name == "upright") return rimless::Section::Upright;
+  throw py::value_error("section: '" + one_line(name) + "' is not one of touchdown, upright");
+}
 
 void bind_rimless(py::module_& m) {
   py::module_ r = m.def_submodule(
@@ -188,7 +192,8 @@ void bind_rimless(py::module_& m) {
         py::arg("section") = "touchdown",
         "A periodic gait: settle on the Poincare section (`analysis.transient_steps`), then Newton-Raphson on "
         "P(z) - z. Returns fixed_point.json as a dict (converged, iterations, residual, state, multipliers, "
-        "stable, gait, period, speed, ...) plus 'z' and 'jacobian' (dP/dz) as numpy arrays. A failed search returns "
+        "stable, gait, period, speed, ...) with 'z' (= 'state') and 'jacobian' (dP/dz) as numpy arrays and "
+        "'multipliers' as a complex array. A failed search returns "
         "converged False, 'failure' saying why, and None for z, jacobian, state and multipliers. `section`: "
         "'touchdown' or 'upright'.");
   r.def("poincare_map", &poincare_map, py::arg("config") = py::none(), py::arg("config_file") = py::none(),
@@ -201,8 +206,10 @@ void bind_rimless(py::module_& m) {
         py::arg("config") = py::none(), py::arg("config_file") = py::none(), py::arg("section") = "touchdown",
         "Sweep one real parameter (a configuration key, or 'rimless.mu' for mu_s = mu_k) over `count` values "
         "from `start` to `stop`: gait, fixed point, multipliers, stability at each. Returns the columns of the "
-        "command line's sweep.csv as numpy arrays (text columns as lists). Runs in this thread with the GIL "
+        "command line's sweep.csv: numbers as float arrays (NaN where a point has none), true/false as bool "
+        "arrays, text as lists. Runs in this thread with the GIL "
         "released: Python threads can run sweeps side by side.");
+  bind_rimless_maps(r);
 }
 
 }  // namespace flexgait::python

@@ -179,12 +179,16 @@ std::string walk_summary_json(const WalkResult& r) {
   return json_file_text(walk_summary(r));
 }
 
-std::string walk_timing_json(const WalkResult& r) {
+nlohmann::ordered_json walk_timing(const WalkResult& r) {
   nlohmann::ordered_json j;
   j["simulated_time"] = r.metrics.simulated_time;
   j["wall_time"] = r.metrics.wall_time;
   j["real_time_factor"] = r.metrics.real_time_factor;
-  return json_file_text(j);
+  return j;
+}
+
+std::string walk_timing_json(const WalkResult& r) {
+  return json_file_text(walk_timing(r));
 }
 
 WalkLogWriter::WalkLogWriter(const RunDirectory& dir, const std::string& sub, bool k_estimation)

@@ -27,7 +27,8 @@ Table walk_joints_table(const WalkResult& result);
 nlohmann::ordered_json walk_summary(const WalkResult& result);
 /// summary.json: walk_summary's text. Deterministic: the same configuration gives the same bytes.
 std::string walk_summary_json(const WalkResult& result);
-/// Wall-clock time and real-time factor (timing.json; differs run to run).
+/// Wall-clock time and real-time factor (differs run to run), and timing.json's text.
+nlohmann::ordered_json walk_timing(const WalkResult& result);
 std::string walk_timing_json(const WalkResult& result);
 /// log.csv and joints.csv written while the walk runs, so that memory stays flat in the walk's
 /// length (run_walk's `record`): rows go to temporary files beside the targets, in pieces of

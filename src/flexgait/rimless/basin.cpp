@@ -183,8 +183,8 @@ BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& co
   return b;
 }
 
-std::string basin_summary_json(const BasinSpec& spec, const BasinReference& ref,
-                               const std::map<std::string, int>& counts, const std::string& area_unit) {
+nlohmann::ordered_json basin_summary(const BasinSpec& spec, const BasinReference& ref,
+                                     const std::map<std::string, int>& counts, const std::string& area_unit) {
   const BasinSize size = basin_size(spec, counts);
   nlohmann::ordered_json j;
   j["x"] = {{"key", spec.x.key}, {"from", spec.x.from}, {"to", spec.x.to}, {"count", spec.x.count}};
@@ -216,7 +216,12 @@ std::string basin_summary_json(const BasinSpec& spec, const BasinReference& ref,
   j["cell_area"] = size.cell_area;
   j["basin_area"] = size.area();
   j["area_unit"] = area_unit;
-  return json_file_text(j);
+  return j;
+}
+
+std::string basin_summary_json(const BasinSpec& spec, const BasinReference& ref,
+                               const std::map<std::string, int>& counts, const std::string& area_unit) {
+  return json_file_text(basin_summary(spec, ref, counts, area_unit));
 }
 
 }  // namespace flexgait::rimless

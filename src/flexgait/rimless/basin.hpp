@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -157,6 +158,9 @@ BasinSize basin_size(const BasinSpec& spec, const std::map<std::string, int>& co
 /// failure), the `outcomes` counted (basin_counts), `cells`, `basin_fraction` (converged cells over
 /// all), `cell_area` (one grid spacing by the other), `basin_area` (converged cells × cell_area) in
 /// `area_unit`.
+nlohmann::ordered_json basin_summary(const BasinSpec& spec, const BasinReference& ref,
+                                     const std::map<std::string, int>& counts, const std::string& area_unit);
+/// summary.json: basin_summary's text.
 std::string basin_summary_json(const BasinSpec& spec, const BasinReference& ref,
                                const std::map<std::string, int>& counts, const std::string& area_unit);
 

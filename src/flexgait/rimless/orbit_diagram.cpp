@@ -109,7 +109,7 @@ std::string orbit_csv(const std::string& points_csv) {
   return out.str();
 }
 
-std::string orbit_summary_json(const std::string& points_csv) {
+nlohmann::ordered_json orbit_summary(const std::string& points_csv) {
   nlohmann::ordered_json values = nlohmann::ordered_json::array();
   nlohmann::ordered_json until = nullptr, first_multiple = nullptr;
   bool period_one = true;
@@ -144,7 +144,11 @@ std::string orbit_summary_json(const std::string& points_csv) {
   j["period_one_until"] = until;
   j["first_multiple"] = first_multiple;
   j["values"] = values;
-  return json_file_text(j);
+  return j;
+}
+
+std::string orbit_summary_json(const std::string& points_csv) {
+  return json_file_text(orbit_summary(points_csv));
 }
 
 }  // namespace flexgait::rimless

@@ -9,6 +9,7 @@
 /// Points are independent: the command line runs them on the sweep runner (all cores, resumable,
 /// the same bytes for any number of threads). sim.max_time does not limit these runs: their length is
 /// their number of steps.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,8 @@ inline constexpr double kOrbitDistinctTolerance = 1e-4;
 /// apart, thetad_min, thetad_max [rad/s], failure or null); `period_one_until`: the last value,
 /// walking from --from, before the first with distinct > 1 or a failure (null if the first is such a
 /// value); `first_multiple`: that first value with distinct > 1 (null if none).
+nlohmann::ordered_json orbit_summary(const std::string& points_csv);
+/// summary.json: orbit_summary's text.
 std::string orbit_summary_json(const std::string& points_csv);
 
 }  // namespace flexgait::rimless
