@@ -146,6 +146,13 @@ bad_robot robot-negative-urdf-mass "negative.urdf': line 3: <mass value=\"-1\">:
 # The leg as the file has it (joints by role): a role on the wrong leg, a robot that cannot stand.
 expect_usage_error robot-role-on-wrong-leg "key 'robot.joints.r_knee' = 'LKnee': this joint is on the leg to LFoot" \
   humanoid walk --config "$biped_yaml" --set robot.joints.l_knee=RKnee --set robot.joints.r_knee=LKnee
+expect_usage_error robot-two-roles-one-joint "key 'robot.joints.l_hip_pitch' = 'LHipRoll': also mapped to robot.joints.l_hip_roll" \
+  humanoid walk --config "$biped_yaml" --set robot.joints.l_hip_pitch=LHipRoll
+sed '0,/name="LHipRoll" axis="1 0 0"/s//name="LHipRoll" axis="0 1 0"/' "$biped_xml" >"$work/parallel_hips.xml"
+bad_robot robot-leg-not-6-dof "key 'robot.joints.l_hip_roll' = 'LHipRoll': the left leg's joint axes cannot place the foot in 6 degrees of freedom" \
+  "$work/parallel_hips.xml"
+expect_usage_error robot-foot-without-sole "key 'robot.feet.left.sole_size' = 'none': the foot LFoot has no contact geom" \
+  humanoid walk --config "$biped_yaml" --set robot.feet.left.sole_geom=none
 sed 's/range="-2.4 0"/range="-0.1 0"/' "$src/tests/humanoid/data/minus_y_knee.xml" >"$work/stiff_knee.xml"
 expect_usage_error robot-no-standing-pose "key 'robot.joints.r_knee': standing at walk.pelvis_height = 0.6" \
   humanoid walk --config "$src/tests/humanoid/data/minus_y_knee.yaml" --set "robot.description=$work/stiff_knee.xml"

@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -106,9 +108,6 @@ TEST(RobotLoader, ErrorsNameTheKeyAndTheName) {
   p.feet[0].body = "l_ankle_pitch_link";  // five joints from the root to it
   EXPECT_EQ(error_key(xml, p).rfind("robot.feet.left.body | ", 0), 0u) << error_key(xml, p);
   EXPECT_NE(error_key(xml, p).find("5 joints"), std::string::npos);
-  p = {};
-  p.feet[1].sole_geom = "none";
-  EXPECT_EQ(error_key(xml, p).rfind("robot.feet.right.sole_geom | ", 0), 0u) << error_key(xml, p);
   p = {};
   p.feet[1].sole_geom = "l_sole";
   EXPECT_EQ(error_key(xml, p).rfind("robot.feet.right.sole_geom | ", 0), 0u) << error_key(xml, p);
@@ -273,6 +272,166 @@ TEST(RobotLoader, SoleBySizeAndCentre) {
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "robot.feet.right.body");
     EXPECT_NE(std::string(e.what()).find("0.22 x 0.16 m"), std::string::npos) << e.what();
+  }
+}
+
+std::string small_biped_xml() {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  std::ifstream in(std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.xml");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// No sole named or sized: the sole from the foot's contact geoms. The builtin's one box: its bottom
+// face, the very rectangle sole_geom gives (to rounding, 1e-15 m), the box then the sole's own
+// geom in the twin with a plate that only marks it. A foot with no contact geom at all (small_biped's
+// geoms collide with nothing): refused naming sole_size and the foot.
+TEST(RobotLoader, SoleFromTheFootsContactGeoms) {
+  RobotDescriptionParams p;
+  p.feet[0].sole_geom = p.feet[1].sole_geom = "none";
+  const LoadedRobot r = load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "b.xml", p);
+  const LoadedRobot named = builtin_loaded();
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_EQ(r.sole[side].geom, -1);
+    EXPECT_EQ(r.sole[side].hull.size(), 4u);
+    EXPECT_EQ(r.sole[side].hull_geoms, std::vector<int>{named.sole[side].geom});
+    EXPECT_NEAR(r.sole[side].length, named.sole[side].length, 1e-15);
+    EXPECT_NEAR(r.sole[side].width, named.sole[side].width, 1e-15);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.sole[side].center[i], named.sole[side].center[i], 1e-15);
+  }
+  const Compiled twin(twin_mjcf(r, RobotParams{}, PlantParams{}));
+  const int plate = mj_name2id(twin.m, mjOBJ_GEOM, "l_sole");
+  ASSERT_GE(plate, 0);
+  EXPECT_EQ(twin.m->geom_contype[plate], 0);
+  RobotDescriptionParams biped = testing::fixture_walk("small_biped.yaml").description;
+  biped.feet[0].sole_geom = "none";
+  const std::string e = error_key(small_biped_xml(), biped);
+  EXPECT_EQ(e.rfind("robot.feet.left.sole_size | ", 0), 0u) << e;
+  EXPECT_NE(e.find("the foot LFoot has no contact geom"), std::string::npos) << e;
+}
+
+// A foot whose collision mesh file is missing: refused naming the mesh and the geom (its class makes
+// it collide) unless the mapping gives the sole; then the mesh is dropped with the warning, as a
+// missing visual mesh always is.
+TEST(RobotLoader, MissingFootCollisionMeshIsAnErrorUnlessTheSoleIsMapped) {
+  std::string xml = small_biped_xml();
+  const std::string defaults = R"(<geom contype="0" conaffinity="0"/>)";
+  xml.insert(xml.find(defaults) + defaults.size(),
+             R"(<default class="collision"><geom type="mesh" contype="1" conaffinity="1"/></default>)");
+  xml.insert(
+      xml.find("<worldbody>"),
+      R"(<asset><mesh name="shell" file="no_such_shell.stl"/><mesh name="foot" file="no_such_foot.stl"/></asset>)");
+  const std::string base = R"(<geom type="box" size="0.08 0.1 0.05" mass="8"/>)";
+  xml.insert(xml.find(base) + base.size(), R"(<geom mesh="shell"/>)");
+  const std::string sole = R"(<geom name="LSole" type="box" pos="0 0 -0.05" size="0.09 0.05 0.01" mass="1.0"/>)";
+  xml.insert(xml.find(sole) + sole.size(), R"(<geom name="LFootCollision" class="collision" mesh="foot"/>)");
+  RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
+  const LoadedRobot mapped = load_robot_text(xml, "xml", "small_biped.xml", p);
+  ASSERT_EQ(mapped.warnings.size(), 1u);
+  EXPECT_NE(mapped.warnings[0].find("2 mesh files not found"), std::string::npos) << mapped.warnings[0];
+  p.feet[0].sole_geom = "none";
+  const std::string e = error_key(xml, p);
+  EXPECT_EQ(e.rfind("robot.feet.left.sole_size | ", 0), 0u) << e;
+  EXPECT_NE(e.find("the file of mesh 'foot', which the contact geom 'LFootCollision' of the foot LFoot shows, is "
+                   "missing"),
+            std::string::npos)
+      << e;
+  p.feet[0].sole_size = "0.18 0.1";
+  p.feet[0].sole_center = "0 0 -0.06";
+  EXPECT_EQ(load_robot_text(xml, "xml", "small_biped.xml", p).sole[0].length, 0.18);
+}
+
+// Export as MJCF, load back with the mapping written beside it, export again: the same bytes, and
+// the loaded numbers (masses, inertias, frames, joints, soles) equal to the bit.
+TEST(RobotLoader, ExportedMjcfLoadsBackExactly) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("flexgait_reload_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::create_directories(dir);
+  for (const char* yaml :
+       {"four_sphere_feet.yaml", "printed_quaternions.yaml", "massless_foot.yaml", "pitch_roll_yaw_hips.yaml"}) {
+    const experiments::WalkRunParams a = testing::fixture_walk(yaml);
+    ASSERT_TRUE(a.loaded);
+    const std::string first = twin_mjcf(*a.loaded, a.robot, a.plant);
+    const std::filesystem::path file = dir / (std::string(yaml) + ".xml");
+    std::ofstream(file) << first;
+    std::vector<std::string> overrides{"robot.description=" + file.string()};
+    std::istringstream mapping(twin_mjcf_mapping(*a.loaded));
+    for (std::string line; std::getline(mapping, line);) overrides.push_back(line);
+    const experiments::WalkRunParams b =
+        experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), std::nullopt, overrides));
+    ASSERT_TRUE(b.loaded);
+    EXPECT_EQ(twin_mjcf(*b.loaded, a.robot, a.plant), first) << yaml;
+    ASSERT_EQ(a.loaded->bodies.size(), b.loaded->bodies.size());
+    // (the root's pose is the twin's own; a massless body's inertial frame is no number of the robot)
+    for (std::size_t i = 0; i < a.loaded->bodies.size(); ++i) {
+      const LoadedBody &x = a.loaded->bodies[i], &y = b.loaded->bodies[i];
+      EXPECT_EQ(x.mass, y.mass) << yaml << " " << x.name;
+      if (x.mass > 0) {
+        EXPECT_EQ(x.inertia, y.inertia) << yaml << " " << x.name;
+        EXPECT_EQ(x.ipos, y.ipos) << yaml << " " << x.name;
+        EXPECT_EQ(x.iquat, y.iquat) << yaml << " " << x.name;
+      }
+      if (i > 0) {
+        EXPECT_EQ(x.pos, y.pos) << yaml << " " << x.name;
+        EXPECT_EQ(x.quat, y.quat) << yaml << " " << x.name;
+      }
+      ASSERT_EQ(x.joints.size(), y.joints.size()) << yaml << " " << x.name;
+      for (std::size_t j = 0; j < x.joints.size(); ++j) {
+        EXPECT_EQ(x.joints[j].pos, y.joints[j].pos) << yaml << " " << x.name;
+        EXPECT_EQ(x.joints[j].axis, y.joints[j].axis) << yaml << " " << x.name;
+      }
+    }
+    for (int side = 0; side < 2; ++side) {
+      EXPECT_EQ(a.loaded->sole[side].center, b.loaded->sole[side].center) << yaml;
+      EXPECT_EQ(a.loaded->sole[side].length, b.loaded->sole[side].length) << yaml;
+      EXPECT_EQ(a.loaded->sole[side].width, b.loaded->sole[side].width) << yaml;
+    }
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// URDF keeps the joints' damping and friction (<dynamics>) and armature (flexgait's extension of
+// <dynamics>, read back by the loader, passed over by MuJoCo's URDF reader); a negative armature is
+// refused naming the line.
+TEST(RobotLoader, UrdfKeepsJointDynamics) {
+  std::string xml = small_biped_xml();
+  const std::string knee = R"(<joint name="LKnee" axis="0 1 0")";
+  xml.insert(xml.find(knee) + knee.size(), R"( damping="0.25" frictionloss="0.5" armature="0.0625")");
+  const RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
+  const LoadedRobot a = load_robot_text(xml, "xml", "small_biped.xml", p);
+  const std::string urdf = robot_urdf(a);
+  EXPECT_NE(urdf.find(R"(<dynamics damping="0.25" friction="0.5" armature="0.0625"/>)"), std::string::npos) << urdf;
+  RobotDescriptionParams q;
+  std::istringstream mapping(urdf_mapping(a));
+  for (std::string line; std::getline(mapping, line);) {
+    const auto eq = line.find('=');
+    const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
+    for (int j = 0; j < kJoints; ++j)
+      if (key == "robot.joints." + std::string(kJointNames[j])) q.joints[j] = value;
+    for (int side = 0; side < 2; ++side) {
+      const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
+      FootMapping& m = q.feet[side];
+      if (key == f + ".body") m.body = value;
+      if (key == f + ".sole_geom") m.sole_geom = value;
+      if (key == f + ".sole_size") m.sole_size = value;
+      if (key == f + ".sole_center") m.sole_center = value;
+    }
+  }
+  const LoadedRobot b = load_robot_text(urdf, "urdf", "robot.urdf", q);
+  const auto [body, k] = b.joint[kLeftKnee];
+  const LoadedJoint& j = b.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
+  EXPECT_EQ(j.damping, 0.25);
+  EXPECT_EQ(j.frictionloss, 0.5);
+  EXPECT_EQ(j.armature, 0.0625);
+  std::string negative = urdf;
+  negative.replace(negative.find(R"(armature="0.0625")"), 17, R"(armature="-1")");
+  try {
+    (void)load_robot_text(negative, "urdf", "robot.urdf", q);
+    ADD_FAILURE() << "a negative armature accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(R"(<dynamics armature="-1">: allowed: a number >= 0 kg m^2)"),
+              std::string::npos)
+        << e.what();
   }
 }
 

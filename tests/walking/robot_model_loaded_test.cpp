@@ -9,6 +9,7 @@
 
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/robot_loader.hpp"
+#include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
 #include "flexgait/walking/stance_defaults.hpp"
 #include "model_agreement.hpp"
@@ -151,6 +152,75 @@ TEST(RobotModelLoaded, PitchRollYawHipsMappedByRole) {
   const experiments::WalkResult r = experiments::run_walk(walk);
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 10);
+}
+
+// Four spheres under each foot, the robot's only geoms that touch the floor, and no sole in the
+// mapping: the sole is their hull on the lowest plane, small_biped's 0.18 x 0.10 m rectangle 60 mm
+// below the ankle (the spheres' centres at its corners, radius 10 mm: 1e-15 m is rounding); the
+// twin's plate only marks it (no contact) and the spheres take the sole's contact; the model agrees
+// with MuJoCo's, FK∘IK; 10 steps on the spheres, no other contact.
+TEST(RobotModelLoaded, FourSphereFeetMakeTheSole) {
+  experiments::WalkRunParams walk = fixture_walk("four_sphere_feet.yaml");
+  ASSERT_TRUE(walk.loaded);
+  for (int side = 0; side < 2; ++side) {
+    const Sole& sole = walk.loaded->sole[side];
+    EXPECT_EQ(sole.geom, -1);
+    EXPECT_EQ(sole.hull.size(), 4u);
+    EXPECT_EQ(sole.hull_geoms, (std::vector<int>{0, 1, 2, 3}));
+    EXPECT_TRUE(sole.hull_in_twin);
+    EXPECT_NEAR(sole.length, 0.18, 1e-15);
+    EXPECT_NEAR(sole.width, 0.10, 1e-15);
+    EXPECT_NEAR(sole.center[2], -0.06, 1e-15);
+    EXPECT_NEAR(std::abs(sole.center[0]) + std::abs(sole.center[1]), 0.0, 1e-15);
+  }
+  const std::string twin = twin_mjcf(*walk.loaded, walk.robot, walk.plant);
+  const auto plate = twin.find(R"(<geom name="l_sole" type="box" size="0.09 0.05 0.005")");
+  ASSERT_NE(plate, std::string::npos) << twin;
+  EXPECT_NE(twin.substr(plate, twin.find('\n', plate) - plate).find(R"(contype="0" conaffinity="0")"),
+            std::string::npos);
+  EXPECT_NE(twin.find(R"(<geom name="LBall0" type="sphere" size="0.01 0 0" pos="0.09 0.05 -0.05" quat="1 0 0 0" )"
+                      R"(contype="1" conaffinity="1" condim="3" friction="1 0.005 0.0001" solref="0.005 1")"),
+            std::string::npos);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  const RobotModel box = walking::make_robot_model(*small_biped_walk().loaded);
+  EXPECT_NEAR(model.sole_length, box.sole_length, 1e-15);
+  EXPECT_NEAR(model.sole_width, box.sole_width, 1e-15);
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_LT((model.sole_offset[side] - box.sole_offset[side]).norm(), 1e-15);
+    expect_ik_inverts_fk(model, side);
+  }
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
+  EXPECT_EQ(r.metrics.mujoco_warnings, 0);
+}
+
+// Massless foot bodies (the F/T sensors between them and the ankle-roll links, which carry the
+// feet's mass): the model agrees with MuJoCo's, FK∘IK; the F/T reads exactly 0 N in swing, which
+// is not a stuck sensor: 10 steps, no sensor fault.
+TEST(RobotModelLoaded, MasslessFootWalks) {
+  experiments::WalkRunParams walk = fixture_walk("massless_foot.yaml");
+  ASSERT_TRUE(walk.loaded);
+  for (int side = 0; side < 2; ++side)
+    EXPECT_EQ(walk.loaded->bodies[static_cast<std::size_t>(walk.loaded->foot[side])].mass, 0.0);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
+  for (int side = 0; side < 2; ++side) expect_ik_inverts_fk(model, side);
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
+  EXPECT_FALSE(r.metrics.safe_stop);
+  EXPECT_EQ(r.metrics.sensor_fault_episodes, 0) << ::testing::PrintToString(r.metrics.sensor_faults);
+}
+
+// A robot without joint ranges (small_biped.xml has none) walks: SecondRobotWalks; here, that it has none.
+TEST(RobotModelLoaded, SecondRobotHasNoJointRanges) {
+  const experiments::WalkRunParams walk = small_biped_walk();
+  ASSERT_TRUE(walk.loaded);
+  for (const LoadedBody& b : walk.loaded->bodies)
+    for (const LoadedJoint& j : b.joints) EXPECT_FALSE(j.limited) << j.name;
 }
 
 // Commanded angles outside a range are clamped and counted.

@@ -121,6 +121,57 @@ TEST(SensorHealth, AStuckGyroIsFlaggedAfterStuckSamples) {
   EXPECT_FALSE(r.health.failed(humanoid::kGyro));
 }
 
+// A massless foot in swing: its F/T reads exactly zero, repeated, for the whole swing (0.4 s, more
+// than stuck_samples and hold_time) and is never flagged, nor after the planned landing while the
+// foot has not borne load yet (a late landing), for up to hold_time (0.3 s = 75 periods); the same
+// zero after that is stuck stuck_samples (10) readings later. Once the foot has borne load (a
+// nonzero reading) a repeated zero counts at once, and so does a frozen nonzero reading in swing.
+TEST(SensorHealth, AnUnloadedFootReadingExactlyZeroInSwingIsNotStuck) {
+  Runner r;
+  r.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  const auto zero = [](humanoid::SensorReadings& s, int) {
+    s.ft[0].force = {0, 0, -0.0};  // (−0 is the same unloaded value)
+    s.ft[0].torque = {0, 0, 0};
+  };
+  r.health.set_unloaded({true, false});
+  r.go(100, 200, zero);
+  EXPECT_EQ(r.seen, 0U);
+  r.health.set_unloaded({false, false});  // planned landing at k = 200; the foot still in the air
+  r.go(200, 270, zero);
+  EXPECT_EQ(r.seen, 0U);
+  int first_flag = -1;
+  r.go(270, 300, [&](humanoid::SensorReadings& s, int k) {
+    zero(s, k);
+    if (first_flag < 0 && r.health.bad(humanoid::kFtLeft)) first_flag = k;
+  });
+  // The last exempt check is k = 274 (t − 0.796 s ≤ 0.3 s, to rounding 273 or 274), then ten repeats.
+  EXPECT_GE(first_flag, 283);
+  EXPECT_LE(first_flag, 285);
+  EXPECT_EQ(r.health.fault(humanoid::kFtLeft), SignalFault::kStuck);
+  // Landed (a loaded reading), then frozen at zero: stuck after ten readings.
+  Runner landed;
+  landed.health.set_unloaded({true, false});
+  landed.go(0, 100, zero);
+  landed.health.set_unloaded({false, false});
+  landed.go(100, 110, [](humanoid::SensorReadings&, int) {});
+  first_flag = -1;
+  landed.go(110, 130, [&](humanoid::SensorReadings& s, int k) {
+    zero(s, k);
+    if (first_flag < 0 && landed.health.bad(humanoid::kFtLeft)) first_flag = k;
+  });
+  EXPECT_EQ(first_flag, 120);  // readings 110..119 are ten identical ones: flagged at the check of k = 119
+  // A frozen nonzero reading while the foot swings is stuck.
+  Runner frozen;
+  frozen.go(0, 100, [](humanoid::SensorReadings&, int) {});
+  frozen.health.set_unloaded({true, true});
+  const auto held = live(99).ft[1];
+  frozen.go(100, 120, [&](humanoid::SensorReadings& s, int) {
+    s.ft[1].force = held.force;
+    s.ft[1].torque = held.torque;
+  });
+  EXPECT_EQ(frozen.health.fault(humanoid::kFtRight), SignalFault::kStuck);
+}
+
 TEST(SensorHealth, LatencyBeyondMaxAgeIsStale) {
   Runner r;
   r.go(0, 100, [](humanoid::SensorReadings&, int) {});

@@ -578,6 +578,8 @@ std::string Config::to_yaml() const {
       out << format_value(values_.at(spec.key));
     }
     std::string comment = derived(spec.key) ? spec.doc + "; auto: " + spec.derived : spec.doc;
+    if (!derived(spec.key) && !spec.derived.empty() && origin(spec.key) == kDerivedOrigin)
+      comment += "; derived: " + spec.derived;
     if (!spec.unit.empty()) comment += " [" + spec.unit + "]";
     if (!comment.empty()) out << YAML::Comment(comment);
   }

@@ -166,6 +166,10 @@ ConfigValue parse_value(const ParamSpec& spec, const std::string& text, const st
 /// items need their spec to be named: `item_fields`).
 std::string format_value(const ConfigValue& value, const std::vector<ParamSpec>& item_fields = {});
 
+/// The origin of a value derived from other inputs and written in (Config::set): to_yaml marks it
+/// in the key's comment ("derived: RULE"), and a file read back holds it as set.
+inline constexpr const char* kDerivedOrigin = "derived";
+
 /// Resolves defaults, then the YAML file (if any), then `options` (values of command-line options
 /// such as --steps, each under its own origin), then `key=value` overrides (--set) in order.
 Config resolve_config(const Schema& schema, const std::optional<std::filesystem::path>& file,

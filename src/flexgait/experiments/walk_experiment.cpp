@@ -194,8 +194,9 @@ WalkRunParams walk_run_from_config(const Config& c) {
 
 Config with_derived_values(const Config& config, const WalkRunParams& params) {
   Config out = config;
+  // (a loaded robot's config.yaml says which values were derived, kDerivedOrigin; the builtin's keeps its bytes)
   for (const auto& [key, value] : params.derived)
-    if (out.derived(key)) out.set(key, format_number(value), "auto (from the robot)");
+    if (out.derived(key)) out.set(key, format_number(value), params.loaded ? kDerivedOrigin : "auto (from the robot)");
   for (const auto& [key, value] : params.case_defaults) out.set(key, value, "default (the compensation case)");
   return out;
 }

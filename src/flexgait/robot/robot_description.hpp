@@ -74,8 +74,9 @@ struct LoadedJoint {
   std::array<double, 3> pos{};          ///< anchor in the body frame [m]
   std::array<double, 3> axis{0, 0, 1};  ///< unit axis in the body frame
   bool limited = false;
-  std::array<double, 2> range{};  ///< [rad]
-  double armature = 0, frictionloss = 0;
+  std::array<double, 2> range{};          ///< [rad]
+  double armature = 0, frictionloss = 0;  ///< [kg m^2], [Nm]
+  double damping = 0;                     ///< the file's joint damping [Nm s/rad] (the twin's gears set their own)
   /// The largest torque the file's actuators on this joint can apply [Nm]: gear × force range, or
   /// gear × gain × control range for a motor without a force range; 0: the file sets none.
   double force_limit = 0;
@@ -108,11 +109,21 @@ struct LoadedBody {
   std::vector<LoadedGeom> geoms;
 };
 
-/// The sole rectangle of one foot, in the foot body's frame.
+/// The sole of one foot, in the foot body's frame: a rectangle (the controller's), and when the
+/// file's contact geoms make it, their convex hull on the sole plane.
 struct Sole {
   int geom = -1;                   ///< index in the foot body's geoms, −1: added by the twin
   std::array<double, 3> center{};  ///< centre of the rectangle [m]
   double length = 0, width = 0;    ///< [m]
+  /// From the foot's contact geoms (no sole_geom, no sole_size): the convex hull (counter-clockwise,
+  /// x y in the foot frame [m]) of their points on the sole plane z = center[2], the lowest of them;
+  /// the rectangle is its bounding rectangle. Empty for a sole named or sized by the mapping.
+  std::vector<std::array<double, 2>> hull;
+  /// The foot body's geoms (indices in its geoms) whose points make the hull: the twin gives them
+  /// the sole's contact; false `hull_in_twin`: one of them is a mesh (not carried into the twin),
+  /// and the twin's sole plate on the rectangle touches the floor instead.
+  std::vector<int> hull_geoms;
+  bool hull_in_twin = false;
 };
 
 struct LoadedRobot {

@@ -86,6 +86,11 @@ std::string robot_urdf(const LoadedRobot& r) {
       if (joint->limited)
         out += fmt::format("    <limit lower=\"{}\" upper=\"{}\" effort=\"1000\" velocity=\"100\"/>\n", joint->range[0],
                            joint->range[1]);
+      // URDF's damping and friction; armature (the rotor's reflected inertia) is flexgait's extension
+      // of <dynamics>, which MuJoCo's URDF reader passes over and flexgait's loader reads back.
+      if (joint->damping > 0 || joint->frictionloss > 0 || joint->armature > 0)
+        out += fmt::format("    <dynamics damping=\"{}\" friction=\"{}\" armature=\"{}\"/>\n", joint->damping,
+                           joint->frictionloss, joint->armature);
     }
     out += "  </joint>\n";
   }

@@ -9,12 +9,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <vector>
 
 #include "flexgait/core/text.hpp"
+#include "flexgait/robot/convex_hull.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/robot_loader_xml.hpp"
@@ -74,16 +77,41 @@ void check_inertials(const mjModel* m, int b, const std::string& source) {
                        one_line(name, 60), m->body_inertia[3 * b + i]));
 }
 
-/// Compiles description text through MuJoCo's virtual file system (MJCF written for MuJoCo 3
-/// translated first, its warnings appended to `warnings`).
-ModelPtr compile(const std::string& text, const std::string& format, const std::string& source,
-                 std::vector<std::string>& warnings) {
-  check_text(text, source);
+/// The directory of the description file (its meshes' paths are relative to it); "" for text
+/// that is no file.
+std::string description_dir(const std::string& source) {
   std::error_code ec;
-  const std::string dir = std::filesystem::is_regular_file(source, ec)
-                              ? std::filesystem::path(source).parent_path().string()
-                              : std::string();
-  std::string xml = format == "xml" ? translate_mujoco3(text, warnings, dir) : text;
+  return std::filesystem::is_regular_file(source, ec) ? std::filesystem::path(source).parent_path().string()
+                                                      : std::string();
+}
+
+/// flexgait's extension of URDF: <dynamics armature="..."/> in a <joint>, the rotor's reflected
+/// inertia [kg m^2] (MuJoCo's URDF reader passes it over), by joint name.
+std::map<std::string, double> armature_extension(const std::string& text, const std::string& source) {
+  std::map<std::string, double> out;
+  std::string joint;
+  for_each_xml_attribute(text, [&](const XmlAttribute& a) {
+    if (a.element == "joint" && a.name == "name") joint = std::string(a.value);
+    if (a.element != "dynamics" || a.name != "armature") return;
+    const std::optional<double> x = parse_finite_number(a.value);
+    if (!x || *x < 0)
+      fail("robot.description", source,
+           fmt::format("line {}: <dynamics armature=\"{}\">: allowed: a number >= 0 kg m^2", a.line,
+                       one_line(a.value, 60)));
+    out[joint] = *x;
+  });
+  return out;
+}
+
+/// Compiles description text through MuJoCo's virtual file system (MJCF written for MuJoCo 3
+/// translated first, its warnings appended to `warnings`, the names of the meshes whose files are
+/// missing to `missing_meshes`, which `missing` decides the fate of).
+ModelPtr compile(const std::string& text, const std::string& format, const std::string& source,
+                 std::vector<std::string>& warnings, std::vector<std::string>* missing_meshes = nullptr,
+                 MissingMeshes missing = MissingMeshes::kDrop) {
+  check_text(text, source);
+  std::string xml =
+      format == "xml" ? translate_mujoco3(text, warnings, description_dir(source), missing, missing_meshes) : text;
   if (format == "urdf") {
     // Keep bodies on fixed joints (the feet, sensor frames): MuJoCo fuses them by default for URDF.
     const auto robot = xml.find("<robot");
@@ -168,6 +196,141 @@ double actuator_force_limit(const mjModel* m, int joint) {
   return limit;
 }
 
+/// The points of geom `g` (in its body's frame) that can rest on a floor below the body: a sphere's
+/// or an ellipsoid's lowest point, a capsule's end spheres' lowest points, a box's eight corners, a
+/// cylinder's two rims (64 points each, the four extreme ones among them), a mesh's vertices (the
+/// collision shape is their convex hull). Nothing for a plane or a height field.
+std::vector<std::array<double, 3>> floor_points(const mjModel* m, int g) {
+  std::vector<std::array<double, 3>> out;
+  const mjtNum* c = m->geom_pos + 3 * g;
+  const mjtNum* q = m->geom_quat + 4 * g;
+  const mjtNum* h = m->geom_size + 3 * g;
+  auto at = [&](double x, double y, double z, double drop) {
+    const mjtNum local[3] = {x, y, z};
+    mjtNum v[3];
+    mju_rotVecQuat(v, local, q);
+    out.push_back({c[0] + v[0], c[1] + v[1], c[2] + v[2] - drop});
+  };
+  switch (m->geom_type[g]) {
+    case mjGEOM_SPHERE:
+      at(0, 0, 0, h[0]);
+      break;
+    case mjGEOM_CAPSULE:
+      at(0, 0, h[1], h[0]);
+      at(0, 0, -h[1], h[0]);
+      break;
+    case mjGEOM_ELLIPSOID: {
+      // The lowest point of {x : x' S^-1 x = 1}, S = R diag(a^2) R': x = -S e_z / sqrt(e_z' S e_z).
+      mjtNum R[9];
+      mju_quat2Mat(R, q);
+      double s[3] = {0, 0, 0};  // S e_z
+      for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) s[i] += R[3 * i + k] * h[k] * h[k] * R[3 * 2 + k];
+      const double n = std::sqrt(s[2]);
+      out.push_back({c[0] - s[0] / n, c[1] - s[1] / n, c[2] - s[2] / n});
+      break;
+    }
+    case mjGEOM_BOX:
+      for (double x : {-1.0, 1.0})
+        for (double y : {-1.0, 1.0})
+          for (double z : {-1.0, 1.0}) at(x * h[0], y * h[1], z * h[2], 0);
+      break;
+    case mjGEOM_CYLINDER:
+      for (int i = 0; i < 64; ++i) {
+        const double a = 2 * std::numbers::pi * i / 64;
+        for (double z : {-1.0, 1.0}) at(h[0] * std::cos(a), h[0] * std::sin(a), z * h[1], 0);
+      }
+      break;
+    case mjGEOM_MESH: {
+      const int mesh = m->geom_dataid[g];
+      for (int v = m->mesh_vertadr[mesh]; v < m->mesh_vertadr[mesh] + m->mesh_vertnum[mesh]; ++v)
+        at(m->mesh_vert[3 * v], m->mesh_vert[3 * v + 1], m->mesh_vert[3 * v + 2], 0);
+      break;
+    }
+    default:
+      break;
+  }
+  return out;
+}
+
+/// Points within this height of a foot's lowest point rest on the floor with it: the contact's own
+/// penetration under a robot's weight is of this order, and 6-digit printed numbers lie far inside.
+constexpr double kSoleBand = 1e-3;  // [m]
+
+/// The sole as the foot's contact geoms make it (Sole::hull): every geom of foot body `b` that
+/// touches the twin's floor (contype or conaffinity bit 1), its floor points; those within
+/// kSoleBand of the lowest make the hull, whose bounding rectangle is the sole rectangle.
+/// `carried`: each model geom's index among its body's loaded geoms, −1 when not carried. False
+/// when the foot has no such geom.
+bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& carried, Sole& sole) {
+  struct Point {
+    std::array<double, 3> x;
+    int geom;
+  };
+  std::vector<Point> points;
+  double lowest = INFINITY;
+  for (int g = m->body_geomadr[b]; g >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
+    if (!((m->geom_contype[g] & 1) || (m->geom_conaffinity[g] & 1))) continue;
+    for (const auto& x : floor_points(m, g)) {
+      points.push_back({x, g});
+      lowest = std::min(lowest, x[2]);
+    }
+  }
+  if (points.empty()) return false;
+  std::vector<std::array<double, 2>> on_plane;
+  std::vector<int> geoms;  // model ids, ascending
+  for (const Point& p : points) {
+    if (p.x[2] > lowest + kSoleBand) continue;
+    on_plane.push_back({p.x[0], p.x[1]});
+    if (std::find(geoms.begin(), geoms.end(), p.geom) == geoms.end()) geoms.push_back(p.geom);
+  }
+  sole.hull = convex_hull(std::move(on_plane));
+  std::array<double, 2> lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
+  for (const auto& p : sole.hull)
+    for (int i = 0; i < 2; ++i) {
+      lo[static_cast<std::size_t>(i)] = std::min(lo[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(i)]);
+      hi[static_cast<std::size_t>(i)] = std::max(hi[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(i)]);
+    }
+  sole.center = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), lowest};
+  sole.length = hi[0] - lo[0];
+  sole.width = hi[1] - lo[1];
+  sole.hull_in_twin = true;
+  for (const int g : geoms) {
+    const int k = carried[static_cast<std::size_t>(g)];
+    if (k < 0)
+      sole.hull_in_twin = false;  // a mesh: the twin does not carry it
+    else
+      sole.hull_geoms.push_back(k);
+  }
+  return true;
+}
+
+/// Refuses a foot whose sole the mapping does not give when one of its colliding geoms showed a
+/// mesh whose file is missing (its sole cannot be made from it), naming the mesh and the geom: the
+/// text compiled again with the missing meshes as placeholders tells which geoms showed them and
+/// whether their classes make them collide.
+void check_foot_meshes(const std::string& text, const std::string& source, const std::vector<std::string>& missing,
+                       const FootMapping& f, const std::string& prefix) {
+  std::vector<std::string> ignored;
+  ModelPtr m(nullptr, mj_deleteModel);
+  try {
+    m = compile(text, "xml", source, ignored, nullptr, MissingMeshes::kPlaceholder);
+  } catch (const ConfigError&) {
+    return;  // (the placeholders do not compile: nothing to tell beyond the dropped meshes' warning)
+  }
+  const int b = mj_name2id(m.get(), mjOBJ_BODY, f.body.c_str());
+  for (int g = b < 0 ? 0 : m->body_geomadr[b]; b >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
+    if (m->geom_type[g] != mjGEOM_MESH || !((m->geom_contype[g] & 1) || (m->geom_conaffinity[g] & 1))) continue;
+    const std::string mesh = name_of(m.get(), mjOBJ_MESH, m->geom_dataid[g]);
+    if (std::find(missing.begin(), missing.end(), mesh) == missing.end()) continue;
+    const std::string geom = name_of(m.get(), mjOBJ_GEOM, g);
+    fail(prefix + ".sole_size", f.sole_size,
+         fmt::format("the file of mesh '{}', which the contact geom '{}' of the foot {} shows, is missing: the sole "
+                     "cannot be made from it; give {}.sole_size and .sole_center (or put the mesh file beside {})",
+                     mesh, geom.empty() ? fmt::format("#{}", g - m->body_geomadr[b]) : geom, f.body, prefix, source));
+  }
+}
+
 /// Refuses a robot whose colliding geoms touch each other at zero joint angles (the twin would
 /// start, and stand, in contact with itself), naming the first pair for robot.exclude_contacts.
 void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
@@ -196,7 +359,10 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
                             const RobotDescriptionParams& params) {
   LoadedRobot out;
   out.source = source;
-  const ModelPtr model = compile(text, format, source, out.warnings);
+  std::vector<std::string> missing_meshes;
+  const ModelPtr model = compile(text, format, source, out.warnings, &missing_meshes);
+  const std::map<std::string, double> urdf_armature =
+      format == "urdf" ? armature_extension(text, source) : std::map<std::string, double>{};
   const mjModel* m = model.get();
   for (int b = 1; b < m->nbody; ++b) check_inertials(m, b, source);
 
@@ -239,6 +405,7 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
 
   // The root's subtree, parents before children (MuJoCo's body order is depth-first).
   std::vector<int> index(static_cast<std::size_t>(m->nbody), -1);
+  std::vector<int> carried(static_cast<std::size_t>(m->ngeom), -1);  // model geom → index in its body's geoms
   for (int b = root; b < m->nbody; ++b) {
     if (b != root && (m->body_parentid[b] == 0 || index[static_cast<std::size_t>(m->body_parentid[b])] < 0)) continue;
     index[static_cast<std::size_t>(b)] = static_cast<int>(out.bodies.size());
@@ -263,6 +430,8 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       joint.range = {m->jnt_range[2 * k], m->jnt_range[2 * k + 1]};
       joint.armature = m->dof_armature[m->jnt_dofadr[k]];
       joint.frictionloss = m->dof_frictionloss[m->jnt_dofadr[k]];
+      joint.damping = m->dof_damping[m->jnt_dofadr[k]];
+      if (const auto a = urdf_armature.find(joint.name); a != urdf_armature.end()) joint.armature = a->second;
       joint.force_limit = actuator_force_limit(m, k);
       if (joint.mapped >= 0)
         out.joint[joint.mapped] = {static_cast<int>(out.bodies.size()), static_cast<int>(body.joints.size())};
@@ -286,6 +455,9 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       geom.margin = m->geom_margin[g];
       geom.gap = m->geom_gap[g];
       for (int i = 0; i < 4; ++i) geom.rgba[static_cast<std::size_t>(i)] = m->geom_rgba[4 * g + i];
+      // The twin's own mark of a sole its foot's geoms make (an exported twin loaded back): made again.
+      if ((geom.name == "l_sole" || geom.name == "r_sole") && geom.contype == 0 && geom.conaffinity == 0) continue;
+      carried[static_cast<std::size_t>(g)] = static_cast<int>(body.geoms.size());
       body.geoms.push_back(geom);
     }
     out.bodies.push_back(std::move(body));
@@ -353,7 +525,10 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     }
     out.foot[side] = index[static_cast<std::size_t>(b)];
     Sole& sole = out.sole[side];
-    if (f.sole_geom != "none") {
+    // (the builtin's sole name left as it is, and the file has no such geom: no sole geom named)
+    const bool builtin_name = f.sole_geom == RobotDescriptionParams{}.feet[static_cast<std::size_t>(side)].sole_geom &&
+                              mj_name2id(m, mjOBJ_GEOM, f.sole_geom.c_str()) < 0;
+    if (f.sole_geom != "none" && !builtin_name) {
       const int g = mj_name2id(m, mjOBJ_GEOM, f.sole_geom.c_str());
       if (g < 0 || m->geom_bodyid[g] != b)
         fail(prefix + ".sole_geom", f.sole_geom, fmt::format("no geom of that name on body {}", f.body));
@@ -376,8 +551,18 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       sole.length = size[0];
       sole.width = size[1];
     } else {
-      fail(prefix + ".sole_geom", f.sole_geom,
-           fmt::format("the foot {} has no sole: name its box geom or give {}.sole_size", f.body, prefix));
+      // The sole from the foot's contact geoms (a foot whose collision mesh is missing cannot have it).
+      if (!missing_meshes.empty() && format == "xml") check_foot_meshes(text, source, missing_meshes, f, prefix);
+      if (!sole_from_contact_geoms(m, b, carried, sole))
+        fail(prefix + ".sole_size", f.sole_size,
+             fmt::format("the foot {} has no contact geom to make its sole; give {}.sole_size and .sole_center, or "
+                         "name a box geom in {}.sole_geom",
+                         f.body, prefix, prefix));
+      if (!(sole.length > 0 && sole.width > 0))
+        fail(prefix + ".sole_size", f.sole_size,
+             fmt::format("the contact geoms of the foot {} touch the floor along a line or at a point ({} x {} m); "
+                         "give {}.sole_size and .sole_center",
+                         f.body, sole.length, sole.width, prefix));
     }
   }
   if (params.imu_body != "root") {

@@ -110,7 +110,8 @@ std::string non_finite_token(std::string_view value) {
   return {};
 }
 
-std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir) {
+std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir,
+                              MissingMeshes missing_meshes, std::vector<std::string>* missing_names) {
   struct Edit {
     std::size_t begin, end;
     std::string with;
@@ -139,6 +140,7 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
   int missing_line = 0;
   std::size_t mesh_tag = std::string_view::npos;
   std::string mesh_name, mesh_file;
+  std::array<std::size_t, 2> file_attribute{};  // [begin, end) of the file="..." attribute
   auto end_of_tag = [&](std::size_t tag) { return text.find('>', tag) + 1; };
   auto close_mesh = [&]() {
     if (mesh_tag == std::string_view::npos || mesh_file.empty()) return;
@@ -146,7 +148,10 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
     std::error_code ec;
     if (!std::filesystem::is_regular_file(f, ec)) {
       missing.push_back(mesh_name.empty() ? std::filesystem::path(mesh_file).stem().string() : mesh_name);
-      edits.push_back({mesh_tag, end_of_tag(mesh_tag), ""});
+      if (missing_meshes == MissingMeshes::kPlaceholder)  // a tetrahedron with 10 mm edges
+        edits.push_back({file_attribute[0], file_attribute[1], R"(vertex="0 0 0 0.01 0 0 0 0.01 0 0 0 0.01")"});
+      else
+        edits.push_back({mesh_tag, end_of_tag(mesh_tag), ""});
     }
   };
   for_each_xml_attribute(text, [&](const XmlAttribute& a) {
@@ -160,12 +165,14 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
       if (a.name == "name") mesh_name = std::string(a.value);
       if (a.name == "file") {
         mesh_file = std::string(a.value);
+        file_attribute = {a.begin, a.end};
         if (missing_line == 0) missing_line = a.line;
       }
     }
   });
   close_mesh();
-  if (!missing.empty()) {
+  if (missing_names != nullptr) *missing_names = missing;
+  if (!missing.empty() && missing_meshes == MissingMeshes::kDrop) {
     int geoms = 0;
     for_each_xml_attribute(text, [&](const XmlAttribute& a) {
       if (a.element == "geom" && a.name == "mesh" &&

@@ -49,6 +49,12 @@ std::string non_finite_token(std::string_view value);
 /// Also: a <mesh> whose file is not found (relative to `dir` and the compiler's meshdir) is
 /// dropped with the geoms that show it, one warning in all (the robot's masses come from its
 /// <inertial> elements; a foot whose contact geoms were meshes needs the mapping's sole_size).
-std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir = "");
+/// `kPlaceholder` instead: each missing mesh becomes a small inline tetrahedron and every geom stays
+/// (to learn which geoms showed a missing mesh, with their classes' contact bits resolved), no
+/// warning about them. `missing_names`, when given, receives the missing meshes' names.
+enum class MissingMeshes { kDrop, kPlaceholder };
+std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir = "",
+                              MissingMeshes missing_meshes = MissingMeshes::kDrop,
+                              std::vector<std::string>* missing_names = nullptr);
 
 }  // namespace flexgait::humanoid

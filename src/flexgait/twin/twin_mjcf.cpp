@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string_view>
 
 #include "flexgait/twin/model_xml.hpp"
@@ -16,6 +18,37 @@ std::string list(const std::array<T, N>& v) {
   return s;
 }
 
+/// MuJoCo's compiler divides each quaternion and axis by its norm, v / sqrt(Σ v_i²) (the same bits
+/// as MuJoCo 2.2.2 on random quaternions), which moves some unit vectors by an ulp: a compiled
+/// quaternion written as it is may load back one bit off. Returns the text of a vector within 3
+/// ulps per component whose normalisation is `v` to the bit (v's own text first; zeros stay zero),
+/// or v's text when there is none.
+template <std::size_t N>
+std::string unit_list(const std::array<double, N>& v) {
+  auto normalised = [](std::array<double, N> w) {
+    double s = 0;
+    for (const double x : w) s += x * x;
+    const double n = std::sqrt(s);
+    for (double& x : w) x /= n;
+    return w;
+  };
+  constexpr std::array<int, 7> kSteps = {0, 1, -1, 2, -2, 3, -3};
+  std::size_t combinations = 1;
+  for (std::size_t i = 0; i < N; ++i) combinations *= kSteps.size();
+  for (std::size_t c = 0; c < combinations; ++c) {
+    std::array<double, N> w = v;
+    std::size_t digits = c;
+    bool zero_moved = false;
+    for (std::size_t i = 0; i < N; ++i, digits /= kSteps.size()) {
+      const int step = kSteps[digits % kSteps.size()];
+      zero_moved = zero_moved || (w[i] == 0 && step != 0);
+      for (int k = 0; k < std::abs(step); ++k) w[i] = std::nextafter(w[i], step > 0 ? INFINITY : -INFINITY);
+    }
+    if (!zero_moved && normalised(w) == v) return list(w);
+  }
+  return list(v);
+}
+
 /// A name the twin gives to its own elements: a file geom of that name loses it.
 bool reserved(std::string_view name) {
   return name == "floor" || name == "l_sole" || name == "r_sole";
@@ -28,7 +61,8 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
   const bool root = body.parent < 0;
   out += pad + "<body";
   if (!body.name.empty()) out += fmt::format(" name=\"{}\"", body.name);
-  out += fmt::format(" pos=\"{}\" quat=\"{}\">\n", root ? "0 0 1" : list(body.pos), root ? "1 0 0 0" : list(body.quat));
+  out += fmt::format(" pos=\"{}\" quat=\"{}\">\n", root ? "0 0 1" : list(body.pos),
+                     root ? "1 0 0 0" : unit_list(body.quat));
   if (root) out += pad + "  <freejoint name=\"root\"/>\n";
   if (b == r.imu_body) out += pad + "  <site name=\"imu\" pos=\"0 0 0\" size=\"0.01\"/>\n";
   for (int side = 0; side < 2; ++side)
@@ -36,12 +70,12 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
       out += fmt::format("{}  <site name=\"{}_ft\" pos=\"0 0 0\" size=\"0.01\"/>\n", pad, side == 0 ? "l" : "r");
   if (body.mass > 0)
     out += fmt::format("{}  <inertial pos=\"{}\" quat=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n", pad, list(body.ipos),
-                       list(body.iquat), body.mass, list(body.inertia));
+                       unit_list(body.iquat), body.mass, list(body.inertia));
   const JointVector k = p.gear_stiffness();
   for (const LoadedJoint& j : body.joints) {
     if (j.mapped < 0) continue;  // held rigid
     out += fmt::format("{}  <joint name=\"{}\" type=\"hinge\" pos=\"{}\" axis=\"{}\" stiffness=\"{}\" damping=\"{}\"",
-                       pad, kJointNames[j.mapped], list(j.pos), list(j.axis), k[j.mapped], p.gear_damping);
+                       pad, kJointNames[j.mapped], list(j.pos), unit_list(j.axis), k[j.mapped], p.gear_damping);
     if (j.limited) out += fmt::format(" limited=\"true\" range=\"{} {}\"", j.range[0], j.range[1]);
     if (j.armature > 0) out += fmt::format(" armature=\"{}\"", j.armature);
     if (j.frictionloss > 0) out += fmt::format(" frictionloss=\"{}\"", j.frictionloss);
@@ -55,12 +89,16 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
   for (std::size_t g = 0; g < body.geoms.size(); ++g) {
     const LoadedGeom& geom = body.geoms[g];
     const bool sole = side >= 0 && r.sole[side].geom == static_cast<int>(g);
+    // (a geom of a sole made by the foot's contact geoms: it keeps its name and takes the sole's contact)
+    const bool sole_part = side >= 0 && r.sole[side].hull_in_twin &&
+                           std::find(r.sole[side].hull_geoms.begin(), r.sole[side].hull_geoms.end(),
+                                     static_cast<int>(g)) != r.sole[side].hull_geoms.end();
     std::string name = sole ? sole_name : (reserved(geom.name) ? "" : geom.name);
     out += pad + "  <geom";
     if (!name.empty()) out += fmt::format(" name=\"{}\"", name);
     out += fmt::format(" type=\"{}\" size=\"{}\" pos=\"{}\" quat=\"{}\"", geom.type, list(geom.size), list(geom.pos),
-                       list(geom.quat));
-    if (sole)
+                       unit_list(geom.quat));
+    if (sole || sole_part)
       out += " " + sole_contact;
     else
       out += fmt::format(
@@ -71,9 +109,11 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
   }
   if (side >= 0 && r.sole[side].geom < 0) {  // a sole plate 10 mm thick on the sole rectangle
     const Sole& s = r.sole[side];
+    // (on a sole the foot's own geoms make in the twin, the plate only marks it: no contact)
     out += fmt::format(
-        "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 1\"/>\n", pad,
-        sole_name, 0.5 * s.length, 0.5 * s.width, s.center[0], s.center[1], s.center[2] + 0.005, sole_contact);
+        "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 {}\"/>\n", pad,
+        sole_name, 0.5 * s.length, 0.5 * s.width, s.center[0], s.center[1], s.center[2] + 0.005,
+        s.hull_in_twin ? R"(contype="0" conaffinity="0")" : sole_contact, s.hull_in_twin ? "0.3" : "1");
   }
   for (std::size_t c = 0; c < r.bodies.size(); ++c)
     if (r.bodies[c].parent == b) write_body(out, r, robot, p, static_cast<int>(c), depth + 1);
@@ -99,8 +139,9 @@ std::string twin_mjcf_mapping(const LoadedRobot& loaded) {
     out += fmt::format("robot.joints.{}={}\n", kJointNames[j], loaded.has_joint(j) ? kJointNames[j] : "none");
   for (int side = 0; side < 2; ++side) {
     const LoadedBody& foot = loaded.bodies[static_cast<std::size_t>(loaded.foot[side])];
+    // (a sole the foot's own geoms make in the twin is made again from them on reload)
     out += fmt::format("robot.feet.{0}.body={1}\nrobot.feet.{0}.sole_geom={2}\n", side == 0 ? "left" : "right",
-                       foot.name, side == 0 ? "l_sole" : "r_sole");
+                       foot.name, loaded.sole[side].hull_in_twin ? "none" : (side == 0 ? "l_sole" : "r_sole"));
   }
   return out;
 }

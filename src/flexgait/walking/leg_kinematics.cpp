@@ -46,6 +46,28 @@ Pose leg_chain_forward_kinematics(const LegGeometry& leg, const LegAngles& q) {
   return f;
 }
 
+LegChainJacobian leg_chain_jacobian(const LegGeometry& leg, const LegAngles& q) {
+  LegChainJacobian out;
+  // Frames of the joints and the sole.
+  std::array<Pose, 6> frame;
+  Pose f;
+  for (std::size_t i = 0; i < 6; ++i) {
+    f.p += f.R * leg.anchor[i];
+    frame[i] = f;
+    f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(leg.role[i])], leg.axis[i]).toRotationMatrix();
+  }
+  const Vector3d p = f.p + f.R * leg.sole;
+  if (leg.sole_tilted) f.R = f.R * leg.sole_R;
+  out.sole = {p, f.R};
+  for (int i = 0; i < 6; ++i) {
+    const Pose& fi = frame[static_cast<std::size_t>(i)];
+    const Vector3d a = fi.R * leg.axis[static_cast<std::size_t>(i)];
+    out.J.block<3, 1>(0, i) = a.cross(p - fi.p);
+    out.J.block<3, 1>(3, i) = a;
+  }
+  return out;
+}
+
 IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
   IkSolution out;
   LegAngles& q = out.q;
@@ -68,27 +90,12 @@ IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& so
   constexpr int kIterations = 100;
   Eigen::Matrix<double, 6, 1> e;
   for (int it = 0; it < kIterations; ++it) {
-    // Frames of the joints and the sole now.
-    std::array<Pose, 6> frame;
-    Pose f;
-    for (std::size_t i = 0; i < 6; ++i) {
-      f.p += f.R * leg.anchor[i];
-      frame[i] = f;
-      f.R = f.R * Eigen::AngleAxisd(q[static_cast<std::size_t>(leg.role[i])], leg.axis[i]).toRotationMatrix();
-    }
-    const Vector3d p = f.p + f.R * leg.sole;
-    if (leg.sole_tilted) f.R = f.R * leg.sole_R;
-    const Eigen::AngleAxisd w(Matrix3d(sole.R * f.R.transpose()));
-    e.head<3>() = sole.p - p;
+    const LegChainJacobian now = leg_chain_jacobian(leg, q);
+    const Eigen::AngleAxisd w(Matrix3d(sole.R * now.sole.R.transpose()));
+    e.head<3>() = sole.p - now.sole.p;
     e.tail<3>() = w.angle() * w.axis();
     if (e.norm() < 1e-12) return out;
-    Eigen::Matrix<double, 6, 6> J;
-    for (int i = 0; i < 6; ++i) {
-      const Pose& fi = frame[static_cast<std::size_t>(i)];
-      const Vector3d a = fi.R * leg.axis[static_cast<std::size_t>(i)];
-      J.block<3, 1>(0, i) = a.cross(p - fi.p);
-      J.block<3, 1>(3, i) = a;
-    }
+    const Eigen::Matrix<double, 6, 6>& J = now.J;
     // Undamped near the solution (exact Newton steps), damped far from it.
     const double lambda2 = e.norm() > 1e-4 ? kLambda2 : 0.0;
     Eigen::Matrix<double, 6, 1> dq =

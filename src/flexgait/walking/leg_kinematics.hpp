@@ -93,6 +93,14 @@ IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole);
 
 /// The general chain's forward kinematics (any layout; what the numeric IK inverts).
 Pose leg_chain_forward_kinematics(const LegGeometry& leg, const LegAngles& q);
+/// The general chain at angles q: the sole's pose and the Jacobian of the sole's twist (the sole
+/// centre's velocity, then the angular velocity; pelvis frame) in the joint rates, columns in
+/// chain order (LegGeometry::role).
+struct LegChainJacobian {
+  Pose sole;
+  Eigen::Matrix<double, 6, 6> J;
+};
+LegChainJacobian leg_chain_jacobian(const LegGeometry& leg, const LegAngles& q);
 /// Damped least-squares IK of the general chain (used by leg_inverse_kinematics when !analytic).
 IkSolution leg_numeric_inverse_kinematics(const LegGeometry& leg, const Pose& sole);
 

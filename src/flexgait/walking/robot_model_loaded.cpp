@@ -5,8 +5,11 @@
 // frame is parallel to the pelvis at zero angles (the model's convention).
 #include <fmt/format.h>
 
+#include <Eigen/SVD>
+
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "flexgait/core/config.hpp"
@@ -51,6 +54,29 @@ struct Anchor {
 /// The layout's axes (leg_kinematics.hpp), by role.
 const std::array<Vector3d, 6> kLayoutAxes = {Vector3d::UnitZ(), Vector3d::UnitX(), Vector3d::UnitY(),
                                              Vector3d::UnitY(), Vector3d::UnitY(), Vector3d::UnitX()};
+
+/// The leg's joints whose motions the others repeat (none when the six place the foot in 6 DOF): the
+/// chain's Jacobian (sole twist per joint rate, its translation rows divided by the leg's length)
+/// at a generic bent pose; a rank below 6 there is a rank below 6 everywhere (the rank is maximal
+/// on an open dense set of poses). The joints (humanoid::Joint) of the Jacobian's null space, in
+/// chain order.
+std::vector<int> dependent_leg_joints(const LegGeometry& leg, int side) {
+  const LegAngles q = {0.11, 0.13, -0.37, 0.71 * leg.sign[3] * leg.knee_branch(), -0.29, 0.17};
+  double length = 0;
+  for (const Vector3d& a : leg.anchor) length += a.norm();
+  length += leg.sole.norm();
+  Eigen::Matrix<double, 6, 6> J = leg_chain_jacobian(leg, q).J;
+  J.topRows<3>() /= length;
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(J, Eigen::ComputeFullV);
+  const auto& sigma = svd.singularValues();
+  // (a sound leg: the smallest singular value ~0.1 of the largest; parallel axes: rounding, 1e-16)
+  if (sigma(5) > 1e-9 * sigma(0)) return {};
+  std::vector<int> out;
+  for (int i = 0; i < 6; ++i)
+    if (std::abs(svd.matrixV()(i, 5)) > 1e-6)
+      out.push_back(humanoid::leg_first_joint(side) + leg.role[static_cast<std::size_t>(i)]);
+  return out;
+}
 
 /// Why leg `side` of m lacks the analytic IK's layout ("" when it has it): the joints in the
 /// layout's order, each axis along the layout's either way (LegGeometry::sign), the offsets.
@@ -211,6 +237,20 @@ RobotModel make_robot_model(const LoadedRobot& r) {
           body.axis.dot(kLayoutAxes[static_cast<std::size_t>(role)]) < 0 ? -1.0 : 1.0;
       leg.lower[static_cast<std::size_t>(role)] = m.range[static_cast<std::size_t>(body.joint)][0];
       leg.upper[static_cast<std::size_t>(role)] = m.range[static_cast<std::size_t>(body.joint)][1];
+    }
+    if (const std::vector<int> dependent = dependent_leg_joints(leg, side); !dependent.empty()) {
+      auto file_name = [&](int j) {
+        return r.bodies[static_cast<std::size_t>(r.joint[j][0])].joints[static_cast<std::size_t>(r.joint[j][1])].name;
+      };
+      std::string list;
+      for (const int j : dependent)
+        list += fmt::format("{}{} '{}'", list.empty() ? "" : ", ", humanoid::kJointNames[j], file_name(j));
+      const std::string key = "robot.joints." + std::string(humanoid::kJointNames[dependent.front()]);
+      throw ConfigError(key,
+                        fmt::format("key '{}' = '{}': the {} leg's joint axes cannot place the foot in 6 degrees "
+                                    "of freedom: the motions of {} repeat one another (parallel axes, or axes "
+                                    "through one point); allowed: six joints that move the foot in every direction",
+                                    key, file_name(dependent.front()), side == 0 ? "left" : "right", list));
     }
     auto offset = [&](int i) { return m.bodies[static_cast<std::size_t>(b0 + i)].offset; };
     leg.hip = offset(0) + offset(1);

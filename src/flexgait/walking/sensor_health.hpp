@@ -7,6 +7,11 @@
 ///  - stale: its time stamp is older than health.max_age (a dropped or late sample);
 ///  - stuck: a live signal repeated the same bits for health.stuck_samples periods (noise and
 ///           motion make a working gyro, accelerometer, AHRS or F/T sensor change every sample);
+///           an F/T sensor reading exactly zero (its unloaded value) while its foot swings is not
+///           stuck: an unloaded massless foot reads exactly that, and a real F/T check likewise
+///           judges a constant reading against the contact it expects (set_unloaded); nor after
+///           the planned landing until the foot first bears load (a nonzero reading: a landing a
+///           little late), for at most health.hold_time; then its count of repeats starts;
 ///           an encoder (quantised: it legitimately repeats while its motor rests) is stuck when
 ///           its reading has not changed while its motor's command moved by more than
 ///           health.encoder_stuck_motion since the reading last changed (the servo keeps the
@@ -83,6 +88,9 @@ class SignalMonitor {
   /// The value a bad reading is replaced by until the signal gives a good one (n values).
   void set_nominal(const double* values, int n);
 
+  /// Starts the count of repeated readings again (a repeat that is not evidence of a stuck signal).
+  void forget_repeats() { repeats_ = 0; }
+
   SignalFault fault() const { return fault_; }  ///< of the last check
   bool bad() const { return fault_ != SignalFault::kOk; }
   bool failed() const { return failed_; }        ///< bad for longer than hold_time once (latched)
@@ -117,6 +125,9 @@ class SensorHealth {
     command_ = command;
     has_command_ = true;
   }
+  /// Which feet are in the air (the plan's swing): their F/T sensors may read exactly zero (a
+  /// massless foot carries no load at all), which is then no sign of a stuck sensor.
+  void set_unloaded(const std::array<bool, 2>& unloaded) { unloaded_ = unloaded; }
   /// Checks every reading of `s` at time t [s]; clean() then holds them with bad values replaced.
   void check(const humanoid::SensorReadings& s, double t);
   const humanoid::SensorReadings& clean() const { return clean_; }
@@ -135,7 +146,10 @@ class SensorHealth {
   double period_;
   std::array<SignalMonitor, humanoid::kSensors - 1> monitor_{};  ///< all but the encoders
   std::array<SignalMonitor, humanoid::kJoints> encoder_{};
-  humanoid::JointVector command_{};  ///< the last commands sent [rad]
+  std::array<bool, 2> unloaded_{};       ///< the feet in the air (set_unloaded)
+  std::array<bool, 2> awaiting_load_{};  ///< swung and not loaded since (no nonzero F/T reading)
+  std::array<double, 2> swing_end_{};    ///< the last check in swing [s]
+  humanoid::JointVector command_{};      ///< the last commands sent [rad]
   bool has_command_ = false;
   humanoid::JointVector encoder_previous_{};  ///< each encoder's last raw reading [rad]
   humanoid::JointVector command_anchor_{};    ///< the command when that reading last changed [rad]

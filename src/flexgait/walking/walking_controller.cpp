@@ -233,6 +233,7 @@ void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const Fee
 
 void WalkingController::check_sensors(const humanoid::SensorReadings& raw, double t, std::size_t k) {
   using namespace humanoid;
+  health_.set_unloaded(status_.swinging);  // (the plan's swing at t, set by the last update)
   health_.check(raw, t);
   const SensorReadings& s = health_.clean();
   // (source tilt: the Mahony filter runs beside the tilt observer, which starts from its levelling)
