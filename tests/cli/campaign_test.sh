@@ -188,8 +188,9 @@ check "walk --jobs 2: same bytes" cmp -s "$work/w1/campaign.csv" "$work/w2/campa
 # (k = 500 without compensation: the stance leg sags, the swing sole hangs 1.7 cm above the floor
 # when the step should have landed — a missed step, not a walk)
 check "walk: a missed step is a row with its outcome and reason" \
-  grep -q "^2,0.3,off,missed_step,off,full,true,a step did not land" "$work/w1/campaign.csv"
-check "walk: with compensation it walks" grep -q "^3,0.3,both,walked,both,full,false,," "$work/w1/campaign.csv"
+  grep -q "^2,0.3,off,missed_step,off,full,off,true,a step did not land" "$work/w1/campaign.csv"
+check "walk: with compensation it walks" grep -q "^3,0.3,both,walked,both,full,both-dynamic-horizontal-lag,false,," \
+  "$work/w1/campaign.csv"
 campaign humanoid-push-recovery --grid push_recovery.direction=forward --set push_recovery.tolerance=30 \
   --set push_recovery.settle_time=1.5 --out "$work/p1"
 check "push recovery: a row with the push's time, recovered, fell_at, bound ($(head -c 300 "$work/stderr"))" \

@@ -57,6 +57,31 @@ TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillWithoutNoise) {
   for (int j = 0; j < kJoints; ++j) EXPECT_NEAR(em.newton[j], eg.newton[j], 1e-11) << j;
 }
 
+// A failed F/T sensor reads NaN: the output compensator takes that foot's load from the plan's split (the gravity
+// form) and the filter keeps its state, so a NaN neither reaches the estimate nor outlives the fault.
+TEST(LoadModel, ANonFiniteFtReadingFallsBackToThePlansSplitAndDoesNotLinger) {
+  const Stance s;
+  DeformationCompensator gravity(s.model, params(LoadModel::kGravity), kPeriod);
+  DeformationCompensator failed(s.model, params(LoadModel::kMeasured), kPeriod);
+  auto nan = s.readings();
+  nan[0].force[2] = std::nan("");
+  failed.sense(s.readings());
+  failed.sense(nan);
+  const JointVector encoder = gravity.input(s.q, Matrix3d::Identity(), s.plan());
+  const OutputEstimate eg = gravity.output(encoder, Matrix3d::Identity(), s.plan());
+  const OutputEstimate ef = failed.output(encoder, Matrix3d::Identity(), s.plan());
+  ASSERT_TRUE(eg.converged);
+  ASSERT_TRUE(ef.converged);
+  // The left foot's split load and the right foot's reading are both half the weight at the sole centre here.
+  for (int j = 0; j < kJoints; ++j) EXPECT_NEAR(ef.newton[j], eg.newton[j], 1e-11) << j;
+  DeformationCompensator recovered(s.model, params(LoadModel::kMeasured), kPeriod);
+  recovered.sense(s.readings());
+  failed.sense(s.readings());  // the sensor back: the same state as a filter that never saw the NaN
+  const OutputEstimate er = recovered.output(encoder, Matrix3d::Identity(), s.plan());
+  const OutputEstimate ea = failed.output(encoder, Matrix3d::Identity(), s.plan());
+  for (int j = 0; j < kJoints; ++j) EXPECT_EQ(ea.newton[j], er.newton[j]) << j;
+}
+
 TEST(LoadModel, MeasuredEqualsTheWeightSplitStandingStillToTheFtNoise) {
   // F/T noise σ_f = 0.5 N, σ_τ = 0.05 Nm per axis (an ATI Mini85-class sensor), white, through the
   // first-order low-pass (gain a = 1 − e^{−T/τ}): std σ √(a / (2 − a)). Each joint torque moves by

@@ -38,6 +38,8 @@ DeformationCompensator::DeformationCompensator(const walking::RobotModel& model,
 void DeformationCompensator::sense(const std::array<humanoid::ForceTorque, 2>& ft) {
   for (int side = 0; side < 2; ++side) {
     const walking::Vector3d f(ft[side].force.data()), m(ft[side].torque.data());
+    ft_usable_[side] = f.allFinite() && m.allFinite();
+    if (!ft_usable_[side]) continue;  // a failed sensor: the plan's split for this foot (torque_at)
     walking::Wrench& w = ft_[side];
     const double a = sensed_ ? filter_gain_ : 1.0;
     w.force += a * (f - w.force);
@@ -73,7 +75,9 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     // which moved the swing hip pitch's torque by 25 Nm).
     feet_.given[side] = sensed_ && !support.swinging[side];
     feet_.wrench[side] = {foot.R * ft_[side].force, foot.R * ft_[side].moment};
-    if (!planned_cop_) continue;
+    // The output side reads a stance foot's F/T; while its reading is not finite, the foot carries the plan's
+    // split below, as the gravity form assumes.
+    if (!planned_cop_ && (!feet_.given[side] || ft_usable_[side])) continue;
     const walking::Pose sole = walking::sole_pose(model_, data_, side);
     const walking::Vector3d cop =
         sole.p + sole.R * walking::Vector3d(plan_loads_.cop[side].x(), plan_loads_.cop[side].y(), 0);
@@ -93,7 +97,7 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     // closes a loop of gain ≈ 1 through the gears (a flat foot's ankle torque is k times the
     // command's change; in double support the feet's loads follow the legs' lengths), and the 1 s
     // walk falls. Nor M (g + a) with a the commanded pelvis's acceleration: that doubles the
-    // 1 s walk's peak roll error (docs/guide/compensation.md). With control.plan_horizontal_force f > 0 the plan's
+    // 1 s walk's peak roll error. With control.plan_horizontal_force f > 0 the plan's
     // own ground wrench above.
     const auto& b = model_.bodies[static_cast<std::size_t>(model_.foot[side])];
     const walking::Vector3d weight(0, 0, -b.mass * walking::kGravity);
@@ -203,8 +207,12 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   // G = ∂τ_g/∂θ. Each leg's torque depends on its own joints only unless the loads depend on the pose:
   // G is block diagonal, each block the analytic derivative at the pose of the last torque evaluation
   // (gravity_torque_derivative, walking::inverse_dynamics_derivative). The gravity loads split about the
-  // pose's COM couple the legs through μ and the centres of pressure: forward differences, all 12 columns.
-  const bool coupled = params_.split == WeightSplit::kCom && params_.load_model == LoadModel::kGravity;
+  // pose's COM couple the legs through μ and the centres of pressure: forward differences, all 12 columns. So does a
+  // stance foot whose F/T reading failed (its load the plan's split at the sole's centre of pressure, which moves
+  // with the pose, where the analytic derivative holds a read wrench fixed in the foot).
+  const bool ft_failed = params_.load_model != LoadModel::kGravity && sensed_ &&
+                         ((!ft_usable_[0] && !support.swinging[0]) || (!ft_usable_[1] && !support.swinging[1]));
+  const bool coupled = (params_.split == WeightSplit::kCom && params_.load_model == LoadModel::kGravity) || ft_failed;
   auto leg_jacobian = [&](const LegVector& theta, const LegVector& tau, LegMatrix& G) {
     G.setZero();
     if (coupled) {

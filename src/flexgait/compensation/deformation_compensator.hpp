@@ -354,7 +354,10 @@ class DeformationCompensator {
   bool sensed_ = false;                  ///< a reading has arrived (the filter starts from it)
   bool planned_cop_ = false;             ///< evaluating for the input side: measured force at the plan's CoP
   std::array<walking::Wrench, 2> ft_{};  ///< low-passed F/T wrenches, foot frame
-  walking::FootWrenches feet_;           ///< the same in the world for the pose being evaluated
+  /// This period's reading of each foot was finite (a failed sensor's NaN: the foot's load is the plan's split
+  /// meanwhile, and the filter keeps its state).
+  std::array<bool, 2> ft_usable_{};
+  walking::FootWrenches feet_;  ///< the same in the world for the pose being evaluated
   walking::RobotDynamicsData dynamics_;
   // baselines
   std::array<TalosHipRoll, 2> talos_;

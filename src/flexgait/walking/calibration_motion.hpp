@@ -24,8 +24,7 @@
 /// sum and difference of two of the others' frequencies (ω, ω/1.4, ω/2.2, ω/2.6 and the other sole's)
 /// and from their doubles. The first design (0.74 and 0.86: 1.35 ω and 1.16 ω) had the right sole
 /// 0.006 ω from ω/1.4 + ω/2.2; the 90 s window resolves about 0.06 ω, so a by-product of the forward
-/// motion and the squat read as the right ankle roll (docs/guide/compensation.md, "Stiffness identified while
-/// walking").
+/// motion and the squat read as the right ankle roll.
 #include "flexgait/core/record.hpp"
 
 namespace flexgait::walking {
