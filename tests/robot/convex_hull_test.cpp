@@ -35,7 +35,7 @@ TEST(ConvexHull, ContainsEveryPointOfARandomCloud) {
   for (std::size_t k = 0; k < hull.size(); ++k) {
     const Point& a = hull[k];
     const Point& b = hull[(k + 1) % hull.size()];
-    EXPECT_GT(cross(a, b, hull[(k + 2) % hull.size()]), 0.0);  // strictly convex, counter-clockwise
+    EXPECT_GT(cross(a, b, hull[(k + 2) % hull.size()]), 0.0);         // strictly convex, counter-clockwise
     for (const Point& p : points) EXPECT_GE(cross(a, b, p), -1e-15);  // on the inner side (round-off)
   }
   EXPECT_GT(polygon_area(hull), 0.0);
