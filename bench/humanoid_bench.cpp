@@ -1,4 +1,4 @@
-// Humanoid twin benchmarks (issue 5): one plant physics step (elastic drives + sensors) against a
+// Humanoid twin benchmarks: one plant physics step (elastic drives + sensors) against a
 // bare mj_step of the same model (target: the actuator and sensor layer adds at most 20 %), and
 // the real-time factor of standing.
 #include <benchmark/benchmark.h>
@@ -9,6 +9,7 @@
 namespace {
 
 using namespace flexgait::humanoid;
+using namespace flexgait::twin;
 
 PlantParams plant_params() {
   PlantParams p;

@@ -39,7 +39,7 @@ struct ByHand {
   fg::loop::CompensationStage stage{
       controller.model(), params.control, params.plant.control_period,
       fg::experiments::walk_loop_setup(params, controller.model(), controller.plan()).windows};
-  fg::humanoid::HumanoidPlant plant{fg::experiments::walk_twin(params), params.plant};
+  fg::twin::HumanoidPlant plant{fg::experiments::walk_twin(params), params.plant};
   long k = 0;
   ByHand() {
     controller.set_plan_motion(params.control.load_model == fg::compensation::LoadModel::kDynamic);

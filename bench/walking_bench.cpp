@@ -146,8 +146,8 @@ void ClosedLoopAgainstBareMujoco(benchmark::State& state) {
     // The same walk again (deterministic), its state recorded at the start of each period.
     state.PauseTiming();
     experiments::WalkLoop again = experiments::make_walk_loop(p);
-    const mjModel* pm = humanoid::plant_model(again.loop->plant());
-    const mjData* pd = humanoid::plant_data(again.loop->plant());
+    const mjModel* pm = twin::plant_model(again.loop->plant());
+    const mjData* pd = twin::plant_data(again.loop->plant());
     auto copy = [](const mjtNum* x, int n) { return std::vector<mjtNum>(x, x + n); };
     std::vector<Snapshot> states;
     while (again.loop->time() < end) {

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
   const fg::walking::RobotModel model = fg::experiments::walk_controller_model(params);
   const fg::loop::LoopSetup setup =
       fg::experiments::walk_loop_setup(params, model, fg::walking::plan_footsteps(params.walk));
-  const JointVector pose = fg::humanoid::standing_pose(params.robot, params.walk.pelvis_height);
+  const JointVector pose = fg::twin::standing_pose(params.robot, params.walk.pelvis_height);
   // Lean the legs by an angle that puts the pelvis over the left sole: half the step width.
   const double lean = std::atan2(0.5 * params.walk.step_width, params.walk.pelvis_height);
   fg::loop::HumanoidLoop loop(setup, std::make_shared<WeightShift>(pose, lean));

@@ -8,7 +8,7 @@
 #include "schema_command.hpp"
 
 extern "C" void flexgait_add_module_commands(CLI::App& app, std::function<int()>& action) {
-  flexgait::humanoid::route_mujoco_messages_to_stderr();  // no MUJOCO_LOG.TXT, nothing on stdout
+  flexgait::twin::route_mujoco_messages_to_stderr();  // no MUJOCO_LOG.TXT, nothing on stdout
   // In the order `flexgait --help` lists them, after `rimless`.
   flexgait::cli::add_humanoid_commands(app, action);
   flexgait::cli::add_render_command(app, action);

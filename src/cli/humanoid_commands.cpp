@@ -160,10 +160,10 @@ struct RenderOptions {
 
 /// The render's view: --size and --camera checked (exit 2 naming the option), the side camera
 /// framing the plan's footprints.
-humanoid::RenderView render_view(const RenderOptions& render, const walking::WalkPlan& plan) {
-  humanoid::RenderView view;
+twin::RenderView render_view(const RenderOptions& render, const walking::WalkPlan& plan) {
+  twin::RenderView view;
   std::tie(view.width, view.height) = parse_render_size(render.size, "--size", 1280, 720);
-  const auto camera = humanoid::camera_view(render.camera);
+  const auto camera = twin::camera_view(render.camera);
   if (!camera)
     throw UsageError(fmt::format("--camera '{}': expected side, follow or front", one_line(render.camera, 100)));
   view.camera = *camera;
@@ -182,8 +182,8 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   const Config config = resolve(experiments::walk_run_schema(), run);
   const experiments::WalkRunParams params = experiments::walk_run_from_config(config);
   const walking::WalkPlan plan = walking::plan_footsteps(params.walk);
-  const humanoid::RenderView view =
-      render.enabled ? render_view(render, plan) : humanoid::RenderView{};  // exit 2 before any file
+  const twin::RenderView view =
+      render.enabled ? render_view(render, plan) : twin::RenderView{};  // exit 2 before any file
   const RunDirectory dir(run.out);
   dir.write_config(experiments::with_derived_values(config, params));
   if (params.loaded && !run.json)
@@ -207,7 +207,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   auto attach = [&](experiments::WalkLoop& w) {
     drawn = std::make_unique<experiments::WalkPictures>(
         params, w, pictures, [&](const std::vector<unsigned char>& rgb, int frame) {
-          dir.write(fmt::format("frames/frame_{:05d}.png", frame), humanoid::encode_png(rgb, view.width, view.height));
+          dir.write(fmt::format("frames/frame_{:05d}.png", frame), twin::encode_png(rgb, view.width, view.height));
         });
     w.loop->attach(*drawn);
   };
@@ -218,7 +218,7 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   log.commit();
   const int frame = drawn->frames();
   if (render.enabled) show_stage(fmt::format("encoding video.mp4 from {} frames (ffmpeg)", frame));
-  if (render.enabled && !humanoid::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
+  if (render.enabled && !twin::encode_video(dir.path(), 1.0 / (every * params.plant.control_period)))
     fmt::print(stderr, "note: ffmpeg not found or failed; {} frames are in {}/frames\n", frame, dir.path().string());
   if (drawn->replay()) dir.write("replay.html", replay::replay_html(drawn->replay()->scene()));
   const std::string summary = json_file_text(experiments::write_walk(dir, "", r));

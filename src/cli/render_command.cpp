@@ -63,7 +63,7 @@ int render(const RenderArgs& a) {
   std::filesystem::create_directories(dir / "frames");
   for (const auto& entry : std::filesystem::directory_iterator(dir / "frames"))  // a longer earlier render's frames
     if (entry.path().extension() == ".png") std::filesystem::remove(entry.path());
-  humanoid::SceneRenderer renderer(width, height);
+  twin::SceneRenderer renderer(width, height);
   ProgressBar bar(scene.time.back() - scene.time.front(), "s drawn");
   int written = 0;
   double next = scene.time.front();
@@ -72,10 +72,10 @@ int render(const RenderArgs& a) {
     next += 1.0 / a.fps;
     const auto& rgb = renderer.render(scene, f);
     write_file_atomic(dir / "frames" / fmt::format("frame_{:05d}.png", written++),
-                      humanoid::encode_png(rgb, width, height));
+                      twin::encode_png(rgb, width, height));
     bar.show(scene.time[static_cast<std::size_t>(f)] - scene.time.front());
   }
-  const bool video = humanoid::encode_video(dir, a.fps);
+  const bool video = twin::encode_video(dir, a.fps);
   fmt::print("{} frames of {}x{} in {}{}\n", written, width, height, (dir / "frames").string(),
              video ? fmt::format(", {}", (dir / "video.mp4").string()) : " (no ffmpeg: no video.mp4)");
   return 0;

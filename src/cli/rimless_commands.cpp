@@ -515,20 +515,9 @@ int continuation(const ContinuationArgs& a, const CLI::App& cmd) {
   if (a.switch_at_pd && b.switched.empty()) switched = "no period doubling on the branch";
   if (a.run.plot) run_plot_script("plot_maps.py", {"bifurcation", dir.path().string(), b.param});
   if (a.run.json) {
-    nlohmann::ordered_json j;
-    j["param"] = b.param;
-    j["points"] = b.branch.points.size();
-    j["reached_end"] = b.branch.reached_end;
-    j["stop_reason"] = b.stop_reason;
-    j["exact_jacobian"] = b.exact_jacobian;
-    j["period"] = b.period;
-    j["segments"] = b.segments;
+    nlohmann::ordered_json j = rimless::gait_branch_summary(b);
     if (a.switch_at_pd) j["switched"] = switched;
     j["seconds"] = seconds;
-    nlohmann::ordered_json ev = nlohmann::ordered_json::array();
-    for (const auto& r : b.rows)
-      if (!r.event.empty()) ev.push_back({{"parameter", r.p}, {"event", r.event}, {"gait", r.gait}});
-    j["events"] = ev;
     fmt::print("{}\n", j.dump(2));
     return 0;
   }

@@ -48,8 +48,8 @@ struct Stance {
     for (int side = 0; side < 2; ++side) {
       const Pose& foot = data.frame[model.foot[side]];
       const auto& b = model.bodies[model.foot[side]];
-      const Vector3d ground(0, 0, 0.5 * model.total_mass * walking::kGravity),
-          weight(0, 0, -b.mass * walking::kGravity);
+      const Vector3d ground(0, 0, 0.5 * model.total_mass * humanoid::kDefaultGravity),
+          weight(0, 0, -b.mass * humanoid::kDefaultGravity);
       const Vector3d f = -ground - weight;
       const Vector3d m =
           -(walking::sole_pose(model, data, side).p - foot.p).cross(ground) - (foot.R * b.com).cross(weight);

@@ -85,7 +85,7 @@ TEST(GravityTorque, IsMinusJacobianTransposeTimesTheGroundForceByVirtualWork) {
   walking::RobotModelData data, shifted;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> tilt(-0.1, 0.1);
-  const double weight = model.total_mass * walking::kGravity;
+  const double weight = model.total_mass * humanoid::kDefaultGravity;
   for (int trial = 0; trial < 50; ++trial) {
     const Pose pelvis{Vector3d(0.1, 0.0, 0.7), walking::rot_x(tilt(rng)) * walking::rot_y(tilt(rng))};
     const humanoid::JointVector q = random_pose(rng);

@@ -27,20 +27,20 @@ using walking::Vector3d;
 
 constexpr double kSwingLift = 0.05;  // the right foot held this high [m]
 // The whole body's slow sway on its compliant legs (~0.5 Hz) takes this long to die out to 1e-9 rad.
-constexpr double kHoldTime = 12.0;                                             // [s]
-const double kEncoderStep = 2 * M_PI / humanoid::PlantParams{}.encoder_steps;  // the twin's encoder resolution [rad]
+constexpr double kHoldTime = 12.0;                                         // [s]
+const double kEncoderStep = 2 * M_PI / twin::PlantParams{}.encoder_steps;  // the twin's encoder resolution [rad]
 
 /// A robot: the controller's model, the twin, the pelvis height of the test pose [m].
 struct Robot {
   walking::RobotModel model;
-  humanoid::TwinModel twin;
+  twin::TwinModel twin;
   double pelvis_height = 0.72;
 };
 
 /// The builtin robot, or (second) the loaded test robot, with this plant.
-Robot robot(bool second, const humanoid::PlantParams& plant) {
+Robot robot(bool second, const twin::PlantParams& plant) {
   if (!second)
-    return {walking::make_robot_model(humanoid::RobotParams{}), humanoid::builtin_twin(humanoid::RobotParams{}, plant),
+    return {walking::make_robot_model(humanoid::RobotParams{}), twin::builtin_twin(humanoid::RobotParams{}, plant),
             0.72};
   const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
   const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.yaml";
@@ -81,7 +81,7 @@ struct Hold {
 /// Holds the compensated pose on the twin for kHoldTime (servo with integral action: the compensator
 /// models the gear, not the servo's proportional sag).
 Hold hold(CompensationMode mode, GravityForm form, bool second = false) {
-  humanoid::PlantParams plant;
+  twin::PlantParams plant;
   plant.servo_integral_time = 0.05;
   const Robot r = robot(second, plant);
   const walking::RobotModel& model = r.model;
@@ -96,10 +96,10 @@ Hold hold(CompensationMode mode, GravityForm form, bool second = false) {
   plan.swinging = {false, true};
   plan.soles = soles;
   const humanoid::JointVector command = compensator.input(desired, Matrix3d::Identity(), plan);
-  humanoid::HumanoidPlant twin(r.twin, plant);
+  twin::HumanoidPlant twin(r.twin, plant);
   twin.reset(desired);
   for (int k = 0; k < static_cast<int>(kHoldTime / plant.control_period); ++k) twin.step(command);
-  const humanoid::GroundTruth g = twin.truth();
+  const twin::GroundTruth g = twin.truth();
   EXPECT_TRUE(g.sole_contact[0]);
   EXPECT_FALSE(g.sole_contact[1]);
   const Matrix3d imu = walking::quat_to_matrix(twin.sensors().imu.quat.data());

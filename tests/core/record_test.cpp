@@ -110,7 +110,7 @@ TEST(Record, RimlessParametersDeriveFromOneList) {
 TEST(Record, HumanoidParametersDeriveFromOneList) {
   check_record<humanoid::RobotParams>();
   check_record<humanoid::RobotDescriptionParams>();
-  check_record<humanoid::PlantParams>();
+  check_record<twin::PlantParams>();
   check_record<experiments::BenchParams>();
   check_record<walking::WalkParams>();
   check_record<walking::BalanceParams>();
@@ -119,10 +119,10 @@ TEST(Record, HumanoidParametersDeriveFromOneList) {
 
 // The defect issue 13 names: the struct said 0 and the schema 1000.
 TEST(Record, PlantStiffnessDefaultIsTheSchemasDefault) {
-  const humanoid::PlantParams p;
+  const twin::PlantParams p;
   EXPECT_EQ(p.k_joint, 1000.0);
   for (const double k : p.gear_stiffness()) EXPECT_EQ(k, 1000.0);
-  EXPECT_EQ(humanoid::plant_schema().find("plant.k_joint")->fallback, "1000.0");
+  EXPECT_EQ(twin::plant_schema().find("plant.k_joint")->fallback, "1000.0");
 }
 
 TEST(Record, ChoicesComeFromTheEnumTable) {
@@ -140,11 +140,11 @@ TEST(Record, ChoicesComeFromTheEnumTable) {
 TEST(Record, WalkRunSchemaIsTheUnionOfItsParts) {
   Schema parts = humanoid::robot_schema();
   parts.merge(schema_of<humanoid::RobotDescriptionParams>())
-      .merge(humanoid::plant_schema())
+      .merge(twin::plant_schema())
       .merge(walking::walk_schema())
       .merge(walking::balance_schema());
   parts.merge(compensation::compensation_schema()).merge(schema_of<walking::EstimatorParams>());
-  parts.merge(schema_of<walking::HealthParams>()).merge(schema_of<humanoid::Push>());
+  parts.merge(schema_of<walking::HealthParams>()).merge(schema_of<twin::Push>());
   const Schema run = experiments::walk_run_schema();
   ASSERT_EQ(run.params().size(), parts.params().size() + 2);  // + disturbance.pushes, output.log_period
   for (std::size_t i = 0; i < parts.params().size(); ++i) EXPECT_EQ(run.params()[i].key, parts.params()[i].key);

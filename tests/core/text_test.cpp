@@ -8,6 +8,17 @@
 namespace flexgait {
 namespace {
 
+// An assignment splits at its first '=' only: a value may hold '=' (a computed_at entry, a path).
+TEST(KeyValueText, SplitsAtTheFirstEqualsSign) {
+  const auto kv = split_key_value("robot.description=a=b.xml");
+  ASSERT_TRUE(kv);
+  EXPECT_EQ(kv->key, "robot.description");
+  EXPECT_EQ(kv->value, "a=b.xml");
+  EXPECT_EQ(split_key_value("=1")->key, "");
+  EXPECT_EQ(split_key_value("k=")->value, "");
+  EXPECT_FALSE(split_key_value("rimless.mu"));
+}
+
 TEST(Csv, FieldsAreQuotedOnlyWhenTheyMustBe) {
   EXPECT_EQ(csv_field("stick"), "stick");
   EXPECT_EQ(csv_field(""), "");

@@ -20,8 +20,8 @@
 namespace flexgait::experiments {
 namespace {
 
-using humanoid::Push;
-using humanoid::PushBody;
+using twin::Push;
+using twin::PushBody;
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
   const auto path =
@@ -146,16 +146,16 @@ TEST(PushList, TwoPushesBothApplied) {
   // the plant's impulse is their sum (exact, whole physics steps), and so is the robot's momentum
   // change less the floor's and gravity's impulses (1 %, as push_test.cpp's single push).
   const Push a{1.0, PushBody::kChest, {0, -150, 0}, 0.1}, b{1.05, PushBody::kPelvis, {200, 0, 0}, 0.05};
-  humanoid::HumanoidPlant plant(humanoid::RobotParams{}, humanoid::PlantParams{});
-  const humanoid::JointVector pose = humanoid::standing_pose(humanoid::RobotParams{}, 0.75);
+  twin::HumanoidPlant plant(humanoid::RobotParams{}, twin::PlantParams{});
+  const humanoid::JointVector pose = twin::standing_pose(humanoid::RobotParams{}, 0.75);
   plant.reset(pose);
-  plant.set_pushes(humanoid::all_pushes({a}, b));
+  plant.set_pushes(twin::all_pushes({a}, b));
   const double T = plant.params().control_period;
   const auto run_to = [&](double t) {
     while (plant.time() < t - 0.5 * T) plant.step(pose);
     return plant.truth();
   };
-  const humanoid::GroundTruth s = run_to(1.0), e = run_to(1.1);
+  const twin::GroundTruth s = run_to(1.0), e = run_to(1.1);
   const Eigen::Vector3d expected(200 * 0.05, -150 * 0.1, 0);
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(e.push_impulse[i], expected(i), 1e-9 * expected.norm());
   EXPECT_TRUE(e.sole_contact[0] && e.sole_contact[1] && !e.non_sole_contact);

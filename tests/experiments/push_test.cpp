@@ -13,15 +13,15 @@
 namespace flexgait::experiments {
 namespace {
 
-using humanoid::Push;
-using humanoid::PushBody;
+using twin::Push;
+using twin::PushBody;
 
 /// The momentum balance of a standing twin pushed over [t0, t0 + duration]: the change of its
 /// linear momentum, less the floor's and gravity's impulses over the window (what a force plate
 /// and motion capture would measure), which leaves the push's impulse.
 Eigen::Vector3d impulse_from_momentum(const Push& push) {
-  humanoid::HumanoidPlant plant(humanoid::RobotParams{}, humanoid::PlantParams{});
-  const humanoid::JointVector pose = humanoid::standing_pose(humanoid::RobotParams{}, 0.75);
+  twin::HumanoidPlant plant(humanoid::RobotParams{}, twin::PlantParams{});
+  const humanoid::JointVector pose = twin::standing_pose(humanoid::RobotParams{}, 0.75);
   plant.reset(pose);
   plant.set_push(push);
   const double T = plant.params().control_period;
@@ -29,7 +29,7 @@ Eigen::Vector3d impulse_from_momentum(const Push& push) {
     while (plant.time() < t - 0.5 * T) plant.step(pose);
     return plant.truth();
   };
-  const humanoid::GroundTruth a = run_to(push.time), b = run_to(push.time + push.duration);
+  const twin::GroundTruth a = run_to(push.time), b = run_to(push.time + push.duration);
   // The plant's own account: exactly F × duration (whole physics steps).
   for (int i = 0; i < 3; ++i)
     EXPECT_NEAR(b.push_impulse[i], push.force[i] * push.duration, 1e-9 * std::abs(push.force[i]) + 1e-12);

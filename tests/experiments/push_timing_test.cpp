@@ -18,8 +18,8 @@ walking::WalkPlan three_steps() {
   return walking::plan_footsteps(w);
 }
 
-humanoid::Push timed(int step, double phase, double time = 0.0) {
-  humanoid::Push p;
+twin::Push timed(int step, double phase, double time = 0.0) {
+  twin::Push p;
   p.step = step;
   p.phase = phase;
   p.time = time;
@@ -42,7 +42,7 @@ TEST(PushTiming, PhaseRunsFromLiftOffToTouchdownOfItsStep) {
   EXPECT_EQ(pushes[1].time, push_start_time(timed(2, 0.5), plan));
 }
 
-std::string refused_key(const humanoid::Push& push) {
+std::string refused_key(const twin::Push& push) {
   try {
     check_push_timing(push, three_steps(), "disturbance.pushes[1].");
   } catch (const ConfigError& e) {

@@ -16,7 +16,7 @@
 namespace flexgait::experiments {
 namespace {
 
-using humanoid::TerrainKind;
+using twin::TerrainKind;
 
 TEST(TerrainWalk, StandsOnATwoDegreeRamp) {
   for (const double sign : {1.0, -1.0}) {

@@ -198,11 +198,11 @@ TEST(WalkKEstimation, TheTwinsSolesTiltAsTheConfigSays) {
   Eigen::Vector4d b = Eigen::Vector4d::Zero();
   const double begin = p.walk.calibration.start + p.walk.calibration.ramp, end = p.walk.calibration.end() - 1.0;
   struct Observer final : loop::LoopObserver {
-    std::function<void(const humanoid::HumanoidPlant&)> f;
+    std::function<void(const twin::HumanoidPlant&)> f;
     void observe(const loop::LoopStep& step) override { f(step.plant); }
   } observer;
-  observer.f = [&](const humanoid::HumanoidPlant& plant) {
-    const humanoid::GroundTruth g = plant.truth();
+  observer.f = [&](const twin::HumanoidPlant& plant) {
+    const twin::GroundTruth g = plant.truth();
     if (g.t < begin || g.t > end) return;
     const humanoid::SensorReadings& s = plant.sensors();
     for (int side = 0; side < 2; ++side)

@@ -23,7 +23,7 @@ TEST(WalkMarkers, HoldTheLandingsAndMeetTheComWhenStanding) {
     w.loop->attach(*markers);
   });
   ASSERT_TRUE(r.metrics.completed()) << r.metrics.outcome();
-  const humanoid::RenderMarkers& m = markers->markers();
+  const twin::RenderMarkers& m = markers->markers();
   ASSERT_EQ(m.planned.size(), 2 + plan.steps.size());
   ASSERT_EQ(m.actual.size(), 2 + plan.steps.size());  // the start's soles and every landing
   ASSERT_EQ(r.landings.size(), plan.steps.size());

@@ -36,7 +36,7 @@ TEST(WalkPictures, TheSideCameraSeesTheRobotWalkWithItsMarkers) {
   WalkRunParams p;
   p.walk.steps = 2;
   const walking::WalkPlan plan = walking::plan_footsteps(p.walk);
-  humanoid::RenderView view{320, 180, humanoid::CameraView::kSide, plan.initial[0].x, plan.final[0].x};
+  twin::RenderView view{320, 180, twin::CameraView::kSide, plan.initial[0].x, plan.final[0].x};
   WalkPictureOptions options;
   options.render = view;
   // Two frames: at the start and at 5.4 s, standing after the steps (the walk ends at 5.5 s).

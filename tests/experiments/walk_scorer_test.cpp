@@ -32,7 +32,7 @@ TEST(WalkScorer, AFailedSimulationIsTheWalksFailure) {
   WalkLoop w = make_walk_loop(p);
   WalkScorer scorer(p, w.control->controller(), w.loop->truth(), w.pushes, {});
   w.loop->attach(scorer);
-  humanoid::Push push;
+  twin::Push push;
   push.time = 0.0;
   push.force = {0, 0, 1e12};
   w.loop->plant().set_pushes({push});

@@ -10,7 +10,7 @@
 namespace flexgait::experiments {
 namespace {
 
-using humanoid::FaultKind;
+using twin::FaultKind;
 
 WalkRunParams ten_steps() {
   WalkRunParams p;

@@ -26,7 +26,7 @@ using flexgait::ConfigEntry;
 
 // A key of type list (disturbance.pushes) beside the rimless keys, so the list reader is fuzzed too.
 struct PushList {
-  std::vector<flexgait::humanoid::Push> pushes;
+  std::vector<flexgait::twin::Push> pushes;
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("disturbance.pushes", s.pushes, {.doc = "pushes"});

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The folders of src/flexgait and their includes (issue 16, "The layout shows the architecture").
+"""The folders of src/flexgait, their includes and their namespaces (one library per folder).
 
 Checks, over every .hpp and .cpp under src/flexgait:
   - the graph folder -> folder of the includes "flexgait/<folder>/..." has no cycle;
@@ -7,7 +7,9 @@ Checks, over every .hpp and .cpp under src/flexgait:
     (only twin/detail/ and .cpp files);
   - the controller's folders (robot, walking, compensation) include nothing of twin/, where the
     twin's truth lives (plant_params.hpp: its stiffness, sensors, faults, floor; disturbance.hpp;
-    terrain.hpp; sensor_faults.hpp).
+    terrain.hpp; sensor_faults.hpp);
+  - one namespace per library: no namespace is opened by two folders (a block that only
+    forward-declares another library's types does not count).
 Usage: include_graph_test.py SOURCE_DIR. Prints each violation; exit 1 if any.
 """
 import pathlib
@@ -16,12 +18,20 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]', re.M)
 CONTROLLER = {"robot", "walking", "compensation"}
+NAMESPACE = re.compile(r'^namespace (flexgait(?:::\w+)*) \{', re.M)
+FORWARD_ONLY = re.compile(r'^namespace flexgait(?:::\w+)* \{\n(?:(?:enum class|enum|struct|class) \w+(?: : [\w:]+)?;[^\n]*\n)+\}', re.M)
+
+
+def top_namespace(name: str) -> str:
+    """flexgait::twin::detail -> flexgait::twin; flexgait -> flexgait."""
+    return "::".join(name.split("::")[:2])
 
 
 def main(source: pathlib.Path) -> int:
     root = source / "src" / "flexgait"
     edges: dict[str, set[str]] = {}
     problems = []
+    owners: dict[str, set[str]] = {}
     for path in sorted(root.rglob("*")):
         if path.suffix not in (".hpp", ".cpp"):
             continue
@@ -30,7 +40,10 @@ def main(source: pathlib.Path) -> int:
         if len(rel.parts) == 1:
             continue  # version.hpp.in and the like
         edges.setdefault(folder, set())
-        for name in INCLUDE.findall(path.read_text(encoding="utf-8")):
+        text = path.read_text(encoding="utf-8")
+        for ns in NAMESPACE.findall(FORWARD_ONLY.sub("", text)):
+            owners.setdefault(top_namespace(ns), set()).add(folder)
+        for name in INCLUDE.findall(text):
             if name.startswith("mujoco/"):
                 installed = path.suffix == ".hpp" and "detail" not in rel.parts
                 if folder != "twin" or installed:
@@ -41,6 +54,9 @@ def main(source: pathlib.Path) -> int:
                     edges[folder].add(parts[1])
                 if folder in CONTROLLER and parts[1] == "twin":
                     problems.append(f"{rel}: the controller's folder {folder}/ includes {name}")
+    for ns, folders in sorted(owners.items()):
+        if len(folders) > 1:
+            problems.append(f"namespace {ns} is opened by {len(folders)} folders: {', '.join(sorted(folders))}")
     # A cycle: depth-first search with colours.
     state: dict[str, int] = {}
     stack: list[str] = []

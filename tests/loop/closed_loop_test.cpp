@@ -35,14 +35,14 @@ struct Standing {
   explicit Standing(compensation::CompensationMode mode) {
     params.control.mode = mode;
     const walking::RobotModel model = experiments::walk_controller_model(params);
-    pose = humanoid::standing_pose(params.robot, params.walk.pelvis_height);
+    pose = twin::standing_pose(params.robot, params.walk.pelvis_height);
     LoopSetup setup{experiments::walk_twin(params), params.plant, model, params.control, {}, false};
     loop = std::make_unique<HumanoidLoop>(setup, std::make_shared<HoldPose>(pose));
     loop->reset(pose);
   }
 };
 
-double tilt(const humanoid::GroundTruth& g) {
+double tilt(const twin::GroundTruth& g) {
   const Eigen::Matrix3d R = walking::quat_to_matrix(g.pelvis_quat.data());
   return std::acos(std::clamp(R(2, 2), -1.0, 1.0));
 }
@@ -53,7 +53,7 @@ TEST(ClosedLoop, AHoldPoseControllerKeepsTheTwinStanding) {
     const double z0 = s.loop->truth().pelvis_pos[2];
     const long periods = std::lround(3.0 / s.params.plant.control_period);
     for (long k = 0; k < periods; ++k) ASSERT_FALSE(s.loop->step()) << "t = " << s.loop->time();
-    const humanoid::GroundTruth& g = s.loop->truth();
+    const twin::GroundTruth& g = s.loop->truth();
     EXPECT_NEAR(g.t, 3.0, 1e-9);
     // Standing still on its gears: the pelvis sinks by the deflections' millimetres, not by a fall
     // (the judge's fall is 0.2 m), and stays level within 0.05 rad.
@@ -110,7 +110,7 @@ TEST(ClosedLoop, ANonFiniteCommandIsRefusedNamingTheJoint) {
 
 TEST(ClosedLoop, AFailedSimulationRefusesToStepOn) {
   Standing s(compensation::CompensationMode::kOff);
-  humanoid::Push push;
+  twin::Push push;
   push.time = 0.0;
   push.duration = 0.2;
   push.force = {0, 0, 1e12};  // far beyond anything the solver keeps finite
@@ -143,7 +143,7 @@ TEST(ClosedLoop, ObserversDoNotChangeTheTrajectory) {
     ASSERT_FALSE(watched.loop->step());
   }
   EXPECT_EQ(counter.n, 400);
-  const humanoid::GroundTruth &a = bare.loop->truth(), &b = watched.loop->truth();
+  const twin::GroundTruth &a = bare.loop->truth(), &b = watched.loop->truth();
   for (int j = 0; j < humanoid::kJoints; ++j) EXPECT_EQ(a.link_angle[j], b.link_angle[j]) << j;  // to the bit
   for (int i = 0; i < 3; ++i) EXPECT_EQ(a.pelvis_pos[i], b.pelvis_pos[i]) << i;
   EXPECT_EQ(bare.loop->command(), watched.loop->command());

@@ -14,7 +14,7 @@ namespace {
 struct Fixture {
   humanoid::RobotParams robot;
   walking::RobotModel model = walking::make_robot_model(robot);
-  humanoid::JointVector pose = humanoid::standing_pose(robot, 0.72);
+  humanoid::JointVector pose = twin::standing_pose(robot, 0.72);
   humanoid::SensorReadings readings() const {
     humanoid::SensorReadings r;
     r.encoder = pose;

@@ -74,6 +74,10 @@ class Continuation(unittest.TestCase):
         self.assertTrue(b["summary"]["reached_end"])
         self.assertGreater(b["summary"]["points"], 2)
         self.assertEqual(b["summary"]["param"], "rimless.slope")
+        # The summary's events are the rows that carry one (the record `rimless continuation --json` prints).
+        events = [(e["parameter"], e["event"], e["gait"]) for e in b["summary"]["events"]]
+        self.assertEqual(events, [(float(p), e, g) for p, e, g in zip(b["parameter"], b["event"], b["gait"]) if e])
+        self.assertIsNone(b["summary"]["failure"])
 
     def test_stable_means_every_multiplier_inside_the_unit_circle(self):
         b = self.branch

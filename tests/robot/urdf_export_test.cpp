@@ -27,10 +27,10 @@ RobotDescriptionParams mapping_from(const std::string& lines) {
 }
 
 TEST(UrdfExport, ExportedUrdfHasTheSameKinematicsAndMasses) {
-  const LoadedRobot original =
-      load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin", RobotDescriptionParams{});
+  const LoadedRobot original = twin::load_robot_text(twin::humanoid_mjcf(RobotParams{}, twin::PlantParams{}), "xml",
+                                                     "builtin", RobotDescriptionParams{});
   const LoadedRobot urdf =
-      load_robot_text(robot_urdf(original), "urdf", "exported.urdf", mapping_from(urdf_mapping(original)));
+      twin::load_robot_text(robot_urdf(original), "urdf", "exported.urdf", mapping_from(urdf_mapping(original)));
   const walking::RobotModel a = walking::make_robot_model(original);
   const walking::RobotModel b = walking::make_robot_model(urdf);
   // Inertias pass through MuJoCo's eigen-decomposition of URDF's full tensor: 1e-12 kg m².

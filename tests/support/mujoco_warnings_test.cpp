@@ -27,7 +27,7 @@ constexpr const char* kProbeVariable = "FLEXGAIT_MUJOCO_WARNING_PROBE";
 // One free body; `nan_velocity` puts a NaN in qvel, which mj_step reports as mjWARN_BADQVEL
 // ("Nan, Inf or huge value in QVEL") and answers by resetting the data.
 void step_mujoco(bool nan_velocity) {
-  mjModel* m = humanoid::load_mjcf(
+  mjModel* m = twin::load_mjcf(
       R"(<mujoco><worldbody><body><freejoint/><geom size="0.1" mass="1"/></body></worldbody></mujoco>)");
   mjData* d = mj_makeData(m);
   if (nan_velocity) d->qvel[0] = std::numeric_limits<double>::quiet_NaN();

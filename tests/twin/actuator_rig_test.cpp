@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 TEST(ActuatorRig, ArmSettlesAtTheStaticDeflectionOfGearAndServo) {
@@ -29,4 +29,4 @@ TEST(ActuatorRig, ArmSettlesAtTheStaticDeflectionOfGearAndServo) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 TEST(ElasticActuator, DeadBandIsCentredAndOfTotalWidthB) {
@@ -72,4 +72,4 @@ TEST(ElasticActuator, SaturatedServoDoesNotWindUp) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

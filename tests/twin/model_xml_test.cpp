@@ -16,13 +16,13 @@
 #include "flexgait/robot/builtin_inertials.hpp"
 #include "flexgait/twin/robot_loader.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 using testing::Compiled;
 
 TEST(ModelXml, CompiledTwinHasTheBuiltinMassesAndGears) {
-  RobotParams robot;
+  humanoid::RobotParams robot;
   robot.total_mass = 61.5;
   PlantParams plant;
   plant.k_joint = 1500.0;
@@ -30,13 +30,14 @@ TEST(ModelXml, CompiledTwinHasTheBuiltinMassesAndGears) {
   const Compiled twin(humanoid_mjcf(robot, plant));
   // Sums of a few dozen masses: 1e-12 kg.
   EXPECT_NEAR(twin.m->body_subtreemass[0], robot.total_mass, 1e-12);
-  const BuiltinInertials b = builtin_inertials(robot);
+  const humanoid::BuiltinInertials b = humanoid::builtin_inertials(robot);
   const int pelvis = mj_name2id(twin.m, mjOBJ_BODY, "pelvis");
   ASSERT_GE(pelvis, 0);
   EXPECT_NEAR(twin.m->body_mass[pelvis], b.pelvis.mass, 1e-12);
-  for (int j = 0; j < kJoints; ++j) {
-    const int id = mj_name2id(twin.m, mjOBJ_JOINT, std::string(kJointNames[static_cast<std::size_t>(j)]).c_str());
-    ASSERT_GE(id, 0) << kJointNames[static_cast<std::size_t>(j)];
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const int id =
+        mj_name2id(twin.m, mjOBJ_JOINT, std::string(humanoid::kJointNames[static_cast<std::size_t>(j)]).c_str());
+    ASSERT_GE(id, 0) << humanoid::kJointNames[static_cast<std::size_t>(j)];
     // Written as shortest round-trip decimals: exact.
     EXPECT_EQ(twin.m->jnt_stiffness[id], plant.k_joint * plant.k_scale[static_cast<std::size_t>(j)]) << j;
     EXPECT_EQ(twin.m->dof_damping[twin.m->jnt_dofadr[id]], plant.gear_damping) << j;
@@ -55,7 +56,7 @@ TEST(ModelXml, ExportedMjcfWalksWithTheSameSummary) {
   const experiments::WalkRunParams builtin = one_second_steps();
   experiments::WalkRunParams loaded = builtin;
   loaded.description.description = "exported.xml";
-  loaded.loaded = std::make_shared<const LoadedRobot>(
+  loaded.loaded = std::make_shared<const humanoid::LoadedRobot>(
       load_robot_text(humanoid_mjcf(builtin.robot, builtin.plant), "xml", "exported.xml", loaded.description));
   const auto a = experiments::run_walk(builtin);
   const auto b = experiments::run_walk(loaded);
@@ -64,4 +65,4 @@ TEST(ModelXml, ExportedMjcfWalksWithTheSameSummary) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

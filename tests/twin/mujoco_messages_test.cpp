@@ -10,7 +10,7 @@
 
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 TEST(MujocoMessages, RoutingSetsTheHooksAndWarningsGoToStderrOnOneLine) {
@@ -58,4 +58,4 @@ TEST(MujocoMessages, WarningCountAndTextSumTheKinds) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

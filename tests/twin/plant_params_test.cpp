@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 std::string refused_key(const std::vector<std::string>& sets) {
@@ -38,4 +38,4 @@ TEST(PlantParams, LatencyFaultNeedsADelay) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -13,7 +13,7 @@
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 PlantParams default_plant(double k = 1000.0) {
@@ -26,7 +26,7 @@ constexpr double kStandHeight = 0.75;  // pelvis height of the nominal pose [m] 
 
 // Stands for `seconds` with the nominal pose commanded.
 HumanoidPlant& stand(HumanoidPlant& plant, double seconds) {
-  const JointVector pose = standing_pose(RobotParams{}, kStandHeight);
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, kStandHeight);
   plant.reset(pose);
   const int steps = static_cast<int>(std::lround(seconds / plant.params().control_period));
   for (int i = 0; i < steps; ++i) plant.step(pose);
@@ -34,7 +34,7 @@ HumanoidPlant& stand(HumanoidPlant& plant, double seconds) {
 }
 
 TEST(HumanoidPlant, TotalMassIsTheParameter) {
-  RobotParams r;
+  humanoid::RobotParams r;
   HumanoidPlant a(r, default_plant());
   EXPECT_NEAR(a.total_mass(), 57.0, 1e-9);
   r.total_mass = 70.0;
@@ -43,22 +43,22 @@ TEST(HumanoidPlant, TotalMassIsTheParameter) {
 }
 
 TEST(HumanoidPlant, StandingPoseReachesTheRequestedHeight) {
-  HumanoidPlant plant(RobotParams{}, default_plant());
-  plant.reset(standing_pose(RobotParams{}, kStandHeight));
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
+  plant.reset(standing_pose(humanoid::RobotParams{}, kStandHeight));
   // Before any gear deflection, the pelvis sits at the requested height (soles on the floor).
   EXPECT_NEAR(plant.truth().pelvis_pos[2], kStandHeight, 1e-9);
 }
 
 TEST(HumanoidPlant, StandsTenSecondsAndTheFeetCarryTheWeight) {
-  HumanoidPlant plant(RobotParams{}, default_plant());
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
   stand(plant, 10.0);
   const GroundTruth t = plant.truth();
   EXPECT_GT(t.pelvis_pos[2], 0.6) << "fell";
   EXPECT_FALSE(t.non_sole_contact);
   EXPECT_EQ(t.warnings, 0);
   // The F/T sensors carry everything above them: total mass minus the two feet (1 %).
-  const RobotParams r;
-  const double above = (plant.total_mass() - 2 * thormang3_link("l_leg_foot").mass) * 9.81;
+  const humanoid::RobotParams r;
+  const double above = (plant.total_mass() - 2 * humanoid::thormang3_link("l_leg_foot").mass) * 9.81;
   const auto& s = plant.sensors();
   // Force on the foot from the leg, foot frame (level): z component is minus the load.
   const double carried = -(s.ft[0].force[2] + s.ft[1].force[2]);
@@ -72,36 +72,37 @@ TEST(HumanoidPlant, StandsTenSecondsAndTheFeetCarryTheWeight) {
 // joint), independent of the actuator code. 2 % (the bound).
 TEST(HumanoidPlant, StaticDeflectionIsGravityTorqueOverStiffness) {
   for (double k : {600.0, 1000.0, 2000.0}) {
-    HumanoidPlant plant(RobotParams{}, default_plant(k));
+    HumanoidPlant plant(humanoid::RobotParams{}, default_plant(k));
     stand(plant, 6.0);
     const mjModel* m = plant_model(plant);
     const mjData* d = plant_data(plant);
     const GroundTruth t = plant.truth();
     for (int side = 0; side < 2; ++side) {
       for (int offset : {1, 2, 3}) {  // hip roll, hip pitch, knee
-        const int j = leg_first_joint(side) + offset;
-        const int dof = m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, std::string(kJointNames[j]).c_str())];
+        const int j = humanoid::leg_first_joint(side) + offset;
+        const int dof = m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, std::string(humanoid::kJointNames[j]).c_str())];
         const double required = d->qfrc_bias[dof] - d->qfrc_constraint[dof];
         const double deflection = t.motor_angle[j] - t.link_angle[j];
         if (std::abs(required) < 1.0) continue;  // hip roll carries almost nothing in a symmetric stance
-        EXPECT_NEAR(deflection, required / k, 0.02 * std::abs(required / k)) << kJointNames[j] << ", k = " << k;
+        EXPECT_NEAR(deflection, required / k, 0.02 * std::abs(required / k))
+            << humanoid::kJointNames[j] << ", k = " << k;
       }
     }
     // The knees carry tens of Nm: deflections of a few hundredths of a radian at k = 1000.
     if (k == 1000.0) {
-      EXPECT_GT(std::abs(t.motor_angle[kLeftKnee] - t.link_angle[kLeftKnee]), 0.005);
+      EXPECT_GT(std::abs(t.motor_angle[humanoid::kLeftKnee] - t.link_angle[humanoid::kLeftKnee]), 0.005);
     }
   }
 }
 
 TEST(HumanoidPlant, EncodersAreQuantisedExactly) {
-  HumanoidPlant plant(RobotParams{}, default_plant());
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
   stand(plant, 1.0);
   const double q = 2 * std::numbers::pi / plant.params().encoder_steps;
   const GroundTruth t = plant.truth();
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < humanoid::kJoints; ++j) {
     const double steps = plant.sensors().encoder[j] / q;
-    EXPECT_EQ(steps, std::nearbyint(steps)) << kJointNames[j];  // an exact multiple of the step
+    EXPECT_EQ(steps, std::nearbyint(steps)) << humanoid::kJointNames[j];  // an exact multiple of the step
     EXPECT_LE(std::abs(plant.sensors().encoder[j] - t.motor_angle[j]), 0.5 * q * (1 + 1e-12));
   }
 }
@@ -110,11 +111,11 @@ TEST(HumanoidPlant, SameInputSameBytes) {
   PlantParams p = default_plant();
   p.ft_force_noise = 0.5;  // noise with a seed is reproducible too
   p.gyro_noise = 0.01;
-  HumanoidPlant a(RobotParams{}, p), b(RobotParams{}, p);
+  HumanoidPlant a(humanoid::RobotParams{}, p), b(humanoid::RobotParams{}, p);
   stand(a, 1.0);
   stand(b, 1.0);
   const GroundTruth ta = a.truth(), tb = b.truth();
-  EXPECT_EQ(0, std::memcmp(ta.link_angle.data(), tb.link_angle.data(), sizeof(double) * kJoints));
+  EXPECT_EQ(0, std::memcmp(ta.link_angle.data(), tb.link_angle.data(), sizeof(double) * humanoid::kJoints));
   EXPECT_EQ(0, std::memcmp(&a.sensors().ft, &b.sensors().ft, sizeof(a.sensors().ft)));
   EXPECT_EQ(0, std::memcmp(&a.sensors().imu, &b.sensors().imu, sizeof(a.sensors().imu)));
 }
@@ -125,17 +126,17 @@ TEST(HumanoidPlant, ACopyContinuesAsTheOriginal) {
   PlantParams params = default_plant();
   params.ft_force_noise = 2.0;  // the noise generator is part of the state
   params.imu.gyro_bias_walk = 0.01;
-  HumanoidPlant a(RobotParams{}, params);
-  const JointVector pose = standing_pose(RobotParams{}, kStandHeight);
+  HumanoidPlant a(humanoid::RobotParams{}, params);
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, kStandHeight);
   a.reset(pose);
   a.set_push(Push{0.3, PushBody::kChest, {30, 0, 0}, 0.4});
-  JointVector command = pose;
+  humanoid::JointVector command = pose;
   for (int i = 0; i < 100; ++i) a.step(command);
   HumanoidPlant b = a;
-  HumanoidPlant c(RobotParams{}, params);
+  HumanoidPlant c(humanoid::RobotParams{}, params);
   c = a;
   for (int i = 0; i < 100; ++i) {
-    command[kLeftKnee] = pose[kLeftKnee] + 0.1 * std::sin(0.05 * i);
+    command[humanoid::kLeftKnee] = pose[humanoid::kLeftKnee] + 0.1 * std::sin(0.05 * i);
     a.step(command);
     b.step(command);
     c.step(command);
@@ -158,12 +159,12 @@ TEST(HumanoidPlant, ACopyContinuesAsTheOriginal) {
 // are forces of the drives' state, not a reference stored in the model), so the first readings
 // after a reset are the same bytes whatever came before.
 TEST(HumanoidPlant, ResetDependsOnThePoseOnly) {
-  const JointVector pose = standing_pose(RobotParams{}, kStandHeight);
-  HumanoidPlant fresh(RobotParams{}, default_plant());
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, kStandHeight);
+  HumanoidPlant fresh(humanoid::RobotParams{}, default_plant());
   fresh.reset(pose);
-  HumanoidPlant used(RobotParams{}, default_plant());
-  used.reset(standing_pose(RobotParams{}, 0.70));
-  for (int i = 0; i < 50; ++i) used.step(standing_pose(RobotParams{}, 0.72));
+  HumanoidPlant used(humanoid::RobotParams{}, default_plant());
+  used.reset(standing_pose(humanoid::RobotParams{}, 0.70));
+  for (int i = 0; i < 50; ++i) used.step(standing_pose(humanoid::RobotParams{}, 0.72));
   used.reset(pose);
   const mjData* a = plant_data(fresh);
   const mjData* b = plant_data(used);
@@ -171,8 +172,8 @@ TEST(HumanoidPlant, ResetDependsOnThePoseOnly) {
   EXPECT_EQ(0, std::memcmp(a->sensordata, b->sensordata, sizeof(mjtNum) * static_cast<std::size_t>(n)));
   EXPECT_EQ(0, std::memcmp(a->qacc, b->qacc, sizeof(mjtNum) * static_cast<std::size_t>(plant_model(fresh)->nv)));
   // At rest with no deflection, the gears carry no torque: the legs' joints have no spring force.
-  for (int j = 0; j < kJoints; ++j) EXPECT_EQ(fresh.truth().gear_torque[j], 0.0) << kJointNames[j];
+  for (int j = 0; j < humanoid::kJoints; ++j) EXPECT_EQ(fresh.truth().gear_torque[j], 0.0) << humanoid::kJointNames[j];
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

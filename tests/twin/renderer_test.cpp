@@ -11,7 +11,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/twin/plant.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 std::uint32_t be32(const std::string& s, std::size_t at) {
@@ -29,8 +29,8 @@ long orange(const std::vector<unsigned char>& rgb) {
 
 TEST(Renderer, DrawsTheTwinIntoAPng) {
   PlantParams p;
-  HumanoidPlant plant(RobotParams{}, p);
-  plant.reset(standing_pose(RobotParams{}, 0.75));
+  HumanoidPlant plant(humanoid::RobotParams{}, p);
+  plant.reset(standing_pose(humanoid::RobotParams{}, 0.75));
   Renderer renderer(plant, RenderView{320, 240, CameraView::kFollow});
   const std::vector<unsigned char> standing = renderer.render(plant);
   ASSERT_EQ(standing.size(), 320u * 240u * 3u);
@@ -46,14 +46,14 @@ TEST(Renderer, DrawsTheTwinIntoAPng) {
   EXPECT_EQ(be32(png, 20), 240u);
   EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND");
   // Another pose, another picture.
-  JointVector bent = standing_pose(RobotParams{}, 0.70);
+  humanoid::JointVector bent = standing_pose(humanoid::RobotParams{}, 0.70);
   plant.reset(bent);
   EXPECT_NE(renderer.render(plant), standing);
 }
 
 TEST(Renderer, DrawsAnArrowForATenNewtonPush) {
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
-  const JointVector pose = standing_pose(RobotParams{}, 0.75);
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, 0.75);
   plant.reset(pose);
   plant.set_push(Push{0.0, PushBody::kChest, {10, 0, 0}, 0.1});  // forward: across the side view
   plant.step(pose);
@@ -84,8 +84,8 @@ double robot_column(const std::vector<unsigned char>& rgb, int width, int height
 }
 
 TEST(Renderer, SideCameraFramesTheWalk) {
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
-  plant.reset(standing_pose(RobotParams{}, 0.75));
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
+  plant.reset(standing_pose(humanoid::RobotParams{}, 0.75));
   // The robot at x = 0: the start of a 2 m walk ahead is left of the middle, its end right of it.
   Renderer start(plant, RenderView{480, 270, CameraView::kSide, 0, 2});
   const double at_start = robot_column(start.render(plant), 480, 270);
@@ -98,7 +98,7 @@ TEST(Renderer, SideCameraFramesTheWalk) {
 }
 
 TEST(Renderer, RefusesSizesOutsideTheBuffer) {
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
   EXPECT_THROW(Renderer(plant, RenderView{0, 0}), UsageError);
   EXPECT_THROW(Renderer(plant, RenderView{1920, 1080}), UsageError);  // the twin's buffer is 1280 × 720
   EXPECT_EQ(camera_view("front"), CameraView::kFront);
@@ -152,4 +152,4 @@ TEST(SceneRenderer, DrawsBodiesAndMarkersOfAFrame) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -12,12 +12,12 @@
 
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 TEST(ReplayRecorder, FramesHoldTheStatesBodyPoses) {
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
-  const JointVector pose = standing_pose(RobotParams{}, 0.75);
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, 0.75);
   plant.reset(pose);
   ReplayRecorder rec(plant, "standing", {{"pelvis z", "m"}}, 0.02);
   const mjModel* m = plant_model(plant);
@@ -72,8 +72,8 @@ TEST(ReplayRecorder, ATenStepWalksPageStaysUnderFiveMegabytes) {
   // A 10-step walk: ~13.5 s at 25 frames per second (the walk's replay rate, walk_pictures.hpp),
   // ~340 frames, with the plan's 12 footprints planned and landed, every point marker and 5 signals.
   // The page: the viewer (~0.6 MB) and the data block. (A real walk's page: web/test/humanoid_replay.test.mjs.)
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
-  plant.reset(standing_pose(RobotParams{}, 0.75));
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
+  plant.reset(standing_pose(humanoid::RobotParams{}, 0.75));
   ReplayRecorder rec(plant, "walk", {{"a", ""}, {"b", ""}, {"c", ""}, {"d", ""}, {"e", ""}}, 0.04);
   rec.set_planned_footprints(std::vector<FootprintMarker>(12));
   const std::vector<double> values{1, 2, 3, 4, 5};
@@ -94,8 +94,8 @@ TEST(ReplayRecorder, MemoryIsBoundedByThinningTheFrames) {
   // 10 frames due (every 0.1 s over 0.9 s) into at most 4: full at 4, every other one goes and the
   // interval doubles (0.2 s), and again (0.4 s). The frames kept are the recorded times 0, 0.4, 0.8:
   // evenly spaced samples of the same run, each with its own pose and signal.
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
-  plant.reset(standing_pose(RobotParams{}, 0.75));
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
+  plant.reset(standing_pose(humanoid::RobotParams{}, 0.75));
   ReplayRecorder rec(plant, "thin", {{"t", "s"}}, 0.1, 4);
   for (int i = 0; i <= 9; ++i) {
     const double t = 0.1 * i;
@@ -115,7 +115,7 @@ TEST(ReplayRecorder, MemoryIsBoundedByThinningTheFrames) {
 }
 
 TEST(ReplayRecorder, PlannedFootprintsAreStaticBoxes) {
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
   ReplayRecorder rec(plant, "plan");
   const std::size_t before = rec.scene().statics.size();
   rec.set_planned_footprints({FootprintMarker{{0.2, 0.1, 0}, 0.3}, FootprintMarker{{0.4, -0.1, 0}, 0}});
@@ -128,7 +128,7 @@ TEST(ReplayRecorder, PlannedFootprintsAreStaticBoxes) {
 // A recovery step lands beyond the plan's footprints: the actual footprints' layer grows to hold it,
 // and the frames before it show it hidden.
 TEST(ReplayRecorder, ActualFootprintsBeyondThePlanAreRecorded) {
-  HumanoidPlant plant(RobotParams{}, PlantParams{});
+  HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
   ReplayRecorder rec(plant, "recovery", {}, 0.01);
   rec.set_planned_footprints({FootprintMarker{{0.2, 0.1, 0}, 0}});
   RenderMarkers markers;
@@ -148,4 +148,4 @@ TEST(ReplayRecorder, ActualFootprintsBeyondThePlanAreRecorded) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

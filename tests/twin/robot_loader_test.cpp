@@ -26,19 +26,20 @@
 #include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
+using humanoid::testing::expect_model_agrees_with_mujoco;
+using humanoid::testing::small_biped_walk;
 using testing::Compiled;
-using testing::expect_model_agrees_with_mujoco;
-using testing::small_biped_walk;
 using walking::Matrix3d;
 using walking::Pose;
 using walking::RobotModel;
 using walking::Vector3d;
 
-LoadedRobot builtin_loaded() {
-  return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
+humanoid::LoadedRobot builtin_loaded() {
+  return load_robot_text(humanoid_mjcf(humanoid::RobotParams{}, PlantParams{}), "xml", "builtin.xml",
+                         humanoid::RobotDescriptionParams{});
 }
 
 // The second robot walks 10 steps at 1 s/step with and without compensation (numeric leg IK).
@@ -63,21 +64,21 @@ TEST(RobotLoader, RobotWithoutAWaistHasARigidTrunk) {
   experiments::WalkRunParams walk = experiments::walk_run_from_config(
       resolve_config(experiments::walk_run_schema(), file, {"robot.joints.waist_yaw=none", "walk.steps=4"}));
   ASSERT_TRUE(walk.loaded);
-  EXPECT_FALSE(walk.loaded->has_joint(kWaistYaw));
+  EXPECT_FALSE(walk.loaded->has_joint(humanoid::kWaistYaw));
   const std::string twin = twin_mjcf(*walk.loaded, walk.robot, walk.plant);
   EXPECT_EQ(twin.find("waist_yaw"), std::string::npos);
   expect_model_agrees_with_mujoco(*walk.loaded);
   const RobotModel model = walking::make_robot_model(*walk.loaded);
   EXPECT_EQ(model.bodies[1].joint, -1);
   EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
-  EXPECT_NE(urdf_mapping(*walk.loaded).find("robot.joints.waist_yaw=none"), std::string::npos);
+  EXPECT_NE(humanoid::urdf_mapping(*walk.loaded).find("robot.joints.waist_yaw=none"), std::string::npos);
   const experiments::WalkResult r = experiments::run_walk(walk);
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 4);
   EXPECT_EQ(r.metrics.mujoco_warnings, 0);
 }
 
-std::string error_key(const std::string& text, const RobotDescriptionParams& params) {
+std::string error_key(const std::string& text, const humanoid::RobotDescriptionParams& params) {
   try {
     load_robot_text(text, "xml", "test.xml", params);
   } catch (const ConfigError& e) {
@@ -87,8 +88,8 @@ std::string error_key(const std::string& text, const RobotDescriptionParams& par
 }
 
 TEST(RobotLoader, ErrorsNameTheKeyAndTheName) {
-  const std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
-  RobotDescriptionParams p;
+  const std::string xml = humanoid_mjcf(humanoid::RobotParams{}, PlantParams{});
+  humanoid::RobotDescriptionParams p;
   p.description = "/no/such/robot.xml";
   try {
     load_robot(p);
@@ -100,7 +101,7 @@ TEST(RobotLoader, ErrorsNameTheKeyAndTheName) {
   EXPECT_NE(error_key("<mujoco><worldbody><body></mujoco>", {}).find("robot.description | "), std::string::npos);
   EXPECT_NE(error_key("<mujoco><worldbody><body></mujoco>", {}).find("MuJoCo"), std::string::npos);
   p = {};
-  p.joints[kLeftKnee] = "left_knee_joint";
+  p.joints[humanoid::kLeftKnee] = "left_knee_joint";
   const std::string missing = error_key(xml, p);
   EXPECT_EQ(missing.rfind("robot.joints.l_knee | ", 0), 0u) << missing;
   EXPECT_NE(missing.find("left_knee_joint"), std::string::npos);
@@ -119,9 +120,31 @@ TEST(RobotLoader, ErrorsNameTheKeyAndTheName) {
   EXPECT_EQ(error_key(xml, p).rfind("robot.exclude_contacts | ", 0), 0u);
 }
 
+// The file's gravity is the robot's: the twin and the controller's model both take it (the model's
+// leg gravity torques equal MuJoCo's qfrc_bias under it to 1e-10: a model left at 9.81 is off by
+// 2.6 times too large here). Gravity that does not point straight down is refused, naming the file.
+TEST(RobotLoader, TheFilesGravityReachesTheTwinAndTheModel) {
+  const std::string xml = humanoid_mjcf(humanoid::RobotParams{}, PlantParams{});
+  const std::string earth = "gravity=\"0 0 -9.81\"";
+  ASSERT_NE(xml.find(earth), std::string::npos);
+  std::string mars = xml;
+  mars.replace(mars.find(earth), earth.size(), "gravity=\"0 0 -3.72\"");
+  const humanoid::LoadedRobot loaded = load_robot_text(mars, "xml", "mars.xml", {});
+  EXPECT_EQ(loaded.gravity, 3.72);
+  EXPECT_EQ(walking::make_robot_model(loaded).gravity, 3.72);
+  EXPECT_NE(twin_mjcf(loaded, humanoid::RobotParams{}, PlantParams{}).find("gravity=\"0 0 -3.72\""), std::string::npos);
+  expect_model_agrees_with_mujoco(loaded);
+  EXPECT_EQ(load_robot_text(xml, "xml", "earth.xml", {}).gravity, humanoid::kDefaultGravity);
+  std::string tilted = xml;
+  tilted.replace(tilted.find(earth), earth.size(), "gravity=\"0.5 0 -9.81\"");
+  const std::string error = error_key(tilted, {});
+  EXPECT_EQ(error.rfind("robot.description | ", 0), 0u) << error;
+  EXPECT_NE(error.find("straight down"), std::string::npos) << error;
+}
+
 // Colliding geoms that touch at zero angles are refused, naming the pair; excluding it loads.
 TEST(RobotLoader, SelfContactAtZeroAnglesIsReportedAndCanBeExcluded) {
-  std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
+  std::string xml = humanoid_mjcf(humanoid::RobotParams{}, PlantParams{});
   // A deeper pelvis box that reaches into the hip roll links (grandchildren: MuJoCo does not
   // exclude them), all three colliding.
   const std::string pelvis = R"(<geom type="box" size="0.09 0.14 0.05")";
@@ -132,7 +155,7 @@ TEST(RobotLoader, SelfContactAtZeroAnglesIsReportedAndCanBeExcluded) {
   const std::string what = error_key(xml, {});
   EXPECT_EQ(what.rfind("robot.exclude_contacts | ", 0), 0u) << what;
   EXPECT_NE(what.find("pelvis:l_hip_roll_link"), std::string::npos) << what;
-  RobotDescriptionParams p;
+  humanoid::RobotDescriptionParams p;
   p.exclude_contacts = "pelvis:l_hip_roll_link,pelvis:r_hip_roll_link";
   EXPECT_EQ(error_key(xml, p), "no error");
   // The file's own <contact><exclude> counts as the key's: one pair in the file, the other by key.
@@ -151,8 +174,8 @@ TEST(RobotLoader, UnmappedRolesAreListed) {
   const std::filesystem::path file = std::filesystem::path(dir ? dir : "tests/humanoid/data") / "small_biped.xml";
   std::ifstream in(file);
   const std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  RobotDescriptionParams p;
-  p.feet = {FootMapping{"LFoot", "LSole"}, FootMapping{"RFoot", "RSole"}};
+  humanoid::RobotDescriptionParams p;
+  p.feet = {humanoid::FootMapping{"LFoot", "LSole"}, humanoid::FootMapping{"RFoot", "RSole"}};
   const std::string what = error_key(xml, p);
   EXPECT_EQ(what.rfind("robot.joints.l_hip_yaw | ", 0), 0u) << what;
   EXPECT_NE(what.find("unmapped: l_hip_yaw, l_hip_roll, l_hip_pitch, l_knee, l_ankle_pitch, l_ankle_roll, r_hip_yaw, "
@@ -161,18 +184,19 @@ TEST(RobotLoader, UnmappedRolesAreListed) {
       << what;
   const std::array<const char*, 12> names = {"LHipYaw", "LHipRoll", "LHipPitch", "LKnee", "LAnklePitch", "LAnkleRoll",
                                              "RHipYaw", "RHipRoll", "RHipPitch", "RKnee", "RAnklePitch", "RAnkleRoll"};
-  for (int i = 0; i < 12; ++i) p.joints[static_cast<std::size_t>(kLeftHipYaw + i)] = names[static_cast<std::size_t>(i)];
-  p.joints[kLeftKnee] = "l_knee";  // one role left at its builtin name
+  for (int i = 0; i < 12; ++i)
+    p.joints[static_cast<std::size_t>(humanoid::kLeftHipYaw + i)] = names[static_cast<std::size_t>(i)];
+  p.joints[humanoid::kLeftKnee] = "l_knee";  // one role left at its builtin name
   EXPECT_NE(error_key(xml, p).find("(unmapped: l_knee)"), std::string::npos) << error_key(xml, p);
-  p.joints[kLeftKnee] = "LKnee";
-  const LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);  // the waist left unmapped: rigid
-  EXPECT_FALSE(r.has_joint(kWaistYaw));
+  p.joints[humanoid::kLeftKnee] = "LKnee";
+  const humanoid::LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);  // the waist left unmapped: rigid
+  EXPECT_FALSE(r.has_joint(humanoid::kWaistYaw));
 }
 
 // MJCF written for MuJoCo 3: translated with one warning per attribute, the knees' ranges limit
 // them (autolimits), the model agrees with MuJoCo's.
 TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
-  const experiments::WalkRunParams walk = testing::fixture_walk("mujoco3_attributes.yaml");
+  const experiments::WalkRunParams walk = humanoid::testing::fixture_walk("mujoco3_attributes.yaml");
   ASSERT_TRUE(walk.loaded);
   const std::vector<std::string> expected = {
       "line 33: actuatorfrcrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself) (2 times)",
@@ -182,8 +206,9 @@ TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
       "integrator)",
       "line 80: kv dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)"};
   EXPECT_EQ(walk.loaded->warnings, expected);
-  const auto [body, k] = walk.loaded->joint[kLeftKnee];
-  const LoadedJoint& knee = walk.loaded->bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
+  const auto [body, k] = walk.loaded->joint[humanoid::kLeftKnee];
+  const humanoid::LoadedJoint& knee =
+      walk.loaded->bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
   EXPECT_TRUE(knee.limited);
   EXPECT_EQ(knee.range[1], 2.4);
   expect_model_agrees_with_mujoco(*walk.loaded);
@@ -200,8 +225,8 @@ TEST(RobotLoader, MissingMeshFilesAreDropped) {
              R"(<asset><mesh file="no_such_shell.stl"/><mesh name="hull" file="no/such/hull.stl"/></asset>)");
   const std::string base = R"(<geom type="box" size="0.08 0.1 0.05" mass="8"/>)";
   xml.insert(xml.find(base) + base.size(), R"(<geom mesh="no_such_shell" contype="0"/><geom mesh="hull"/>)");
-  RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
-  const LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);
+  humanoid::RobotDescriptionParams p = humanoid::testing::fixture_walk("small_biped.yaml").description;
+  const humanoid::LoadedRobot r = load_robot_text(xml, "xml", "small_biped.xml", p);
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_NE(r.warnings[0].find(
                 "2 mesh files not found (first: no_such_shell); they and the 2 geoms showing them are dropped"),
@@ -214,12 +239,12 @@ TEST(RobotLoader, MissingMeshFilesAreDropped) {
 // A waist hinge between the root and the legs: unmapped, held rigid (the twin has no such joint,
 // the model agrees with MuJoCo's); mapped as the waist, refused naming robot.joints.waist_yaw.
 TEST(RobotLoader, WaistBelowTheRootIsRigidUnlessMapped) {
-  const experiments::WalkRunParams walk = testing::fixture_walk("waist_below_root.yaml");
+  const experiments::WalkRunParams walk = humanoid::testing::fixture_walk("waist_below_root.yaml");
   ASSERT_TRUE(walk.loaded);
   EXPECT_EQ(twin_mjcf(*walk.loaded, walk.robot, walk.plant).find("WaistPitch"), std::string::npos);
   expect_model_agrees_with_mujoco(*walk.loaded);
   try {
-    (void)testing::fixture_walk("waist_below_root.yaml", {"robot.joints.waist_yaw=WaistPitch"});
+    (void)humanoid::testing::fixture_walk("waist_below_root.yaml", {"robot.joints.waist_yaw=WaistPitch"});
     ADD_FAILURE() << "a mapped waist below the root accepted";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "robot.joints.waist_yaw");
@@ -230,13 +255,13 @@ TEST(RobotLoader, WaistBelowTheRootIsRigidUnlessMapped) {
 // Quaternions printed to 6 digits: the feet tilted by a few 1e-6 rad are accepted and their tilt
 // modelled (the sole poses agree with MuJoCo's to 1e-10); a foot tilted 1e-3 rad or more is refused.
 TEST(RobotLoader, PrintedQuaternionsAreModelled) {
-  const experiments::WalkRunParams walk = testing::fixture_walk("printed_quaternions.yaml");
+  const experiments::WalkRunParams walk = humanoid::testing::fixture_walk("printed_quaternions.yaml");
   ASSERT_TRUE(walk.loaded);
   const RobotModel model = walking::make_robot_model(*walk.loaded);
   EXPECT_TRUE(model.sole_tilted[0]);
   EXPECT_TRUE(model.sole_tilted[1]);
   expect_model_agrees_with_mujoco(*walk.loaded);
-  LoadedRobot tilted = *walk.loaded;
+  humanoid::LoadedRobot tilted = *walk.loaded;
   tilted.bodies[static_cast<std::size_t>(tilted.foot[1])].quat = {std::cos(0.0006), 0, std::sin(0.0006),
                                                                   0};  // 1.2e-3 rad
   try {
@@ -250,24 +275,26 @@ TEST(RobotLoader, PrintedQuaternionsAreModelled) {
 
 // A sole given by its size and centre instead of a geom: the same sole.
 TEST(RobotLoader, SoleBySizeAndCentre) {
-  RobotDescriptionParams p;
+  humanoid::RobotDescriptionParams p;
   for (auto& f : p.feet) {
     f.sole_geom = "none";
     f.sole_size = "0.22 0.15";
     f.sole_center = "0 0 -0.1145";
   }
-  const LoadedRobot r = load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "b.xml", p);
+  const humanoid::LoadedRobot r =
+      load_robot_text(humanoid_mjcf(humanoid::RobotParams{}, PlantParams{}), "xml", "b.xml", p);
   for (int side = 0; side < 2; ++side) {
     EXPECT_EQ(r.sole[side].geom, -1);
     EXPECT_EQ(r.sole[side].length, 0.22);
     EXPECT_NEAR(r.sole[side].center[2], builtin_loaded().sole[side].center[2], 1e-15);
   }
-  const Compiled twin(twin_mjcf(r, RobotParams{}, PlantParams{}));
+  const Compiled twin(twin_mjcf(r, humanoid::RobotParams{}, PlantParams{}));
   EXPECT_GE(mj_name2id(twin.m, mjOBJ_GEOM, "l_sole"), 0);
   // Soles that differ are refused by the controller's model, naming the right foot.
   p.feet[1].sole_size = "0.22 0.16";
   try {
-    (void)walking::make_robot_model(load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "b.xml", p));
+    (void)walking::make_robot_model(
+        load_robot_text(humanoid_mjcf(humanoid::RobotParams{}, PlantParams{}), "xml", "b.xml", p));
     ADD_FAILURE() << "different soles accepted";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "robot.feet.right.body");
@@ -286,10 +313,11 @@ std::string small_biped_xml() {
 // geom in the twin with a plate that only marks it. A foot with no contact geom at all (small_biped's
 // geoms collide with nothing): refused naming sole_size and the foot.
 TEST(RobotLoader, SoleFromTheFootsContactGeoms) {
-  RobotDescriptionParams p;
+  humanoid::RobotDescriptionParams p;
   p.feet[0].sole_geom = p.feet[1].sole_geom = "none";
-  const LoadedRobot r = load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "b.xml", p);
-  const LoadedRobot named = builtin_loaded();
+  const humanoid::LoadedRobot r =
+      load_robot_text(humanoid_mjcf(humanoid::RobotParams{}, PlantParams{}), "xml", "b.xml", p);
+  const humanoid::LoadedRobot named = builtin_loaded();
   for (int side = 0; side < 2; ++side) {
     EXPECT_EQ(r.sole[side].geom, -1);
     EXPECT_EQ(r.sole[side].hull.size(), 4u);
@@ -298,11 +326,11 @@ TEST(RobotLoader, SoleFromTheFootsContactGeoms) {
     EXPECT_NEAR(r.sole[side].width, named.sole[side].width, 1e-15);
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(r.sole[side].center[i], named.sole[side].center[i], 1e-15);
   }
-  const Compiled twin(twin_mjcf(r, RobotParams{}, PlantParams{}));
+  const Compiled twin(twin_mjcf(r, humanoid::RobotParams{}, PlantParams{}));
   const int plate = mj_name2id(twin.m, mjOBJ_GEOM, "l_sole");
   ASSERT_GE(plate, 0);
   EXPECT_EQ(twin.m->geom_contype[plate], 0);
-  RobotDescriptionParams biped = testing::fixture_walk("small_biped.yaml").description;
+  humanoid::RobotDescriptionParams biped = humanoid::testing::fixture_walk("small_biped.yaml").description;
   biped.feet[0].sole_geom = "none";
   const std::string e = error_key(small_biped_xml(), biped);
   EXPECT_EQ(e.rfind("robot.feet.left.sole_size | ", 0), 0u) << e;
@@ -324,8 +352,8 @@ TEST(RobotLoader, MissingFootCollisionMeshIsAnErrorUnlessTheSoleIsMapped) {
   xml.insert(xml.find(base) + base.size(), R"(<geom mesh="shell"/>)");
   const std::string sole = R"(<geom name="LSole" type="box" pos="0 0 -0.05" size="0.09 0.05 0.01" mass="1.0"/>)";
   xml.insert(xml.find(sole) + sole.size(), R"(<geom name="LFootCollision" class="collision" mesh="foot"/>)");
-  RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
-  const LoadedRobot mapped = load_robot_text(xml, "xml", "small_biped.xml", p);
+  humanoid::RobotDescriptionParams p = humanoid::testing::fixture_walk("small_biped.yaml").description;
+  const humanoid::LoadedRobot mapped = load_robot_text(xml, "xml", "small_biped.xml", p);
   ASSERT_EQ(mapped.warnings.size(), 1u);
   EXPECT_NE(mapped.warnings[0].find("2 mesh files not found"), std::string::npos) << mapped.warnings[0];
   p.feet[0].sole_geom = "none";
@@ -349,7 +377,7 @@ TEST(RobotLoader, ExportedMjcfLoadsBackExactly) {
   std::filesystem::create_directories(dir);
   for (const char* yaml :
        {"four_sphere_feet.yaml", "printed_quaternions.yaml", "massless_foot.yaml", "pitch_roll_yaw_hips.yaml"}) {
-    const experiments::WalkRunParams a = testing::fixture_walk(yaml);
+    const experiments::WalkRunParams a = humanoid::testing::fixture_walk(yaml);
     ASSERT_TRUE(a.loaded);
     const std::string first = twin_mjcf(*a.loaded, a.robot, a.plant);
     const std::filesystem::path file = dir / (std::string(yaml) + ".xml");
@@ -364,7 +392,7 @@ TEST(RobotLoader, ExportedMjcfLoadsBackExactly) {
     ASSERT_EQ(a.loaded->bodies.size(), b.loaded->bodies.size());
     // (the root's pose is the twin's own; a massless body's inertial frame is no number of the robot)
     for (std::size_t i = 0; i < a.loaded->bodies.size(); ++i) {
-      const LoadedBody &x = a.loaded->bodies[i], &y = b.loaded->bodies[i];
+      const humanoid::LoadedBody &x = a.loaded->bodies[i], &y = b.loaded->bodies[i];
       EXPECT_EQ(x.mass, y.mass) << yaml << " " << x.name;
       if (x.mass > 0) {
         EXPECT_EQ(x.inertia, y.inertia) << yaml << " " << x.name;
@@ -397,29 +425,29 @@ TEST(RobotLoader, UrdfKeepsJointDynamics) {
   std::string xml = small_biped_xml();
   const std::string knee = R"(<joint name="LKnee" axis="0 1 0")";
   xml.insert(xml.find(knee) + knee.size(), R"( damping="0.25" frictionloss="0.5" armature="0.0625")");
-  const RobotDescriptionParams p = testing::fixture_walk("small_biped.yaml").description;
-  const LoadedRobot a = load_robot_text(xml, "xml", "small_biped.xml", p);
-  const std::string urdf = robot_urdf(a);
+  const humanoid::RobotDescriptionParams p = humanoid::testing::fixture_walk("small_biped.yaml").description;
+  const humanoid::LoadedRobot a = load_robot_text(xml, "xml", "small_biped.xml", p);
+  const std::string urdf = humanoid::robot_urdf(a);
   EXPECT_NE(urdf.find(R"(<dynamics damping="0.25" friction="0.5" armature="0.0625"/>)"), std::string::npos) << urdf;
-  RobotDescriptionParams q;
-  std::istringstream mapping(urdf_mapping(a));
+  humanoid::RobotDescriptionParams q;
+  std::istringstream mapping(humanoid::urdf_mapping(a));
   for (std::string line; std::getline(mapping, line);) {
     const auto eq = line.find('=');
     const std::string key = line.substr(0, eq), value = line.substr(eq + 1);
-    for (int j = 0; j < kJoints; ++j)
-      if (key == "robot.joints." + std::string(kJointNames[j])) q.joints[j] = value;
+    for (int j = 0; j < humanoid::kJoints; ++j)
+      if (key == "robot.joints." + std::string(humanoid::kJointNames[j])) q.joints[j] = value;
     for (int side = 0; side < 2; ++side) {
       const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
-      FootMapping& m = q.feet[side];
+      humanoid::FootMapping& m = q.feet[side];
       if (key == f + ".body") m.body = value;
       if (key == f + ".sole_geom") m.sole_geom = value;
       if (key == f + ".sole_size") m.sole_size = value;
       if (key == f + ".sole_center") m.sole_center = value;
     }
   }
-  const LoadedRobot b = load_robot_text(urdf, "urdf", "robot.urdf", q);
-  const auto [body, k] = b.joint[kLeftKnee];
-  const LoadedJoint& j = b.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
+  const humanoid::LoadedRobot b = load_robot_text(urdf, "urdf", "robot.urdf", q);
+  const auto [body, k] = b.joint[humanoid::kLeftKnee];
+  const humanoid::LoadedJoint& j = b.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
   EXPECT_EQ(j.damping, 0.25);
   EXPECT_EQ(j.frictionloss, 0.5);
   EXPECT_EQ(j.armature, 0.0625);
@@ -436,4 +464,4 @@ TEST(RobotLoader, UrdfKeepsJointDynamics) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 TEST(RobotLoaderXml, AttributesWithTheirLinesCommentsSkipped) {
@@ -65,4 +65,4 @@ TEST(RobotLoaderXml, MissingMeshesAndTheirGeomsDropped) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -12,7 +12,7 @@
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/plant.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 PlantParams on(const TerrainParams& t) {
@@ -46,7 +46,7 @@ double mujoco_floor(const HumanoidPlant& plant, double x, double y) {
 }
 
 TEST(Terrain, FlatFloorIsThePlaneOfEarlierVersions) {
-  const std::string xml = humanoid_mjcf(RobotParams{}, PlantParams{});
+  const std::string xml = humanoid_mjcf(humanoid::RobotParams{}, PlantParams{});
   EXPECT_NE(
       xml.find(
           R"(    <geom name="floor" type="plane" size="20 20 0.1" contype="1" conaffinity="1" friction="1 0.005 0.0001" solref="0.005 1" material="flexgait_floor"/>
@@ -58,7 +58,7 @@ TEST(Terrain, FlatFloorIsThePlaneOfEarlierVersions) {
 
 TEST(Terrain, RampInMuJoCoHasTheSlopeOfTheKey) {
   for (const double angle : {0.0349, 0.0873, -0.0873}) {
-    const HumanoidPlant plant(RobotParams{}, on(ramp(angle, 0.2)));
+    const HumanoidPlant plant(humanoid::RobotParams{}, on(ramp(angle, 0.2)));
     for (const double x : {-1.5, 0.0, 0.19, 0.21, 0.7, 2.5, 6.0})
       for (const double y : {0.6, -0.9})
         // Box faces in double precision: 1e-9 m covers rounding over the 20 m boxes.
@@ -70,7 +70,7 @@ TEST(Terrain, RampInMuJoCoHasTheSlopeOfTheKey) {
 
 TEST(Terrain, StepInMuJoCoHasTheHeightOfTheKeyAtItsX) {
   for (const double h : {0.02, 0.05, -0.03}) {
-    const HumanoidPlant plant(RobotParams{}, on(step(h, 0.35)));
+    const HumanoidPlant plant(humanoid::RobotParams{}, on(step(h, 0.35)));
     EXPECT_NEAR(mujoco_floor(plant, 0.349, 0.6), 0.0, 1e-9);
     EXPECT_NEAR(mujoco_floor(plant, 0.351, 0.6), h, 1e-9);
     EXPECT_NEAR(mujoco_floor(plant, 4.0, -0.8), h, 1e-9);
@@ -81,7 +81,7 @@ TEST(Terrain, StepInMuJoCoHasTheHeightOfTheKeyAtItsX) {
 
 TEST(Terrain, RoughFloorInMuJoCoMatchesItsNodes) {
   const TerrainParams t = rough(0.01, 0.1);
-  const HumanoidPlant plant(RobotParams{}, on(t));
+  const HumanoidPlant plant(humanoid::RobotParams{}, on(t));
   const HeightGrid& g = plant.terrain().grid();
   ASSERT_EQ(g.ncol, 501);  // 2 cm nodes over 10 m × 3 m
   ASSERT_EQ(g.nrow, 151);
@@ -131,8 +131,8 @@ TEST(Terrain, SameSeedSameHeightsOtherSeedOthers) {
 
 /// Stands for 3 s with the standing pose commanded (no balance controller) and reports the state.
 GroundTruth stand(const TerrainParams& t) {
-  HumanoidPlant plant(RobotParams{}, on(t));
-  const JointVector pose = standing_pose(RobotParams{}, 0.75);
+  HumanoidPlant plant(humanoid::RobotParams{}, on(t));
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, 0.75);
   plant.reset(pose);
   for (int i = 0; i < 750; ++i) plant.step(pose);
   GroundTruth g = plant.truth();
@@ -152,4 +152,4 @@ TEST(Terrain, TwinStandsOnARampAndARoughFloor) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -10,13 +10,14 @@
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/robot_loader.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 using testing::Compiled;
 
-LoadedRobot builtin_loaded() {
-  return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
+humanoid::LoadedRobot builtin_loaded() {
+  return load_robot_text(humanoid_mjcf(humanoid::RobotParams{}, PlantParams{}), "xml", "builtin.xml",
+                         humanoid::RobotDescriptionParams{});
 }
 
 // The twin made from the loaded builtin compiles to the builtin twin's numbers, bit for bit:
@@ -24,8 +25,8 @@ LoadedRobot builtin_loaded() {
 // as the builtin does).
 TEST(TwinMjcf, TwinOfTheLoadedBuiltinCompilesToTheSameNumbers) {
   const PlantParams p;
-  const Compiled a(humanoid_mjcf(RobotParams{}, p));
-  const Compiled b(twin_mjcf(builtin_loaded(), RobotParams{}, p));
+  const Compiled a(humanoid_mjcf(humanoid::RobotParams{}, p));
+  const Compiled b(twin_mjcf(builtin_loaded(), humanoid::RobotParams{}, p));
   ASSERT_EQ(a.m->nbody, b.m->nbody);
   ASSERT_EQ(a.m->njnt, b.m->njnt);
   ASSERT_EQ(a.m->ngeom, b.m->ngeom);
@@ -59,4 +60,4 @@ TEST(TwinMjcf, TwinOfTheLoadedBuiltinCompilesToTheSameNumbers) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

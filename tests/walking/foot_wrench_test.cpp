@@ -20,7 +20,7 @@ constexpr double kFootMass = 1.7;  // [kg]
 // The sensor's reading of a foot in equilibrium: the leg's wrench on the foot balances the ground
 // force f at p (sole frame, p_z = −d) and the foot's weight, whose line passes through the ankle.
 humanoid::ForceTorque reading(const Eigen::Vector3d& f, const Eigen::Vector2d& p, const Eigen::Matrix3d& sole_R) {
-  const Eigen::Vector3d weight = sole_R.transpose() * Eigen::Vector3d(0, 0, -kGravity * kFootMass);
+  const Eigen::Vector3d weight = sole_R.transpose() * Eigen::Vector3d(0, 0, -humanoid::kDefaultGravity * kFootMass);
   const Eigen::Vector3d at(p.x(), p.y(), -kDepth);
   const Eigen::Vector3d force = -(f + weight), torque = -at.cross(f);
   humanoid::ForceTorque ft;
@@ -37,7 +37,7 @@ TEST(FootWrench, RecoversTheNormalForceCentreOfPressureAndTorque) {
   for (const Eigen::Matrix3d& R : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()),
                                    Eigen::Matrix3d(Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 0.5, 0).normalized()))}) {
     for (const Eigen::Vector2d& s : {Eigen::Vector2d(0, 0), Eigen::Vector2d(0.005, 0.014)}) {
-      const FootContact c = foot_contact(reading(f, p, R), R, kDepth, kFootMass, s);
+      const FootContact c = foot_contact(reading(f, p, R), R, kDepth, kFootMass, humanoid::kDefaultGravity, s);
       // Products of forces of 300 N and lengths of 0.1 m: rounding ~1e-13; bound 1e-12.
       EXPECT_NEAR(c.normal_force, f.z(), 1e-12);
       EXPECT_NEAR(c.cop.x(), p.x() - s.x(), 1e-12);
@@ -54,8 +54,8 @@ TEST(FootWrench, RecoversTheNormalForceCentreOfPressureAndTorque) {
 TEST(FootWrench, AFootInTheAirHasNoCentreOfPressure) {
   // Off the ground the sensor carries only the foot's weight.
   const Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  const FootContact c =
-      foot_contact(reading(Eigen::Vector3d::Zero(), Eigen::Vector2d(0.03, 0.02), R), R, kDepth, kFootMass);
+  const FootContact c = foot_contact(reading(Eigen::Vector3d::Zero(), Eigen::Vector2d(0.03, 0.02), R), R, kDepth,
+                                     kFootMass, humanoid::kDefaultGravity);
   EXPECT_NEAR(c.normal_force, 0.0, 1e-12);
   EXPECT_EQ(c.cop, Eigen::Vector2d::Zero());
 }

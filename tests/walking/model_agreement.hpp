@@ -20,6 +20,7 @@
 namespace flexgait::humanoid::testing {
 
 using walking::Matrix3d;
+using walking::Pose;
 using walking::RobotModel;
 using walking::Vector3d;
 
@@ -29,7 +30,7 @@ using walking::Vector3d;
 inline void expect_model_agrees_with_mujoco(const LoadedRobot& loaded) {
   const RobotModel model = walking::make_robot_model(loaded);
   walking::RobotModelData data;
-  Compiled twin(twin_mjcf(loaded, RobotParams{}, PlantParams{}));
+  twin::testing::Compiled twin(twin::twin_mjcf(loaded, RobotParams{}, twin::PlantParams{}));
   EXPECT_NEAR(model.total_mass, twin.m->body_subtreemass[0], 1e-10);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> a(-0.5, 0.5), small(-0.3, 0.3);

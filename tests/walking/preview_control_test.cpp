@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/footstep_plan.hpp"
 
 namespace flexgait::walking {
@@ -16,7 +17,7 @@ constexpr double kPeriod = 0.004, kHeight = 0.705;
 
 TEST(PreviewControl, RiccatiResidualIsTiny) {
   for (double T : {0.001, 0.004, 0.008}) {
-    const PreviewGains g = preview_gains(T, kHeight, 1.6, 1.0, 1e-6);
+    const PreviewGains g = preview_gains(T, kHeight, humanoid::kDefaultGravity, 1.6, 1.0, 1e-6);
     // Relative to ||P||: the 1e-9 (measured ~1e-13 after the Newton refinement).
     EXPECT_LE(g.riccati_residual, 1e-9 * g.P.cwiseAbs().maxCoeff()) << "T = " << T;
     // 1.6 s is long enough: the preview gains decay geometrically, the last below 1 % of the first
@@ -30,7 +31,8 @@ TEST(PreviewControl, CartTableTracksAPlanFromAPerturbedStart) {
   w.steps = 8;
   w.step_time = 1.0;
   const WalkPlan plan = plan_footsteps(w);
-  const PreviewGains g = preview_gains(kPeriod, kHeight, w.preview_time, w.preview_q, w.preview_r);
+  const PreviewGains g =
+      preview_gains(kPeriod, kHeight, humanoid::kDefaultGravity, w.preview_time, w.preview_q, w.preview_r);
   const auto n = static_cast<std::size_t>(std::ceil(plan.duration / kPeriod)) + g.G_p.size() + 2;
   std::vector<double> ref(n);
   for (std::size_t k = 0; k < n; ++k) ref[k] = zmp_reference(plan, static_cast<double>(k) * kPeriod).y();

@@ -162,7 +162,7 @@ JointVector random_angles(unsigned seed, double amplitude) {
 
 TEST(RobotModelDynamics, BuiltinRobotMatchesMjRne) {
   RobotModel model = builtin();  // THORMANG3's inertias (builtin_inertials.hpp)
-  Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
+  Reference ref(twin::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
   use_simulated_inertias(model, ref);
   RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 1)));
 }
@@ -178,7 +178,7 @@ TEST(RobotModelDynamics, BuiltinRobotWithInertiasMatchesMjRne) {
     const Matrix3d R = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
     b.inertia = R * diagonal.asDiagonal() * R.transpose();
   }
-  Reference ref(humanoid::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
+  Reference ref(twin::load_mjcf(mjcf_of(model)), [](int j) { return fmt::format("j{}", j); });
   use_simulated_inertias(model, ref);
   RecordProperty("relative_difference", std::to_string(compare_with_mj_rne(model, ref, 2)));
 }
@@ -207,7 +207,8 @@ TEST(RobotModelDynamics, AtRestTheLegTorquesAreTheirGravityTorques) {
   for (int side = 0; side < 2; ++side) {
     const LegTorque g = leg_gravity_torque(model, kin, side);
     for (int i = 0; i < humanoid::kLegJoints; ++i)
-      EXPECT_NEAR(dyn.tau[humanoid::leg_first_joint(side) + i], g(i), 1e-12 * model.total_mass * kGravity);  // rounding
+      EXPECT_NEAR(dyn.tau[humanoid::leg_first_joint(side) + i], g(i),
+                  1e-12 * model.total_mass * humanoid::kDefaultGravity);  // rounding
   }
 }
 
@@ -226,9 +227,9 @@ TEST(RobotModelDynamics, WithTheGroundForceGivenAtTheFeetItIsTheFullGravityTorqu
     const Pose& foot = kin.frame[model.foot[side]];
     const Pose sole = sole_pose(model, kin, side);
     const Vector3d cop = sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0);
-    const Vector3d ground(0, 0, loads.share[side] * model.total_mass * kGravity);
+    const Vector3d ground(0, 0, loads.share[side] * model.total_mass * humanoid::kDefaultGravity);
     const auto& b = model.bodies[model.foot[side]];
-    const Vector3d weight(0, 0, -b.mass * kGravity);
+    const Vector3d weight(0, 0, -b.mass * humanoid::kDefaultGravity);
     feet.given[side] = true;
     feet.wrench[side].force = -weight - ground;
     feet.wrench[side].moment = -(foot.R * b.com).cross(weight) - (cop - foot.p).cross(ground);

@@ -24,7 +24,8 @@ using walking::Pose;
 using walking::RobotModel;
 
 LoadedRobot builtin_loaded() {
-  return load_robot_text(humanoid_mjcf(RobotParams{}, PlantParams{}), "xml", "builtin.xml", RobotDescriptionParams{});
+  return twin::load_robot_text(twin::humanoid_mjcf(RobotParams{}, twin::PlantParams{}), "xml", "builtin.xml",
+                               RobotDescriptionParams{});
 }
 
 // The builtin's MJCF loaded back: the same controller model as the builtin's own (built from
@@ -173,7 +174,7 @@ TEST(RobotModelLoaded, FourSphereFeetMakeTheSole) {
     EXPECT_NEAR(sole.center[2], -0.06, 1e-15);
     EXPECT_NEAR(std::abs(sole.center[0]) + std::abs(sole.center[1]), 0.0, 1e-15);
   }
-  const std::string twin = twin_mjcf(*walk.loaded, walk.robot, walk.plant);
+  const std::string twin = twin::twin_mjcf(*walk.loaded, walk.robot, walk.plant);
   const auto plate = twin.find(R"(<geom name="l_sole" type="box" size="0.09 0.05 0.005")");
   ASSERT_NE(plate, std::string::npos) << twin;
   EXPECT_NE(twin.substr(plate, twin.find('\n', plate) - plate).find(R"(contype="0" conaffinity="0")"),

@@ -23,8 +23,8 @@ struct Twin {
   mjModel* m;
   mjData* d;
   Twin() {
-    humanoid::PlantParams p;
-    m = humanoid::load_mjcf(humanoid::humanoid_mjcf(humanoid::RobotParams{}, p));
+    twin::PlantParams p;
+    m = twin::load_mjcf(twin::humanoid_mjcf(humanoid::RobotParams{}, p));
     d = mj_makeData(m);
   }
   ~Twin() {

@@ -66,7 +66,7 @@ TEST(StanceLoad, KneeCarriesTheForceTimesItsLever) {
   int knee_body = 0;
   while (model.bodies[knee_body].joint != humanoid::kLeftKnee) ++knee_body;
   const Vector3d knee = data.frame[knee_body].p, centre = sole_pose(model, data, 0).p;
-  const double weight = 57.0 * kGravity;
+  const double weight = 57.0 * humanoid::kDefaultGravity;
   // A force along the line from the sole through the knee's axis: no knee torque.
   const Vector3d through = (knee - centre).normalized() * weight;
   EXPECT_NEAR(stance_joint_torques(model, data, 0, through, centre)(3), 0.0, 1e-9 * weight);

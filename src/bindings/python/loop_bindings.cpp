@@ -136,7 +136,7 @@ class PyHumanoidLoop {
     if (width < 1 || height < 1)
       throw py::value_error(fmt::format("render: width and height must be >= 1, got {}x{}", width, height));
     if (!renderer_ || renderer_->width() != width || renderer_->height() != height)
-      renderer_ = std::make_unique<humanoid::Renderer>(walk_.loop->plant(), width, height);
+      renderer_ = std::make_unique<twin::Renderer>(walk_.loop->plant(), width, height);
     std::vector<unsigned char> rgb;
     {
       py::gil_scoped_release release;
@@ -159,7 +159,7 @@ class PyHumanoidLoop {
   py::object controller_object_;  ///< the Python side of user_ (its overrides live there)
   std::shared_ptr<loop::Controller> user_;
   experiments::WalkLoop walk_;
-  std::unique_ptr<humanoid::Renderer> renderer_;
+  std::unique_ptr<twin::Renderer> renderer_;
 };
 
 py::list joint_names() {
@@ -202,43 +202,43 @@ void bind_records(py::module_& m) {
       .def_property_readonly(
           "accel", [](const humanoid::SensorReadings& s) { return array_of(s.imu.accel); },
           "specific force, pelvis frame [m/s^2] (+g up at rest)");
-  py::class_<humanoid::GroundTruth>(m, "GroundTruth",
-                                    "The twin's true state (for evaluation; a controller is not given it).")
+  py::class_<twin::GroundTruth>(m, "GroundTruth",
+                                "The twin's true state (for evaluation; a controller is not given it).")
       .def_property_readonly(
-          "t", [](const humanoid::GroundTruth& g) { return g.t; }, "time [s]")
+          "t", [](const twin::GroundTruth& g) { return g.t; }, "time [s]")
       .def_property_readonly(
-          "link_angle", [](const humanoid::GroundTruth& g) { return array_of(g.link_angle); }, "[rad]")
+          "link_angle", [](const twin::GroundTruth& g) { return array_of(g.link_angle); }, "[rad]")
       .def_property_readonly(
-          "link_velocity", [](const humanoid::GroundTruth& g) { return array_of(g.link_velocity); }, "[rad/s]")
+          "link_velocity", [](const twin::GroundTruth& g) { return array_of(g.link_velocity); }, "[rad/s]")
       .def_property_readonly(
-          "motor_angle", [](const humanoid::GroundTruth& g) { return array_of(g.motor_angle); }, "[rad]")
+          "motor_angle", [](const twin::GroundTruth& g) { return array_of(g.motor_angle); }, "[rad]")
       .def_property_readonly(
-          "gear_torque", [](const humanoid::GroundTruth& g) { return array_of(g.gear_torque); }, "[N m]")
+          "gear_torque", [](const twin::GroundTruth& g) { return array_of(g.gear_torque); }, "[N m]")
       .def_property_readonly(
-          "pelvis_pos", [](const humanoid::GroundTruth& g) { return array_of(g.pelvis_pos); }, "[m]")
+          "pelvis_pos", [](const twin::GroundTruth& g) { return array_of(g.pelvis_pos); }, "[m]")
       .def_property_readonly(
-          "pelvis_quat", [](const humanoid::GroundTruth& g) { return array_of(g.pelvis_quat); }, "(w, x, y, z)")
+          "pelvis_quat", [](const twin::GroundTruth& g) { return array_of(g.pelvis_quat); }, "(w, x, y, z)")
       .def_property_readonly(
-          "com", [](const humanoid::GroundTruth& g) { return array_of(g.com); }, "whole-body COM [m]")
+          "com", [](const twin::GroundTruth& g) { return array_of(g.com); }, "whole-body COM [m]")
       .def_property_readonly(
-          "zmp", [](const humanoid::GroundTruth& g) { return array_of(g.zmp); },
+          "zmp", [](const twin::GroundTruth& g) { return array_of(g.zmp); },
           "floor contacts' centre of pressure (x, y) [m]")
       .def_property_readonly(
-          "sole_pos", [](const humanoid::GroundTruth& g) { return array_of(g.sole_pos); },
+          "sole_pos", [](const twin::GroundTruth& g) { return array_of(g.sole_pos); },
           "left, right sole centres [m] (2x3)")
       .def_property_readonly(
           "sole_contact",
-          [](const humanoid::GroundTruth& g) {
+          [](const twin::GroundTruth& g) {
             return std::vector<bool>{g.sole_contact[0], g.sole_contact[1]};
           },
           "each sole touches the floor")
       .def_property_readonly(
-          "non_sole_contact", [](const humanoid::GroundTruth& g) { return g.non_sole_contact; },
+          "non_sole_contact", [](const twin::GroundTruth& g) { return g.non_sole_contact; },
           "a body other than a sole touches the floor")
       .def_property_readonly(
-          "normal_force", [](const humanoid::GroundTruth& g) { return g.normal_force; }, "[N]")
+          "normal_force", [](const twin::GroundTruth& g) { return g.normal_force; }, "[N]")
       .def_property_readonly(
-          "warnings", [](const humanoid::GroundTruth& g) { return g.warnings; }, "MuJoCo warnings so far");
+          "warnings", [](const twin::GroundTruth& g) { return g.warnings; }, "MuJoCo warnings so far");
 }
 
 }  // namespace

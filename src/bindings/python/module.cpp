@@ -57,7 +57,7 @@ PYBIND11_MODULE(_flexgait, m) {
   m.attr("__version__") = flexgait::kVersion;
   // MuJoCo's messages to stderr, not to stdout and MUJOCO_LOG.TXT; hooks another module (MuJoCo's
   // own Python bindings) has set are left alone.
-  if (!flexgait::humanoid::mujoco_messages_hooked()) flexgait::humanoid::route_mujoco_messages_to_stderr();
+  if (!flexgait::twin::mujoco_messages_hooked()) flexgait::twin::route_mujoco_messages_to_stderr();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -75,19 +75,8 @@ py::dict branch_dict(const rimless::GaitBranch& b) {
     event.push_back(r.event);
     mode.push_back(rimless::mode_text(r.section));
   }
-  py::dict summary;
-  summary["param"] = b.param;
-  summary["points"] = b.branch.points.size();
-  summary["reached_end"] = b.branch.reached_end;
-  summary["stop_reason"] = b.stop_reason;
-  summary["exact_jacobian"] = b.exact_jacobian;
-  summary["period"] = b.period;
-  summary["segments"] = b.segments;
-  summary["mode"] = b.mode;
-  summary["section"] = std::string(name_of(b.section));
-  summary["failure"] = b.failure.empty() ? py::object(py::none()) : py::object(py::str(b.failure));
   py::dict out;
-  out["summary"] = summary;
+  out["summary"] = json_value(rimless::gait_branch_summary(b));
   out["parameter"] = parameter;
   out["state_names"] = b.state_names;
   out["state"] = padded_matrix(state);

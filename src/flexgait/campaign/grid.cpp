@@ -15,10 +15,10 @@ GridAxis parse_grid_axis(const std::string& text) {
     return UsageError(fmt::format("--grid '{}': {}; allowed: KEY=A:B:N (N values from A to B) or KEY=v1,v2,...",
                                   one_line(text), why));
   };
-  const auto eq = text.find('=');
-  if (eq == std::string::npos) throw fail("no '='");
-  GridAxis axis{text.substr(0, eq), {}, text};
-  const std::string values = text.substr(eq + 1);
+  const std::optional<KeyValue> kv = split_key_value(text);
+  if (!kv) throw fail("no '='");
+  GridAxis axis{kv->key, {}, text};
+  const std::string& values = kv->value;
   if (axis.key.empty()) throw fail("empty key");
   const auto range = split_text(values, ':');
   if (range.size() == 3 && values.find(',') == std::string::npos) {

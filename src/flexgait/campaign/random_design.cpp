@@ -26,11 +26,11 @@ RandomAxis parse_random_axis(const std::string& text) {
     return UsageError(fmt::format("--random '{}': {}; allowed: KEY=A:B (a real key drawn uniformly from [A, B])",
                                   one_line(text), why));
   };
-  const auto eq = text.find('=');
-  if (eq == std::string::npos) throw fail("no '='");
-  RandomAxis axis{text.substr(0, eq), 0, 0, text};
+  const std::optional<KeyValue> kv = split_key_value(text);
+  if (!kv) throw fail("no '='");
+  RandomAxis axis{kv->key, 0, 0, text};
   if (axis.key.empty()) throw fail("empty key");
-  const auto ends = split_text(text.substr(eq + 1), ':');
+  const auto ends = split_text(kv->value, ':');
   if (ends.size() != 2) throw fail(fmt::format("the range of {} needs exactly A:B", axis.key));
   const auto a = parse_finite_number(ends[0]), b = parse_finite_number(ends[1]);
   if (!a || !b) throw fail(fmt::format("the ends of the range of {} are not finite numbers", axis.key));

@@ -100,9 +100,9 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     // 1 s walk's peak roll error. With control.plan_horizontal_force f > 0 the plan's
     // own ground wrench above.
     const auto& b = model_.bodies[static_cast<std::size_t>(model_.foot[side])];
-    const walking::Vector3d weight(0, 0, -b.mass * walking::kGravity);
+    const walking::Vector3d weight(0, 0, -b.mass * model_.gravity);
     const double load = plan_loads_.share[side] * model_.total_mass;
-    const walking::Vector3d ground(0, 0, load * walking::kGravity);
+    const walking::Vector3d ground(0, 0, load * model_.gravity);
     feet_.given[side] = true;
     feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }

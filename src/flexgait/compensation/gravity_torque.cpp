@@ -40,7 +40,7 @@ FootLoads com_loads(const walking::RobotModel& model, const walking::RobotModelD
 
 humanoid::JointVector gravity_torque(const walking::RobotModel& model, const walking::RobotModelData& data,
                                      const FootLoads& loads, GravityForm form) {
-  const double weight = model.total_mass * walking::kGravity;
+  const double weight = model.total_mass * model.gravity;
   humanoid::JointVector tau{};
   for (int side = 0; side < 2; ++side) {
     walking::LegTorque leg = walking::LegTorque::Zero();
@@ -71,7 +71,7 @@ walking::LegTorqueDerivative gravity_torque_derivative(const walking::RobotModel
     const Vector3d point = form == GravityForm::kThesis
                                ? sole.p
                                : Vector3d(sole.p + sole.R * Vector3d(loads.cop[side].x(), loads.cop[side].y(), 0));
-    const double push = -loads.share[side] * model.total_mass * walking::kGravity;
+    const double push = -loads.share[side] * model.total_mass * model.gravity;
     weight_below += push;
     moment_below += push * point;
   }
@@ -80,8 +80,8 @@ walking::LegTorqueDerivative gravity_torque_derivative(const walking::RobotModel
   for (int m = 6; m >= 0; --m) {
     const auto& b = model.bodies[static_cast<std::size_t>(b0 + m)];
     if (form == GravityForm::kFull) {
-      weight_below += b.mass * walking::kGravity;
-      moment_below += b.mass * walking::kGravity * data.com_world[static_cast<std::size_t>(b0 + m)];
+      weight_below += b.mass * model.gravity;
+      moment_below += b.mass * model.gravity * data.com_world[static_cast<std::size_t>(b0 + m)];
     }
     if (m == 6) continue;
     const walking::Pose& f = data.frame[static_cast<std::size_t>(b0 + m)];

@@ -602,10 +602,10 @@ Config resolve_config(const Schema& schema, const std::optional<std::filesystem:
   }
   for (const ConfigEntry& e : options) cfg.set(e.key, e.text, e.origin);
   for (const auto& item : overrides) {
-    const auto eq = item.find('=');
-    if (eq == std::string::npos || eq == 0)
+    const std::optional<KeyValue> kv = split_key_value(item);
+    if (!kv || kv->key.empty())
       throw ConfigError("", fmt::format("--set: '{}' is not of the form key=value", one_line(item)));
-    cfg.set(item.substr(0, eq), item.substr(eq + 1), "--set");
+    cfg.set(kv->key, kv->value, "--set");
   }
   return cfg;
 }

@@ -41,6 +41,12 @@ std::vector<std::string> split_text(std::string_view text, char separator) {
   return out;
 }
 
+std::optional<KeyValue> split_key_value(std::string_view text) {
+  const auto eq = text.find('=');
+  if (eq == std::string_view::npos) return std::nullopt;
+  return KeyValue{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1))};
+}
+
 namespace {
 
 /// The shortest text that reads back to v ("{}"), appended: compiled, through a local buffer (a

@@ -27,6 +27,14 @@ bool count_text(std::string_view text, long long max);
 /// The fields of `text` between `separator`s, empty ones kept ("a,,b" -> a, "", b; "" -> "").
 std::vector<std::string> split_text(std::string_view text, char separator);
 
+/// An assignment "key=value" (`--set`, a grid or random axis, a computed_at entry, a mapping line).
+struct KeyValue {
+  std::string key, value;
+};
+/// `text` split at its first '=' (the value may hold more); nullopt when it has none. The key may
+/// be empty: each caller says what that means.
+std::optional<KeyValue> split_key_value(std::string_view text);
+
 /// `text` made fit for a one-line message: control characters escaped (\n, \r, \t, \\0, others as
 /// \xHH, DEL too) and, past `max_bytes`, cut (at a UTF-8 character boundary) with
 /// "... (N bytes)" appended. Every error message that echoes a user's value goes through it.

@@ -76,8 +76,8 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
 namespace {
 
 /// The walking situation's push: disturbance.push.* at mid single support of push_recovery.step.
-humanoid::Push walking_push(const PushRecoveryRunParams& p) {
-  humanoid::Push push = p.run.push;
+twin::Push walking_push(const PushRecoveryRunParams& p) {
+  twin::Push push = p.run.push;
   push.time = 0;
   push.step = p.test.step;
   push.phase = 0.5;

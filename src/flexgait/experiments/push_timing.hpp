@@ -13,14 +13,14 @@
 namespace flexgait::experiments {
 
 /// The start time of `push` in `plan` [s]. Requires push.step ≤ plan.steps.size().
-double push_start_time(const humanoid::Push& push, const walking::WalkPlan& plan);
+double push_start_time(const twin::Push& push, const walking::WalkPlan& plan);
 
 /// `pushes` with their start times resolved in `plan` (step 0: as given).
-std::vector<humanoid::Push> timed_pushes(std::vector<humanoid::Push> pushes, const walking::WalkPlan& plan);
+std::vector<twin::Push> timed_pushes(std::vector<twin::Push> pushes, const walking::WalkPlan& plan);
 
 /// Throws ConfigError naming `key_prefix` + "step" (or "time") for a push whose step is beyond
 /// the plan, or that gives both a time and a step (key_prefix e.g. "disturbance.pushes[2]." or
 /// "disturbance.push.").
-void check_push_timing(const humanoid::Push& push, const walking::WalkPlan& plan, const std::string& key_prefix);
+void check_push_timing(const twin::Push& push, const walking::WalkPlan& plan, const std::string& key_prefix);
 
 }  // namespace flexgait::experiments

@@ -18,13 +18,13 @@ RobotExport export_robot(const Config& config, const std::string& format, const 
   if (params.loaded)
     loaded = *params.loaded;
   else
-    loaded = humanoid::load_robot_text(humanoid::humanoid_mjcf(params.robot, params.plant), "xml", "builtin",
-                                       humanoid::RobotDescriptionParams{});
+    loaded = twin::load_robot_text(twin::humanoid_mjcf(params.robot, params.plant), "xml", "builtin",
+                                   humanoid::RobotDescriptionParams{});
   RobotExport out{{}, config};
   std::string mapping;
   if (format == "mjcf") {
     out.text = walk_twin(params).mjcf;
-    mapping = humanoid::twin_mjcf_mapping(loaded);
+    mapping = twin::twin_mjcf_mapping(loaded);
   } else {
     out.text = humanoid::robot_urdf(loaded);
     mapping = humanoid::urdf_mapping(loaded);
@@ -33,8 +33,7 @@ RobotExport export_robot(const Config& config, const std::string& format, const 
   for (const auto& [key, value] : params.case_defaults) out.reload.set(key, value, "default (the compensation case)");
   out.reload.set("robot.description", file_name, "humanoid export");
   for (const std::string& line : split_text(mapping, '\n'))
-    if (const auto eq = line.find('='); eq != std::string::npos)
-      out.reload.set(line.substr(0, eq), line.substr(eq + 1), "humanoid export");
+    if (const std::optional<KeyValue> kv = split_key_value(line)) out.reload.set(kv->key, kv->value, "humanoid export");
   return out;
 }
 

@@ -37,11 +37,11 @@ std::string BenchFailure::text() const {
 }
 
 BenchResult run_stiffness_bench(const BenchParams& p, const std::function<void()>& poll) {
-  const humanoid::ActuatorRigParams rig{p.actuator, p.arm_length, p.load_mass, p.physics_dt};
-  const double weight_arm = p.load_mass * 9.81 * p.arm_length;  // m g l [Nm]
-  std::optional<BenchFailure> failure;                          // the first sweep's failure ends the bench
+  const twin::ActuatorRigParams rig{p.actuator, p.arm_length, p.load_mass, p.physics_dt};
+  const double weight_arm = p.load_mass * rig.gravity * p.arm_length;  // m g l [Nm]
+  std::optional<BenchFailure> failure;                                 // the first sweep's failure ends the bench
   auto sweep = [&](BenchSweep which, double k_comp) {
-    humanoid::ActuatorRig bench(rig, p.angle_min);
+    twin::ActuatorRig bench(rig, p.angle_min);
     std::vector<BenchSample> out;
     const int settle = static_cast<int>(std::lround(p.settle_time / p.physics_dt));
     for (int i = 0; i < p.poses; ++i) {
@@ -59,7 +59,7 @@ BenchResult run_stiffness_bench(const BenchParams& p, const std::function<void()
       if (failure) break;
       BenchSample b;
       b.command = desired;
-      b.encoder = humanoid::encoder_reading(p.actuator, bench.motor().theta_m);
+      b.encoder = twin::encoder_reading(p.actuator, bench.motor().theta_m);
       b.link = bench.link_angle();
       b.gravity_torque = weight_arm * std::cos(b.link);  // the torque the gear carries at the true pose
       out.push_back(b);

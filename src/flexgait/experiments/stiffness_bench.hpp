@@ -18,7 +18,7 @@
 
 namespace flexgait::experiments {
 
-using humanoid::ActuatorParams;
+using twin::ActuatorParams;
 
 /// The bench's actuator: the twin's, with the servo's integral action on (a servo that holds its
 /// position under load, so the whole error sits in the gear).

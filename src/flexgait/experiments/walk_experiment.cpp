@@ -52,7 +52,7 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
       derive(key, key == "plant.torque_limit" && actuators > 0 ? actuators
                                                                : walking::scaled_default(rule, c.real(key), scale));
     }
-    p.plant = humanoid::plant_from_config(resolved);
+    p.plant = twin::plant_from_config(resolved);
     p.walk = record_from_config<walking::WalkParams>(resolved);
     p.balance = record_from_config<walking::BalanceParams>(resolved);
     p.control = compensation::compensation_from_config(resolved);
@@ -118,8 +118,8 @@ void check_reach(const WalkRunParams& p, const walking::RobotModel& model) {
     throw ConfigError("walk.step_width", fmt::format("key 'walk.step_width' = '{}': the soles ({:.4f} m wide) would "
                                                      "overlap; allowed: more than {:.4f} m",
                                                      p.walk.step_width, model.sole_width, model.sole_width));
-  const humanoid::TerrainParams& t = p.plant.terrain;
-  if (t.kind != humanoid::TerrainKind::kStep) return;
+  const twin::TerrainParams& t = p.plant.terrain;
+  if (t.kind != twin::TerrainKind::kStep) return;
   const double up = leg - 0.05 * L, down = L - leg;
   if (t.step_height > up || -t.step_height > down)
     throw ConfigError("terrain.step.height",
@@ -132,7 +132,7 @@ void check_reach(const WalkRunParams& p, const walking::RobotModel& model) {
 
 WalkRunParams walk_run_from_config(const Config& c) {
   WalkRunParams p = record_from_config<WalkRunParams>(c);
-  check_with_origin(c, [&] { p.plant = humanoid::plant_from_config(c); });  // with its cross-key check
+  check_with_origin(c, [&] { p.plant = twin::plant_from_config(c); });  // with its cross-key check
   p.controller_robot = p.robot;
   if (!p.description.builtin()) {
     // A relative path given in a configuration file is relative to that file.
@@ -142,7 +142,7 @@ WalkRunParams walk_run_from_config(const Config& c) {
     if (path.is_relative() && colon != std::string::npos && std::filesystem::is_regular_file(origin.substr(0, colon)))
       p.description.description = (std::filesystem::path(origin.substr(0, colon)).parent_path() / path).string();
     check_with_origin(
-        c, [&] { p.loaded = std::make_shared<const humanoid::LoadedRobot>(humanoid::load_robot(p.description)); });
+        c, [&] { p.loaded = std::make_shared<const humanoid::LoadedRobot>(twin::load_robot(p.description)); });
   }
   check_with_origin(c, [&] {
     const walking::RobotModel model = walk_controller_model(p);  // refuses a foot the controller cannot handle
@@ -217,10 +217,10 @@ Schema walk_run_schema() {
   return out;
 }
 
-humanoid::TwinModel walk_twin(const WalkRunParams& params) {
-  if (!params.loaded) return humanoid::builtin_twin(params.robot, params.plant);
-  humanoid::TwinModel t;
-  t.mjcf = humanoid::twin_mjcf(*params.loaded, params.robot, params.plant);
+twin::TwinModel walk_twin(const WalkRunParams& params) {
+  if (!params.loaded) return twin::builtin_twin(params.robot, params.plant);
+  twin::TwinModel t;
+  t.mjcf = twin::twin_mjcf(*params.loaded, params.robot, params.plant);
   for (int side = 0; side < 2; ++side) t.sole_center[side] = params.loaded->sole[side].center;
   return t;
 }
@@ -251,10 +251,10 @@ WalkLoop make_walk_loop(const WalkRunParams& params, std::shared_ptr<loop::Contr
                                                            : std::shared_ptr<loop::Controller>(w.control));
   walking::WalkingController& c = w.control->controller();
   // (the plan's frame taken as the world's: the twin's initial feet sit within millimetres of the plan's)
-  const humanoid::Terrain& terrain = w.loop->plant().terrain();
+  const twin::Terrain& terrain = w.loop->plant().terrain();
   if (params.plant.terrain.known_heights) c.know_floor([&](double x, double y) { return terrain.height(x, y); });
   w.loop->reset(c.initial_pose());
-  w.pushes = timed_pushes(humanoid::all_pushes(params.pushes, params.push), c.plan());
+  w.pushes = timed_pushes(twin::all_pushes(params.pushes, params.push), c.plan());
   w.loop->plant().set_pushes(w.pushes);
   return w;
 }

@@ -37,15 +37,15 @@ struct WalkRunParams {
   /// The loaded description (null for the builtin robot): the twin and the controller's model are
   /// made from it (walk_run_from_config loads it).
   std::shared_ptr<const humanoid::LoadedRobot> loaded;
-  humanoid::PlantParams plant;
+  twin::PlantParams plant;
   humanoid::RobotParams controller_robot;  ///< the controller's belief of the robot
   walking::WalkParams walk;
   walking::BalanceParams balance;
   compensation::CompensationParams control;  ///< the deformation compensators (control.*)
   walking::EstimatorParams estimator;        ///< the controller's attitude estimator (estimator.*)
   walking::HealthParams health;              ///< the controller's sensor health checks (health.*)
-  humanoid::Push push;                       ///< a push on the twin (disturbance.push.*; none by default)
-  std::vector<humanoid::Push> pushes;        ///< more pushes (disturbance.pushes; the single push is added after them)
+  twin::Push push;                           ///< a push on the twin (disturbance.push.*; none by default)
+  std::vector<twin::Push> pushes;            ///< more pushes (disturbance.pushes; the single push is added after them)
   double log_period = 0.02;                  ///< log sample period [s] (a multiple of the control period)
   double fall_height = 0.2;                  ///< fallen when the pelvis sinks this far below its height [m]
   double fall_tilt = 0.6;                    ///< or tilts this far [rad]
@@ -63,13 +63,13 @@ struct WalkRunParams {
   static void visit_fields(Self& s, Visit& v) {
     humanoid::RobotParams::visit_fields(s.robot, v);
     humanoid::RobotDescriptionParams::visit_fields(s.description, v);
-    humanoid::PlantParams::visit_fields(s.plant, v);
+    twin::PlantParams::visit_fields(s.plant, v);
     walking::WalkParams::visit_fields(s.walk, v);
     walking::BalanceParams::visit_fields(s.balance, v);
     compensation::CompensationParams::visit_fields(s.control, v);
     walking::EstimatorParams::visit_fields(s.estimator, v);
     walking::HealthParams::visit_fields(s.health, v);
-    humanoid::Push::visit_fields(s.push, v);
+    twin::Push::visit_fields(s.push, v);
     v("disturbance.pushes", s.pushes,
       {.doc = "pushes on the twin, each {time [s] (or step, phase), body, force [N, world], duration [s]}; "
               "disturbance.push.* adds one more"});
@@ -81,13 +81,13 @@ struct WalkRunParams {
 /// WalkRunParams's keys, those of walking::kScaledDefaults derived from the robot unless set (`auto`).
 Schema walk_run_schema();
 /// The run's parameters (the controller believes the twin's robot); throws ConfigError as plant_from_config
-/// and, for a description file, as humanoid::load_robot and walking::make_robot_model.
+/// and, for a description file, as twin::load_robot and walking::make_robot_model.
 WalkRunParams walk_run_from_config(const Config& config);
 /// `config` with the values walk_run_from_config derived from the robot (the keys left `auto`)
 /// written in, so a run directory's config.yaml replays its walk on its own.
 Config with_derived_values(const Config& config, const WalkRunParams& params);
 /// The twin of the run's robot (builtin or loaded).
-humanoid::TwinModel walk_twin(const WalkRunParams& params);
+twin::TwinModel walk_twin(const WalkRunParams& params);
 /// The controller's model of the run's robot (its belief, controller_robot, for the builtin).
 walking::RobotModel walk_controller_model(const WalkRunParams& params);
 
@@ -351,7 +351,7 @@ loop::LoopSetup walk_loop_setup(const WalkRunParams& params, const walking::Robo
 struct WalkLoop {
   std::shared_ptr<loop::WalkingControl> control;
   std::unique_ptr<loop::HumanoidLoop> loop;
-  std::vector<humanoid::Push> pushes;  ///< the pushes applied (timed)
+  std::vector<twin::Push> pushes;  ///< the pushes applied (timed)
 };
 /// `controller_in_its_place`, when given, drives the twin instead (a user's controller on the same
 /// twin, start pose and pushes); the builtin controller is then made only for its plan and pose.

@@ -12,16 +12,15 @@
 namespace flexgait::experiments {
 
 WalkMarkers::WalkMarkers(const WalkRunParams& params, const walking::WalkingController& controller,
-                         const humanoid::GroundTruth& initial)
+                         const twin::GroundTruth& initial)
     : params_(params),
       controller_(controller),
       offset_(plan_offset(initial, controller.plan())),
       settle_(landing_settle(params)) {}
 
-humanoid::FootprintMarker WalkMarkers::footprint(double x, double y, double yaw,
-                                                 const humanoid::Terrain& terrain) const {
+twin::FootprintMarker WalkMarkers::footprint(double x, double y, double yaw, const twin::Terrain& terrain) const {
   const walking::RobotModel& model = controller_.model();
-  humanoid::FootprintMarker f;
+  twin::FootprintMarker f;
   f.centre = {x, y, terrain.height(x, y)};
   f.yaw = yaw;
   f.half_length = 0.5 * model.sole_length;
@@ -29,9 +28,9 @@ humanoid::FootprintMarker WalkMarkers::footprint(double x, double y, double yaw,
   return f;
 }
 
-std::vector<humanoid::FootprintMarker> WalkMarkers::planned(const humanoid::Terrain& terrain) const {
+std::vector<twin::FootprintMarker> WalkMarkers::planned(const twin::Terrain& terrain) const {
   const walking::WalkPlan& plan = controller_.plan();
-  std::vector<humanoid::FootprintMarker> out;
+  std::vector<twin::FootprintMarker> out;
   out.reserve(2 + plan.steps.size());
   for (const walking::Footprint& f : plan.initial)
     out.push_back(footprint(f.x + offset_.x(), f.y + offset_.y(), f.yaw, terrain));
@@ -41,8 +40,8 @@ std::vector<humanoid::FootprintMarker> WalkMarkers::planned(const humanoid::Terr
 }
 
 void WalkMarkers::observe(const loop::LoopStep& step) {
-  const humanoid::GroundTruth& g = step.after;
-  const humanoid::Terrain& terrain = step.plant.terrain();
+  const twin::GroundTruth& g = step.after;
+  const twin::Terrain& terrain = step.plant.terrain();
   const walking::WalkPlan& plan = controller_.plan();  // (step adjustment moves its landings: read each period)
   const walking::ControllerStatus& st = controller_.status();
   auto ground = [&](double x, double y) { return std::array<double, 3>{x, y, terrain.height(x, y)}; };

@@ -21,27 +21,27 @@ class WalkMarkers final : public loop::LoopObserver {
   /// \param controller the walking controller of the loop (its plan and status are read each period)
   /// \param initial the twin's truth at the start (the plan's frame is found from its feet)
   WalkMarkers(const WalkRunParams& params, const walking::WalkingController& controller,
-              const humanoid::GroundTruth& initial);
+              const twin::GroundTruth& initial);
 
   void observe(const loop::LoopStep& step) override;
 
   /// The markers after the last observed period, in the world frame [m].
-  const humanoid::RenderMarkers& markers() const { return markers_; }
+  const twin::RenderMarkers& markers() const { return markers_; }
   /// The controller's plan's footprints now (the start's two, then each step's landing), in the
   /// world on `terrain`.
-  std::vector<humanoid::FootprintMarker> planned(const humanoid::Terrain& terrain) const;
+  std::vector<twin::FootprintMarker> planned(const twin::Terrain& terrain) const;
   /// The plan's frame in the world: world = plan + offset (x, y) [m].
   const Eigen::Vector2d& offset() const { return offset_; }
 
  private:
-  humanoid::FootprintMarker footprint(double x, double y, double yaw, const humanoid::Terrain& terrain) const;
+  twin::FootprintMarker footprint(double x, double y, double yaw, const twin::Terrain& terrain) const;
 
   const WalkRunParams& params_;
   const walking::WalkingController& controller_;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   double settle_ = 0;             ///< a landing is taken this long after touchdown (as WalkScorer's) [s]
   std::size_t next_landing_ = 0;  ///< the plan's next step not yet landed
-  humanoid::RenderMarkers markers_;
+  twin::RenderMarkers markers_;
 };
 
 }  // namespace flexgait::experiments

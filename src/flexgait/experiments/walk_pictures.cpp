@@ -16,12 +16,12 @@ WalkPictures::WalkPictures(const WalkRunParams& params, WalkLoop& walk, const Wa
       frame_(std::move(frame)),
       markers_(params, walk.control->controller(), walk.loop->truth()),
       log_every_(std::max(1L, std::lround(params.log_period / params.plant.control_period))) {
-  if (options_.render) renderer_ = std::make_unique<humanoid::Renderer>(walk.loop->plant(), *options_.render);
+  if (options_.render) renderer_ = std::make_unique<twin::Renderer>(walk.loop->plant(), *options_.render);
   if (!options_.replay) return;
   std::vector<std::pair<std::string, std::string>> signals;
   for (const char* name : kReplaySignals) signals.emplace_back(name, "m");
   const walking::WalkPlan& plan = controller_.plan();
-  replay_ = std::make_unique<humanoid::ReplayRecorder>(
+  replay_ = std::make_unique<twin::ReplayRecorder>(
       walk.loop->plant(),
       fmt::format("humanoid walk: {} steps, compensation {}", plan.steps.size(), name_of(params.control.mode)),
       std::move(signals), options_.replay_frame_dt, options_.replay_max_frames);
@@ -37,7 +37,7 @@ void WalkPictures::observe(const loop::LoopStep& step) {
   }
   // (at the log's samples, as WalkScorer logs them: a frame's time is a row's of log.csv)
   if (replay_ && step.k % log_every_ == 0) {
-    const humanoid::GroundTruth& g = step.after;
+    const twin::GroundTruth& g = step.after;
     const walking::ControllerStatus& st = controller_.status();
     const Eigen::Vector2d& o = markers_.offset();
     const std::array<double, kReplaySignals.size()> values{g.com[0] - o.x(), g.com[1] - o.y(), g.zmp[1] - o.y(),

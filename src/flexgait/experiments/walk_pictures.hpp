@@ -19,7 +19,7 @@ namespace flexgait::experiments {
 struct WalkPictureOptions {
   /// Draw frames from this view (none: no frames), one every `render_every` control periods,
   /// from the first period on.
-  std::optional<humanoid::RenderView> render;
+  std::optional<twin::RenderView> render;
   long render_every = 1;
   /// Record the replay scene: a frame at the log's samples (WalkRunParams::log_period) every
   /// `replay_frame_dt` [s] of simulated time (25 frames per second: every other 0.02 s sample),
@@ -45,17 +45,17 @@ class WalkPictures final : public loop::LoopObserver {
   int frames() const { return frames_; }
   const WalkMarkers& markers() const { return markers_; }
   /// The renderer of the frames (null unless options.render), e.g. to draw a state without markers.
-  humanoid::Renderer* renderer() { return renderer_.get(); }
+  twin::Renderer* renderer() { return renderer_.get(); }
   /// The replay scene recorded (null unless options.replay).
-  const humanoid::ReplayRecorder* replay() const { return replay_.get(); }
+  const twin::ReplayRecorder* replay() const { return replay_.get(); }
 
  private:
   const walking::WalkingController& controller_;
   WalkPictureOptions options_;
   std::function<void(const std::vector<unsigned char>&, int)> frame_;
   WalkMarkers markers_;
-  std::unique_ptr<humanoid::Renderer> renderer_;
-  std::unique_ptr<humanoid::ReplayRecorder> replay_;
+  std::unique_ptr<twin::Renderer> renderer_;
+  std::unique_ptr<twin::ReplayRecorder> replay_;
   long log_every_ = 1;
   int frames_ = 0;
 };

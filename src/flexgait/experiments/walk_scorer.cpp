@@ -14,8 +14,7 @@ namespace flexgait::experiments {
 namespace {
 
 /// The ground truth the walk's judge reads, with the soles in the plan's frame.
-SupportSample support_sample(const humanoid::GroundTruth& g, const humanoid::Terrain& terrain,
-                             const Eigen::Vector2d& offset) {
+SupportSample support_sample(const twin::GroundTruth& g, const twin::Terrain& terrain, const Eigen::Vector2d& offset) {
   SupportSample s;
   s.t = g.t;
   s.sole_contact = g.sole_contact;
@@ -52,7 +51,7 @@ JudgeLimits judge_limits(const WalkRunParams& p, const walking::RobotModel& mode
 
 }  // namespace
 
-Eigen::Vector2d plan_offset(const humanoid::GroundTruth& g, const walking::WalkPlan& plan) {
+Eigen::Vector2d plan_offset(const twin::GroundTruth& g, const walking::WalkPlan& plan) {
   return 0.5 * (Eigen::Vector2d(g.sole_pos[0][0], g.sole_pos[0][1]) +
                 Eigen::Vector2d(g.sole_pos[1][0], g.sole_pos[1][1])) -
          0.5 * (Eigen::Vector2d(plan.initial[0].x, plan.initial[0].y) +
@@ -74,7 +73,7 @@ double WalkScorer::Accumulator::rms() const {
 }
 
 WalkScorer::WalkScorer(const WalkRunParams& params, const walking::WalkingController& controller,
-                       const humanoid::GroundTruth& initial, const std::vector<humanoid::Push>& pushes,
+                       const twin::GroundTruth& initial, const std::vector<twin::Push>& pushes,
                        std::function<void(const WalkSample&)> record)
     : params_(params),
       controller_(controller),
@@ -128,7 +127,7 @@ void WalkScorer::score_sensing(const loop::LoopStep& step) {
   WalkMetrics& m = out_.metrics;
   const walking::ControllerStatus& st = controller_.status();
   const walking::RobotModel& model = controller_.model();
-  const humanoid::GroundTruth& before = step.before;
+  const twin::GroundTruth& before = step.before;
   const humanoid::SensorReadings& sensors = step.sensors;
   const compensation::OutputEstimate* estimate = step.compensation.estimate();
   flags_since_log_ |= st.sensor_flags;
@@ -145,7 +144,7 @@ void WalkScorer::score_sensing(const loop::LoopStep& step) {
       if (before.sole_contact[side])
         soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0),
                          walking::rot_z(before.sole_yaw[side])});
-    const humanoid::HumanoidPlant& plant = step.plant;
+    const twin::HumanoidPlant& plant = step.plant;
     if (direction.norm() > 0)
       m.capture_point_bound =
           capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
@@ -197,7 +196,7 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
   WalkMetrics& m = out_.metrics;
   const walking::ControllerStatus& st = controller_.status();
   const walking::RobotModel& model = controller_.model();
-  const humanoid::GroundTruth& g = step.after;
+  const twin::GroundTruth& g = step.after;
   const double t_now = g.t;
   const double length = model.sole_length, width = model.sole_width;
 
@@ -229,9 +228,10 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
     Eigen::Vector2d moment = Eigen::Vector2d::Zero();
     for (int side = 0; side < 2; ++side) {
       const Eigen::Matrix3d R = walking::rot_z(g.sole_yaw[side]);
-      const walking::FootContact c = walking::foot_contact(
-          step.plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
-          model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.sole_offset[side].head<2>());
+      const walking::FootContact c =
+          walking::foot_contact(step.plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
+                                model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.gravity,
+                                model.sole_offset[side].head<2>());
       if (c.normal_force <= 1.0) continue;
       moment += c.normal_force *
                 (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset_ + R.topLeftCorner<2, 2>() * c.cop);
@@ -272,7 +272,7 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
 void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& zmp_true,
                             const Eigen::Vector2d& com_true, double margin) {
   const walking::ControllerStatus& st = controller_.status();
-  const humanoid::GroundTruth& g = step.after;
+  const twin::GroundTruth& g = step.after;
   const compensation::OutputEstimate* estimate = step.compensation.estimate();
   WalkSample w;
   w.t = g.t;
@@ -327,7 +327,7 @@ void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& z
 
 WalkResult WalkScorer::finish(const loop::HumanoidLoop& loop) {
   WalkMetrics& m = out_.metrics;
-  const humanoid::GroundTruth& g = loop.truth();
+  const twin::GroundTruth& g = loop.truth();
   if (!m.fell && !m.failure)  // the walk ran to its end: it must end supported
     fall(judge_.at_end(support_sample(g, loop.plant().terrain(), offset_),
                        planned_support(walking::feet_target(controller_.plan(), params_.walk.swing_height, g.t))),

@@ -15,7 +15,7 @@
 namespace flexgait::experiments {
 
 /// The plan's frame against the truth's: the offset between the initial feet (world = plan + offset) [m].
-Eigen::Vector2d plan_offset(const humanoid::GroundTruth& g, const walking::WalkPlan& plan);
+Eigen::Vector2d plan_offset(const twin::GroundTruth& g, const walking::WalkPlan& plan);
 /// A step's landing is taken (its sole's pose read) this long after its touchdown, once the foot has
 /// settled: half the double support [s].
 double landing_settle(const WalkRunParams& params);
@@ -26,7 +26,7 @@ class WalkScorer final : public loop::LoopObserver {
   /// \param initial the twin's truth at the start (the plan's frame is found from its feet)
   /// \param pushes the pushes applied (timed); \param record takes each logged sample (else WalkResult::log)
   WalkScorer(const WalkRunParams& params, const walking::WalkingController& controller,
-             const humanoid::GroundTruth& initial, const std::vector<humanoid::Push>& pushes,
+             const twin::GroundTruth& initial, const std::vector<twin::Push>& pushes,
              std::function<void(const WalkSample&)> record);
 
   void observe(const loop::LoopStep& step) override;
@@ -56,7 +56,7 @@ class WalkScorer final : public loop::LoopObserver {
   WalkJudge judge_;
   WalkResult out_;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();  ///< truth → plan frame
-  humanoid::Push first_push_;                         ///< the capture-point bound is taken for the earliest push
+  twin::Push first_push_;                             ///< the capture-point bound is taken for the earliest push
   bool bound_taken_ = false;
   long log_every_ = 1;
   double t_walk0_ = 0, settle_ = 0;

@@ -10,7 +10,7 @@
 namespace flexgait::loop {
 namespace {
 
-bool finite_truth(const humanoid::GroundTruth& g) {
+bool finite_truth(const twin::GroundTruth& g) {
   auto finite = [](const auto& values) {
     return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
   };

@@ -30,9 +30,9 @@ struct LoopStep {
   const humanoid::JointVector& desired;      ///< the controller's output [rad]
   const humanoid::JointVector& command;      ///< sent to the servos [rad]
   const CompensationStage& compensation;     ///< its estimate, torques, stiffness estimates
-  const humanoid::GroundTruth& before;       ///< the state the sensors read
-  const humanoid::GroundTruth& after;        ///< the state at the period's end
-  const humanoid::HumanoidPlant& plant;      ///< the twin after the period (evaluation code only)
+  const twin::GroundTruth& before;           ///< the state the sensors read
+  const twin::GroundTruth& after;            ///< the state at the period's end
+  const twin::HumanoidPlant& plant;          ///< the twin after the period (evaluation code only)
   const std::optional<SimulationFailure>& failure;  ///< the simulation failed in this period
 };
 
@@ -44,8 +44,8 @@ class LoopObserver {
 
 /// The loop's parts that are not the controller.
 struct LoopSetup {
-  humanoid::TwinModel twin;                  ///< the twin's MJCF and sole centres
-  humanoid::PlantParams plant;               ///< plant.* (its true stiffness, sensors, faults, terrain)
+  twin::TwinModel twin;                      ///< the twin's MJCF and sole centres
+  twin::PlantParams plant;                   ///< plant.* (its true stiffness, sensors, faults, terrain)
   walking::RobotModel model;                 ///< the controller's belief of the robot (compensators, joint ranges)
   compensation::CompensationParams control;  ///< control.*
   StiffnessWindows windows;                  ///< the still stances of the stiffness identification
@@ -69,7 +69,7 @@ class HumanoidLoop {
   void attach(LoopObserver& observer) { observers_.push_back(&observer); }
 
   const humanoid::SensorReadings& sensors() const { return plant_.sensors(); }
-  const humanoid::GroundTruth& truth() const { return truth_; }
+  const twin::GroundTruth& truth() const { return truth_; }
   double time() const { return truth_.t; }
   long periods() const { return k_; }
   const std::optional<SimulationFailure>& failure() const { return failure_; }
@@ -77,8 +77,8 @@ class HumanoidLoop {
   const humanoid::JointVector& command() const { return command_; }
   /// Commanded joint angles clamped into their ranges so far (one per joint and period).
   long joint_limit_hits() const { return joint_limit_hits_; }
-  humanoid::HumanoidPlant& plant() { return plant_; }
-  const humanoid::HumanoidPlant& plant() const { return plant_; }
+  twin::HumanoidPlant& plant() { return plant_; }
+  const twin::HumanoidPlant& plant() const { return plant_; }
   const CompensationStage& compensation() const { return stage_; }
   const walking::RobotModel& model() const { return model_; }
   Controller& controller() { return *controller_; }
@@ -89,10 +89,10 @@ class HumanoidLoop {
   walking::RobotModel model_;
   std::shared_ptr<Controller> controller_;
   CompensationStage stage_;
-  humanoid::HumanoidPlant plant_;
+  twin::HumanoidPlant plant_;
   bool clamp_ = false;
   std::vector<LoopObserver*> observers_;
-  humanoid::GroundTruth truth_, before_;  ///< the state now and at the last period's start
+  twin::GroundTruth truth_, before_;  ///< the state now and at the last period's start
   humanoid::JointVector command_{};
   long k_ = 0;
   long joint_limit_hits_ = 0;

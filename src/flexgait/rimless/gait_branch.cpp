@@ -279,15 +279,15 @@ std::vector<std::string> computed_at_differences(const std::string& recorded, co
   const std::vector<std::string> varied = param_keys(config.schema(), param);
   std::vector<std::string> out;
   for (const std::string& entry : split_text(recorded, ';')) {
-    const auto eq = entry.find('=');
-    const std::string key = entry.substr(0, eq);
+    const std::optional<KeyValue> kv = split_key_value(entry);
+    const std::string key = kv ? kv->key : entry;
     if (std::find(varied.begin(), varied.end(), key) != varied.end()) continue;
-    const ParamSpec* p = eq == std::string::npos ? nullptr : config.schema().find(key);
+    const ParamSpec* p = kv ? config.schema().find(key) : nullptr;
     if (p == nullptr || !identifies_branch(*p)) {
       out.push_back(fmt::format("'{}' (not a key of this configuration's wheel)", one_line(entry, 80)));
       continue;
     }
-    const std::string here = value_text(config, *p), text = entry.substr(eq + 1);
+    const std::string here = value_text(config, *p), text = kv->value;
     std::string canonical;
     try {
       canonical = format_value(parse_value(*p, text, "--branch"));
@@ -403,6 +403,25 @@ std::string gait_branch_csv(const GaitBranch& b) {
     csv.end_row();
   }
   return csv.str();
+}
+
+nlohmann::ordered_json gait_branch_summary(const GaitBranch& b) {
+  nlohmann::ordered_json j;
+  j["param"] = b.param;
+  j["points"] = b.branch.points.size();
+  j["reached_end"] = b.branch.reached_end;
+  j["stop_reason"] = b.stop_reason;
+  j["exact_jacobian"] = b.exact_jacobian;
+  j["period"] = b.period;
+  j["segments"] = b.segments;
+  j["mode"] = b.mode;
+  j["section"] = name_of(b.section);
+  j["failure"] = b.failure.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(b.failure);
+  nlohmann::ordered_json events = nlohmann::ordered_json::array();
+  for (const auto& r : b.rows)
+    if (!r.event.empty()) events.push_back({{"parameter", r.p}, {"event", r.event}, {"gait", r.gait}});
+  j["events"] = events;
+  return j;
 }
 
 }  // namespace flexgait::rimless

@@ -23,6 +23,7 @@
 /// branch ends and says why.
 #include <array>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -181,5 +182,11 @@ GaitBranch continue_gait(const Config& base, const GaitContinuationSpec& spec);
 /// gait, abs_lambda_k and arg_lambda_k for every multiplier (largest first), stable, residual, event, and what the
 /// branch is of, the same on every row: key (the continued key), section, computed_at.
 std::string gait_branch_csv(const GaitBranch& b);
+
+/// The branch's summary record: param, points, reached_end, stop_reason, exact_jacobian, period,
+/// segments, mode, section, failure (null when the start has a fixed point), and events (each
+/// special point's parameter, event and gait). `rimless continuation --json` prints it and the
+/// Python binding returns it.
+nlohmann::ordered_json gait_branch_summary(const GaitBranch& b);
 
 }  // namespace flexgait::rimless

@@ -378,12 +378,11 @@ Config stagnation_map_config(const Config& base, const std::string& variation) {
     const std::size_t comma = std::min(variation.find(',', from), variation.size());
     const std::string kv = variation.substr(from, comma - from);
     from = comma + 1;
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0)
+    const std::optional<KeyValue> item = split_key_value(kv);
+    if (!item || item->key.empty())
       throw UsageError(fmt::format("stagnation map variation '{}': expected KEY=VALUE[,KEY=VALUE...]", variation));
-    const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
     const std::string origin = fmt::format("stagnation map '{}'", variation);
-    c.set(key, value, origin);  // an alias (rimless.mu) sets each of its parts
+    c.set(item->key, item->value, origin);  // an alias (rimless.mu) sets each of its parts
   }
   validate(wheel_from_config(c), initial_from_config(c));
   stagnation_from_config(c);

@@ -16,6 +16,7 @@
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
 #include "flexgait/robot/joints.hpp"
+#include "flexgait/robot/robot_params.hpp"
 
 namespace flexgait::humanoid {
 
@@ -140,6 +141,7 @@ struct LoadedRobot {
   std::vector<std::array<int, 2>>
       exclude;                        ///< body pairs whose contacts are ignored (the file's and robot.exclude_contacts)
   std::vector<std::string> warnings;  ///< what the loader translated or dropped, one line each
+  double gravity = kDefaultGravity;   ///< the file's gravity (`<option gravity>`), along −z [m/s^2]
 
   bool has_joint(int j) const { return joint[j][0] >= 0; }
 };

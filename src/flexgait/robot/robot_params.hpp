@@ -11,6 +11,11 @@
 
 namespace flexgait::humanoid {
 
+/// The magnitude of gravity, along −z, of the builtin robot's world and of a description that states
+/// none (MuJoCo's default `<option gravity="0 0 -9.81">`; URDF has no gravity) [m/s^2]. A loaded
+/// MJCF's own value is LoadedRobot::gravity.
+inline constexpr double kDefaultGravity = 9.81;
+
 /// Geometry and mass distribution. Defaults: the spec's figures; the links' masses, centres of mass
 /// and inertias are THORMANG3's (builtin_inertials.hpp, 42.533 kg) plus batteries and computers
 /// split between pelvis and chest up to total_mass.

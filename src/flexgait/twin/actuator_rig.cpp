@@ -7,14 +7,14 @@
 #include "flexgait/twin/detail/elastic_drives.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 // A fixed actuator housing, a hinge about +y and a light arm along +x carrying a point load.
 std::string rig_mjcf(const ActuatorRigParams& p) {
   return fmt::format(R"(<mujoco model="flexgait_stiffness_bench">
   <compiler angle="radian" inertiafromgeom="true"/>
-  <option timestep="{dt}" integrator="Euler" gravity="0 0 -9.81"/>
+  <option timestep="{dt}" integrator="Euler" gravity="0 0 -{g}"/>
   <worldbody>
     <body name="arm" pos="0 0 1">
       <joint name="joint" type="hinge" axis="0 1 0" stiffness="{k}" damping="{d}"/>
@@ -24,8 +24,8 @@ std::string rig_mjcf(const ActuatorRigParams& p) {
   </worldbody>
 </mujoco>
 )",
-                     fmt::arg("dt", p.physics_dt), fmt::arg("k", p.actuator.k), fmt::arg("d", p.actuator.d),
-                     fmt::arg("l", p.arm_length), fmt::arg("m", p.load_mass));
+                     fmt::arg("dt", p.physics_dt), fmt::arg("g", p.gravity), fmt::arg("k", p.actuator.k),
+                     fmt::arg("d", p.actuator.d), fmt::arg("l", p.arm_length), fmt::arg("m", p.load_mass));
 }
 
 }  // namespace
@@ -71,4 +71,4 @@ std::string ActuatorRig::warnings_text() const {
   return mujoco_warnings_text(impl_->d);
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -7,15 +7,17 @@
 #include <memory>
 #include <string>
 
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/twin/elastic_actuator.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 struct ActuatorRigParams {
   ActuatorParams actuator;
-  double arm_length = 0.3;    ///< hinge to load [m]
-  double load_mass = 13.6;    ///< point load at the arm's end [kg]
-  double physics_dt = 0.001;  ///< [s]
+  double arm_length = 0.3;                     ///< hinge to load [m]
+  double load_mass = 13.6;                     ///< point load at the arm's end [kg]
+  double physics_dt = 0.001;                   ///< [s]
+  double gravity = humanoid::kDefaultGravity;  ///< along −z [m/s^2]
 };
 
 class ActuatorRig {
@@ -38,4 +40,4 @@ class ActuatorRig {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -19,7 +19,7 @@
 
 #include "flexgait/core/record.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// Where a push acts.
 enum class PushBody { kPelvis, kChest };
@@ -87,4 +87,4 @@ inline std::vector<Push> all_pushes(const std::vector<Push>& list, const Push& s
   return out;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

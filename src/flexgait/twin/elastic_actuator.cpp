@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 double gear_deflection(const ActuatorParams& p, double theta_m, double theta_l) {
   const double delta = theta_m - theta_l;
@@ -37,4 +37,4 @@ double encoder_reading(const ActuatorParams& p, double theta_m) {
   return q * std::nearbyint(theta_m / q);
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

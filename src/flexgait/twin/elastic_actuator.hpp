@@ -14,7 +14,7 @@
 /// (twin/detail/elastic_drives.hpp): the spring k dz and +d θ̇_m as a generalised force, the
 /// damping −d θ̇_l implicitly (joint damping; explicit damping blows up at 1 ms, spec "Physics").
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 struct ActuatorParams {
   double k = 1000.0;              ///< gear stiffness [Nm/rad]
@@ -42,4 +42,4 @@ void step_motor(const ActuatorParams& p, ActuatorState& s, double command, doubl
 /// The motor-side encoder's reading: θ_m quantised to 2π / encoder_steps.
 double encoder_reading(const ActuatorParams& p, double theta_m);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

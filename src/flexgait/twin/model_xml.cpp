@@ -13,7 +13,7 @@
 #include "flexgait/robot/builtin_inertials.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 std::string joint(const std::string& name, const char* axis, double k, double d, const char* range = nullptr) {
@@ -24,7 +24,7 @@ std::string joint(const std::string& name, const char* axis, double k, double d,
 /// <inertial> of a body: THORMANG3's numbers at full precision (builtin_inertials.hpp), as
 /// principal moments and axes — the form the loader writes back (twin_mjcf.hpp), so that a loaded
 /// export compiles to the same numbers.
-std::string inertial(const BodyInertial& b) {
+std::string inertial(const humanoid::BodyInertial& b) {
   const auto& c = b.com;
   const auto& i = b.inertia;  // ixx ixy ixz iyy iyz izz
   Eigen::Matrix3d I;
@@ -38,11 +38,12 @@ std::string inertial(const BodyInertial& b) {
                      c[2], b.mass, q.w(), q.x(), q.y(), q.z(), d[0], d[1], d[2]);
 }
 
-std::string leg(const RobotParams& r, const PlantParams& p, const std::array<BodyInertial, 7>& in, int side) {
-  const JointVector k = p.gear_stiffness();
+std::string leg(const humanoid::RobotParams& r, const PlantParams& p, const std::array<humanoid::BodyInertial, 7>& in,
+                int side) {
+  const humanoid::JointVector k = p.gear_stiffness();
   const char* s = side == 0 ? "l" : "r";
   const double y = side == 0 ? r.hip_yaw_offset_y : -r.hip_yaw_offset_y;
-  const int j0 = leg_first_joint(side);
+  const int j0 = humanoid::leg_first_joint(side);
   const double d = p.gear_damping;
   const double sole_h = r.sole_thickness;
   return fmt::format(R"(
@@ -103,9 +104,9 @@ std::string leg(const RobotParams& r, const PlantParams& p, const std::array<Bod
 
 }  // namespace
 
-std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
-  const JointVector k = p.gear_stiffness();
-  const BuiltinInertials in = builtin_inertials(r);
+std::string humanoid_mjcf(const humanoid::RobotParams& r, const PlantParams& p) {
+  const humanoid::JointVector k = p.gear_stiffness();
+  const humanoid::BuiltinInertials in = humanoid::builtin_inertials(r);
   const std::string pelvis = fmt::format(
       R"(    <body name="pelvis" pos="0 0 1">
       <freejoint name="root"/>
@@ -123,11 +124,11 @@ std::string humanoid_mjcf(const RobotParams& r, const PlantParams& p) {
     </body>
 )",
       fmt::arg("i_pelvis", inertial(in.pelvis)), fmt::arg("i_chest", inertial(in.chest)),
-      fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[kWaistYaw], p.gear_damping)),
+      fmt::arg("j_waist", joint("waist_yaw", "0 0 1", k[humanoid::kWaistYaw], p.gear_damping)),
       fmt::arg("chest_z", r.chest_joint_z), fmt::arg("chest_com", r.chest_com_z), fmt::arg("arm_y", r.arm_y),
       fmt::arg("arm_top", r.arm_com_z + 0.24), fmt::arg("arm_bottom", r.arm_com_z - 0.24), fmt::arg("head_z", r.head_z),
       fmt::arg("left", leg(r, p, in.leg[0], 0)), fmt::arg("right", leg(r, p, in.leg[1], 1)));
-  return twin_document("flexgait_thormang_twin", false, r.sole_friction, p, pelvis, "");
+  return twin_document("flexgait_thormang_twin", false, r.sole_friction, humanoid::kDefaultGravity, p, pelvis, "");
 }
 
 std::string look_visual_mjcf(int width, int height) {
@@ -147,12 +148,12 @@ std::string look_assets_mjcf() {
 )";
 }
 
-std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, const PlantParams& p,
-                          const std::string& bodies, const std::string& contact) {
+std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, double gravity,
+                          const PlantParams& p, const std::string& bodies, const std::string& contact) {
   const TerrainMjcf floor = terrain_mjcf(p.terrain, sole_friction, p.contact_time_constant);
   return fmt::format(R"(<mujoco model="{model}">
   <compiler angle="radian" inertiafromgeom="{ifg}" autolimits="true"/>
-  <option timestep="{dt}" integrator="Euler" solver="Newton" iterations="100" tolerance="1e-10" gravity="0 0 -9.81"/>
+  <option timestep="{dt}" integrator="Euler" solver="Newton" iterations="100" tolerance="1e-10" gravity="0 0 -{g}"/>
   <size nconmax="200" njmax="600"/>
   <default>
     <geom contype="0" conaffinity="0" rgba=".75 .75 .75 1"/>
@@ -177,7 +178,7 @@ std::string twin_document(const std::string& model, bool inertia_from_geom, doub
                      fmt::arg("asset", floor.asset), fmt::arg("visual", look_visual_mjcf(1280, 720)),
                      fmt::arg("look", look_assets_mjcf()), fmt::arg("floor", floor.geoms), fmt::arg("model", model),
                      fmt::arg("ifg", inertia_from_geom ? "true" : "false"), fmt::arg("dt", p.physics_dt),
-                     fmt::arg("bodies", bodies), fmt::arg("contact", contact));
+                     fmt::arg("g", gravity), fmt::arg("bodies", bodies), fmt::arg("contact", contact));
 }
 
 mjModel* load_mjcf(const std::string& xml) {
@@ -195,4 +196,4 @@ mjModel* load_mjcf(const std::string& xml) {
   return m;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -13,9 +13,9 @@
 #include "flexgait/robot/robot_params.hpp"
 #include "flexgait/twin/plant_params.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
-std::string humanoid_mjcf(const RobotParams& robot, const PlantParams& plant);
+std::string humanoid_mjcf(const humanoid::RobotParams& robot, const PlantParams& plant);
 
 /// The twin's document around its robot (shared by the builtin and loaded twins): compiler and
 /// physics options from `plant`, the floor (plant.terrain, terrain.hpp; friction sole_friction, contact time constant),
@@ -27,7 +27,9 @@ std::string humanoid_mjcf(const RobotParams& robot, const PlantParams& plant);
 std::string look_visual_mjcf(int width, int height);
 std::string look_assets_mjcf();
 
-std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction,
+/// The twin's MJCF document around `bodies`: gravity [m/s^2] along −z (the robot description's), the
+/// floor from the plant's terrain with the soles' friction, the contact exclusions `contact`.
+std::string twin_document(const std::string& model, bool inertia_from_geom, double sole_friction, double gravity,
                           const PlantParams& plant, const std::string& bodies, const std::string& contact);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

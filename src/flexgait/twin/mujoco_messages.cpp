@@ -9,7 +9,7 @@
 #include "flexgait/core/text.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 // MuJoCo warns once per kind and mjData, but it resets an unstable mjData (and its counts) and
@@ -57,4 +57,4 @@ std::string mujoco_warnings_text(const mjData* d) {
   return text;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -10,7 +10,7 @@
 /// its text (GroundTruth::warnings, HumanoidPlant::warnings_text), and the walk experiment ends a
 /// walk with a named failure at the first warning (walk_experiment.cpp).
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// Routes MuJoCo's warnings to stderr as one line "warning: MuJoCo: <text>" and its errors to
 /// stderr as "error: MuJoCo: <text>" followed by exit status 1 (MuJoCo cannot continue after an
@@ -21,4 +21,4 @@ void route_mujoco_messages_to_stderr();
 /// e.g. MuJoCo's own Python bindings in the same process).
 bool mujoco_messages_hooked();
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

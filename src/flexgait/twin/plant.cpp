@@ -13,7 +13,7 @@
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/sensor_faults.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 int require(const mjModel* m, mjtObj type, const std::string& name) {
@@ -25,8 +25,8 @@ int require(const mjModel* m, mjtObj type, const std::string& name) {
 /// The twin's joint `j`: every leg joint is there; the waist may be absent (a rigid trunk,
 /// ElasticDrives::kAbsentJoint).
 int twin_joint(const mjModel* m, int j) {
-  const std::string name(kJointNames[j]);
-  if (j == kWaistYaw && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0) return ElasticDrives::kAbsentJoint;
+  const std::string name(humanoid::kJointNames[j]);
+  if (j == humanoid::kWaistYaw && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0) return ElasticDrives::kAbsentJoint;
   return require(m, mjOBJ_JOINT, name);
 }
 
@@ -54,10 +54,10 @@ class Data {
 struct PlantState {
   PlantState(const mjModel* m, std::uint64_t seed) : data(m), rng(seed) {}
   Data data;
-  std::vector<ActuatorState> motors;  ///< one per actuated joint, in kJointNames order
+  std::vector<ActuatorState> motors;  ///< one per actuated joint, in humanoid::kJointNames order
   std::vector<Push> pushes;
   std::array<double, 3> push_force{}, push_impulse{}, floor_impulse{};
-  SensorReadings sensors;
+  humanoid::SensorReadings sensors;
   std::mt19937_64 rng;
   std::array<double, 3> gyro_drift{}, accel_drift{};  ///< bias random walks [rad/s], [m/s^2]
   std::array<FaultChannel<6>, 2> ft_fault;            ///< left, right: force then torque
@@ -80,7 +80,7 @@ struct HumanoidPlant::Impl {
   Terrain terrain;
   std::shared_ptr<const mjModel> model;  ///< shared by copies; never changed after construction
   ElasticDrives drives;
-  std::array<int, kJoints> joint_id{};
+  std::array<int, humanoid::kJoints> joint_id{};
   std::array<int, 2> push_body{};  ///< body ids of PushBody: pelvis, chest
   std::array<int, 2> sole_geom{};
   std::array<int, 2> foot_body{};  ///< the bodies of the soles: any of their geoms on the floor is support
@@ -101,7 +101,7 @@ const mjData* plant_data(const HumanoidPlant& plant) {
   return PlantAccess::data(plant);
 }
 
-JointVector standing_pose(const RobotParams& r, double pelvis_height) {
+humanoid::JointVector standing_pose(const humanoid::RobotParams& r, double pelvis_height) {
   const double leg = pelvis_height - r.hip_axes_depth - r.ankle_to_sole;  // hip axes to ankle axes
   const double reach = r.thigh + r.shank;
   if (leg <= 0.05 * reach || leg >= reach)
@@ -114,9 +114,9 @@ JointVector standing_pose(const RobotParams& r, double pelvis_height) {
   const double knee = std::numbers::pi - std::acos(c_knee);
   const double hip = -std::asin(r.shank * std::sin(knee) / leg);
   const double ankle = -(knee + hip);
-  JointVector q{};
+  humanoid::JointVector q{};
   for (int side = 0; side < 2; ++side) {
-    const int j = leg_first_joint(side);
+    const int j = humanoid::leg_first_joint(side);
     q[j + 2] = hip;
     q[j + 3] = knee;
     q[j + 4] = ankle;
@@ -124,14 +124,14 @@ JointVector standing_pose(const RobotParams& r, double pelvis_height) {
   return q;
 }
 
-TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant) {
+TwinModel builtin_twin(const humanoid::RobotParams& robot, const PlantParams& plant) {
   TwinModel t;
   t.mjcf = humanoid_mjcf(robot, plant);
   t.sole_center = {{{0, robot.sole_offset_y, -robot.ankle_to_sole}, {0, -robot.sole_offset_y, -robot.ankle_to_sole}}};
   return t;
 }
 
-HumanoidPlant::HumanoidPlant(const RobotParams& robot, const PlantParams& plant)
+HumanoidPlant::HumanoidPlant(const humanoid::RobotParams& robot, const PlantParams& plant)
     : HumanoidPlant(builtin_twin(robot, plant), plant) {}
 
 namespace {
@@ -139,8 +139,8 @@ namespace {
 ElasticDrives make_drives(const mjModel* m, const PlantParams& params) {
   std::vector<int> joints;
   std::vector<ActuatorParams> act;
-  const JointVector stiffness = params.gear_stiffness();
-  for (int j = 0; j < kJoints; ++j) {
+  const humanoid::JointVector stiffness = params.gear_stiffness();
+  for (int j = 0; j < humanoid::kJoints; ++j) {
     joints.push_back(twin_joint(m, j));
     ActuatorParams a;
     a.k = stiffness[j];
@@ -185,10 +185,10 @@ HumanoidPlant::Impl::Impl(const TwinModel& twin, const PlantParams& plant, Terra
       drives(make_drives(m, plant)),
       state(m, static_cast<std::uint64_t>(plant.noise_seed)) {
   drives.take_springs(m);  // before anything runs; the model is const from here on
-  for (int j = 0; j < kJoints; ++j) joint_id[j] = twin_joint(m, j);
+  for (int j = 0; j < humanoid::kJoints; ++j) joint_id[j] = twin_joint(m, j);
   (void)require(m, mjOBJ_GEOM, "floor");
   // The root body, and the waist joint's body (the root itself for a trunk without a waist).
-  push_body = {1, joint_id[kWaistYaw] < 0 ? 1 : m->jnt_bodyid[joint_id[kWaistYaw]]};
+  push_body = {1, joint_id[humanoid::kWaistYaw] < 0 ? 1 : m->jnt_bodyid[joint_id[humanoid::kWaistYaw]]};
   sole_geom = {require(m, mjOBJ_GEOM, "l_sole"), require(m, mjOBJ_GEOM, "r_sole")};
   foot_body = {m->geom_bodyid[sole_geom[0]], m->geom_bodyid[sole_geom[1]]};
   ft_site = {require(m, mjOBJ_SITE, "l_ft"), require(m, mjOBJ_SITE, "r_ft")};
@@ -203,7 +203,7 @@ HumanoidPlant::HumanoidPlant(const TwinModel& twin, const PlantParams& plant) {
   Terrain terrain(plant.terrain);
   mjModel* m = load_twin(twin, plant, terrain);
   impl_ = std::make_unique<Impl>(twin, plant, std::move(terrain), m);
-  reset(JointVector{});
+  reset(humanoid::JointVector{});
 }
 
 HumanoidPlant::~HumanoidPlant() = default;
@@ -225,7 +225,7 @@ double HumanoidPlant::gravity() const {
 std::string HumanoidPlant::warnings_text() const {
   return mujoco_warnings_text(impl_->state.data.get());
 }
-const SensorReadings& HumanoidPlant::sensors() const {
+const humanoid::SensorReadings& HumanoidPlant::sensors() const {
   return impl_->state.sensors;
 }
 const PlantParams& HumanoidPlant::params() const {
@@ -235,7 +235,7 @@ const Terrain& HumanoidPlant::terrain() const {
   return impl_->terrain;
 }
 
-void HumanoidPlant::reset(const JointVector& pose) {
+void HumanoidPlant::reset(const humanoid::JointVector& pose) {
   Impl& p = *impl_;
   PlantState& st = p.state;
   mjData* d = st.data.get();
@@ -246,12 +246,12 @@ void HumanoidPlant::reset(const JointVector& pose) {
   st.accel_drift = {};
   const auto& f = p.params.faults.sensor;
   const double T = p.params.control_period;
-  st.ft_fault = {FaultChannel<6>(f[kFtLeft], T), FaultChannel<6>(f[kFtRight], T)};
-  st.gyro_fault = FaultChannel<3>(f[kGyro], T);
-  st.accel_fault = FaultChannel<3>(f[kAccel], T);
-  st.ahrs_fault = FaultChannel<4>(f[kAhrs], T);
-  st.encoder_fault = FaultChannel<1>(f[kEncoder], T);
-  for (int j = 0; j < kJoints; ++j)
+  st.ft_fault = {FaultChannel<6>(f[humanoid::kFtLeft], T), FaultChannel<6>(f[humanoid::kFtRight], T)};
+  st.gyro_fault = FaultChannel<3>(f[humanoid::kGyro], T);
+  st.accel_fault = FaultChannel<3>(f[humanoid::kAccel], T);
+  st.ahrs_fault = FaultChannel<4>(f[humanoid::kAhrs], T);
+  st.encoder_fault = FaultChannel<1>(f[humanoid::kEncoder], T);
+  for (int j = 0; j < humanoid::kJoints; ++j)
     if (p.joint_id[j] >= 0) d->qpos[m->jnt_qposadr[p.joint_id[j]]] = pose[j];
   // Level pelvis, then lower it until the lower sole rests on the floor.
   d->qpos[0] = d->qpos[1] = 0.0;
@@ -286,7 +286,7 @@ void HumanoidPlant::reset(const JointVector& pose) {
   p.read_sensors();
 }
 
-void HumanoidPlant::step(const JointVector& command) {
+void HumanoidPlant::step(const humanoid::JointVector& command) {
   Impl& p = *impl_;
   PlantState& st = p.state;
   mjData* d = st.data.get();
@@ -328,10 +328,11 @@ void HumanoidPlant::Impl::apply_push() {
 
 void HumanoidPlant::Impl::read_sensors() {
   const mjData* d = state.data.get();
-  SensorReadings& s = state.sensors;
+  humanoid::SensorReadings& s = state.sensors;
   const double now = d->time;
   s.t = now;
-  for (int j = 0; j < kJoints; ++j) s.encoder[j] = encoder_reading(drives.params()[j], state.motors[j].theta_m);
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    s.encoder[j] = encoder_reading(drives.params()[j], state.motors[j].theta_m);
   s.encoder_stamp.fill(now);
   std::normal_distribution<double> unit(0.0, 1.0);
   auto noisy = [&](double v, double std) { return std > 0 ? v + std * unit(state.rng) : v; };
@@ -372,7 +373,7 @@ void HumanoidPlant::Impl::read_sensors() {
     for (int i = 0; i < 4; ++i) s.imu.quat[i] = r[i] / n;
   }
   if (params.encoder_noise > 0)
-    for (int j = 0; j < kJoints; ++j) s.encoder[j] = noisy(s.encoder[j], params.encoder_noise);
+    for (int j = 0; j < humanoid::kJoints; ++j) s.encoder[j] = noisy(s.encoder[j], params.encoder_noise);
 
   // The fault schedule.
   for (int side = 0; side < 2; ++side) {
@@ -403,7 +404,7 @@ GroundTruth HumanoidPlant::truth() const {
   const mjModel* m = p.model.get();
   GroundTruth g;
   g.t = d->time;
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < humanoid::kJoints; ++j) {
     if (p.joint_id[j] < 0) continue;  // absent (a rigid trunk): its truth stays 0
     const double q = d->qpos[m->jnt_qposadr[p.joint_id[j]]], v = d->qvel[m->jnt_dofadr[p.joint_id[j]]];
     g.link_angle[j] = q;
@@ -457,4 +458,4 @@ GroundTruth HumanoidPlant::truth() const {
   return g;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

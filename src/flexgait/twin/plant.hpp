@@ -21,15 +21,15 @@
 #include "flexgait/twin/plant_params.hpp"
 #include "flexgait/twin/terrain.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// What only evaluation code may read.
 struct GroundTruth {
   double t = 0;
-  JointVector link_angle{}, link_velocity{};  ///< true joint (link-side) angles [rad], [rad/s]
-  JointVector motor_angle{};                  ///< unquantised motor side [rad]
-  JointVector gear_torque{};                  ///< [Nm]
-  std::array<double, 3> pelvis_pos{};         ///< [m]
+  humanoid::JointVector link_angle{}, link_velocity{};  ///< true joint (link-side) angles [rad], [rad/s]
+  humanoid::JointVector motor_angle{};                  ///< unquantised motor side [rad]
+  humanoid::JointVector gear_torque{};                  ///< [Nm]
+  std::array<double, 3> pelvis_pos{};                   ///< [m]
   std::array<double, 4> pelvis_quat{1, 0, 0, 0};
   std::array<double, 3> com{};                      ///< whole-body centre of mass [m]
   std::array<double, 2> zmp{};                      ///< centre of pressure of the floor contacts (x, y) [m]
@@ -54,7 +54,7 @@ struct TwinModel {
 
 /// The builtin robot's twin (humanoid_mjcf), sole centres ankle_to_sole below the ankles and
 /// robot.sole_offset_y outward.
-TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant);
+TwinModel builtin_twin(const humanoid::RobotParams& robot, const PlantParams& plant);
 
 /// The twin (MuJoCo behind a pimpl: twin/detail/ for its model and state). The model is compiled
 /// once and shared, const, by copies; everything that changes while the twin runs (MuJoCo's
@@ -62,7 +62,7 @@ TwinModel builtin_twin(const RobotParams& robot, const PlantParams& plant);
 /// is one plant state, so a copy of the plant continues exactly as the original would.
 class HumanoidPlant {
  public:
-  HumanoidPlant(const RobotParams& robot, const PlantParams& plant);
+  HumanoidPlant(const humanoid::RobotParams& robot, const PlantParams& plant);
   /// The twin of any robot (twin_mjcf.hpp for a loaded description).
   HumanoidPlant(const TwinModel& twin, const PlantParams& plant);
   ~HumanoidPlant();
@@ -72,15 +72,15 @@ class HumanoidPlant {
 
   /// Puts the robot in `pose` (link and motor angles), pelvis level, at rest, lowered until a sole
   /// touches the floor (on a terrain: its lowest point over the soles, terrain.hpp's heights).
-  void reset(const JointVector& pose);
+  void reset(const humanoid::JointVector& pose);
   /// Advances one control period with these motor-side position commands [rad].
-  void step(const JointVector& command);
+  void step(const humanoid::JointVector& command);
   /// The pushes to apply from now on (replace any earlier ones; disturbance.hpp for their timing);
   /// forces on the same body at the same time add up.
   void set_pushes(std::vector<Push> pushes);
   /// One push (set_pushes with one).
   void set_push(const Push& push) { set_pushes({push}); }
-  const SensorReadings& sensors() const;
+  const humanoid::SensorReadings& sensors() const;
   GroundTruth truth() const;
   double time() const;
   double total_mass() const;
@@ -101,6 +101,6 @@ class HumanoidPlant {
 
 /// Standing pose: feet under the hips, pelvis at `pelvis_height` above the floor, knee bent so
 /// that hip and ankle pitch are −knee/2 (legs vertical on average). Throws if out of reach.
-JointVector standing_pose(const RobotParams& robot, double pelvis_height);
+humanoid::JointVector standing_pose(const humanoid::RobotParams& robot, double pelvis_height);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -12,13 +12,13 @@
 #include "flexgait/twin/sensor_faults.hpp"
 #include "flexgait/twin/terrain.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// The elastic gear actuators, the sensors and the timing of the twin.
 struct PlantParams {
-  double k_joint = 1000.0;    ///< true gear stiffness [Nm/rad], times k_scale per joint
-  JointVector k_scale = [] {  ///< factor on k_joint for each joint
-    JointVector ones;
+  double k_joint = 1000.0;              ///< true gear stiffness [Nm/rad], times k_scale per joint
+  humanoid::JointVector k_scale = [] {  ///< factor on k_joint for each joint
+    humanoid::JointVector ones;
     ones.fill(1.0);
     return ones;
   }();
@@ -45,14 +45,14 @@ struct PlantParams {
 
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
   /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
-  JointVector gear_stiffness() const { return scaled(k_joint, k_scale); }
+  humanoid::JointVector gear_stiffness() const { return humanoid::scaled(k_joint, k_scale); }
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
     v("plant.k_joint", s.k_joint,
       {.unit = "Nm/rad", .doc = "true gear stiffness of every joint", .bounds = positive()});
-    for (int j = 0; j < kJoints; ++j) {
-      const std::string key = "plant.k_scale." + std::string(kJointNames[j]);
+    for (int j = 0; j < humanoid::kJoints; ++j) {
+      const std::string key = "plant.k_scale." + std::string(humanoid::kJointNames[j]);
       v(key, s.k_scale[j], {.doc = "factor on plant.k_joint for this joint", .bounds = left_open(0, 100)});
     }
     v("plant.gear_damping", s.gear_damping,
@@ -97,4 +97,4 @@ inline Schema plant_schema() {
 /// or a latency fault has no delay (plant.faults.<sensor>.delay).
 PlantParams plant_from_config(const Config& config);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -16,7 +16,7 @@
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/twin/model_xml.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 std::optional<CameraView> camera_view(std::string_view name) {
   if (name == "side") return CameraView::kSide;
@@ -477,4 +477,4 @@ bool encode_video(const std::filesystem::path& dir, double frame_rate) {
   return std::system(cmd.c_str()) == 0;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -16,7 +16,7 @@
 #include "flexgait/replay/scene.hpp"
 #include "flexgait/twin/plant.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// Where the twin's camera looks from.
 enum class CameraView {
@@ -133,4 +133,4 @@ std::string encode_png(const std::vector<unsigned char>& rgb, int width, int hei
 /// Returns false (and leaves the frames) when it is not there or fails.
 bool encode_video(const std::filesystem::path& dir, double frame_rate);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -6,7 +6,7 @@
 
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 enum LayerIndex { kZmp = 0, kCom = 1, kCapture = 2, kPush = 3, kZmpRef = 4, kActual = 5 };
@@ -211,4 +211,4 @@ void ReplayRecorder::record(const HumanoidPlant& plant, double t, const RenderMa
   for (std::size_t i = 0; i < values.size(); ++i) scene_.set_signal(static_cast<int>(i), f, values[i]);
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -19,7 +19,7 @@
 #include "flexgait/twin/plant.hpp"
 #include "flexgait/twin/renderer.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 class ReplayRecorder {
  public:
@@ -59,4 +59,4 @@ class ReplayRecorder {
   int max_frames_;
 };
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -23,7 +23,7 @@
 #include "flexgait/twin/robot_loader_xml.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 using ModelPtr = std::unique_ptr<mjModel, void (*)(mjModel*)>;
@@ -175,6 +175,18 @@ bool is_ancestor(const mjModel* m, int ancestor, int body) {
   return ancestor == 0;
 }
 
+/// The magnitude of the file's gravity (MuJoCo's `<option gravity>`, default 0 0 −9.81; a URDF states
+/// none) [m/s^2]. The controller's models and the twin both take it; it must point along −z.
+double file_gravity(const mjModel* m, const std::string& source) {
+  const double gx = m->opt.gravity[0], gy = m->opt.gravity[1], gz = m->opt.gravity[2];
+  if (gx != 0 || gy != 0 || !(gz < 0))
+    fail("robot.description", source,
+         fmt::format("its gravity ({} {} {}) must point straight down (0 0 -g with g > 0): a sloped floor is "
+                     "terrain.kind=ramp, not a tilted gravity",
+                     gx, gy, gz));
+  return -gz;
+}
+
 /// The largest torque the file's actuators on hinge `joint` can apply (LoadedJoint::force_limit; MuJoCo's
 /// actuator model: torque = gear × force, force clamped to forcerange, a motor's force = gain × control
 /// clamped to ctrlrange); 0 when none of them is limited.
@@ -262,7 +274,7 @@ constexpr double kSoleBand = 1e-3;  // [m]
 /// kSoleBand of the lowest make the hull, whose bounding rectangle is the sole rectangle.
 /// `carried`: each model geom's index among its body's loaded geoms, −1 when not carried. False
 /// when the foot has no such geom.
-bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& carried, Sole& sole) {
+bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& carried, humanoid::Sole& sole) {
   struct Point {
     std::array<double, 3> x;
     int geom;
@@ -284,7 +296,7 @@ bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& ca
     on_plane.push_back({p.x[0], p.x[1]});
     if (std::find(geoms.begin(), geoms.end(), p.geom) == geoms.end()) geoms.push_back(p.geom);
   }
-  sole.hull = convex_hull(std::move(on_plane));
+  sole.hull = humanoid::convex_hull(std::move(on_plane));
   std::array<double, 2> lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
   for (const auto& p : sole.hull)
     for (int i = 0; i < 2; ++i) {
@@ -310,7 +322,7 @@ bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& ca
 /// text compiled again with the missing meshes as placeholders tells which geoms showed them and
 /// whether their classes make them collide.
 void check_foot_meshes(const std::string& text, const std::string& source, const std::vector<std::string>& missing,
-                       const FootMapping& f, const std::string& prefix) {
+                       const humanoid::FootMapping& f, const std::string& prefix) {
   std::vector<std::string> ignored;
   ModelPtr m(nullptr, mj_deleteModel);
   try {
@@ -333,8 +345,8 @@ void check_foot_meshes(const std::string& text, const std::string& source, const
 
 /// Refuses a robot whose colliding geoms touch each other at zero joint angles (the twin would
 /// start, and stand, in contact with itself), naming the first pair for robot.exclude_contacts.
-void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
-  const ModelPtr twin(load_mjcf(twin_mjcf(robot, RobotParams{}, PlantParams{})), mj_deleteModel);
+void check_self_contacts(const humanoid::LoadedRobot& robot, const std::string& exclude) {
+  const ModelPtr twin(load_mjcf(twin_mjcf(robot, humanoid::RobotParams{}, PlantParams{})), mj_deleteModel);
   mjData* d = mj_makeData(twin.get());
   mj_forward(twin.get(), d);
   const int floor = mj_name2id(twin.get(), mjOBJ_GEOM, "floor");
@@ -355,9 +367,9 @@ void check_self_contacts(const LoadedRobot& robot, const std::string& exclude) {
 
 }  // namespace
 
-LoadedRobot load_robot_text(const std::string& text, const std::string& format, const std::string& source,
-                            const RobotDescriptionParams& params) {
-  LoadedRobot out;
+humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string& format, const std::string& source,
+                                      const humanoid::RobotDescriptionParams& params) {
+  humanoid::LoadedRobot out;
   out.source = source;
   std::vector<std::string> missing_meshes;
   const ModelPtr model = compile(text, format, source, out.warnings, &missing_meshes);
@@ -369,26 +381,26 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
   // The mapped joints (hinges), then the root: the world's child that holds them.
   // A role left at the builtin's name that the file does not have is unmapped: the waist is then
   // rigid, a leg role is an error listing every unmapped one (a loaded robot has no defaults).
-  std::array<int, kJoints> jid{};
+  std::array<int, humanoid::kJoints> jid{};
   std::string unmapped;
   int first_unmapped = -1;
-  for (int j = 0; j < kJoints; ++j) {
+  for (int j = 0; j < humanoid::kJoints; ++j) {
     const std::string& name = params.joints[j];
-    if (name == kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0 && j != kWaistYaw) {
+    if (name == humanoid::kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0 && j != humanoid::kWaistYaw) {
       unmapped += (unmapped.empty() ? "" : ", ") + name;
       if (first_unmapped < 0) first_unmapped = j;
     }
   }
   if (first_unmapped >= 0)
-    fail("robot.joints." + std::string(kJointNames[first_unmapped]), params.joints[first_unmapped],
+    fail("robot.joints." + std::string(humanoid::kJointNames[first_unmapped]), params.joints[first_unmapped],
          fmt::format("{} has no joint of that name; map every leg role to a joint of the file (unmapped: {})", source,
                      unmapped));
-  for (int j = 0; j < kJoints; ++j) {
-    const std::string key = "robot.joints." + std::string(kJointNames[j]);
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    const std::string key = "robot.joints." + std::string(humanoid::kJointNames[j]);
     const std::string& name = params.joints[j];
     // A trunk without a waist (none, or left unmapped): the chest is rigid on the pelvis.
-    if (j == kWaistYaw &&
-        (name == "none" || (name == kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0))) {
+    if (j == humanoid::kWaistYaw &&
+        (name == "none" || (name == humanoid::kJointNames[j] && mj_name2id(m, mjOBJ_JOINT, name.c_str()) < 0))) {
       jid[j] = -1;
       continue;
     }
@@ -396,12 +408,13 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     if (jid[j] < 0) fail(key, name, fmt::format("no joint of that name in {}", source));
     if (m->jnt_type[jid[j]] != mjJNT_HINGE) fail(key, name, "not a hinge (revolute) joint");
     for (int i = 0; i < j; ++i)
-      if (jid[i] == jid[j]) fail(key, name, fmt::format("also mapped to robot.joints.{}", kJointNames[i]));
+      if (jid[i] == jid[j]) fail(key, name, fmt::format("also mapped to robot.joints.{}", humanoid::kJointNames[i]));
   }
-  const int root = m->body_rootid[m->jnt_bodyid[jid[kLeftHipYaw]]];
-  for (int j = 0; j < kJoints; ++j)
+  const int root = m->body_rootid[m->jnt_bodyid[jid[humanoid::kLeftHipYaw]]];
+  for (int j = 0; j < humanoid::kJoints; ++j)
     if (jid[j] >= 0 && m->body_rootid[m->jnt_bodyid[jid[j]]] != root)
-      fail("robot.joints." + std::string(kJointNames[j]), params.joints[j], "not in the same body tree as the legs");
+      fail("robot.joints." + std::string(humanoid::kJointNames[j]), params.joints[j],
+           "not in the same body tree as the legs");
 
   // The root's subtree, parents before children (MuJoCo's body order is depth-first).
   std::vector<int> index(static_cast<std::size_t>(m->nbody), -1);
@@ -409,7 +422,7 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
   for (int b = root; b < m->nbody; ++b) {
     if (b != root && (m->body_parentid[b] == 0 || index[static_cast<std::size_t>(m->body_parentid[b])] < 0)) continue;
     index[static_cast<std::size_t>(b)] = static_cast<int>(out.bodies.size());
-    LoadedBody body;
+    humanoid::LoadedBody body;
     body.name = name_of(m, mjOBJ_BODY, b);
     body.parent = b == root ? -1 : index[static_cast<std::size_t>(m->body_parentid[b])];
     body.pos = vec3(m->body_pos + 3 * b);
@@ -420,9 +433,9 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     body.inertia = vec3(m->body_inertia + 3 * b);
     for (int k = m->body_jntadr[b]; k >= 0 && k < m->body_jntadr[b] + m->body_jntnum[b]; ++k) {
       if (m->jnt_type[k] == mjJNT_FREE) continue;
-      LoadedJoint joint;
+      humanoid::LoadedJoint joint;
       joint.name = name_of(m, mjOBJ_JOINT, k);
-      for (int j = 0; j < kJoints; ++j)
+      for (int j = 0; j < humanoid::kJoints; ++j)
         if (jid[j] == k) joint.mapped = j;
       joint.pos = vec3(m->jnt_pos + 3 * k);
       joint.axis = vec3(m->jnt_axis + 3 * k);
@@ -440,7 +453,7 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     for (int g = m->body_geomadr[b]; g >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
       const char* type = geom_type_name(m->geom_type[g]);
       if (type == nullptr) continue;
-      LoadedGeom geom;
+      humanoid::LoadedGeom geom;
       geom.name = name_of(m, mjOBJ_GEOM, g);
       geom.type = type;
       geom.size = vec3(m->geom_size + 3 * g);
@@ -462,11 +475,11 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     }
     out.bodies.push_back(std::move(body));
   }
-  if (jid[kWaistYaw] < 0) out.joint[kWaistYaw] = {-1, -1};
+  if (jid[humanoid::kWaistYaw] < 0) out.joint[humanoid::kWaistYaw] = {-1, -1};
 
   // The feet: six joints from the root to each foot, the leg's own, in order.
   for (int side = 0; side < 2; ++side) {
-    const FootMapping& f = params.feet[side];
+    const humanoid::FootMapping& f = params.feet[side];
     const std::string prefix = std::string("robot.feet.") + (side == 0 ? "left" : "right");
     const int b = mj_name2id(m, mjOBJ_BODY, f.body.c_str());
     if (b < 0) fail(prefix + ".body", f.body, fmt::format("no body of that name in {}", source));
@@ -478,56 +491,57 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
     // Joints between the root and the hips (a waist below the root): held rigid when unmapped;
     // the legs hang from the root in the controller's model, so a mapped waist cannot be there.
     auto leg_role = [&](int k) {
-      for (int j = 0; j < kJoints; ++j)
-        if (jid[j] == k && j != kWaistYaw) return true;
+      for (int j = 0; j < humanoid::kJoints; ++j)
+        if (jid[j] == k && j != humanoid::kWaistYaw) return true;
       return false;
     };
     while (!path.empty() && !leg_role(path.front())) {
-      if (path.front() == jid[kWaistYaw])
-        fail("robot.joints.waist_yaw", params.joints[kWaistYaw],
+      if (path.front() == jid[humanoid::kWaistYaw])
+        fail("robot.joints.waist_yaw", params.joints[humanoid::kWaistYaw],
              fmt::format("this joint is between the root and the leg to {}; flexgait's legs hang from the root: map "
                          "robot.joints.waist_yaw=none to hold it rigid",
                          f.body));
       path.erase(path.begin());
     }
-    if (path.size() != kLegJoints)
+    if (path.size() != humanoid::kLegJoints)
       fail(prefix + ".body", f.body,
            fmt::format("the leg from the root to this foot has {} joints; flexgait's legs have {}", path.size(),
-                       kLegJoints));
+                       humanoid::kLegJoints));
     // The leg's joints by role, whatever their order within the hip and within the ankle.
-    const int j0 = leg_first_joint(side);
-    for (int i = 0; i < kLegJoints; ++i) {
+    const int j0 = humanoid::leg_first_joint(side);
+    for (int i = 0; i < humanoid::kLegJoints; ++i) {
       const int k = path[static_cast<std::size_t>(i)];
       int role = -1;
-      for (int j = 0; j < kJoints; ++j)
+      for (int j = 0; j < humanoid::kJoints; ++j)
         if (jid[j] == k) role = j;
-      if (role < 0 || !in_leg(role, side)) {
+      if (role < 0 || !humanoid::in_leg(role, side)) {
         // A joint of the other leg's roles, or of none: name the role that is missing here.
         int missing = j0;
-        for (int r = 0; r < kLegJoints; ++r)
+        for (int r = 0; r < humanoid::kLegJoints; ++r)
           if (std::find(path.begin(), path.end(), jid[j0 + r]) == path.end()) missing = j0 + r;
         if (role >= 0)
-          fail("robot.joints." + std::string(kJointNames[role]), params.joints[role],
+          fail("robot.joints." + std::string(humanoid::kJointNames[role]), params.joints[role],
                fmt::format("this joint is on the leg to {} (the {} foot); map the {} leg's roles to that leg's joints",
                            f.body, side == 0 ? "left" : "right", side == 0 ? "right" : "left"));
-        fail("robot.joints." + std::string(kJointNames[missing]), params.joints[missing],
+        fail("robot.joints." + std::string(humanoid::kJointNames[missing]), params.joints[missing],
              fmt::format("not on the leg to {}, whose joint {} is '{}' (mapped to no role)", f.body, i + 1,
                          name_of(m, mjOBJ_JOINT, k)));
       }
       const int r = role - j0;
       const int group = r < 3 ? 0 : (r == 3 ? 1 : 2), at = i < 3 ? 0 : (i == 3 ? 1 : 2);
       if (group != at)
-        fail("robot.joints." + std::string(kJointNames[role]), params.joints[role],
+        fail("robot.joints." + std::string(humanoid::kJointNames[role]), params.joints[role],
              fmt::format("joint {} of the leg to {}; a leg's joints from the root are the three hip joints (any "
                          "order), the knee, then the two ankle joints (any order)",
                          i + 1, f.body));
       out.leg_order[side][static_cast<std::size_t>(i)] = r;
     }
     out.foot[side] = index[static_cast<std::size_t>(b)];
-    Sole& sole = out.sole[side];
+    humanoid::Sole& sole = out.sole[side];
     // (the builtin's sole name left as it is, and the file has no such geom: no sole geom named)
-    const bool builtin_name = f.sole_geom == RobotDescriptionParams{}.feet[static_cast<std::size_t>(side)].sole_geom &&
-                              mj_name2id(m, mjOBJ_GEOM, f.sole_geom.c_str()) < 0;
+    const bool builtin_name =
+        f.sole_geom == humanoid::RobotDescriptionParams{}.feet[static_cast<std::size_t>(side)].sole_geom &&
+        mj_name2id(m, mjOBJ_GEOM, f.sole_geom.c_str()) < 0;
     if (f.sole_geom != "none" && !builtin_name) {
       const int g = mj_name2id(m, mjOBJ_GEOM, f.sole_geom.c_str());
       if (g < 0 || m->geom_bodyid[g] != b)
@@ -535,7 +549,7 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       if (m->geom_type[g] != mjGEOM_BOX) fail(prefix + ".sole_geom", f.sole_geom, "not a box");
       const mjtNum* q = m->geom_quat + 4 * g;
       if (std::abs(q[0]) < 1 - 1e-12) fail(prefix + ".sole_geom", f.sole_geom, "its axes are not the foot body's");
-      const LoadedBody& foot = out.bodies[static_cast<std::size_t>(out.foot[side])];
+      const humanoid::LoadedBody& foot = out.bodies[static_cast<std::size_t>(out.foot[side])];
       for (std::size_t i = 0; i < foot.geoms.size(); ++i)
         if (foot.geoms[i].name == f.sole_geom) sole.geom = static_cast<int>(i);
       const mjtNum* p = m->geom_pos + 3 * g;
@@ -596,10 +610,11 @@ LoadedRobot load_robot_text(const std::string& text, const std::string& format, 
       out.exclude.push_back(ids);
   }
   check_self_contacts(out, params.exclude_contacts);
+  out.gravity = file_gravity(m, source);
   return out;
 }
 
-LoadedRobot load_robot(const RobotDescriptionParams& params) {
+humanoid::LoadedRobot load_robot(const humanoid::RobotDescriptionParams& params) {
   const std::string& path = params.description;
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".xml" && ext != ".urdf")
@@ -619,10 +634,10 @@ LoadedRobot load_robot(const RobotDescriptionParams& params) {
     fail("robot.description", path,
          fmt::format("larger than {} bytes; a robot description is at most a few megabytes (meshes are separate files)",
                      kMaxDescriptionBytes));
-  LoadedRobot robot = load_robot_text(text, ext.substr(1), path, params);
+  humanoid::LoadedRobot robot = load_robot_text(text, ext.substr(1), path, params);
   for (const std::string& w : robot.warnings)
     fmt::print(stderr, "warning: robot.description {}: {}\n", one_line(path), w);
   return robot;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -13,7 +13,7 @@
 
 #include "flexgait/robot/robot_description.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// The size limit of a description file [bytes]: the largest published humanoid files (MJCF or
 /// URDF, meshes apart) are below 1 MB; the limit keeps a huge file from being read into memory.
@@ -25,11 +25,11 @@ inline constexpr std::size_t kMaxDescriptionBytes = std::size_t{16} << 20;
 /// name not in the file, a leg with the wrong number of joints, a foot without a sole.
 /// What the loader translated (MuJoCo 3 attributes, robot_loader_xml.hpp) is printed on stderr,
 /// one "warning:" line each, and kept in LoadedRobot::warnings.
-LoadedRobot load_robot(const RobotDescriptionParams& params);
+humanoid::LoadedRobot load_robot(const humanoid::RobotDescriptionParams& params);
 
 /// Loads description text (MJCF or URDF by `format`: "xml" or "urdf") as load_robot does; `source`
 /// names it in messages.
-LoadedRobot load_robot_text(const std::string& text, const std::string& format, const std::string& source,
-                            const RobotDescriptionParams& params);
+humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string& format, const std::string& source,
+                                      const humanoid::RobotDescriptionParams& params);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

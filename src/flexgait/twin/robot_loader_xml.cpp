@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 bool space(char c) {
@@ -221,4 +221,4 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
   return out;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// One attribute of one element start tag.
 struct XmlAttribute {
@@ -57,4 +57,4 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
                               MissingMeshes missing_meshes = MissingMeshes::kDrop,
                               std::vector<std::string>* missing_names = nullptr);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

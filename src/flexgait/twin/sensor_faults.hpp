@@ -25,7 +25,7 @@
 #include "flexgait/robot/joints.hpp"
 #include "flexgait/robot/sensor_ids.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 enum class FaultKind { kNone, kDropout, kStuck, kNan, kLatency };
 constexpr std::array<EnumName<FaultKind>, 5> enum_names(FaultKind) {
@@ -48,13 +48,13 @@ struct FaultSpec {
 
 /// The fault schedule of the twin: one fault per sensor (keys plant.faults.<sensor>.*).
 struct SensorFaults {
-  std::array<FaultSpec, kSensors> sensor{};
-  Joint encoder_joint = kLeftKnee;  ///< the joint whose encoder the encoder fault hits
+  std::array<FaultSpec, humanoid::kSensors> sensor{};
+  humanoid::Joint encoder_joint = humanoid::kLeftKnee;  ///< the joint whose encoder the encoder fault hits
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
-    for (int i = 0; i < kSensors; ++i) {
-      const std::string key = "plant.faults." + std::string(kSensorNames[i]);
+    for (int i = 0; i < humanoid::kSensors; ++i) {
+      const std::string key = "plant.faults." + std::string(humanoid::kSensorNames[i]);
       auto& f = s.sensor[i];
       v(key + ".kind", f.kind, {.doc = "fault of this sensor: none, dropout, stuck, nan or latency"});
       v(key + ".start", f.start, {.unit = "s", .doc = "when the fault begins", .bounds = closed(0, 1e6)});
@@ -155,4 +155,4 @@ class FaultChannel {
   std::size_t head_ = 0, filled_ = 0;
 };
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 constexpr double kBoxHalfLength = 10.0;  ///< half-length of the ramp's and step's boxes along x [m]
@@ -136,4 +136,4 @@ TerrainMjcf terrain_mjcf(const TerrainParams& p, double mu, double tc) {
   return out;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

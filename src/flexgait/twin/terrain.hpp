@@ -23,7 +23,7 @@
 
 #include "flexgait/core/record.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 enum class TerrainKind { kFlat, kRamp, kStep, kRough };
 constexpr std::array<EnumName<TerrainKind>, 4> enum_names(TerrainKind) {
@@ -112,4 +112,4 @@ TerrainMjcf terrain_mjcf(const TerrainParams& params, double friction, double co
 /// Name of the rough floor's height field in the MJCF.
 inline constexpr const char* kTerrainHfield = "terrain";
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -8,7 +8,7 @@
 
 #include "flexgait/twin/model_xml.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 template <class T, std::size_t N>
@@ -54,9 +54,9 @@ bool reserved(std::string_view name) {
   return name == "floor" || name == "l_sole" || name == "r_sole";
 }
 
-void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot, const PlantParams& p, int b,
-                int depth) {
-  const LoadedBody& body = r.bodies[static_cast<std::size_t>(b)];
+void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid::RobotParams& robot,
+                const PlantParams& p, int b, int depth) {
+  const humanoid::LoadedBody& body = r.bodies[static_cast<std::size_t>(b)];
   const std::string pad(static_cast<std::size_t>(2 * depth), ' ');
   const bool root = body.parent < 0;
   out += pad + "<body";
@@ -71,11 +71,12 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
   if (body.mass > 0)
     out += fmt::format("{}  <inertial pos=\"{}\" quat=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n", pad, list(body.ipos),
                        unit_list(body.iquat), body.mass, list(body.inertia));
-  const JointVector k = p.gear_stiffness();
-  for (const LoadedJoint& j : body.joints) {
+  const humanoid::JointVector k = p.gear_stiffness();
+  for (const humanoid::LoadedJoint& j : body.joints) {
     if (j.mapped < 0) continue;  // held rigid
-    out += fmt::format("{}  <joint name=\"{}\" type=\"hinge\" pos=\"{}\" axis=\"{}\" stiffness=\"{}\" damping=\"{}\"",
-                       pad, kJointNames[j.mapped], list(j.pos), unit_list(j.axis), k[j.mapped], p.gear_damping);
+    out +=
+        fmt::format("{}  <joint name=\"{}\" type=\"hinge\" pos=\"{}\" axis=\"{}\" stiffness=\"{}\" damping=\"{}\"", pad,
+                    humanoid::kJointNames[j.mapped], list(j.pos), unit_list(j.axis), k[j.mapped], p.gear_damping);
     if (j.limited) out += fmt::format(" limited=\"true\" range=\"{} {}\"", j.range[0], j.range[1]);
     if (j.armature > 0) out += fmt::format(" armature=\"{}\"", j.armature);
     if (j.frictionloss > 0) out += fmt::format(" frictionloss=\"{}\"", j.frictionloss);
@@ -87,7 +88,7 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
       fmt::format(R"(contype="1" conaffinity="1" condim="3" friction="{} 0.005 0.0001" solref="{} 1")",
                   robot.sole_friction, p.contact_time_constant);
   for (std::size_t g = 0; g < body.geoms.size(); ++g) {
-    const LoadedGeom& geom = body.geoms[g];
+    const humanoid::LoadedGeom& geom = body.geoms[g];
     const bool sole = side >= 0 && r.sole[side].geom == static_cast<int>(g);
     // (a geom of a sole made by the foot's contact geoms: it keeps its name and takes the sole's contact)
     const bool sole_part = side >= 0 && r.sole[side].hull_in_twin &&
@@ -108,7 +109,7 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
     out += fmt::format(" rgba=\"{}\"/>\n", list(geom.rgba));
   }
   if (side >= 0 && r.sole[side].geom < 0) {  // a sole plate 10 mm thick on the sole rectangle
-    const Sole& s = r.sole[side];
+    const humanoid::Sole& s = r.sole[side];
     // (on a sole the foot's own geoms make in the twin, the plate only marks it: no contact)
     out += fmt::format(
         "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 {}\"/>\n", pad,
@@ -122,23 +123,24 @@ void write_body(std::string& out, const LoadedRobot& r, const RobotParams& robot
 
 }  // namespace
 
-std::string twin_mjcf(const LoadedRobot& r, const RobotParams& robot, const PlantParams& p) {
+std::string twin_mjcf(const humanoid::LoadedRobot& r, const humanoid::RobotParams& robot, const PlantParams& p) {
   std::string bodies;
   write_body(bodies, r, robot, p, 0, 2);
   std::string exclude;
   for (const auto& e : r.exclude)
     exclude += fmt::format("    <exclude body1=\"{}\" body2=\"{}\"/>\n", r.bodies[static_cast<std::size_t>(e[0])].name,
                            r.bodies[static_cast<std::size_t>(e[1])].name);
-  return twin_document("flexgait_twin", false, robot.sole_friction, p, bodies,
+  return twin_document("flexgait_twin", false, robot.sole_friction, r.gravity, p, bodies,
                        exclude.empty() ? std::string() : "  <contact>\n" + exclude + "  </contact>\n");
 }
 
-std::string twin_mjcf_mapping(const LoadedRobot& loaded) {
+std::string twin_mjcf_mapping(const humanoid::LoadedRobot& loaded) {
   std::string out;
-  for (int j = 0; j < kJoints; ++j)
-    out += fmt::format("robot.joints.{}={}\n", kJointNames[j], loaded.has_joint(j) ? kJointNames[j] : "none");
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    out += fmt::format("robot.joints.{}={}\n", humanoid::kJointNames[j],
+                       loaded.has_joint(j) ? humanoid::kJointNames[j] : "none");
   for (int side = 0; side < 2; ++side) {
-    const LoadedBody& foot = loaded.bodies[static_cast<std::size_t>(loaded.foot[side])];
+    const humanoid::LoadedBody& foot = loaded.bodies[static_cast<std::size_t>(loaded.foot[side])];
     // (a sole the foot's own geoms make in the twin is made again from them on reload)
     out += fmt::format("robot.feet.{0}.body={1}\nrobot.feet.{0}.sole_geom={2}\n", side == 0 ? "left" : "right",
                        foot.name, loaded.sole[side].hull_in_twin ? "none" : (side == 0 ? "l_sole" : "r_sole"));
@@ -146,4 +148,4 @@ std::string twin_mjcf_mapping(const LoadedRobot& loaded) {
   return out;
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

@@ -12,14 +12,15 @@
 #include "flexgait/robot/robot_params.hpp"
 #include "flexgait/twin/plant_params.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// \param robot sole friction (robot.sole_friction); \param plant gears, physics step, contacts.
-std::string twin_mjcf(const LoadedRobot& loaded, const RobotParams& robot, const PlantParams& plant);
+std::string twin_mjcf(const humanoid::LoadedRobot& loaded, const humanoid::RobotParams& robot,
+                      const PlantParams& plant);
 
 /// The mapping that loads twin_mjcf(loaded, ...) back as a description: `--set` lines (KEY=VALUE),
 /// one per line: each joint under its flexgait name (waist_yaw none if the robot has no waist),
 /// each foot's body with its sole geom l_sole / r_sole.
-std::string twin_mjcf_mapping(const LoadedRobot& loaded);
+std::string twin_mjcf_mapping(const humanoid::LoadedRobot& loaded);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

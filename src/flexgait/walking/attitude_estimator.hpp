@@ -44,6 +44,7 @@
 /// Readings whose magnitude is outside [0.5 g, 1.5 g] after compensation are not used (impacts).
 /// Allocation-free; no simulator types.
 #include "flexgait/core/record.hpp"
+#include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/rotation.hpp"
 
 namespace flexgait::walking {
@@ -81,7 +82,7 @@ struct EstimatorParams {
   double level_time = 0.3;
   double level_tolerance = 0.02;   ///< levelling: a steady reading's largest angle to the window's mean [rad]
   bool accel_compensation = true;  ///< subtract the planned COM acceleration from the accelerometer
-  double gravity = 9.81;           ///< [m/s^2]
+  double gravity = humanoid::kDefaultGravity;  ///< [m/s^2] (the walking controller sets its robot model's)
   // The kinematic–inertial tilt observer (source tilt; tilt_observer.hpp (T3)).
   double tilt_alpha = 50.0;  ///< α: velocity correction [1/s]
   /// β: tilt correction from the velocity error [1/s]. The encoders miss the gears' deflection rate

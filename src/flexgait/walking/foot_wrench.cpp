@@ -5,8 +5,8 @@
 namespace flexgait::walking {
 
 FootContact foot_contact(const humanoid::ForceTorque& ft, const Eigen::Matrix3d& sole_R, double d, double foot_mass,
-                         const Eigen::Vector2d& s) {
-  const Eigen::Vector3d weight = sole_R.transpose() * Eigen::Vector3d(0, 0, -kGravity * foot_mass);
+                         double gravity, const Eigen::Vector2d& s) {
+  const Eigen::Vector3d weight = sole_R.transpose() * Eigen::Vector3d(0, 0, -gravity * foot_mass);
   const Eigen::Vector3d f = -Eigen::Vector3d(ft.force.data()) - weight;
   const Eigen::Vector3d tau = -Eigen::Vector3d(ft.torque.data());
   FootContact c;

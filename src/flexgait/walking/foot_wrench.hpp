@@ -25,9 +25,9 @@ struct FootContact {
 };
 
 /// \param sole_R orientation of the sole (world), for the foot's weight
-/// \param ankle_to_sole d [m]; \param foot_mass mass below the sensor [kg]
+/// \param ankle_to_sole d [m]; \param foot_mass mass below the sensor [kg]; \param gravity along −z [m/s^2]
 /// \param sole_shift s [m]: cop and torque are then about the sole centre
 FootContact foot_contact(const humanoid::ForceTorque& ft, const Eigen::Matrix3d& sole_R, double ankle_to_sole,
-                         double foot_mass, const Eigen::Vector2d& sole_shift = Eigen::Vector2d::Zero());
+                         double foot_mass, double gravity, const Eigen::Vector2d& sole_shift = Eigen::Vector2d::Zero());
 
 }  // namespace flexgait::walking

@@ -8,15 +8,15 @@
 
 namespace flexgait::walking {
 
-PreviewGains preview_gains(double T, double z_c, double horizon, double q, double r) {
-  if (!(T > 0) || !(z_c > 0) || !(horizon >= T) || !(q > 0) || !(r > 0))
-    throw std::invalid_argument("preview_gains: period, COM height, horizon and weights must be positive");
+PreviewGains preview_gains(double T, double z_c, double g0, double horizon, double q, double r) {
+  if (!(T > 0) || !(z_c > 0) || !(g0 > 0) || !(horizon >= T) || !(q > 0) || !(r > 0))
+    throw std::invalid_argument("preview_gains: period, COM height, gravity, horizon and weights must be positive");
   PreviewGains g;
   g.period = T;
   g.com_height = z_c;
   g.A << 1, T, T * T / 2, 0, 1, T, 0, 0, 1;
   g.B << T * T * T / 6, T * T / 2, T;
-  g.C << 1, 0, -z_c / kGravity;
+  g.C << 1, 0, -z_c / g0;
   Eigen::Matrix4d At = Eigen::Matrix4d::Zero();
   At(0, 0) = 1;
   At.block<1, 3>(0, 1) = g.C * g.A;

@@ -34,9 +34,9 @@ struct PreviewGains {
   double riccati_residual = 0;  ///< max-norm residual of P in its DARE
 };
 
-/// Gains for period T [s], COM height z_c [m], horizon [s] (N = round(horizon / T) samples),
-/// weights q (ZMP error) and r (jerk increment). Throws on a bad argument.
-PreviewGains preview_gains(double period, double com_height, double horizon, double q, double r);
+/// Gains for period T [s], COM height z_c [m], gravity g [m/s^2] (C = [1 0 −z_c/g]), horizon [s] (N = round(horizon /
+/// T) samples), weights q (ZMP error) and r (jerk increment). Throws on a bad argument.
+PreviewGains preview_gains(double period, double com_height, double gravity, double horizon, double q, double r);
 
 /// One axis of the cart-table under preview control.
 struct CartTable {

@@ -131,7 +131,7 @@ LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, in
 LegTorque leg_gravity_torque(const RobotModel& model, const RobotModelData& data, int side) {
   LegTorque tau;
   const int b0 = 2 + 7 * side;
-  const Vector3d g(0, 0, -kGravity);
+  const Vector3d g(0, 0, -model.gravity);
   for (int i = 0; i < 6; ++i) {
     const Pose& f = data.frame[b0 + i];
     const Vector3d a = f.R * model.bodies[b0 + i].axis;

@@ -20,7 +20,6 @@ namespace flexgait::walking {
 
 inline constexpr int kBodies =
     16;  ///< pelvis, chest, 2 × (hip yaw, hip roll, thigh, shank, ankle pitch, ankle roll, foot)
-inline constexpr double kGravity = 9.81;  ///< [m/s^2], the twin's
 
 /// Every body frame is parallel to the pelvis frame at zero joint angles; a body's origin is its
 /// joint's anchor (a point of the joint axis).
@@ -34,12 +33,13 @@ struct RobotModel {
     Vector3d com = Vector3d::Zero();      ///< centre of mass in the body frame [m]
     Matrix3d inertia = Matrix3d::Zero();  ///< about the centre of mass, body frame [kg m^2]
   };
-  std::array<Body, kBodies> bodies;        ///< parents before children
-  std::array<int, 2> foot{};               ///< foot body of each leg
-  std::array<LegGeometry, 2> leg;          ///< per side
-  double total_mass = 0;                   ///< [kg]
-  double sole_length = 0, sole_width = 0;  ///< the sole rectangle [m]
-  std::array<Vector3d, 2> sole_offset{};   ///< sole centre in the foot frame [m]
+  std::array<Body, kBodies> bodies;            ///< parents before children
+  std::array<int, 2> foot{};                   ///< foot body of each leg
+  std::array<LegGeometry, 2> leg;              ///< per side
+  double total_mass = 0;                       ///< [kg]
+  double gravity = humanoid::kDefaultGravity;  ///< along −z, the description's [m/s^2]
+  double sole_length = 0, sole_width = 0;      ///< the sole rectangle [m]
+  std::array<Vector3d, 2> sole_offset{};       ///< sole centre in the foot frame [m]
   /// The sole's orientation in the foot link's frame: a loaded foot whose frame is tilted from the
   /// root's at zero angles by less than kMaxFootTilt (numbers printed with few digits); identity
   /// unless sole_tilted.

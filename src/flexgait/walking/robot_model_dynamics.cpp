@@ -13,7 +13,7 @@ void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics,
       data.angular_velocity[i] = base.angular_velocity;
       data.velocity[i] = base.velocity;
       data.angular_acceleration[i] = base.angular_acceleration;
-      data.acceleration[i] = base.acceleration + Vector3d(0, 0, gravity * kGravity);
+      data.acceleration[i] = base.acceleration + Vector3d(0, 0, gravity * model.gravity);
     } else {
       const int p = b.parent;
       const Vector3d r = f.p - kinematics.frame[p].p;

@@ -67,7 +67,7 @@ struct FootWrenches {
 
 /// Inverse dynamics after forward_kinematics(model, kinematics, pelvis, q).
 /// \param qd joint velocities (humanoid::kJoints) [rad/s]; \param qdd joint accelerations [rad/s^2]
-/// \param gravity 1 to include the weight (kGravity), 0 for the inertial part alone
+/// \param gravity 1 to include the weight (model.gravity), 0 for the inertial part alone
 /// \return the torques in data.tau; the pelvis's wrench in data.joint_wrench[0]
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,

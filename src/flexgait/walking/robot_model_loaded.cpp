@@ -203,6 +203,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     }
   }
   for (const auto& b : m.bodies) m.total_mass += b.mass;
+  m.gravity = r.gravity;
   for (int j = 0; j < humanoid::kJoints; ++j) {
     if (!r.has_joint(j)) continue;
     const humanoid::LoadedJoint& lj =

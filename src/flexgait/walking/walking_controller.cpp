@@ -49,6 +49,12 @@ double left_share(const Eigen::Vector2d& left, const Eigen::Vector2d& right, con
   return span.squaredNorm() > 1e-12 ? std::clamp((p - right).dot(span) / span.squaredNorm(), 0.0, 1.0) : 0.5;
 }
 
+/// The estimator's parameters with the robot model's gravity.
+EstimatorParams with_gravity(EstimatorParams estimator, double gravity) {
+  estimator.gravity = gravity;
+  return estimator;
+}
+
 }  // namespace
 
 using humanoid::leg_first_joint;
@@ -66,9 +72,9 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
       model_(model),
       landing_(LandingGains{balance.landing_admittance, balance.landing_window, balance.landing_tilt_limit}),
       dcm_(DcmGains{balance.dcm_kp, balance.dcm_ki, balance.dcm_integral_limit}),
-      estimator_params_(estimator),
-      estimator_(estimator),
-      tilt_(TiltObserverGains{estimator.tilt_alpha, estimator.tilt_beta, estimator.tilt_gamma, estimator.gravity}),
+      estimator_params_(with_gravity(estimator, model.gravity)),
+      estimator_(estimator_params_),
+      tilt_(TiltObserverGains{estimator.tilt_alpha, estimator.tilt_beta, estimator.tilt_gamma, model.gravity}),
       health_(health, period) {
   if (!(period > 0)) throw std::invalid_argument("WalkingController: the period must be positive");
   plan_ = plan_footsteps(walk_);
@@ -82,10 +88,10 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
   // level (specific force +g up), the F/T sensors unloaded (no ZMP from them).
   humanoid::SensorReadings rest;
   rest.encoder = initial_pose_;
-  rest.imu.accel = {0, 0, estimator.gravity};
+  rest.imu.accel = {0, 0, model_.gravity};
   health_.set_nominal(rest);
   const double com_height = center_of_mass(model_, data_).z();
-  gains_ = preview_gains(period_, com_height, walk_.preview_time, walk_.preview_q, walk_.preview_r);
+  gains_ = preview_gains(period_, com_height, model_.gravity, walk_.preview_time, walk_.preview_q, walk_.preview_r);
   // The reference over the whole plan and one horizon beyond (held at its final value).
   const auto samples = static_cast<std::size_t>(std::ceil(plan_.duration / period_)) + gains_.G_p.size() + 2;
   ref_x_.resize(samples);
@@ -118,7 +124,7 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
   for (int side = 0; side < 2; ++side) {
     const Pose& sole = status_.sole[side];
-    const FootContact c = foot_contact(s.ft[side], sole.R, model_.leg[side].ankle_to_sole, m_foot,
+    const FootContact c = foot_contact(s.ft[side], sole.R, model_.leg[side].ankle_to_sole, m_foot, model_.gravity,
                                        model_.sole_offset[side].head<2>());  // about the sole centre, sole.p
     foot_contact_[side] = c;
     status_.contact[side] = c.normal_force > balance_.contact_force;
@@ -207,7 +213,7 @@ void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const Fee
   }
   com_estimated_ = true;
   status_.com_estimate = com;
-  const double omega = std::sqrt(kGravity / gains_.com_height);
+  const double omega = std::sqrt(model_.gravity / gains_.com_height);
   status_.dcm = dcm_of(com, com_velocity_, omega);
   status_.dcm_ref =
       dcm_of(Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)), Eigen::Vector2d(cart_[0].x(1), cart_[1].x(1)), omega);
@@ -395,8 +401,8 @@ bool WalkingController::capture_lift_due(double t) {
     const Footprint& f = plan_.initial[stance];
     const Eigen::Vector2d p = capture_cop(stance, status_.dcm);
     const Vector3d point = sole_pose(model_, estimate_data_, stance).p + Vector3d(p.x() - f.x, p.y() - f.y, 0);
-    const LegTorque tau =
-        stance_joint_torques(model_, estimate_data_, stance, force * (model_.total_mass * kGravity / force.z()), point);
+    const LegTorque tau = stance_joint_torques(model_, estimate_data_, stance,
+                                               force * (model_.total_mass * model_.gravity / force.z()), point);
     feasible = tau.cwiseAbs().maxCoeff() <= balance_.capture_torque_limit;
   }
   // Within the limit at once: lift now; once beyond it, lift after kCaptureLiftHold within it.
@@ -456,7 +462,7 @@ void WalkingController::begin_capture_step(double t, std::size_t k, double omega
 void WalkingController::propagate_capture(double t) {
   // The linear inverted pendulum about p over one period, exactly: y = c − p,
   // (y, ẏ) ← (y cosh ωT + ẏ/ω sinh ωT, y ω sinh ωT + ẏ cosh ωT), c̈ = ω² y (its ZMP stays p).
-  const double omega = std::sqrt(kGravity / gains_.com_height);
+  const double omega = std::sqrt(model_.gravity / gains_.com_height);
   const double ch = std::cosh(omega * period_), sh = std::sinh(omega * period_);
   for (int a = 0; a < 2; ++a) {
     Vector3d& x = cart_[a].x;
@@ -472,7 +478,7 @@ void WalkingController::propagate_capture(double t) {
 }
 
 void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& feet) {
-  const double omega = std::sqrt(kGravity / gains_.com_height);
+  const double omega = std::sqrt(model_.gravity / gains_.com_height);
   const StepLimits limits{balance_.step_adjustment_limit, balance_.step_reach, model_.sole_width + 0.02};
   if (capture_.active) {  // a capture step's landing is set when its foot lifts
     if (capture_.transfer && capture_lift_due(t))

@@ -6,6 +6,7 @@
 
 int main() {
   using namespace flexgait::humanoid;
+  using namespace flexgait::twin;
   const RobotParams robot;
   HumanoidPlant plant(robot, PlantParams{});
   const JointVector pose = standing_pose(robot, 0.75);

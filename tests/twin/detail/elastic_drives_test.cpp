@@ -11,7 +11,7 @@
 
 #include "flexgait/twin/detail/mujoco.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 namespace {
 
 constexpr const char* kPendulum = R"(<mujoco>
@@ -67,4 +67,4 @@ TEST(ElasticDrives, StepAppliesTheGearSpringAndTheMotorSideDamping) {
 }
 
 }  // namespace
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

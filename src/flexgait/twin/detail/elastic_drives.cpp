@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 ElasticDrives::ElasticDrives(const mjModel* m, std::vector<int> joints, std::vector<ActuatorParams> params)
     : joints_(std::move(joints)), params_(std::move(params)) {
@@ -47,4 +47,4 @@ void ElasticDrives::step(const mjModel* m, mjData* d, std::vector<ActuatorState>
   mj_step(m, d);
 }
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

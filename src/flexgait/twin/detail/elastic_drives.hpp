@@ -16,7 +16,7 @@
 
 #include "flexgait/twin/elastic_actuator.hpp"
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 /// The drives' configuration (immutable while running); their states live with the plant's state.
 class ElasticDrives {
@@ -41,4 +41,4 @@ class ElasticDrives {
   std::vector<ActuatorParams> params_;
 };
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin

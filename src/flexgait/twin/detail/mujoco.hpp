@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace flexgait::humanoid {
+namespace flexgait::twin {
 
 class HumanoidPlant;
 
@@ -25,4 +25,4 @@ std::string mujoco_warnings_text(const mjData* d);
 const mjModel* plant_model(const HumanoidPlant& plant);
 const mjData* plant_data(const HumanoidPlant& plant);
 
-}  // namespace flexgait::humanoid
+}  // namespace flexgait::twin
