@@ -1,5 +1,5 @@
-// Walking controller benchmarks: one controller update (issue 6, target ≤ 20 µs on this machine),
-// the update with both deformation compensators (issue 7, target ≤ 30 µs), each compensator
+// Walking controller benchmarks: one controller update (target ≤ 20 µs on the 2-core reference machine),
+// the update with both deformation compensators (target ≤ 30 µs), each compensator
 // alone, and the closed-loop walk's real-time factor (controller + compensators + twin), 1.0 s
 // per step, beside bare mj_step on the same walk's states (the closed loop's share of the time).
 #include <benchmark/benchmark.h>
@@ -42,10 +42,10 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // The thesis's Fig. 2 loop in one control period: update, input compensator (eqs. 8-9), output
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
-// Arguments: compensation::WeightSplit, compensation::LoadModel (issue 20: ≤ 30 µs with dynamic),
-// balance (0 pd, 1 dcm with step adjustment; issue 19: ≤ 30 µs with dcm and both compensators),
+// Arguments: compensation::WeightSplit, compensation::LoadModel (≤ 30 µs with dynamic),
+// balance (0 pd, 1 dcm with step adjustment; ≤ 30 µs with dcm and both compensators),
 // compensation::NewtonJacobian (0 each iterate, 1 reused), k estimation (1: control.k_estimation on, with
-// the stance offsets, after the update; issue 20).
+// the stance offsets, after the update).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
   walking::BalanceParams balance;
   if (state.range(2) == 1) {

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Gait of the flexible rimless wheel against the static friction coefficient, for several
-Stribeck velocities (issue 21 part 3).
+Stribeck velocities.
 
 For each v_s and each mu_s on a grid (mu_k = RATIO * mu_s), runs `flexgait rimless fixed-point`
 (start omega0 = 1.5 rad/s, 60 transient steps) and records the fixed point's gait and largest

@@ -2,8 +2,8 @@
 atomic PNG writing (matplotlib, Agg).
 
 Every column and field a script reads goes through one accessor -- column(), cell(),
-has_column(), field() -- which checks the name against `flexgait schema`'s document (issue 13:
-a renamed field breaks a test, not a figure). The document is the schema.json beside the run (in
+has_column(), field() -- which checks the name against `flexgait schema`'s document
+(a renamed field breaks a test, not a figure). The document is the schema.json beside the run (in
 RUN_DIR or its parent, as `flexgait reproduce` writes it) or, without one, the output of
 `flexgait schema` ($FLEXGAIT_EXE, which the flexgait command sets for its scripts, else
 `flexgait` on the PATH). tests/python/plot_schema_test.py reads the same calls statically.

@@ -1,4 +1,4 @@
-"""Figures of issue 18: the orbit diagram, the basin of attraction and the bifurcation diagram of a
+"""Figures of the rimless maps: the orbit diagram, the basin of attraction and the bifurcation diagram of a
 continued branch (flexgait rimless analysis orbit-diagram | basin, flexgait rimless continuation).
 
 Usage: plot_maps.py bifurcation RUN_DIR [PARAM]   (RUN_DIR/branch.csv -> RUN_DIR/branch.png)

@@ -83,7 +83,7 @@ def main(run_dir):
 
 
 def plot_k_estimate(run_dir):
-    """The stiffness estimate over time, one line per leg and joint group (issue 20)."""
+    """The stiffness estimate over time, one line per leg and joint group."""
     rows = read_table_if_present(run_dir, "joints.csv", "humanoid walk")
     if not rows or not has_column(rows, "k_est_l_knee"):
         return

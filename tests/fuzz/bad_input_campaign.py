@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A seeded campaign of bad and extreme inputs, counted per class (issue 17's table).
+"""A seeded campaign of bad and extreme inputs, counted per class.
 
 Each case is one command line (or one Python call) with its expected kind of answer:
 

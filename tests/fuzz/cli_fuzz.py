@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Seeded fuzzing of the command line's option and --set parsing and of --config files (issue 17).
+"""Seeded fuzzing of the command line's option and --set parsing and of --config files.
 
 Each case is a command (every subcommand that writes a run) with a handful of options drawn from
 valid values, extreme values and malformed ones, plus a --config file made by mutating a valid

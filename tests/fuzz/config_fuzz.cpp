@@ -1,4 +1,4 @@
-// Seeded fuzzing of the configuration reader in process (issue 17): YAML texts made by damaging the
+// Seeded fuzzing of the configuration reader in process: YAML texts made by damaging the
 // shipped configurations (byte flips, YAML tokens, anchors and aliases, spliced chunks) and --set
 // items with malformed values, through parse_config_yaml and resolve_config. Every input must give
 // a configuration or a ConfigError/UsageError whose message is one line; any other exception, or

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The test tree mirrors src/ (issue 13: "a test file per source file with logic").
+"""The test tree mirrors src/: a test file per source file with logic.
 
 Checks, for every .cpp under src/flexgait (detail/ folders included):
   - tests/<dir>/<name>_test.cpp exists for src/flexgait/<dir>/<name>.cpp, unless the file is in

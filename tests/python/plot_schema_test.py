@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Every column and field the plotting scripts ask for is one `flexgait schema` declares (issue 13:
-a renamed field breaks this test, not a figure).
+"""Every column and field the plotting scripts ask for is one `flexgait schema` declares
+(a renamed field breaks this test, not a figure).
 
 Usage: plot_schema_test.py FLEXGAIT_EXE PYTHON_DIR   (the report's names: PYTHON_DIR/../data/report/references.yaml)
 

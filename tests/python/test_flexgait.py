@@ -130,7 +130,7 @@ class BadInput(unittest.TestCase):
             flexgait.rimless.simulate({"rimless.K": [1, 2]})
         self.assertIn("rimless.K", str(e.exception))
 
-    def test_numpy_scalars_are_numbers(self):  # issue 17.11: numpy.int64 was rejected
+    def test_numpy_scalars_are_numbers(self):  # numpy.int64 was once rejected
         run = flexgait.rimless.simulate({"sim.steps": np.int64(2), "rimless.mu_s": np.float32(0.5),
                                          "rimless.mu_k": np.float64(0.5)})
         self.assertEqual(run["config"]["sim.steps"], 2)
