@@ -128,6 +128,9 @@ bool GuardCrossings::previous_step_excludes(double t1, std::span<const double> g
   bool excluded = true;
   for (std::size_t i = 0; i < directions_.size(); ++i) {
     const double a = prev_g_[i], b = g_lo_[i], c = g1[i];
+    // One finite nonzero value v at the three points (a guard slot the mode leaves unused) passes
+    // the test below, |v| > reach · 0: its arithmetic is skipped.
+    if (a == b && b == c && a != 0.0 && std::abs(a) <= std::numeric_limits<double>::max()) continue;
     const bool one_side = ((a > 0) & (b > 0) & (c > 0)) | ((a < 0) & (b < 0) & (c < 0));  // branch-free
     excluded =
         excluded & one_side & (std::min(std::abs(b), std::abs(c)) > reach * std::abs((c - b) * w - (b - a) * w_prev));
