@@ -50,32 +50,13 @@ bool solve_schur_one(const std::array<double, 3>& A, const std::array<double, 3>
   return true;
 }
 
-// solve_constrained with M⁻¹ given (minv = diag(1/m, 1/m, 1/I); unused for I = 0).
-bool solve_constrained(const WheelParams& w, const std::array<double, 3>& minv, int rows,
-                       const std::array<std::array<double, 3>, kMaxContacts>& A, const std::array<double, 3>& F,
-                       const std::array<double, kMaxContacts>& b, std::array<double, 3>& a,
-                       std::array<double, kMaxContacts>& lambda) {
+// The point mass (I = 0): the θ row is a torque balance; the full KKT system, a singular one
+// rejected. Apart from the Schur complement's hot path (its LU's workspace is a large stack frame).
+[[gnu::noinline]] bool solve_kkt(const WheelParams& w, int rows,
+                                 const std::array<std::array<double, 3>, kMaxContacts>& A,
+                                 const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
+                                 std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda) {
   const std::array<double, 3> mass{w.m, w.m, w.I};
-  if (w.I > 0) {
-    // Schur complement: (A M⁻¹ Aᵀ) λ = b - A M⁻¹ F, then a = M⁻¹ (F + Aᵀ λ).
-    if (rows == 0) {
-      for (int j = 0; j < 3; ++j) a[j] = F[j] * minv[j];
-      return true;
-    }
-    std::array<double, kMaxContacts> lam{};
-    const bool solved = rows == 1   ? solve_schur_one(A[0], minv, F, b[0], lam[0])
-                        : rows == 2 ? solve_schur<2>(A, minv, F, b, lam)
-                                    : solve_schur<3>(A, minv, F, b, lam);
-    if (!solved) return false;
-    for (int j = 0; j < 3; ++j) {
-      double s = F[j];
-      for (int i = 0; i < rows; ++i) s += A[i][j] * lam[i];
-      a[j] = s * minv[j];
-    }
-    lambda = lam;  // (0 past the rows; a fixed-size copy)
-    return true;
-  }
-  // I = 0: the θ row is a torque balance; solve the full KKT system and reject a singular one.
   const int n = 3 + rows;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 + kMaxContacts, 3 + kMaxContacts> K(n, n);
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 + kMaxContacts, 1> rhs(n);
@@ -105,6 +86,31 @@ bool solve_constrained(const WheelParams& w, const std::array<double, 3>& minv, 
   return true;
 }
 
+// solve_constrained with M⁻¹ given (minv = diag(1/m, 1/m, 1/I); unused for I = 0).
+bool solve_constrained(const WheelParams& w, const std::array<double, 3>& minv, int rows,
+                       const std::array<std::array<double, 3>, kMaxContacts>& A, const std::array<double, 3>& F,
+                       const std::array<double, kMaxContacts>& b, std::array<double, 3>& a,
+                       std::array<double, kMaxContacts>& lambda) {
+  if (!(w.I > 0)) return solve_kkt(w, rows, A, F, b, a, lambda);
+  // Schur complement: (A M⁻¹ Aᵀ) λ = b - A M⁻¹ F, then a = M⁻¹ (F + Aᵀ λ).
+  if (rows == 0) {
+    for (int j = 0; j < 3; ++j) a[j] = F[j] * minv[j];
+    return true;
+  }
+  std::array<double, kMaxContacts> lam{};
+  const bool solved = rows == 1   ? solve_schur_one(A[0], minv, F, b[0], lam[0])
+                      : rows == 2 ? solve_schur<2>(A, minv, F, b, lam)
+                                  : solve_schur<3>(A, minv, F, b, lam);
+  if (!solved) return false;
+  for (int j = 0; j < 3; ++j) {
+    double s = F[j];
+    for (int i = 0; i < rows; ++i) s += A[i][j] * lam[i];
+    a[j] = s * minv[j];
+  }
+  lambda = lam;  // (0 past the rows; a fixed-size copy)
+  return true;
+}
+
 }  // namespace
 
 bool solve_constrained(const WheelParams& w, int rows, const std::array<std::array<double, 3>, kMaxContacts>& A,
@@ -117,11 +123,13 @@ bool solve_constrained(const WheelParams& w, int rows, const std::array<std::arr
 namespace {
 
 // Legs, applied forces F and stick-constraint rows of the contact set at state q (q, q̇).
+// Only the first `rows` stick rows are set and read (not zeroed: zeroing the whole struct was a
+// measurable part of every right-hand side).
 struct Assembly {
   std::array<double, 3> F{};
-  std::array<std::array<double, 3>, kMaxContacts> A{};
-  std::array<double, kMaxContacts> b{};
-  std::array<int, kMaxContacts> stick_index{};
+  std::array<std::array<double, 3>, kMaxContacts> A;
+  std::array<double, kMaxContacts> b;
+  std::array<int, kMaxContacts> stick_index;
   int rows = 0;
 };
 
