@@ -196,6 +196,17 @@ Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std:
 }
 
 void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d) {
+  if (contact_accelerations(w, contacts, y, d)) normal_forces(contacts, d);
+}
+
+void normal_forces(const ContactSet& contacts, Dynamics& d) {
+  for (int i = 0; i < contacts.count; ++i) {
+    ContactForce& cf = d.force[i];
+    cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;
+  }
+}
+
+bool contact_accelerations(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d) {
   std::array<double, 6> q{y[0], y[1], y[2], y[3], y[4], y[5]};
   d.thetad = q[StateIndex::thetad];
   d.algebraic_thetad = false;
@@ -208,25 +219,22 @@ void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::spa
     const double q1 = assemble(w, contacts, q, d).F[2];
     if (!(std::abs(q1 - q0) > 1e-12 * (std::abs(q0) + std::abs(q1)))) {
       d.failure = FailureReason::PointMassTorqueBalance;
-      return;
+      return false;
     }
     q[StateIndex::thetad] = d.thetad = -q0 / (q1 - q0);
     d.algebraic_thetad = true;
     a = assemble(w, contacts, q, d);
-    if (d.failure) return;
+    if (d.failure) return false;
     d.qdd = {a.F[0] / w.m, a.F[1] / w.m, 0.0};
   } else {
     std::array<double, kMaxContacts> lambda{};
     if (!solve_constrained(w, d.constants.minv, a.rows, a.A, a.F, a.b, d.qdd, lambda)) {
       d.failure = FailureReason::PointMassSingular;
-      return;
+      return false;
     }
     for (int r = 0; r < a.rows; ++r) d.force[a.stick_index[r]].T = lambda[r];
   }
-  for (int i = 0; i < contacts.count; ++i) {
-    ContactForce& cf = d.force[i];
-    cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;
-  }
+  return true;
 }
 
 }  // namespace flexgait::rimless

@@ -66,6 +66,13 @@ Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std:
 /// The same written into d, the right-hand side's hot path (no zeroing, no copy): every field
 /// but force[i] and leg[i] for i >= contacts.count, which keep what they held.
 void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d);
+/// contact_dynamics without the normal forces N (force[i].N keep what they held): the flow needs
+/// q̈ and T alone, the guards N as well (normal_forces completes them). False where
+/// contact_dynamics leaves N unset too (a point mass's singular system).
+bool contact_accelerations(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d);
+/// N_k = (f_k - T_k sin β_k) / cos β_k for the feet of d = contact_accelerations(w, contacts, ·),
+/// written into d.force[i].N (the same numbers as contact_dynamics).
+void normal_forces(const ContactSet& contacts, Dynamics& d);
 
 /// Solves the constrained system [M -Aᵀ; A 0] [a; λ] = [F; b] with M = diag(m, m, I) and
 /// `rows` constraint rows A (each ∂c/∂q). Works for I = 0 when the system is nonsingular.

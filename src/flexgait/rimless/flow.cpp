@@ -17,8 +17,12 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> yd,
                      Dynamics& d) {
   using S = StateIndex;
-  contact_dynamics(w, contacts, y, d);
-  if (d.failure) return false;
+  // The flow needs q̈ and T; N (a division per foot) is left to the guards unless the mode fails.
+  const bool complete = contact_accelerations(w, contacts, y, d);
+  if (d.failure) {
+    if (complete) normal_forces(contacts, d);
+    return false;
+  }
   yd[S::x] = y[S::xd];
   yd[S::y] = y[S::yd];
   yd[S::theta] = d.thetad;  // the state's θ̇ unless the torque balance fixes it (I = 0)
