@@ -420,8 +420,8 @@ struct FlexibleWheelSimulator::Impl {
   std::optional<FailureReason> check_consistency(std::span<const double> s, std::string& detail) const {
     const ContactSet& c = flow.contacts();
     const bool remembered = flow.remembered(s);  // the guards' numbers at s (the step's end)
-    Dynamics computed;
-    const Dynamics& d = remembered ? flow.last_dynamics() : (computed = contact_dynamics(w, c, s));
+    std::optional<Dynamics> computed;            // (a Dynamics is large: built only where it is needed)
+    const Dynamics& d = remembered ? flow.last_dynamics() : computed.emplace(contact_dynamics(w, c, s));
     if (d.failure) return d.failure;
     const double tol_f = 1e-6 * w.m * w.g, tol_v = 1e-6 * std::sqrt(w.g * w.L0);
     for (int i = 0; i < c.count; ++i) {
