@@ -73,7 +73,7 @@ class WheelFlow final : public numerics::OdeSystem {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
     if (rhs_valid_ && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
       last_ = 1 - last_;  // the right-hand side's: the numbers contact_dynamics() gives at y
-      if (!dynamics_[last_].failure) normal_forces(contacts_, dynamics_[last_]);  // (the flow's lack N)
+      if (!dynamics_[last_].failure) normal_forces(contacts_, dynamics_[last_]);  // the flow leaves N out
       last_y_.swap(rhs_y_);
       rhs_y_.resize(y.size());
       rhs_valid_ = false;

@@ -8,37 +8,15 @@
 
 namespace flexgait::rimless {
 
-bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
-                     std::span<double> yd) {
-  Dynamics d;
-  return flow_derivative(w, contacts, y, yd, d);
-}
+namespace {
 
-bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> yd,
-                     Dynamics& d) {
+// Free legs relax, K δ + C δ̇ = 0 (rate = K/C), into yd's free-leg slots; a leg on the ground keeps
+// its slot (δ̇ = 0). Returns damp + every leg's C δ̇² added in k's order, the ground legs' exactly
+// +0 (the sum of the free legs' alone), in one pass over the runs of free legs between the
+// ground legs (no test per leg, and δ̇ kept in a register for the sum).
+double relax_free_legs(const WheelParams& w, const ContactSet& contacts, double rate, std::span<const double> y,
+                       std::span<double> yd, double damp) {
   using S = StateIndex;
-  // The flow needs q̈ and T; N (a division per foot) is left to the guards unless the mode fails.
-  const bool complete = contact_accelerations(w, contacts, y, d);
-  if (d.failure) {
-    if (complete) normal_forces(contacts, d);
-    return false;
-  }
-  yd[S::x] = y[S::xd];
-  yd[S::y] = y[S::yd];
-  yd[S::theta] = d.thetad;  // the state's θ̇ unless the torque balance fixes it (I = 0)
-  yd[S::xd] = d.qdd[0];
-  yd[S::yd] = d.qdd[1];
-  yd[S::thetad] = d.qdd[2];
-  double damp = 0, fric = 0;
-  for (int i = 0; i < contacts.count; ++i) {
-    damp += w.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
-    fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, >= 0 in slip
-  }
-  // Free legs relax, K δ + C δ̇ = 0; a leg on the ground keeps its slot (δ̇ = 0). Every leg's
-  // C δ̇² is added in k's order, the ground legs' exactly +0 (the sum of the free legs' alone),
-  // in one pass over the runs of free legs between the ground legs (no test per leg, and δ̇ kept
-  // in a register for the sum).
-  const double rate = d.constants.relax_rate;           // K/C (contact_dynamics remembered it)
   std::array<int, kMaxContacts> ground = contacts.leg;  // the first contacts.count, ascending
   for (int i = 1; i < contacts.count; ++i)
     for (int j = i; j > 0 && ground[static_cast<std::size_t>(j - 1)] > ground[static_cast<std::size_t>(j)]; --j)
@@ -59,6 +37,39 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
     ++k;
   }
   relax_until(w.legs);
+  return damp;
+}
+
+}  // namespace
+
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
+                     std::span<double> yd) {
+  Dynamics d;
+  return flow_derivative(w, contacts, y, yd, d);
+}
+
+bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> yd,
+                     Dynamics& d) {
+  using S = StateIndex;
+  // The flow needs q̈ and T; N_k = (f_k - T_k sin β_k) / cos β_k (docs/theory/rimless.md,
+  // "Equations of motion"), a division per foot, is left to the guards unless the mode fails.
+  const bool complete = contact_accelerations(w, contacts, y, d);
+  if (d.failure) {
+    if (complete) normal_forces(contacts, d);
+    return false;
+  }
+  yd[S::x] = y[S::xd];
+  yd[S::y] = y[S::yd];
+  yd[S::theta] = d.thetad;  // the state's θ̇ unless the torque balance fixes it (I = 0)
+  yd[S::xd] = d.qdd[0];
+  yd[S::yd] = d.qdd[1];
+  yd[S::thetad] = d.qdd[2];
+  double damp = 0, fric = 0;
+  for (int i = 0; i < contacts.count; ++i) {
+    damp += w.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
+    fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, >= 0 in slip
+  }
+  damp = relax_free_legs(w, contacts, d.constants.relax_rate, y, yd, damp);  // K/C remembered
   yd[S::w_damp] = damp;
   yd[S::w_fric] = fric;
   return true;
