@@ -48,7 +48,9 @@ Dop853::Dop853(Rhs f, int dim, Dop853Options options, Rhs lead)
       y_tmp_(dim_),
       dense_tmp_(dim_),
       k_(dim_ * kDenseStages),
-      cont_(dim_ * 7) {
+      cont_(dim_ * 7),
+      err5_(controlled_),
+      err3_(controlled_) {
   if (dim <= 0 || controlled_ > dim_) throw std::invalid_argument("Dop853: bad dimensions");
   if (!opt_.error_scale.empty() && opt_.error_scale.size() != controlled_)
     throw std::invalid_argument("Dop853: error_scale must have one entry per controlled component");
@@ -99,24 +101,48 @@ void Dop853::combine(const std::vector<double>& base, int i, double h, std::vect
   kCombineRows[static_cast<std::size_t>(i)](base.data(), h, k_.data(), out.data(), n, dim_);
 }
 
-// dop853.f's error estimate (Hairer–Nørsett–Wanner II.10, eq. (10.17)): the 5th-order estimator
-// err5 = Σ e5_j k_j, corrected by the 3rd-order one err3 = Σ (b_j - bhh_j) k_j.
-double Dop853::error_norm(double h) const {
-  double e5 = 0.0, e3 = 0.0;
-  for (std::size_t c = 0; c < controlled_; ++c) {
-    const double size = !opt_.error_scale.empty() && opt_.error_scale[c] > 0
-                            ? opt_.error_scale[c]
-                            : std::max(std::abs(y_[c]), std::abs(y_new_[c]));
-    const double sk = opt_.atol + opt_.rtol * size;
+namespace {
+
+// Per component c < n, err5/sk and err3/sk of dop853.f's error estimate into q5 and q3: the
+// stages' products added in j's order in registers (compile-time weights, as combine_row), the
+// components vectorised. k: stage j at k + j·stride; scale: error_scale's sizes (Scaled only).
+template <bool Scaled, std::size_t... J>
+void scaled_errors(const double* __restrict k, std::size_t stride, const double* __restrict y_old,
+                   const double* __restrict y_new, const double* __restrict scale, double atol, double rtol,
+                   double* __restrict q5, double* __restrict q3, std::size_t n, std::index_sequence<J...>) {
+  constexpr auto& b = kA[kStages];
+  for (std::size_t c = 0; c < n; ++c) {
+    const double own = std::max(std::abs(y_old[c]), std::abs(y_new[c]));
+    double size = own;
+    if constexpr (Scaled) size = scale[c] > 0 ? scale[c] : own;
+    const double sk = atol + rtol * size;
     double err5 = 0.0, b_sum = 0.0;
-    for (int j = 0; j < kStages; ++j) {
-      const double kj = stage(j)[c];
-      err5 += kE5[static_cast<std::size_t>(j)] * kj;
-      b_sum += kA[kStages][static_cast<std::size_t>(j)] * kj;
-    }
-    const double err3 = b_sum - kBhh[0] * stage(0)[c] - kBhh[1] * stage(8)[c] - kBhh[2] * stage(11)[c];
-    e5 += (err5 / sk) * (err5 / sk);
-    e3 += (err3 / sk) * (err3 / sk);
+    ((err5 += kE5[J] * k[J * stride + c]), ...);
+    ((b_sum += b[J] * k[J * stride + c]), ...);
+    const double err3 = b_sum - kBhh[0] * k[c] - kBhh[1] * k[8 * stride + c] - kBhh[2] * k[11 * stride + c];
+    q5[c] = err5 / sk;
+    q3[c] = err3 / sk;
+  }
+}
+
+}  // namespace
+
+// dop853.f's error estimate (Hairer–Nørsett–Wanner II.10, eq. (10.17)): the 5th-order estimator
+// err5 = Σ e5_j k_j, corrected by the 3rd-order one err3 = Σ (b_j - bhh_j) k_j; the scaled
+// errors of all components first (vectorised), then their squares summed in the components' order.
+double Dop853::error_norm(double h) const {
+  const std::size_t n = controlled_;
+  constexpr auto stages = std::make_index_sequence<kStages>();
+  if (opt_.error_scale.empty())
+    scaled_errors<false>(k_.data(), dim_, y_.data(), y_new_.data(), nullptr, opt_.atol, opt_.rtol, err5_.data(),
+                         err3_.data(), n, stages);
+  else
+    scaled_errors<true>(k_.data(), dim_, y_.data(), y_new_.data(), opt_.error_scale.data(), opt_.atol, opt_.rtol,
+                        err5_.data(), err3_.data(), n, stages);
+  double e5 = 0.0, e3 = 0.0;
+  for (std::size_t c = 0; c < n; ++c) {
+    e5 += err5_[c] * err5_[c];
+    e3 += err3_[c] * err3_[c];
   }
   double denominator = e5 + 0.01 * e3;
   if (denominator <= 0.0) denominator = 1.0;

@@ -87,6 +87,7 @@ class Dop853 {
   mutable std::vector<double> dense_tmp_;          // dim
   mutable std::vector<double> k_;                  // 16 stages × dim (stages 13..15 for dense output)
   mutable std::vector<double> cont_;               // dense-output coefficients r4..r8 (5 × dim)
+  mutable std::vector<double> err5_, err3_;        // error_norm's scratch (controlled components)
   mutable std::size_t dense_ready_ = 0;            // components of the dense output prepared
   std::int64_t steps_ = 0;
   mutable std::int64_t rhs_evals_ = 0;

@@ -19,6 +19,12 @@ bool crosses(int direction, double g_lo, double g) {
   return direction * g_lo <= 0 && (g == 0.0 || (g_lo < 0) != (g < 0));
 }
 
+// A guard that holds one finite nonzero value v at every point of a step has no root there and
+// passes every curvature bound (its differences are 0): a slot the mode leaves unused.
+bool finite_nonzero(double v) {
+  return v != 0.0 && std::abs(v) <= std::numeric_limits<double>::max();
+}
+
 }  // namespace
 
 double locate_root(const std::function<double(double)>& g, double a, double b, double ga, double gb, double tol) {
@@ -107,6 +113,7 @@ bool GuardCrossings::coarse_excludes(double t1, std::span<const double> g1, doub
     // A guard activated after the midpoint has no second difference here: the full samples.
     if (!(t_lo_[i] < t_mid)) return false;
     const Point a{t_lo_[i], g_lo_[i]}, b{t_mid, samples_[mid * n + i]}, c{t1, g1[i]};
+    if (a.g == b.g && b.g == c.g && finite_nonzero(a.g)) continue;  // an unused slot (above): reach 0
     if (a.g == 0.0 || b.g == 0.0 || c.g == 0.0 || (a.g < 0) != (b.g < 0) || (b.g < 0) != (c.g < 0)) return false;
     // M (h/2)²/8 with M = 4 |g[a, b, c]| (twice |g''|, above); with a at the step's start the
     // points are equally spaced and it is |g(a) - 2 g(b) + g(c)| / 4.
@@ -128,6 +135,8 @@ bool GuardCrossings::previous_step_excludes(double t1, std::span<const double> g
   bool excluded = true;
   for (std::size_t i = 0; i < directions_.size(); ++i) {
     const double a = prev_g_[i], b = g_lo_[i], c = g1[i];
+    // An unused slot (above) passes the test below, |v| > reach · 0: its arithmetic is skipped.
+    if (a == b && b == c && finite_nonzero(a)) continue;
     const bool one_side = ((a > 0) & (b > 0) & (c > 0)) | ((a < 0) & (b < 0) & (c < 0));  // branch-free
     excluded =
         excluded & one_side & (std::min(std::abs(b), std::abs(c)) > reach * std::abs((c - b) * w - (b - a) * w_prev));
@@ -177,6 +186,11 @@ bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, cons
     for (std::size_t j = 0; j < inner; ++j)
       if (times[j] > t_lo_[i]) points[count++] = {times[j], samples_[j * n + i]};
     points[count++] = {t1, g1[i]};
+    // An unused slot (above): no crossing, every second difference 0 and the bound below
+    // excludes a root; its arithmetic is skipped.
+    bool constant = finite_nonzero(points[0].g);
+    for (std::size_t j = 1; j < count; ++j) constant = constant && points[j].g == points[0].g;
+    if (constant) continue;
     // A crossing at the samples: the first one brackets the root.
     bool crossed = false;
     for (std::size_t j = 1; j < count && !crossed; ++j) {

@@ -5,7 +5,9 @@
 /// Slope frame: x down the slope, y along the slope normal. Leg k makes the angle
 /// β_k = θ + 2αk with the slope normal; the hub sits at foot + L_k (sin β_k, cos β_k).
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <span>
 
 #include "flexgait/rimless/parameters.hpp"
@@ -54,8 +56,25 @@ struct ContactSet {
   }
 };
 
+/// x wrapped to (-π, π] [rad] (inline: the first step of every right-hand side).
+inline double wrap_angle(double x) {
+  // remainder(x, P) = x - n P with n the integer nearest x / P, exact in floating point (libm's
+  // remainder is a slow path of the right-hand side). The candidate n, x·(1/P) rounded to an
+  // integer (adding and removing 1.5·2^52), gives r = x - n P exactly by one fused
+  // multiply-add (the exact r is representable); where |r| < P/2 that r is the remainder (the
+  // only representative below P/2), else (a quotient near a half-integer, or huge, or r = 0) libm decides.
+  constexpr double P = 2.0 * std::numbers::pi;
+  constexpr double kRound = 0x1.8p52;
+  constexpr double kInvP = 1.0 / P;
+  const double n = (x * kInvP + kRound) - kRound;
+  const double r = std::fma(-n, P, x);
+  // (r = 0: libm gives it x's sign, the multiply-add +0.)
+  return std::abs(r) < 0.5 * P && r != 0.0 ? r : std::remainder(x, P);
+}
 /// Leg angle β_k = θ + 2αk wrapped to (-π, π] [rad].
-double leg_angle(const WheelParams& w, int k, double theta);
+inline double leg_angle(const WheelParams& w, int k, double theta) {
+  return wrap_angle(theta + 2.0 * w.alpha() * k);
+}
 
 /// Kinematics of leg k with its foot on the ground (L_k = y / cos β_k).
 struct LegKinematics {
@@ -71,8 +90,35 @@ struct LegKinematics {
   double Adot_qdot = 0;                     ///< Ȧ q̇ = -2 ẏ θ̇ / cos² β - 2 y tan β θ̇² / cos² β [m/s²]
 };
 LegKinematics leg_kinematics(const WheelParams& w, int k, std::span<const double> y);
-/// The same written into g (the right-hand side's hot path: no temporary to copy).
-void leg_kinematics(const WheelParams& w, int k, std::span<const double> y, LegKinematics& g);
+/// The same written into g for the leg at angle beta = leg_angle(w, k, θ) (the right-hand side's
+/// hot path: no temporary to copy, and inline, so that the contact dynamics compile it into their
+/// loop over the feet).
+inline void leg_kinematics_at(const WheelParams& w, double beta, std::span<const double> s, LegKinematics& g) {
+  using S = StateIndex;
+  const double y = s[S::y], yd = s[S::yd], td = s[S::thetad];
+  g.beta = beta;
+  g.cb = std::cos(g.beta);
+  g.sb = std::sin(g.beta);
+  // One division (the right-hand side's hot path; products of 1/cos β are within an ulp or two
+  // of the quotients).
+  const double sec = 1.0 / g.cb;
+  g.tb = g.sb * sec;
+  const double sec2 = sec * sec;
+  g.L = y * sec;
+  const double Ldot = (yd + y * g.tb * td) * sec;
+  g.delta = w.L0 - g.L;
+  g.delta_dot = -Ldot;
+  g.f = w.K * g.delta + w.C * g.delta_dot;
+  g.gradL = {0.0, sec, g.L * g.tb};
+  g.A = {1.0, -g.tb, -y * sec2};
+  g.c = s[S::x] - y * g.tb;
+  g.cdot = s[S::xd] - yd * g.tb - y * td * sec2;
+  g.Adot_qdot = -2.0 * yd * td * sec2 - 2.0 * y * g.tb * td * td * sec2;
+}
+/// The same for leg k, written into g.
+inline void leg_kinematics(const WheelParams& w, int k, std::span<const double> s, LegKinematics& g) {
+  leg_kinematics_at(w, leg_angle(w, k, s[StateIndex::theta]), s, g);
+}
 
 /// Height of free leg k's foot above the slope: y - (L0 - δ_k) cos β_k [m] (touchdown guard).
 double foot_height(const WheelParams& w, int k, std::span<const double> y);
@@ -84,7 +130,11 @@ struct SlipLaw {
   /// σ |ċ| on a slip arc, where s ċ >= 0, and smooth through ċ = 0)
   double mu = 0;
 };
-SlipLaw slip_law(const WheelParams& w, int s, double cdot);
+inline SlipLaw slip_law(const WheelParams& w, int s, double cdot) {
+  if (w.friction == Friction::Coulomb) return {w.mu_k};
+  const double decay = std::exp(-std::pow(std::abs(cdot) / w.stribeck_velocity, w.stribeck_exponent));
+  return {w.mu_k + (w.mu_s - w.mu_k) * decay + w.viscous * s * cdot};
+}
 
 /// Slip friction denominator D = cos β - μ s sin β for the coefficient μ; D <= 0 is a Painlevé jam.
 inline double slip_denominator(const LegKinematics& leg, int s, double mu) {

@@ -36,33 +36,27 @@ bool solve_schur(const std::array<std::array<double, 3>, kMaxContacts>& A, const
   return true;
 }
 
-}  // namespace
+// One stick row (the hot path of single support): the same numbers as solve_schur<1>, whose LDLT
+// of a 1×1 matrix S is D = S; it accepts S > 1e-13 S (S > 0, finite) and divides by D where
+// |D| exceeds the smallest normal double (Eigen's LDLT solve, else 0).
+bool solve_schur_one(const std::array<double, 3>& A, const std::array<double, 3>& minv, const std::array<double, 3>& F,
+                     double b, double& lambda) {
+  double AMF = 0, S = 0;
+  for (int j = 0; j < 3; ++j) AMF += A[j] * minv[j] * F[j];
+  for (int j = 0; j < 3; ++j) S += A[j] * minv[j] * A[j];
+  if (!(S > 1e-13 * S)) return false;
+  const double r = b - AMF;
+  lambda = std::abs(S) > std::numeric_limits<double>::min() ? r / S : 0.0;
+  return true;
+}
 
-bool solve_constrained(const WheelParams& w, int rows, const std::array<std::array<double, 3>, kMaxContacts>& A,
-                       const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
-                       std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda) {
+// The point mass (I = 0): the θ row is a torque balance; the full KKT system, a singular one
+// rejected. Apart from the Schur complement's hot path (its LU's workspace is a large stack frame).
+[[gnu::noinline]] bool solve_kkt(const WheelParams& w, int rows,
+                                 const std::array<std::array<double, 3>, kMaxContacts>& A,
+                                 const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
+                                 std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda) {
   const std::array<double, 3> mass{w.m, w.m, w.I};
-  if (w.I > 0) {
-    // Schur complement: (A M⁻¹ Aᵀ) λ = b - A M⁻¹ F, then a = M⁻¹ (F + Aᵀ λ).
-    const std::array<double, 3> minv{1.0 / mass[0], 1.0 / mass[1], 1.0 / mass[2]};
-    if (rows == 0) {
-      for (int j = 0; j < 3; ++j) a[j] = F[j] * minv[j];
-      return true;
-    }
-    std::array<double, kMaxContacts> lam{};
-    const bool solved = rows == 1   ? solve_schur<1>(A, minv, F, b, lam)
-                        : rows == 2 ? solve_schur<2>(A, minv, F, b, lam)
-                                    : solve_schur<3>(A, minv, F, b, lam);
-    if (!solved) return false;
-    for (int j = 0; j < 3; ++j) {
-      double s = F[j];
-      for (int i = 0; i < rows; ++i) s += A[i][j] * lam[i];
-      a[j] = s * minv[j];
-    }
-    for (int i = 0; i < rows; ++i) lambda[i] = lam[i];
-    return true;
-  }
-  // I = 0: the θ row is a torque balance; solve the full KKT system and reject a singular one.
   const int n = 3 + rows;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3 + kMaxContacts, 3 + kMaxContacts> K(n, n);
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3 + kMaxContacts, 1> rhs(n);
@@ -92,32 +86,76 @@ bool solve_constrained(const WheelParams& w, int rows, const std::array<std::arr
   return true;
 }
 
+// solve_constrained with M⁻¹ given (minv = diag(1/m, 1/m, 1/I); unused for I = 0).
+bool solve_constrained(const WheelParams& w, const std::array<double, 3>& minv, int rows,
+                       const std::array<std::array<double, 3>, kMaxContacts>& A, const std::array<double, 3>& F,
+                       const std::array<double, kMaxContacts>& b, std::array<double, 3>& a,
+                       std::array<double, kMaxContacts>& lambda) {
+  if (!(w.I > 0)) return solve_kkt(w, rows, A, F, b, a, lambda);
+  // Schur complement: (A M⁻¹ Aᵀ) λ = b - A M⁻¹ F, then a = M⁻¹ (F + Aᵀ λ).
+  if (rows == 0) {
+    for (int j = 0; j < 3; ++j) a[j] = F[j] * minv[j];
+    return true;
+  }
+  std::array<double, kMaxContacts> lam{};
+  const bool solved = rows == 1   ? solve_schur_one(A[0], minv, F, b[0], lam[0])
+                      : rows == 2 ? solve_schur<2>(A, minv, F, b, lam)
+                                  : solve_schur<3>(A, minv, F, b, lam);
+  if (!solved) return false;
+  for (int j = 0; j < 3; ++j) {
+    double s = F[j];
+    for (int i = 0; i < rows; ++i) s += A[i][j] * lam[i];
+    a[j] = s * minv[j];
+  }
+  lambda = lam;  // (0 past the rows; a fixed-size copy)
+  return true;
+}
+
+}  // namespace
+
+bool solve_constrained(const WheelParams& w, int rows, const std::array<std::array<double, 3>, kMaxContacts>& A,
+                       const std::array<double, 3>& F, const std::array<double, kMaxContacts>& b,
+                       std::array<double, 3>& a, std::array<double, kMaxContacts>& lambda) {
+  const std::array<double, 3> minv{1.0 / w.m, 1.0 / w.m, w.I > 0 ? 1.0 / w.I : 0.0};
+  return solve_constrained(w, minv, rows, A, F, b, a, lambda);
+}
+
 namespace {
 
 // Legs, applied forces F and stick-constraint rows of the contact set at state q (q, q̇).
+// Only the first `rows` stick rows are set and read (not zeroed: zeroing the whole struct was a
+// measurable part of every right-hand side).
 struct Assembly {
   std::array<double, 3> F{};
-  std::array<std::array<double, 3>, kMaxContacts> A{};
-  std::array<double, kMaxContacts> b{};
-  std::array<int, kMaxContacts> stick_index{};
+  std::array<std::array<double, 3>, kMaxContacts> A;
+  std::array<double, kMaxContacts> b;
+  std::array<int, kMaxContacts> stick_index;
   int rows = 0;
 };
 
-// (sin φ, cos φ) of the slope, remembered in the workspace d (Dynamics::slope_trig).
-const Dynamics::SlopeTrig& slope_trig(double slope, Dynamics& d) {
-  if (!(d.slope_trig.slope == slope)) d.slope_trig = {slope, std::sin(slope), std::cos(slope)};
-  return d.slope_trig;
+// The wheel's constants for w, remembered in the workspace d (Dynamics::WheelConstants).
+const Dynamics::WheelConstants& wheel_constants(const WheelParams& w, Dynamics& d) {
+  Dynamics::WheelConstants& c = d.constants;
+  if (c.slope == w.slope && c.m == w.m && c.I == w.I && c.K == w.K && c.C == w.C && c.legs == w.legs) return c;
+  c = {w.slope, w.m, w.I, w.K, w.C, w.legs};
+  c.sin_slope = std::sin(w.slope);
+  c.cos_slope = std::cos(w.slope);
+  c.minv = {1.0 / w.m, 1.0 / w.m, w.I > 0 ? 1.0 / w.I : 0.0};
+  c.leg_spacing = 2.0 * w.alpha();
+  c.relax_rate = w.C > 0 ? w.K / w.C : 0.0;
+  return c;
 }
 
 Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<const double> q, Dynamics& d) {
   Assembly a;
-  const Dynamics::SlopeTrig& slope = slope_trig(w.slope, d);
-  a.F = {w.m * w.g * slope.sin, -w.m * w.g * slope.cos, 0.0};
+  const Dynamics::WheelConstants& constants = wheel_constants(w, d);
+  a.F = {w.m * w.g * constants.sin_slope, -w.m * w.g * constants.cos_slope, 0.0};
   constexpr double wb = kStickStabilization;
   d.failure.reset();
   d.jammed = false;
   for (int i = 0; i < contacts.count; ++i) {
-    leg_kinematics(w, contacts.leg[i], q, d.leg[i]);
+    // β = θ + 2αk wrapped (leg_angle), 2α remembered
+    leg_kinematics_at(w, wrap_angle(q[StateIndex::theta] + constants.leg_spacing * contacts.leg[i]), q, d.leg[i]);
     const LegKinematics& g = d.leg[i];
     ContactForce& cf = d.force[i];
     cf = ContactForce{};
@@ -158,6 +196,17 @@ Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std:
 }
 
 void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d) {
+  if (contact_accelerations(w, contacts, y, d)) normal_forces(contacts, d);
+}
+
+void normal_forces(const ContactSet& contacts, Dynamics& d) {
+  for (int i = 0; i < contacts.count; ++i) {
+    ContactForce& cf = d.force[i];
+    cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;
+  }
+}
+
+bool contact_accelerations(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d) {
   std::array<double, 6> q{y[0], y[1], y[2], y[3], y[4], y[5]};
   d.thetad = q[StateIndex::thetad];
   d.algebraic_thetad = false;
@@ -170,25 +219,22 @@ void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::spa
     const double q1 = assemble(w, contacts, q, d).F[2];
     if (!(std::abs(q1 - q0) > 1e-12 * (std::abs(q0) + std::abs(q1)))) {
       d.failure = FailureReason::PointMassTorqueBalance;
-      return;
+      return false;
     }
     q[StateIndex::thetad] = d.thetad = -q0 / (q1 - q0);
     d.algebraic_thetad = true;
     a = assemble(w, contacts, q, d);
-    if (d.failure) return;
+    if (d.failure) return false;
     d.qdd = {a.F[0] / w.m, a.F[1] / w.m, 0.0};
   } else {
     std::array<double, kMaxContacts> lambda{};
-    if (!solve_constrained(w, a.rows, a.A, a.F, a.b, d.qdd, lambda)) {
+    if (!solve_constrained(w, d.constants.minv, a.rows, a.A, a.F, a.b, d.qdd, lambda)) {
       d.failure = FailureReason::PointMassSingular;
-      return;
+      return false;
     }
     for (int r = 0; r < a.rows; ++r) d.force[a.stick_index[r]].T = lambda[r];
   }
-  for (int i = 0; i < contacts.count; ++i) {
-    ContactForce& cf = d.force[i];
-    cf.N = (cf.f - cf.T * d.leg[i].sb) / d.leg[i].cb;
-  }
+  return true;
 }
 
 }  // namespace flexgait::rimless

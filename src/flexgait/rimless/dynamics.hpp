@@ -48,12 +48,17 @@ struct Dynamics {
   std::array<LegKinematics, kMaxContacts> leg{};
   double thetad = 0;              ///< the wheel's angular velocity in force [rad/s]
   bool algebraic_thetad = false;  ///< θ̇ fixed by the torque balance (I = 0, all feet slipping)
-  /// (sin φ, cos φ) of the slope φ this workspace last used: every right-hand side needs them and
-  /// the slope changes only between runs (the same values as calling sin and cos).
-  struct SlopeTrig {
-    double slope = std::numeric_limits<double>::quiet_NaN();
-    double sin = 0, cos = 1;
-  } slope_trig;
+  /// The wheel's constants that every right-hand side needs, remembered for the parameters this
+  /// workspace last used (they change only between runs): each the same number as computing it
+  /// again, without its sine, cosine or division.
+  struct WheelConstants {
+    double slope = std::numeric_limits<double>::quiet_NaN(), m = 0, I = 0, K = 0, C = 0;  ///< of these
+    int legs = 0;                                                                         ///< parameters
+    double sin_slope = 0, cos_slope = 1;                                                  ///< sin φ, cos φ
+    std::array<double, 3> minv{};  ///< M⁻¹ = diag(1/m, 1/m, 1/I) (I > 0)
+    double leg_spacing = 0;        ///< 2α = 2π/N, leg k's offset 2αk from leg 0 [rad]
+    double relax_rate = 0;         ///< K/C, a free leg's relaxation rate (0 for C = 0) [1/s]
+  } constants;
 };
 
 /// Dynamics of the contact set `contacts` at state y (dim state_size(w)).
@@ -61,6 +66,13 @@ Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std:
 /// The same written into d, the right-hand side's hot path (no zeroing, no copy): every field
 /// but force[i] and leg[i] for i >= contacts.count, which keep what they held.
 void contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d);
+/// contact_dynamics without the normal forces N (force[i].N keep what they held): the flow needs
+/// q̈ and T alone, the guards N as well (normal_forces completes them). False where
+/// contact_dynamics leaves N unset too (a point mass's singular system).
+bool contact_accelerations(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, Dynamics& d);
+/// N_k = (f_k - T_k sin β_k) / cos β_k for the feet of d = contact_accelerations(w, contacts, ·),
+/// written into d.force[i].N (the same numbers as contact_dynamics).
+void normal_forces(const ContactSet& contacts, Dynamics& d);
 
 /// Solves the constrained system [M -Aᵀ; A 0] [a; λ] = [F; b] with M = diag(m, m, I) and
 /// `rows` constraint rows A (each ∂c/∂q). Works for I = 0 when the system is nonsingular.

@@ -73,6 +73,7 @@ class WheelFlow final : public numerics::OdeSystem {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
     if (rhs_valid_ && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
       last_ = 1 - last_;  // the right-hand side's: the numbers contact_dynamics() gives at y
+      if (!dynamics_[last_].failure) normal_forces(contacts_, dynamics_[last_]);  // the flow leaves N out
       last_y_.swap(rhs_y_);
       rhs_y_.resize(y.size());
       rhs_valid_ = false;
@@ -419,8 +420,8 @@ struct FlexibleWheelSimulator::Impl {
   std::optional<FailureReason> check_consistency(std::span<const double> s, std::string& detail) const {
     const ContactSet& c = flow.contacts();
     const bool remembered = flow.remembered(s);  // the guards' numbers at s (the step's end)
-    Dynamics computed;
-    const Dynamics& d = remembered ? flow.last_dynamics() : (computed = contact_dynamics(w, c, s));
+    std::optional<Dynamics> computed;            // (a Dynamics is large: built only where it is needed)
+    const Dynamics& d = remembered ? flow.last_dynamics() : computed.emplace(contact_dynamics(w, c, s));
     if (d.failure) return d.failure;
     const double tol_f = 1e-6 * w.m * w.g, tol_v = 1e-6 * std::sqrt(w.g * w.L0);
     for (int i = 0; i < c.count; ++i) {

@@ -1,11 +1,46 @@
 #include "flexgait/rimless/flow.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "flexgait/rimless/dynamics.hpp"
 
 namespace flexgait::rimless {
+
+namespace {
+
+// Free legs relax, K δ + C δ̇ = 0 (rate = K/C), into yd's free-leg slots; a leg on the ground keeps
+// its slot (δ̇ = 0). Returns damp + every leg's C δ̇² added in k's order, the ground legs' exactly
+// +0 (the sum of the free legs' alone), in one pass over the runs of free legs between the
+// ground legs (no test per leg, and δ̇ kept in a register for the sum).
+double relax_free_legs(const WheelParams& w, const ContactSet& contacts, double rate, std::span<const double> y,
+                       std::span<double> yd, double damp) {
+  using S = StateIndex;
+  std::array<int, kMaxContacts> ground = contacts.leg;  // the first contacts.count, ascending
+  for (int i = 1; i < contacts.count; ++i)
+    for (int j = i; j > 0 && ground[static_cast<std::size_t>(j - 1)] > ground[static_cast<std::size_t>(j)]; --j)
+      std::swap(ground[static_cast<std::size_t>(j - 1)], ground[static_cast<std::size_t>(j)]);
+  int k = 0;
+  const auto relax_until = [&](int end) {
+    for (; k < end; ++k) {
+      const double dk = -rate * y[static_cast<std::size_t>(S::free_delta + k)];
+      yd[static_cast<std::size_t>(S::free_delta + k)] = dk;
+      damp += w.C * dk * dk;  // C δ̇²
+    }
+  };
+  for (int i = 0; i < contacts.count; ++i) {
+    relax_until(ground[static_cast<std::size_t>(i)]);
+    constexpr double dk = 0.0;  // on the ground
+    yd[static_cast<std::size_t>(S::free_delta + k)] = dk;
+    damp += w.C * dk * dk;
+    ++k;
+  }
+  relax_until(w.legs);
+  return damp;
+}
+
+}  // namespace
 
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
                      std::span<double> yd) {
@@ -16,8 +51,13 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y, std::span<double> yd,
                      Dynamics& d) {
   using S = StateIndex;
-  contact_dynamics(w, contacts, y, d);
-  if (d.failure) return false;
+  // The flow needs q̈ and T; N_k = (f_k - T_k sin β_k) / cos β_k (docs/theory/rimless.md,
+  // "Equations of motion"), a division per foot, is left to the guards unless the mode fails.
+  const bool complete = contact_accelerations(w, contacts, y, d);
+  if (d.failure) {
+    if (complete) normal_forces(contacts, d);
+    return false;
+  }
   yd[S::x] = y[S::xd];
   yd[S::y] = y[S::yd];
   yd[S::theta] = d.thetad;  // the state's θ̇ unless the torque balance fixes it (I = 0)
@@ -29,14 +69,7 @@ bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span
     damp += w.C * d.leg[i].delta_dot * d.leg[i].delta_dot;
     fric -= d.force[i].T * d.leg[i].cdot;  // power of the tangential force, >= 0 in slip
   }
-  // Free legs relax, K δ + C δ̇ = 0; a leg on the ground keeps its slot (δ̇ = 0). Every leg's
-  // C δ̇² is added in k's order, the ground legs' exactly +0 (the sum of the free legs' alone).
-  const double rate = w.C > 0 ? w.K / w.C : 0.0;
-  const std::span<double> free_rate = yd.subspan(S::free_delta, static_cast<std::size_t>(w.legs));
-  const std::span<const double> free_delta = y.subspan(S::free_delta, static_cast<std::size_t>(w.legs));
-  for (std::size_t k = 0; k < free_rate.size(); ++k) free_rate[k] = -rate * free_delta[k];
-  for (int i = 0; i < contacts.count; ++i) free_rate[static_cast<std::size_t>(contacts.leg[i])] = 0.0;
-  for (const double dk : free_rate) damp += w.C * dk * dk;  // C δ̇²
+  damp = relax_free_legs(w, contacts, d.constants.relax_rate, y, yd, damp);  // K/C remembered
   yd[S::w_damp] = damp;
   yd[S::w_fric] = fric;
   return true;
@@ -67,13 +100,12 @@ void guard_values(const WheelParams& w, const LegOffsets& offsets, const Contact
                   std::span<const double> y, std::span<double> g) {
   std::fill(g.begin(), g.end(), 1.0);
   const double cos_theta = std::cos(y[StateIndex::theta]), sin_theta = std::sin(y[StateIndex::theta]);
-  for (int k = 0; k < w.legs; ++k) {
-    double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * k)];
-    const int i = contacts.find(k);
-    if (i < 0) {
-      slot[0] = free_foot_height(w, offsets, k, cos_theta, sin_theta, y);
-      continue;
-    }
+  // Every leg's foot height first (no search of the contact set per leg), then the feet on the
+  // ground write their own guards over theirs.
+  for (int k = 0; k < w.legs; ++k)
+    g[static_cast<std::size_t>(kGuardsPerLeg * k)] = free_foot_height(w, offsets, k, cos_theta, sin_theta, y);
+  for (int i = 0; i < contacts.count; ++i) {
+    double* slot = &g[static_cast<std::size_t>(kGuardsPerLeg * contacts.leg[i])];
     const ContactForce& cf = d.force[i];
     const LegKinematics& leg = d.leg[i];
     slot[0] = cf.N;

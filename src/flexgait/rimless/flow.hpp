@@ -28,7 +28,8 @@ inline int guard_count(const WheelParams& w) {
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
                      std::span<double> ydot);
 /// The same with the mode's dynamics at y written into `d` (contact_dynamics' in-place form): the
-/// integrator's hot path keeps one Dynamics for all its evaluations.
+/// integrator's hot path keeps one Dynamics for all its evaluations. Where the mode has a
+/// consistent motion the normal forces N are not computed (normal_forces(contacts, d) does).
 bool flow_derivative(const WheelParams& w, const ContactSet& contacts, std::span<const double> y,
                      std::span<double> ydot, Dynamics& d);
 
