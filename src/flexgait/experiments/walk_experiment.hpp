@@ -123,6 +123,9 @@ struct WalkSample {
   /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.
   double roll_kin_encoder = 0, roll_kin_estimate = 0;
   std::array<double, 3> push_force{};  ///< push force applied in the last physics step (world) [N]
+  /// The vertical ground force on each foot (left, right) as the controller reads it from the F/T
+  /// sensors (ControllerStatus::foot_force) [N].
+  std::array<double, 2> foot_force{};
   /// balance.mode = dcm: the controller's DCM ξ (its COM estimate) and the plan's ξ_ref, in its
   /// own frame (0 in pd mode, where it computes none) [m].
   std::array<double, 2> dcm{}, dcm_ref{};

@@ -317,6 +317,7 @@ void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& z
   w.roll_kin_encoder = roll_enc_;
   w.roll_kin_estimate = roll_est_;
   w.push_force = g.push_force;
+  w.foot_force = st.foot_force;
   w.dcm = {st.dcm.x(), st.dcm.y()};
   w.dcm_ref = {st.dcm_ref.x(), st.dcm_ref.y()};
   if (record_)
