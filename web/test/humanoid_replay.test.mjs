@@ -1,7 +1,8 @@
 // A humanoid walk's replay.html in a real browser (Debian's chromium, headless): it loads with no
 // console error and no network request; moving the time slider changes the drawn picture; the
-// pelvis height the page shows at a frame is log.csv's at that time, and the COM marker is the
-// log's COM moved by one fixed offset (the plan's frame in the world); the walk's markers are layers;
+// pelvis the page shows at a frame is log.csv's at that time, and the COM marker is the log's COM
+// moved by one fixed offset (the plan's frame in the world), as is the pelvis; the walk's markers
+// are layers;
 // each panel of plots (ZMP, COM and capture point, pelvis, gears, feet) draws its cursor at the
 // slider's time and shows log.csv's and joints.csv's values there.
 // Run: node web/test/humanoid_replay.test.mjs (env FLEXGAIT = the flexgait executable).
@@ -64,6 +65,11 @@ test('the pelvis shown at a frame is the log\'s at that time', async () => {
     if (offset === null) offset = d;
     for (let i = 0; i < 2; ++i) assert.ok(Math.abs(d[i] - offset[i]) <= 2e-6, `COM offset ${d} vs ${offset}`);
     assert.ok(Math.hypot(...offset) < 0.05, `offset ${offset}`);
+    // The pelvis's x and y (the log's in the plan's frame) by the same offset: the float32 of the
+    // pelvis (< 1 m: 6e-8 m) and of the COM marker, and the offset's, within 2e-6 m.
+    const p = [pos[0] - offset[0], pos[1] - offset[1]];
+    const want = [Number(row.pelvis_x), Number(row.pelvis_y)];
+    for (let i = 0; i < 2; ++i) assert.ok(Math.abs(p[i] - want[i]) <= 2e-6, `pelvis ${p} vs log ${want}`);
   }
 });
 

@@ -100,6 +100,7 @@ struct WalkSample {
   double com_ref_x = 0, com_ref_y = 0;     ///< planned [m]
   double com_x = 0, com_y = 0, com_z = 0;  ///< true [m]
   double pelvis_z = 0;                     ///< true [m]
+  double pelvis_x = 0, pelvis_y = 0;       ///< true, the plan's frame [m]
   double imu_roll = 0, imu_pitch = 0;      ///< the controller's estimate [rad]
   double roll_true = 0, pitch_true = 0;    ///< the twin's pelvis attitude [rad]
   unsigned sensor_faults = 0;  ///< bit i: sensor i (humanoid::SensorId) bad in a period since the last sample

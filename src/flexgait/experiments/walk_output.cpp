@@ -58,7 +58,9 @@ std::vector<std::string> log_header() {
           "dcm_error_x",
           "dcm_error_y",
           "l_ft_fz",
-          "r_ft_fz"};
+          "r_ft_fz",
+          "pelvis_x",
+          "pelvis_y"};
 }
 
 template <class Writer>
@@ -77,7 +79,7 @@ void log_row(Writer& csv, const WalkSample& w) {
       .cell(w.dcm_ref[1])
       .cell(w.dcm[0] - w.dcm_ref[0])
       .cell(w.dcm[1] - w.dcm_ref[1]);
-  csv.cell(w.foot_force[0]).cell(w.foot_force[1]);
+  csv.cell(w.foot_force[0]).cell(w.foot_force[1]).cell(w.pelvis_x).cell(w.pelvis_y);
   csv.end_row();
 }
 

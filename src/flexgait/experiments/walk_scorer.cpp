@@ -289,6 +289,8 @@ void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& z
   w.com_y = com_true.y();
   w.com_z = g.com[2];
   w.pelvis_z = g.pelvis_pos[2];
+  w.pelvis_x = g.pelvis_pos[0] - offset_.x();
+  w.pelvis_y = g.pelvis_pos[1] - offset_.y();
   w.imu_roll = st.imu_roll;
   w.imu_pitch = st.imu_pitch;
   w.roll_true = roll_true_;
