@@ -293,18 +293,23 @@ class Plots {
       }
       g.fillStyle = '#333';
       g.textAlign = 'left';
-      g.fillText(`${plot.title}${plot.unit ? ` [${plot.unit}]` : ''}`, LEFT, y0 - 4);
+      const title = `${plot.title}${plot.unit ? ` [${plot.unit}]` : ''}`;
+      g.fillText(title, LEFT, y0 - 4);
       g.textAlign = 'right';
       g.fillText(hi.toPrecision(3), LEFT - 4, y0 + 9);
       g.fillText(lo.toPrecision(3), LEFT - 4, y0 + h);
-      // The legend, right-aligned above the plot: each line's name and its value at the cursor.
-      let x = width - RIGHT;
-      const shown = [];
-      for (let k = plot.lines.length - 1; k >= 0; --k) {
-        const line = plot.lines[k];
+      // The legend, right-aligned above the plot: each line's name and its value at the cursor
+      // (the values alone where the names would run into the title).
+      const shown = plot.lines.map((line) => {
         const v = this.data.signals[line.index].data[frame];
-        const text = `${line.label} ${!Number.isFinite(v) ? '–' : Number.isInteger(v) ? v : v.toPrecision(4)}`;
-        shown.unshift({ plot: plot.title, name: line.name, label: line.label, value: v, text });
+        const value = !Number.isFinite(v) ? '–' : Number.isInteger(v) ? String(v) : v.toPrecision(4);
+        return { plot: plot.title, name: line.name, label: line.label, value: v, text: `${line.label} ${value}`, short: value };
+      });
+      const legendWidth = shown.reduce((w, x) => w + g.measureText(x.text).width + 24, 0);
+      const short = LEFT + g.measureText(title).width + 12 > width - RIGHT - legendWidth;
+      let x = width - RIGHT;
+      for (let k = plot.lines.length - 1; k >= 0; --k) {
+        const text = short ? shown[k].short : shown[k].text;
         g.fillStyle = '#333';
         g.fillText(text, x, y0 - 4);
         x -= g.measureText(text).width + 4;
@@ -312,7 +317,7 @@ class Plots {
         g.fillRect(x - 10, y0 - 11, 10, 6);
         x -= 20;
       }
-      this.shown.push(...shown);
+      this.shown.push(...shown.map(({ short: _, ...x }) => x));
       plot.lines.forEach((line, k) => {
         const data = this.data.signals[line.index].data;
         g.strokeStyle = LINE_COLORS[k % LINE_COLORS.length];
