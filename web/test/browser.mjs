@@ -45,19 +45,6 @@ export async function runAndOpen(args, prefix, size) {
   return { dir, out, html, log: parseCsv(readFileSync(join(out, 'log.csv'), 'utf8')), ...opened, close };
 }
 
-/// Darkness of the plots' cursor: the share of the plots canvas's pixel column at the page's
-/// cursorX that is near black (the cursor is a one-pixel black line over the canvas's height).
-export async function cursorDarkness(page) {
-  return page.evaluate(() => {
-    const c = document.getElementById('plots');
-    const x = Math.floor(window.flexgaitReplay.cursorX() * (window.devicePixelRatio || 1));
-    const px = c.getContext('2d').getImageData(x, 0, 1, c.height).data;
-    let dark = 0;
-    for (let i = 0; i < px.length; i += 4) dark += px[i] < 60 && px[i + 1] < 60 && px[i + 2] < 60;
-    return dark / c.height;
-  });
-}
-
 /// Every panel of the plots, shown as a person would (its tab clicked), at the first, a middle and
 /// the last frame (the slider moved): the black cursor is drawn across the plots at the frame's
 /// time (its x linear in time), and each value the legends show is `expected(row, name)` exactly
@@ -75,14 +62,24 @@ export async function checkPanels(page, assert, rowAt, expected) {
     const cursor = [];
     const times = [];
     for (const f of [0, Math.floor(frames / 2), frames - 1]) {
-      await moveSlider(page, f);
-      const [t, x, shown] = await page.evaluate(() => {
+      // (one round trip: the slider moved as moveSlider moves it, then what the plots show read)
+      const [shownFrame, t, x, shown, dark] = await page.evaluate((f) => {
+        const slider = document.getElementById('slider');
+        slider.value = String(f);
+        slider.dispatchEvent(new Event('input', { bubbles: true }));
         const r = window.flexgaitReplay;
-        return [r.time(r.frame()), r.cursorX(), r.plotted()];
-      });
+        // The cursor's darkness: the share of the plots canvas's pixel column at cursorX that is
+        // near black (the cursor is a one-pixel black line over the canvas's height).
+        const c = document.getElementById('plots');
+        const px = c.getContext('2d').getImageData(Math.floor(r.cursorX() * (window.devicePixelRatio || 1)), 0, 1,
+          c.height).data;
+        let black = 0;
+        for (let i = 0; i < px.length; i += 4) black += px[i] < 60 && px[i + 1] < 60 && px[i + 2] < 60;
+        return [r.frame(), r.time(r.frame()), r.cursorX(), r.plotted(), black / c.height];
+      }, f);
+      assert.equal(shownFrame, f);
       times.push(t);
       cursor.push(x);
-      const dark = await cursorDarkness(page);
       assert.ok(dark > 0.9, `${panel}, frame ${f}: the cursor's column is ${dark} dark`);
       assert.ok(shown.length > 0, `${panel}: nothing plotted`);
       const row = rowAt(t);
