@@ -72,7 +72,7 @@ class WalkPictures final : public loop::LoopObserver {
     std::size_t column = 0, minus = std::string::npos;  ///< value = column − minus (minus: none when npos)
     int capture = -1;                                   ///< 0, 1: the capture point's x, y instead
   };
-  std::vector<ColumnSignal> columns_;  ///< the replay's signals from the log, then capture_point_x, _y
+  std::vector<ColumnSignal> columns_;  ///< where each of the replay's signals comes from
   std::unique_ptr<WalkColumns> log_columns_;
   std::vector<double> sample_values_;  ///< log_columns_'s values of the last logged sample
   double sample_t_ = -1;               ///< its time [s]
