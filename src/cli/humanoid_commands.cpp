@@ -214,7 +214,11 @@ int walk(const RunOptions& run, const RenderOptions& render) {
   // (the log streamed to disk: memory flat in the walk's length)
   experiments::WalkLogWriter log(dir, "", params.control.k_estimation != compensation::KEstimation::kOff);
   const experiments::WalkResult r = experiments::run_walk(
-      params, [&](double t) { bar.show(t); }, attach, [&](const experiments::WalkSample& w) { log.add(w); });
+      params, [&](double t) { bar.show(t); }, attach,
+      [&](const experiments::WalkSample& w) {
+        log.add(w);
+        drawn->log_sample(w);  // (the replay plots the log's columns)
+      });
   log.commit();
   const int frame = drawn->frames();
   if (render.enabled) show_stage(fmt::format("encoding video.mp4 from {} frames (ffmpeg)", frame));

@@ -61,6 +61,29 @@ TEST(WalkOutput, LogAndJointsHaveARowPerSampleAndAreTheTablesText) {
   EXPECT_EQ(table.columns()[2].numbers[3], 0.03);
 }
 
+TEST(WalkOutput, ColumnsByNameAreTheFilesCells) {
+  WalkResult r = made_result();
+  r.log[3].foot_force = {512.5, -3.25};
+  r.log[3].torque_true[humanoid::kRightAnkleRoll] = 7.5;
+  const WalkColumns columns({"zmp_ref_x", "l_ft_fz", "r_ft_fz", "r_ankle_roll_torque_true", "step", "t"});
+  const std::vector<double> v = columns.values(r.log[3]);
+  // The cells of the files' row (log.csv, then joints.csv for a name log.csv lacks).
+  const Table log = walk_log_table(r), joints = walk_joints_table(r);
+  auto cell = [](const Table& t, const std::string& name) {
+    for (const auto& c : t.columns())
+      if (c.name == name) return c.numbers.at(3);
+    ADD_FAILURE() << name;
+    return 0.0;
+  };
+  EXPECT_EQ(v, (std::vector<double>{cell(log, "zmp_ref_x"), cell(log, "l_ft_fz"), cell(log, "r_ft_fz"),
+                                    cell(joints, "r_ankle_roll_torque_true"), cell(log, "step"), cell(log, "t")}));
+  EXPECT_EQ(v[1], 512.5);
+  EXPECT_EQ(v[3], 7.5);
+  EXPECT_THROW(WalkColumns({"zmp_ref_z"}), std::invalid_argument);
+  EXPECT_THROW(WalkColumns({"k_est_l_knee"}), std::invalid_argument);  // only with the stiffness estimates
+  EXPECT_NO_THROW(WalkColumns({"k_est_l_knee"}, true));
+}
+
 TEST(WalkOutput, FootstepsListTheInitialFeetAndEveryStepWithItsLanding) {
   const WalkResult r = made_result();
   const auto rows = lines(walk_footsteps_csv(r));

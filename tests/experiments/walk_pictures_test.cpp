@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace flexgait::experiments {
 namespace {
@@ -79,6 +80,71 @@ TEST(WalkPictures, TheSideCameraSeesTheRobotWalkWithItsMarkers) {
 
   // The markers hold the walk's landings (walk_markers_test.cpp); here they are the pictures' own.
   EXPECT_EQ(pictures->markers().markers().actual.size(), 2 + plan.steps.size());
+}
+
+// The replay's plotted signals are the log's: at each frame (a logged sample's time) every signal
+// named by a column (or "a - b") holds float32 of that column's value (the difference) in the
+// sample run_walk logged then; the capture point is the marker's, in the plan's frame.
+TEST(WalkPictures, TheReplaysSignalsAreTheLogsColumns) {
+  WalkRunParams p;
+  p.walk.steps = 1;
+  WalkPictureOptions options;
+  options.replay = true;
+  std::unique_ptr<WalkPictures> pictures;
+  std::vector<WalkSample> samples;
+  const WalkResult r = run_walk(
+      p, {},
+      [&](WalkLoop& w) {
+        pictures = std::make_unique<WalkPictures>(p, w, options);
+        w.loop->attach(*pictures);
+      },
+      [&](const WalkSample& w) {
+        samples.push_back(w);
+        pictures->log_sample(w);
+      });
+  ASSERT_TRUE(r.metrics.completed()) << r.metrics.outcome();
+  const replay::Scene& s = pictures->replay()->scene();
+  ASSERT_GT(s.frames(), 50);
+  ASSERT_EQ(s.signals.size(), 36u);  // (pd balance, no push: no DCM, no push force)
+  // Each signal's columns: a, or a and b of "a - b" (2k and 2k + 1; b = a for a single column).
+  std::vector<std::string> names;
+  for (const replay::Signal& signal : s.signals) {
+    const std::size_t minus = signal.name.find(" - ");
+    names.push_back(signal.name.substr(0, minus));
+    names.push_back(minus == std::string::npos ? signal.name : signal.name.substr(minus + 3));
+  }
+  for (std::string& name : names)
+    if (name.rfind("capture_point_", 0) == 0) name = "t";  // (not a column: checked apart)
+  const WalkColumns columns(names);
+  std::size_t row = 0;
+  int checked = 0;
+  for (int f = 0; f < s.frames(); ++f) {
+    while (row < samples.size() && samples[row].t != s.time[static_cast<std::size_t>(f)]) ++row;
+    ASSERT_LT(row, samples.size()) << "frame " << f << " is no logged sample";
+    const std::vector<double> v = columns.values(samples[row]);
+    for (std::size_t k = 0; k < s.signals.size(); ++k) {
+      const replay::Signal& signal = s.signals[k];
+      const float shown = signal.data[static_cast<std::size_t>(f)];
+      if (signal.name.rfind("capture_point_", 0) == 0) {
+        EXPECT_TRUE(std::isfinite(shown)) << signal.name;
+        continue;
+      }
+      const double want = signal.name.find(" - ") == std::string::npos ? v[2 * k] : v[2 * k] - v[2 * k + 1];
+      EXPECT_TRUE(shown == static_cast<float>(want) || (std::isnan(shown) && std::isnan(want)))
+          << signal.name << " at frame " << f << ": " << shown << " vs " << want;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, s.frames() * 34);
+  // The panels: ZMP, COM and capture point, pelvis, gears, feet, each signal with a unit.
+  std::vector<std::string> panels;
+  for (const replay::Signal& signal : s.signals) {
+    if (panels.empty() || panels.back() != signal.panel) panels.push_back(signal.panel);
+    EXPECT_FALSE(signal.unit.empty()) << signal.name;
+  }
+  EXPECT_EQ(panels, (std::vector<std::string>{"ZMP", "COM, capture point", "pelvis", "gears", "feet"}));
+  p.balance.mode = walking::BalanceMode::kDcm;  // the DCM's columns; a push's force
+  EXPECT_EQ(WalkPictures::replay_signals(p, true).size(), 36u + 4 + 3);
 }
 
 }  // namespace

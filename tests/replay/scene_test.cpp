@@ -48,7 +48,7 @@ Scene two_frames() {
   arrows.count = 2;
   arrows.palette = {{1, 0, 0, 1}, {0, 0, 1, 1}};
   s.layers.push_back(arrows);
-  s.signals.push_back({"height", "m", {}});
+  s.signals.push_back({"height", "m", {}, "body", "height and depth", "the ball's"});
   for (int f = 0; f < 2; ++f) {
     s.add_frame(0.1 * f + 1.0 / 3.0);
     s.set_pose(f, 0, {1.0 + f, 2, 3}, {1, 0, 0, 0});
@@ -72,6 +72,9 @@ TEST(ReplayJson, RoundTripsThePerFrameArrays) {
   EXPECT_EQ(items[12 + 6 + 5], 0.5F);  // frame 1, item 1, b.z
   EXPECT_EQ(decode<unsigned char>(j["layers"][0]["color"]), (std::vector<unsigned char>{0, 1, 0, 1}));
   EXPECT_EQ(decode<float>(j["signals"][0]["data"]), (std::vector<float>{3.0F, 3.25F}));
+  EXPECT_EQ(j["signals"][0]["panel"], "body");  // the page's tab, plot and legend line
+  EXPECT_EQ(j["signals"][0]["plot"], "height and depth");
+  EXPECT_EQ(j["signals"][0]["label"], "the ball's");
   EXPECT_EQ(j["title"], "a </script> title");            // the escape "<\/" reads back as "</"
   EXPECT_EQ(replay_json(s), replay_json(two_frames()));  // same scene, same bytes
 }
@@ -103,6 +106,13 @@ TEST(ReplayJson, RefusesInconsistentSizes) {
   EXPECT_THROW(replay_json(s), std::logic_error);
   s = two_frames();
   s.layers[0].color[0] = 2;  // outside its palette of two
+  EXPECT_THROW(replay_json(s), std::logic_error);
+  s = two_frames();
+  s.signals.push_back({"depth", "mm", {0, 0}, "body", "height and depth", ""});  // one plot, one axis: one unit
+  EXPECT_THROW(replay_json(s), std::logic_error);
+  s.signals.back().unit = "m";
+  EXPECT_NO_THROW(replay_json(s));
+  s.signals.back().name = "height";  // the page finds a signal by its name
   EXPECT_THROW(replay_json(s), std::logic_error);
 }
 

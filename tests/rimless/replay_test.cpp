@@ -1,14 +1,17 @@
 // The wheel's replay scene against its run: every frame is a logged sample (its time and hub
 // position the log's), the legs' feet on the ground sit at the log's c_k on the slope, a free
-// foot is L0 from the hub, the slope map turns the slope's axes into unit vectors φ below and
-// above the horizontal, and every callback reaches the next sink unchanged.
+// foot is L0 from the hub, the plotted signals are the log's cells, the slope map turns the slope's axes into unit
+// vectors φ below and above the horizontal, and every callback reaches the next sink unchanged.
 #include "flexgait/rimless/replay.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "flexgait/rimless/flexible_wheel.hpp"
+#include "flexgait/rimless/output.hpp"
 
 namespace flexgait::rimless {
 namespace {
@@ -31,12 +34,13 @@ TEST(WheelReplay, FramesAreLoggedSamples) {
   SimulationResult forwarded;
   RunCollector collector(forwarded);
   WheelReplay replay(w, collector, 0.05);
-  (void)simulate_flexible(w, InitialState{}, o, replay);
+  forwarded.energy_initial = simulate_flexible(w, InitialState{}, o, replay).energy_initial;  // (log.csv's E(0))
   // Every callback reached the next sink: the same samples as the in-memory run.
   ASSERT_EQ(forwarded.samples.size(), in_memory.samples.size());
   EXPECT_EQ(forwarded.events.size(), in_memory.events.size());
   const replay::Scene& s = replay.finish();
   ASSERT_GT(s.frames(), 10);
+  const Table log = log_table(forwarded);  // log.csv's cells
   std::size_t row = 0;
   const double alpha = w.alpha();
   for (int f = 0; f < s.frames(); ++f) {
@@ -45,6 +49,33 @@ TEST(WheelReplay, FramesAreLoggedSamples) {
     const LogSample& x = forwarded.samples[row];
     if (f > 0) {
       EXPECT_GE(s.time[f] - s.time[f - 1], 0.05 - 2e-3);  // a frame every 0.05 s, on the 1 ms samples
+    }
+    // The plotted signals are log.csv's columns of their names (float32 of the cells); phaseK is
+    // the slot's mode as a number (slip+ 1, stick 0, slip- -1), NaN while the slot is empty. And
+    // log_values is the row's numbers, NaN for its text cells.
+    const std::vector<double> values = log_values(x, forwarded.energy_initial);
+    ASSERT_EQ(values.size(), log.columns().size());
+    for (std::size_t c = 0; c < values.size(); ++c) {
+      const Table::Column& column = log.columns()[c];
+      if (column.kind == Table::Kind::Text)
+        EXPECT_TRUE(std::isnan(values[c])) << column.name;
+      else
+        EXPECT_EQ(values[c], column.numbers[row]) << column.name;
+    }
+    for (const replay::Signal& signal : s.signals) {
+      const float shown = signal.data[static_cast<std::size_t>(f)];
+      if (signal.name.rfind("phase", 0) == 0) {
+        const ContactSample& slot = x.contact[static_cast<std::size_t>(std::stoi(signal.name.substr(5)) - 1)];
+        if (slot.leg < 0)
+          EXPECT_TRUE(std::isnan(shown)) << signal.name;
+        else
+          EXPECT_EQ(shown, static_cast<float>(slip_sign(slot.mode))) << signal.name;
+        continue;
+      }
+      const auto column = std::find_if(log.columns().begin(), log.columns().end(),
+                                       [&](const Table::Column& c) { return c.name == signal.name; });
+      ASSERT_NE(column, log.columns().end()) << signal.name;
+      EXPECT_EQ(shown, static_cast<float>(column->numbers[row])) << signal.name << " at frame " << f;
     }
     const auto hub = slope_to_world(w, x.q[0], x.q[1]);
     const float* p = &s.poses[static_cast<std::size_t>(f) * 7];

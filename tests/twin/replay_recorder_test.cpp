@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "flexgait/twin/detail/mujoco.hpp"
 
@@ -19,7 +21,7 @@ TEST(ReplayRecorder, FramesHoldTheStatesBodyPoses) {
   HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
   const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, 0.75);
   plant.reset(pose);
-  ReplayRecorder rec(plant, "standing", {{"pelvis z", "m"}}, 0.02);
+  ReplayRecorder rec(plant, "standing", {{"pelvis z", "m", {}, "", "", ""}}, 0.02);
   const mjModel* m = plant_model(plant);
   ASSERT_GT(rec.scene().bodies.size(), 10u);
   EXPECT_EQ(rec.scene().bodies.front().name, "pelvis");
@@ -70,13 +72,16 @@ TEST(ReplayRecorder, FramesHoldTheStatesBodyPoses) {
 
 TEST(ReplayRecorder, ATenStepWalksPageStaysUnderFiveMegabytes) {
   // A 10-step walk: ~13.5 s at 25 frames per second (the walk's replay rate, walk_pictures.hpp),
-  // ~340 frames, with the plan's 12 footprints planned and landed, every point marker and 5 signals.
+  // ~340 frames, with the plan's 12 footprints planned and landed, every point marker and 45 signals.
   // The page: the viewer (~0.6 MB) and the data block. (A real walk's page: web/test/humanoid_replay.test.mjs.)
   HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
   plant.reset(standing_pose(humanoid::RobotParams{}, 0.75));
-  ReplayRecorder rec(plant, "walk", {{"a", ""}, {"b", ""}, {"c", ""}, {"d", ""}, {"e", ""}}, 0.04);
+  // 45 signals: more than a walk plots (WalkPictures::replay_signals: 36, 43 with the DCM and a push).
+  std::vector<replay::Signal> signals;
+  for (int i = 0; i < 45; ++i) signals.push_back({"s" + std::to_string(i), "m", {}, "p", "q", ""});
+  ReplayRecorder rec(plant, "walk", signals, 0.04);
   rec.set_planned_footprints(std::vector<FootprintMarker>(12));
-  const std::vector<double> values{1, 2, 3, 4, 5};
+  const std::vector<double> values(signals.size(), 1.0);
   RenderMarkers markers;
   markers.zmp = markers.zmp_ref = markers.com_ground = markers.capture_point = std::array<double, 3>{0.1, 0.2, 0};
   markers.actual.resize(12);
@@ -96,7 +101,7 @@ TEST(ReplayRecorder, MemoryIsBoundedByThinningTheFrames) {
   // evenly spaced samples of the same run, each with its own pose and signal.
   HumanoidPlant plant(humanoid::RobotParams{}, PlantParams{});
   plant.reset(standing_pose(humanoid::RobotParams{}, 0.75));
-  ReplayRecorder rec(plant, "thin", {{"t", "s"}}, 0.1, 4);
+  ReplayRecorder rec(plant, "thin", {{"t", "s", {}, "", "", ""}}, 0.1, 4);
   for (int i = 0; i <= 9; ++i) {
     const double t = 0.1 * i;
     rec.record(plant, t, {}, std::vector<double>{t});

@@ -198,70 +198,146 @@ class Layer {
 
 // ---- plots ------------------------------------------------------------------------------------
 
+// The signals in panels (tabs), each panel a column of plots, each plot the lines of its signals
+// on shared axes (one unit), in the order the signals come. A signal without a panel goes to
+// "signals", without a plot to a plot of its own.
+function groupSignals(signals) {
+  const panels = [];
+  signals.forEach((s, index) => {
+    const name = s.panel || 'signals';
+    let panel = panels.find((p) => p.name === name);
+    if (!panel) panels.push((panel = { name, plots: [] }));
+    const title = s.plot || s.name;
+    let plot = s.plot ? panel.plots.find((p) => p.title === title) : undefined;
+    if (!plot) panel.plots.push((plot = { title, unit: s.unit ?? '', lines: [] }));
+    plot.lines.push({ index, name: s.name, label: s.label || s.name });
+  });
+  return panels;
+}
+
+const LINE_COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#17becf'];
+const LEFT = 62, RIGHT = 10;  // the plots' margins [CSS pixels]
+
 class Plots {
-  constructor(canvas, data) {
+  constructor(canvas, tabs, data, onChange) {
     this.canvas = canvas;
     this.data = data;
     this.cursorX = 0;
+    this.shown = [];
     const t = data.time;
     this.t0 = t[0];
     this.t1 = t[t.length - 1] > t[0] ? t[t.length - 1] : t[0] + 1;
-    this.ranges = data.signals.map((s) => {
-      let lo = Infinity, hi = -Infinity;
-      for (const v of s.data) if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
-      if (!(hi > lo)) { lo -= 1; hi += 1; }
-      const pad = 0.08 * (hi - lo);
-      return [lo - pad, hi + pad];
+    this.panels = groupSignals(data.signals);
+    for (const panel of this.panels)
+      for (const plot of panel.plots) {
+        let lo = Infinity, hi = -Infinity;
+        for (const line of plot.lines)
+          for (const v of data.signals[line.index].data) if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+        if (!(hi > lo)) { lo = Number.isFinite(lo) ? lo - 1 : -1; hi = Number.isFinite(hi) ? hi + 1 : 1; }
+        const pad = 0.08 * (hi - lo);
+        plot.range = [lo - pad, hi + pad];
+      }
+    this.panel = this.panels[0] ?? null;
+    this.buttons = this.panels.map((panel) => {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.textContent = panel.name;
+      b.dataset.panel = panel.name;
+      b.addEventListener('click', () => { this.select(panel.name); onChange(); });
+      tabs.append(b);
+      return b;
     });
+    if (this.panels.length < 2) tabs.style.display = 'none';
+    this.select(this.panel?.name);
   }
 
-  xOf(t, width) { return 60 + ((t - this.t0) / (this.t1 - this.t0)) * (width - 70); }
+  select(name) {
+    this.panel = this.panels.find((p) => p.name === name) ?? this.panel;
+    this.buttons.forEach((b) => b.classList.toggle('active', b.dataset.panel === this.panel?.name));
+  }
+
+  xOf(t, width) { return LEFT + ((t - this.t0) / (this.t1 - this.t0)) * (width - LEFT - RIGHT); }
 
   draw(frame) {
     const c = this.canvas;
     const dpr = window.devicePixelRatio || 1;
     const width = c.clientWidth, height = c.clientHeight;
-    if (c.width !== Math.round(width * dpr)) { c.width = Math.round(width * dpr); c.height = Math.round(height * dpr); }
+    if (c.width !== Math.round(width * dpr) || c.height !== Math.round(height * dpr)) {
+      c.width = Math.round(width * dpr);
+      c.height = Math.round(height * dpr);
+    }
     const g = c.getContext('2d');
     g.setTransform(dpr, 0, 0, dpr, 0, 0);
     g.fillStyle = '#fff';
     g.fillRect(0, 0, width, height);
-    const n = this.data.signals.length;
-    if (n === 0) return;
-    const strip = height / n;
+    this.shown = [];
+    if (!this.panel) return;
+    const plots = this.panel.plots;
+    const strip = height / plots.length;
     const t = this.data.time;
-    const colors = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#17becf'];
+    const step = Math.max(1, Math.floor(t.length / (4 * width)));
     g.font = '11px sans-serif';
-    this.data.signals.forEach((s, i) => {
-      const [lo, hi] = this.ranges[i];
-      const y0 = i * strip + 4, h = strip - 10;
+    g.textBaseline = 'alphabetic';
+    plots.forEach((plot, i) => {
+      const [lo, hi] = plot.range;
+      const y0 = i * strip + 16, h = strip - 22;
       const yOf = (v) => y0 + h - ((v - lo) / (hi - lo)) * h;
       g.strokeStyle = '#ddd';
-      g.strokeRect(60, y0, width - 70, h);
-      g.fillStyle = '#333';
-      g.fillText(`${s.name}${s.unit ? ` [${s.unit}]` : ''}`, 64, y0 + 11);
-      g.fillText(hi.toPrecision(3), 2, y0 + 10);
-      g.fillText(lo.toPrecision(3), 2, y0 + h);
-      g.strokeStyle = colors[i % colors.length];
-      g.lineWidth = 1.2;
-      g.beginPath();
-      let pen = false;
-      const step = Math.max(1, Math.floor(t.length / (4 * width)));
-      for (let k = 0; k < t.length; k += step) {
-        const v = s.data[k];
-        if (!Number.isFinite(v)) { pen = false; continue; }
-        const x = this.xOf(t[k], width), y = yOf(v);
-        if (pen) g.lineTo(x, y); else g.moveTo(x, y);
-        pen = true;
+      g.lineWidth = 1;
+      g.strokeRect(LEFT, y0, width - LEFT - RIGHT, h);
+      if (lo < 0 && hi > 0) {  // the zero line
+        g.beginPath();
+        g.moveTo(LEFT, yOf(0));
+        g.lineTo(width - RIGHT, yOf(0));
+        g.stroke();
       }
-      g.stroke();
-      const v = s.data[frame];
-      g.fillStyle = '#000';
-      if (Number.isFinite(v)) g.fillText(v.toPrecision(5), width - 70 - 60, y0 + 11);
+      g.fillStyle = '#333';
+      g.textAlign = 'left';
+      const title = `${plot.title}${plot.unit ? ` [${plot.unit}]` : ''}`;
+      g.fillText(title, LEFT, y0 - 4);
+      g.textAlign = 'right';
+      g.fillText(hi.toPrecision(3), LEFT - 4, y0 + 9);
+      g.fillText(lo.toPrecision(3), LEFT - 4, y0 + h);
+      // The legend, right-aligned above the plot: each line's name and its value at the cursor
+      // (the values alone where the names would run into the title).
+      const shown = plot.lines.map((line) => {
+        const v = this.data.signals[line.index].data[frame];
+        const value = !Number.isFinite(v) ? '–' : Number.isInteger(v) ? String(v) : v.toPrecision(4);
+        return { plot: plot.title, name: line.name, label: line.label, value: v, text: `${line.label} ${value}`, short: value };
+      });
+      const legendWidth = shown.reduce((w, x) => w + g.measureText(x.text).width + 24, 0);
+      const short = LEFT + g.measureText(title).width + 12 > width - RIGHT - legendWidth;
+      let x = width - RIGHT;
+      for (let k = plot.lines.length - 1; k >= 0; --k) {
+        const text = short ? shown[k].short : shown[k].text;
+        g.fillStyle = '#333';
+        g.fillText(text, x, y0 - 4);
+        x -= g.measureText(text).width + 4;
+        g.fillStyle = LINE_COLORS[k % LINE_COLORS.length];
+        g.fillRect(x - 10, y0 - 11, 10, 6);
+        x -= 20;
+      }
+      this.shown.push(...shown.map(({ short: _, ...x }) => x));
+      plot.lines.forEach((line, k) => {
+        const data = this.data.signals[line.index].data;
+        g.strokeStyle = LINE_COLORS[k % LINE_COLORS.length];
+        g.lineWidth = 1.2;
+        g.beginPath();
+        let pen = false;
+        for (let f = 0; f < t.length; f += step) {
+          const v = data[f];
+          if (!Number.isFinite(v)) { pen = false; continue; }
+          const px = this.xOf(t[f], width), py = yOf(v);
+          if (pen) g.lineTo(px, py); else g.moveTo(px, py);
+          pen = true;
+        }
+        g.stroke();
+      });
     });
-    this.cursorX = this.xOf(t[frame], width);
+    // The cursor: a one-pixel black line at the frame's time, on a pixel's centre.
+    this.cursorX = (Math.round(this.xOf(t[frame], width) * dpr) + 0.5) / dpr;
     g.strokeStyle = '#000';
-    g.lineWidth = 1;
+    g.lineWidth = 1 / dpr;
     g.beginPath();
     g.moveTo(this.cursorX, 0);
     g.lineTo(this.cursorX, height);
@@ -360,7 +436,8 @@ function main() {
   });
   if (followIndex < 0) followBox.parentElement.style.display = 'none';
 
-  const plots = new Plots(document.getElementById('plots'), data);
+  // (a panel's tab redraws the plots alone: the scene has not changed)
+  const plots = new Plots(document.getElementById('plots'), document.getElementById('panels'), data, () => plots.draw(frame));
   let frame = 0;
   let playing = false;
   let playTime = data.time[0];
@@ -466,6 +543,11 @@ function main() {
       return Array.from(l.data.subarray((f * l.count + k) * dim, (f * l.count + k + 1) * dim));
     },
     cursorX: () => plots.cursorX,
+    // The plots: the panels' names, the one shown, and what its legends show at the cursor
+    // ({plot, name, label, value, text} per line).
+    panels: () => plots.panels.map((p) => p.name),
+    panel: () => plots.panel?.name ?? null,
+    plotted: () => plots.shown.map((x) => ({ ...x })),
     ready: true,
   };
 }

@@ -2,10 +2,11 @@
 // puppeteer-core through the DevTools protocol; every network request is refused and recorded,
 // every console error and page error collected.
 import puppeteer from 'puppeteer-core';
-import { execFileSync } from 'node:child_process';
+import { execFile } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { promisify } from 'node:util';
 
 export const chromiumPath = process.env.FLEXGAIT_CHROMIUM || '/usr/bin/chromium';
 
@@ -17,29 +18,108 @@ export function requireChromium() {
   }
 }
 
-/// A run of `$FLEXGAIT args... --out DIR/run` in a fresh temporary directory (chromium required
-/// first): { dir, out, html: its replay.html, log: its log.csv's rows }. The caller removes dir.
-export function runWithReplay(args, prefix) {
+/// A run of `$FLEXGAIT args... --no-plot --out DIR/run` in a fresh temporary directory, and its
+/// replay.html opened (openPage; chromium required, started while the run goes): { dir, out,
+/// html: the page's file, log: log.csv's rows, page, errors, requests, close }. close() also
+/// removes dir.
+export async function runAndOpen(args, prefix, size) {
   requireChromium();
   const exe = process.env.FLEXGAIT;
   if (!exe) throw new Error('set FLEXGAIT to the flexgait executable');
   const dir = mkdtempSync(join(tmpdir(), prefix));
   const out = join(dir, 'run');
-  execFileSync(exe, [...args, '--out', out], { stdio: 'ignore' });
-  return { dir, out, html: join(out, 'replay.html'), log: parseCsv(readFileSync(join(out, 'log.csv'), 'utf8')) };
+  const browser = launch(size);
+  browser.catch(() => {});  // (awaited below, after the run)
+  try {
+    await promisify(execFile)(exe, [...args, '--no-plot', '--out', out]);  // (the figures are not the page's)
+  } catch (e) {
+    await browser.then(({ browser: b }) => b.close(), () => {});
+    throw e;
+  }
+  const html = join(out, 'replay.html');
+  const opened = await openPage(html, { ...size, browser: await browser });
+  const close = async () => {
+    await opened.close();
+    rmSync(dir, { recursive: true, force: true });
+  };
+  return { dir, out, html, log: parseCsv(readFileSync(join(out, 'log.csv'), 'utf8')), ...opened, close };
 }
 
-export async function openPage(file, { width = 900, height = 640 } = {}) {
+/// Every panel of the plots, shown as a person would (its tab clicked), at the first, a middle and
+/// the last frame (the slider moved): the black cursor is drawn across the plots at the frame's
+/// time (its x linear in time), and each value the legends show is `expected(row, name)` exactly
+/// (Math.fround of it: the page keeps float32), where row is the log's row at the frame's time
+/// (rowAt(t)); `expected` returns undefined for a signal the log does not hold. Returns the names
+/// of the signals checked against the log, by panel.
+export async function checkPanels(page, assert, rowAt, expected) {
+  const frames = await page.evaluate(() => window.flexgaitReplay.frames);
+  const panels = await page.evaluate(() => window.flexgaitReplay.panels());
+  const checked = {};
+  for (const panel of panels) {
+    await page.click(`#panels button[data-panel="${panel}"]`);
+    assert.equal(await page.evaluate(() => window.flexgaitReplay.panel()), panel);
+    checked[panel] = new Set();
+    const cursor = [];
+    const times = [];
+    for (const f of [0, Math.floor(frames / 2), frames - 1]) {
+      // (one round trip: the slider moved as moveSlider moves it, then what the plots show read)
+      const [shownFrame, t, x, shown, dark] = await page.evaluate((f) => {
+        const slider = document.getElementById('slider');
+        slider.value = String(f);
+        slider.dispatchEvent(new Event('input', { bubbles: true }));
+        const r = window.flexgaitReplay;
+        // The cursor's darkness: the share of the plots canvas's pixel column at cursorX that is
+        // near black (the cursor is a one-pixel black line over the canvas's height).
+        const c = document.getElementById('plots');
+        const px = c.getContext('2d').getImageData(Math.floor(r.cursorX() * (window.devicePixelRatio || 1)), 0, 1,
+          c.height).data;
+        let black = 0;
+        for (let i = 0; i < px.length; i += 4) black += px[i] < 60 && px[i + 1] < 60 && px[i + 2] < 60;
+        return [r.frame(), r.time(r.frame()), r.cursorX(), r.plotted(), black / c.height];
+      }, f);
+      assert.equal(shownFrame, f);
+      times.push(t);
+      cursor.push(x);
+      assert.ok(dark > 0.9, `${panel}, frame ${f}: the cursor's column is ${dark} dark`);
+      assert.ok(shown.length > 0, `${panel}: nothing plotted`);
+      const row = rowAt(t);
+      assert.ok(row, `no log row at t = ${t}`);
+      for (const s of shown) {
+        const want = expected(row, s.name);
+        if (want === undefined) continue;
+        const value = s.value ?? NaN;  // (NaN is null once out of the page)
+        assert.ok(value === Math.fround(want) || (Number.isNaN(value) && Number.isNaN(want)),
+          `${panel}: ${s.name} at t = ${t} shows ${value}, the log ${want}`);
+        checked[panel].add(s.name);
+      }
+    }
+    // The cursor follows the slider: its x is linear in the frame's time (1 pixel of rounding).
+    const expect = cursor[0] + ((cursor[2] - cursor[0]) * (times[1] - times[0])) / (times[2] - times[0]);
+    assert.ok(cursor[2] > cursor[0] + 200, `${panel}: cursor ${cursor}`);
+    assert.ok(Math.abs(cursor[1] - expect) <= 1, `${panel}: cursor ${cursor[1]} vs ${expect}`);
+  }
+  return checked;
+}
+
+function launch({ width = 900, height = 640 } = {}) {
   const profile = mkdtempSync(join(tmpdir(), 'flexgait-chromium-'));
-  const browser = await puppeteer.launch({
-    executablePath: chromiumPath,
-    headless: true,
-    userDataDir: profile,
-    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic',
-           '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync',
-           `--window-size=${width},${height}`],
-  });
-  const page = await browser.newPage();
+  return puppeteer
+    .launch({
+      executablePath: chromiumPath,
+      headless: true,
+      userDataDir: profile,
+      args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic',
+             '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync',
+             `--window-size=${width},${height}`],
+    })
+    .then((browser) => ({ browser, profile }));
+}
+
+/// `file` in chromium (`browser`: one launch() made, else a new one), in its first tab.
+export async function openPage(file, { width = 900, height = 640, browser: launched } = {}) {
+  const { browser, profile } = launched ?? (await launch({ width, height }));
+  // (the tab chromium opens with: a new one costs a second or more under software rendering)
+  const page = (await browser.pages())[0] ?? (await browser.newPage());
   await page.setViewport({ width, height });
   const errors = [];
   const requests = [];

@@ -1,16 +1,18 @@
 // The rimless wheel's replay.html in a real browser (Debian's chromium, headless): it loads with
 // no console error and no network request; moving the time slider changes the drawn picture and
-// the plots' cursor; the hub position the page shows at a frame is the log's at that time.
+// the plots' cursor; the hub position the page shows at a frame is the log's at that time; each
+// panel of plots (body, energy, contacts) draws its cursor at the slider's time and shows
+// log.csv's values there.
 // Run: node web/test/rimless_replay.test.mjs (env FLEXGAIT = the flexgait executable).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFileSync, rmSync, statSync } from 'node:fs';
+import { readFileSync, statSync } from 'node:fs';
 import { join } from 'node:path';
-import { runWithReplay, openPage, canvasSnapshot, moveSlider } from './browser.mjs';
+import { runAndOpen, canvasSnapshot, moveSlider, checkPanels } from './browser.mjs';
 
-const { dir, out, html, log } = runWithReplay(['rimless', 'simulate', '--steps', '6'], 'flexgait-rimless-replay-');
+const { out, html, log, page, errors, requests, close } = await runAndOpen(['rimless', 'simulate', '--steps', '6'],
+  'flexgait-rimless-replay-');
 const slope = Number(/^\s+slope: ([0-9.e+-]+)/m.exec(readFileSync(join(out, 'config.yaml'), 'utf8'))[1]);
-const { page, errors, requests, close } = await openPage(html);
 
 test('the page loads offline with no console error', async () => {
   assert.deepEqual(errors, []);
@@ -60,7 +62,21 @@ test('the hub position shown at a frame is the log\'s at that time', async () =>
   }
 });
 
-test.after(async () => {
-  await close();
-  rmSync(dir, { recursive: true, force: true });
+test('every panel of plots follows the slider and shows the log\'s values', async () => {
+  const rowAt = (t) => log.find((r) => Number(r.t) === t);
+  // A signal is log.csv's column of its name; phaseK as a number (slip+ 1, stick 0, slip- -1,
+  // none: not drawn).
+  const phases = { 'slip+': 1, stick: 0, 'slip-': -1, none: NaN };
+  const expected = (row, name) => {
+    if (!(name in row)) return undefined;
+    return name.startsWith('phase') ? phases[row[name]] : Number(row[name]);
+  };
+  const checked = await checkPanels(page, assert, rowAt, expected);
+  assert.deepEqual(Object.keys(checked), ['body', 'energy', 'contacts']);
+  for (const name of ['x', 'y', 'theta', 'thetad']) assert.ok(checked.body.has(name), name);
+  for (const name of ['E_kinetic', 'E_total', 'W_damp', 'W_fric', 'balance']) assert.ok(checked.energy.has(name), name);
+  for (const name of ['N1', 'T1', 'phase1', 'leg1', 'N3', 'phase3']) assert.ok(checked.contacts.has(name), name);
+  assert.deepEqual(errors, []);
 });
+
+test.after(close);

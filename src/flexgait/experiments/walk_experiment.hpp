@@ -100,6 +100,7 @@ struct WalkSample {
   double com_ref_x = 0, com_ref_y = 0;     ///< planned [m]
   double com_x = 0, com_y = 0, com_z = 0;  ///< true [m]
   double pelvis_z = 0;                     ///< true [m]
+  double pelvis_x = 0, pelvis_y = 0;       ///< true, the plan's frame [m]
   double imu_roll = 0, imu_pitch = 0;      ///< the controller's estimate [rad]
   double roll_true = 0, pitch_true = 0;    ///< the twin's pelvis attitude [rad]
   unsigned sensor_faults = 0;  ///< bit i: sensor i (humanoid::SensorId) bad in a period since the last sample
@@ -123,6 +124,9 @@ struct WalkSample {
   /// through the estimate (eq. 1), against the IMU's [rad]; 0 in double support.
   double roll_kin_encoder = 0, roll_kin_estimate = 0;
   std::array<double, 3> push_force{};  ///< push force applied in the last physics step (world) [N]
+  /// The vertical ground force on each foot (left, right) as the controller reads it from the F/T
+  /// sensors (ControllerStatus::foot_force) [N].
+  std::array<double, 2> foot_force{};
   /// balance.mode = dcm: the controller's DCM ξ (its COM estimate) and the plan's ξ_ref, in its
   /// own frame (0 in pd mode, where it computes none) [m].
   std::array<double, 2> dcm{}, dcm_ref{};

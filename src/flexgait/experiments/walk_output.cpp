@@ -5,8 +5,10 @@
 #include "flexgait/core/record_json.hpp"
 #include "flexgait/core/text.hpp"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
+#include <stdexcept>
 #include <string_view>
 
 namespace flexgait::experiments {
@@ -54,7 +56,11 @@ std::vector<std::string> log_header() {
           "dcm_ref_x",
           "dcm_ref_y",
           "dcm_error_x",
-          "dcm_error_y"};
+          "dcm_error_y",
+          "l_ft_fz",
+          "r_ft_fz",
+          "pelvis_x",
+          "pelvis_y"};
 }
 
 template <class Writer>
@@ -73,6 +79,7 @@ void log_row(Writer& csv, const WalkSample& w) {
       .cell(w.dcm_ref[1])
       .cell(w.dcm[0] - w.dcm_ref[0])
       .cell(w.dcm[1] - w.dcm_ref[1]);
+  csv.cell(w.foot_force[0]).cell(w.foot_force[1]).cell(w.pelvis_x).cell(w.pelvis_y);
   csv.end_row();
 }
 
@@ -119,6 +126,32 @@ Writer walk_joints_rows(const WalkResult& r) {
 }
 
 }  // namespace
+
+WalkColumns::WalkColumns(const std::vector<std::string>& names, bool k_estimation) : k_estimation_(k_estimation) {
+  const std::vector<std::string> log = log_header(), joints = joints_header(k_estimation);
+  for (const std::string& name : names) {
+    const auto in_log = std::find(log.begin(), log.end(), name);
+    const auto in_joints = std::find(joints.begin(), joints.end(), name);
+    if (in_log != log.end())
+      where_.emplace_back(false, static_cast<std::size_t>(in_log - log.begin()));
+    else if (in_joints != joints.end())
+      where_.emplace_back(true, static_cast<std::size_t>(in_joints - joints.begin()));
+    else
+      throw std::invalid_argument("WalkColumns: no column " + name + " in log.csv or joints.csv");
+  }
+}
+
+std::vector<double> WalkColumns::values(const WalkSample& sample) const {
+  // (one row of each file by the writers of the files themselves: the values are the files')
+  Table log(log_header()), joints(joints_header(k_estimation_));
+  log_row(log, sample);
+  joints_row(joints, sample, k_estimation_);
+  std::vector<double> out;
+  out.reserve(where_.size());
+  for (const auto& [in_joints, column] : where_)
+    out.push_back((in_joints ? joints : log).columns()[column].numbers.at(0));
+  return out;
+}
 
 std::string walk_log_csv(const WalkResult& r) {
   return walk_log_rows<CsvWriter>(r).str();

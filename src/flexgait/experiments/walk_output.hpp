@@ -4,6 +4,8 @@
 /// footprints) and summary.json (the metrics), as text.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "flexgait/core/atomic_file.hpp"
 #include "flexgait/core/run_directory.hpp"
@@ -22,6 +24,20 @@ std::string walk_footsteps_csv(const WalkResult& result);
 /// the Python bindings, whose arrays then need no text round trip.
 Table walk_log_table(const WalkResult& result);
 Table walk_joints_table(const WalkResult& result);
+/// Columns of log.csv and joints.csv by name, and a sample's values in them: the numbers those
+/// files hold for it, made by the files' own row writers (e.g. the replay's plotted signals).
+class WalkColumns {
+ public:
+  /// `names`: columns of log.csv, else of joints.csv (with the stiffness estimates' columns when
+  /// `k_estimation`); std::invalid_argument naming a column neither file has.
+  explicit WalkColumns(const std::vector<std::string>& names, bool k_estimation = false);
+  /// One value per name, in their order.
+  std::vector<double> values(const WalkSample& sample) const;
+
+ private:
+  std::vector<std::pair<bool, std::size_t>> where_;  ///< (in joints.csv, column index)
+  bool k_estimation_;
+};
 /// The walk's summary record: the WalkMetrics fields (fell, steps_completed, zmp_rms_x, ...), and
 /// with online stiffness identification `k_estimate` (per identified joint) and `k_estimate_mean`.
 nlohmann::ordered_json walk_summary(const WalkResult& result);

@@ -7,10 +7,12 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_markers.hpp"
+#include "flexgait/experiments/walk_output.hpp"
 #include "flexgait/twin/renderer.hpp"
 #include "flexgait/twin/replay_recorder.hpp"
 
@@ -31,8 +33,12 @@ struct WalkPictureOptions {
 
 class WalkPictures final : public loop::LoopObserver {
  public:
-  /// The signals plotted in the replay: log.csv's columns of these names (the plan's frame) [m].
-  static constexpr std::array<const char*, 5> kReplaySignals{"com_x", "com_y", "zmp_true_y", "zmp_ref_y", "pelvis_z"};
+  /// The replay's plotted signals for this run, in panels (ZMP, COM and capture point, pelvis,
+  /// gears, feet): log.csv's and joints.csv's columns (named by the column, or "a - b" for a
+  /// difference of two), the plan's frame; and the true capture point (the page's marker, named
+  /// capture_point_x/y, not a column). The DCM's columns only in balance mode dcm, the push's only
+  /// with a push.
+  static std::vector<replay::Signal> replay_signals(const WalkRunParams& params, bool pushed);
 
   /// `walk`: the loop made by make_walk_loop, before its first period. `frame(rgb, index)` takes
   /// each drawn frame (RGB rows top to bottom, view width × height × 3 bytes).
@@ -40,6 +46,10 @@ class WalkPictures final : public loop::LoopObserver {
                std::function<void(const std::vector<unsigned char>& rgb, int index)> frame = {});
 
   void observe(const loop::LoopStep& step) override;
+  /// The log's sample of this period (run_walk's `record`): the replay's frame at this time plots
+  /// its columns. WalkScorer logs a period's sample before this observer sees the period (run_walk
+  /// attaches it first); a frame without its sample plots nothing (NaN).
+  void log_sample(const WalkSample& sample);
 
   /// The frames drawn so far.
   int frames() const { return frames_; }
@@ -58,6 +68,14 @@ class WalkPictures final : public loop::LoopObserver {
   std::unique_ptr<twin::ReplayRecorder> replay_;
   long log_every_ = 1;
   int frames_ = 0;
+  struct ColumnSignal {
+    std::size_t column = 0, minus = std::string::npos;  ///< value = column − minus (minus: none when npos)
+    int capture = -1;                                   ///< 0, 1: the capture point's x, y instead
+  };
+  std::vector<ColumnSignal> columns_;  ///< where each of the replay's signals comes from
+  std::unique_ptr<WalkColumns> log_columns_;
+  std::vector<double> sample_values_;  ///< log_columns_'s values of the last logged sample
+  double sample_t_ = -1;               ///< its time [s]
 };
 
 }  // namespace flexgait::experiments

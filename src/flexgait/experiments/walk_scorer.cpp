@@ -289,6 +289,8 @@ void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& z
   w.com_y = com_true.y();
   w.com_z = g.com[2];
   w.pelvis_z = g.pelvis_pos[2];
+  w.pelvis_x = g.pelvis_pos[0] - offset_.x();
+  w.pelvis_y = g.pelvis_pos[1] - offset_.y();
   w.imu_roll = st.imu_roll;
   w.imu_pitch = st.imu_pitch;
   w.roll_true = roll_true_;
@@ -317,6 +319,7 @@ void WalkScorer::log_sample(const loop::LoopStep& step, const Eigen::Vector2d& z
   w.roll_kin_encoder = roll_enc_;
   w.roll_kin_estimate = roll_est_;
   w.push_force = g.push_force;
+  w.foot_force = st.foot_force;
   w.dcm = {st.dcm.x(), st.dcm.y()};
   w.dcm_ref = {st.dcm_ref.x(), st.dcm_ref.y()};
   if (record_)

@@ -141,8 +141,15 @@ void Scene::check() const {
       if (c >= l.palette.size())
         throw std::logic_error("replay scene: layer " + l.name + " colour outside its palette");
   }
-  for (const Signal& s : signals)
+  for (std::size_t i = 0; i < signals.size(); ++i) {
+    const Signal& s = signals[i];
     if (s.data.size() != f) throw std::logic_error("replay scene: signal " + s.name + " does not match the frames");
+    for (std::size_t k = 0; k < i; ++k) {  // (the page finds a signal by its name; a plot has one axis)
+      if (signals[k].name == s.name) throw std::logic_error("replay scene: two signals named " + s.name);
+      if (!s.plot.empty() && signals[k].panel == s.panel && signals[k].plot == s.plot && signals[k].unit != s.unit)
+        throw std::logic_error("replay scene: plot " + s.plot + " has signals of different units");
+    }
+  }
 }
 
 std::string base64(const void* bytes, std::size_t size) {
@@ -273,7 +280,12 @@ std::string replay_json(const Scene& scene) {
   }
   j["signals"] = nlohmann::ordered_json::array();
   for (const Signal& s : scene.signals)
-    j["signals"].push_back({{"name", s.name}, {"unit", s.unit}, {"data", b64(s.data)}});
+    j["signals"].push_back({{"name", s.name},
+                            {"unit", s.unit},
+                            {"panel", s.panel},
+                            {"plot", s.plot},
+                            {"label", s.label},
+                            {"data", b64(s.data)}});
   std::string text = j.dump();
   // Inside <script>: "</" could end the element early; "<\/" is the same JSON string.
   std::string out;
@@ -354,8 +366,9 @@ Scene parse_replay_html(std::string_view html) {
       s.layers.push_back(std::move(l));
     }
     for (const auto& sj : j.at("signals"))
-      s.signals.push_back(
-          {sj.at("name").get<std::string>(), sj.value("unit", ""), from_b64<float>(sj.at("data"), "a signal")});
+      s.signals.push_back({sj.at("name").get<std::string>(), sj.value("unit", ""),
+                           from_b64<float>(sj.at("data"), "a signal"), sj.value("panel", ""), sj.value("plot", ""),
+                           sj.value("label", "")});
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("replay data block: ") + e.what());
   }

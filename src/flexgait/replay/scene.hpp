@@ -60,9 +60,16 @@ struct Layer {
   std::vector<std::uint8_t> color;                                      ///< (frames × count) palette indices
 };
 
+/// A value per frame, plotted on the page below the scene. Signals are grouped: a panel (one of the
+/// page's tabs) holds plots, a plot holds the lines of its signals on shared axes (so they share
+/// one unit), each named in the plot's legend.
 struct Signal {
-  std::string name, unit;
+  std::string name;         ///< its key, unique in the scene (e.g. the log's column)
+  std::string unit;         ///< e.g. "m", "N m" ("": none)
   std::vector<float> data;  ///< (frames)
+  std::string panel;        ///< the panel that shows it ("": "signals")
+  std::string plot;         ///< its plot in the panel, titled so ("": a plot of its own, titled `name`)
+  std::string label;        ///< its line's name in the plot's legend ("": `name`)
 };
 
 /// Where the page's camera starts: looking at `target` from `distance` at `azimuth` (degrees

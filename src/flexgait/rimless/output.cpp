@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "flexgait/core/atomic_file.hpp"
@@ -43,6 +44,23 @@ void log_row(Writer& csv, const LogSample& s, double e0) {
   csv.cell(s.w_damp).cell(s.w_fric).cell(total + s.w_damp + s.w_fric - e0);
   csv.end_row();
 }
+
+}  // namespace
+
+std::vector<std::string> log_column_names() {
+  return log_columns();
+}
+
+std::vector<double> log_values(const LogSample& sample, double e0) {
+  Table row(log_columns());
+  log_row(row, sample, e0);
+  std::vector<double> out;
+  for (const Table::Column& c : row.columns())
+    out.push_back(c.numbers.empty() ? std::numeric_limits<double>::quiet_NaN() : c.numbers.front());
+  return out;
+}
+
+namespace {
 
 template <class Writer>
 void event_row(Writer& csv, const EventRecord& e) {

@@ -15,6 +15,10 @@ namespace flexgait::rimless {
 /// log.csv: t, state, per contact slot (leg, phase, N, T, c, cdot), energies, dissipated work,
 /// and the energy balance E + W_damp + W_fric - E(0).
 std::string log_csv(const SimulationResult& result);
+/// log.csv's columns, and one sample's row as numbers by log.csv's own row writer (`e0`: the
+/// run's initial mechanical energy [J]; a text cell, phaseK, is NaN).
+std::vector<std::string> log_column_names();
+std::vector<double> log_values(const LogSample& sample, double e0);
 /// events.csv: t, kind, leg, modes after the event (a failure's message instead).
 std::string events_csv(const SimulationResult& result);
 /// steps.csv: one row per step with its gait label and energy.

@@ -2,8 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <utility>
+
+#include "flexgait/rimless/output.hpp"
 
 namespace flexgait::rimless {
 namespace {
@@ -72,9 +77,32 @@ WheelReplay::WheelReplay(const WheelParams& w, RunSink& next, double frame_dt, s
   friction.palette = {{0.85F, 0.1F, 0.5F, 1.0F}};
   s.layers.push_back(friction);
 
-  for (const auto& [name, unit] : std::initializer_list<std::pair<const char*, const char*>>{
-           {"x", "m"}, {"y", "m"}, {"thetad", "rad/s"}, {"E_total", "J"}, {"N total", "N"}, {"T total", "N"}})
-    s.signals.push_back({name, unit, {}});
+  // The plotted signals: log.csv's columns of the same name, their values made by its row writer
+  // (output.hpp) from the same samples; phaseK as a number (slip+ 1, stick 0, slip− −1; free: none).
+  const std::vector<std::string> columns = log_column_names();
+  auto signal = [&](std::string name, const char* unit, const char* panel, const char* plot, std::string label) {
+    const auto at = std::find(columns.begin(), columns.end(), name);
+    if (at == columns.end()) throw std::logic_error("WheelReplay: no log column " + name);
+    columns_.push_back(static_cast<std::size_t>(at - columns.begin()));
+    s.signals.push_back({std::move(name), unit, {}, panel, plot, std::move(label)});
+  };
+  signal("x", "m", "body", "hub x (down the slope)", "x");
+  signal("y", "m", "body", "hub y (above the slope)", "y");
+  signal("theta", "rad", "body", "body angle θ", "θ");
+  signal("thetad", "rad/s", "body", "body rate θ̇", "θ̇");
+  for (const char* name : {"E_kinetic", "E_gravity", "E_spring", "E_total"})
+    signal(name, "J", "energy", "mechanical energy", name + 2);
+  signal("W_damp", "J", "energy", "work dissipated", "damping");
+  signal("W_fric", "J", "energy", "work dissipated", "friction");
+  signal("balance", "J", "energy", "energy balance residual", "E + W − E(0)");
+  for (int i = 1; i <= kMaxContacts; ++i) {
+    const std::string slot = fmt::format("slot {}", i);
+    signal(fmt::format("N{}", i), "N", "contacts", "normal force N", slot);
+    signal(fmt::format("T{}", i), "N", "contacts", "friction force T", slot);
+    phase_signals_.push_back(static_cast<int>(s.signals.size()));
+    signal(fmt::format("phase{}", i), "", "contacts", "mode: slip+ 1, stick 0, slip− −1", slot);
+    signal(fmt::format("leg{}", i), "", "contacts", "leg in contact (-1: none)", slot);
+  }
 }
 
 void WheelReplay::on_sample(const LogSample& sample) {
@@ -92,7 +120,6 @@ void WheelReplay::on_sample(const LogSample& sample) {
   x_max_ = f == 0 ? x : std::max(x_max_, x);
   const std::array<double, 3> hub = slope_to_world(w_, x, y);
   s.set_pose(f, 0, hub, about_y(w_.slope + theta));
-  double n_total = 0, t_total = 0;
   for (int k = 0; k < w_.legs; ++k) {
     const double beta = theta + 2 * w_.alpha() * k;
     int slot = -1;
@@ -113,14 +140,16 @@ void WheelReplay::on_sample(const LogSample& sample) {
   for (int i = 0; i < kMaxContacts; ++i) {
     const ContactSample& c = sample.contact[i];
     if (c.leg < 0) continue;
-    n_total += c.N;
-    t_total += c.T;
     const std::array<double, 3> foot = slope_to_world(w_, c.c, 0.0);
     s.set_item(kNormal, f, i, foot, slope_to_world(w_, c.c, force_scale_ * c.N));
     s.set_item(kFriction, f, i, foot, slope_to_world(w_, c.c + force_scale_ * c.T, 0.0));
   }
-  const double values[] = {x, y, sample.q[5], sample.energy.total(), n_total, t_total};
-  for (int i = 0; i < 6; ++i) s.set_signal(i, f, values[i]);
+  const std::vector<double> row = log_values(sample, energy_initial_);
+  for (std::size_t i = 0; i < columns_.size(); ++i) s.set_signal(static_cast<int>(i), f, row[columns_[i]]);
+  for (std::size_t k = 0; k < phase_signals_.size(); ++k) {  // (a text column: its mode as a number)
+    const ContactSample& c = sample.contact[k];
+    s.set_signal(phase_signals_[k], f, c.leg < 0 ? std::numeric_limits<double>::quiet_NaN() : slip_sign(c.mode));
+  }
 }
 
 const replay::Scene& WheelReplay::finish() {

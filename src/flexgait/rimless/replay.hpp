@@ -12,6 +12,7 @@
 /// is the world's x–z plane turned by φ about +y: (x, y) ↦ (x cos φ + y sin φ, 0, −x sin φ + y cos φ).
 #include <array>
 #include <string>
+#include <vector>
 
 #include "flexgait/replay/scene.hpp"
 #include "flexgait/rimless/parameters.hpp"
@@ -33,7 +34,10 @@ class WheelReplay final : public RunSink {
   /// Arrow length per newton [m/N]: m g is drawn 0.4 L0 long.
   WheelReplay(const WheelParams& w, RunSink& next, double frame_dt = 1.0 / 60.0, std::string title = "",
               int max_frames = 12000);
-  void on_start(double energy_initial) override { next_.on_start(energy_initial); }
+  void on_start(double energy_initial) override {
+    energy_initial_ = energy_initial;
+    next_.on_start(energy_initial);
+  }
   void on_sample(const LogSample& sample) override;
   void on_event(const EventRecord& event) override { next_.on_event(event); }
   void on_step(const StepRecord& step) override { next_.on_step(step); }
@@ -49,6 +53,9 @@ class WheelReplay final : public RunSink {
   RunSink& next_;
   double frame_dt_, next_frame_ = 0, force_scale_;
   int max_frames_;
+  double energy_initial_ = 0;
+  std::vector<std::size_t> columns_;  ///< each signal's column of log.csv (log_values)
+  std::vector<int> phase_signals_;    ///< the signals of slot k's phase (a text column)
   bool truncated_ = false;
   double x_min_ = 0, x_max_ = 0;
   replay::Scene scene_;

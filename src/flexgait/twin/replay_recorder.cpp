@@ -105,9 +105,8 @@ struct ReplayRecorder::Kinematics {
 
 ReplayRecorder::~ReplayRecorder() = default;
 
-ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title,
-                               std::vector<std::pair<std::string, std::string>> signals, double frame_dt,
-                               int max_frames)
+ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title, std::vector<replay::Signal> signals,
+                               double frame_dt, int max_frames)
     : frame_dt_(frame_dt), max_frames_(max_frames) {
   if (!(frame_dt > 0) || !std::isfinite(frame_dt) || max_frames < 2)
     throw std::invalid_argument("ReplayRecorder: frame_dt > 0 and max_frames >= 2 expected");
@@ -161,7 +160,10 @@ ReplayRecorder::ReplayRecorder(const HumanoidPlant& plant, std::string title,
   actual.width = 0.012;
   actual.palette = {kMarkerColours[kActualColour]};
   scene_.layers.push_back(actual);
-  for (auto& [name, unit] : signals) scene_.signals.push_back({std::move(name), std::move(unit), {}});
+  for (replay::Signal& s : signals) {
+    s.data.clear();
+    scene_.signals.push_back(std::move(s));
+  }
 }
 
 void ReplayRecorder::set_planned_footprints(const std::vector<FootprintMarker>& footprints) {

@@ -23,12 +23,12 @@ namespace flexgait::twin {
 
 class ReplayRecorder {
  public:
-  /// `signals`: (name, unit) of the values record() is given, in that order. A frame every
+  /// `signals`: the values record() is given, in that order (name, unit and where the page plots
+  /// them; their data are ignored). A frame every
   /// `frame_dt` > 0 [s] of simulated time (calls in between are ignored), at most `max_frames` ≥ 2
   /// (then the interval doubles). Throws std::invalid_argument for other values.
-  ReplayRecorder(const HumanoidPlant& plant, std::string title,
-                 std::vector<std::pair<std::string, std::string>> signals = {}, double frame_dt = 1.0 / 50.0,
-                 int max_frames = 6000);
+  ReplayRecorder(const HumanoidPlant& plant, std::string title, std::vector<replay::Signal> signals = {},
+                 double frame_dt = 1.0 / 50.0, int max_frames = 6000);
   ~ReplayRecorder();
   ReplayRecorder(const ReplayRecorder&) = delete;
   ReplayRecorder& operator=(const ReplayRecorder&) = delete;
