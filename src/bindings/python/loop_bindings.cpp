@@ -215,6 +215,9 @@ void bind_records(py::module_& m) {
       .def_property_readonly(
           "gear_torque", [](const twin::GroundTruth& g) { return array_of(g.gear_torque); }, "[N m]")
       .def_property_readonly(
+          "servo_torque", [](const twin::GroundTruth& g) { return array_of(g.servo_torque); },
+          "the motors' servo torque, within each joint's limit [N m]")
+      .def_property_readonly(
           "pelvis_pos", [](const twin::GroundTruth& g) { return array_of(g.pelvis_pos); }, "[m]")
       .def_property_readonly(
           "pelvis_quat", [](const twin::GroundTruth& g) { return array_of(g.pelvis_quat); }, "(w, x, y, z)")

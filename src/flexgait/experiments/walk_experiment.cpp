@@ -25,7 +25,8 @@ double to_millimetre_up(double x) {
 /// The robot's own defaults where the configuration leaves them to it (the keys left `auto`; docs/guide/robot.md):
 /// the walking height and step width (stance_defaults.hpp) for every robot, and for a loaded description the
 /// keys of walking::kScaledDefaults scaled from the builtin's values by the robot's size, the torque limits
-/// from the file's actuators where it has them, and a step width scaled as the legs.
+/// from the file's actuators where it has them (each joint its own while plant.torque_limit is derived), and
+/// a step width scaled as the legs.
 /// The builtin robot keeps the builtin's values (the rules' reference). Each value derived is also put in
 /// p.derived, for config.yaml.
 void apply_robot_defaults(const Config& c, const walking::RobotModel& model, WalkRunParams& p) {
@@ -53,6 +54,9 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
                                                                : walking::scaled_default(rule, c.real(key), scale));
     }
     p.plant = twin::plant_from_config(resolved);
+    // Each joint's servo at the file's own limit where the file has one, the rest at plant.torque_limit as
+    // derived; plant.torque_limit set by the user holds every joint (docs/guide/robot.md, "Torque limits").
+    if (c.derived("plant.torque_limit")) p.plant.joint_torque_limit = walking::joint_actuator_torques(*p.loaded);
     p.walk = record_from_config<walking::WalkParams>(resolved);
     p.balance = record_from_config<walking::BalanceParams>(resolved);
     p.control = compensation::compensation_from_config(resolved);
@@ -199,8 +203,12 @@ WalkRunParams walk_run_from_config(const Config& c) {
 Config with_derived_values(const Config& config, const WalkRunParams& params) {
   Config out = config;
   // (a loaded robot's config.yaml says which values were derived, kDerivedOrigin; the builtin's keeps its bytes)
+  // (plant.torque_limit stays auto where the file limits joints of its own: set, it would hold every joint)
+  const humanoid::JointVector& own = params.plant.joint_torque_limit;
+  const bool own_limits = std::any_of(own.begin(), own.end(), [](double x) { return x > 0; });
   for (const auto& [key, value] : params.derived)
-    if (out.derived(key)) out.set(key, format_number(value), params.loaded ? kDerivedOrigin : "auto (from the robot)");
+    if (out.derived(key) && !(own_limits && key == "plant.torque_limit"))
+      out.set(key, format_number(value), params.loaded ? kDerivedOrigin : "auto (from the robot)");
   for (const auto& [key, value] : params.case_defaults) out.set(key, value, "default (the compensation case)");
   return out;
 }

@@ -27,6 +27,7 @@ void step_motor(const ActuatorParams& p, ActuatorState& s, double command, doubl
   const double limited = std::clamp(servo, -p.torque_limit, p.torque_limit);
   if (limited == servo) s.integral += e * dt;  // no wind-up while saturated
   servo = limited;
+  s.servo = servo;
   const double tau = gear_torque(p, s, theta_l, omega_l);
   s.omega_m += dt * (servo - tau) / p.rotor_inertia;
   s.theta_m += dt * s.omega_m;

@@ -31,6 +31,7 @@ struct ActuatorState {
   double theta_m = 0;   ///< motor-side angle (output units) [rad]
   double omega_m = 0;   ///< [rad/s]
   double integral = 0;  ///< ∫ e dt [rad s]
+  double servo = 0;     ///< the servo torque of the last step, within ±torque_limit [Nm]
 };
 
 /// Gear deflection after the dead band, dz(θ_m − θ_l) [rad].

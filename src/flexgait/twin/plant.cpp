@@ -140,13 +140,14 @@ ElasticDrives make_drives(const mjModel* m, const PlantParams& params) {
   std::vector<int> joints;
   std::vector<ActuatorParams> act;
   const humanoid::JointVector stiffness = params.gear_stiffness();
+  const humanoid::JointVector torque_limit = params.servo_torque_limits();
   for (int j = 0; j < humanoid::kJoints; ++j) {
     joints.push_back(twin_joint(m, j));
     ActuatorParams a;
     a.k = stiffness[j];
     a.d = params.gear_damping;
     a.backlash = params.backlash;
-    a.torque_limit = params.torque_limit;
+    a.torque_limit = torque_limit[j];
     a.rotor_inertia = params.rotor_inertia;
     a.bandwidth = params.servo_bandwidth;
     a.integral_time = params.servo_integral_time;
@@ -411,6 +412,7 @@ GroundTruth HumanoidPlant::truth() const {
     g.link_velocity[j] = v;
     g.motor_angle[j] = st.motors[j].theta_m;
     g.gear_torque[j] = gear_torque(p.drives.params()[j], st.motors[j], q, v);
+    g.servo_torque[j] = st.motors[j].servo;
   }
   for (int i = 0; i < 3; ++i) g.pelvis_pos[i] = d->qpos[i];
   for (int i = 0; i < 4; ++i) g.pelvis_quat[i] = d->qpos[3 + i];

@@ -29,6 +29,7 @@ struct GroundTruth {
   humanoid::JointVector link_angle{}, link_velocity{};  ///< true joint (link-side) angles [rad], [rad/s]
   humanoid::JointVector motor_angle{};                  ///< unquantised motor side [rad]
   humanoid::JointVector gear_torque{};                  ///< [Nm]
+  humanoid::JointVector servo_torque{};                 ///< the motors' servo torque, last physics step [Nm]
   std::array<double, 3> pelvis_pos{};                   ///< [m]
   std::array<double, 4> pelvis_quat{1, 0, 0, 0};
   std::array<double, 3> com{};                      ///< whole-body centre of mass [m]

@@ -22,9 +22,12 @@ struct PlantParams {
     ones.fill(1.0);
     return ones;
   }();
-  double gear_damping = 80.0;        ///< d [Nm s/rad], integrated implicitly by MuJoCo
-  double backlash = 0.0;             ///< dead band, total width [rad]
-  double torque_limit = 100.0;       ///< servo torque limit [Nm]
+  double gear_damping = 80.0;   ///< d [Nm s/rad], integrated implicitly by MuJoCo
+  double backlash = 0.0;        ///< dead band, total width [rad]
+  double torque_limit = 100.0;  ///< servo torque limit [Nm]
+  /// Each joint's own servo torque limit [Nm], 0: torque_limit. Not a key: a loaded robot's file limits
+  /// (walk_experiment.cpp, docs/guide/robot.md "Torque limits"); all 0 for the builtin.
+  humanoid::JointVector joint_torque_limit{};
   double rotor_inertia = 0.8;        ///< reflected rotor inertia [kg m^2]
   double servo_bandwidth = 30.0;     ///< motor-side position loop bandwidth [Hz] (critically damped PD)
   double servo_integral_time = 0.0;  ///< integral time of the position loop [s]; 0: PD only
@@ -46,6 +49,13 @@ struct PlantParams {
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
   /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
   humanoid::JointVector gear_stiffness() const { return humanoid::scaled(k_joint, k_scale); }
+  /// The servo torque limit of each joint: joint_torque_limit where set, else torque_limit [Nm].
+  humanoid::JointVector servo_torque_limits() const {
+    humanoid::JointVector out;
+    for (int j = 0; j < humanoid::kJoints; ++j)
+      out[j] = joint_torque_limit[j] > 0 ? joint_torque_limit[j] : torque_limit;
+    return out;
+  }
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {

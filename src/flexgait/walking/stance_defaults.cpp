@@ -92,15 +92,22 @@ double scaled_default(const ScaledDefault& d, double builtin, const RobotScale& 
   return std::stod(fmt::format("{:.3g}", x));  // 3 significant digits, as a user would type them
 }
 
-double leg_actuator_torque(const humanoid::LoadedRobot& robot) {
-  double limit = 0;
+humanoid::JointVector joint_actuator_torques(const humanoid::LoadedRobot& robot) {
+  humanoid::JointVector limit{};
   for (int j = 0; j < humanoid::kJoints; ++j) {
-    if (j == humanoid::kWaistYaw || !robot.has_joint(j)) continue;
+    if (!robot.has_joint(j)) continue;
     const auto [body, joint] = robot.joint[static_cast<std::size_t>(j)];
-    limit = std::max(limit,
-                     robot.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(joint)].force_limit);
+    limit[j] = robot.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(joint)].force_limit;
   }
   return limit;
+}
+
+double leg_actuator_torque(const humanoid::LoadedRobot& robot) {
+  const humanoid::JointVector limit = joint_actuator_torques(robot);
+  double largest = 0;
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    if (j != humanoid::kWaistYaw) largest = std::max(largest, limit[j]);
+  return largest;
 }
 
 }  // namespace flexgait::walking

@@ -84,7 +84,8 @@ inline constexpr std::array<ScaledDefault, 17> kScaledDefaults{{
     {"plant.servo_bandwidth", 0, -0.5, 0, "30 Hz x sqrt(the builtin's leg / leg), Froude scaling (the builtin: 30 Hz)"},
     {"plant.torque_limit", 1, 1, 0,
      "the largest force range of the file's actuators on the leg joints; else 100 Nm x mass x leg / the builtin's "
-     "(the builtin: 100)"},
+     "(the builtin: 100); while derived, a joint the file's actuators limit keeps its own limit, set it holds every "
+     "joint"},
     {"control.k_joint", 1, 1, 0,
      "plant.k_joint, set or derived: the controller believes the gears' true stiffness (the builtin: 1000)"},
     {"balance.capture_torque_limit", 1, 1, 0, "plant.torque_limit, set or derived (the builtin: 100)"},
@@ -102,7 +103,11 @@ inline constexpr std::array<ScaledDefault, 17> kScaledDefaults{{
 /// `builtin` (the key's value for the builtin robot) scaled by `d`'s rule, to 3 significant digits.
 double scaled_default(const ScaledDefault& d, double builtin, const RobotScale& scale);
 
-/// The largest torque the file's actuators can apply on the mapped leg joints (LoadedJoint::force_limit)
+/// The largest torque the file's actuators can apply on each mapped joint (LoadedJoint::force_limit) [Nm];
+/// 0 for a joint the file does not limit or the mapping leaves out.
+humanoid::JointVector joint_actuator_torques(const humanoid::LoadedRobot& robot);
+
+/// The largest torque the file's actuators can apply on the mapped leg joints (joint_actuator_torques)
 /// [Nm]; 0 when the file limits none of them.
 double leg_actuator_torque(const humanoid::LoadedRobot& robot);
 

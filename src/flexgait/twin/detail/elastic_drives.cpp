@@ -28,7 +28,7 @@ void ElasticDrives::take_springs(mjModel* m) const {
 std::vector<ActuatorState> ElasticDrives::at_rest(const mjData* d) const {
   std::vector<ActuatorState> states(joints_.size());
   for (std::size_t i = 0; i < states.size(); ++i)
-    if (qpos_[i] >= 0) states[i] = {d->qpos[qpos_[i]], d->qvel[dof_[i]], 0.0};
+    if (qpos_[i] >= 0) states[i] = {d->qpos[qpos_[i]], d->qvel[dof_[i]], 0.0, 0.0};
   return states;
 }
 
