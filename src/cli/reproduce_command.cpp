@@ -141,13 +141,13 @@ std::vector<Step> steps(bool quick) {
   // support of its 3rd step (the example push of docs/guide/campaigns.md), frames and video.mp4 (ffmpeg).
   if (!quick)
     s.push_back({"humanoid-push-video",
-                 "Humanoid: a 12 N s chest push at mid single support, 1.0 s/step (video)",
+                 "Humanoid: a 7 N s chest push at mid single support, 1.0 s/step (video)",
                  {"humanoid", "walk", "--config", walk("walk-robotis.yaml"), "--set", "walk.steps=6", "--set",
-                  "disturbance.push.time=4.1", "--set", "disturbance.push.force_y=120", "--render"},
-                 "The twin with both compensators and pd balance, pushed at the chest with 120 N for 0.1 s (the orange "
-                 "arrow) toward the left, away from its only support, the left foot, in the middle of the 3rd step's "
-                 "single support; it recovers and walks on. The largest push it recovers there is about 14 N s "
-                 "(humanoid-push-recovery)."});
+                  "disturbance.push.time=4.1", "--set", "disturbance.push.force_y=70", "--render"},
+                 "The twin with its default compensation and pd balance, pushed at the chest with 70 N for 0.1 s (the "
+                 "orange arrow) toward the left, away from its only support, the left foot, in the middle of the 3rd "
+                 "step's single support; it recovers and walks on. The largest push it recovers in that situation is "
+                 "the walking, left cell of humanoid-push-recovery."});
   return s;
 }
 
