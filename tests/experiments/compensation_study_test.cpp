@@ -72,6 +72,14 @@ TEST(CompensationStudy, TheWalksDefaultIsTheStudysDefaultCase) {
   EXPECT_EQ(d.control.gear_damping, d.plant.gear_damping);
   EXPECT_GT(d.control.gear_damping, 0.0);
   EXPECT_EQ(d.control.load_filter_time, compensation::kLagLoadFilterTime);
+  // With the output compensator the controller's kinematic estimators read its link angles; dcm balance runs
+  // the same case; the input compensator alone has no estimate to give.
+  EXPECT_TRUE(d.control.compensated_feedback);
+  const WalkRunParams dcm = resolved({"balance.mode=dcm"});
+  EXPECT_EQ(compensation_case_name(dcm), "both-dynamic-horizontal-lag");
+  EXPECT_TRUE(dcm.control.compensated_feedback);
+  EXPECT_FALSE(resolved({"control.compensation=input"}).control.compensated_feedback);
+  EXPECT_FALSE(resolved({"control.compensated_feedback=false"}).control.compensated_feedback);
   // The study's case of that name is the same compensation.
   const auto cases = compensation_cases(d);
   const StudyCase& best = cases.back();

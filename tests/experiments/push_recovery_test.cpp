@@ -76,18 +76,16 @@ TEST(PushRecoveryExperiment, UpperEndDoublesWhileRecovered) {
   EXPECT_GT(r.bound, 10.0);
 }
 
-TEST(PushRecoveryExperiment, TowardTheSwingFootDcmRecoversWherePdFalls) {
-  // Walking at 1 s/step with both compensators, a 0.1 s chest push at mid single support of the
-  // 3rd step (left foot in stance) to the right, toward the swing foot. Measured by the full
-  // bisection to 1 N s (flexgait campaign humanoid-push-recovery, walk.steps=4 as here and 6 alike):
-  // pd recovers 17.2 N s and falls at 18.0, dcm recovers 23.4 and falls at 24.2. Here a coarse bisection of
-  // pd from 20 N s to 5 N s (3 runs: 20 falls, 10 and 15 are recovered) and one dcm run at pd's
-  // upper end: dcm recovers the push pd falls at, so dcm's largest recovered push is at least
-  // pd's upper end — 2 N s above pd's measured fall and 3.4 below dcm's, wider than the
-  // tolerance of 1 N s the bisection is read to.
-  PushRecoveryRunParams p =
-      push_recovery_from_config(config({"push_recovery.situation=walking", "push_recovery.direction=right",
-                                        "walk.steps=4", "control.compensation=both"}));
+TEST(PushRecoveryExperiment, TowardTheSwingFootDcmRecoversAsMuchAsPd) {
+  // Walking at 1 s/step in humanoid walk's default compensation case, a 0.1 s chest push at mid single
+  // support of the 3rd step (left foot in stance) to the right, toward the swing foot. Measured by the full
+  // bisection (flexgait campaign humanoid-push-recovery --set push_recovery.situation=walking --grid
+  // push_recovery.direction=left,right --grid balance.mode=pd,dcm; resolution 0.78 N s): pd recovers 17.2 N s
+  // and falls at 18.0, dcm recovers 16.4 and falls at 17.2. Here a coarse bisection of pd from 20 N s to 5 N s
+  // (3 runs: 20 falls, 10 and 15 are recovered) and one dcm run at pd's measured recovery less the 1 N s
+  // tolerance the comparison is read to (16.2 N s): dcm recovers it.
+  PushRecoveryRunParams p = push_recovery_from_config(
+      config({"push_recovery.situation=walking", "push_recovery.direction=right", "walk.steps=4"}));
   WalkRunParams base = p.run;
   base.push.time = 0;
   base.push.step = p.test.step;
@@ -99,9 +97,9 @@ TEST(PushRecoveryExperiment, TowardTheSwingFootDcmRecoversWherePdFalls) {
   EXPECT_EQ(pd.recovered, 15.0);
   EXPECT_EQ(pd.fell, 20.0);
   base.balance.mode = walking::BalanceMode::kDcm;
-  const PushRecovery dcm = largest_recoverable_push(base, toward_swing, pd.fell, 5.0);
-  EXPECT_FALSE(dcm.bracketed) << "dcm fell at " << pd.fell << " N s";  // recovered pd's upper end
-  EXPECT_GE(dcm.recovered, pd.fell);
+  const double pd_measured = 17.2, tolerance = 1.0;
+  const PushRecovery dcm = largest_recoverable_push(base, toward_swing, pd_measured - tolerance, 5.0);
+  EXPECT_FALSE(dcm.bracketed) << "dcm fell at " << pd_measured - tolerance << " N s";
   EXPECT_EQ(dcm.runs, 1);
 }
 

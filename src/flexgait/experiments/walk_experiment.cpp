@@ -79,20 +79,20 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
 /// default case"): when the compensators of ours run (control.compensation input, output, both), their keys left
 /// unset take the physics the 1 s walk needs — the dynamic loads, the plan's whole ground wrench
 /// (control.plan_horizontal_force 1, with the dynamic loads only), the gears' damping believed at the plant's, the F/T
-/// low-pass short (kLagLoadFilterTime) when that damping is believed. Off and the field's baselines keep the
-/// schema's defaults (the thesis's static model): they run none of it. So does the dcm balance mode: with the plan's
-/// whole ground wrench and the lag believed its unpushed 1 s walk misses a step where the static model walks (the
-/// cause is not known yet; the input side's ground wrench is the plan's, and the stabiliser moves the centre of
-/// pressure off the plan's).
+/// low-pass short (kLagLoadFilterTime) when that damping is believed — and, with the output compensator, the
+/// controller's kinematic estimators read the link angles it estimates (control.compensated_feedback; spec eq. 1):
+/// the encoders carry the deflection the compensator adds, so a COM or tilt estimate from the encoders alone is off
+/// by it, and the dcm stabiliser read that offset as a DCM error and pushed the robot back by the compensation.
+/// Off and the field's baselines keep the schema's defaults (the thesis's static model): they run none of it.
 void resolve_compensation_defaults(const Config& c, WalkRunParams& p) {
   compensation::CompensationParams& k = p.control;
   if (!k.input() && !k.output()) return;
-  if (p.balance.mode == walking::BalanceMode::kDcm) return;
   const auto resolve = [&](const std::string& key, auto& field, auto value, const std::string& text) {
     if (c.origin(key) != "default") return;
     field = value;
     p.case_defaults.emplace_back(key, text);
   };
+  if (k.output()) resolve("control.compensated_feedback", k.compensated_feedback, true, "true");
   resolve("control.load_model", k.load_model, compensation::LoadModel::kDynamic, "dynamic");
   if (k.load_model == compensation::LoadModel::kDynamic)
     resolve("control.plan_horizontal_force", k.plan_horizontal_force, 1.0, "1");
