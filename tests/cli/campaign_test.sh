@@ -59,7 +59,7 @@ if [ "$mode" = mpi ]; then
   check "mpirun: an error of other ranks only writes nothing" test ! -e "$work/never"
   mpi_campaign "${rimless_grid[@]}" --grid rimless.K=1000,2000 --out "$work/rm" --resume
   check "mpirun: resume of a different grid refused (workers released)" grep -q "different campaign" "$work/stderr"
-  # The orbit diagram (issue 18) spreads its parameter values over the ranks: the same bytes.
+  # The orbit diagram spreads its parameter values over the ranks: the same bytes.
   orbit=(rimless analysis orbit-diagram --param rimless.slope --from 0.2 --to 0.2355 --count 7 --transient 30
          --record 6 --no-plot)
   timeout 300 "$exe" "${orbit[@]}" --jobs 1 --out "$work/o1" >/dev/null 2>&1

@@ -52,7 +52,7 @@ expect_usage_error missing-file "no/such.yaml" rimless simulate --config no/such
 printf 'rimless:\n  K: 1000\n  mux: 0.5\n' >"$work/typo.yaml"
 expect_usage_error typo-in-file "typo.yaml:3" rimless simulate --config "$work/typo.yaml"
 expect_usage_error bad-model "--model" rimless simulate --model soft
-# YAML read with limits (issue 17.2): each refusal names the file and the line.
+# YAML read with limits: each refusal names the file and the line.
 printf 'a: &a\n  b: *a\n' >"$work/recursive.yaml"
 expect_usage_error recursive-alias "recursive.yaml:2: a recursive alias" rimless simulate --config "$work/recursive.yaml"
 { echo 'l0: &l0 {a: 1, b: 1}'; for i in $(seq 1 30); do echo "l$i: &l$i {a: *l$((i - 1)), b: *l$((i - 1))}"; done; } \
@@ -68,12 +68,12 @@ mkfifo "$work/fifo.yaml"
 expect_usage_error fifo-config "fifo.yaml: is not a regular file" rimless simulate --config "$work/fifo.yaml"
 head -c 2000000 /dev/zero | tr '\0' '#' >"$work/huge.yaml"
 expect_usage_error huge-config "huge.yaml: larger than" rimless simulate --config "$work/huge.yaml"
-# One line whatever the value holds (issue 17.8): control characters escaped, long values cut.
+# One line whatever the value holds: control characters escaped, long values cut.
 expect_usage_error newline-in-value 'rimless.K' rimless simulate --set "rimless.K=1$(printf '\n')2x"
 expect_usage_error long-value '(100000 bytes)' rimless simulate --set "rimless.K=$(head -c 100000 /dev/zero | tr '\0' 5)"
 expect_usage_error unknown-command "unknown command 'fly'" fly
 expect_usage_error unknown-subcommand "unknown command 'fly'" rimless fly
-# Every option checked as --set is, named as given, before anything is written (issue 17.6, 17.8, 17.9).
+# Every option checked as --set is, named as given, before anything is written.
 expect_usage_error steps-empty "--steps: key 'sim.steps' = ''" rimless simulate --steps ''
 expect_usage_error steps-negative "--steps: key 'sim.steps' = '-1'" rimless simulate --steps -1
 expect_usage_error omega0-nan "--omega0: key 'initial.omega' = 'nan'" rimless simulate --omega0 nan
@@ -93,7 +93,7 @@ expect_usage_error robustness-from "--from: not used by analysis robustness" rim
 expect_usage_error stagnation-mu "--mu: not used by analysis stagnation" rimless analysis stagnation --mu 0.3
 expect_usage_error energy-section "--section: not used by analysis energy (only gait-vs-friction, fixed-points, orbit-diagram and basin take it)" rimless analysis energy --section upright
 expect_usage_error unknown-analysis "name: fly not in" rimless analysis fly
-# The analyses' parameters are keys (analysis.*): a list of reals, each value checked (issue 13).
+# The analyses' parameters are keys (analysis.*): a list of reals, each value checked.
 expect_usage_error mu-list-item "--set: key 'analysis.robustness.mu[1]' = 'x': not a number" rimless analysis robustness --set "analysis.robustness.mu=[0.6,x]"
 expect_usage_error mu-list-scalar "key 'analysis.energy.mu' = '0.6': not a list in brackets" rimless analysis energy --set analysis.energy.mu=0.6
 expect_usage_error epsilon-order "key 'analysis.robustness.epsilon_max'" rimless analysis robustness --set analysis.robustness.epsilon_max=1e-4
@@ -218,7 +218,7 @@ check "fixed point converged" grep -q '"converged": true' "$work/fp.json"
 "$exe" rimless fixed-point --model rigid --section upright --out "$work/fpr" --json --no-plot >"$work/fpr.json" 2>&1
 check "rigid fixed point converged" grep -q '"converged": true' "$work/fpr.json"
 # A failed search is a named failure (exit 1, one line on stderr), its report without numbers of no
-# meaning: no starting point for Newton (issue 17.1), a Jacobian column that failed (issue 21.6).
+# meaning: no starting point for Newton, a Jacobian column that failed.
 "$exe" rimless fixed-point --set initial.omega=-1 --out "$work/fp_none" --json --no-plot >"$work/fp_none.json" 2>"$work/err"
 check "fixed point without a start exits 1 (got $?)" test $? -eq 1
 check "fixed point without a start: one line naming the failure: $(cat "$work/err")" \
@@ -311,7 +311,7 @@ expect_usage_error stagnation-map-key rimless.Q rimless analysis stagnation-map 
 expect_usage_error stagnation-map-value rimless.I rimless analysis stagnation-map \
   --config "$src/configs/rimless-stagnation.yaml" --vary rimless.I=-1
 
-# Continuation of the gait (issue 18): the rigid wheel over the slope, same bytes twice; bad input.
+# Continuation of the gait: the rigid wheel over the slope, same bytes twice; bad input.
 cont=(rimless continuation --model rigid --param rimless.slope --from 0.05 --to 0.15 --no-plot)
 "$exe" "${cont[@]}" --out "$work/cont1" >/dev/null 2>"$work/err"
 rc=$?
@@ -436,7 +436,7 @@ expect_usage_error mismatch-bad-scale "scales" humanoid mismatch --scales 0
 "$exe" reproduce --help >"$work/help3" 2>&1
 check "reproduce --help mentions index.html" grep -q "index.html" "$work/help3"
 
-# Outcomes decide the exit code (issue 17, items 4, 5, 7, 12): an early stop or a failed
+# Outcomes decide the exit code: an early stop or a failed
 # simulation is exit 1 with the reason; MuJoCo's messages go to stderr (stdout stays JSON) and
 # no MUJOCO_LOG.TXT appears; an infeasible start names its keys (exit 2).
 expect_usage_error many-legs-sag "rimless.legs = 50" rimless simulate --set rimless.legs=50
@@ -493,7 +493,7 @@ check "the run written again over it is complete" test -f "$work/killed/complete
 check "and the killed writer's temporaries are gone: $(ls -a "$work/killed" | tr '\n' ' ')" \
   test -z "$(ls -a "$work/killed" | grep '\.tmp-')"
 
-# ---- issue 18: orbit diagram and basin (helper-basin block) ----
+# ---- orbit diagram and basin ----
 # The rigid wheel's orbit diagram over the slope: every recorded crossing is ω*(φ) (closed form
 # r sqrt(a/(1 - r²)), rigid_wheel.hpp) to 1e-8 rad/s; the same bytes for 1 and 2 threads.
 orbit=(rimless analysis orbit-diagram --set sim.model=rigid --param rimless.slope --from 0.05 --to 0.2 --count 4
@@ -596,9 +596,9 @@ expect_usage_error basin-empty "--x-range" rimless analysis basin --x initial.om
 expect_usage_error basin-count "--y-range" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:1
 expect_usage_error basin-beta "initial.beta" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.5:3
 expect_usage_error basin-from "--from" rimless analysis basin --x initial.omega --y initial.beta --x-range 0:1:3 --y-range 0:0.1:3 --from 1
-# ---- end of the issue 18 block ----
+# ---- end of the orbit diagram and basin block ----
 
-# ---- issue 13 leftovers (helper-lit): the analyses' remaining literals are keys ----
+# ---- the analyses' remaining literals are keys ----
 expect_usage_error friction-factor-fraction "--set: key 'analysis.friction.transient_factors' = '2.5'" \
   rimless analysis gait-vs-friction --set "analysis.friction.transient_factors=[1,2.5]"
 expect_usage_error friction-steps-zero "key 'analysis.friction.continuation_steps[0]' = '0'" \

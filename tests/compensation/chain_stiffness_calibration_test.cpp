@@ -1,4 +1,4 @@
-// control.k_estimation = calibrate (issue 20): the two flat soles' relative tilt through the encoders.
+// control.k_estimation = calibrate: the two flat soles' relative tilt through the encoders.
 // The information form of least squares equals the covariance-form RLS without forgetting (the same posterior).
 // The regressor is the exact derivative of the relative tilt (central differences, with SO(3)'s inverse left
 // Jacobian: without it the columns would be off by ≈ |φ|/2 = 3 % at this pose); fed a stance whose encoders read

@@ -1,4 +1,4 @@
-// The field's baselines as control.compensation choices (issue 20), against hand computations:
+// The field's baselines as control.compensation choices, against hand computations:
 // ROBOTIS's stance hip roll feed-forward δ = ±0.017 sin(π s) (peak at mid single support, sign of
 // the modelled sag, nothing in double support, nothing on other joints); TALOS's stance hip roll
 // δ = sat(LP₁Hz(τ)/K, ±0.01) with the first-order filter's closed form y_n = τ (1 − (1 − g)ⁿ).

@@ -1,4 +1,4 @@
-// control.gear_damping (issue 20): the Kelvin–Voigt gear, τ = k δ + d δ̇, makes the deflection the
+// control.gear_damping: the Kelvin–Voigt gear, τ = k δ + d δ̇, makes the deflection the
 // torque through a first-order lag of time constant d/k. Against the recursion's closed form on a
 // step of the load (the weight moved from the middle of the feet onto the left sole), and the
 // output compensator against encoders that carry exactly that lagged deflection.

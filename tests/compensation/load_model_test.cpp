@@ -1,4 +1,4 @@
-// control.load_model (issue 20): the measured load (ankle F/T wrenches, read by the output
+// control.load_model: the measured load (ankle F/T wrenches, read by the output
 // compensator) equals the thesis's weight split when the readings are what the split assumes — the robot standing still
 // in double support, half the weight under each sole centre — exactly without noise and to the F/T noise with it; the
 // output compensator then finds the same joint angles. The dynamic load adds exactly the Newton–Euler

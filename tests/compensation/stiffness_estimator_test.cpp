@@ -1,4 +1,4 @@
-// control.k_estimation (issue 20): the RLS with forgetting converges on synthetic data with a
+// control.k_estimation: the RLS with forgetting converges on synthetic data with a
 // known k in the number of samples its covariance predicts (σ/sqrt(Σ τ²)), tracks a change, and
 // ignores non-finite data; the stiffness estimator, fed a flat-footed stance whose encoders read
 // θ_link + τ/k, finds k per leg and joint group, stays bounded and positive under bad data, and

@@ -4,7 +4,7 @@
 // issue asks 1e-4), and the output compensator (eqs. 10-13) reads them back from the quantised
 // encoders within two encoder steps (2.5e-5 rad); without
 // compensation the stance leg is centiradians off, and the thesis form (no leg weight) is worse
-// than the full form. The same for a loaded robot of another layout (issue 16: the test robot
+// than the full form. The same for a loaded robot of another layout (the test robot
 // tests/humanoid/data/small_biped.xml, numeric leg IK).
 #include <gtest/gtest.h>
 
@@ -122,7 +122,7 @@ TEST(TwinStatic, InputCompensationPutsTheLinksWhereDesired) {
   RecordProperty("link_error_full", std::to_string(full.link_error));
   RecordProperty("link_error_thesis", std::to_string(thesis.link_error));
   EXPECT_GT(off.link_error, 0.02);                    // the gears sag by centiradians under the body
-  EXPECT_LT(full.link_error, 1e-6);                   // issue 7's target is 1e-4; the model matches the twin to ~1e-8
+  EXPECT_LT(full.link_error, 1e-6);                   // the target is 1e-4; the model matches the twin to ~1e-8
   EXPECT_GT(thesis.link_error, 5 * full.link_error);  // the legs' own weight matters
 }
 

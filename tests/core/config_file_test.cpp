@@ -1,4 +1,4 @@
-// A configuration file read with limits (core/config_file.hpp, issue 17.2): every refusal is a
+// A configuration file read with limits (core/config_file.hpp): every refusal is a
 // ConfigError naming the file and, where there is one, the line.
 #include "flexgait/core/config_file.hpp"
 

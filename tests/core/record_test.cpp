@@ -117,7 +117,7 @@ TEST(Record, HumanoidParametersDeriveFromOneList) {
   check_record<compensation::CompensationParams>();
 }
 
-// The defect issue 13 names: the struct said 0 and the schema 1000.
+// The defect: the struct said 0 and the schema 1000.
 TEST(Record, PlantStiffnessDefaultIsTheSchemasDefault) {
   const twin::PlantParams p;
   EXPECT_EQ(p.k_joint, 1000.0);

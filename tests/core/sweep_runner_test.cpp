@@ -54,7 +54,7 @@ TEST(SweepRunner, InterruptedAndResumedEqualsOneRunThrough) {
   EXPECT_THROW(run_sweep(other), UsageError);
 }
 
-// Issue 17.10: --resume trusted any line of the partial file; a garbage row reached the final CSV.
+// --resume once trusted any line of the partial file; a garbage row reached the final CSV.
 TEST(SweepRunner, ResumeKeepsOnlyValidRows) {
   const auto base =
       std::filesystem::temp_directory_path() / ("flexgait_sweep_garbage_test_" + std::to_string(::getpid()));

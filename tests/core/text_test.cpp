@@ -119,7 +119,7 @@ TEST(Csv, NumberCellIsFormatNumbersText) {
   EXPECT_EQ(w.str(), expected);
 }
 
-// Issue 17.8: a value echoed in an error stays on one line, whole bytes of UTF-8, and short.
+// A value echoed in an error stays on one line, whole bytes of UTF-8, and short.
 TEST(OneLine, EscapesControlCharactersAndCutsLongText) {
   EXPECT_EQ(one_line("plain value"), "plain value");
   EXPECT_EQ(one_line("two\nlines\r\t"), "two\\nlines\\r\\t");

@@ -1,4 +1,4 @@
-// The capture-point bound (issue 19) against hand computations: the distance along a direction to
+// The capture-point bound against hand computations: the distance along a direction to
 // the edge of the feet's support polygon, and m ω0 d.
 #include "flexgait/experiments/capture_point_bound.hpp"
 

@@ -1,4 +1,4 @@
-// A list of pushes (issue 19): disturbance.pushes read from a file and from --set, each bad field
+// A list of pushes: disturbance.pushes read from a file and from --set, each bad field
 // refused naming `disturbance.pushes[i].field` and the file's line, the written config.yaml reading
 // back to the same run, and a walk with two pushes applying both (the plant's account and the
 // robot's momentum), same bytes twice, the single push unchanged beside an empty list; a push

@@ -1,4 +1,4 @@
-// The push-recovery experiment (issue 19): the push's time from the walking plan (mid single
+// The push-recovery experiment: the push's time from the walking plan (mid single
 // support of the chosen step, against the timeline's hand formula); the keys the test sets are
 // refused when the user sets them; the bisection's ends are what they say (the recovered
 // impulse is recovered, the one seen to fall falls, within the tolerance); the upper end

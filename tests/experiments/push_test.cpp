@@ -1,4 +1,4 @@
-// Pushes on the twin (issue 19): the applied impulse shows in the robot's momentum; a push below
+// Pushes on the twin: the applied impulse shows in the robot's momentum; a push below
 // half the capture-point bound is recovered and one at twice the bound is not (standing, pd
 // balance); a push is logged; same configuration, same bytes.
 #include <gtest/gtest.h>
@@ -180,7 +180,7 @@ TEST(Push, BackwardCaptureStepWaitsForTheStanceLeg) {
   // Standing, dcm, a chest push backward of 1.3 capture-point bounds (31 N s). On one leg with the
   // centre of pressure at its heel, the bent stance knee would need 120–160 N m while the push
   // acts (stance_load.hpp (L1)), beyond its 100 N m servo: lifting at once (capture_torque_limit
-  // 0, the step before issue 19's fix), the knee gives way and the robot falls (1.12 of the bound
+  // 0, the step before the capture step's fix), the knee gives way and the robot falls (1.12 of the bound
   // was the most recovered). Waiting on both feet until the stance leg can carry the load, the
   // foot lifts as the push ends and the step recovers (1.51 of the bound, `flexgait campaign
   // humanoid-push-recovery`). The stepped foot ends behind the other, within reach, not across it.

@@ -1,4 +1,4 @@
-// Walking on the twin's terrains (issue 19): the closed loop stands on a 2° ramp, walks over a
+// Walking on the twin's terrains: the closed loop stands on a 2° ramp, walks over a
 // small step or says why it fell, gives the same bytes twice on a rough floor; a step beyond the
 // legs' reach is refused naming its key.
 #include <gtest/gtest.h>
@@ -73,7 +73,7 @@ TEST(TerrainWalk, BlindDcmWithSwayDampingWalksAFiveDegreeRampUpAndDownTenSteps) 
 }
 
 TEST(TerrainWalk, LoadedRobotWalksTheRampAndTheRoughFloor) {
-  // The second robot (issue 16) gets the same floor through the shared twin document.
+  // The second robot gets the same floor through the shared twin document.
   const char* data = std::getenv("FLEXGAIT_TEST_DATA");
   ASSERT_NE(data, nullptr);
   const std::filesystem::path file = std::filesystem::path(data) / "small_biped.yaml";

@@ -58,7 +58,7 @@ TEST(WalkExperiment, CompensationCutsThePelvisRollErrorAndEstimatesTheLinks) {
   RecordProperty("roll_max_off", std::to_string(off.pelvis_roll_error_max));
   RecordProperty("roll_max_on", std::to_string(on.pelvis_roll_error_max));
   EXPECT_GT(off.pelvis_roll_error_max, 0.03);                            // the stance hip roll sags (thesis: ~0.04 rad)
-  EXPECT_LT(on.pelvis_roll_error_max, 0.3 * off.pelvis_roll_error_max);  // issue 7: at least 70 % less
+  EXPECT_LT(on.pelvis_roll_error_max, 0.3 * off.pelvis_roll_error_max);  // at least 70 % less
   EXPECT_LT(on.link_error_rms, 0.3 * off.link_error_rms);
   // The output compensator: every period converged, and its estimate is several times closer to
   // the true link angles than the encoders are.

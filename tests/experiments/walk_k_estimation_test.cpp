@@ -1,4 +1,4 @@
-// control.k_estimation (issue 20) on the twin: the true gears are k = 1250 Nm/rad, the
+// control.k_estimation on the twin: the true gears are k = 1250 Nm/rad, the
 // controller's belief starts at 1000; ten steps at 3 s/step with the IMU's AHRS attitude bring
 // each identified joint group's estimate within 6 % of the truth (measured: 1194 to 1302, within
 // 4.5 %). Off (the default) writes no estimate: no k_est_ columns, no k_estimate in summary.json.
@@ -68,7 +68,7 @@ TEST(WalkKEstimation, TheGyrosAttitudeFindsTheStiffnessWithin7PercentAt1s) {
   expect_gyro_attitude_within(1.0, 0.07);
 }
 
-// A realistic gyro (issue 20): a bias of 0.001 rad/s on each axis and a bias walk of 1e-5 rad/s/√s. The gyro is
+// A realistic gyro: a bias of 0.001 rad/s on each axis and a bias walk of 1e-5 rad/s/√s. The gyro is
 // calibrated standing still (control.k_estimation_gyro_rest: 1 s of a 5 s start stance; the bias is the gyro's
 // turn less the legs'), the F/T low-pass is 0.01 s (its lag biases the torques' changes). At 3 s/step each
 // stance's tilt offset is estimated (control.k_estimation_stance_offset: the drift cancels): measured 1212 to 1297

@@ -1,4 +1,4 @@
-// The walk under sensor faults (issue 17, item 13, its Checks): 10 steps at 1 s/step survive a
+// The walk under sensor faults: 10 steps at 1 s/step survive a
 // 0.2 s dropout of one F/T sensor, a gyro stuck for 0.1 s and NaN readings of one encoder for
 // 0.05 s — no fall, each fault flagged in summary.json and log.csv; a permanent F/T failure is a
 // safe stop, not a fall. A walk without faults flags nothing; noise and faults are deterministic.

@@ -55,7 +55,7 @@ TEST(Newton, ReportsMapsWithoutFixedPoints) {
   EXPECT_FALSE(r.converged);
   EXPECT_EQ(r.failure_reason, NewtonFailure::Singular) << r.failure();
   EXPECT_EQ(r.failure_detail, "");
-  // The words files show, made from the reason (issue 13: the bytes of before).
+  // The words files show, made from the reason (the bytes of before).
   EXPECT_EQ(r.failure(), "singular Newton matrix (a multiplier equals 1): no isolated fixed point");
 
   const VectorMap partial = [](const Eigen::VectorXd& z, Eigen::VectorXd& out) -> std::optional<std::string> {

@@ -62,7 +62,7 @@ class SimulateAgainstTheCommandLine(unittest.TestCase):
 
 
     def test_failed_fixed_point_is_named_and_has_no_numbers(self):
-        # Issue 17.1 (no starting point for Newton: the wheel rolls back; such a call segfaulted):
+        # No starting point for Newton (the wheel rolls back; such a call segfaulted):
         # converged False, the failure named, None where a fixed point's numbers would be.
         fp = flexgait.rimless.fixed_point({"initial.omega": -1})
         self.assertFalse(fp["converged"])
@@ -72,7 +72,7 @@ class SimulateAgainstTheCommandLine(unittest.TestCase):
 
 
 class BadConfigFile(unittest.TestCase):
-    """Issue 17.2 and 11: a configuration file read with limits; every refusal a ValueError naming the file."""
+    """A configuration file read with limits; every refusal a ValueError naming the file."""
 
     def refused(self, text, needle):
         with tempfile.TemporaryDirectory() as d:

@@ -1,4 +1,4 @@
-// Basin of attraction (issue 18): the rigid wheel's computed basin against its closed form, cell
+// Basin of attraction: the rigid wheel's computed basin against its closed form, cell
 // by cell away from a band around the boundary; the axis syntax and bad input.
 #include "flexgait/rimless/basin.hpp"
 

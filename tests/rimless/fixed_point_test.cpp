@@ -33,9 +33,9 @@ void expect_named_failure(const FixedPointReport& r) {
   EXPECT_EQ(j["failure"].get<std::string>(), r.failure());
 }
 
-// Issue 17.1: the transient never reaches the section, so Newton gets no starting point (the wheel
+// The transient never reaches the section, so Newton gets no starting point (the wheel
 // started backwards rolls back; the issue's own reproducer, K = 1e9, now runs into the stiff-solver
-// limit of issue 17.3 before it fails).
+// limit before it fails).
 TEST(FixedPoint, NoStartingPointIsANamedFailure) {
   const FixedPointReport r = search({"initial.omega=-1"});
   expect_named_failure(r);
@@ -45,11 +45,11 @@ TEST(FixedPoint, NoStartingPointIsANamedFailure) {
   EXPECT_EQ(r.failure(), "no initial guess: " + r.transient_failure->text());
 }
 
-// Issue 21.6: a finite-difference column fails half-way through the Jacobian; its multipliers were
+// A finite-difference column fails half-way through the Jacobian; its multipliers were
 // eigenvalues of uninitialised memory (7.3e+223).
 TEST(FixedPoint, FailedJacobianGivesNoMultipliers) {
   // A tolerance below the map's integration noise keeps it failing: Newton with the variational
-  // Jacobian, the fallback when a difference column fails (issue 18), converges here otherwise.
+  // Jacobian, the fallback when a difference column fails, converges here otherwise.
   const FixedPointReport r =
       search({"rimless.mu_s=0.1559", "rimless.mu_k=0.1559", "initial.omega=1.5", "analysis.transient_steps=60",
               "analysis.newton_tol=1e-15", "analysis.max_iterations=3"});

@@ -1,4 +1,4 @@
-// Continuation of the wheel's gait (issue 18): the rigid wheel's branch over the slope against its
+// Continuation of the wheel's gait: the rigid wheel's branch over the slope against its
 // closed form, and bad input refused before anything runs.
 #include "flexgait/rimless/gait_branch.hpp"
 
@@ -176,7 +176,7 @@ TEST(GaitBranch, PeriodTwoOfAPeriodOneGaitIsItsBranchWithSquaredMultipliers) {
   }
 }
 
-// The continuation's tuning keys (issue 13): the defaults are the former literals; a larger first
+// The continuation's tuning keys: the defaults are the former literals; a larger first
 // step (no --step) takes fewer points to the same end, the same closed-form branch; min_step above
 // the first step is refused naming its key.
 TEST(GaitBranch, TuningKeysDefaultsAndFirstStep) {

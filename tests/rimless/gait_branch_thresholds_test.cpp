@@ -1,4 +1,4 @@
-// The flexible wheel's gait continued in μ from 0.6 down (issue 18): across every behaviour
+// The flexible wheel's gait continued in μ from 0.6 down: across every behaviour
 // threshold that `analysis gait-vs-friction` bisects, including the changes of the touchdown
 // section's foot mode (the branch goes on in the new mode), to where the branch truly ends.
 #include <gtest/gtest.h>
@@ -143,7 +143,7 @@ TEST(GaitBranchThresholds, SlopeBranchesCrossTheSectionModeChangeFromBothSides) 
   EXPECT_NEAR(at[0], 0.2193, 1e-4);
 }
 
-// analysis.continuation.join_tolerance (issue 13): the two modes' ends at φ ≈ 0.2193 meet to the
+// analysis.continuation.join_tolerance: the two modes' ends at φ ≈ 0.2193 meet to the
 // correctors' tolerance (||F|| <= 1e-10), not to 1e-13: held to that, the branch is not carried
 // over and ends at the boundary, saying so.
 TEST(GaitBranchThresholds, JoinToleranceDecidesTheCrossing) {

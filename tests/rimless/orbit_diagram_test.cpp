@@ -1,4 +1,4 @@
-// Orbit diagram (issue 18): on the rigid wheel every recorded crossing after the transient is the
+// Orbit diagram: on the rigid wheel every recorded crossing after the transient is the
 // closed-form fixed point ω*(φ); the long-form CSV repeats the per-value record faithfully.
 #include "flexgait/rimless/orbit_diagram.hpp"
 

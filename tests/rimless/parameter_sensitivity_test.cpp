@@ -1,4 +1,4 @@
-// ∂P/∂p by sensitivity (issue 18): the parameter column of the variational equations
+// ∂P/∂p by sensitivity: the parameter column of the variational equations
 // (flexible_wheel.hpp, ParameterDirection) against central differences of the whole map.
 #include <gtest/gtest.h>
 

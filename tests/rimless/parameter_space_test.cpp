@@ -1,4 +1,4 @@
-// The flexible wheel walks wherever the model walks (issue 21, part 1): the reproducers of each
+// The flexible wheel walks wherever the model walks: the reproducers of each
 // class of premature stop, and a seeded random sample of the parameter space in which every run
 // either completes its steps or ends for a named physical reason that the test checks is real.
 // Every completed or stopped run closes its energy ledger to 1e-8 (spec rimless.md, checks).

@@ -1,4 +1,4 @@
-// Poincaré maps and fixed points of the rimless wheel (issue 4's checks).
+// Poincaré maps and fixed points of the rimless wheel.
 #include "flexgait/rimless/poincare.hpp"
 
 #include <gtest/gtest.h>

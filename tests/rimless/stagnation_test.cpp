@@ -1,4 +1,4 @@
-// The stagnation interval (paper Fig. 12; issue 21, part 2): the stage, its end, the time near
+// The stagnation interval (paper Fig. 12): the stage, its end, the time near
 // the true vertical, the critical omega0 and the log growth near it.
 #include "flexgait/rimless/stagnation.hpp"
 
@@ -89,9 +89,9 @@ TEST(Stagnation, NearVerticalTimeIndependentOfSampling) {
   }
 }
 
-// The paper's stagnation: omega_c = 0.53038867 (issue 21), the time sliding near the vertical
+// The paper's stagnation: omega_c = 0.53038867, the time sliding near the vertical
 // grows like an inverted pendulum's approach time, ln(10) sqrt(I/(m g L)) = 0.40 s per decade of
-// |omega0 − omega_c|, and at 1e-6 it is more than 10× its value at 1e-1 (the check of issue 21).
+// |omega0 − omega_c|, and at 1e-6 it is more than 10× its value at 1e-1.
 // Tolerances: the growth within 5 % of the pendulum estimate (the leg is compressed by 1 % and the
 // saddle lies at tan β = −μ, not exactly upright); omega_c to 1e-7 of the other implementation's
 // 8 digits.
@@ -136,7 +136,7 @@ TEST(Stagnation, SlidingTimeGrowsLogarithmicallyTowardTheCriticalVelocity) {
   }
 }
 
-// The fit's and the classification's keys (issue 13): the defaults are the former literals; a fit
+// The fit's and the classification's keys: the defaults are the former literals; a fit
 // window below every scan offset fits nothing (growth 0, kind none); a kind fraction above the
 // measured growth (~1x the estimate, previous test) names no kind while the growth stays.
 TEST(Stagnation, FitWindowAndKindFractionAreKeys) {
@@ -177,7 +177,7 @@ TEST(Stagnation, CriticalVelocityStableUnderTolerance) {
 }
 
 // Small inertia with mu = 0.25: the foot sticks near the vertical and the wheel topples about the
-// foot, ln(10) sqrt((I + m L²)/(m g L)) = 0.74 s per decade (issue 21: ~0.74 s). 5 % as above.
+// foot, ln(10) sqrt((I + m L²)/(m g L)) = 0.74 s per decade. 5 % as above.
 TEST(Stagnation, SmallInertiaStallsSticking) {
   WheelParams w = testing::measured_wheel(0.25);
   w.I = 0.02;

@@ -1,4 +1,4 @@
-// Stribeck friction of the flexible wheel (issue 21 part 3): while a foot slips,
+// Stribeck friction of the flexible wheel: while a foot slips,
 // T = -s μ(v) N with μ(v) = μ_k + (μ_s - μ_k) exp(-(|v|/v_s)^δ) + σ |v|, v = ċ, s = sign v.
 // Checks: the Coulomb limits, the energy ledger, the slip law and the friction cone at every
 // sample, the exact map Jacobian against central differences, and a fixed point of each of the

@@ -1,4 +1,4 @@
-// The builtin robot exported as URDF and loaded back through robot.description (issue 16): the
+// The builtin robot exported as URDF and loaded back through robot.description: the
 // same kinematics and masses to the precision URDF stores (shortest round-trip decimals: exact
 // here, the builtin's frames are all parallel).
 #include "flexgait/robot/urdf_export.hpp"

@@ -1,6 +1,6 @@
 // The builtin twin as MJCF (twin/model_xml.hpp): compiled, its bodies carry the builtin inertials
 // (THORMANG3's table plus the extra mass, robot/builtin_inertials.hpp) and its joints the gears'
-// stiffness and damping; loaded back through robot.description (issue 16) it walks with the same
+// stiffness and damping; loaded back through robot.description it walks with the same
 // summary, to the last bit.
 #include "flexgait/twin/model_xml.hpp"
 

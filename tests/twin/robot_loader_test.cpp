@@ -1,4 +1,4 @@
-// A robot from its description (issue 16): the builtin twin's MJCF loaded back gives the same
+// A robot from its description: the builtin twin's MJCF loaded back gives the same
 // controller model and a twin that compiles to the same numbers; the controller's model of a
 // loaded robot against MuJoCo's own (COM, sole poses, Jacobians, gravity torques); the errors.
 #include "flexgait/twin/robot_loader.hpp"

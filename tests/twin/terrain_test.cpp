@@ -1,4 +1,4 @@
-// The twin's floor (issue 19): MuJoCo's floor matches terrain.hpp's heights and the keys (slope,
+// The twin's floor: MuJoCo's floor matches terrain.hpp's heights and the keys (slope,
 // step, rough amplitude and correlation), the flat floor is the plane of earlier versions, the
 // twin stands on a ramp and a rough floor without a MuJoCo warning, same seed same heights.
 #include "flexgait/twin/terrain.hpp"

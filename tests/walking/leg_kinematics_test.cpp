@@ -52,7 +52,7 @@ TEST(LegKinematics, OutOfReachIsClampedAndFlagged) {
   EXPECT_NEAR((reached.p - far.p).norm(), 0.05, 1e-7);
 }
 
-// A leg of another layout (issue 16's second robot): the hip pitch axis 20 mm ahead of the hip
+// A leg of another layout: the hip pitch axis 20 mm ahead of the hip
 // yaw and roll axes, 0.25 m thigh and shank, the sole 60 mm below the ankle.
 LegGeometry offset_pitch_leg() {
   LegGeometry leg;

@@ -1,4 +1,4 @@
-// The controller's model of a loaded description (walking/robot_model_loaded.cpp, issue 16): the
+// The controller's model of a loaded description (walking/robot_model_loaded.cpp): the
 // builtin's MJCF loaded back gives the builtin's own model; the model of a loaded robot agrees
 // with MuJoCo's of the same twin (COM, sole poses, Jacobians, gravity torques), for the builtin
 // and for the test robot with its own names and an offset hip pitch axis.

@@ -1,4 +1,4 @@
-// The walking height and step width derived from a robot (issue 16): the builtin gets ROBOTIS's
+// The walking height and step width derived from a robot: the builtin gets ROBOTIS's
 // numbers exactly, and the rule is the stated one on a robot of other proportions.
 #include "flexgait/walking/stance_defaults.hpp"
 #include "flexgait/walking/walk_params.hpp"

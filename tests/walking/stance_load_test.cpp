@@ -1,4 +1,4 @@
-// The joint torques of a leg carrying a ground force alone (issue 19, stance_load.hpp (L1)):
+// The joint torques of a leg carrying a ground force alone (stance_load.hpp (L1)):
 // against the principle of virtual work through the model's own forward kinematics (an
 // independent route: no Jacobian), and against the hand computation for the knee of the bent
 // standing leg — a force through the knee's axis loads it with nothing, and moving a vertical

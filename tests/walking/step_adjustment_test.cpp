@@ -1,4 +1,4 @@
-// Capture-point step adjustment (issue 19): no shift while the DCM error stays inside the sole,
+// Capture-point step adjustment: no shift while the DCM error stays inside the sole,
 // the shift (S2) when it leaves, and whatever the error the landing stays within reach and on
 // its own side of the stance foot (the feet never cross).
 #include "flexgait/walking/step_adjustment.hpp"
