@@ -356,29 +356,39 @@ def make_analysis_case(rng, work):
     return args + ["--out", out], lambda: "", out
 
 
+ROBOTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "humanoid", "data")
+
+
+FIXTURES = ["minus_y_knee", "pitch_roll_yaw_hips", "waist_below_root", "printed_quaternions", "mujoco3_attributes",
+            "small_biped", "four_sphere_feet", "massless_foot", "unequal_actuators"]
+
+
 def make_robot_case(rng, work):
-    """(argv, post-check, out) of `humanoid export` loading a damaged robot file."""
-    fmt = rng.choice(["mjcf", "urdf"])
-    base = os.path.join(work, "robot-base-%s.%s" % (fmt, "xml" if fmt == "mjcf" else "urdf"))
+    """(argv, post-check, out) of `humanoid export` loading a damaged robot file: the builtin exported, or one of
+    the test robots (each a feature of published files) with its mapping."""
+    fmt = rng.choice(["mjcf", "urdf", "fixture"])
+    if fmt == "fixture":
+        robot = rng.choice(FIXTURES)
+        base = os.path.join(ROBOTS, robot + ".xml")
+        config = os.path.join(ROBOTS, robot + ".yaml")
+    else:
+        base = os.path.join(work, "robot-base-%s.%s" % (fmt, "xml" if fmt == "mjcf" else "urdf"))
+        config = os.path.splitext(base)[0] + ".yaml"
     if not os.path.exists(base):  # writes robot-base-FMT.yaml beside it, the configuration that loads it back
         subprocess.run([EXE, "humanoid", "export", "--format", fmt, "--out", base], capture_output=True, timeout=120)
-    damaged = os.path.join(work, "robot-%d.%s" % (rng.randrange(10 ** 9), "xml" if fmt == "mjcf" else "urdf"))
+    damaged = os.path.join(work, "robot-%d.%s" % (rng.randrange(10 ** 9), "urdf" if fmt == "urdf" else "xml"))
     with open(base, errors="replace") as f:
         text = f.read()
     with open(damaged, "w", errors="replace") as f:
         f.write(damaged_text(rng, text))
     out = os.path.join(work, "robot-out-%d.xml" % rng.randrange(10 ** 9))
-    args = ["humanoid", "export", "--config", os.path.splitext(base)[0] + ".yaml", "--set", "robot.description=" + damaged]
+    args = ["humanoid", "export", "--config", config, "--set", "robot.description=" + damaged]
     return args + ["--out", out], lambda: "", out
-
-
-ROBOTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "humanoid", "data")
 
 
 def run_export_case(rng, exe, config, work, timeout):
     """Export a robot with random plant keys, then load the exported file and export it again."""
-    robot = rng.choice([None, "minus_y_knee", "pitch_roll_yaw_hips", "waist_below_root", "printed_quaternions",
-                        "mujoco3_attributes", "small_biped"])
+    robot = rng.choice([None] + FIXTURES)
     base = ["--config", os.path.join(ROBOTS, robot + ".yaml")] if robot else []
     fmt = rng.choice(["mjcf", "urdf"])
     keys = [p for p in config["humanoid-walk"] if p["key"].startswith("plant.") and p["type"] in ("real", "integer")]
