@@ -416,6 +416,16 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       fail("robot.joints." + std::string(humanoid::kJointNames[j]), params.joints[j],
            "not in the same body tree as the legs");
 
+  // Each joint's link-side inertia: the joint-space mass matrix's diagonal at the file's zero angles (the composite
+  // rigid body inertia below the joint about its axis, Featherstone 2008, ch. 6), less the armature.
+  std::vector<double> link_inertia(static_cast<std::size_t>(m->nv), 0.0);
+  {
+    mjData* d = mj_makeData(m);
+    mj_forward(m, d);
+    for (int v = 0; v < m->nv; ++v)
+      link_inertia[static_cast<std::size_t>(v)] = d->qM[m->dof_Madr[v]] - m->dof_armature[v];
+    mj_deleteData(d);
+  }
   // The root's subtree, parents before children (MuJoCo's body order is depth-first).
   std::vector<int> index(static_cast<std::size_t>(m->nbody), -1);
   std::vector<int> carried(static_cast<std::size_t>(m->ngeom), -1);  // model geom → index in its body's geoms
@@ -444,6 +454,7 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       joint.armature = m->dof_armature[m->jnt_dofadr[k]];
       joint.frictionloss = m->dof_frictionloss[m->jnt_dofadr[k]];
       joint.damping = m->dof_damping[m->jnt_dofadr[k]];
+      joint.link_inertia = link_inertia[static_cast<std::size_t>(m->jnt_dofadr[k])];
       if (const auto a = urdf_armature.find(joint.name); a != urdf_armature.end()) joint.armature = a->second;
       joint.force_limit = actuator_force_limit(m, k);
       if (joint.mapped >= 0)
