@@ -195,12 +195,13 @@ TEST(RobotLoader, UnmappedRolesAreListed) {
 }
 
 // MJCF written for MuJoCo 3: translated with one warning per attribute, the knees' ranges limit
-// them (autolimits), the model agrees with MuJoCo's.
+// them (autolimits), their actuatorfrcrange is their torque limit, the model agrees with MuJoCo's.
 TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
   const experiments::WalkRunParams walk = humanoid::testing::fixture_walk("mujoco3_attributes.yaml");
   ASSERT_TRUE(walk.loaded);
   const std::vector<std::string> expected = {
-      "line 33: actuatorfrcrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself) (2 times)",
+      "line 33: actuatorfrcrange read as the joint's torque limit (MuJoCo 3: the clamp of the actuators' force at the "
+      "joint) (2 times)",
       "line 9: ellipsoidinertia dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)",
       "line 80: inheritrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)",
       "line 7: integrator=implicitfast taken as \"implicit\" (MuJoCo 2.2.2 has no implicitfast; the twin sets its own "
@@ -212,6 +213,12 @@ TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
       walk.loaded->bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
   EXPECT_TRUE(knee.limited);
   EXPECT_EQ(knee.range[1], 2.4);
+  // The knees' actuatorfrcrange="-60 60" is their torque limit (their position servo has no force range of its own);
+  // the other joints have none.
+  EXPECT_EQ(knee.force_limit, 60.0);
+  const auto [hb, hk] = walk.loaded->joint[humanoid::kLeftHipPitch];
+  EXPECT_EQ(walk.loaded->bodies[static_cast<std::size_t>(hb)].joints[static_cast<std::size_t>(hk)].force_limit, 0.0);
+  EXPECT_EQ(walk.plant.joint_torque_limit[humanoid::kRightKnee], 60.0);
   expect_model_agrees_with_mujoco(*walk.loaded);
 }
 

@@ -373,6 +373,7 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
   out.source = source;
   std::vector<std::string> missing_meshes;
   const ModelPtr model = compile(text, format, source, out.warnings, &missing_meshes);
+  const bool ranges_as_user = format == "xml" && joint_force_ranges_as_user(text);
   const std::map<std::string, double> urdf_armature =
       format == "urdf" ? armature_extension(text, source) : std::map<std::string, double>{};
   const mjModel* m = model.get();
@@ -457,6 +458,11 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       joint.link_inertia = link_inertia[static_cast<std::size_t>(m->jnt_dofadr[k])];
       if (const auto a = urdf_armature.find(joint.name); a != urdf_armature.end()) joint.armature = a->second;
       joint.force_limit = actuator_force_limit(m, k);
+      if (ranges_as_user && m->nuser_jnt >= 2) {  // the joint's actuatorfrcrange clamps its actuators' sum
+        const double range =
+            std::max(std::abs(m->jnt_user[m->nuser_jnt * k]), std::abs(m->jnt_user[m->nuser_jnt * k + 1]));
+        if (range > 0) joint.force_limit = joint.force_limit > 0 ? std::min(joint.force_limit, range) : range;
+      }
       if (joint.mapped >= 0)
         out.joint[joint.mapped] = {static_cast<int>(out.bodies.size()), static_cast<int>(body.joints.size())};
       body.joints.push_back(joint);
