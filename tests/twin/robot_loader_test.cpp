@@ -25,6 +25,7 @@
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
 #include "flexgait/walking/robot_model.hpp"
+#include "flexgait/walking/stance_defaults.hpp"
 
 namespace flexgait::twin {
 namespace {
@@ -194,12 +195,13 @@ TEST(RobotLoader, UnmappedRolesAreListed) {
 }
 
 // MJCF written for MuJoCo 3: translated with one warning per attribute, the knees' ranges limit
-// them (autolimits), the model agrees with MuJoCo's.
+// them (autolimits), their actuatorfrcrange is their torque limit, the model agrees with MuJoCo's.
 TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
   const experiments::WalkRunParams walk = humanoid::testing::fixture_walk("mujoco3_attributes.yaml");
   ASSERT_TRUE(walk.loaded);
   const std::vector<std::string> expected = {
-      "line 33: actuatorfrcrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself) (2 times)",
+      "line 33: actuatorfrcrange read as the joint's torque limit (MuJoCo 3: the clamp of the actuators' force at the "
+      "joint) (2 times)",
       "line 9: ellipsoidinertia dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)",
       "line 80: inheritrange dropped (MuJoCo 3; the twin drives the joints and draws the robot itself)",
       "line 7: integrator=implicitfast taken as \"implicit\" (MuJoCo 2.2.2 has no implicitfast; the twin sets its own "
@@ -211,6 +213,12 @@ TEST(RobotLoader, MuJoCo3AttributesAreTranslated) {
       walk.loaded->bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(k)];
   EXPECT_TRUE(knee.limited);
   EXPECT_EQ(knee.range[1], 2.4);
+  // The knees' actuatorfrcrange="-60 60" is their torque limit (their position servo has no force range of its own);
+  // the other joints have none.
+  EXPECT_EQ(knee.force_limit, 60.0);
+  const auto [hb, hk] = walk.loaded->joint[humanoid::kLeftHipPitch];
+  EXPECT_EQ(walk.loaded->bodies[static_cast<std::size_t>(hb)].joints[static_cast<std::size_t>(hk)].force_limit, 0.0);
+  EXPECT_EQ(walk.plant.joint_torque_limit[humanoid::kRightKnee], 60.0);
   expect_model_agrees_with_mujoco(*walk.loaded);
 }
 
@@ -461,6 +469,73 @@ TEST(RobotLoader, UrdfKeepsJointDynamics) {
               std::string::npos)
         << e.what();
   }
+}
+
+// Each joint's link-side inertia (the gear's load in the twin) is the composite inertia of the bodies below it
+// about its axis: MuJoCo's mass matrix diagonal less the armature equals the sum over the subtree of each body's
+// inertia about the axis (parallel axis theorem) at zero angles, to rounding (1e-12 relative: a few dozen
+// products of numbers near 1). The file's armature (its rotors' reflected inertia) is not put on the twin's links:
+// the elastic drive holds the rotor behind the gear spring.
+TEST(RobotLoader, LinkInertiaIsTheInertiaBelowTheJointAndTheTwinCarriesNoArmature) {
+  std::string xml = small_biped_xml();
+  const std::string knee = R"(<joint name="LKnee" axis="0 1 0")";
+  xml.insert(xml.find(knee) + knee.size(), R"( armature="0.0625")");
+  const humanoid::RobotDescriptionParams p = humanoid::testing::fixture_walk("small_biped.yaml").description;
+  const humanoid::LoadedRobot a = load_robot_text(xml, "xml", "small_biped.xml", p);
+  const auto rotation = [](const std::array<double, 4>& q) {
+    return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  };
+  const std::size_t n = a.bodies.size();
+  std::vector<Matrix3d> R(n);
+  std::vector<Vector3d> x(n);
+  for (std::size_t b = 0; b < n; ++b) {  // (parents before children)
+    const humanoid::LoadedBody& body = a.bodies[b];
+    const Vector3d pos(body.pos[0], body.pos[1], body.pos[2]);
+    if (body.parent < 0) {
+      R[b] = Matrix3d::Identity(), x[b] = Vector3d::Zero();
+      continue;
+    }
+    const auto up = static_cast<std::size_t>(body.parent);
+    R[b] = R[up] * rotation(body.quat);
+    x[b] = x[up] + R[up] * pos;
+  }
+  const auto below = [&](std::size_t c, std::size_t b) {
+    for (int i = static_cast<int>(c); i >= 0; i = a.bodies[static_cast<std::size_t>(i)].parent)
+      if (static_cast<std::size_t>(i) == b) return true;
+    return false;
+  };
+  int checked = 0;
+  for (std::size_t b = 0; b < n; ++b)
+    for (const humanoid::LoadedJoint& j : a.bodies[b].joints) {
+      const Vector3d anchor = x[b] + R[b] * Vector3d(j.pos[0], j.pos[1], j.pos[2]);
+      const Vector3d axis = R[b] * Vector3d(j.axis[0], j.axis[1], j.axis[2]);
+      double sum = 0;
+      for (std::size_t c = 0; c < n; ++c) {
+        if (!below(c, b)) continue;
+        const humanoid::LoadedBody& body = a.bodies[c];
+        const Matrix3d Ri = R[c] * rotation(body.iquat);
+        const Matrix3d I =
+            Ri * Vector3d(body.inertia[0], body.inertia[1], body.inertia[2]).asDiagonal() * Ri.transpose();
+        const Vector3d r = x[c] + R[c] * Vector3d(body.ipos[0], body.ipos[1], body.ipos[2]) - anchor;
+        sum += axis.dot(I * axis) + body.mass * r.cross(axis).squaredNorm();
+      }
+      EXPECT_NEAR(j.link_inertia, sum, 1e-12 * sum) << j.name;
+      EXPECT_GT(j.link_inertia, 0) << j.name;
+      ++checked;
+    }
+  EXPECT_GE(checked, 12);
+  const auto [kb, kk] = a.joint[humanoid::kLeftKnee];
+  EXPECT_EQ(a.bodies[static_cast<std::size_t>(kb)].joints[static_cast<std::size_t>(kk)].armature, 0.0625);
+  const Compiled twin(twin_mjcf(a, humanoid::RobotParams{}, PlantParams{}));
+  for (int v = 0; v < twin.m->nv; ++v) EXPECT_EQ(twin.m->dof_armature[v], 0.0) << v;
+}
+
+// The physics step's bound (walking::kMaxGearPhasePerStep) is what the builtin's fastest gear mode turns in its
+// 1 ms step, to the 3 digits it is written with.
+TEST(RobotLoader, BuiltinsFastestGearModeSetsThePhysicsStepsBound) {
+  const double phase = walking::fastest_gear_mode(builtin_loaded(), PlantParams{}.gear_stiffness()) * 0.001;
+  EXPECT_NEAR(phase, walking::kMaxGearPhasePerStep, 5e-4);
+  EXPECT_LE(phase, walking::kMaxGearPhasePerStep);  // the builtin keeps 1 ms
 }
 
 }  // namespace

@@ -40,10 +40,17 @@ TEST(RobotLoaderXml, MuJoCo3TranslatedInPlace) {
   const std::string out = translate_mujoco3(text, warnings);
   EXPECT_EQ(out,
             "<mujoco><compiler autolimits=\"true\"/>\n<option integrator=\"implicit\"/>\n<worldbody><body><joint "
-            "range=\"0 1\" /></body></worldbody>\n</mujoco>");
+            "range=\"0 1\" user=\"-1 1\"/></body></worldbody>\n</mujoco>");
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_EQ(warnings[0].rfind("line 3: actuatorfrcrange dropped", 0), 0u) << warnings[0];
+  EXPECT_EQ(warnings[0].rfind("line 3: actuatorfrcrange read as the joint's torque limit", 0), 0u) << warnings[0];
   EXPECT_EQ(warnings[1].rfind("line 2: integrator=implicitfast taken as \"implicit\"", 0), 0u) << warnings[1];
+  // A file whose joints carry user data of their own: the force range is dropped (it cannot ride in user).
+  std::string with_user = text;
+  with_user.replace(with_user.find("<joint "), 7, "<joint user=\"7\" ");
+  warnings.clear();
+  EXPECT_FALSE(joint_force_ranges_as_user(with_user));
+  EXPECT_EQ(translate_mujoco3(with_user, warnings).find("actuatorfrcrange"), std::string::npos);
+  EXPECT_EQ(warnings[0].rfind("line 3: actuatorfrcrange dropped", 0), 0u) << warnings[0];
   // A compiler that says autolimits: nothing added, nothing to warn.
   warnings.clear();
   const std::string plain = "<mujoco><compiler autolimits=\"false\"/></mujoco>";

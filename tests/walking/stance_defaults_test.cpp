@@ -74,5 +74,31 @@ TEST(ScaledDefaults, BuiltinIsItsOwnReferenceAndRulesAreThePowersStated) {
   EXPECT_NEAR(robot_scale(half, stance_defaults(half).pelvis_height, model, pelvis).leg, 0.5, 1e-12);
 }
 
+// The physics step from the gears: the step as given while the fastest gear mode turns at most
+// kMaxGearPhasePerStep (the builtin's 0.224 rad in 1 ms) per step, else halved until it does (0.6 rad per ms: a
+// quarter of 1 ms, since half would turn 0.3 rad); the fastest mode is sqrt(k / I) over the mapped joints,
+// unmapped ones ignored.
+TEST(ScaledDefaults, PhysicsStepKeepsTheGearsPhasePerStep) {
+  EXPECT_EQ(gear_physics_step(224, 0.001), 0.001);
+  EXPECT_EQ(gear_physics_step(100, 0.001), 0.001);
+  EXPECT_EQ(gear_physics_step(400, 0.001), 0.0005);
+  EXPECT_EQ(gear_physics_step(600, 0.001), 0.00025);
+  EXPECT_EQ(gear_physics_step(0, 0.001), 0.001);
+  humanoid::LoadedRobot robot;
+  robot.bodies.resize(2);
+  for (int b = 0; b < 2; ++b) {
+    humanoid::LoadedJoint j;
+    j.link_inertia = b == 0 ? 0.25 : 0.01;
+    robot.bodies[static_cast<std::size_t>(b)].joints.push_back(j);
+  }
+  robot.joint.fill({-1, -1});
+  robot.joint[humanoid::kLeftKnee] = {0, 0};
+  humanoid::JointVector k{};
+  k.fill(100.0);
+  EXPECT_EQ(fastest_gear_mode(robot, k), 20.0);  // sqrt(100 / 0.25); the 0.01 joint is not mapped
+  robot.joint[humanoid::kRightKnee] = {1, 0};
+  EXPECT_EQ(fastest_gear_mode(robot, k), 100.0);  // sqrt(100 / 0.01)
+}
+
 }  // namespace
 }  // namespace flexgait::walking

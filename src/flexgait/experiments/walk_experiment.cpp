@@ -46,6 +46,7 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
     const double actuators = walking::leg_actuator_torque(*p.loaded);
     for (const walking::ScaledDefault& rule : walking::kScaledDefaults) {
       const std::string key(rule.key);
+      if (key == "plant.physics_dt") continue;                                  // from the gears, below
       if (key == "control.k_joint" || key == "balance.capture_torque_limit") {  // the plant's, set or derived
         derive(key, resolved.real(key == "control.k_joint" ? "plant.k_joint" : "plant.torque_limit"));
         continue;
@@ -53,6 +54,12 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
       derive(key, key == "plant.torque_limit" && actuators > 0 ? actuators
                                                                : walking::scaled_default(rule, c.real(key), scale));
     }
+    // The physics step: 1 ms, halved while the fastest gear mode (each gear's stiffness against the inertia its
+    // joint turns) turns more than walking::kMaxGearPhasePerStep per step (MuJoCo takes the gear springs explicitly).
+    derive("plant.physics_dt",
+           walking::gear_physics_step(
+               walking::fastest_gear_mode(*p.loaded, twin::plant_from_config(resolved).gear_stiffness()),
+               c.real("plant.physics_dt")));
     p.plant = twin::plant_from_config(resolved);
     // Each joint's servo at the file's own limit where the file has one, the rest at plant.torque_limit as
     // derived; plant.torque_limit set by the user holds every joint (docs/guide/robot.md, "Torque limits").

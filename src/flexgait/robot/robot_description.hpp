@@ -78,6 +78,9 @@ struct LoadedJoint {
   std::array<double, 2> range{};          ///< [rad]
   double armature = 0, frictionloss = 0;  ///< [kg m^2], [Nm]
   double damping = 0;                     ///< the file's joint damping [Nm s/rad] (the twin's gears set their own)
+  /// The inertia the joint turns at the file's zero angles: the composite inertia of the bodies below it about
+  /// its axis, the joint-space mass matrix's diagonal without the armature [kg m^2] (the link side of its gear).
+  double link_inertia = 0;
   /// The largest torque the file's actuators on this joint can apply [Nm]: gear × force range, or
   /// gear × gain × control range for a motor without a force range; 0: the file sets none.
   double force_limit = 0;

@@ -373,6 +373,7 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
   out.source = source;
   std::vector<std::string> missing_meshes;
   const ModelPtr model = compile(text, format, source, out.warnings, &missing_meshes);
+  const bool ranges_as_user = format == "xml" && joint_force_ranges_as_user(text);
   const std::map<std::string, double> urdf_armature =
       format == "urdf" ? armature_extension(text, source) : std::map<std::string, double>{};
   const mjModel* m = model.get();
@@ -416,6 +417,16 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       fail("robot.joints." + std::string(humanoid::kJointNames[j]), params.joints[j],
            "not in the same body tree as the legs");
 
+  // Each joint's link-side inertia: the joint-space mass matrix's diagonal at the file's zero angles (the composite
+  // rigid body inertia below the joint about its axis, Featherstone 2008, ch. 6), less the armature.
+  std::vector<double> link_inertia(static_cast<std::size_t>(m->nv), 0.0);
+  {
+    mjData* d = mj_makeData(m);
+    mj_forward(m, d);
+    for (int v = 0; v < m->nv; ++v)
+      link_inertia[static_cast<std::size_t>(v)] = d->qM[m->dof_Madr[v]] - m->dof_armature[v];
+    mj_deleteData(d);
+  }
   // The root's subtree, parents before children (MuJoCo's body order is depth-first).
   std::vector<int> index(static_cast<std::size_t>(m->nbody), -1);
   std::vector<int> carried(static_cast<std::size_t>(m->ngeom), -1);  // model geom → index in its body's geoms
@@ -444,8 +455,14 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       joint.armature = m->dof_armature[m->jnt_dofadr[k]];
       joint.frictionloss = m->dof_frictionloss[m->jnt_dofadr[k]];
       joint.damping = m->dof_damping[m->jnt_dofadr[k]];
+      joint.link_inertia = link_inertia[static_cast<std::size_t>(m->jnt_dofadr[k])];
       if (const auto a = urdf_armature.find(joint.name); a != urdf_armature.end()) joint.armature = a->second;
       joint.force_limit = actuator_force_limit(m, k);
+      if (ranges_as_user && m->nuser_jnt >= 2) {  // the joint's actuatorfrcrange clamps its actuators' sum
+        const double range =
+            std::max(std::abs(m->jnt_user[m->nuser_jnt * k]), std::abs(m->jnt_user[m->nuser_jnt * k + 1]));
+        if (range > 0) joint.force_limit = joint.force_limit > 0 ? std::min(joint.force_limit, range) : range;
+      }
       if (joint.mapped >= 0)
         out.joint[joint.mapped] = {static_cast<int>(out.bodies.size()), static_cast<int>(body.joints.size())};
       body.joints.push_back(joint);

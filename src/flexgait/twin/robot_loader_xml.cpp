@@ -110,6 +110,15 @@ std::string non_finite_token(std::string_view value) {
   return {};
 }
 
+bool joint_force_ranges_as_user(std::string_view text) {
+  bool ranges = false, user = false;
+  for_each_xml_attribute(text, [&](const XmlAttribute& a) {
+    if (a.element == "joint" && a.name == "actuatorfrcrange") ranges = true;
+    if ((a.element == "joint" && a.name == "user") || a.name == "nuser_jnt") user = true;
+  });
+  return ranges && !user;
+}
+
 std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir,
                               MissingMeshes missing_meshes, std::vector<std::string>* missing_names) {
   struct Edit {
@@ -186,6 +195,7 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
                     "are dropped",
                     missing_line, missing.size(), missing.front(), geoms));
   }
+  const bool ranges_as_user = joint_force_ranges_as_user(text);
   for_each_xml_attribute(text, [&](const XmlAttribute& a) {
     if (a.element == "compiler") {
       compiler = a.tag;
@@ -195,6 +205,9 @@ std::string translate_mujoco3(std::string_view text, std::vector<std::string>& w
       const std::size_t v = text.find(a.value, a.begin);
       edits.push_back({v, v + a.value.size(), "implicit"});
       note(a, "taken as \"implicit\" (MuJoCo 2.2.2 has no implicitfast; the twin sets its own integrator)");
+    } else if (a.element == "joint" && a.name == "actuatorfrcrange" && ranges_as_user) {
+      edits.push_back({a.begin, a.begin + a.name.size(), "user"});
+      note(a, "read as the joint's torque limit (MuJoCo 3: the clamp of the actuators' force at the joint)");
     } else if ((a.element == "joint" &&
                 (a.name == "actuatorfrcrange" || a.name == "actuatorfrclimited" || a.name == "actuatorgravcomp")) ||
                a.name == "inheritrange" || a.name == "kv" || (a.element == "global" && a.name == "ellipsoidinertia")) {

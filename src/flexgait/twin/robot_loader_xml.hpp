@@ -39,7 +39,9 @@ std::string non_finite_token(std::string_view value);
 /// equivalent or the attribute only concerns what the twin replaces (its own integrator, its own
 /// drives, its own viewer):
 ///   integrator="implicitfast"       → "implicit" (the twin sets its own integrator anyway);
-///   actuatorfrcrange, actuatorfrclimited, actuatorgravcomp (joints), inheritrange, kv
+///   actuatorfrcrange (joints): renamed `user` when joint_force_ranges_as_user(text), so that MuJoCo's compiler
+///   resolves it through the default classes and the loader reads it as the joint's torque limit; else dropped;
+///   actuatorfrclimited, actuatorgravcomp (joints), inheritrange, kv
 ///   (actuators), ellipsoidinertia (visual/global): dropped (the twin drives the joints itself);
 ///   no autolimits on <compiler>: autolimits="true", MuJoCo 3's default (a range then limits).
 /// Returns the translated text (each line where it was) and appends one warning per attribute
@@ -53,6 +55,11 @@ std::string non_finite_token(std::string_view value);
 /// (to learn which geoms showed a missing mesh, with their classes' contact bits resolved), no
 /// warning about them. `missing_names`, when given, receives the missing meshes' names.
 enum class MissingMeshes { kDrop, kPlaceholder };
+
+/// Whether translate_mujoco3 carries the joints' actuatorfrcrange (MuJoCo 3: the clamp of the total actuator force
+/// at a joint) in their `user` numbers: the text gives some joint (or joint default) an actuatorfrcrange and none a
+/// `user` attribute, nor sets nuser_jnt (the file's own user data would be overwritten).
+bool joint_force_ranges_as_user(std::string_view text);
 std::string translate_mujoco3(std::string_view text, std::vector<std::string>& warnings, const std::string& dir = "",
                               MissingMeshes missing_meshes = MissingMeshes::kDrop,
                               std::vector<std::string>* missing_names = nullptr);

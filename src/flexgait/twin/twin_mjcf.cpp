@@ -78,7 +78,8 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
         fmt::format("{}  <joint name=\"{}\" type=\"hinge\" pos=\"{}\" axis=\"{}\" stiffness=\"{}\" damping=\"{}\"", pad,
                     humanoid::kJointNames[j.mapped], list(j.pos), unit_list(j.axis), k[j.mapped], p.gear_damping);
     if (j.limited) out += fmt::format(" limited=\"true\" range=\"{} {}\"", j.range[0], j.range[1]);
-    if (j.armature > 0) out += fmt::format(" armature=\"{}\"", j.armature);
+    // (no armature: the file's armature is its rotors' inertia reflected through the gears, which the twin's
+    // elastic drive holds behind the gear spring, plant.rotor_inertia; on the link it would be counted twice)
     if (j.frictionloss > 0) out += fmt::format(" frictionloss=\"{}\"", j.frictionloss);
     out += "/>\n";
   }

@@ -110,4 +110,22 @@ double leg_actuator_torque(const humanoid::LoadedRobot& robot) {
   return largest;
 }
 
+double fastest_gear_mode(const humanoid::LoadedRobot& robot, const humanoid::JointVector& stiffness) {
+  double fastest = 0;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    if (!robot.has_joint(j)) continue;
+    const auto [body, joint] = robot.joint[static_cast<std::size_t>(j)];
+    const double inertia =
+        robot.bodies[static_cast<std::size_t>(body)].joints[static_cast<std::size_t>(joint)].link_inertia;
+    if (inertia > 0) fastest = std::max(fastest, std::sqrt(stiffness[j] / inertia));
+  }
+  return fastest;
+}
+
+double gear_physics_step(double rate, double step) {
+  // (at most 10 halvings: a step of 1 ms / 1024 would make a walk of seconds take hours)
+  for (int i = 0; i < 10 && rate * step > kMaxGearPhasePerStep; ++i) step *= 0.5;
+  return step;
+}
+
 }  // namespace flexgait::walking

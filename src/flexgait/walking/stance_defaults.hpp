@@ -69,7 +69,7 @@ struct ScaledDefault {
   std::string_view rule;  ///< the rule in words, for the key's documentation (ParamSpec::derived)
 };
 
-inline constexpr std::array<ScaledDefault, 17> kScaledDefaults{{
+inline constexpr std::array<ScaledDefault, 18> kScaledDefaults{{
     {"walk.step_time", 0, 0.5, 0, "1 s x sqrt(leg / the builtin's), Froude scaling (the builtin: 1 s)"},
     {"walk.step_length", 0, 1, 0, "0.1 m x leg / the builtin's, Froude scaling (the builtin: 0.1 m)"},
     {"walk.swing_height", 0, 1, 0, "0.05 m x leg / the builtin's (the builtin: 0.05 m)"},
@@ -82,6 +82,9 @@ inline constexpr std::array<ScaledDefault, 17> kScaledDefaults{{
     {"plant.rotor_inertia", 1, 2, 0,
      "0.8 kg m^2 x mass x leg^2 / the builtin's: the builtin's ratio to the leg's inertia (the builtin: 0.8)"},
     {"plant.servo_bandwidth", 0, -0.5, 0, "30 Hz x sqrt(the builtin's leg / leg), Froude scaling (the builtin: 30 Hz)"},
+    {"plant.physics_dt", 0, 0, 0,
+     "1 ms, halved until the fastest gear mode, sqrt(k / the inertia its joint turns), turns per step at most what "
+     "the builtin's turns in 1 ms, 0.224 rad (the explicit gear spring; the builtin: 1 ms)"},
     {"plant.torque_limit", 1, 1, 0,
      "the largest force range of the file's actuators on the leg joints; else 100 Nm x mass x leg / the builtin's "
      "(the builtin: 100); while derived, a joint the file's actuators limit keeps its own limit, set it holds every "
@@ -106,6 +109,21 @@ double scaled_default(const ScaledDefault& d, double builtin, const RobotScale& 
 /// The largest torque the file's actuators can apply on each mapped joint (LoadedJoint::force_limit) [Nm];
 /// 0 for a joint the file does not limit or the mapping leaves out.
 humanoid::JointVector joint_actuator_torques(const humanoid::LoadedRobot& robot);
+
+/// The fastest gear mode of a loaded robot [rad/s]: the largest over its mapped joints of sqrt(k_j / I_j), the
+/// gear's stiffness against the inertia the joint turns (LoadedJoint::link_inertia); 0 if none is known.
+double fastest_gear_mode(const humanoid::LoadedRobot& robot, const humanoid::JointVector& stiffness);
+
+/// The most a gear mode may turn in one physics step [rad]: what the builtin's fastest gear mode turns in its
+/// 1 ms step (a 1000 Nm/rad gear on the inertia its joint turns, sqrt(k / I) = 223.8 rad/s; a test checks it).
+/// MuJoCo's Euler integrator takes a joint's spring explicitly (its damping implicitly): a robot whose gears
+/// turn more per step than the builtin's is integrated less accurately than the builtin was validated at (the
+/// symplectic Euler method on an oscillator of rate w is stable only for w dt < 2; Hairer, Lubich and Wanner 2006).
+inline constexpr double kMaxGearPhasePerStep = 0.224;
+
+/// The physics step for a robot whose fastest gear mode is `rate` [rad/s]: `step` halved until rate x step is at
+/// most kMaxGearPhasePerStep (at most 10 times); `step` itself when it already is.
+double gear_physics_step(double rate, double step);
 
 /// The largest torque the file's actuators can apply on the mapped leg joints (joint_actuator_torques)
 /// [Nm]; 0 when the file limits none of them.
