@@ -25,15 +25,20 @@ TEST(PlantTorqueLimits, EachJointKeepsTheFilesLimitWhileDerived) {
     for (int i = 0; i < humanoid::kLegJoints; ++i)
       EXPECT_EQ(limit[humanoid::leg_first_joint(side) + i], kFileLimit[static_cast<std::size_t>(i)]) << side << i;
   EXPECT_EQ(limit[humanoid::kWaistYaw], 120.0);  // no motor on the waist: plant.torque_limit as derived
-  // The run's config.yaml keeps the key auto (set, it would hold every joint on a rerun).
+  // The capture step's torque check holds each leg joint to the same limits (0: balance.capture_torque_limit).
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    EXPECT_EQ(p.balance.capture_joint_torque_limit[j] > 0 ? p.balance.capture_joint_torque_limit[j]
+                                                          : p.balance.capture_torque_limit,
+              limit[j])
+        << j;
+  // The run's config.yaml keeps both keys auto (set, one value would hold every joint on a rerun).
   const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
   const Config c =
       resolve_config(experiments::walk_run_schema(),
                      std::filesystem::path(dir ? dir : "tests/humanoid/data") / "unequal_actuators.yaml", {});
   const Config written = experiments::with_derived_values(c, experiments::walk_run_from_config(c));
   EXPECT_TRUE(written.derived("plant.torque_limit"));
-  EXPECT_FALSE(written.derived("balance.capture_torque_limit"));
-  EXPECT_EQ(written.real("balance.capture_torque_limit"), 120.0);
+  EXPECT_TRUE(written.derived("balance.capture_torque_limit"));
 }
 
 TEST(PlantTorqueLimits, AUserSetLimitHoldsEveryJoint) {
@@ -41,6 +46,7 @@ TEST(PlantTorqueLimits, AUserSetLimitHoldsEveryJoint) {
       humanoid::testing::fixture_walk("unequal_actuators.yaml", {"plant.torque_limit=70"});
   for (const double limit : p.plant.servo_torque_limits()) EXPECT_EQ(limit, 70.0);
   EXPECT_EQ(p.balance.capture_torque_limit, 70.0);
+  for (const double limit : p.balance.capture_joint_torque_limit) EXPECT_EQ(limit, 0.0);  // 70 for every joint
 }
 
 // The twin's ground truth over a walk's start and first step: no servo torque beyond its own joint's

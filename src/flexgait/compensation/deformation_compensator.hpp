@@ -130,7 +130,8 @@ struct CompensationParams {
   KEstimation k_estimation = KEstimation::kOff;
   /// The controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the
   /// encoders plus the output compensator's last deflection estimate θ̂ − θ_enc (spec (1): the
-  /// estimated joint angles and the IMU give the real pose); false: the encoders alone.
+  /// estimated joint angles and the IMU give the real pose); false: the encoders alone (the schema's default;
+  /// humanoid walk resolves it true when its output compensator runs).
   bool compensated_feedback = false;
   double k_estimation_memory = 5.0;       ///< forgetting time constant: λ = e^{−T/memory} [s]
   double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
@@ -187,7 +188,8 @@ struct CompensationParams {
        .bounds = closed(0, 1)});
     v("control.compensated_feedback", s.compensated_feedback,
       {.doc = "the controller's kinematic estimators (the dcm COM estimate, the tilt observer) read the encoders "
-              "plus the output compensator's last deflection estimate (needs compensation output or both)"});
+              "plus the output compensator's last deflection estimate (needs compensation output or both; left unset, "
+              "humanoid walk's own output compensator takes true)"});
     v("control.k_estimation", s.k_estimation,
       {.doc = "online stiffness identification while walking: on = estimate 1/k of each leg's roll and pitch joint "
               "groups by RLS from the stance foot's tilt seen through the encoders and the IMU; the compensators "

@@ -66,6 +66,8 @@ void apply_robot_defaults(const Config& c, const walking::RobotModel& model, Wal
     if (c.derived("plant.torque_limit")) p.plant.joint_torque_limit = walking::joint_actuator_torques(*p.loaded);
     p.walk = record_from_config<walking::WalkParams>(resolved);
     p.balance = record_from_config<walking::BalanceParams>(resolved);
+    // The capture step's torque check holds each joint to its servo's own limit (derived with plant.torque_limit).
+    if (c.derived("balance.capture_torque_limit")) p.balance.capture_joint_torque_limit = p.plant.joint_torque_limit;
     p.control = compensation::compensation_from_config(resolved);
     // The hip spacing, at most the builtin's width scaled with the leg (the sideways sway, and with it the
     // legs' roll, scales so), at least the soles' width + 2 cm.
@@ -210,11 +212,12 @@ WalkRunParams walk_run_from_config(const Config& c) {
 Config with_derived_values(const Config& config, const WalkRunParams& params) {
   Config out = config;
   // (a loaded robot's config.yaml says which values were derived, kDerivedOrigin; the builtin's keeps its bytes)
-  // (plant.torque_limit stays auto where the file limits joints of its own: set, it would hold every joint)
+  // (plant.torque_limit and balance.capture_torque_limit stay auto where the file limits joints of its own: set,
+  // one value would hold every joint)
   const humanoid::JointVector& own = params.plant.joint_torque_limit;
   const bool own_limits = std::any_of(own.begin(), own.end(), [](double x) { return x > 0; });
   for (const auto& [key, value] : params.derived)
-    if (out.derived(key) && !(own_limits && key == "plant.torque_limit"))
+    if (out.derived(key) && !(own_limits && (key == "plant.torque_limit" || key == "balance.capture_torque_limit")))
       out.set(key, format_number(value), params.loaded ? kDerivedOrigin : "auto (from the robot)");
   for (const auto& [key, value] : params.case_defaults) out.set(key, value, "default (the compensation case)");
   return out;

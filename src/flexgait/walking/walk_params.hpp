@@ -7,6 +7,7 @@
 
 #include "flexgait/core/config.hpp"
 #include "flexgait/core/record.hpp"
+#include "flexgait/robot/joints.hpp"
 #include "flexgait/walking/calibration_motion.hpp"
 
 namespace flexgait::walking {
@@ -107,6 +108,9 @@ struct BalanceParams {
   /// Standing: the capture step's foot lifts once the stance leg alone could carry the measured
   /// ground force within this joint torque (stance_load.hpp; the twin's servos: plant.torque_limit) [N m]; 0: at once.
   double capture_torque_limit = 100.0;
+  /// The same check per joint: each joint's own limit where it has one, capture_torque_limit where 0 (not a key: a
+  /// loaded robot's file limits while balance.capture_torque_limit is derived, as its servos have them) [N m].
+  humanoid::JointVector capture_joint_torque_limit{};
   // Landing orientation control (landing_adaptation.hpp; both modes).
   double landing_admittance = 0.0;  ///< A: sole tilt rate per Nm of ground torque after touchdown [rad/(N m s)]; 0: off
   double landing_window = 0.1;      ///< how long after touchdown the sole follows the torque [s]
@@ -183,7 +187,7 @@ struct BalanceParams {
       {.unit = "N m",
        .doc = "step adjustment while standing: the capture step's foot lifts once the stance leg alone could carry the "
               "measured ground force within this joint torque (at the latest after balance.recovery_step_time; 0: at "
-              "once)",
+              "once; derived for a loaded robot, each joint within its servo's own limit)",
        .bounds = closed(0, 1e4)});
     v("balance.landing_admittance", s.landing_admittance,
       {.unit = "rad/(N m s)",

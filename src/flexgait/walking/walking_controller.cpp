@@ -403,7 +403,10 @@ bool WalkingController::capture_lift_due(double t) {
     const Vector3d point = sole_pose(model_, estimate_data_, stance).p + Vector3d(p.x() - f.x, p.y() - f.y, 0);
     const LegTorque tau = stance_joint_torques(model_, estimate_data_, stance,
                                                force * (model_.total_mass * model_.gravity / force.z()), point);
-    feasible = tau.cwiseAbs().maxCoeff() <= balance_.capture_torque_limit;
+    for (int i = 0; i < humanoid::kLegJoints; ++i) {
+      const double own = balance_.capture_joint_torque_limit[humanoid::leg_first_joint(stance) + i];
+      feasible = feasible && std::abs(tau(i)) <= (own > 0 ? own : balance_.capture_torque_limit);
+    }
   }
   // Within the limit at once: lift now; once beyond it, lift after kCaptureLiftHold within it.
   capture_.feasible_periods = feasible ? capture_.feasible_periods + 1 : 0;
