@@ -81,6 +81,11 @@ double StiffnessEstimator::relative_std(int side, Group g) const {
   return std::sqrt(std::max(rls_[side].P()(g, g), 0.0)) / rls_[side].x()[g];
 }
 
+double StiffnessEstimator::relative_std(int joint) const {
+  if (group_[joint] == kNone) return 0.0;
+  return relative_std(humanoid::in_leg(joint, 0) ? 0 : 1, group_[joint]);
+}
+
 void StiffnessEstimator::publish(int side) {
   for (int g = 0; g < kGroups; ++g)
     confident_[side][g] = confident_[side][g] || relative_std(side, Group(g)) <= params_.k_estimation_confidence;

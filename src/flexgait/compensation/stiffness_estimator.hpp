@@ -16,7 +16,8 @@
 /// deflections (axis z) are not seen and keep the belief.
 ///
 /// Each leg's [c_roll, c_pitch] is estimated by RLS with forgetting (forgetting_rls.hpp), the
-/// regressor h_g = Σ_{i∈g} (a_i)_xy τ_i, τ the compensators' modelled torque; a sample is used
+/// regressor h_g = Σ_{i∈g} (a_i)_xy τ_i, τ the compensators' modelled torque through the gears' lag
+/// (DeflectionLag, with control.gear_damping); a sample is used
 /// only when the foot is in firm support by its F/T sensor (normal force ≥ a quarter of the weight,
 /// the centre of pressure within the middle 60 % of the sole's length and width) and |h| ≥
 /// control.k_estimation_min_torque. Bad data (a NaN, or an F/T reading older than 50 ms, or the
@@ -28,7 +29,10 @@
 /// The pelvis attitude the chain starts from: the controller's estimate (control.k_estimation_attitude_time = 0),
 /// or the gyro's turn pulled towards that estimate with time constant t_a, so the estimate's errors at the gait's
 /// frequencies — correlated with the deflections, the dominant error of the identification — are filtered out:
-///     R ← exp([e]× min(1, T/t_a)) R exp([ω_gyro]× T),  e the rotation vector of R_imu Rᵀ.
+///     R ← exp([e]× min(1, T/t_a)) R exp([ω̄]× T),  e the rotation vector of R_imu Rᵀ,
+/// ω̄ the mean of the last two gyro readings (each the rate at its period's start, as the encoders' angles). The
+/// default t_a = 1000 s: the gyro's over a walk (the controller's Mahony attitude drifts ~0.02 rad in pitch over a
+/// 20 s walk, which the pitch groups, their regressor nearly constant, take for deflection).
 /// It trusts the gyro over t_a: a gyro bias b tilts it by ≈ b t_a. So a real robot's gyro is calibrated first
 /// (control.k_estimation_gyro_rest = t_r > 0) by the static alignment of an inertial unit: standing still in the
 /// start stance over t_r, until the COM starts to move (walk.preview_time before the first step), the gyro's
@@ -119,6 +123,8 @@ class StiffnessEstimator {
   bool confident(int side, Group g) const { return confident_[side][g]; }
   /// Relative standard deviation sqrt(P_gg)/c_g of a group.
   double relative_std(int side, Group g) const;
+  /// A joint's: its group's (the joints of a group share one 1/k; 0 for a joint not identified).
+  double relative_std(int joint) const;
   long samples() const { return samples_; }    ///< foot samples used
   long bad_data() const { return bad_data_; }  ///< periods skipped for bad data
   /// The gyro bias found at rest (pelvis frame) [rad/s]; zero before or without the calibration.
