@@ -105,9 +105,12 @@ TEST(WalkOutput, SummaryIsTheMetricsAndTheEstimatesWhenEstimated) {
   r.k_identified[humanoid::kLeftHipRoll] = r.k_identified[humanoid::kRightHipRoll] = true;
   r.k_estimate[humanoid::kLeftHipRoll] = 900.0;
   r.k_estimate[humanoid::kRightHipRoll] = 1100.0;
+  r.k_relative_std[humanoid::kLeftHipRoll] = 0.003;
   j = nlohmann::json::parse(walk_summary_json(r));
   EXPECT_EQ(j["k_estimate"].size(), 2u);
   EXPECT_EQ(j["k_estimate_mean"], 1000.0);
+  EXPECT_EQ(j["k_estimate_relative_std"].size(), 2u);  // each identified joint's confidence
+  EXPECT_EQ(j["k_estimate_relative_std"]["l_hip_roll"], 0.003);
   EXPECT_EQ(walk_summary_json(r), walk_summary_json(r));  // deterministic
   // Wall-clock numbers only in timing.json.
   EXPECT_FALSE(j.contains("wall_time"));

@@ -128,19 +128,11 @@ int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& enc
     ++bad_data_;
     return 0;
   }
-  // The deflection lags the load (control.gear_damping d: k δ + d δ̇ = τ, time constant d/k); the modelled torque
-  // already lags it by the F/T low-pass (control.load_filter_time): the regressor's torque lags by the rest. The
-  // lag is a filter in time, so it runs every period with good data, whether or not the sample is used.
-  for (int j = 0; j < humanoid::kJoints; ++j) {
-    const double lag = std::max(0.0, params_.gear_damping / stiffness_[j] - params_.load_filter_time);
-    const double a = lagged_ ? period_ / (period_ + lag) : 1.0;
-    lagged_torque_[j] += a * (torque[j] - lagged_torque_[j]);
-  }
-  lagged_ = true;
+  lag_.update(torque, stiffness_, params_, period_);  // (every period with good data)
   for (int side = 0; side < 2; ++side)
     if (!firm_support(model_, ft[side], support.soles[side].R, side, kMinWeightShare)) return 0;
   Eigen::Vector2d y;
-  const Eigen::Matrix<double, 2, kStates> H = regressor(encoder, lagged_torque_, y);
+  const Eigen::Matrix<double, 2, kStates> H = regressor(encoder, lag_.torque(), y);
   for (int r = 0; r < 2; ++r) fit_.add(H.row(r).transpose(), y[r], noise_variance_);
   fit_.solve();
   for (int j = 0; j < humanoid::kJoints; ++j) {

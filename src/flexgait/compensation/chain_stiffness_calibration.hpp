@@ -44,6 +44,7 @@
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/compensation/information_least_squares.hpp"
+#include "flexgait/compensation/stiffness_estimator.hpp"
 
 namespace flexgait::compensation {
 
@@ -83,9 +84,8 @@ class ChainStiffnessCalibration {
   CompensationParams params_;
   double period_;  ///< [s]
   double noise_variance_;
-  double begin_, end_;                     ///< [s]
-  humanoid::JointVector lagged_torque_{};  ///< the modelled torque through the deflection's lag [Nm]
-  bool lagged_ = false;
+  double begin_, end_;  ///< [s]
+  DeflectionLag lag_;   ///< the modelled torque through the deflection's lag
   humanoid::JointVector belief_, estimate_, stiffness_;
   std::array<int, humanoid::kJoints> state_{};  ///< a joint's state index, −1: not identified
   std::array<double, kStates> c_min_{}, c_max_{};

@@ -144,8 +144,9 @@ struct CompensationParams {
   /// pad and the floor contact in series with the ankle gears [Nm/rad]; 0: rigid soles
   double sole_stiffness_roll = 0.0;
   double sole_stiffness_pitch = 0.0;
-  double k_estimation_attitude_time =
-      0.0;  ///< the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]
+  /// the gyro's attitude pulled to the controller's with this time constant; 0: the controller's [s]. 1000 s: the
+  /// gyro's over a walk (the controller's attitude errs slowly, ~0.01–0.02 rad, as the deflections do).
+  double k_estimation_attitude_time = 1000.0;
   bool k_estimation_stance_offset =
       false;  ///< each stance's tilt has an unknown offset of its own (estimated beside 1/k)
   double k_estimation_gyro_rest =
@@ -230,7 +231,8 @@ struct CompensationParams {
     v("control.k_estimation_attitude_time", s.k_estimation_attitude_time,
       {.unit = "s",
        .doc = "k_estimation: the pelvis attitude the identification uses is the gyro's turn pulled towards the "
-              "controller's estimate with this time constant (0 = the controller's estimate itself)",
+              "controller's estimate with this time constant (0 = the controller's estimate itself; the default, "
+              "1000 s, is the gyro's over a walk)",
        .bounds = closed(0, 1e6)});
     v("control.k_estimation_stance_offset", s.k_estimation_stance_offset,
       {.doc = "k_estimation: each stance foot's tilt carries an unknown constant offset, estimated beside 1/k and "

@@ -81,6 +81,11 @@ double StiffnessEstimator::relative_std(int side, Group g) const {
   return std::sqrt(std::max(rls_[side].P()(g, g), 0.0)) / rls_[side].x()[g];
 }
 
+double StiffnessEstimator::relative_std(int joint) const {
+  if (group_[joint] == kNone) return 0.0;
+  return relative_std(humanoid::in_leg(joint, 0) ? 0 : 1, group_[joint]);
+}
+
 void StiffnessEstimator::publish(int side) {
   for (int g = 0; g < kGroups; ++g)
     confident_[side][g] = confident_[side][g] || relative_std(side, Group(g)) <= params_.k_estimation_confidence;
@@ -95,12 +100,17 @@ void StiffnessEstimator::publish(int side) {
 
 void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro) {
   const double time = params_.k_estimation_attitude_time;
+  const walking::Vector3d now = gyro - gyro_bias_;
   if (time <= 0 || !attitude_started_) {
     attitude_ = imu_R;
     attitude_started_ = true;
+    last_rate_ = now;
     return;
   }
-  const walking::Vector3d rate = gyro - gyro_bias_;
+  // A reading is the rate at its period's start, as the encoders' angles: the turn since the last reading is the
+  // trapezoid of the two (the forward rectangle put the attitude a period ahead of the encoders).
+  const walking::Vector3d rate = 0.5 * (last_rate_ + now);
+  last_rate_ = now;
   const double turn = rate.norm() * period_;
   if (turn > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn, rate.normalized()).toRotationMatrix();
   const Eigen::AngleAxisd error(walking::Matrix3d(imu_R * attitude_.transpose()));
@@ -146,6 +156,7 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   calibrated_ = true;
   attitude_started_ = true;
   attitude_ = imu_R;
+  last_rate_ = gyro;
   if (rest_.n < 2) return true;
   // The static alignment. A robot "at rest" still turns slowly (the twin follows its observer's drift, ~1e-4
   // rad/s), so b̂ = (the gyro's turn − the pelvis's turn through the legs) / the window: with both soles flat and
@@ -156,6 +167,7 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   const walking::Matrix3d soles_last = soles_in_pelvis(rest_.encoder_last, rest_.torque_last);
   const Eigen::AngleAxisd legs(walking::Matrix3d(rest_.soles_first * soles_last.transpose()));
   gyro_bias_ = (rest_.gyro * period_ - legs.angle() * legs.axis()) / window;
+  last_rate_ = gyro - gyro_bias_;
   // The tilt: the pelvis's up u = Rᵀ e_z (the accelerometer's direction, +g up at rest), a line u(s) = u₀ + u̇ s
   // fitted over the window (s = t − its end), at the end; the yaw the controller's.
   const double mean_t = rest_.t / n, spread = rest_.tt - n * mean_t * mean_t;
@@ -176,8 +188,10 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
   const bool imu_finite = imu_R.allFinite() && gyro.allFinite() && accel.allFinite();
   if (!imu_finite || !identification_inputs_ok(t, encoder, torque, ft) || !sensors_ok) {
     ++bad_data_;
+    if (imu_finite && calibrated_) follow_attitude(imu_R, gyro);  // (the gyro's turn is not to be missed)
     return 0;
   }
+  lag_.update(torque, stiffness_, params_, period_);
   if (!calibrate_at_rest(t, imu_R, gyro, accel, encoder, torque)) return 0;
   follow_attitude(imu_R, gyro);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
@@ -196,7 +210,7 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     for (int i = 0; i < humanoid::kLegJoints; ++i) {
       const int j = humanoid::leg_first_joint(side) + i;
       if (group_[j] == kNone) continue;
-      H.col(group_[j]) += J.block<2, 1>(3, i) * torque[j];
+      H.col(group_[j]) += J.block<2, 1>(3, i) * lag_.torque()[j];
     }
     if (H.norm() < params_.k_estimation_min_torque) continue;
     const Eigen::Vector2d omega(-sole.R(1, 2), sole.R(0, 2));  // the foot's tilt through the chain

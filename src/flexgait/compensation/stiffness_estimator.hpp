@@ -16,7 +16,8 @@
 /// deflections (axis z) are not seen and keep the belief.
 ///
 /// Each leg's [c_roll, c_pitch] is estimated by RLS with forgetting (forgetting_rls.hpp), the
-/// regressor h_g = Σ_{i∈g} (a_i)_xy τ_i, τ the compensators' modelled torque; a sample is used
+/// regressor h_g = Σ_{i∈g} (a_i)_xy τ_i, τ the compensators' modelled torque through the gears' lag
+/// (DeflectionLag, with control.gear_damping); a sample is used
 /// only when the foot is in firm support by its F/T sensor (normal force ≥ a quarter of the weight,
 /// the centre of pressure within the middle 60 % of the sole's length and width) and |h| ≥
 /// control.k_estimation_min_torque. Bad data (a NaN, or an F/T reading older than 50 ms, or the
@@ -28,7 +29,10 @@
 /// The pelvis attitude the chain starts from: the controller's estimate (control.k_estimation_attitude_time = 0),
 /// or the gyro's turn pulled towards that estimate with time constant t_a, so the estimate's errors at the gait's
 /// frequencies — correlated with the deflections, the dominant error of the identification — are filtered out:
-///     R ← exp([e]× min(1, T/t_a)) R exp([ω_gyro]× T),  e the rotation vector of R_imu Rᵀ.
+///     R ← exp([e]× min(1, T/t_a)) R exp([ω̄]× T),  e the rotation vector of R_imu Rᵀ,
+/// ω̄ the mean of the last two gyro readings (each the rate at its period's start, as the encoders' angles). The
+/// default t_a = 1000 s: the gyro's over a walk (the controller's Mahony attitude drifts ~0.02 rad in pitch over a
+/// 20 s walk, which the pitch groups, their regressor nearly constant, take for deflection).
 /// It trusts the gyro over t_a: a gyro bias b tilts it by ≈ b t_a. So a real robot's gyro is calibrated first
 /// (control.k_estimation_gyro_rest = t_r > 0) by the static alignment of an inertial unit: standing still in the
 /// start stance over t_r, until the COM starts to move (walk.preview_time before the first step), the gyro's
@@ -39,6 +43,7 @@
 /// since then, σ_w √t, tilting the attitude by ≈ σ_w t^{3/2}/√3 (t ≪ t_a), and the accelerometer's bias a_b:
 /// ≈ a_b/g. A constant tilt error matters: the pitch groups' regressor is nearly constant in a walk.
 /// Allocation-free after construction; free of the simulator.
+#include <algorithm>
 #include <array>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
@@ -55,6 +60,31 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
 /// pressure within the middle 60 % of the sole's length and width. \param sole_R the sole's planned attitude.
 bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R,
                   int side, double min_share);
+
+/// The modelled torque as the gears' deflection sees it (both identifications). The deflection lags the load: with
+/// control.gear_damping d the gear is a Kelvin–Voigt element, k δ + d δ̇ = τ, so δ = τ / (k (1 + (d/k) s))
+/// (docs/theory/humanoid.md, "The actuator deformation model"); the modelled torque already lags the load by the F/T
+/// low-pass (control.load_filter_time t_f), so the regressor's torque lags it by the rest, d/k − t_f (time
+/// constants of first-order lags add at the gait's low frequencies), backward Euler over the period. k is what the
+/// compensators use at the time. A filter in time: it runs every period with good data, whether or not a sample is
+/// taken; it starts from the first torque.
+class DeflectionLag {
+ public:
+  void update(const humanoid::JointVector& torque, const humanoid::JointVector& stiffness,
+              const CompensationParams& params, double period) {
+    for (int j = 0; j < humanoid::kJoints; ++j) {
+      const double lag = std::max(0.0, params.gear_damping / stiffness[j] - params.load_filter_time);
+      const double a = started_ ? period / (period + lag) : 1.0;
+      torque_[j] += a * (torque[j] - torque_[j]);
+    }
+    started_ = true;
+  }
+  const humanoid::JointVector& torque() const { return torque_; }  ///< [Nm]
+
+ private:
+  humanoid::JointVector torque_{};
+  bool started_ = false;
+};
 
 /// A joint whose axis (body frame) is mostly vertical, a yaw joint: its deflection barely tilts a sole, so neither
 /// identification sees it (it keeps the belief).
@@ -93,6 +123,8 @@ class StiffnessEstimator {
   bool confident(int side, Group g) const { return confident_[side][g]; }
   /// Relative standard deviation sqrt(P_gg)/c_g of a group.
   double relative_std(int side, Group g) const;
+  /// A joint's: its group's (the joints of a group share one 1/k; 0 for a joint not identified).
+  double relative_std(int joint) const;
   long samples() const { return samples_; }    ///< foot samples used
   long bad_data() const { return bad_data_; }  ///< periods skipped for bad data
   /// The gyro bias found at rest (pelvis frame) [rad/s]; zero before or without the calibration.
@@ -117,10 +149,12 @@ class StiffnessEstimator {
   std::array<Group, humanoid::kJoints> group_{};
   std::array<std::array<double, kGroups>, 2> c_min_{}, c_max_{};
   std::array<ForgettingRls<kStates>, 2> rls_;
+  DeflectionLag lag_;                 ///< the regressor's torque: the modelled torque through the deflection's lag
   std::array<bool, 2> new_stance_{};  ///< the foot has swung since its last sample (the offset starts anew)
   walking::Matrix3d attitude_ = walking::Matrix3d::Identity();  ///< the identification's pelvis attitude (world)
   bool attitude_started_ = false;
-  double rest_end_;  ///< [s]
+  walking::Vector3d last_rate_ = walking::Vector3d::Zero();  ///< the last gyro reading less its bias [rad/s]
+  double rest_end_;                                          ///< [s]
   bool calibrated_;
   walking::Vector3d gyro_bias_ = walking::Vector3d::Zero();  ///< [rad/s]
   /// Over the rest window, s = t − its end [s]: n, Σs, Σs², Σω_gyro (all but the last reading), Σu, Σ s u (u the

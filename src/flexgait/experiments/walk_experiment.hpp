@@ -335,8 +335,9 @@ struct WalkMetrics {
 
 struct WalkResult {
   WalkMetrics metrics;
-  bool k_estimation = false;                           ///< control.k_estimation was on: the fields below apply
-  humanoid::JointVector k_estimate{};                  ///< the final stiffness estimate of each joint [Nm/rad]
+  bool k_estimation = false;               ///< control.k_estimation was on: the fields below apply
+  humanoid::JointVector k_estimate{};      ///< the final stiffness estimate of each joint [Nm/rad]
+  humanoid::JointVector k_relative_std{};  ///< its relative standard deviation sqrt(P)/c, the confidence [-]
   std::array<bool, humanoid::kJoints> k_identified{};  ///< the joints the estimation identifies (leg roll and pitch)
   std::vector<WalkSample> log;  ///< the logged samples (empty when run_walk's `record` took them)
   bool log_streamed = false;    ///< the samples went to run_walk's `record`, not to `log`

@@ -193,17 +193,21 @@ nlohmann::ordered_json walk_summary(const WalkResult& r) {
   if (r.k_estimation) {
     // The identified joints' final estimates (the leg roll and pitch joints) and their mean
     // (docs/guide/compensation.md).
-    nlohmann::ordered_json k = nlohmann::ordered_json::object();
+    // With each one's confidence, its relative standard deviation (the compensators use it once at most
+    // control.k_estimation_confidence).
+    nlohmann::ordered_json k = nlohmann::ordered_json::object(), std = nlohmann::ordered_json::object();
     double sum = 0;
     int n = 0;
     for (int i = 0; i < humanoid::kJoints; ++i)
       if (r.k_identified[i]) {
         k[std::string(humanoid::kJointNames[i])] = r.k_estimate[i];
+        std[std::string(humanoid::kJointNames[i])] = r.k_relative_std[i];
         sum += r.k_estimate[i];
         ++n;
       }
     j["k_estimate"] = k;
     j["k_estimate_mean"] = n > 0 ? sum / n : 0.0;
+    j["k_estimate_relative_std"] = std;
   }
   return j;
 }

@@ -39,7 +39,8 @@ class WalkColumns {
   bool k_estimation_;
 };
 /// The walk's summary record: the WalkMetrics fields (fell, steps_completed, zmp_rms_x, ...), and
-/// with online stiffness identification `k_estimate` (per identified joint) and `k_estimate_mean`.
+/// with online stiffness identification `k_estimate` (per identified joint), `k_estimate_mean` and
+/// `k_estimate_relative_std` (per identified joint).
 nlohmann::ordered_json walk_summary(const WalkResult& result);
 /// summary.json: walk_summary's text. Deterministic: the same configuration gives the same bytes.
 std::string walk_summary_json(const WalkResult& result);

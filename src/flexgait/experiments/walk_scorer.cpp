@@ -396,6 +396,7 @@ WalkResult WalkScorer::finish(const loop::HumanoidLoop& loop) {
   if (const auto k = loop.compensation().k_estimate()) {
     out_.k_estimation = true;
     out_.k_estimate = *k;
+    out_.k_relative_std = *loop.compensation().k_relative_std();
     for (int j = 0; j < humanoid::kJoints; ++j) out_.k_identified[j] = loop.compensation().k_identified(j);
   }
   return std::move(out_);

@@ -55,6 +55,14 @@ std::optional<humanoid::JointVector> CompensationStage::k_estimate() const {
   return std::nullopt;
 }
 
+std::optional<humanoid::JointVector> CompensationStage::k_relative_std() const {
+  if (!estimator_ && !calibration_) return std::nullopt;
+  humanoid::JointVector s{};
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    s[j] = estimator_ ? estimator_->relative_std(j) : calibration_->relative_std(j);
+  return s;
+}
+
 bool CompensationStage::k_identified(int joint) const {
   if (estimator_) return estimator_->group(joint) != compensation::StiffnessEstimator::kNone;
   if (calibration_) return calibration_->identified(joint);

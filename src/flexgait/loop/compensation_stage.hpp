@@ -48,6 +48,9 @@ class CompensationStage {
   const compensation::CompensationParams& params() const { return compensator_.params(); }
   /// control.k_estimation on or calibrate: each joint's stiffness estimate [Nm/rad]; empty when off.
   std::optional<humanoid::JointVector> k_estimate() const;
+  /// control.k_estimation on or calibrate: each joint's relative standard deviation sqrt(P)/c (the compensators use a
+  /// joint's estimate once it is at most control.k_estimation_confidence); 0 where not identified; empty when off.
+  std::optional<humanoid::JointVector> k_relative_std() const;
   /// The joints the identification identifies (false for all when off).
   bool k_identified(int joint) const;
 
