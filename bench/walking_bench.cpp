@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <string>
 #include <vector>
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/compensation/stiffness_estimator.hpp"
+#include "flexgait/core/config.hpp"
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/twin/detail/mujoco.hpp"
 #include "flexgait/walking/walking_controller.hpp"
@@ -19,6 +21,12 @@
 namespace {
 
 using namespace flexgait;
+
+/// The parameters of a plain `flexgait humanoid walk` (10 steps at 1 s/step, the default compensation case
+/// both-dynamic-horizontal-lag), as the command resolves them.
+experiments::WalkRunParams default_walk() {
+  return experiments::walk_run_from_config(resolve_config(experiments::walk_run_schema(), std::nullopt, {}));
+}
 
 // update() over a whole 10-step plan with plausible standing sensor readings (the cost does not
 // depend on the readings' values).
@@ -45,7 +53,9 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // Arguments: compensation::WeightSplit, compensation::LoadModel (≤ 30 µs with dynamic),
 // balance (0 pd, 1 dcm with step adjustment; ≤ 30 µs with dcm and both compensators),
 // compensation::NewtonJacobian (0 each iterate, 1 reused), k estimation (1: control.k_estimation on, with
-// the stance offsets, after the update).
+// the stance offsets, after the update), the default case's physics (1: control.plan_horizontal_force,
+// control.gear_damping and control.load_filter_time as `humanoid walk` resolves them for its default case
+// both-dynamic-horizontal-lag: the plan's whole-body Newton–Euler, the gears' lag, the short F/T low-pass).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
   walking::BalanceParams balance;
   if (state.range(2) == 1) {
@@ -58,6 +68,13 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
   p.load_model = static_cast<compensation::LoadModel>(state.range(1));
   p.newton.jacobian = static_cast<compensation::NewtonJacobian>(state.range(3));
   p.k_estimation_stance_offset = true;
+  const bool default_case = state.range(5) == 1;
+  if (default_case) {
+    const compensation::CompensationParams resolved = default_walk().control;
+    p.plan_horizontal_force = resolved.plan_horizontal_force;
+    p.gear_damping = resolved.gear_damping;
+    p.load_filter_time = resolved.load_filter_time;
+  }
   compensation::DeformationCompensator comp(c.model(), p, 0.004);
   compensation::StiffnessEstimator estimator(c.model(), p, 0.004);
   const bool estimate_k = state.range(4) == 1;
@@ -88,27 +105,29 @@ void ControllerUpdateWithCompensators(benchmark::State& state) {
                  ", load_model = " + std::string(name_of(p.load_model)) + ", balance.mode = " +
                  std::string(name_of(balance.mode)) + (balance.step_adjustment ? " with step adjustment" : "") +
                  ", newton_jacobian = " + std::string(name_of(p.newton.jacobian)) +
-                 (estimate_k ? ", k_estimation on" : ""));
+                 (estimate_k ? ", k_estimation on" : "") + (default_case ? ", the default case's physics" : ""));
 }
 BENCHMARK(ControllerUpdateWithCompensators)
-    ->Args({0, 0, 0, 0, 0})
-    ->Args({1, 0, 0, 0, 0})
-    ->Args({1, 1, 0, 0, 0})
-    ->Args({1, 2, 0, 0, 0})
-    ->Args({1, 0, 1, 0, 0})
-    ->Args({1, 2, 1, 0, 0})
-    ->Args({1, 0, 0, 1, 0})
-    ->Args({1, 2, 0, 1, 0})
-    ->Args({1, 0, 1, 1, 0})
-    ->Args({1, 2, 1, 1, 0})
-    ->Args({1, 2, 0, 1, 1})
-    ->Args({1, 2, 1, 1, 1})
+    ->Args({0, 0, 0, 0, 0, 0})
+    ->Args({1, 0, 0, 0, 0, 0})
+    ->Args({1, 1, 0, 0, 0, 0})
+    ->Args({1, 2, 0, 0, 0, 0})
+    ->Args({1, 0, 1, 0, 0, 0})
+    ->Args({1, 2, 1, 0, 0, 0})
+    ->Args({1, 0, 0, 1, 0, 0})
+    ->Args({1, 2, 0, 1, 0, 0})
+    ->Args({1, 0, 1, 1, 0, 0})
+    ->Args({1, 2, 1, 1, 0, 0})
+    ->Args({1, 2, 0, 1, 1, 0})
+    ->Args({1, 2, 1, 1, 1, 0})
+
+    ->Args({1, 2, 0, 1, 0, 1})
+    ->Args({1, 2, 1, 1, 1, 1})
     ->Unit(benchmark::kMicrosecond);
 
+// The default `humanoid walk` (10 steps at 1 s/step, both-dynamic-horizontal-lag), end to end with its scorer.
 void ClosedLoopWalk(benchmark::State& state) {
-  experiments::WalkRunParams p;
-  p.walk.steps = 10;
-  p.walk.step_time = 1.0;
+  const experiments::WalkRunParams p = default_walk();
   double simulated = 0;
   for (auto _ : state) {
     const experiments::WalkResult r = experiments::run_walk(p);
@@ -124,13 +143,19 @@ BENCHMARK(ClosedLoopWalk)->Unit(benchmark::kMillisecond)->Iterations(3);
 // each control period starts from the walk's state at that period (positions, velocities, warm start, the
 // drives' and pushes' forces, held over the period's physics steps), so that the contacts and the solver's
 // work are the walk's. Counters: both real-time factors and their ratio, closed loop / bare (1: the loop's
-// own work costs nothing), from the same iteration at the same machine load. 10 steps at 1 s/step.
+// own work costs nothing), from the same iteration at the same machine load: by the thread's CPU time (rtf_*,
+// ratio; on a shared machine the wall clock also counts the time other processes run) and by the wall clock
+// (*_wall). The default `humanoid walk`: 10 steps
+// at 1 s/step, both-dynamic-horizontal-lag.
 void ClosedLoopAgainstBareMujoco(benchmark::State& state) {
-  experiments::WalkRunParams p;
-  p.walk.steps = 10;
-  p.walk.step_time = 1.0;
+  const experiments::WalkRunParams p = default_walk();
   using Clock = std::chrono::steady_clock;
-  double loop_seconds = 0, bare_seconds = 0, simulated = 0;
+  const auto cpu_now = [] {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  };
+  double loop_seconds = 0, bare_seconds = 0, loop_cpu = 0, bare_cpu = 0, simulated = 0;
   struct Snapshot {
     double time;
     std::vector<mjtNum> qpos, qvel, act, warmstart, qfrc, xfrc;
@@ -139,8 +164,10 @@ void ClosedLoopAgainstBareMujoco(benchmark::State& state) {
     experiments::WalkLoop w = experiments::make_walk_loop(p);
     const double end = w.control->controller().plan().duration;
     const Clock::time_point t0 = Clock::now();
+    const double c0 = cpu_now();
     while (w.loop->time() < end)
       if (w.loop->step()) break;
+    loop_cpu += cpu_now() - c0;
     loop_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     simulated += w.loop->time();
     // The same walk again (deterministic), its state recorded at the start of each period.
@@ -161,6 +188,7 @@ void ClosedLoopAgainstBareMujoco(benchmark::State& state) {
     state.ResumeTiming();
     const int substeps = static_cast<int>(std::lround(p.plant.control_period / m->opt.timestep));
     const Clock::time_point t1 = Clock::now();
+    const double c1 = cpu_now();
     for (const Snapshot& s : states) {
       d->time = s.time;
       std::copy(s.qpos.begin(), s.qpos.end(), d->qpos);
@@ -171,13 +199,17 @@ void ClosedLoopAgainstBareMujoco(benchmark::State& state) {
       std::copy(s.xfrc.begin(), s.xfrc.end(), d->xfrc_applied);
       for (int k = 0; k < substeps; ++k) mj_step(m, d);
     }
+    bare_cpu += cpu_now() - c1;
     bare_seconds += std::chrono::duration<double>(Clock::now() - t1).count();
     mj_deleteData(d);
     mj_deleteModel(m);
   }
-  state.counters["rtf_closed_loop"] = simulated / loop_seconds;
-  state.counters["rtf_bare_mj_step"] = simulated / bare_seconds;
-  state.counters["ratio"] = bare_seconds / loop_seconds;
+  state.counters["rtf_closed_loop"] = simulated / loop_cpu;
+  state.counters["rtf_bare_mj_step"] = simulated / bare_cpu;
+  state.counters["ratio"] = bare_cpu / loop_cpu;
+  state.counters["rtf_closed_loop_wall"] = simulated / loop_seconds;
+  state.counters["rtf_bare_mj_step_wall"] = simulated / bare_seconds;
+  state.counters["ratio_wall"] = bare_seconds / loop_seconds;
 }
 BENCHMARK(ClosedLoopAgainstBareMujoco)->Unit(benchmark::kMillisecond)->Iterations(3);
 

@@ -325,6 +325,37 @@ TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
     }
 }
 
+// The backward pass alone with other feet after a full pass (the input compensator's plan Newton–Euler, then its
+// feet) is the full pass with those feet: the same operations on the same numbers, so equal in every bit (==).
+TEST(RobotModelDynamics, BackwardPassWithOtherFeetIsTheFullPass) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const auto& [name, model] : derivative_robots()) {
+    const Pose pelvis{Vector3d(u(rng), u(rng), 0.7),
+                      Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
+    const BaseMotion base{Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)),
+                          5 * Vector3d(u(rng), u(rng), u(rng)), 5 * Vector3d(u(rng), u(rng), u(rng))};
+    JointVector q{}, qd{}, qdd{};
+    for (int j = 0; j < kJoints; ++j) q[j] = 0.6 * u(rng), qd[j] = 3 * u(rng), qdd[j] = 30 * u(rng);
+    RobotModelData kin;
+    forward_kinematics(model, kin, pelvis, q);
+    FootWrenches feet;
+    feet.given = {true, true};
+    for (Wrench& w : feet.wrench) w = {Vector3d(20 * u(rng), 20 * u(rng), 300), Vector3d(10 * u(rng), 10 * u(rng), 2)};
+    RobotDynamicsData full, split;
+    inverse_dynamics(model, kin, base, qd, qdd, full, feet);
+    inverse_dynamics(model, kin, base, qd, qdd, split);  // no foot given
+    const JointVector free_feet = split.tau;
+    inverse_dynamics_with_feet(model, kin, split, feet);
+    for (int j = 0; j < kJoints; ++j) EXPECT_EQ(split.tau[j], full.tau[j]) << name << " joint " << j;
+    for (int i = 0; i < kBodies; ++i) {
+      EXPECT_EQ(split.joint_wrench[i].force, full.joint_wrench[i].force) << name << " body " << i;
+      EXPECT_EQ(split.joint_wrench[i].moment, full.joint_wrench[i].moment) << name << " body " << i;
+    }
+    EXPECT_NE(free_feet, full.tau) << name;  // the feet's wrenches changed the torques: the case is not empty
+  }
+}
+
 TEST(RobotModelDynamics, GravityTorqueDerivativeMatchesCentralDifferencesAndIsSymmetric) {
   std::mt19937 rng(12);
   std::uniform_real_distribution<double> u(-1, 1);

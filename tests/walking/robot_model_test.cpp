@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <array>
 #include <random>
 #include <string>
 
@@ -117,6 +118,36 @@ TEST(RobotModel, JacobianIsTheDerivativeOfTheSolePose) {
         EXPECT_LT((v - J.block<3, 1>(0, i)).norm(), 1e-8);
         EXPECT_LT((w - J.block<3, 1>(3, i)).norm(), 1e-8);
       }
+    }
+  }
+}
+
+// Each joint turns its frame by Rot(axis, q): for the builtin's x, y and z axes the kinematics turn only the plane's
+// two columns. The frames must equal the general product parent R · AngleAxis(q, axis) (the 3 × 3 product with
+// AngleAxisd's matrix) in every bit (== holds ±0 equal), the joint angles exactly 0 included.
+TEST(RobotModel, CoordinateAxisJointsTurnFramesAsTheGeneralProduct) {
+  const RobotModel model = make_robot_model(humanoid::RobotParams{});
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    JointVector q = random_pose(rng);
+    if (trial % 2 == 1) q[humanoid::kWaistYaw] = q[2] = 0.0;  // sin 0 = 0: the structural zeros meet zeros
+    const Pose pelvis = trial == 0 ? Pose{} : random_pelvis(rng);
+    RobotModelData data;
+    forward_kinematics(model, data, pelvis, q);
+    std::array<Pose, kBodies> general;
+    for (int i = 0; i < kBodies; ++i) {
+      const auto& b = model.bodies[i];
+      if (b.parent < 0) {
+        general[i] = pelvis;
+        continue;
+      }
+      const Pose& parent = general[b.parent];
+      general[i].p = parent.p + parent.R * b.offset;
+      general[i].R = b.joint >= 0 ? Matrix3d(parent.R * Eigen::AngleAxisd(q[b.joint], b.axis)) : parent.R;
+    }
+    for (int i = 0; i < kBodies; ++i) {
+      EXPECT_EQ(data.frame[i].R, general[i].R) << "trial " << trial << " body " << i;
+      EXPECT_EQ(data.frame[i].p, general[i].p) << "trial " << trial << " body " << i;
     }
   }
 }

@@ -107,7 +107,10 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
     feet_.wrench[side] = {-ground - weight, -(cop - foot.p).cross(ground) - (foot.R * b.com).cross(weight)};
   }
   const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
-  walking::inverse_dynamics(model_, data_, m.pelvis, m.velocity, m.acceleration, dynamics_, feet_);
+  if (whole_body)  // plan_ground_wrench's forward pass was this pose's and motion's
+    walking::inverse_dynamics_with_feet(model_, data_, dynamics_, feet_);
+  else
+    walking::inverse_dynamics(model_, data_, m.pelvis, m.velocity, m.acceleration, dynamics_, feet_);
   tau_ = dynamics_.tau;
   tau_[humanoid::kWaistYaw] = 0.0;  // the waist carries no modelled load (as in the gravity form)
   return tau_;

@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <optional>
 
 namespace flexgait::compensation {
 
@@ -64,8 +65,7 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
   double residual = r.template lpNorm<Eigen::Infinity>();
   Vector best = theta;
   double best_residual = residual;
-  Eigen::PartialPivLU<Matrix> lu(
-      Matrix::Identity().eval());  // (formed at the first step; set so no path reads it unset)
+  std::optional<Eigen::PartialPivLU<Matrix>> lu;  // formed at the first step (refresh), before any solve
   bool refresh = true;
   for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
     if (refresh || settings.jacobian == NewtonJacobian::kEachIteration) {
@@ -73,9 +73,12 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
       if (it == 0) out.per_joint = encoder - tau.cwiseQuotient(stiffness + G.diagonal());
       Matrix A = G;
       A.diagonal() += stiffness;
-      lu.compute(A);
+      if (lu)
+        lu->compute(A);
+      else
+        lu.emplace(A);
     }
-    theta += lu.solve(stiffness.cwiseProduct(r));
+    theta += lu->solve(stiffness.cwiseProduct(r));
     if (it == 0) out.one_step = theta;
     torque(theta, tau);
     r = encoder - compliance.cwiseProduct(tau) - theta;

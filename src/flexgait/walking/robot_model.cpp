@@ -1,6 +1,7 @@
 #include "flexgait/walking/robot_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "flexgait/robot/builtin_inertials.hpp"
 
@@ -87,6 +88,30 @@ void fill_leg_chain(RobotModel& m, int side) {
   leg.sole_tilted = m.sole_tilted[static_cast<std::size_t>(side)];
 }
 
+namespace {
+
+/// P · Rot(a, θ) for a joint axis a. About the frame's own x, y or z axis (the builtin's joints, most loaded legs')
+/// only the two columns of the plane turn: each entry is a sum of at most two nonzero products, so it equals the
+/// general 3 × 3 product with the rotation's entries formed as Eigen::AngleAxisd::toRotationMatrix forms them
+/// (c + (1 − c) on the axis, 0 ± s off it; the structural zeros add nothing) in every bit but a zero's sign.
+/// Other axes: the general product.
+Matrix3d turned(const Matrix3d& P, const Vector3d& axis, double angle) {
+  int k = -1;
+  for (int a = 0; a < 3; ++a)
+    if (axis(a) == 1.0 && axis((a + 1) % 3) == 0.0 && axis((a + 2) % 3) == 0.0) k = a;
+  if (k < 0) return P * Eigen::AngleAxisd(angle, axis);
+  const double s = std::sin(angle), c = std::cos(angle);
+  const int i = (k + 1) % 3, j = (k + 2) % 3;  // the plane's axes: R_ii = R_jj = c, R_ji = 0 + s, R_ij = 0 − s
+  const double plus = 0.0 + s, minus = 0.0 - s;
+  Matrix3d out;
+  out.col(k) = P.col(k) * ((1.0 - c) + c);
+  out.col(i) = P.col(i) * c + P.col(j) * plus;
+  out.col(j) = P.col(i) * minus + P.col(j) * c;
+  return out;
+}
+
+}  // namespace
+
 void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
                         const humanoid::JointVector& q) {
   for (int i = 0; i < kBodies; ++i) {
@@ -97,7 +122,7 @@ void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pos
     } else {
       const Pose& parent = data.frame[b.parent];
       f.p = parent.p + parent.R * b.offset;
-      f.R = b.joint >= 0 ? Matrix3d(parent.R * Eigen::AngleAxisd(q[b.joint], b.axis)) : parent.R;
+      f.R = b.joint >= 0 ? turned(parent.R, b.axis, q[b.joint]) : parent.R;
     }
     data.com_world[i] = f.p + f.R * b.com;
   }

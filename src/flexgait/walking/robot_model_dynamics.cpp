@@ -35,8 +35,14 @@ void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics,
     const Vector3d c = f.R * b.com;
     const Vector3d F = b.mass * (data.acceleration[i] + alpha.cross(c) + w.cross(w.cross(c)));
     const Matrix3d I = f.R * b.inertia * f.R.transpose();
-    data.joint_wrench[i] = {F, I * alpha + w.cross(I * w) + c.cross(F)};
+    data.body_wrench[i] = {F, I * alpha + w.cross(I * w) + c.cross(F)};
   }
+  inverse_dynamics_with_feet(model, kinematics, data, feet);
+}
+
+void inverse_dynamics_with_feet(const RobotModel& model, const RobotModelData& kinematics, RobotDynamicsData& data,
+                                const FootWrenches& feet) {
+  data.joint_wrench = data.body_wrench;
   for (int side = 0; side < 2; ++side)
     if (feet.given[side]) data.joint_wrench[model.foot[side]] = feet.wrench[side];
   // Backward pass: each subtree's wrench onto its parent, moved to the parent's origin.

@@ -54,6 +54,7 @@ struct RobotDynamicsData {
   std::array<Vector3d, kBodies> velocity;              ///< v_i of the body origin, world [m/s]
   std::array<Vector3d, kBodies> angular_acceleration;  ///< α_i, world [rad/s^2]
   std::array<Vector3d, kBodies> acceleration;          ///< a_i of the body origin, world, gravity taken out [m/s^2]
+  std::array<Wrench, kBodies> body_wrench;   ///< each body's own inertial wrench (F_i, N_i + c_i × F_i), about p_i
   std::array<Wrench, kBodies> joint_wrench;  ///< (f_i, n_i): the parent's wrench on body i's subtree, about p_i
   humanoid::JointVector tau{};               ///< τ of every actuated joint [Nm]
 };
@@ -72,6 +73,12 @@ struct FootWrenches {
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
                       const FootWrenches& feet = {}, double gravity = 1.0);
+
+/// The backward pass alone: inverse_dynamics's result for other given feet `feet` after an inverse_dynamics(model,
+/// kinematics, base, qd, qdd, data, …) with the same pose and motion (its bodies' own wrenches, data.body_wrench, are
+/// kept); the same numbers as inverse_dynamics with these feet, without its forward pass.
+void inverse_dynamics_with_feet(const RobotModel& model, const RobotModelData& kinematics, RobotDynamicsData& data,
+                                const FootWrenches& feet);
 
 /// ∂τ_i/∂q_j of leg `side`'s joints (rows and columns in role order: hip yaw, roll, pitch, knee, ankle pitch,
 /// roll) [Nm/rad].

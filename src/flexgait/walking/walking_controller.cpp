@@ -82,7 +82,7 @@ WalkingController::WalkingController(const RobotModel& model, const WalkParams& 
   // The initial standing pose: COM over the middle of the feet, pelvis level at its height.
   const FeetTarget feet = feet_target(plan_, walk_.swing_height, 0.0);
   pelvis_.p = Vector3d(0, 0, walk_.pelvis_height);
-  solve_pose(zmp_reference(plan_, 0.0), feet.sole, Matrix3d::Identity(), 20);
+  solve_pose(zmp_reference(plan_, 0.0), feet.sole, Matrix3d::Identity(), 20, true);
   initial_pose_ = desired_;
   // What a sensor that is bad from its first sample reads as: the robot at rest in this pose,
   // level (specific force +g up), the F/T sensors unloaded (no ZMP from them).
@@ -113,9 +113,9 @@ Eigen::Vector2d WalkingController::planned_zmp(double t) const {
 }
 
 void WalkingController::solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles,
-                                   const Matrix3d& pelvis_R, int iterations) {
+                                   const Matrix3d& pelvis_R, int iterations, bool kinematics) {
   pelvis_.R = pelvis_R;
-  solve_com_pose(model_, data_, com, soles, pelvis_, desired_, status_.ik, iterations);
+  solve_com_pose(model_, data_, com, soles, pelvis_, desired_, status_.ik, iterations, kinematics);
 }
 
 void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {

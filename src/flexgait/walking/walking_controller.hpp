@@ -152,9 +152,10 @@ class WalkingController {
 
  private:
   /// Pelvis pose and joint angles that put the soles at `soles` and the COM's xy at `com`
-  /// (a fixed-point iteration on the pelvis position through the model's COM).
+  /// (a fixed-point iteration on the pelvis position through the model's COM). With `kinematics`, the pose's
+  /// kinematics in data_ (only the start pose's are read: its COM height).
   void solve_pose(const Eigen::Vector2d& com, const std::array<Pose, 2>& soles, const Matrix3d& pelvis_R,
-                  int iterations);
+                  int iterations, bool kinematics = false);
   /// The plan's ZMP reference at t plus the stiffness calibration's COM offsets (calibration_motion.hpp) [m].
   Eigen::Vector2d planned_zmp(double t) const;
   void measure_zmp(const humanoid::SensorReadings& sensors);
