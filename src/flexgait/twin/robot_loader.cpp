@@ -27,6 +27,7 @@ namespace flexgait::twin {
 namespace {
 
 using ModelPtr = std::unique_ptr<mjModel, void (*)(mjModel*)>;
+using DataPtr = std::unique_ptr<mjData, void (*)(mjData*)>;
 
 [[noreturn]] void fail(const std::string& key, const std::string& value, const std::string& why) {
   throw ConfigError(key, fmt::format("key '{}' = '{}': {}", key, one_line(value), why));
@@ -343,12 +344,23 @@ void check_foot_meshes(const std::string& text, const std::string& source, const
   }
 }
 
+/// Each degree of freedom's link-side inertia: the joint-space mass matrix's diagonal at the file's zero angles (the
+/// composite rigid body inertia below the joint about its axis, Featherstone 2008, ch. 6), less the armature [kg m^2].
+std::vector<double> link_side_inertia(const mjModel* m) {
+  const DataPtr d(mj_makeData(m), mj_deleteData);
+  mj_forward(m, d.get());
+  std::vector<double> out(static_cast<std::size_t>(m->nv), 0.0);
+  for (int v = 0; v < m->nv; ++v) out[static_cast<std::size_t>(v)] = d->qM[m->dof_Madr[v]] - m->dof_armature[v];
+  return out;
+}
+
 /// Refuses a robot whose colliding geoms touch each other at zero joint angles (the twin would
 /// start, and stand, in contact with itself), naming the first pair for robot.exclude_contacts.
 void check_self_contacts(const humanoid::LoadedRobot& robot, const std::string& exclude) {
   const ModelPtr twin(load_mjcf(twin_mjcf(robot, humanoid::RobotParams{}, PlantParams{})), mj_deleteModel);
-  mjData* d = mj_makeData(twin.get());
-  mj_forward(twin.get(), d);
+  const DataPtr data(mj_makeData(twin.get()), mj_deleteData);
+  const mjData* d = data.get();
+  mj_forward(twin.get(), data.get());
   const int floor = mj_name2id(twin.get(), mjOBJ_GEOM, "floor");
   std::string pair;
   for (int c = 0; c < d->ncon && pair.empty(); ++c) {
@@ -357,7 +369,6 @@ void check_self_contacts(const humanoid::LoadedRobot& robot, const std::string& 
     pair = name_of(twin.get(), mjOBJ_BODY, twin->geom_bodyid[con.geom1]) + ":" +
            name_of(twin.get(), mjOBJ_BODY, twin->geom_bodyid[con.geom2]);
   }
-  mj_deleteData(d);
   if (!pair.empty())
     fail("robot.exclude_contacts", exclude,
          fmt::format("the bodies {} collide at zero joint angles; exclude the pair (robot.exclude_contacts={}) or "
@@ -417,16 +428,7 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       fail("robot.joints." + std::string(humanoid::kJointNames[j]), params.joints[j],
            "not in the same body tree as the legs");
 
-  // Each joint's link-side inertia: the joint-space mass matrix's diagonal at the file's zero angles (the composite
-  // rigid body inertia below the joint about its axis, Featherstone 2008, ch. 6), less the armature.
-  std::vector<double> link_inertia(static_cast<std::size_t>(m->nv), 0.0);
-  {
-    mjData* d = mj_makeData(m);
-    mj_forward(m, d);
-    for (int v = 0; v < m->nv; ++v)
-      link_inertia[static_cast<std::size_t>(v)] = d->qM[m->dof_Madr[v]] - m->dof_armature[v];
-    mj_deleteData(d);
-  }
+  const std::vector<double> link_inertia = link_side_inertia(m);
   // The root's subtree, parents before children (MuJoCo's body order is depth-first).
   std::vector<int> index(static_cast<std::size_t>(m->nbody), -1);
   std::vector<int> carried(static_cast<std::size_t>(m->ngeom), -1);  // model geom → index in its body's geoms
