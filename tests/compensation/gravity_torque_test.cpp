@@ -17,6 +17,8 @@ using walking::Pose;
 using walking::Vector3d;
 
 constexpr std::array<bool, 2> kDouble{false, false};
+const std::array<walking::SolePolygon, 2> kSoles{walking::rectangle_sole(0.22, 0.15),
+                                                 walking::rectangle_sole(0.22, 0.15)};
 
 TEST(WeightSplit, AtBothFeetAndTheMidpoint) {
   const Eigen::Vector2d left(0.1, 0.093), right(0.0, -0.093);
@@ -36,13 +38,13 @@ TEST(SupportLoads, SingleSupportPutsEverythingOnTheStanceFootUnderThePoint) {
   const std::array<Pose, 2> soles = {Pose{Vector3d(0.2, 0.1, 0), walking::rot_z(0.3)},
                                      Pose{Vector3d(0.0, -0.1, 0.04), Matrix3d::Identity()}};
   const Eigen::Vector2d point(0.21, 0.08);
-  const FootLoads loads = support_loads(point, soles, {false, true}, 0.22, 0.15);
+  const FootLoads loads = support_loads(point, soles, {false, true}, kSoles);
   EXPECT_DOUBLE_EQ(loads.share[0], 1.0);
   EXPECT_DOUBLE_EQ(loads.share[1], 0.0);
   const Vector3d cop = soles[0].p + soles[0].R * Vector3d(loads.cop[0].x(), loads.cop[0].y(), 0);
   EXPECT_LT((cop.head<2>() - point).norm(), 1e-15);
   // Outside the sole: clamped to its edge.
-  const FootLoads far = support_loads(Eigen::Vector2d(1.0, 0.1), soles, {false, true}, 0.22, 0.15);
+  const FootLoads far = support_loads(Eigen::Vector2d(1.0, 0.1), soles, {false, true}, kSoles);
   EXPECT_LE(far.cop[0].x(), 0.11 + 1e-15);
   EXPECT_LE(std::abs(far.cop[0].y()), 0.075 + 1e-15);
 }
@@ -56,7 +58,7 @@ TEST(SupportLoads, DoubleSupportForcesHaveTheirResultantAtThePoint) {
     const double a = s(rng);
     const Eigen::Vector2d point =
         a * soles[0].p.head<2>() + (1 - a) * soles[1].p.head<2>() + Eigen::Vector2d(off(rng), 0);
-    const FootLoads loads = support_loads(point, soles, kDouble, 0.22, 0.15);
+    const FootLoads loads = support_loads(point, soles, kDouble, kSoles);
     EXPECT_NEAR(loads.share[0] + loads.share[1], 1.0, 1e-15);
     Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
     for (int side = 0; side < 2; ++side) resultant += loads.share[side] * (soles[side].p.head<2>() + loads.cop[side]);

@@ -135,14 +135,13 @@ bool DeformationCompensator::plan_ground_wrench(const SupportPlan& support) {
   // The same point in the world through the plan's sole, the split about it.
   const walking::Vector3d world =
       support.soles[anchor].p + support.soles[anchor].R * (sole.R.transpose() * (p - sole.p));
-  plan_loads_ = support_loads(world.head<2>(), support.soles, support.swinging, model_.sole_length, model_.sole_width);
+  plan_loads_ = support_loads(world.head<2>(), support.soles, support.swinging, model_.sole_polygon);
   return true;
 }
 
 void DeformationCompensator::split_by_plan(const SupportPlan& support) {
   if (params_.split == WeightSplit::kZmpReference)
-    plan_loads_ =
-        support_loads(support.zmp_ref, support.soles, support.swinging, model_.sole_length, model_.sole_width);
+    plan_loads_ = support_loads(support.zmp_ref, support.soles, support.swinging, model_.sole_polygon);
 }
 
 const humanoid::JointVector& DeformationCompensator::input(const humanoid::JointVector& desired,

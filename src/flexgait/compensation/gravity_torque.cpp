@@ -14,7 +14,7 @@ double weight_split(const Eigen::Vector2d& point, const Eigen::Vector2d& left, c
 }
 
 FootLoads support_loads(const Eigen::Vector2d& point, const std::array<walking::Pose, 2>& soles,
-                        const std::array<bool, 2>& swinging, double sole_length, double sole_width) {
+                        const std::array<bool, 2>& swinging, const std::array<walking::SolePolygon, 2>& sole_polygon) {
   double mu = 0.5;
   if (swinging[0] != swinging[1])
     mu = swinging[1] ? 1.0 : 0.0;  // single support: all on the stance foot
@@ -25,8 +25,7 @@ FootLoads support_loads(const Eigen::Vector2d& point, const std::array<walking::
   const Eigen::Vector2d unexplained = point - (mu * soles[0].p.head<2>() + (1.0 - mu) * soles[1].p.head<2>());
   for (int side = 0; side < 2; ++side) {
     const Vector3d local = soles[side].R.transpose() * Vector3d(unexplained.x(), unexplained.y(), 0);
-    loads.cop[side] = Eigen::Vector2d(std::clamp(local.x(), -0.5 * sole_length, 0.5 * sole_length),
-                                      std::clamp(local.y(), -0.5 * sole_width, 0.5 * sole_width));
+    loads.cop[side] = walking::nearest_point(sole_polygon[static_cast<std::size_t>(side)], local.head<2>());
   }
   return loads;
 }
@@ -35,7 +34,7 @@ FootLoads com_loads(const walking::RobotModel& model, const walking::RobotModelD
                     const std::array<bool, 2>& swinging) {
   return support_loads(walking::center_of_mass(model, data).head<2>(),
                        {walking::sole_pose(model, data, 0), walking::sole_pose(model, data, 1)}, swinging,
-                       model.sole_length, model.sole_width);
+                       model.sole_polygon);
 }
 
 humanoid::JointVector gravity_torque(const walking::RobotModel& model, const walking::RobotModelData& data,

@@ -50,9 +50,9 @@ struct FootLoads {
 /// Eqs. 5-6 about `point` (world xy): in double support μ from the point between the sole centres,
 /// in single support everything on the stance foot. The centres of pressure put the total force
 /// under `point`: each sole centre moved by the part of the point's offset that the split does not
-/// explain, clamped into the sole (length × width) [m].
+/// explain, clamped into its sole polygon (the nearest point of it, walking::nearest_point) [m].
 FootLoads support_loads(const Eigen::Vector2d& point, const std::array<walking::Pose, 2>& soles,
-                        const std::array<bool, 2>& swinging, double sole_length, double sole_width);
+                        const std::array<bool, 2>& swinging, const std::array<walking::SolePolygon, 2>& sole_polygon);
 
 /// The thesis's split (eq. 5): about the model's COM in the pose in `data` (after
 /// walking::forward_kinematics), between its soles.

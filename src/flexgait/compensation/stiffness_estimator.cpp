@@ -10,9 +10,10 @@ namespace flexgait::compensation {
 namespace {
 constexpr double kStaleAge = 0.05;         // an F/T reading older than this is stale [s]
 constexpr double kFirmWeightShare = 0.25;  // firm support: normal force ≥ this × the weight
-constexpr double kFirmCopShare = 0.3;      // ... and |CoP − sole centre| ≤ this × the sole's length, width
-constexpr double kBoundFactor = 10.0;      // c ∈ [c₀/10, 10 c₀]
-constexpr double kOffsetStd = 0.05;        // prior std of a stance's tilt offset (stance_offset) [rad]
+constexpr double kFirmCopShare = 0.3;  // ... and the CoP on the sole shrunk about its centre to 2 × this (a rectangle:
+                                       // |x| ≤ this × length, |y| ≤ this × width)
+constexpr double kBoundFactor = 10.0;  // c ∈ [c₀/10, 10 c₀]
+constexpr double kOffsetStd = 0.05;    // prior std of a stance's tilt offset (stance_offset) [rad]
 }  // namespace
 
 bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
@@ -32,8 +33,7 @@ bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque&
                             model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.gravity);
   const Eigen::Vector2d cop = c.cop - model.sole_offset[side].head<2>();
   return c.normal_force >= min_share * model.total_mass * model.gravity &&
-         std::abs(cop.x()) <= kFirmCopShare * model.sole_length &&
-         std::abs(cop.y()) <= kFirmCopShare * model.sole_width;
+         walking::contains_scaled(model.sole_polygon[static_cast<std::size_t>(side)], cop, kFirmCopShare);
 }
 
 StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params,

@@ -57,7 +57,8 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
                               const std::array<humanoid::ForceTorque, 2>& ft);
 
 /// A sole in firm support by its F/T sensor: normal force ≥ min_share × the robot's weight and the centre of
-/// pressure within the middle 60 % of the sole's length and width. \param sole_R the sole's planned attitude.
+/// pressure on the sole shrunk to 60 % about its centre (a rectangle: the middle 60 % of its length and width). \param
+/// sole_R the sole's planned attitude.
 bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R,
                   int side, double min_share);
 

@@ -9,17 +9,22 @@
 
 namespace flexgait::experiments {
 
-std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& soles, double length, double width) {
+std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& soles,
+                                             const std::vector<const walking::SolePolygon*>& shapes) {
   std::vector<std::array<double, 2>> corners;
-  for (const auto& s : soles)
-    for (double sx : {-0.5, 0.5})
-      for (double sy : {-0.5, 0.5}) {
-        const Eigen::Vector3d c = s.p + s.R * Eigen::Vector3d(sx * length, sy * width, 0);
-        corners.push_back({c.x(), c.y()});
-      }
+  for (std::size_t i = 0; i < soles.size(); ++i)
+    for (const Eigen::Vector2d& k : shapes[i]->corners) {
+      const Eigen::Vector3d c = soles[i].p + soles[i].R * Eigen::Vector3d(k.x(), k.y(), 0);
+      corners.push_back({c.x(), c.y()});
+    }
   std::vector<Eigen::Vector2d> hull;
   for (const auto& c : humanoid::convex_hull(std::move(corners))) hull.emplace_back(c[0], c[1]);
   return hull;
+}
+
+std::vector<Eigen::Vector2d> support_polygon(const std::vector<walking::Pose>& soles, double length, double width) {
+  const walking::SolePolygon rectangle = walking::rectangle_sole(length, width);
+  return support_polygon(soles, std::vector<const walking::SolePolygon*>(soles.size(), &rectangle));
 }
 
 double support_margin(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {

@@ -102,6 +102,7 @@ WalkScorer::WalkScorer(const WalkRunParams& params, const walking::WalkingContro
   t_walk0_ = out_.plan.steps.empty() ? 0.0 : out_.plan.steps.front().t_begin;
   settle_ = landing_settle(params);
   support_.reserve(2);
+  support_shapes_.reserve(2);
 }
 
 void WalkScorer::fall(std::optional<FallReason> reason, double t) {
@@ -140,15 +141,18 @@ void WalkScorer::score_sensing(const loop::LoopStep& step) {
     bound_taken_ = true;
     const Eigen::Vector2d direction(first_push_.force[0], first_push_.force[1]);
     std::vector<walking::Pose> soles;
+    std::vector<const walking::SolePolygon*> shapes;
     for (int side = 0; side < 2; ++side)
-      if (before.sole_contact[side])
+      if (before.sole_contact[side]) {
         soles.push_back({Eigen::Vector3d(before.sole_pos[side][0], before.sole_pos[side][1], 0),
                          walking::rot_z(before.sole_yaw[side])});
+        shapes.push_back(&model.sole_polygon[static_cast<std::size_t>(side)]);
+      }
     const twin::HumanoidPlant& plant = step.plant;
     if (direction.norm() > 0)
       m.capture_point_bound =
           capture_point_bound(plant.total_mass(), before.com[2] - plant.terrain().height(before.com[0], before.com[1]),
-                              plant.gravity(), support_polygon(soles, model.sole_length, model.sole_width),
+                              plant.gravity(), support_polygon(soles, shapes),
                               Eigen::Vector2d(before.com[0], before.com[1]), direction)
               .impulse;
   }
@@ -198,7 +202,6 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
   const walking::RobotModel& model = controller_.model();
   const twin::GroundTruth& g = step.after;
   const double t_now = g.t;
-  const double length = model.sole_length, width = model.sole_width;
 
   // Falls and lost support (walk_judge.hpp).
   const SupportSample sample = support_sample(g, step.plant.terrain(), offset_);
@@ -211,11 +214,14 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
   const Eigen::Vector2d com_true = Eigen::Vector2d(g.com[0], g.com[1]) - offset_;
   // The true support polygon: the soles touching the floor, where they really are.
   support_.clear();
+  support_shapes_.clear();
   for (int side = 0; side < 2; ++side)
-    if (g.sole_contact[side])
+    if (g.sole_contact[side]) {
       support_.push_back({Eigen::Vector3d(g.sole_pos[side][0] - offset_.x(), g.sole_pos[side][1] - offset_.y(), 0),
                           walking::rot_z(g.sole_yaw[side])});
-  const double margin = support_margin(support_polygon(support_, length, width), zmp_true);
+      support_shapes_.push_back(&model.sole_polygon[static_cast<std::size_t>(side)]);
+    }
+  const double margin = support_margin(support_polygon(support_, support_shapes_), zmp_true);
   if (t_now >= t_walk0_ && t_now <= out_.plan.t_settle && !m.fell) {
     zx_.add(zmp_true.x() - st.zmp_ref.x());
     zy_.add(zmp_true.y() - st.zmp_ref.y());

@@ -68,6 +68,7 @@ class WalkScorer final : public loop::LoopObserver {
   long newton_calls_ = 0, newton_iterations_ = 0;
   std::size_t next_landing_ = 0;
   std::vector<walking::Pose> support_;
+  std::vector<const walking::SolePolygon*> support_shapes_;  ///< support_'s sole polygons
   // this period's values shared by score_sensing and score_motion
   double roll_true_ = 0, pitch_true_ = 0, roll_enc_ = 0, roll_est_ = 0;
 };

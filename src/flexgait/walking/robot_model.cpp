@@ -57,6 +57,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   for (const auto& b : m.bodies) m.total_mass += b.mass;
   m.sole_length = r.sole_length;
   m.sole_width = r.sole_width;
+  m.sole_polygon = {rectangle_sole(r.sole_length, r.sole_width), rectangle_sole(r.sole_length, r.sole_width)};
   m.sole_offset = {Vector3d(0, r.sole_offset_y, -r.ankle_to_sole), Vector3d(0, -r.sole_offset_y, -r.ankle_to_sole)};
   fill_leg_chain(m, 0);
   fill_leg_chain(m, 1);

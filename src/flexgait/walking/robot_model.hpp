@@ -15,6 +15,7 @@
 #include "flexgait/robot/robot_description.hpp"
 #include "flexgait/robot/robot_params.hpp"
 #include "flexgait/walking/leg_kinematics.hpp"
+#include "flexgait/walking/sole_polygon.hpp"
 
 namespace flexgait::walking {
 
@@ -38,8 +39,11 @@ struct RobotModel {
   std::array<LegGeometry, 2> leg;              ///< per side
   double total_mass = 0;                       ///< [kg]
   double gravity = humanoid::kDefaultGravity;  ///< along −z, the description's [m/s^2]
-  double sole_length = 0, sole_width = 0;      ///< the sole rectangle [m]
-  std::array<Vector3d, 2> sole_offset{};       ///< sole centre in the foot frame [m]
+  double sole_length = 0, sole_width = 0;      ///< the sole's bounding rectangle [m]
+  /// Each sole's polygon in its sole frame (about sole_offset): the convex hull of a loaded foot's
+  /// contact geoms, else (the builtin, a sole named or sized by the mapping) the rectangle.
+  std::array<SolePolygon, 2> sole_polygon;
+  std::array<Vector3d, 2> sole_offset{};  ///< sole centre in the foot frame [m]
   /// The sole's orientation in the foot link's frame: a loaded foot whose frame is tilted from the
   /// root's at zero angles by less than kMaxFootTilt (numbers printed with few digits); identity
   /// unless sole_tilted.

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/SVD>
+#include <algorithm>
 
 #include <array>
 #include <cmath>
@@ -275,6 +276,21 @@ RobotModel make_robot_model(const LoadedRobot& r) {
                                   r.sole[0].length, r.sole[0].width));
   m.sole_length = r.sole[0].length;
   m.sole_width = r.sole[0].width;
+  // Each sole's polygon about its centre, in the foot body's frame (the sole's): the hull of the
+  // foot's contact geoms, unless it is its bounding rectangle (then the rectangle's own numbers).
+  for (int side = 0; side < 2; ++side) {
+    const humanoid::Sole& s = r.sole[static_cast<std::size_t>(side)];
+    auto distinct = [&](int axis) {
+      std::vector<double> v;
+      for (const auto& p : s.hull) v.push_back(p[static_cast<std::size_t>(axis)]);
+      std::sort(v.begin(), v.end());
+      return std::unique(v.begin(), v.end()) - v.begin();
+    };
+    const bool box = s.hull.empty() || (s.hull.size() == 4 && distinct(0) == 2 && distinct(1) == 2);
+    std::vector<Eigen::Vector2d> corners;
+    for (const auto& p : s.hull) corners.emplace_back(p[0] - s.center[0], p[1] - s.center[1]);
+    m.sole_polygon[static_cast<std::size_t>(side)] = box ? rectangle_sole(s.length, s.width) : polygon_sole(corners);
+  }
   return m;
 }
 

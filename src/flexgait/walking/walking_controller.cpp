@@ -1,5 +1,6 @@
 #include "flexgait/walking/walking_controller.hpp"
 
+#include "flexgait/robot/convex_hull.hpp"
 #include "flexgait/walking/foot_wrench.hpp"
 #include "flexgait/walking/stance_load.hpp"
 
@@ -225,12 +226,11 @@ void WalkingController::dcm_balance(const humanoid::SensorReadings& s, const Fee
   Eigen::Vector2d base = feet.swinging[0] ? right : left;
   if (!feet.swinging[0] && !feet.swinging[1])
     base = right + left_share(left, right, load_split_point()) * (left - right);
-  const double half_l = 0.5 * model_.sole_length, half_w = 0.5 * model_.sole_width;
   for (int side = 0; side < 2; ++side) {
     if (feet.swinging[side] || !status_.contact[side] || !ft_live_) continue;
     const Matrix3d& R = feet.sole[side].R;
     const Vector3d off = R.transpose() * Vector3d(p.x() - base.x(), p.y() - base.y(), 0);
-    const Eigen::Vector2d cop(std::clamp(off.x(), -half_l, half_l), std::clamp(off.y(), -half_w, half_w));
+    const Eigen::Vector2d cop = nearest_point(model_.sole_polygon[side], off.head<2>());
     const double fz = foot_contact_[side].normal_force;
     const Eigen::Vector2d torque_wanted(cop.y() * fz, -cop.x() * fz);  // ground torque about the sole centre
     foot_rotation_[side] += period_ * balance_.cop_admittance * ft_fade_ * (foot_contact_[side].torque - torque_wanted);
@@ -373,7 +373,9 @@ void WalkingController::begin_capture_transfer(double t, std::size_t k, int swin
   const double width = std::hypot(f[0].x - f[1].x, f[0].y - f[1].y);
   const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin,
                              0.5 * (model_.sole_width + width) - kCaptureMargin);
-  const Eigen::Vector2d p = nearest_in_box(mid, f[1 - swing].yaw, half, status_.dcm);
+  const Eigen::Vector2d p = capture_sole_[0].rectangle && capture_sole_[1].rectangle
+                                ? nearest_in_box(mid, f[1 - swing].yaw, half, status_.dcm)
+                                : nearest_in_capture_soles(status_.dcm);
   for (int a = 0; a < 2; ++a) {
     const double c = status_.com_estimate(a);
     cart_[a].x = Vector3d(c, com_velocity_(a), omega * omega * (c - p(a)));
@@ -415,8 +417,21 @@ bool WalkingController::capture_lift_due(double t) {
 
 Eigen::Vector2d WalkingController::capture_cop(int stance, const Eigen::Vector2d& xi) const {
   const Footprint& f = plan_.initial[stance];
-  const Eigen::Vector2d half(0.5 * model_.sole_length - kCaptureMargin, 0.5 * model_.sole_width - kCaptureMargin);
-  return nearest_in_box(Eigen::Vector2d(f.x, f.y), f.yaw, half, xi);
+  const Eigen::Rotation2Dd heading(f.yaw);
+  const Eigen::Vector2d centre(f.x, f.y);
+  return centre + heading * nearest_point(capture_sole_[stance], heading.inverse() * (xi - centre));
+}
+
+Eigen::Vector2d WalkingController::nearest_in_capture_soles(const Eigen::Vector2d& xi) {
+  std::size_t n = 0;
+  for (int side = 0; side < 2; ++side) {
+    const Footprint& f = plan_.initial[side];
+    const Eigen::Rotation2Dd heading(f.yaw);
+    for (const Eigen::Vector2d& c : capture_sole_[side].corners)
+      transfer_points_[n++] = Eigen::Vector2d(f.x, f.y) + heading * c;
+  }
+  const std::size_t k = humanoid::convex_hull_into(transfer_points_.data(), n, transfer_hull_.data());
+  return nearest_point(transfer_hull_.data(), k, xi);
 }
 
 void WalkingController::begin_capture_step(double t, std::size_t k, double omega, double T, double settle,

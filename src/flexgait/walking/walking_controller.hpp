@@ -183,6 +183,9 @@ class WalkingController {
   bool capture_lift_due(double t);
   /// (C1): the point of the `stance` sole, 2 cm inside its edges, nearest the DCM `xi` (world) [m].
   Eigen::Vector2d capture_cop(int stance, const Eigen::Vector2d& xi) const;
+  /// (C0) for soles that are not rectangles: the point of the hull of both soles (each 2 cm inside
+  /// its edges) where they stand nearest `xi` (world) [m]; in transfer_points_ / transfer_hull_.
+  Eigen::Vector2d nearest_in_capture_soles(const Eigen::Vector2d& xi);
   /// The capture step of foot capture_.swing lasting T [s] from now (C1–C3 in the definition), its
   /// settling [s]; rewrites the ZMP reference from sample k.
   void begin_capture_step(double t, std::size_t k, double omega, double T, double settle, const StepLimits& limits);
@@ -245,6 +248,13 @@ class WalkingController {
     int feasible_periods = 0;                     ///< (C0): periods in a row the stance leg could carry the load
   } capture_;                                     ///< the standing capture step under way
   static constexpr double kCaptureMargin = 0.02;  ///< the capture step's CoP stays this far inside the sole [m]
+  /// Each sole kCaptureMargin inside its edges (where capture_cop puts the centre of pressure).
+  std::array<SolePolygon, 2> capture_sole_{inset(model_.sole_polygon[0], kCaptureMargin),
+                                           inset(model_.sole_polygon[1], kCaptureMargin)};
+  /// nearest_in_capture_soles' scratch: both capture soles' corners placed, and their hull.
+  std::vector<Eigen::Vector2d> transfer_points_ =
+      std::vector<Eigen::Vector2d>(capture_sole_[0].corners.size() + capture_sole_[1].corners.size());
+  std::vector<Eigen::Vector2d> transfer_hull_ = std::vector<Eigen::Vector2d>(2 * transfer_points_.size());
   ControllerStatus status_;
   bool plan_motion_ = false;
   RobotModelData motion_data_;                                             ///< the planned motion's scratch
