@@ -360,7 +360,7 @@ ROBOTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "humanoi
 
 
 FIXTURES = ["minus_y_knee", "pitch_roll_yaw_hips", "waist_below_root", "printed_quaternions", "mujoco3_attributes",
-            "small_biped", "four_sphere_feet", "massless_foot", "unequal_actuators"]
+            "small_biped", "four_sphere_feet", "octagon_sphere_feet", "massless_foot", "unequal_actuators"]
 
 
 def make_robot_case(rng, work):

@@ -471,6 +471,61 @@ TEST(RobotLoader, UrdfKeepsJointDynamics) {
   }
 }
 
+// A sole made of contact geoms URDF has no primitive for: four_sphere_feet with the two front spheres
+// replaced by a capsule across the toe (its ends at y = ±30 mm) and one rear sphere by an ellipsoid
+// (semi-axes 20, 10, 10 mm, its lowest point where the sphere's was). The URDF export writes the
+// capsule as the spheres at its ends and the ellipsoid as the sphere of its smallest semi-axis through
+// its lowest point, each a <collision> of the foot, and the mapping names no sole: the reload makes the
+// same trapezoid hull on the same plane (1e-12 m: the end points are computed, then written as shortest
+// round-trip decimals).
+TEST(RobotLoader, UrdfExportKeepsAHullSoleOfCapsulesAndEllipsoids) {
+  const char* dir = std::getenv("FLEXGAIT_TEST_DATA");
+  std::ifstream in(std::filesystem::path(dir ? dir : "tests/humanoid/data") / "four_sphere_feet.xml");
+  std::string xml{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  for (const std::string side : {"L", "R"}) {
+    auto replace = [&](const std::string& from, const std::string& to) {
+      const auto at = xml.find(from);
+      ASSERT_NE(at, std::string::npos) << from;
+      xml.replace(at, from.size(), to);
+    };
+    const std::string tail = R"( contype="1" conaffinity="1"/>)";
+    replace(R"(<geom name=")" + side + R"(Ball0" type="sphere" size="0.01" pos="0.09 0.05 -0.05")" + tail,
+            R"(<geom name=")" + side + R"(Toe" type="capsule" size="0.01" fromto="0.09 0.03 -0.05 0.09 -0.03 -0.05")" +
+                tail);
+    replace(R"(<geom name=")" + side + R"(Ball1" type="sphere" size="0.01" pos="0.09 -0.05 -0.05")" + tail, "");
+    replace(R"(<geom name=")" + side + R"(Ball2" type="sphere" size="0.01" pos="-0.09 0.05 -0.05")" + tail,
+            R"(<geom name=")" + side + R"(Heel" type="ellipsoid" size="0.02 0.01 0.01" pos="-0.09 0.05 -0.05")" + tail);
+  }
+  const humanoid::RobotDescriptionParams p = humanoid::testing::fixture_walk("four_sphere_feet.yaml").description;
+  const humanoid::LoadedRobot a = load_robot_text(xml, "xml", "four_sphere_feet.xml", p);
+  const std::string urdf = humanoid::robot_urdf(a);
+  std::size_t collisions = 0;
+  for (auto at = urdf.find("<collision>"); at != std::string::npos; at = urdf.find("<collision>", at + 1)) ++collisions;
+  EXPECT_EQ(collisions, 8u);  // per foot: the capsule's two spheres, the ellipsoid's one, the sphere
+  humanoid::RobotDescriptionParams q = p;
+  std::istringstream mapping(humanoid::urdf_mapping(a));
+  for (std::string line; std::getline(mapping, line);)
+    for (int side = 0; side < 2; ++side) {
+      const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
+      if (line.rfind(f + ".sole_size=", 0) == 0) q.feet[side].sole_size = line.substr(line.find('=') + 1);
+    }
+  EXPECT_EQ(q.feet[0].sole_size, "none");
+  const humanoid::LoadedRobot b = load_robot_text(urdf, "urdf", "robot.urdf", q);
+  for (int side = 0; side < 2; ++side) {
+    const humanoid::Sole &x = a.sole[side], &y = b.sole[side];
+    ASSERT_EQ(x.hull.size(), 4u);
+    EXPECT_TRUE(y.hull_in_twin);
+    ASSERT_EQ(y.hull.size(), x.hull.size());
+    for (std::size_t i = 0; i < x.hull.size(); ++i)
+      for (int k = 0; k < 2; ++k) EXPECT_NEAR(y.hull[i][k] - y.center[k], x.hull[i][k] - x.center[k], 1e-12);
+    EXPECT_NEAR(y.center[2], x.center[2], 1e-12);
+    EXPECT_NEAR(x.length, 0.18, 1e-15);
+    EXPECT_NEAR(x.width, 0.10, 1e-15);
+  }
+  const walking::RobotModel m = walking::make_robot_model(b);
+  EXPECT_FALSE(m.sole_polygon[0].rectangle);  // a trapezoid: 60 mm wide at the toe, 100 mm at the heel
+}
+
 // Each joint's link-side inertia (the gear's load in the twin) is the composite inertia of the bodies below it
 // about its axis: MuJoCo's mass matrix diagonal less the armature equals the sum over the subtree of each body's
 // inertia about the axis (parallel axis theorem) at zero angles, to rounding (1e-12 relative: a few dozen

@@ -4,9 +4,13 @@
 // and for the test robot with its own names and an offset hip pitch axis.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
+#include "flexgait/robot/urdf_export.hpp"
 #include "flexgait/twin/model_xml.hpp"
 #include "flexgait/twin/robot_loader.hpp"
 #include "flexgait/twin/twin_mjcf.hpp"
@@ -194,6 +198,58 @@ TEST(RobotModelLoaded, FourSphereFeetMakeTheSole) {
   const experiments::WalkResult r = experiments::run_walk(walk);
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 10);
+  EXPECT_EQ(r.metrics.mujoco_warnings, 0);
+}
+
+// Eight spheres under each foot on an octagon (the 0.18 x 0.10 m rectangle with its corners cut
+// 30 x 20 mm): the controller's sole polygon is that octagon, not its bounding rectangle, whose
+// corners lie outside it. Exported as URDF, each sphere is a <collision> of the foot and the mapping
+// names no sole: the reload makes the same polygon (1e-12 m: URDF keeps shortest round-trip
+// decimals, the link frame's shift by the ankle anchor rounds once) and walks on it (4 steps, for
+// the tests' time; 10 in docs/guide/robot.md's measurement).
+TEST(RobotModelLoaded, OctagonSphereFeetSoleIsTheOctagonAndUrdfExportKeepsIt) {
+  const experiments::WalkRunParams walk = fixture_walk("octagon_sphere_feet.yaml");
+  ASSERT_TRUE(walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  const std::vector<Eigen::Vector2d> octagon{Eigen::Vector2d(-0.09, -0.03), Eigen::Vector2d(-0.06, -0.05),
+                                             Eigen::Vector2d(0.06, -0.05),  Eigen::Vector2d(0.09, -0.03),
+                                             Eigen::Vector2d(0.09, 0.03),   Eigen::Vector2d(0.06, 0.05),
+                                             Eigen::Vector2d(-0.06, 0.05),  Eigen::Vector2d(-0.09, 0.03)};
+  EXPECT_NEAR(model.sole_length, 0.18, 1e-15);
+  EXPECT_NEAR(model.sole_width, 0.10, 1e-15);
+  for (int side = 0; side < 2; ++side) {
+    const walking::SolePolygon& s = model.sole_polygon[static_cast<std::size_t>(side)];
+    EXPECT_FALSE(s.rectangle);
+    ASSERT_EQ(s.corners.size(), octagon.size());
+    for (std::size_t i = 0; i < octagon.size(); ++i) EXPECT_LT((s.corners[i] - octagon[i]).norm(), 1e-15);
+    EXPECT_FALSE(walking::contains(s, Eigen::Vector2d(0.09, 0.05)));  // the bounding rectangle's corner
+    EXPECT_LT((walking::nearest_point(s, Eigen::Vector2d(0.0, 0.2)) - Eigen::Vector2d(0.0, 0.05)).norm(), 1e-16);
+  }
+  const std::string urdf = robot_urdf(*walk.loaded), mapping = urdf_mapping(*walk.loaded);
+  std::size_t collisions = 0;
+  for (auto at = urdf.find("<collision>"); at != std::string::npos; at = urdf.find("<collision>", at + 1)) ++collisions;
+  EXPECT_EQ(collisions, 16u);
+  EXPECT_NE(mapping.find("robot.feet.left.sole_size=none"), std::string::npos) << mapping;
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "flexgait_octagon_sphere_feet.urdf";
+  std::ofstream(file) << urdf;
+  std::vector<std::string> overrides{"robot.description=" + file.string(), "walk.steps=4"};
+  std::istringstream lines(mapping);
+  for (std::string line; std::getline(lines, line);) overrides.push_back(line);
+  const experiments::WalkRunParams reloaded = fixture_walk("octagon_sphere_feet.yaml", overrides);
+  std::filesystem::remove(file);
+  ASSERT_TRUE(reloaded.loaded);
+  const RobotModel back = walking::make_robot_model(*reloaded.loaded);
+  for (int side = 0; side < 2; ++side) {
+    const walking::SolePolygon &a = model.sole_polygon[static_cast<std::size_t>(side)],
+                               &b = back.sole_polygon[static_cast<std::size_t>(side)];
+    EXPECT_FALSE(b.rectangle);
+    ASSERT_EQ(b.corners.size(), a.corners.size());
+    for (std::size_t i = 0; i < a.corners.size(); ++i) EXPECT_LT((b.corners[i] - a.corners[i]).norm(), 1e-12);
+    EXPECT_LT((back.sole_offset[side] - model.sole_offset[side]).norm(), 1e-12);
+  }
+  const experiments::WalkResult r = experiments::run_walk(reloaded);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 4);
   EXPECT_EQ(r.metrics.mujoco_warnings, 0);
 }
 

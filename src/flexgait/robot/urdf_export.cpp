@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 namespace flexgait::humanoid {
@@ -35,11 +36,45 @@ Vector3d anchor(const LoadedBody& b) {
   return Vector3d::Zero();
 }
 
+/// Whether the sole of `side` is the hull of the foot's contact geoms, all of them carried (no mesh).
+bool hull_sole(const LoadedRobot& r, int side) {
+  const Sole& s = r.sole[static_cast<std::size_t>(side)];
+  return !s.hull.empty() && s.hull_in_twin;
+}
+
 std::string shape(const LoadedGeom& g) {
   if (g.type == "box") return fmt::format(R"(<box size="{} {} {}"/>)", 2 * g.size[0], 2 * g.size[1], 2 * g.size[2]);
   if (g.type == "sphere") return fmt::format(R"(<sphere radius="{}"/>)", g.size[0]);
   if (g.type == "cylinder" || g.type == "capsule")
     return fmt::format(R"(<cylinder radius="{}" length="{}"/>)", g.size[0], 2 * g.size[1]);
+  return {};
+}
+
+/// The geom as URDF <collision> elements (origins in the link frame, whose origin is `o` in the
+/// body frame): a box, sphere or cylinder as itself; a capsule, which URDF lacks, as the spheres at
+/// its two ends (the points it rests on, hence the same sole hull; the straight part between them
+/// is left out); an ellipsoid as the sphere of its smallest semi-axis through its lowest point.
+std::string collisions(const LoadedGeom& g, const Vector3d& o) {
+  const Matrix3d R = rotation(g.quat);
+  const Vector3d c = vec(g.pos) - o;
+  auto element = [](const Vector3d& at, const std::string& r, const std::string& geometry) {
+    return fmt::format(
+        "    <collision>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <geometry>{}</geometry>\n    </collision>\n",
+        xyz(at), r, geometry);
+  };
+  auto sphere = [&](double radius) { return fmt::format(R"(<sphere radius="{}"/>)", radius); };
+  if (g.type == "box" || g.type == "sphere" || g.type == "cylinder") return element(c, rpy(R), shape(g));
+  if (g.type == "capsule") {
+    const Vector3d axis = R * Vector3d(0, 0, g.size[1]);
+    return element(c + axis, "0 0 0", sphere(g.size[0])) + element(c - axis, "0 0 0", sphere(g.size[0]));
+  }
+  if (g.type == "ellipsoid") {
+    // The lowest point of {x : x' S^-1 x = 1}, S = R diag(a^2) R': x = -S e_z / sqrt(e_z' S e_z).
+    const Vector3d a2(g.size[0] * g.size[0], g.size[1] * g.size[1], g.size[2] * g.size[2]);
+    const Vector3d Se = R * a2.asDiagonal() * R.transpose().col(2);
+    const double r = std::min({g.size[0], g.size[1], g.size[2]});
+    return element(c - Se / std::sqrt(Se.z()) + Vector3d(0, 0, r), "0 0 0", sphere(r));
+  }
   return {};
 }
 
@@ -67,6 +102,12 @@ std::string robot_urdf(const LoadedRobot& r) {
           "    <visual>\n      <origin xyz=\"{}\" rpy=\"{}\"/>\n      <geometry>{}</geometry>\n    </visual>\n",
           xyz(vec(g.pos) - o), rpy(rotation(g.quat)), s);
     }
+    // A sole made of the foot's contact geoms: those geoms as the link's only collisions, so that
+    // the loader makes the same hull from them (urdf_mapping names no sole).
+    for (int side = 0; side < 2; ++side)
+      if (hull_sole(r, side) && r.foot[static_cast<std::size_t>(side)] == static_cast<int>(b))
+        for (const int g : r.sole[static_cast<std::size_t>(side)].hull_geoms)
+          out += collisions(body.geoms[static_cast<std::size_t>(g)], o);
     out += "  </link>\n";
   }
   for (std::size_t b = 1; b < r.bodies.size(); ++b) {
@@ -108,8 +149,11 @@ std::string urdf_mapping(const LoadedRobot& r) {
     const std::string f = std::string("robot.feet.") + (side == 0 ? "left" : "right");
     const LoadedBody& foot = r.bodies[static_cast<std::size_t>(r.foot[side])];
     const Vector3d c = vec(r.sole[side].center) - anchor(foot);
-    out += fmt::format("{0}.body={1}\n{0}.sole_geom=none\n{0}.sole_size={2} {3}\n{0}.sole_center={4}\n", f, foot.name,
-                       r.sole[side].length, r.sole[side].width, xyz(c));
+    if (hull_sole(r, side))  // (the sole from the exported contact geoms)
+      out += fmt::format("{0}.body={1}\n{0}.sole_geom=none\n{0}.sole_size=none\n", f, foot.name);
+    else
+      out += fmt::format("{0}.body={1}\n{0}.sole_geom=none\n{0}.sole_size={2} {3}\n{0}.sole_center={4}\n", f, foot.name,
+                         r.sole[side].length, r.sole[side].width, xyz(c));
   }
   return out;
 }

@@ -3,8 +3,11 @@
 /// A loaded robot as URDF (docs/guide/robot.md, `flexgait humanoid export --format urdf`): the rigid robot —
 /// one link per body with its inertial (mass, centre, principal inertia and axes), one joint per
 /// body (revolute for the mapped joints under the file's names, fixed otherwise), the shapes as
-/// visuals only (URDF readers such as MuJoCo's give every collision shape contacts; the twin's
-/// soles come from the mapping: robot.feet.*.sole_size / sole_center, see urdf_sole_mapping).
+/// visuals (URDF readers such as MuJoCo's give every collision shape contacts). The soles: a sole
+/// made of the foot's contact geoms (Sole::hull) is exported as those geoms, the foot's only
+/// <collision> elements (a capsule, which URDF lacks, as the spheres at its ends), so the reload
+/// makes the same hull; any other sole comes from the mapping (robot.feet.*.sole_size /
+/// sole_center, see urdf_mapping).
 /// Link frames sit on the joint anchors (URDF puts a joint at its child link's origin).
 #include <string>
 
