@@ -102,13 +102,13 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
   // COM: ċ = v_p + ω_p × (c − p) + Σ J_c q̇ with J_c's column j = a_j × (Σ_{k below j} m_k (c_k − p_j)) / M; the
   // pelvis's unknown horizontal velocity enters through I − Σ J_c J⁻¹[I; 0] (the COM's move per pelvis move with
   // the soles held: the exact form of the Newton's ∂c/∂p), and its acceleration through the same matrix.
-  using Matrix6x3 = Eigen::Matrix<double, 6, 3>;
+  using Matrix6x2 = Eigen::Matrix<double, 6, 2>;
   using Vector6d = Eigen::Matrix<double, 6, 1>;
   std::array<Eigen::PartialPivLU<LegJacobian>, 2> lu;
-  std::array<Eigen::Matrix<double, 3, 6>, 2> Jc;
-  std::array<Matrix6x3, 2> per_pelvis;  // J⁻¹[I; 0]: the legs' rates per unit pelvis velocity, negated
+  std::array<Eigen::Matrix<double, 2, 6>, 2> Jc;  // (the horizontal rows: the COM's height is not held)
+  std::array<Matrix6x2, 2> per_pelvis;  // J⁻¹[I; 0] (x and y): the legs' rates per unit pelvis velocity, negated
   std::array<Vector3d, 2> sole;
-  Matrix3d A = Matrix3d::Identity();
+  Eigen::Matrix2d A = Eigen::Matrix2d::Identity();  // (x and y)
   const Vector3d c_world = center_of_mass(model, data);
   for (int side = 0; side < 2; ++side) {
     sole[side] = sole_pose(model, data, side).p;
@@ -123,34 +123,38 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
       if (b.joint < 0) continue;
       const Vector3d a = data.frame[b0 + i].R * b.axis;
       Jc[side].col(b.joint - humanoid::leg_first_joint(side)) =
-          a.cross(moment - mass * data.frame[b0 + i].p) / model.total_mass;
+          a.cross(moment - mass * data.frame[b0 + i].p).head<2>() / model.total_mass;
     }
-    per_pelvis[side] = lu[side].solve(Matrix6x3::Identity());
+    for (int axis = 0; axis < 2; ++axis) per_pelvis[side].col(axis) = lu[side].solve(Vector6d::Unit(axis));
     A -= Jc[side] * per_pelvis[side];
   }
-  const Eigen::Matrix2d A_xy = A.topLeftCorner<2, 2>();
+  const Eigen::Matrix2d A_inverse = A.inverse();
   // Velocities: q̇ = J⁻¹(V_s − [v_p + ω_p × (s − p); ω_p]), v_p = (v_xy, ż) with v_xy from the COM's ċ.
   const Vector3d& wp = m.pelvis.angular_velocity;
   std::array<Vector6d, 2> rate0;  // with v_xy = 0
-  Vector3d c_dot0 = m.pelvis.velocity + wp.cross(c_world - p.p);
+  Eigen::Vector2d c_dot0 = (m.pelvis.velocity + wp.cross(c_world - p.p)).head<2>();
   for (int side = 0; side < 2; ++side) {
     Vector6d V;
     V << fm.velocity[side] - m.pelvis.velocity - wp.cross(sole[side] - p.p), fm.angular_velocity[side] - wp;
     rate0[side] = lu[side].solve(V);
     c_dot0 += Jc[side] * rate0[side];
   }
-  const Eigen::Vector2d v_xy =
-      A_xy.partialPivLu().solve(Eigen::Vector2d(in.cart[0](1), in.cart[1](1)) - c_dot0.head<2>());
+  const Eigen::Vector2d v_xy = A_inverse * (Eigen::Vector2d(in.cart[0](1), in.cart[1](1)) - c_dot0);
   m.pelvis.velocity.head<2>() = v_xy;
   for (int side = 0; side < 2; ++side) {
-    const Vector6d rate = rate0[side] - per_pelvis[side].leftCols<2>() * v_xy;
+    const Vector6d rate = rate0[side] - per_pelvis[side] * v_xy;
     for (int i = 0; i < humanoid::kLegJoints; ++i) m.velocity[humanoid::leg_first_joint(side) + i] = rate(i);
   }
-  // Accelerations: the bias (q̈ = 0, the pelvis's horizontal acceleration 0) by the model's forward pass; the COM's
-  // bias acceleration is then the pelvis's net force over M (no feet given, no gravity).
+  // Accelerations: the bias (q̈ = 0, the pelvis's horizontal acceleration 0) by the model's forward pass, the COM's
+  // Σ m_i (a_i + α_i × c_i + ω_i × (ω_i × c_i)) / M with c_i the centre from the origin.
   RobotDynamicsData dyn;
-  inverse_dynamics(model, data, m.pelvis, m.velocity, humanoid::JointVector{}, dyn, {}, 0.0);
-  Vector3d c_ddot0 = dyn.joint_wrench[0].force / model.total_mass;
+  forward_motion(model, data, m.pelvis, m.velocity, humanoid::JointVector{}, dyn, 0.0);
+  Vector3d c_ddot = Vector3d::Zero();
+  for (int i = 0; i < kBodies; ++i) {
+    const Vector3d c = data.com_world[i] - data.frame[i].p, &w = dyn.angular_velocity[i];
+    c_ddot += model.bodies[i].mass * (dyn.acceleration[i] + dyn.angular_acceleration[i].cross(c) + w.cross(w.cross(c)));
+  }
+  Eigen::Vector2d c_ddot0 = c_ddot.head<2>() / model.total_mass;
   std::array<Vector6d, 2> accel0;
   for (int side = 0; side < 2; ++side) {
     const int foot = model.foot[side];
@@ -164,11 +168,10 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
     accel0[side] = lu[side].solve(a - bias);
     c_ddot0 += Jc[side] * accel0[side];
   }
-  const Eigen::Vector2d a_xy =
-      A_xy.partialPivLu().solve(Eigen::Vector2d(in.cart[0](2), in.cart[1](2)) - c_ddot0.head<2>());
+  const Eigen::Vector2d a_xy = A_inverse * (Eigen::Vector2d(in.cart[0](2), in.cart[1](2)) - c_ddot0);
   m.pelvis.acceleration.head<2>() = a_xy;
   for (int side = 0; side < 2; ++side) {
-    const Vector6d accel = accel0[side] - per_pelvis[side].leftCols<2>() * a_xy;
+    const Vector6d accel = accel0[side] - per_pelvis[side] * a_xy;
     for (int i = 0; i < humanoid::kLegJoints; ++i) m.acceleration[humanoid::leg_first_joint(side) + i] = accel(i);
   }
   m.com_acceleration = Vector3d(in.cart[0](2), in.cart[1](2), 0.0);

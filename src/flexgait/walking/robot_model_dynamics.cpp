@@ -2,10 +2,10 @@
 
 namespace flexgait::walking {
 
-void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
-                      const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
-                      const FootWrenches& feet, double gravity) {
-  // Forward pass: velocities and accelerations (gravity as the pelvis's upward acceleration).
+void forward_motion(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
+                    const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
+                    double gravity) {
+  // Velocities and accelerations, parent to child (gravity as the pelvis's upward acceleration).
   for (int i = 0; i < kBodies; ++i) {
     const auto& b = model.bodies[i];
     const Pose& f = kinematics.frame[i];
@@ -29,7 +29,17 @@ void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics,
       data.velocity[i] = data.velocity[p] + wp.cross(r);
       data.acceleration[i] = data.acceleration[p] + data.angular_acceleration[p].cross(r) + wp.cross(wp.cross(r));
     }
+  }
+}
+
+void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
+                      const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
+                      const FootWrenches& feet, double gravity) {
+  forward_motion(model, kinematics, base, qd, qdd, data, gravity);
+  for (int i = 0; i < kBodies; ++i) {
     // The body's inertial wrench about its origin: F at the centre c, N about it.
+    const auto& b = model.bodies[i];
+    const Pose& f = kinematics.frame[i];
     const Vector3d& w = data.angular_velocity[i];
     const Vector3d& alpha = data.angular_acceleration[i];
     const Vector3d c = f.R * b.com;
