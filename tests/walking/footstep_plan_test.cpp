@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "flexgait/walking/ground_slope.hpp"
@@ -81,6 +82,46 @@ TEST(FootstepPlan, ToldTheFloorTheSolesLieOnItsSlopeAndBlendBetweenSlopesInTheSw
   const FeetTarget mid = feet_target(plan, w.swing_height, t_mid);
   const double b = quintic_blend(0.5);
   EXPECT_NEAR(ground_gradient_of(mid.sole[s.swing].R).x(), b * g, 1e-12);
+}
+
+TEST(FootstepPlan, FeetMotionIsTheDerivativeOfTheFeetTarget) {
+  // feet_motion against central differences of step e = 1e-5 s: of feet_target's positions (and of
+  // its rotations, ω ≈ log(R(t + e) R(t − e)ᵀ) / 2e) for the rates, of feet_motion's own rates for
+  // the accelerations. Truncation e²/6 of the third derivative (≲ 1e3 m/s³ or rad/s³ here: 1e-7)
+  // and rounding 1e-16 / e of the positions (1e-11): agreement to 1e-6 of the largest value, on a
+  // turning walk over a ramp (heights and slopes blend, the sole's attitude turns about two axes).
+  WalkParams w;
+  w.steps = 4;
+  w.turn = 0.15;
+  WalkPlan plan = plan_footsteps(w);
+  set_footprint_heights(plan, [](double x, double y) { return 0.05 * x + 0.04 * x * x - 0.03 * y; });
+  ASSERT_GT(plan.steps[2].to.slope.norm(), 0.03);
+  const double e = 1e-5;
+  int swinging = 0;
+  for (const double t :
+       {0.5 * (plan.steps[0].t_begin + plan.steps[0].t_lift), plan.steps[1].t_lift + 0.01,
+        plan.steps[2].t_lift + 0.3 * (plan.steps[2].t_land - plan.steps[2].t_lift),
+        plan.steps[2].t_lift + 0.7 * (plan.steps[2].t_land - plan.steps[2].t_lift), plan.steps[3].t_land - 0.02}) {
+    const FeetTarget before = feet_target(plan, w.swing_height, t - e),
+                     after = feet_target(plan, w.swing_height, t + e);
+    const FeetMotion m = feet_motion(plan, w.swing_height, t), m0 = feet_motion(plan, w.swing_height, t - e),
+                     m1 = feet_motion(plan, w.swing_height, t + e);
+    for (int side = 0; side < 2; ++side) {
+      const Vector3d v = (after.sole[side].p - before.sole[side].p) / (2 * e);
+      const Vector3d omega = rotation_vector(after.sole[side].R * before.sole[side].R.transpose()) / (2 * e);
+      const Vector3d a = (m1.velocity[side] - m0.velocity[side]) / (2 * e);
+      const Vector3d alpha = (m1.angular_velocity[side] - m0.angular_velocity[side]) / (2 * e);
+      const double scale = std::max({1.0, m.acceleration[side].norm(), m.angular_acceleration[side].norm()});
+      EXPECT_LT((m.velocity[side] - v).norm(), 1e-6 * scale) << t << " side " << side;
+      EXPECT_LT((m.angular_velocity[side] - omega).norm(), 1e-6 * scale) << t << " side " << side;
+      EXPECT_LT((m.acceleration[side] - a).norm(), 1e-6 * scale) << t << " side " << side;
+      EXPECT_LT((m.angular_acceleration[side] - alpha).norm(), 1e-6 * scale) << t << " side " << side;
+      if (m.acceleration[side].norm() > 1.0 && m.angular_velocity[side].norm() > 0.05) ++swinging;
+    }
+    EXPECT_NEAR(m.floor_velocity, (after.floor_z - before.floor_z) / (2 * e), 1e-6) << t;
+    EXPECT_NEAR(m.floor_acceleration, (m1.floor_velocity - m0.floor_velocity) / (2 * e), 1e-6) << t;
+  }
+  EXPECT_GE(swinging, 2);  // (the mid-swing instants move and turn)
 }
 
 }  // namespace

@@ -27,8 +27,8 @@
 /// compensator, a feed-forward, keeps the plan's loads (the full form): the F/T reading fed into
 /// the commands closes a loop of gain ≈ 1 through the gears, and the walks fall. `dynamic`: both
 /// add the legs' inertial torques of the planned motion — the plan's joint and pelvis velocities
-/// and accelerations (SupportPlan::motion, walking/planned_motion.hpp: central differences of the
-/// plan's IK, without the balance loops) through the recursive Newton–Euler. With
+/// and accelerations (SupportPlan::motion, walking/planned_motion.hpp: the exact derivatives of
+/// the plan's IK, without the balance loops) through the recursive Newton–Euler. With
 /// control.plan_horizontal_force f > 0 the input side's ground wrench is the plan's own: the whole
 /// body's Newton–Euler of the planned motion with no foot loaded gives the wrench (F, N) the ground
 /// must supply; its centre of pressure p (the plan's multibody ZMP) is where the split is made, and

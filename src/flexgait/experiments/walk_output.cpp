@@ -125,6 +125,18 @@ Writer walk_joints_rows(const WalkResult& r) {
   return csv;
 }
 
+/// A row's cells as numbers, the calls of CsvWriter and Table (log_row, joints_row): the numbers
+/// Table's columns would hold for that row.
+struct RowNumbers {
+  std::vector<double> numbers;
+  RowNumbers& cell(double v) {
+    numbers.push_back(v);
+    return *this;
+  }
+  RowNumbers& cell(long long v) { return cell(static_cast<double>(v)); }
+  void end_row() {}
+};
+
 }  // namespace
 
 WalkColumns::WalkColumns(const std::vector<std::string>& names, bool k_estimation) : k_estimation_(k_estimation) {
@@ -142,14 +154,14 @@ WalkColumns::WalkColumns(const std::vector<std::string>& names, bool k_estimatio
 }
 
 std::vector<double> WalkColumns::values(const WalkSample& sample) const {
-  // (one row of each file by the writers of the files themselves: the values are the files')
-  Table log(log_header()), joints(joints_header(k_estimation_));
+  // One row of each file by the writers of the files themselves (the values are the files'), into
+  // a row of numbers as Table holds them (an integer cell as its double): no header per sample.
+  RowNumbers log, joints;
   log_row(log, sample);
   joints_row(joints, sample, k_estimation_);
   std::vector<double> out;
   out.reserve(where_.size());
-  for (const auto& [in_joints, column] : where_)
-    out.push_back((in_joints ? joints : log).columns()[column].numbers.at(0));
+  for (const auto& [in_joints, column] : where_) out.push_back((in_joints ? joints : log).numbers.at(column));
   return out;
 }
 

@@ -26,6 +26,40 @@ std::size_t step_at(const WalkPlan& plan, double t) {
   return std::min<std::size_t>(static_cast<std::size_t>((t - plan.steps.front().t_begin) / T), plan.steps.size() - 1);
 }
 
+/// A unit vector n = v/|v| and its first two derivatives along a path, from v's: with r = |v|,
+/// r' = n·v', n' = (v' − n r')/r, n'' = (v'' − 2 n' r' − n r'')/r, r'' = n'·v' + n·v''.
+std::array<Vector3d, 3> unit_with_derivatives(const Vector3d& v, const Vector3d& dv, const Vector3d& ddv) {
+  const double r = v.norm();
+  const Vector3d n = v / r;
+  const double dr = n.dot(dv);
+  const Vector3d dn = (dv - n * dr) / r;
+  const double ddr = dn.dot(dv) + n.dot(ddv);
+  return {n, dn, (ddv - 2 * dn * dr - n * ddr) / r};
+}
+
+/// The angular velocity of sole_attitude(g + b Δg, ψ + b Δψ) per unit of b and its derivative in b,
+/// at b (world): with R(b) = [x, z × x, z] of ground_slope.hpp (G2) and Ṙ Rᵀ = [ω]×, ω_b is the
+/// skew part of R_b Rᵀ and ω_bb that of R_bb Rᵀ (R_b R_bᵀ is symmetric).
+std::array<Vector3d, 2> sole_turn_rates(const Footprint& from, const Footprint& to, double b) {
+  const Eigen::Vector2d g = from.slope + b * (to.slope - from.slope), dg = to.slope - from.slope;
+  const double yaw = from.yaw + b * (to.yaw - from.yaw), dyaw = to.yaw - from.yaw;
+  const Eigen::Vector2d h(std::cos(yaw), std::sin(yaw)), dh = Eigen::Vector2d(-h.y(), h.x()) * dyaw,
+                                                         ddh = -h * dyaw * dyaw;
+  const auto x =
+      unit_with_derivatives(Vector3d(h.x(), h.y(), g.dot(h)), Vector3d(dh.x(), dh.y(), dg.dot(h) + g.dot(dh)),
+                            Vector3d(ddh.x(), ddh.y(), 2 * dg.dot(dh) + g.dot(ddh)));
+  const auto z =
+      unit_with_derivatives(Vector3d(-g.x(), -g.y(), 1.0), Vector3d(-dg.x(), -dg.y(), 0.0), Vector3d::Zero());
+  Matrix3d R, dR, ddR;
+  R << x[0], z[0].cross(x[0]), z[0];
+  dR << x[1], z[1].cross(x[0]) + z[0].cross(x[1]), z[1];
+  ddR << x[2], z[2].cross(x[0]) + 2 * z[1].cross(x[1]) + z[0].cross(x[2]), z[2];
+  const auto vee = [](const Matrix3d& M) {
+    return Vector3d(0.5 * (M(2, 1) - M(1, 2)), 0.5 * (M(0, 2) - M(2, 0)), 0.5 * (M(1, 0) - M(0, 1)));
+  };
+  return {vee(dR * R.transpose()), vee(ddR * R.transpose())};
+}
+
 }  // namespace
 
 double quintic_blend(double s) {
@@ -117,6 +151,32 @@ FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t) {
   p.R = sole_attitude(s.from.slope + b * (s.to.slope - s.from.slope), s.from.yaw + b * (s.to.yaw - s.from.yaw));
   out.sole[s.swing] = p;
   out.swinging[s.swing] = u > 0 && u < 1;
+  return out;
+}
+
+FeetMotion feet_motion(const WalkPlan& plan, double swing_height, double t) {
+  // feet_target's swing, differentiated: u = (t − t_lift)/(t_land − t_lift), b = 10u³ − 15u⁴ + 6u⁵,
+  // b' = 30 u²(1 − u)², b'' = 60 u(1 − u)(1 − 2u); the arc 64 H w³, w = u(1 − u), w' = 1 − 2u, w'' = −2.
+  FeetMotion out;
+  if (plan.steps.empty() || t < plan.steps.front().t_begin || t >= plan.steps.back().t_land) return out;
+  const Step& s = plan.steps[step_at(plan, t)];
+  if (t < s.t_lift) return out;
+  const double duration = s.t_land - s.t_lift;
+  const double u = std::clamp((t - s.t_lift) / duration, 0.0, 1.0);
+  if (!(u > 0 && u < 1)) return out;
+  const double du = 1 / duration;
+  const double b1 = 30 * u * u * (1 - u) * (1 - u) * du, b2 = 60 * u * (1 - u) * (1 - 2 * u) * du * du;
+  const double w = u * (1 - u), H = 64 * (swing_height + std::abs(s.to.z - s.from.z));
+  const double z1 = H * 3 * w * w * (1 - 2 * u) * du,
+               z2 = H * (6 * w * (1 - 2 * u) * (1 - 2 * u) - 6 * w * w) * du * du;
+  const Vector3d delta(s.to.x - s.from.x, s.to.y - s.from.y, s.to.z - s.from.z);
+  out.velocity[s.swing] = delta * b1 + Vector3d(0, 0, z1);
+  out.acceleration[s.swing] = delta * b2 + Vector3d(0, 0, z2);
+  const auto turn = sole_turn_rates(s.from, s.to, quintic_blend(u));
+  out.angular_velocity[s.swing] = turn[0] * b1;
+  out.angular_acceleration[s.swing] = turn[1] * b1 * b1 + turn[0] * b2;
+  out.floor_velocity = 0.5 * delta.z() * b1;
+  out.floor_acceleration = 0.5 * delta.z() * b2;
   return out;
 }
 

@@ -61,6 +61,17 @@ struct FeetTarget {
 /// between theirs.
 FeetTarget feet_target(const WalkPlan& plan, double swing_height, double t);
 
+/// The time derivatives of feet_target (world): each sole's velocity and acceleration, angular
+/// velocity and acceleration, and the floor height's (zero but for a swinging foot).
+struct FeetMotion {
+  std::array<Vector3d, 2> velocity{Vector3d::Zero(), Vector3d::Zero()};              ///< [m/s]
+  std::array<Vector3d, 2> acceleration{Vector3d::Zero(), Vector3d::Zero()};          ///< [m/s^2]
+  std::array<Vector3d, 2> angular_velocity{Vector3d::Zero(), Vector3d::Zero()};      ///< [rad/s]
+  std::array<Vector3d, 2> angular_acceleration{Vector3d::Zero(), Vector3d::Zero()};  ///< [rad/s^2]
+  double floor_velocity = 0, floor_acceleration = 0;  ///< of FeetTarget::floor_z [m/s, m/s^2]
+};
+FeetMotion feet_motion(const WalkPlan& plan, double swing_height, double t);
+
 /// Sets every footprint's z to height(x, y) [m] and its slope to the height's gradient there, by
 /// central differences of ±1 mm (a controller told the floor).
 template <class Height>

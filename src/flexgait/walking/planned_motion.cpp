@@ -1,7 +1,7 @@
 #include "flexgait/walking/planned_motion.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "flexgait/walking/rotation.hpp"
 
@@ -10,9 +10,8 @@ namespace {
 
 /// The pelvis is placed by Newton's method on its xy with one Jacobian ∂c/∂p (the COM's move
 /// per pelvis move, the soles held; ≈ 0.8 I, the legs' links move less than the trunk), taken at
-/// a centre pose by differences of this step [m] (and kept while it serves: it changes slowly
-/// with the legs' pose); two steps from a guess millimetres off leave < 1e-7 m, and what they
-/// leave varies smoothly with s (planned_motion_test).
+/// the pose by differences of this step [m] (and kept while it serves: it changes slowly with
+/// the legs' pose); two steps from a guess millimetres off leave < 1e-7 m (planned_motion_test).
 constexpr double kJacobianStep = 1e-3;
 constexpr int kNewtonSteps = 2;
 
@@ -51,56 +50,133 @@ double heading_of(const std::array<Pose, 2>& soles) {
   return std::atan2(heading.y(), heading.x());
 }
 
-PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data,
+PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& guess, RobotModelData& data,
                              Eigen::Matrix2d& inverse, bool refresh) {
-  std::array<Pose, 3> pelvis;
-  std::array<humanoid::JointVector, 3> q;
-  std::array<double, 3> yaw{};
-  for (int i : {1, 0, 2}) {  // the centre first: its Jacobian serves all three
-    const double s = (i - 1) * h;
-    const FeetTarget feet = feet_target(*in.plan, in.swing_height, t + s);
-    const Eigen::Vector2d target = Eigen::Vector2d(in.cart[0](0) + s * in.cart[0](1) + 0.5 * s * s * in.cart[0](2),
-                                                   in.cart[1](0) + s * in.cart[1](1) + 0.5 * s * s * in.cart[1](2)) +
-                                   in.com_offset;
-    yaw[i] = heading_of(feet.sole);
-    Pose& p = pelvis[i];
-    p.R = rot_z(yaw[i]) * in.tilt;
-    p.p = guess.p + s * Vector3d(in.cart[0](1), in.cart[1](1), 0.0);
-    p.p.z() = in.pelvis_height + feet.floor_z;
-    q[i] = {};
-    Eigen::Vector2d c;
-    place(*in.model, data, feet.sole, p, q[i], &c);
-    if (i == 1 && refresh) {
-      Eigen::Matrix2d J;
-      for (int axis = 0; axis < 2; ++axis) {
-        Pose moved = p;
-        moved.p(axis) += kJacobianStep;
-        Eigen::Vector2d c_moved;
-        place(*in.model, data, feet.sole, moved, q[i], &c_moved);
-        J.col(axis) = (c_moved - c) / kJacobianStep;
-      }
-      inverse = J.inverse();
+  const RobotModel& model = *in.model;
+  // The pose at t: the pelvis's xy by Newton on the COM's miss.
+  const FeetTarget feet = feet_target(*in.plan, in.swing_height, t);
+  const Eigen::Vector2d target = Eigen::Vector2d(in.cart[0](0), in.cart[1](0)) + in.com_offset;
+  Pose p;
+  p.R = rot_z(heading_of(feet.sole)) * in.tilt;
+  p.p = guess.p;
+  p.p.z() = in.pelvis_height + feet.floor_z;
+  humanoid::JointVector q{};
+  Eigen::Vector2d c;
+  place(model, data, feet.sole, p, q, &c);
+  if (refresh) {
+    Eigen::Matrix2d J;
+    for (int axis = 0; axis < 2; ++axis) {
+      Pose moved = p;
+      moved.p(axis) += kJacobianStep;
+      Eigen::Vector2d c_moved;
+      place(model, data, feet.sole, moved, q, &c_moved);
+      J.col(axis) = (c_moved - c) / kJacobianStep;
     }
-    for (int step = 0; step < kNewtonSteps; ++step) {
-      p.p.head<2>() += inverse * (target - c);
-      place(*in.model, data, feet.sole, p, q[i], step + 1 < kNewtonSteps ? &c : nullptr);
-    }
+    inverse = J.inverse();
   }
+  for (int step = 0; step < kNewtonSteps; ++step) {
+    p.p.head<2>() += inverse * (target - c);
+    place(model, data, feet.sole, p, q, &c);  // (the last: the pose's kinematics, for the rates below)
+  }
+  // Its rates. The pelvis: z on the floor's height, the heading ψ = atan2(h_y, h_x) of h = x₀ + x₁ (the soles'
+  // x axes, ẋ = ω × x): ψ̇ = (h × ḣ)_z / |h|², ψ̈ = (h × ḧ)_z / |h|² − 2 ψ̇ (h · ḣ) / |h|² (horizontal parts).
+  const FeetMotion fm = feet_motion(*in.plan, in.swing_height, t);
+  Vector3d h = Vector3d::Zero(), dh = Vector3d::Zero(), ddh = Vector3d::Zero();
+  for (int side = 0; side < 2; ++side) {
+    const Vector3d x = feet.sole[side].R.col(0), w = fm.angular_velocity[side];
+    h += x;
+    dh += w.cross(x);
+    ddh += fm.angular_acceleration[side].cross(x) + w.cross(w.cross(x));
+  }
+  const double h2 = h.x() * h.x() + h.y() * h.y();
+  const double yaw_rate = (h.x() * dh.y() - h.y() * dh.x()) / h2;
+  const double yaw_acceleration =
+      (h.x() * ddh.y() - h.y() * ddh.x()) / h2 - 2 * yaw_rate * (h.x() * dh.x() + h.y() * dh.y()) / h2;
   PlannedMotion m;
-  const double h2 = h * h;
-  for (int j = 0; j < humanoid::kJoints; ++j) {
-    m.velocity[j] = (q[2][j] - q[0][j]) / (2 * h);
-    m.acceleration[j] = (q[2][j] - 2 * q[1][j] + q[0][j]) / h2;
+  m.pelvis.angular_velocity = Vector3d(0, 0, yaw_rate);  // R = R_z(ψ) · tilt, the tilt constant
+  m.pelvis.angular_acceleration = Vector3d(0, 0, yaw_acceleration);
+  m.pelvis.velocity = Vector3d(0, 0, fm.floor_velocity);
+  m.pelvis.acceleration = Vector3d(0, 0, fm.floor_acceleration);
+  // The legs, each sole's twist V = J q̇ + (the pelvis's rigid motion carried to the sole), J the leg's Jacobian
+  // of its sole point (robot_model.hpp); the classical accelerations likewise, A = J q̈ + the bias of q̈ = 0. The
+  // COM: ċ = v_p + ω_p × (c − p) + Σ J_c q̇ with J_c's column j = a_j × (Σ_{k below j} m_k (c_k − p_j)) / M; the
+  // pelvis's unknown horizontal velocity enters through I − Σ J_c J⁻¹[I; 0] (the COM's move per pelvis move with
+  // the soles held: the exact form of the Newton's ∂c/∂p), and its acceleration through the same matrix.
+  using Matrix6x2 = Eigen::Matrix<double, 6, 2>;
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  std::array<Eigen::PartialPivLU<LegJacobian>, 2> lu;
+  std::array<Eigen::Matrix<double, 2, 6>, 2> Jc;  // (the horizontal rows: the COM's height is not held)
+  std::array<Matrix6x2, 2> per_pelvis;  // J⁻¹[I; 0] (x and y): the legs' rates per unit pelvis velocity, negated
+  std::array<Vector3d, 2> sole;
+  Eigen::Matrix2d A = Eigen::Matrix2d::Identity();  // (x and y)
+  const Vector3d c_world = center_of_mass(model, data);
+  for (int side = 0; side < 2; ++side) {
+    sole[side] = sole_pose(model, data, side).p;
+    lu[side].compute(leg_jacobian(model, data, side, sole[side]));
+    const int b0 = 2 + 7 * side;
+    Vector3d moment = Vector3d::Zero();
+    double mass = 0;
+    for (int i = 6; i >= 0; --i) {
+      const auto& b = model.bodies[b0 + i];
+      moment += b.mass * data.com_world[b0 + i];
+      mass += b.mass;
+      if (b.joint < 0) continue;
+      const Vector3d a = data.frame[b0 + i].R * b.axis;
+      Jc[side].col(b.joint - humanoid::leg_first_joint(side)) =
+          a.cross(moment - mass * data.frame[b0 + i].p).head<2>() / model.total_mass;
+    }
+    for (int axis = 0; axis < 2; ++axis) per_pelvis[side].col(axis) = lu[side].solve(Vector6d::Unit(axis));
+    A -= Jc[side] * per_pelvis[side];
   }
-  m.pelvis.velocity = (pelvis[2].p - pelvis[0].p) / (2 * h);
-  m.pelvis.acceleration = (pelvis[2].p - 2 * pelvis[1].p + pelvis[0].p) / h2;
-  // The heading turns about the world's z (R = R_z(yaw) · tilt, the tilt constant).
-  const double up = std::remainder(yaw[2] - yaw[1], 2 * std::numbers::pi);
-  const double down = std::remainder(yaw[1] - yaw[0], 2 * std::numbers::pi);
-  m.pelvis.angular_velocity = Vector3d(0, 0, (up + down) / (2 * h));
-  m.pelvis.angular_acceleration = Vector3d(0, 0, (up - down) / h2);
+  const Eigen::Matrix2d A_inverse = A.inverse();
+  // Velocities: q̇ = J⁻¹(V_s − [v_p + ω_p × (s − p); ω_p]), v_p = (v_xy, ż) with v_xy from the COM's ċ.
+  const Vector3d& wp = m.pelvis.angular_velocity;
+  std::array<Vector6d, 2> rate0;  // with v_xy = 0
+  Eigen::Vector2d c_dot0 = (m.pelvis.velocity + wp.cross(c_world - p.p)).head<2>();
+  for (int side = 0; side < 2; ++side) {
+    Vector6d V;
+    V << fm.velocity[side] - m.pelvis.velocity - wp.cross(sole[side] - p.p), fm.angular_velocity[side] - wp;
+    rate0[side] = lu[side].solve(V);
+    c_dot0 += Jc[side] * rate0[side];
+  }
+  const Eigen::Vector2d v_xy = A_inverse * (Eigen::Vector2d(in.cart[0](1), in.cart[1](1)) - c_dot0);
+  m.pelvis.velocity.head<2>() = v_xy;
+  for (int side = 0; side < 2; ++side) {
+    const Vector6d rate = rate0[side] - per_pelvis[side] * v_xy;
+    for (int i = 0; i < humanoid::kLegJoints; ++i) m.velocity[humanoid::leg_first_joint(side) + i] = rate(i);
+  }
+  // Accelerations: the bias (q̈ = 0, the pelvis's horizontal acceleration 0) by the model's forward pass, the COM's
+  // Σ m_i (a_i + α_i × c_i + ω_i × (ω_i × c_i)) / M with c_i the centre from the origin.
+  RobotDynamicsData dyn;
+  forward_motion(model, data, m.pelvis, m.velocity, humanoid::JointVector{}, dyn, 0.0);
+  Vector3d c_ddot = Vector3d::Zero();
+  for (int i = 0; i < kBodies; ++i) {
+    const Vector3d c = data.com_world[i] - data.frame[i].p, &w = dyn.angular_velocity[i];
+    c_ddot += model.bodies[i].mass * (dyn.acceleration[i] + dyn.angular_acceleration[i].cross(c) + w.cross(w.cross(c)));
+  }
+  Eigen::Vector2d c_ddot0 = c_ddot.head<2>() / model.total_mass;
+  std::array<Vector6d, 2> accel0;
+  for (int side = 0; side < 2; ++side) {
+    const int foot = model.foot[side];
+    const Vector3d r = sole[side] - data.frame[foot].p;
+    const Vector3d& w = dyn.angular_velocity[foot];
+    const Vector3d& alpha = dyn.angular_acceleration[foot];
+    Vector6d bias;
+    bias << dyn.acceleration[foot] + alpha.cross(r) + w.cross(w.cross(r)), alpha;
+    Vector6d a;
+    a << fm.acceleration[side], fm.angular_acceleration[side];
+    accel0[side] = lu[side].solve(a - bias);
+    c_ddot0 += Jc[side] * accel0[side];
+  }
+  const Eigen::Vector2d a_xy = A_inverse * (Eigen::Vector2d(in.cart[0](2), in.cart[1](2)) - c_ddot0);
+  m.pelvis.acceleration.head<2>() = a_xy;
+  for (int side = 0; side < 2; ++side) {
+    const Vector6d accel = accel0[side] - per_pelvis[side] * a_xy;
+    for (int i = 0; i < humanoid::kLegJoints; ++i) m.acceleration[humanoid::leg_first_joint(side) + i] = accel(i);
+  }
   m.com_acceleration = Vector3d(in.cart[0](2), in.cart[1](2), 0.0);
-  m.valid = true;
+  m.valid = std::all_of(m.acceleration.begin(), m.acceleration.end(), [](double a) { return std::isfinite(a); });
+  if (!m.valid) m = PlannedMotion{};  // a singular leg (a straight knee): no motion to give
   return m;
 }
 

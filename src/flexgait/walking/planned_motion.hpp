@@ -5,16 +5,16 @@
 ///
 /// The plan is smooth: the COM of the preview controller's cart-table (its state (c, ċ, c̈) is the
 /// COM's position, velocity and acceleration), the soles of feet_target (quintic swing, C²), the
-/// pelvis at its height and the feet's mean heading. Its pose at time t + s is the IK of
-///     c(t + s) = c + s ċ + s²/2 c̈,   soles(t + s),   yaw(t + s),
-/// with the pelvis position found so that the model's COM lies over c (Newton on the pelvis's xy,
-/// the Jacobian ∂c/∂p of the centre pose by differences). The joint
-/// motion is the central difference of three such poses, s = −h, 0, h:
-///     q̇ = (q₊ − q₋) / 2h,   q̈ = (q₊ − 2 q₀ + q₋) / h²,   the same for the pelvis,
-/// noise-free and O(h²) (the cart's jerk term, odd in s, cancels in both). The balance loops'
-/// corrections (foot rotations and lifts, the pelvis's counter-tilt, the ZMP feedback's COM
-/// shift) are fed back from the sensors: they enter the poses as constants, not as motion;
-/// differenced, their sensor noise reaches the accelerations amplified by 4/T².
+/// pelvis at its height and the feet's mean heading. Its pose at time t is the IK of c, the soles
+/// and the heading, with the pelvis position found so that the model's COM lies over c (Newton on
+/// the pelvis's xy, the Jacobian ∂c/∂p of the pose by differences). The joint and pelvis motion
+/// is that pose's exact derivative: the soles' rates from feet_motion (the plan's own derivatives),
+/// each leg's q̇ = J⁻¹(sole twist − the pelvis's motion carried to the sole) and q̈ = J⁻¹(sole
+/// acceleration − the bias of q̈ = 0) with J the leg's Jacobian, and the pelvis's horizontal
+/// velocity and acceleration such that the model's COM moves as ċ and c̈ (the COM Jacobian with the
+/// soles held). The balance loops' corrections (foot rotations and lifts, the pelvis's
+/// counter-tilt, the ZMP feedback's COM shift) are fed back from the sensors: they enter the pose as
+/// constants, not as motion (differenced, their sensor noise would reach the accelerations).
 #include <array>
 
 #include "flexgait/robot/joints.hpp"
@@ -55,11 +55,12 @@ struct PlanPoseInputs {
   Matrix3d tilt = Matrix3d::Identity();                  ///< constant pelvis tilt after the heading (balance)
 };
 
-/// The plan's motion at time t by central differences of step h [s] (h > 0), each pose's
-/// pelvis from `guess` (the pelvis of a nearby pose, e.g. the commanded one). `inverse`: (∂c/∂p)⁻¹,
-/// the pelvis's Newton step per COM miss, recomputed at the centre pose when `refresh` (else used
-/// as given: from a pose of the last ~0.1 s it still converges). `data` is scratch.
-PlannedMotion planned_motion(const PlanPoseInputs& in, double t, double h, const Pose& guess, RobotModelData& data,
+/// The plan's motion at time t, the pose's pelvis from `guess` (the pelvis of a nearby pose, e.g.
+/// the commanded one). `inverse`: (∂c/∂p)⁻¹, the pelvis's Newton step per COM miss, recomputed at
+/// the pose when `refresh` (else used as given: from a pose of the last ~0.1 s it still
+/// converges). `data` is scratch (it holds the pose's kinematics after). Not valid (all zero) where
+/// a leg's Jacobian is singular.
+PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& guess, RobotModelData& data,
                              Eigen::Matrix2d& inverse, bool refresh = true);
 
 }  // namespace flexgait::walking

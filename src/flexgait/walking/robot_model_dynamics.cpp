@@ -2,34 +2,53 @@
 
 namespace flexgait::walking {
 
+namespace {
+
+/// Body i's velocities and accelerations from its parent's (gravity as the pelvis's upward acceleration).
+[[gnu::always_inline]] inline void forward_step(const RobotModel& model, const RobotModelData& kinematics,
+                                                const BaseMotion& base, const humanoid::JointVector& qd,
+                                                const humanoid::JointVector& qdd, RobotDynamicsData& data,
+                                                double gravity, int i) {
+  const auto& b = model.bodies[i];
+  const Pose& f = kinematics.frame[i];
+  if (b.parent < 0) {
+    data.angular_velocity[i] = base.angular_velocity;
+    data.velocity[i] = base.velocity;
+    data.angular_acceleration[i] = base.angular_acceleration;
+    data.acceleration[i] = base.acceleration + Vector3d(0, 0, gravity * model.gravity);
+    return;
+  }
+  const int p = b.parent;
+  const Vector3d r = f.p - kinematics.frame[p].p;
+  const Vector3d& wp = data.angular_velocity[p];
+  Vector3d w = wp, alpha = data.angular_acceleration[p];
+  if (b.joint >= 0) {
+    const Vector3d a = f.R * b.axis;
+    w += a * qd[b.joint];
+    alpha += a * qdd[b.joint] + wp.cross(a * qd[b.joint]);
+  }
+  data.angular_velocity[i] = w;
+  data.angular_acceleration[i] = alpha;
+  data.velocity[i] = data.velocity[p] + wp.cross(r);
+  data.acceleration[i] = data.acceleration[p] + data.angular_acceleration[p].cross(r) + wp.cross(wp.cross(r));
+}
+
+}  // namespace
+
+void forward_motion(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
+                    const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
+                    double gravity) {
+  for (int i = 0; i < kBodies; ++i) forward_step(model, kinematics, base, qd, qdd, data, gravity, i);
+}
+
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
                       const FootWrenches& feet, double gravity) {
-  // Forward pass: velocities and accelerations (gravity as the pelvis's upward acceleration).
   for (int i = 0; i < kBodies; ++i) {
+    forward_step(model, kinematics, base, qd, qdd, data, gravity, i);
+    // The body's inertial wrench about its origin: F at the centre c, N about it.
     const auto& b = model.bodies[i];
     const Pose& f = kinematics.frame[i];
-    if (b.parent < 0) {
-      data.angular_velocity[i] = base.angular_velocity;
-      data.velocity[i] = base.velocity;
-      data.angular_acceleration[i] = base.angular_acceleration;
-      data.acceleration[i] = base.acceleration + Vector3d(0, 0, gravity * model.gravity);
-    } else {
-      const int p = b.parent;
-      const Vector3d r = f.p - kinematics.frame[p].p;
-      const Vector3d& wp = data.angular_velocity[p];
-      Vector3d w = wp, alpha = data.angular_acceleration[p];
-      if (b.joint >= 0) {
-        const Vector3d a = f.R * b.axis;
-        w += a * qd[b.joint];
-        alpha += a * qdd[b.joint] + wp.cross(a * qd[b.joint]);
-      }
-      data.angular_velocity[i] = w;
-      data.angular_acceleration[i] = alpha;
-      data.velocity[i] = data.velocity[p] + wp.cross(r);
-      data.acceleration[i] = data.acceleration[p] + data.angular_acceleration[p].cross(r) + wp.cross(wp.cross(r));
-    }
-    // The body's inertial wrench about its origin: F at the centre c, N about it.
     const Vector3d& w = data.angular_velocity[i];
     const Vector3d& alpha = data.angular_acceleration[i];
     const Vector3d c = f.R * b.com;

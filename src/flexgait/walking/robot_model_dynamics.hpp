@@ -66,6 +66,12 @@ struct FootWrenches {
   std::array<Wrench, 2> wrench;
 };
 
+/// inverse_dynamics's forward pass alone: each body's angular velocity and acceleration and its origin's velocity
+/// and acceleration (with `gravity` 1, plus g upward: the weight as an acceleration) into `data`.
+void forward_motion(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
+                    const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
+                    double gravity = 1.0);
+
 /// Inverse dynamics after forward_kinematics(model, kinematics, pelvis, q).
 /// \param qd joint velocities (humanoid::kJoints) [rad/s]; \param qdd joint accelerations [rad/s^2]
 /// \param gravity 1 to include the weight (model.gravity), 0 for the inertial part alone

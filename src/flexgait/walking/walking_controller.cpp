@@ -26,9 +26,6 @@ constexpr double kCaptureLiftHold = 0.012;
 int capture_lift_hold_periods(double period) {
   return static_cast<int>(std::ceil(kCaptureLiftHold / period - 1e-9));
 }
-/// Central-difference step of the planned motion [s] (planned_motion.hpp): O(h²) truncation,
-/// < 1e-3 of the swing's accelerations (planned_motion_test).
-constexpr double kPlanStep = 0.01;
 /// The planned motion's COM Jacobian is taken again every this many periods (0.1 s at 4 ms).
 constexpr int kPlanJacobianPeriods = 25;
 
@@ -676,8 +673,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     in.tilt = rot_y(d_pitch + calibration.pelvis_pitch) * rot_x(d_roll);
     const bool refresh = motion_jacobian_age_ <= 0;
     motion_jacobian_age_ = refresh ? kPlanJacobianPeriods : motion_jacobian_age_ - 1;
-    status_.motion =
-        planned_motion(in, t + period_, kPlanStep, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
+    status_.motion = planned_motion(in, t + period_, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
   }
   status_.desired = desired_;
   return desired_;
