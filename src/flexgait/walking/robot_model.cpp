@@ -58,6 +58,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   m.sole_length = r.sole_length;
   m.sole_width = r.sole_width;
   m.sole_offset = {Vector3d(0, r.sole_offset_y, -r.ankle_to_sole), Vector3d(0, -r.sole_offset_y, -r.ankle_to_sole)};
+  m.ft_to_sole = m.sole_offset;
   fill_leg_chain(m, 0);
   fill_leg_chain(m, 1);
   return m;

@@ -217,16 +217,17 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     const std::string foot_key = std::string("robot.feet.") + (side == 0 ? "left" : "right") + ".body";
     const int fb = r.foot[side];
     const Matrix3d& Rf = R0[static_cast<std::size_t>(fb)];
-    const double tilt = Eigen::AngleAxisd(Rf).angle();
-    if (!(tilt < kMaxFootTilt))
-      throw ConfigError(foot_key,
-                        fmt::format("key '{}' = '{}': the foot's frame is tilted {:.3g} rad from the root's at zero "
-                                    "joint angles; allowed: less than {} rad (a level sole, printed digits)",
-                                    foot_key, r.bodies[static_cast<std::size_t>(fb)].name, tilt, kMaxFootTilt));
-    // A tilt within the printed digits: the sole's frame is the foot body's, modelled as such.
-    m.sole_tilted[side] = Rf != Matrix3d::Identity();
-    m.sole_rotation[side] = Rf;
-    m.sole_offset[side] = m.sole_tilted[side] ? Vector3d(Rf * vec(r.sole[side].center)) : vec(r.sole[side].center);
+    // The sole's frame in the foot link's (root-parallel) frame: the foot body's orientation at zero
+    // angles, times the sole's own frame in it (Sole::quat; identity for a level foot, whose printed
+    // tilt below kMaxFootTilt is modelled as such).
+    const humanoid::Sole& sole = r.sole[side];
+    const bool own_frame = sole.quat != std::array<double, 4>{1, 0, 0, 0};
+    const Matrix3d Rs = own_frame ? Matrix3d(Rf * rotation(sole.quat)) : Rf;
+    m.sole_tilted[side] = Rs != Matrix3d::Identity();
+    m.sole_rotation[side] = Rs;
+    m.sole_offset[side] = m.sole_tilted[side] ? Vector3d(Rf * vec(sole.center)) : vec(sole.center);
+    // The sole centre from the F/T sensor (the foot body's origin, its axes the sole's), in the sole's frame.
+    m.ft_to_sole[side] = own_frame ? Vector3d(Rs.transpose() * m.sole_offset[side]) : m.sole_offset[side];
     LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
     fill_leg_chain(m, side);
     leg.analytic = layout_mismatch(m, side).empty() && !m.sole_tilted[side];
@@ -259,7 +260,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     leg.shank = -offset(4).z();
     // The F/T sensor (the foot body's origin) to the sole; for the analytic layout, the ankle to the sole.
     leg.ankle_to_sole = leg.analytic ? -(offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z()
-                                     : -m.sole_offset[static_cast<std::size_t>(side)].z();
+                                     : -m.ft_to_sole[static_cast<std::size_t>(side)].z();
     // For the analytic layout, the sole centre's horizontal shift from below the ankle.
     if (leg.analytic)
       leg.sole_shift = Vector3d((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).x(),
