@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <Eigen/Geometry>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
@@ -26,6 +28,7 @@ using testing::fixture_walk;
 using testing::small_biped_walk;
 using walking::Pose;
 using walking::RobotModel;
+using walking::Vector3d;
 
 LoadedRobot builtin_loaded() {
   return twin::load_robot_text(twin::humanoid_mjcf(RobotParams{}, twin::PlantParams{}), "xml", "builtin.xml",
@@ -250,6 +253,45 @@ TEST(RobotModelLoaded, OctagonSphereFeetSoleIsTheOctagonAndUrdfExportKeepsIt) {
   const experiments::WalkResult r = experiments::run_walk(reloaded);
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 4);
+// Foot bodies whose frames follow the joint axes (turned 90 deg at zero joint angles) and a sole
+// box pitched 10 deg there: the sole takes the box's frame (its z the box's face that looks most
+// down, its x the axis that looks most forward), the model agrees with MuJoCo's (the twin's sole
+// plate and F/T site in that frame), FK∘IK, and the robot stands with its ankles pitched 10 deg to
+// level the soles and walks 10 steps.
+TEST(RobotModelLoaded, TurnedFootFramesTakeTheSolesOwnFrame) {
+  experiments::WalkRunParams walk = fixture_walk("turned_foot_frames.yaml");
+  ASSERT_TRUE(walk.loaded);
+  const Eigen::Matrix3d pitch10 = Eigen::AngleAxisd(10.0 * std::numbers::pi / 180.0, Vector3d::UnitY()).matrix();
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  for (int side = 0; side < 2; ++side) {
+    const Sole& sole = walk.loaded->sole[side];
+    // the box's own frame in the foot body's: -80 deg about y (17 printed digits and a few products: 1e-14)
+    const Eigen::Quaterniond q(sole.quat[0], sole.quat[1], sole.quat[2], sole.quat[3]);
+    EXPECT_LT((q.toRotationMatrix() - Eigen::AngleAxisd(-80.0 * std::numbers::pi / 180.0, Vector3d::UnitY()).matrix())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-14);
+    EXPECT_NEAR(sole.length, 0.18, 1e-15);
+    EXPECT_NEAR(sole.width, 0.10, 1e-15);
+    EXPECT_TRUE(model.sole_tilted[side]);
+    EXPECT_LT((model.sole_rotation[side] - pitch10).cwiseAbs().maxCoeff(), 1e-14);
+    // the sole centre 60 mm below the ankle along the sole's normal: 50 mm to the box's centre, 10 mm
+    // its half-thickness
+    EXPECT_LT((model.sole_offset[side] - (Vector3d(0, 0, -0.05) + pitch10 * Vector3d(0, 0, -0.01))).norm(), 1e-14);
+    EXPECT_NEAR(model.leg[side].ankle_to_sole, 0.05 * std::cos(10.0 * std::numbers::pi / 180.0) + 0.01, 1e-14);
+    expect_ik_inverts_fk(model, side);
+  }
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  // Standing with level soles below the hips, the ankle pitch levels the 10 deg (hip and knee pitch
+  // add up to it with the ankle, the same axis y).
+  const JointVector q = walking::standing_angles(model, walk.walk.pelvis_height, walk.walk.step_width);
+  for (int side = 0; side < 2; ++side) {
+    const int j = leg_first_joint(side);
+    EXPECT_NEAR(q[j + 2] + q[j + 3] + q[j + 4], -10.0 * std::numbers::pi / 180.0, 1e-9) << side;
+  }
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
   EXPECT_EQ(r.metrics.mujoco_warnings, 0);
 }
 

@@ -31,7 +31,7 @@ bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque&
   const walking::FootContact c =
       walking::foot_contact(ft, sole_R, model.leg[side].ankle_to_sole,
                             model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.gravity);
-  const Eigen::Vector2d cop = c.cop - model.sole_offset[side].head<2>();
+  const Eigen::Vector2d cop = c.cop - model.ft_to_sole[side].head<2>();
   return c.normal_force >= min_share * model.total_mass * model.gravity &&
          walking::contains_scaled(model.sole_polygon[static_cast<std::size_t>(side)], cop, kFirmCopShare);
 }

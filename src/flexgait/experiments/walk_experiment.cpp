@@ -239,7 +239,7 @@ twin::TwinModel walk_twin(const WalkRunParams& params) {
   if (!params.loaded) return twin::builtin_twin(params.robot, params.plant);
   twin::TwinModel t;
   t.mjcf = twin::twin_mjcf(*params.loaded, params.robot, params.plant);
-  for (int side = 0; side < 2; ++side) t.sole_center[side] = params.loaded->sole[side].center;
+  for (int side = 0; side < 2; ++side) t.sole_center[side] = twin::sole_center_in_site(params.loaded->sole[side]);
   return t;
 }
 

@@ -237,7 +237,7 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
       const walking::FootContact c =
           walking::foot_contact(step.plant.sensors().ft[side], R, model.leg[side].ankle_to_sole,
                                 model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.gravity,
-                                model.sole_offset[side].head<2>());
+                                model.ft_to_sole[side].head<2>());
       if (c.normal_force <= 1.0) continue;
       moment += c.normal_force *
                 (Eigen::Vector2d(g.sole_pos[side][0], g.sole_pos[side][1]) - offset_ + R.topLeftCorner<2, 2>() * c.cop);

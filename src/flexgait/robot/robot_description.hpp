@@ -115,12 +115,23 @@ struct LoadedBody {
 
 /// The sole of one foot, in the foot body's frame: a rectangle (the controller's), and when the
 /// file's contact geoms make it, their convex hull on the sole plane.
+/// A foot body whose frame is turned from the root's at zero joint angles by less than this is a
+/// level foot printed with few digits (6 digits of a quaternion: ~1e-6 rad): its sole's frame is the
+/// body's own [rad].
+inline constexpr double kLevelFootTilt = 1e-3;
+
 struct Sole {
   int geom = -1;                   ///< index in the foot body's geoms, −1: added by the twin
-  std::array<double, 3> center{};  ///< centre of the rectangle [m]
-  double length = 0, width = 0;    ///< [m]
+  std::array<double, 3> center{};  ///< centre of the rectangle, in the foot body's frame [m]
+  double length = 0, width = 0;    ///< along the sole frame's x and y [m]
+  /// The sole's frame (x forward, z out of the sole) in the foot body's frame, w x y z: identity when
+  /// the body's axes are the sole's. A foot body turned at zero joint angles (kLevelFootTilt or more;
+  /// frames that follow the joint axes) has its sole's frame from its contact geoms: the box of the
+  /// lowest point, its face that looks most down and its axis that looks most forward; without a box,
+  /// or with a sole_size, the root's axes at zero joint angles. A sole_geom box's own axes.
+  std::array<double, 4> quat{1, 0, 0, 0};
   /// From the foot's contact geoms (no sole_geom, no sole_size): the convex hull (counter-clockwise,
-  /// x y in the foot frame [m]) of their points on the sole plane z = center[2], the lowest of them;
+  /// x y in the sole frame [m]) of their points on the sole plane z = center[2], the lowest of them;
   /// the rectangle is its bounding rectangle. Empty for a sole named or sized by the mapping.
   std::vector<std::array<double, 2>> hull;
   /// The foot body's geoms (indices in its geoms) whose points make the hull: the twin gives them

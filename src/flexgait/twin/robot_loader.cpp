@@ -212,12 +212,22 @@ double actuator_force_limit(const mjModel* m, int joint) {
 /// The points of geom `g` (in its body's frame) that can rest on a floor below the body: a sphere's
 /// or an ellipsoid's lowest point, a capsule's end spheres' lowest points, a box's eight corners, a
 /// cylinder's two rims (64 points each, the four extreme ones among them), a mesh's vertices (the
-/// collision shape is their convex hull). Nothing for a plane or a height field.
-std::vector<std::array<double, 3>> floor_points(const mjModel* m, int g) {
+/// collision shape is their convex hull). Nothing for a plane or a height field. With `frame` (a
+/// frame's quaternion in the body's), the points in that frame and "below" along its −z.
+std::vector<std::array<double, 3>> floor_points(const mjModel* m, int g, const mjtNum* frame = nullptr) {
   std::vector<std::array<double, 3>> out;
   const mjtNum* c = m->geom_pos + 3 * g;
   const mjtNum* q = m->geom_quat + 4 * g;
   const mjtNum* h = m->geom_size + 3 * g;
+  mjtNum c_in[3], q_in[4];
+  if (frame != nullptr) {  // the geom's pose in the frame: c' = F⁻¹ c, q' = F⁻¹ q
+    mjtNum inverse[4];
+    mju_negQuat(inverse, frame);
+    mju_rotVecQuat(c_in, c, inverse);
+    mju_mulQuat(q_in, inverse, q);
+    c = c_in;
+    q = q_in;
+  }
   auto at = [&](double x, double y, double z, double drop) {
     const mjtNum local[3] = {x, y, z};
     mjtNum v[3];
@@ -282,9 +292,10 @@ bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& ca
   };
   std::vector<Point> points;
   double lowest = INFINITY;
+  const bool turned = sole.quat != std::array<double, 4>{1, 0, 0, 0};
   for (int g = m->body_geomadr[b]; g >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
     if (!((m->geom_contype[g] & 1) || (m->geom_conaffinity[g] & 1))) continue;
-    for (const auto& x : floor_points(m, g)) {
+    for (const auto& x : floor_points(m, g, turned ? sole.quat.data() : nullptr)) {
       points.push_back({x, g});
       lowest = std::min(lowest, x[2]);
     }
@@ -305,6 +316,11 @@ bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& ca
       hi[static_cast<std::size_t>(i)] = std::max(hi[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(i)]);
     }
   sole.center = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), lowest};
+  if (turned) {  // the centre in the foot body's frame
+    mjtNum in_body[3];
+    mju_rotVecQuat(in_body, sole.center.data(), sole.quat.data());
+    sole.center = {in_body[0], in_body[1], in_body[2]};
+  }
   sole.length = hi[0] - lo[0];
   sole.width = hi[1] - lo[1];
   sole.hull_in_twin = true;
@@ -316,6 +332,60 @@ bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& ca
       sole.hull_geoms.push_back(k);
   }
   return true;
+}
+
+/// Body b's orientation in the frame of its ancestor `root` at zero joint angles (w x y z).
+std::array<double, 4> zero_pose_quat(const mjModel* m, int b, int root) {
+  std::array<double, 4> q{1, 0, 0, 0};
+  for (int x = b; x != root; x = m->body_parentid[x]) {
+    std::array<double, 4> t{};
+    mju_mulQuat(t.data(), m->body_quat + 4 * x, q.data());
+    q = t;
+  }
+  return q;
+}
+
+/// The sole's frame of a foot body turned at zero joint angles (Sole::quat), given the body's
+/// orientation `foot` in the root's frame there: the contact box with the lowest point in the
+/// root's frame; its axis nearest the vertical is the sole's z (pointing up), of the other two the
+/// one nearest the root's x is its x (pointing forward). Without a contact box, the root's axes.
+std::array<double, 4> turned_sole_frame(const mjModel* m, int b, const std::array<double, 4>& foot) {
+  mjtNum Rf[9];
+  mju_quat2Mat(Rf, foot.data());
+  auto in_root = [&](const std::array<double, 3>& v, int i) {
+    return Rf[3 * i] * v[0] + Rf[3 * i + 1] * v[1] + Rf[3 * i + 2] * v[2];
+  };
+  int box = -1;
+  double lowest = INFINITY;
+  for (int g = m->body_geomadr[b]; g >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
+    if (m->geom_type[g] != mjGEOM_BOX || !((m->geom_contype[g] & 1) || (m->geom_conaffinity[g] & 1))) continue;
+    for (const auto& x : floor_points(m, g))
+      if (in_root(x, 2) < lowest) lowest = in_root(x, 2), box = g;
+  }
+  std::array<double, 9> S{1, 0, 0, 0, 1, 0, 0, 0, 1};  // the sole's axes in the root's frame, as columns
+  if (box >= 0) {
+    mjtNum Rg[9], A[9];  // the box's axes in the body's frame, then in the root's
+    mju_quat2Mat(Rg, m->geom_quat + 4 * box);
+    mju_mulMatMat(A, Rf, Rg, 3, 3, 3);
+    auto column = [&](int k) { return std::array<double, 3>{A[k], A[3 + k], A[6 + k]}; };
+    int up = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(A[6 + k]) > std::abs(A[6 + up])) up = k;
+    int forward = up == 0 ? 1 : 0;
+    for (int k = 0; k < 3; ++k)
+      if (k != up && std::abs(A[k]) > std::abs(A[forward])) forward = k;
+    std::array<double, 3> z = column(up), x = column(forward);
+    if (z[2] < 0) z = {-z[0], -z[1], -z[2]};
+    if (x[0] < 0) x = {-x[0], -x[1], -x[2]};
+    const std::array<double, 3> y{z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]};
+    S = {x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]};
+  }
+  mjtNum RfT[9], R[9];  // the sole's axes in the body's frame: Rfᵀ S
+  mju_transpose(RfT, Rf, 3, 3);
+  mju_mulMatMat(R, RfT, S.data(), 3, 3, 3);
+  std::array<double, 4> q{};
+  mju_mat2Quat(q.data(), R);
+  return q;
 }
 
 /// Refuses a foot whose sole the mapping does not give when one of its colliding geoms showed a
@@ -557,6 +627,10 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
     }
     out.foot[side] = index[static_cast<std::size_t>(b)];
     humanoid::Sole& sole = out.sole[side];
+    // A foot body turned from the root at zero joint angles (frames that follow the joint axes): the
+    // sole has its own frame (Sole::quat).
+    const std::array<double, 4> foot_quat = zero_pose_quat(m, b, root);
+    const bool turned = 2 * std::acos(std::min(1.0, std::abs(foot_quat[0]))) >= humanoid::kLevelFootTilt;
     // (the builtin's sole name left as it is, and the file has no such geom: no sole geom named)
     const bool builtin_name =
         f.sole_geom == humanoid::RobotDescriptionParams{}.feet[static_cast<std::size_t>(side)].sole_geom &&
@@ -583,7 +657,9 @@ humanoid::LoadedRobot load_robot_text(const std::string& text, const std::string
       sole.center = {c[0], c[1], c[2]};
       sole.length = size[0];
       sole.width = size[1];
+      if (turned) mju_negQuat(sole.quat.data(), foot_quat.data());  // the root's axes at zero angles
     } else {
+      if (turned) sole.quat = turned_sole_frame(m, b, foot_quat);
       // The sole from the foot's contact geoms (a foot whose collision mesh is missing cannot have it).
       if (!missing_meshes.empty() && format == "xml") check_foot_meshes(text, source, missing_meshes, f, prefix);
       if (!sole_from_contact_geoms(m, b, carried, sole))

@@ -1,6 +1,7 @@
 #include "flexgait/twin/twin_mjcf.hpp"
 
 #include <fmt/format.h>
+#include <mujoco/mujoco.h>
 
 #include <algorithm>
 #include <cmath>
@@ -49,6 +50,11 @@ std::string unit_list(const std::array<double, N>& v) {
   return list(v);
 }
 
+/// Whether a sole has a frame of its own in its foot body (humanoid::Sole::quat).
+bool own_frame(const humanoid::Sole& s) {
+  return s.quat != std::array<double, 4>{1, 0, 0, 0};
+}
+
 /// A name the twin gives to its own elements: a file geom of that name loses it.
 bool reserved(std::string_view name) {
   return name == "floor" || name == "l_sole" || name == "r_sole";
@@ -65,9 +71,11 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
                      root ? "1 0 0 0" : unit_list(body.quat));
   if (root) out += pad + "  <freejoint name=\"root\"/>\n";
   if (b == r.imu_body) out += pad + "  <site name=\"imu\" pos=\"0 0 0\" size=\"0.01\"/>\n";
+  // The F/T sensor at the foot body's origin, its axes the sole's (humanoid::Sole::quat).
   for (int side = 0; side < 2; ++side)
     if (b == r.foot[side])
-      out += fmt::format("{}  <site name=\"{}_ft\" pos=\"0 0 0\" size=\"0.01\"/>\n", pad, side == 0 ? "l" : "r");
+      out += fmt::format("{}  <site name=\"{}_ft\" pos=\"0 0 0\"{} size=\"0.01\"/>\n", pad, side == 0 ? "l" : "r",
+                         own_frame(r.sole[side]) ? " quat=\"" + unit_list(r.sole[side].quat) + "\"" : "");
   if (body.mass > 0)
     out += fmt::format("{}  <inertial pos=\"{}\" quat=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n", pad, list(body.ipos),
                        unit_list(body.iquat), body.mass, list(body.inertia));
@@ -112,10 +120,20 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
   if (side >= 0 && r.sole[side].geom < 0) {  // a sole plate 10 mm thick on the sole rectangle
     const humanoid::Sole& s = r.sole[side];
     // (on a sole the foot's own geoms make in the twin, the plate only marks it: no contact)
-    out += fmt::format(
-        "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 {}\"/>\n", pad,
-        sole_name, 0.5 * s.length, 0.5 * s.width, s.center[0], s.center[1], s.center[2] + 0.005,
-        s.hull_in_twin ? R"(contype="0" conaffinity="0")" : sole_contact, s.hull_in_twin ? "0.3" : "1");
+    const std::string contact = s.hull_in_twin ? R"(contype="0" conaffinity="0")" : sole_contact;
+    const char* alpha = s.hull_in_twin ? "0.3" : "1";
+    if (!own_frame(s)) {
+      out += fmt::format(
+          "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 {}\"/>\n", pad,
+          sole_name, 0.5 * s.length, 0.5 * s.width, s.center[0], s.center[1], s.center[2] + 0.005, contact, alpha);
+    } else {  // in the sole's frame: its centre 5 mm above the sole along the sole's z
+      mjtNum up[3] = {0, 0, 0.005}, shift[3];
+      mju_rotVecQuat(shift, up, s.quat.data());
+      const std::array<double, 3> c{s.center[0] + shift[0], s.center[1] + shift[1], s.center[2] + shift[2]};
+      out += fmt::format(
+          "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{}\" quat=\"{}\" {} rgba=\".3 .3 .8 {}\"/>\n",
+          pad, sole_name, 0.5 * s.length, 0.5 * s.width, list(c), unit_list(s.quat), contact, alpha);
+    }
   }
   for (std::size_t c = 0; c < r.bodies.size(); ++c)
     if (r.bodies[c].parent == b) write_body(out, r, robot, p, static_cast<int>(c), depth + 1);
@@ -123,6 +141,14 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
 }
 
 }  // namespace
+
+std::array<double, 3> sole_center_in_site(const humanoid::Sole& sole) {
+  if (!own_frame(sole)) return sole.center;
+  mjtNum inverse[4], c[3];
+  mju_negQuat(inverse, sole.quat.data());
+  mju_rotVecQuat(c, sole.center.data(), inverse);
+  return {c[0], c[1], c[2]};
+}
 
 std::string twin_mjcf(const humanoid::LoadedRobot& r, const humanoid::RobotParams& robot, const PlantParams& p) {
   std::string bodies;

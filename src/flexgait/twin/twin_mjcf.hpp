@@ -14,6 +14,9 @@
 
 namespace flexgait::twin {
 
+/// The sole centre in the frame of the F/T site twin_mjcf() puts on the foot (the sole's frame) [m].
+std::array<double, 3> sole_center_in_site(const humanoid::Sole& sole);
+
 /// \param robot sole friction (robot.sole_friction); \param plant gears, physics step, contacts.
 std::string twin_mjcf(const humanoid::LoadedRobot& loaded, const humanoid::RobotParams& robot,
                       const PlantParams& plant);

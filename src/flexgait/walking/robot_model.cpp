@@ -59,6 +59,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   m.sole_width = r.sole_width;
   m.sole_polygon = {rectangle_sole(r.sole_length, r.sole_width), rectangle_sole(r.sole_length, r.sole_width)};
   m.sole_offset = {Vector3d(0, r.sole_offset_y, -r.ankle_to_sole), Vector3d(0, -r.sole_offset_y, -r.ankle_to_sole)};
+  m.ft_to_sole = m.sole_offset;
   fill_leg_chain(m, 0);
   fill_leg_chain(m, 1);
   return m;

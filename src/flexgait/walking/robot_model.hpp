@@ -44,11 +44,14 @@ struct RobotModel {
   /// contact geoms, else (the builtin, a sole named or sized by the mapping) the rectangle.
   std::array<SolePolygon, 2> sole_polygon;
   std::array<Vector3d, 2> sole_offset{};  ///< sole centre in the foot frame [m]
-  /// The sole's orientation in the foot link's frame: a loaded foot whose frame is tilted from the
-  /// root's at zero angles by less than kMaxFootTilt (numbers printed with few digits); identity
-  /// unless sole_tilted.
+  /// The sole's orientation in the foot link's frame: a loaded foot body turned from the root at
+  /// zero angles (its printed tilt below kMaxFootTilt, or a frame of its own, humanoid::Sole::quat);
+  /// identity unless sole_tilted.
   std::array<Matrix3d, 2> sole_rotation{Matrix3d::Identity(), Matrix3d::Identity()};
   std::array<bool, 2> sole_tilted{false, false};
+  /// The sole centre from the F/T sensor, in the sole's frame [m] (the F/T wrench's lever arm): the
+  /// sole_offset unless the sole has a frame of its own.
+  std::array<Vector3d, 2> ft_to_sole{};
   /// Each joint's range [rad] (a loaded description's limited joints; ±∞ otherwise, and for the builtin).
   std::array<std::array<double, 2>, humanoid::kJoints> range = [] {
     std::array<std::array<double, 2>, humanoid::kJoints> r;
@@ -59,7 +62,7 @@ struct RobotModel {
 
 /// The largest tilt of a loaded foot's frame from the root's at zero angles that is taken as a
 /// printed level foot and modelled (6 printed digits of a quaternion: ~1e-6 rad) [rad].
-inline constexpr double kMaxFootTilt = 1e-3;
+inline constexpr double kMaxFootTilt = humanoid::kLevelFootTilt;
 
 /// Clamps each angle of `q` into its joint's range; returns how many were outside.
 int clamp_to_ranges(const RobotModel& model, humanoid::JointVector& q);
@@ -69,8 +72,8 @@ RobotModel make_robot_model(const humanoid::RobotParams& robot);
 /// (leg_kinematics.hpp: hip yaw (z), roll (x), pitch (y) axes meeting in a point, knee (y)
 /// straight below, ankle pitch (y) and roll (x) meeting straight below the knee, the sole centre
 /// below the ankle (a horizontal shift allowed, LegGeometry::sole_shift); checked to 1e-9 m), numeric otherwise
-/// (leg[side].analytic, and analytic_ik_mismatch says why). Throws ConfigError (robot.feet.<side>.body) when a foot's
-/// frame is tilted from the root's at zero angles by kMaxFootTilt or more.
+/// (leg[side].analytic, and analytic_ik_mismatch says why). A sole turned at zero angles (sole_rotation) is levelled
+/// by the numeric IK.
 RobotModel make_robot_model(const humanoid::LoadedRobot& robot);
 /// Why the analytic IK does not apply to leg `side` of a loaded description ("" when it does).
 std::string analytic_ik_mismatch(const humanoid::LoadedRobot& robot, int side);

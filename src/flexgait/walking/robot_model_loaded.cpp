@@ -218,16 +218,17 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     const std::string foot_key = std::string("robot.feet.") + (side == 0 ? "left" : "right") + ".body";
     const int fb = r.foot[side];
     const Matrix3d& Rf = R0[static_cast<std::size_t>(fb)];
-    const double tilt = Eigen::AngleAxisd(Rf).angle();
-    if (!(tilt < kMaxFootTilt))
-      throw ConfigError(foot_key,
-                        fmt::format("key '{}' = '{}': the foot's frame is tilted {:.3g} rad from the root's at zero "
-                                    "joint angles; allowed: less than {} rad (a level sole, printed digits)",
-                                    foot_key, r.bodies[static_cast<std::size_t>(fb)].name, tilt, kMaxFootTilt));
-    // A tilt within the printed digits: the sole's frame is the foot body's, modelled as such.
-    m.sole_tilted[side] = Rf != Matrix3d::Identity();
-    m.sole_rotation[side] = Rf;
-    m.sole_offset[side] = m.sole_tilted[side] ? Vector3d(Rf * vec(r.sole[side].center)) : vec(r.sole[side].center);
+    // The sole's frame in the foot link's (root-parallel) frame: the foot body's orientation at zero
+    // angles, times the sole's own frame in it (Sole::quat; identity for a level foot, whose printed
+    // tilt below kMaxFootTilt is modelled as such).
+    const humanoid::Sole& sole = r.sole[side];
+    const bool own_frame = sole.quat != std::array<double, 4>{1, 0, 0, 0};
+    const Matrix3d Rs = own_frame ? Matrix3d(Rf * rotation(sole.quat)) : Rf;
+    m.sole_tilted[side] = Rs != Matrix3d::Identity();
+    m.sole_rotation[side] = Rs;
+    m.sole_offset[side] = m.sole_tilted[side] ? Vector3d(Rf * vec(sole.center)) : vec(sole.center);
+    // The sole centre from the F/T sensor (the foot body's origin, its axes the sole's), in the sole's frame.
+    m.ft_to_sole[side] = own_frame ? Vector3d(Rs.transpose() * m.sole_offset[side]) : m.sole_offset[side];
     LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
     fill_leg_chain(m, side);
     leg.analytic = layout_mismatch(m, side).empty() && !m.sole_tilted[side];
@@ -260,7 +261,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     leg.shank = -offset(4).z();
     // The F/T sensor (the foot body's origin) to the sole; for the analytic layout, the ankle to the sole.
     leg.ankle_to_sole = leg.analytic ? -(offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).z()
-                                     : -m.sole_offset[static_cast<std::size_t>(side)].z();
+                                     : -m.ft_to_sole[static_cast<std::size_t>(side)].z();
     // For the analytic layout, the sole centre's horizontal shift from below the ankle.
     if (leg.analytic)
       leg.sole_shift = Vector3d((offset(6) + m.sole_offset[static_cast<std::size_t>(side)]).x(),
@@ -276,10 +277,14 @@ RobotModel make_robot_model(const LoadedRobot& r) {
                                   r.sole[0].length, r.sole[0].width));
   m.sole_length = r.sole[0].length;
   m.sole_width = r.sole[0].width;
-  // Each sole's polygon about its centre, in the foot body's frame (the sole's): the hull of the
-  // foot's contact geoms, unless it is its bounding rectangle (then the rectangle's own numbers).
+  // Each sole's polygon about its centre, in the sole's frame (the foot body's unless the sole has
+  // its own, Sole::quat): the hull of the foot's contact geoms, unless it is its bounding rectangle
+  // (then the rectangle's own numbers).
   for (int side = 0; side < 2; ++side) {
     const humanoid::Sole& s = r.sole[static_cast<std::size_t>(side)];
+    const Vector3d center = s.quat != std::array<double, 4>{1, 0, 0, 0}
+                                ? Vector3d(rotation(s.quat).transpose() * vec(s.center))
+                                : vec(s.center);
     auto distinct = [&](int axis) {
       std::vector<double> v;
       for (const auto& p : s.hull) v.push_back(p[static_cast<std::size_t>(axis)]);
@@ -288,7 +293,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     };
     const bool box = s.hull.empty() || (s.hull.size() == 4 && distinct(0) == 2 && distinct(1) == 2);
     std::vector<Eigen::Vector2d> corners;
-    for (const auto& p : s.hull) corners.emplace_back(p[0] - s.center[0], p[1] - s.center[1]);
+    for (const auto& p : s.hull) corners.emplace_back(p[0] - center[0], p[1] - center[1]);
     m.sole_polygon[static_cast<std::size_t>(side)] = box ? rectangle_sole(s.length, s.width) : polygon_sole(corners);
   }
   return m;

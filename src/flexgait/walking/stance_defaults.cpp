@@ -36,9 +36,44 @@ LegReach leg_reach(const RobotModel& model) {
   return r;
 }
 
+namespace {
+
+/// Whether standing at this height and width keeps every joint `margin` inside its range, the IK
+/// reaching the soles.
+bool stands_inside_ranges(const RobotModel& model, double pelvis_height, double step_width, double margin) {
+  for (int side = 0; side < 2; ++side) {
+    const Pose sole{Vector3d(0, (side == 0 ? 0.5 : -0.5) * step_width, -pelvis_height), Matrix3d::Identity()};
+    const IkSolution s = leg_inverse_kinematics(model.leg[static_cast<std::size_t>(side)], sole);
+    if (s.status != IkStatus::kOk) return false;
+    for (int i = 0; i < humanoid::kLegJoints; ++i) {
+      const auto& r = model.range[static_cast<std::size_t>(humanoid::leg_first_joint(side) + i)];
+      const double q = s.q[static_cast<std::size_t>(i)];
+      if (!(q >= r[0] + std::min(margin, 0.25 * (r[1] - r[0])) && q <= r[1] - std::min(margin, 0.25 * (r[1] - r[0]))))
+        return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 StanceDefaults stance_defaults(const RobotModel& model) {
   const LegReach r = leg_reach(model);
-  return {to_millimetre(r.stretched_height - kCrouchShare * r.length), to_millimetre(r.hip_spacing)};
+  StanceDefaults d{to_millimetre(r.stretched_height - kCrouchShare * r.length), to_millimetre(r.hip_spacing)};
+  if (stands_inside_ranges(model, d.pelvis_height, d.step_width, 0.0)) return d;
+  // The rule's height bends a joint out of its range (a robot whose zero pose is not THORMANG's):
+  // the nearest height, millimetre by millimetre within the crouch's span either way, that keeps
+  // each joint kStandingRangeMargin inside its range (a quarter of a narrower range).
+  const int span = static_cast<int>(std::ceil(kCrouchShare * r.length * 1000.0));
+  for (int k = 1; k <= span; ++k)
+    for (const int sign : {1, -1}) {
+      const double h = to_millimetre(d.pelvis_height + sign * k * 1e-3);
+      if (h < r.stretched_height && stands_inside_ranges(model, h, d.step_width, kStandingRangeMargin)) {
+        d.pelvis_height = h;
+        return d;
+      }
+    }
+  return d;  // none: check_standing_pose names the joint
 }
 
 double hip_to_ankle(const LegReach& reach, double pelvis_height) {

@@ -25,9 +25,16 @@ LegReach leg_reach(const RobotModel& model);
 /// about 1.07 rad with the hip above the ankle).
 inline constexpr double kCrouchShare = 0.0845 / 0.6;
 
+/// How far inside each joint's range a derived walking height keeps the standing pose when the
+/// crouch rule's height would not: room for the balance loops' corrections [rad].
+inline constexpr double kStandingRangeMargin = 0.1;
+
 struct StanceDefaults {
-  double pelvis_height = 0;  ///< walk.pelvis_height: stretched height − kCrouchShare · (thigh + shank), to 1 mm [m]
-  double step_width = 0;     ///< walk.step_width: the sole centres under the hip points, to 1 mm [m]
+  /// walk.pelvis_height: stretched height − kCrouchShare · (thigh + shank), to 1 mm; where that
+  /// bends a joint out of its range, the nearest height that keeps every joint kStandingRangeMargin
+  /// inside its range [m]
+  double pelvis_height = 0;
+  double step_width = 0;  ///< walk.step_width: the sole centres under the hip points, to 1 mm [m]
 };
 
 StanceDefaults stance_defaults(const RobotModel& model);

@@ -52,7 +52,8 @@ struct WalkParams {
        .doc = "pelvis origin above the floor",
        .bounds = closed(0.1, 3.0),
        .derived =
-           "the stretched legs' height less 14.08 % of thigh + shank, to 1 mm (the builtin: 0.723 m, ROBOTIS's)"});
+           "the stretched legs' height less 14.08 % of thigh + shank, to 1 mm (the builtin: 0.723 m, ROBOTIS's); where "
+           "that bends a joint out of its range, the nearest height that keeps each joint 0.1 rad inside it"});
     v("walk.start_time", s.start_time,
       {.unit = "s", .doc = "standing before the first step", .bounds = closed(0.0, 4000)});
     v("walk.end_time", s.end_time, {.unit = "s", .doc = "standing after the last step", .bounds = closed(0.0, 100)});

@@ -123,7 +123,7 @@ void WalkingController::measure_zmp(const humanoid::SensorReadings& s) {
   for (int side = 0; side < 2; ++side) {
     const Pose& sole = status_.sole[side];
     const FootContact c = foot_contact(s.ft[side], sole.R, model_.leg[side].ankle_to_sole, m_foot, model_.gravity,
-                                       model_.sole_offset[side].head<2>());  // about the sole centre, sole.p
+                                       model_.ft_to_sole[side].head<2>());  // about the sole centre, sole.p
     foot_contact_[side] = c;
     status_.contact[side] = c.normal_force > balance_.contact_force;
     status_.foot_force[side] = c.normal_force;
