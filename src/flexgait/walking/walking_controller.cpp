@@ -513,7 +513,7 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
     }
     if (early_landing_step_ == feet.step) return;  // landed (S3): the landing stays where the foot is
     Footprint to = planned_landing_;
-    if (step_adjusted_ && u0 > kEarlyLandingPhase && u0 < 1 && status_.contact[s.swing]) {
+    if (balance_.early_landing && step_adjusted_ && u0 > kEarlyLandingPhase && u0 < 1 && status_.contact[s.swing]) {
       // (S3) The swing foot meets the floor before its touchdown (the push rolls the robot toward
       // it): the step has landed, where the foot is by the encoders under the estimated attitude
       // (dcm_balance's kinematics) from the stance sole.
