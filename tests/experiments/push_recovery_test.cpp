@@ -76,6 +76,18 @@ TEST(PushRecoveryExperiment, UpperEndDoublesWhileRecovered) {
   EXPECT_GT(r.bound, 10.0);
 }
 
+/// A 4-step walk at 1 s/step in humanoid walk's default case, its push at mid single support of
+/// push_recovery.step (the 3rd: left foot in stance); the push's force is the bisection's.
+WalkRunParams pushed_at_mid_single_support() {
+  const PushRecoveryRunParams p = push_recovery_from_config(
+      config({"push_recovery.situation=walking", "push_recovery.direction=right", "walk.steps=4"}));
+  WalkRunParams base = p.run;
+  base.push.time = 0;
+  base.push.step = p.test.step;
+  base.push.phase = 0.5;
+  return base;
+}
+
 TEST(PushRecoveryExperiment, TowardTheSwingFootDcmRecoversAsMuchAsPd) {
   // Walking at 1 s/step in humanoid walk's default compensation case, a 0.1 s chest push at mid single
   // support of the 3rd step (left foot in stance) to the right, toward the swing foot. Measured by the full
@@ -84,12 +96,7 @@ TEST(PushRecoveryExperiment, TowardTheSwingFootDcmRecoversAsMuchAsPd) {
   // and falls at 18.0, dcm recovers 16.4 and falls at 17.2. Here a coarse bisection of pd from 20 N s to 5 N s
   // (3 runs: 20 falls, 10 and 15 are recovered) and one dcm run at pd's measured recovery less the 1 N s
   // tolerance the comparison is read to (16.2 N s): dcm recovers it.
-  PushRecoveryRunParams p = push_recovery_from_config(
-      config({"push_recovery.situation=walking", "push_recovery.direction=right", "walk.steps=4"}));
-  WalkRunParams base = p.run;
-  base.push.time = 0;
-  base.push.step = p.test.step;
-  base.push.phase = 0.5;
+  WalkRunParams base = pushed_at_mid_single_support();
   const Eigen::Vector2d toward_swing = push_direction_vector(PushDirection::kRight);
   base.balance.mode = walking::BalanceMode::kPd;
   const PushRecovery pd = largest_recoverable_push(base, toward_swing, 20.0, 5.0);
@@ -101,6 +108,20 @@ TEST(PushRecoveryExperiment, TowardTheSwingFootDcmRecoversAsMuchAsPd) {
   const PushRecovery dcm = largest_recoverable_push(base, toward_swing, pd_measured - tolerance, 5.0);
   EXPECT_FALSE(dcm.bracketed) << "dcm fell at " << pd_measured - tolerance << " N s";
   EXPECT_EQ(dcm.runs, 1);
+}
+
+TEST(PushRecoveryExperiment, TowardTheSwingFootDcmWithStepAdjustmentRecovers30PercentMoreThanPd) {
+  // The situation above. The push rolls the robot about the stance sole's edge and the swing foot meets the floor
+  // before its touchdown; with the early landing (S3 in step_adjustment.hpp) dcm with step adjustment recovers
+  // every push from 8 to 30 N s in a 2 N s grid (10 steps; without S3 it falls at 24-30 N s). One run at 1.3 times
+  // pd's measured 17.2 N s (the bisection in the test above brackets pd's own fall at 15-20 N s): recovered.
+  WalkRunParams base = pushed_at_mid_single_support();
+  base.balance.mode = walking::BalanceMode::kDcm;
+  base.balance.step_adjustment = true;
+  const double pd_measured = 17.2, target = 1.3 * pd_measured;
+  const PushRecovery r = largest_recoverable_push(base, push_direction_vector(PushDirection::kRight), target, 5.0);
+  EXPECT_FALSE(r.bracketed) << "dcm with step adjustment fell at " << target << " N s";
+  EXPECT_EQ(r.runs, 1);
 }
 
 }  // namespace

@@ -18,6 +18,15 @@
 /// sole's frame: each component by `limit`, the landing's distance from the stance sole centre by
 /// `reach`, and the swing foot stays on its own side at least `min_width` from the stance foot
 /// (the feet never cross; min_width < reach). Pure arithmetic: no allocation.
+///
+/// (S3) Early landing (step timing, Khadiv et al. 2016: the step ends when its foot is down). A
+/// push toward the swing foot rolls the robot about the stance sole's edge, and the swing foot
+/// meets the floor before its planned touchdown. Once a step has been adjusted and its swing foot
+/// is loaded past the arc's apex, the step has landed: its landing is where the foot is (no longer
+/// moved; the swing path would drag the loaded foot), and until the next step lifts the load is
+/// split between the feet by the stabiliser's centre of pressure, not by the reference, which
+/// would keep the weight on the old stance foot while the DCM runs over the new one (the
+/// controller, WalkingController::adjust_steps and load_split_point).
 #include <Eigen/Dense>
 
 #include "flexgait/walking/footstep_plan.hpp"

@@ -104,6 +104,7 @@ struct BalanceParams {
   // Step adjustment (mode dcm; step_adjustment.hpp).
   bool step_adjustment = false;         ///< move the next footstep when the DCM error leaves the sole
   double step_adjustment_limit = 0.25;  ///< |Δ| along each axis of the stance sole [m]
+  bool early_landing = true;            ///< an adjusted step whose swing foot meets the floor early lands there (S3)
   double step_reach = 0.4;              ///< landing to stance sole centre, at most [m]
   double recovery_step_time = 0.25;     ///< standing: the capture step's duration from lift-off [s]
   /// Standing: the capture step's foot lifts once the stance leg alone could carry the measured
@@ -174,6 +175,9 @@ struct BalanceParams {
     v("balance.step_adjustment", s.step_adjustment,
       {.doc = "dcm mode: move the next footstep toward the capture point when the DCM error leaves the sole (standing: "
               "step)"});
+    v("balance.early_landing", s.early_landing,
+      {.doc = "step adjustment while walking: an adjusted step whose swing foot meets the floor past its apex lands "
+              "there, and the load follows the stabiliser's centre of pressure until the next step lifts"});
     v("balance.step_adjustment_limit", s.step_adjustment_limit,
       {.unit = "m", .doc = "step adjustment: largest shift of a footstep along each axis", .bounds = closed(0, 0.5)});
     v("balance.step_reach", s.step_reach,

@@ -15,6 +15,9 @@ namespace {
 constexpr double kReplanDistance = 0.005;
 /// Step adjustment ends at this share of the swing (later, the swing foot's path would turn too sharply).
 constexpr double kLastAdjustment = 0.75;
+/// An adjusted step's swing foot loaded past this share of its swing (the arc's apex, footstep_plan.cpp)
+/// has landed early (S3); before it, a loaded swing foot scuffs the floor on its way up.
+constexpr double kEarlyLandingPhase = 0.5;
 constexpr double kCaptureSettle =
     0.5;  ///< after a capture step the ZMP moves from the landed foot to the feet's middle in this [s]
 /// Once the stance leg could not carry the load alone, the capture step's foot lifts after the
@@ -149,6 +152,13 @@ Eigen::Vector2d WalkingController::load_split_point() const {
   // 0.036 m rms), and the largest lateral push walking at 1 s/step is 7.0–41.4 N s against
   // 10.2–42.2 by the reference.
   const bool dcm = balance_.enabled && balance_.mode == BalanceMode::kDcm;
+  // (S3): from an adjusted step's early landing until the next step lifts, the command (the
+  // reference would hold the load on the old stance foot while the DCM runs over the new one).
+  if (dcm && early_landing_step_ >= 0 && early_landing_step_ >= status_.step - 1 &&
+      (early_landing_step_ == status_.step ||
+       (status_.step < static_cast<int>(plan_.steps.size()) &&
+        status_.t + period_ < plan_.steps[static_cast<std::size_t>(status_.step)].t_lift)))
+    return status_.zmp_command;
   return dcm && plan_.steps.empty() && !capture_.active ? status_.zmp_command : status_.zmp_ref;
 }
 
@@ -508,15 +518,30 @@ void WalkingController::adjust_steps(double t, std::size_t k, const FeetTarget& 
     // swing, the landing is the planned one moved by (S2) for the error now.
     Step& s = plan_.steps[static_cast<std::size_t>(feet.step)];
     const double u0 = std::clamp((t + period_ - s.t_lift) / (s.t_land - s.t_lift), 0.0, 1.0);  // swing phase
-    if (u0 > kLastAdjustment) return;
     if (adjusted_step_ != feet.step) {
       adjusted_step_ = feet.step;
       planned_landing_ = s.to;
+      step_adjusted_ = false;
     }
-    const Eigen::Vector2d beyond = dcm_error_beyond_sole(e, s.stance, half);
-    const Footprint to = beyond.squaredNorm() > 0 ? adjusted_landing(planned_landing_, s.stance, s.swing, beyond, omega,
-                                                                     s.t_land - t, limits)
-                                                  : planned_landing_;
+    if (early_landing_step_ == feet.step) return;  // landed (S3): the landing stays where the foot is
+    Footprint to = planned_landing_;
+    if (balance_.early_landing && step_adjusted_ && u0 > kEarlyLandingPhase && u0 < 1 && status_.contact[s.swing]) {
+      // (S3) The swing foot meets the floor before its touchdown (the push rolls the robot toward
+      // it): the step has landed, where the foot is by the encoders under the estimated attitude
+      // (dcm_balance's kinematics) from the stance sole.
+      early_landing_step_ = feet.step;
+      const Vector3d at = feet.sole[1 - s.swing].p + sole_pose(model_, estimate_data_, s.swing).p -
+                          sole_pose(model_, estimate_data_, 1 - s.swing).p;
+      to.x = at.x();
+      to.y = at.y();
+    } else {
+      if (u0 > kLastAdjustment) return;
+      const Eigen::Vector2d beyond = dcm_error_beyond_sole(e, s.stance, half);
+      if (beyond.squaredNorm() > 0) {
+        step_adjusted_ = true;
+        to = adjusted_landing(planned_landing_, s.stance, s.swing, beyond, omega, s.t_land - t, limits);
+      }
+    }
     const Eigen::Vector2d d(to.x - s.to.x, to.y - s.to.y);
     if (d.norm() < kReplanDistance) return;
     status_.step_shift = Eigen::Vector2d(to.x - planned_landing_.x, to.y - planned_landing_.y);

@@ -170,8 +170,9 @@ class WalkingController {
   /// the Mahony filter's bias), the accelerometer (nullptr: bad) and the loaded soles' kinematics.
   void update_tilt(const humanoid::SensorReadings& sensors, const Vector3d& gyro, const Vector3d* accel);
   /// Step adjustment (step_adjustment.hpp): while walking, moves the current step's landing and
-  /// the later footsteps once per step; standing (a plan without steps), inserts one recovery
-  /// step. Rewrites the ZMP reference from sample k on, so the preview controller replans.
+  /// the later footsteps once per step, and ends an adjusted step whose swing foot meets the floor
+  /// early there (S3); standing (a plan without steps), inserts one recovery step. Rewrites the ZMP
+  /// reference from sample k on, so the preview controller replans.
   void adjust_steps(double t, std::size_t k, const FeetTarget& feet);
   /// Standing step adjustment, (C0): the capture point has left the feet; both stay down, the
   /// centre of pressure at the feet's edge nearest the DCM, until the stance leg can carry the load
@@ -236,9 +237,11 @@ class WalkingController {
   double ft_fade_ = 1, imu_fade_ = 1;  ///< 1, fading to 0 after a failure of the F/T or IMU
   bool ft_failed_ = false, imu_failed_ = false;
   SafeStop safe_stop_;
-  int adjusted_step_ = -1;      ///< the step whose landing is being adjusted
-  Footprint planned_landing_;   ///< its landing before adjustment
-  bool recovery_step_ = false;  ///< a recovery step was inserted (standing)
+  int adjusted_step_ = -1;       ///< the step whose landing is being adjusted
+  Footprint planned_landing_;    ///< its landing before adjustment
+  bool step_adjusted_ = false;   ///< the DCM error has left the stance sole during that step
+  int early_landing_step_ = -1;  ///< the adjusted step whose swing foot met the floor before its touchdown (S3)
+  bool recovery_step_ = false;   ///< a recovery step was inserted (standing)
   struct CaptureStep {
     bool active = false;
     bool transfer = false;                        ///< both feet still down (the weight transfer before lift-off)
