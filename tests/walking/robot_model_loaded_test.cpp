@@ -253,90 +253,92 @@ TEST(RobotModelLoaded, OctagonSphereFeetSoleIsTheOctagonAndUrdfExportKeepsIt) {
   const experiments::WalkResult r = experiments::run_walk(reloaded);
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 4);
-  // Foot bodies whose frames follow the joint axes (turned 90 deg at zero joint angles) and a sole
-  // box pitched 10 deg there: the sole takes the box's frame (its z the box's face that looks most
-  // down, its x the axis that looks most forward), the model agrees with MuJoCo's (the twin's sole
-  // plate and F/T site in that frame), FK∘IK, and the robot stands with its ankles pitched 10 deg to
-  // level the soles and walks 10 steps.
-  TEST(RobotModelLoaded, TurnedFootFramesTakeTheSolesOwnFrame) {
-    experiments::WalkRunParams walk = fixture_walk("turned_foot_frames.yaml");
-    ASSERT_TRUE(walk.loaded);
-    const Eigen::Matrix3d pitch10 = Eigen::AngleAxisd(10.0 * std::numbers::pi / 180.0, Vector3d::UnitY()).matrix();
-    const RobotModel model = walking::make_robot_model(*walk.loaded);
-    for (int side = 0; side < 2; ++side) {
-      const Sole& sole = walk.loaded->sole[side];
-      // the box's own frame in the foot body's: -80 deg about y (17 printed digits and a few products: 1e-14)
-      const Eigen::Quaterniond q(sole.quat[0], sole.quat[1], sole.quat[2], sole.quat[3]);
-      EXPECT_LT((q.toRotationMatrix() - Eigen::AngleAxisd(-80.0 * std::numbers::pi / 180.0, Vector3d::UnitY()).matrix())
-                    .cwiseAbs()
-                    .maxCoeff(),
-                1e-14);
-      EXPECT_NEAR(sole.length, 0.18, 1e-15);
-      EXPECT_NEAR(sole.width, 0.10, 1e-15);
-      EXPECT_TRUE(model.sole_tilted[side]);
-      EXPECT_LT((model.sole_rotation[side] - pitch10).cwiseAbs().maxCoeff(), 1e-14);
-      // the sole centre 60 mm below the ankle along the sole's normal: 50 mm to the box's centre, 10 mm
-      // its half-thickness
-      EXPECT_LT((model.sole_offset[side] - (Vector3d(0, 0, -0.05) + pitch10 * Vector3d(0, 0, -0.01))).norm(), 1e-14);
-      EXPECT_NEAR(model.leg[side].ankle_to_sole, 0.05 * std::cos(10.0 * std::numbers::pi / 180.0) + 0.01, 1e-14);
-      expect_ik_inverts_fk(model, side);
-    }
-    expect_model_agrees_with_mujoco(*walk.loaded);
-    // Standing with level soles below the hips, the ankle pitch levels the 10 deg (hip and knee pitch
-    // add up to it with the ankle, the same axis y).
-    const JointVector q = walking::standing_angles(model, walk.walk.pelvis_height, walk.walk.step_width);
-    for (int side = 0; side < 2; ++side) {
-      const int j = leg_first_joint(side);
-      EXPECT_NEAR(q[j + 2] + q[j + 3] + q[j + 4], -10.0 * std::numbers::pi / 180.0, 1e-9) << side;
-    }
-    const experiments::WalkResult r = experiments::run_walk(walk);
-    EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
-    EXPECT_EQ(r.metrics.steps_completed, 10);
-    EXPECT_EQ(r.metrics.mujoco_warnings, 0);
-  }
+}
 
-  // Massless foot bodies (the F/T sensors between them and the ankle-roll links, which carry the
-  // feet's mass): the model agrees with MuJoCo's, FK∘IK; the F/T reads exactly 0 N in swing, which
-  // is not a stuck sensor: 10 steps, no sensor fault.
-  TEST(RobotModelLoaded, MasslessFootWalks) {
-    experiments::WalkRunParams walk = fixture_walk("massless_foot.yaml");
-    ASSERT_TRUE(walk.loaded);
-    for (int side = 0; side < 2; ++side)
-      EXPECT_EQ(walk.loaded->bodies[static_cast<std::size_t>(walk.loaded->foot[side])].mass, 0.0);
-    expect_model_agrees_with_mujoco(*walk.loaded);
-    const RobotModel model = walking::make_robot_model(*walk.loaded);
-    EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
-    for (int side = 0; side < 2; ++side) expect_ik_inverts_fk(model, side);
-    const experiments::WalkResult r = experiments::run_walk(walk);
-    EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
-    EXPECT_EQ(r.metrics.steps_completed, 10);
-    EXPECT_FALSE(r.metrics.safe_stop);
-    // With the thesis's compensation case no reading is flagged; with humanoid walk's default case each F/T is
-    // flagged once for 8 ms (held, no safe stop): a zero outside the window the health check allows for it.
-    EXPECT_LE(r.metrics.sensor_fault_episodes, 2) << ::testing::PrintToString(r.metrics.sensor_faults);
+// Foot bodies whose frames follow the joint axes (turned 90 deg at zero joint angles) and a sole
+// box pitched 10 deg there: the sole takes the box's frame (its z the box's face that looks most
+// down, its x the axis that looks most forward), the model agrees with MuJoCo's (the twin's sole
+// plate and F/T site in that frame), FK∘IK, and the robot stands with its ankles pitched 10 deg to
+// level the soles and walks 10 steps.
+TEST(RobotModelLoaded, TurnedFootFramesTakeTheSolesOwnFrame) {
+  experiments::WalkRunParams walk = fixture_walk("turned_foot_frames.yaml");
+  ASSERT_TRUE(walk.loaded);
+  const Eigen::Matrix3d pitch10 = Eigen::AngleAxisd(10.0 * std::numbers::pi / 180.0, Vector3d::UnitY()).matrix();
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  for (int side = 0; side < 2; ++side) {
+    const Sole& sole = walk.loaded->sole[side];
+    // the box's own frame in the foot body's: -80 deg about y (17 printed digits and a few products: 1e-14)
+    const Eigen::Quaterniond q(sole.quat[0], sole.quat[1], sole.quat[2], sole.quat[3]);
+    EXPECT_LT((q.toRotationMatrix() - Eigen::AngleAxisd(-80.0 * std::numbers::pi / 180.0, Vector3d::UnitY()).matrix())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-14);
+    EXPECT_NEAR(sole.length, 0.18, 1e-15);
+    EXPECT_NEAR(sole.width, 0.10, 1e-15);
+    EXPECT_TRUE(model.sole_tilted[side]);
+    EXPECT_LT((model.sole_rotation[side] - pitch10).cwiseAbs().maxCoeff(), 1e-14);
+    // the sole centre 60 mm below the ankle along the sole's normal: 50 mm to the box's centre, 10 mm
+    // its half-thickness
+    EXPECT_LT((model.sole_offset[side] - (Vector3d(0, 0, -0.05) + pitch10 * Vector3d(0, 0, -0.01))).norm(), 1e-14);
+    EXPECT_NEAR(model.leg[side].ankle_to_sole, 0.05 * std::cos(10.0 * std::numbers::pi / 180.0) + 0.01, 1e-14);
+    expect_ik_inverts_fk(model, side);
   }
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  // Standing with level soles below the hips, the ankle pitch levels the 10 deg (hip and knee pitch
+  // add up to it with the ankle, the same axis y).
+  const JointVector q = walking::standing_angles(model, walk.walk.pelvis_height, walk.walk.step_width);
+  for (int side = 0; side < 2; ++side) {
+    const int j = leg_first_joint(side);
+    EXPECT_NEAR(q[j + 2] + q[j + 3] + q[j + 4], -10.0 * std::numbers::pi / 180.0, 1e-9) << side;
+  }
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
+  EXPECT_EQ(r.metrics.mujoco_warnings, 0);
+}
 
-  // A robot without joint ranges (small_biped.xml has none) walks: SecondRobotWalks; here, that it has none.
-  TEST(RobotModelLoaded, SecondRobotHasNoJointRanges) {
-    const experiments::WalkRunParams walk = small_biped_walk();
-    ASSERT_TRUE(walk.loaded);
-    for (const LoadedBody& b : walk.loaded->bodies)
-      for (const LoadedJoint& j : b.joints) EXPECT_FALSE(j.limited) << j.name;
-  }
+// Massless foot bodies (the F/T sensors between them and the ankle-roll links, which carry the
+// feet's mass): the model agrees with MuJoCo's, FK∘IK; the F/T reads exactly 0 N in swing, which
+// is not a stuck sensor: 10 steps, no sensor fault.
+TEST(RobotModelLoaded, MasslessFootWalks) {
+  experiments::WalkRunParams walk = fixture_walk("massless_foot.yaml");
+  ASSERT_TRUE(walk.loaded);
+  for (int side = 0; side < 2; ++side)
+    EXPECT_EQ(walk.loaded->bodies[static_cast<std::size_t>(walk.loaded->foot[side])].mass, 0.0);
+  expect_model_agrees_with_mujoco(*walk.loaded);
+  const RobotModel model = walking::make_robot_model(*walk.loaded);
+  EXPECT_NEAR(model.total_mass, 34.6, 1e-12);
+  for (int side = 0; side < 2; ++side) expect_ik_inverts_fk(model, side);
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
+  EXPECT_EQ(r.metrics.steps_completed, 10);
+  EXPECT_FALSE(r.metrics.safe_stop);
+  // With the thesis's compensation case no reading is flagged; with humanoid walk's default case each F/T is
+  // flagged once for 8 ms (held, no safe stop): a zero outside the window the health check allows for it.
+  EXPECT_LE(r.metrics.sensor_fault_episodes, 2) << ::testing::PrintToString(r.metrics.sensor_faults);
+}
 
-  // Commanded angles outside a range are clamped and counted.
-  TEST(RobotModelLoaded, ClampToRangesCounts) {
-    RobotModel model = walking::make_robot_model(RobotParams{});
-    JointVector q{};
-    q[kLeftKnee] = -0.2;
-    q[kRightKnee] = 2.5;
-    EXPECT_EQ(walking::clamp_to_ranges(model, q), 0);  // the builtin: no ranges
-    model.range[kLeftKnee] = {0, 2.4};
-    model.range[kRightKnee] = {0, 2.4};
-    EXPECT_EQ(walking::clamp_to_ranges(model, q), 2);
-    EXPECT_EQ(q[kLeftKnee], 0.0);
-    EXPECT_EQ(q[kRightKnee], 2.4);
-  }
+// A robot without joint ranges (small_biped.xml has none) walks: SecondRobotWalks; here, that it has none.
+TEST(RobotModelLoaded, SecondRobotHasNoJointRanges) {
+  const experiments::WalkRunParams walk = small_biped_walk();
+  ASSERT_TRUE(walk.loaded);
+  for (const LoadedBody& b : walk.loaded->bodies)
+    for (const LoadedJoint& j : b.joints) EXPECT_FALSE(j.limited) << j.name;
+}
+
+// Commanded angles outside a range are clamped and counted.
+TEST(RobotModelLoaded, ClampToRangesCounts) {
+  RobotModel model = walking::make_robot_model(RobotParams{});
+  JointVector q{};
+  q[kLeftKnee] = -0.2;
+  q[kRightKnee] = 2.5;
+  EXPECT_EQ(walking::clamp_to_ranges(model, q), 0);  // the builtin: no ranges
+  model.range[kLeftKnee] = {0, 2.4};
+  model.range[kRightKnee] = {0, 2.4};
+  EXPECT_EQ(walking::clamp_to_ranges(model, q), 2);
+  EXPECT_EQ(q[kLeftKnee], 0.0);
+  EXPECT_EQ(q[kRightKnee], 2.4);
+}
 
 }  // namespace
 }  // namespace flexgait::humanoid
