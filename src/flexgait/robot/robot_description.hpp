@@ -130,6 +130,8 @@ struct Sole {
   /// lowest point, its face that looks most down and its axis that looks most forward; without a box,
   /// or with a sole_size, the root's axes at zero joint angles. A sole_geom box's own axes.
   std::array<double, 4> quat{1, 0, 0, 0};
+  /// Whether the sole has a frame of its own (`quat` is not the identity).
+  bool has_own_frame() const { return quat != std::array<double, 4>{1, 0, 0, 0}; }
   /// From the foot's contact geoms (no sole_geom, no sole_size): the convex hull (counter-clockwise,
   /// x y in the sole frame [m]) of their points on the sole plane z = center[2], the lowest of them;
   /// the rectangle is its bounding rectangle. Empty for a sole named or sized by the mapping.

@@ -292,7 +292,7 @@ bool sole_from_contact_geoms(const mjModel* m, int b, const std::vector<int>& ca
   };
   std::vector<Point> points;
   double lowest = INFINITY;
-  const bool turned = sole.quat != std::array<double, 4>{1, 0, 0, 0};
+  const bool turned = sole.has_own_frame();
   for (int g = m->body_geomadr[b]; g >= 0 && g < m->body_geomadr[b] + m->body_geomnum[b]; ++g) {
     if (!((m->geom_contype[g] & 1) || (m->geom_conaffinity[g] & 1))) continue;
     for (const auto& x : floor_points(m, g, turned ? sole.quat.data() : nullptr)) {

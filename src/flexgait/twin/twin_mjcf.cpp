@@ -50,11 +50,6 @@ std::string unit_list(const std::array<double, N>& v) {
   return list(v);
 }
 
-/// Whether a sole has a frame of its own in its foot body (humanoid::Sole::quat).
-bool own_frame(const humanoid::Sole& s) {
-  return s.quat != std::array<double, 4>{1, 0, 0, 0};
-}
-
 /// A name the twin gives to its own elements: a file geom of that name loses it.
 bool reserved(std::string_view name) {
   return name == "floor" || name == "l_sole" || name == "r_sole";
@@ -75,7 +70,7 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
   for (int side = 0; side < 2; ++side)
     if (b == r.foot[side])
       out += fmt::format("{}  <site name=\"{}_ft\" pos=\"0 0 0\"{} size=\"0.01\"/>\n", pad, side == 0 ? "l" : "r",
-                         own_frame(r.sole[side]) ? " quat=\"" + unit_list(r.sole[side].quat) + "\"" : "");
+                         r.sole[side].has_own_frame() ? " quat=\"" + unit_list(r.sole[side].quat) + "\"" : "");
   if (body.mass > 0)
     out += fmt::format("{}  <inertial pos=\"{}\" quat=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n", pad, list(body.ipos),
                        unit_list(body.iquat), body.mass, list(body.inertia));
@@ -122,7 +117,7 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
     // (on a sole the foot's own geoms make in the twin, the plate only marks it: no contact)
     const std::string contact = s.hull_in_twin ? R"(contype="0" conaffinity="0")" : sole_contact;
     const char* alpha = s.hull_in_twin ? "0.3" : "1";
-    if (!own_frame(s)) {
+    if (!s.has_own_frame()) {
       out += fmt::format(
           "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 {}\"/>\n", pad,
           sole_name, 0.5 * s.length, 0.5 * s.width, s.center[0], s.center[1], s.center[2] + 0.005, contact, alpha);
@@ -143,7 +138,7 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
 }  // namespace
 
 std::array<double, 3> sole_center_in_site(const humanoid::Sole& sole) {
-  if (!own_frame(sole)) return sole.center;
+  if (!sole.has_own_frame()) return sole.center;
   mjtNum inverse[4], c[3];
   mju_negQuat(inverse, sole.quat.data());
   mju_rotVecQuat(c, sole.center.data(), inverse);

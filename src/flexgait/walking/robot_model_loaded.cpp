@@ -222,7 +222,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     // angles, times the sole's own frame in it (Sole::quat; identity for a level foot, whose printed
     // tilt below kMaxFootTilt is modelled as such).
     const humanoid::Sole& sole = r.sole[side];
-    const bool own_frame = sole.quat != std::array<double, 4>{1, 0, 0, 0};
+    const bool own_frame = sole.has_own_frame();
     const Matrix3d Rs = own_frame ? Matrix3d(Rf * rotation(sole.quat)) : Rf;
     m.sole_tilted[side] = Rs != Matrix3d::Identity();
     m.sole_rotation[side] = Rs;
@@ -282,9 +282,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
   // (then the rectangle's own numbers).
   for (int side = 0; side < 2; ++side) {
     const humanoid::Sole& s = r.sole[static_cast<std::size_t>(side)];
-    const Vector3d center = s.quat != std::array<double, 4>{1, 0, 0, 0}
-                                ? Vector3d(rotation(s.quat).transpose() * vec(s.center))
-                                : vec(s.center);
+    const Vector3d center = s.has_own_frame() ? Vector3d(rotation(s.quat).transpose() * vec(s.center)) : vec(s.center);
     auto distinct = [&](int axis) {
       std::vector<double> v;
       for (const auto& p : s.hull) v.push_back(p[static_cast<std::size_t>(axis)]);
