@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -48,6 +51,32 @@ TEST(UrdfExport, ExportedUrdfHasTheSameKinematicsAndMasses) {
     EXPECT_LT((a.leg[side].hip - b.leg[side].hip).norm(), 1e-12);
     EXPECT_NEAR(a.leg[side].ankle_to_sole, b.leg[side].ankle_to_sole, 1e-12);
     EXPECT_LT((a.sole_offset[side] - b.sole_offset[side]).norm(), 1e-12);
+  }
+}
+
+// URDF's rpy reproduces the rotation, R = Rz(yaw) Ry(pitch) Rx(roll), for random rotations and at
+// gimbal lock (|pitch| = π/2, where the classic roll = atan2(R21, R22) reads the sign of rounding):
+// the Berkeley Humanoid's foot frame (w x y z = ½(1, −1, −1, −1), a third of a turn about
+// −(1, 1, 1)), a quarter turn about y after any yaw and roll, and a pitch 1e-9 rad short of it.
+// Bound: a few products and three trigonometric functions of unit-size numbers, 1e-15.
+TEST(UrdfExport, RpyReproducesTheRotationAlsoAtGimbalLock) {
+  auto rebuilt = [](const std::array<double, 3>& a) {
+    return (Eigen::AngleAxisd(a[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(a[1], Eigen::Vector3d::UnitY()) *
+            Eigen::AngleAxisd(a[0], Eigen::Vector3d::UnitX()))
+        .toRotationMatrix();
+  };
+  std::vector<Eigen::Matrix3d> rotations{Eigen::Quaterniond(0.5, -0.5, -0.5, -0.5).toRotationMatrix()};
+  const double quarter = std::numbers::pi / 2;
+  for (double pitch : {quarter, -quarter, quarter - 1e-9})
+    for (double roll_yaw : {0.0, 0.3, -2.5}) rotations.push_back(rebuilt({roll_yaw, pitch, 1.0 - roll_yaw}));
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n;
+  for (int k = 0; k < 200; ++k)
+    rotations.push_back(Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix());
+  for (std::size_t k = 0; k < rotations.size(); ++k) {
+    const std::array<double, 3> a = urdf_rpy(rotations[k]);
+    EXPECT_LT((rebuilt(a) - rotations[k]).cwiseAbs().maxCoeff(), 1e-15) << k;
+    EXPECT_LE(std::abs(a[1]), quarter) << k;
   }
 }
 

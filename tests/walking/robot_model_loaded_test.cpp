@@ -204,6 +204,18 @@ TEST(RobotModelLoaded, FourSphereFeetMakeTheSole) {
   EXPECT_EQ(r.metrics.mujoco_warnings, 0);
 }
 
+// The fixture NAME.yaml's robot exported as URDF and loaded back by its mapping (4 steps).
+experiments::WalkRunParams reloaded_from_urdf(const std::string& name, const LoadedRobot& robot) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / ("flexgait_" + name + ".urdf");
+  std::ofstream(file) << robot_urdf(robot);
+  std::vector<std::string> overrides{"robot.description=" + file.string(), "walk.steps=4"};
+  std::istringstream lines(urdf_mapping(robot));
+  for (std::string line; std::getline(lines, line);) overrides.push_back(line);
+  experiments::WalkRunParams reloaded = fixture_walk(name + ".yaml", overrides);
+  std::filesystem::remove(file);
+  return reloaded;
+}
+
 // Eight spheres under each foot on an octagon (the 0.18 x 0.10 m rectangle with its corners cut
 // 30 x 20 mm): the controller's sole polygon is that octagon, not its bounding rectangle, whose
 // corners lie outside it. Exported as URDF, each sphere is a <collision> of the foot and the mapping
@@ -233,13 +245,7 @@ TEST(RobotModelLoaded, OctagonSphereFeetSoleIsTheOctagonAndUrdfExportKeepsIt) {
   for (auto at = urdf.find("<collision>"); at != std::string::npos; at = urdf.find("<collision>", at + 1)) ++collisions;
   EXPECT_EQ(collisions, 16u);
   EXPECT_NE(mapping.find("robot.feet.left.sole_size=none"), std::string::npos) << mapping;
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "flexgait_octagon_sphere_feet.urdf";
-  std::ofstream(file) << urdf;
-  std::vector<std::string> overrides{"robot.description=" + file.string(), "walk.steps=4"};
-  std::istringstream lines(mapping);
-  for (std::string line; std::getline(lines, line);) overrides.push_back(line);
-  const experiments::WalkRunParams reloaded = fixture_walk("octagon_sphere_feet.yaml", overrides);
-  std::filesystem::remove(file);
+  const experiments::WalkRunParams reloaded = reloaded_from_urdf("octagon_sphere_feet", *walk.loaded);
   ASSERT_TRUE(reloaded.loaded);
   const RobotModel back = walking::make_robot_model(*reloaded.loaded);
   for (int side = 0; side < 2; ++side) {
@@ -295,6 +301,18 @@ TEST(RobotModelLoaded, TurnedFootFramesTakeTheSolesOwnFrame) {
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 10);
   EXPECT_EQ(r.metrics.mujoco_warnings, 0);
+  // Exported as URDF (each frame's rpy at gimbal lock: the foot bodies are turned a quarter about
+  // y) and loaded back: the same sole frame and model, to the 17 printed digits' 1e-12.
+  const experiments::WalkRunParams reloaded = reloaded_from_urdf("turned_foot_frames", *walk.loaded);
+  ASSERT_TRUE(reloaded.loaded);
+  const RobotModel back = walking::make_robot_model(*reloaded.loaded);
+  for (int side = 0; side < 2; ++side) {
+    EXPECT_LT((back.sole_rotation[side] - model.sole_rotation[side]).cwiseAbs().maxCoeff(), 1e-12) << side;
+    EXPECT_LT((back.sole_offset[side] - model.sole_offset[side]).norm(), 1e-12) << side;
+    EXPECT_LT((back.ft_to_sole[side] - model.ft_to_sole[side]).norm(), 1e-12) << side;
+    EXPECT_NEAR(back.leg[side].ankle_to_sole, model.leg[side].ankle_to_sole, 1e-12) << side;
+  }
+  expect_model_agrees_with_mujoco(*reloaded.loaded);
 }
 
 // Massless foot bodies (the F/T sensors between them and the ankle-roll links, which carry the

@@ -19,11 +19,9 @@ Matrix3d rotation(const std::array<double, 4>& q) {
   return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
 }
 
-/// URDF's rpy: R = Rz(yaw) Ry(pitch) Rx(roll).
 std::string rpy(const Matrix3d& R) {
-  const double pitch = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2)), yaw = std::atan2(R(1, 0), R(0, 0));
-  return fmt::format("{} {} {}", roll + 0.0, pitch + 0.0, yaw + 0.0);  // no "-0"
+  const std::array<double, 3> a = urdf_rpy(R);
+  return fmt::format("{} {} {}", a[0] + 0.0, a[1] + 0.0, a[2] + 0.0);  // no "-0"
 }
 std::string xyz(const Vector3d& v) {
   return fmt::format("{} {} {}", v.x(), v.y(), v.z());
@@ -79,6 +77,19 @@ std::string collisions(const LoadedGeom& g, const Vector3d& o) {
 }
 
 }  // namespace
+
+std::array<double, 3> urdf_rpy(const Matrix3d& R) {
+  // The first column is (cos y cos p, sin y cos p, −sin p): the pitch, and the yaw from its
+  // horizontal part (any yaw at gimbal lock, where that part vanishes). Then the roll from the
+  // second row of Rz(yaw)ᵀ R = Ry(p) Rx(r), which is (0, cos r, −sin r) whatever the pitch: the
+  // roll absorbs the yaw's error, so the three reproduce R to rounding even where the classic
+  // roll = atan2(R21, R22) divides rounding by cos p.
+  const double pitch = std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0)));
+  const double yaw = std::atan2(R(1, 0), R(0, 0));
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  const double roll = std::atan2(-(c * R(1, 2) - s * R(0, 2)), c * R(1, 1) - s * R(0, 1));
+  return {roll, pitch, yaw};
+}
 
 std::string robot_urdf(const LoadedRobot& r) {
   std::string out =

@@ -9,6 +9,8 @@
 /// makes the same hull; any other sole comes from the mapping (robot.feet.*.sole_size /
 /// sole_center, see urdf_mapping).
 /// Link frames sit on the joint anchors (URDF puts a joint at its child link's origin).
+#include <Eigen/Dense>
+#include <array>
 #include <string>
 
 #include "flexgait/robot/robot_description.hpp"
@@ -16,6 +18,11 @@
 namespace flexgait::humanoid {
 
 std::string robot_urdf(const LoadedRobot& robot);
+
+/// URDF's roll, pitch, yaw of R = Rz(yaw) Ry(pitch) Rx(roll) [rad]. At |pitch| = π/2 (a frame
+/// turned a quarter about its y, common in files whose frames follow the joint axes) roll and yaw
+/// are not separately defined; the three returned reproduce R to rounding there too.
+std::array<double, 3> urdf_rpy(const Eigen::Matrix3d& R);
 
 /// The mapping that loads robot_urdf(robot) back: `--set` lines (KEY=VALUE), one per line.
 std::string urdf_mapping(const LoadedRobot& robot);
