@@ -51,8 +51,8 @@ TEST(ExperimentTable, RimlessSummariesHaveTheMetricsAsKeys) {
 TEST(ExperimentTable, HumanoidSummariesHaveTheMetricsAsKeys) {
   const Experiment walk = find_experiment("humanoid-walk");
   // Unpushed, standing, not failed, the builtin (no joint ranges): push_impulse, capture_point_bound,
-  // fall_time, failure_time and joint_limit_hits do not apply.
-  expect_keys_are_metrics(walk, summary_keys(walk, {"walk.steps=1"}), 5);
+  // fall_time, failure_time, joint_limit_hits and desired_range_hits do not apply.
+  expect_keys_are_metrics(walk, summary_keys(walk, {"walk.steps=1"}), 6);
   const Experiment push = find_experiment("humanoid-push-recovery");
   expect_keys_are_metrics(push, summary_keys(push, {"push_recovery.upper=1", "push_recovery.settle_time=0.5"}));
 }

@@ -161,7 +161,7 @@ TEST(Record, JsonLeavesOutFieldsThatDoNotApply) {
   m.compensation = compensation::CompensationMode::kBoth;
   m.pushed = true;        // push_impulse and capture_point_bound apply
   m.fell = true;          // fall_time applies
-  m.joint_ranges = true;  // joint_limit_hits applies
+  m.joint_ranges = true;  // joint_limit_hits and desired_range_hits apply
   m.failure =
       experiments::WalkFailure{experiments::SimulationFailure::kMuJoCoWarning, "a warning"};  // failure_time applies
   const auto on = record_json(m);

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -143,7 +144,29 @@ TEST(RobotModelLoaded, MinusYKneeBendsTheWayItsRangeAllows) {
   EXPECT_TRUE(r.metrics.completed()) << r.metrics.fall_text() << r.metrics.failure_text();
   EXPECT_EQ(r.metrics.steps_completed, 10);
   EXPECT_EQ(r.metrics.joint_limit_hits, 0);
+  EXPECT_EQ(r.metrics.desired_range_hits, 0);
   EXPECT_TRUE(r.metrics.joint_ranges);
+}
+
+// A range narrower than the gait's sway (the left hip roll held within 5 mrad of its standing
+// angle): the plan's angles outside it are counted. Uncompensated the command is the plan's angle,
+// so the clamped commands and the desired angles outside the range are the same count.
+TEST(RobotModelLoaded, PlannedAnglesOutsideARangeAreCounted) {
+  experiments::WalkRunParams walk = fixture_walk("small_biped.yaml", {"walk.steps=2", "control.compensation=off"});
+  ASSERT_TRUE(walk.loaded);
+  const JointVector stand =
+      walking::standing_angles(walking::make_robot_model(*walk.loaded), walk.walk.pelvis_height, walk.walk.step_width);
+  auto narrowed = std::make_shared<LoadedRobot>(*walk.loaded);
+  for (auto& body : narrowed->bodies)
+    for (auto& joint : body.joints)
+      if (joint.mapped == kLeftHipRoll) {
+        joint.limited = true;
+        joint.range = {stand[kLeftHipRoll] - 0.005, stand[kLeftHipRoll] + 0.005};
+      }
+  walk.loaded = narrowed;
+  const experiments::WalkResult r = experiments::run_walk(walk);
+  EXPECT_GT(r.metrics.desired_range_hits, 100);
+  EXPECT_EQ(r.metrics.joint_limit_hits, r.metrics.desired_range_hits);
 }
 
 // Hips ordered pitch, roll, yaw from the pelvis (Unitree G1's order), mapped by role: the model's

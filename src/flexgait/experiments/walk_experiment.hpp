@@ -166,6 +166,7 @@ struct WalkMetrics {
   double support_error_max = 0;  ///< largest slide of a standing sole from where it came down [m]
   int ik_clamped = 0;            ///< control periods with a leg target out of reach
   int joint_limit_hits = 0;      ///< commanded joint angles clamped into their ranges (a loaded robot)
+  int desired_range_hits = 0;    ///< desired (link) joint angles outside their ranges (a loaded robot)
   bool joint_ranges = false;     ///< a loaded robot: its joint ranges bound the commands
   int mujoco_warnings = 0;       ///< MuJoCo warnings
   double simulated_time = 0;     ///< [s]
@@ -326,6 +327,10 @@ struct WalkMetrics {
     v("ik_clamped", s.ik_clamped, {.doc = "control periods with a leg target out of reach"});
     v("joint_limit_hits", s.joint_limit_hits,
       {.doc = "commanded joint angles outside the description's ranges, clamped (one per joint and control period)",
+       .present = s.joint_ranges});
+    v("desired_range_hits", s.desired_range_hits,
+      {.doc = "desired (link) joint angles outside the description's ranges, where the joint's stop holds the link "
+              "short of the plan (one per joint and control period)",
        .present = s.joint_ranges});
     v("mujoco_warnings", s.mujoco_warnings, {.doc = "MuJoCo warnings during the walk"});
     v("riccati_residual", s.riccati_residual, {.doc = "relative residual of the preview controller's DARE"});

@@ -347,6 +347,7 @@ WalkResult WalkScorer::finish(const loop::HumanoidLoop& loop) {
   m.steps_planned =
       std::max(m.steps_planned, static_cast<int>(controller_.plan().steps.size()));  // with a recovery step
   m.joint_limit_hits = static_cast<int>(loop.joint_limit_hits());
+  m.desired_range_hits = static_cast<int>(loop.desired_range_hits());
   m.zmp_rms_x = zx_.rms();
   m.zmp_rms_y = zy_.rms();
   m.zmp_max_x = zx_.max;

@@ -72,7 +72,10 @@ std::optional<SimulationFailure> HumanoidLoop::advance(const humanoid::JointVect
     context = &standing;
   }
   command_ = stage_.command(desired, *context, t);
-  if (clamp_) joint_limit_hits_ += walking::clamp_to_ranges(model_, command_);  // never silent
+  if (clamp_) {  // never silent
+    desired_range_hits_ += walking::outside_ranges(model_, desired);
+    joint_limit_hits_ += walking::clamp_to_ranges(model_, command_);
+  }
   if (!given) controller_->sent(command_);
 
   std::swap(before_, truth_);

@@ -77,6 +77,9 @@ class HumanoidLoop {
   const humanoid::JointVector& command() const { return command_; }
   /// Commanded joint angles clamped into their ranges so far (one per joint and period).
   long joint_limit_hits() const { return joint_limit_hits_; }
+  /// Desired (link) joint angles outside their ranges so far (one per joint and period; a loaded
+  /// robot): the plan asks for a pose the joint's stop holds the link out of.
+  long desired_range_hits() const { return desired_range_hits_; }
   twin::HumanoidPlant& plant() { return plant_; }
   const twin::HumanoidPlant& plant() const { return plant_; }
   const CompensationStage& compensation() const { return stage_; }
@@ -96,6 +99,7 @@ class HumanoidLoop {
   humanoid::JointVector command_{};
   long k_ = 0;
   long joint_limit_hits_ = 0;
+  long desired_range_hits_ = 0;
   std::optional<SimulationFailure> failure_;
 };
 

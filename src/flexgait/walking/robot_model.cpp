@@ -65,6 +65,11 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   return m;
 }
 
+int outside_ranges(const RobotModel& model, const humanoid::JointVector& q) {
+  humanoid::JointVector clamped = q;
+  return clamp_to_ranges(model, clamped);
+}
+
 int clamp_to_ranges(const RobotModel& model, humanoid::JointVector& q) {
   int hits = 0;
   for (int j = 0; j < humanoid::kJoints; ++j) {

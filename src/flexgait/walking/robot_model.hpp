@@ -66,6 +66,8 @@ inline constexpr double kMaxFootTilt = humanoid::kLevelFootTilt;
 
 /// Clamps each angle of `q` into its joint's range; returns how many were outside.
 int clamp_to_ranges(const RobotModel& model, humanoid::JointVector& q);
+/// How many angles of `q` lie outside their joints' ranges.
+int outside_ranges(const RobotModel& model, const humanoid::JointVector& q);
 
 RobotModel make_robot_model(const humanoid::RobotParams& robot);
 /// The model of a loaded description. Each leg's IK is analytic when the leg has its layout
