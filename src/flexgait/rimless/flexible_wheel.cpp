@@ -292,6 +292,12 @@ struct FlexibleWheelSimulator::Impl {
     events.reserve(static_cast<std::size_t>(kGuardsPerLeg * w.legs));
     if (parameter) flow.set_parameter(&*parameter);
   }
+  // The contact mode c: the flow's, and the directions of its guards (the slots it leaves unused
+  // are not watched; an upright guard after them keeps its own).
+  void set_mode(const ContactSet& c) {
+    flow.set_contacts(c);
+    guard_directions(w, c, std::span<int>(directions).first(static_cast<std::size_t>(guard_count(w))));
+  }
   static numerics::OdeOptions with_parameter_column(numerics::OdeOptions o, bool column) {
     o.parameter_columns = column && o.sensitivities ? 1 : 0;
     return o;
@@ -664,7 +670,9 @@ bool FlexibleWheelSimulator::Run::start() {
       return false;
     }
   }
-  m.flow.set_contacts(spec.contacts);
+  m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
+  if (upright_stop) m.directions.push_back(+1);
+  m.set_mode(spec.contacts);
   m.flow.clear_all();
   const Eigen::Index n_state = static_cast<Eigen::Index>(m.y.size());
   sens = Eigen::MatrixXd::Identity(n_state, m.columns());  // [I | 0]
@@ -676,7 +684,7 @@ bool FlexibleWheelSimulator::Run::start() {
       res.final_state = m.y;
       return false;
     }
-    m.flow.set_contacts(dec.contacts);
+    m.set_mode(dec.contacts);
     m.flow.start_clearing(spec.contacts, spec.pending);
     res.jams += dec.jammed_feet;
     // The section state lies on the landing guard by construction: no timing term, reset only.
@@ -699,8 +707,6 @@ bool FlexibleWheelSimulator::Run::start() {
       if (beta < 0 && beta >= -2.0 * w.alpha() * (1 + 1e-12)) m.flow.set_upright_leg(k);
     }
   }
-  m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
-  if (upright_stop) m.directions.push_back(+1);
   res.energy_initial = mechanical_energy(w, m.flow.contacts(), m.y).total();
   ke0 = kinetic_energy(w, m.y);
   int stance = spec.stance_leg;  // else a foot landing at t = 0 is the stance foot of the first step
@@ -867,7 +873,7 @@ numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<doub
                      (f_plus - R * f_minus) * (g_p / g_y.dot(f_minus));
     }
   }
-  m.flow.set_contacts(dec.contacts);
+  m.set_mode(dec.contacts);
   m.flow.start_clearing(before, events);
   if (dec.consistent > 1) ++res.ambiguous_choices;
   res.jams += dec.jammed_feet;
