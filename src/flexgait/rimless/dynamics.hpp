@@ -61,7 +61,8 @@ struct Dynamics {
   } constants;
 };
 
-/// Dynamics of the contact set `contacts` at state y (dim state_size(w)).
+/// Dynamics of the contact set `contacts` at state y (dim state_size(w)); they depend on y's
+/// configuration and velocities (x, y, θ, ẋ, ẏ, θ̇) alone.
 Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y);
 /// The same written into d, the right-hand side's hot path (no zeroing, no copy): every field
 /// but force[i] and leg[i] for i >= contacts.count, which keep what they held.

@@ -41,12 +41,13 @@ class WheelFlow final : public numerics::OdeSystem {
         contacts_(contacts),
         clearance_(clearance),
         clearing_(static_cast<std::size_t>(w.legs), 0) {}
-  // The flow; its dynamics and state are kept until the next evaluation: the guards at a step's
-  // end are evaluated at the point of the step's last evaluation (DOP853's first-same-as-last
-  // stage) and take its dynamics instead of computing them again.
+  // The flow; its dynamics and the configuration and velocities they were computed from are kept
+  // until the next evaluation: the guards at a step's end are evaluated at the point of the step's
+  // last evaluation (DOP853's first-same-as-last stage) and take its dynamics instead of computing
+  // them again.
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
     const bool ok = flow_derivative(w_, contacts_, y, yd, dynamics_[1 - last_]);
-    std::copy(y.begin(), y.end(), rhs_y_.begin());
+    std::copy_n(y.begin(), kDynamicsInputs, rhs_q_.begin());
     rhs_valid_ = true;
     return ok;
   }
@@ -71,14 +72,12 @@ class WheelFlow final : public numerics::OdeSystem {
   void set_parameter(const ParameterDirection* p) { parameter_ = p; }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
-    if (rhs_valid_ && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
+    last_y_.assign(y.begin(), y.end());
+    if (rhs_valid_ && std::memcmp(rhs_q_.data(), y.data(), sizeof(rhs_q_)) == 0) {
       last_ = 1 - last_;  // the right-hand side's: the numbers contact_dynamics() gives at y
       if (!dynamics_[last_].failure) normal_forces(contacts_, dynamics_[last_]);  // the flow leaves N out
-      last_y_.swap(rhs_y_);
-      rhs_y_.resize(y.size());
       rhs_valid_ = false;
     } else {
-      last_y_.assign(y.begin(), y.end());
       contact_dynamics(w_, contacts_, y, dynamics_[last_]);
     }
     guard_values(w_, offsets_, contacts_, dynamics_[last_], y, g.first(n));
@@ -164,9 +163,11 @@ class WheelFlow final : public numerics::OdeSystem {
   // guard slot 0 before the clearance (a free foot's height).
   std::vector<double> last_y_;
   std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
-  // The latest right-hand side's state (rhs_valid_: one of this mode) and dynamics; the two
-  // Dynamics swap roles when the guards take the right-hand side's.
-  std::vector<double> rhs_y_ = std::vector<double>(static_cast<std::size_t>(state_size(w_)));
+  // The latest right-hand side's configuration and velocities (rhs_valid_: one of this mode) and
+  // dynamics; the two Dynamics swap roles when the guards take the right-hand side's.
+  // contact_dynamics() reads (x, y, θ, ẋ, ẏ, θ̇) alone: equal bits there, equal dynamics.
+  static constexpr std::size_t kDynamicsInputs = StateIndex::thetad + 1;
+  std::array<double, kDynamicsInputs> rhs_q_{};
   bool rhs_valid_ = false;
   std::array<Dynamics, 2> dynamics_;
   int last_ = 0;  // dynamics_[last_]: the latest guard evaluation's; the other: the right-hand side's
