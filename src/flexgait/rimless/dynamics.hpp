@@ -46,6 +46,9 @@ struct Dynamics {
   std::array<double, 3> qdd{};  ///< (ẍ, ÿ, θ̈)
   std::array<ContactForce, kMaxContacts> force{};
   std::array<LegKinematics, kMaxContacts> leg{};
+  /// Per foot (slot i of the contact set): the turns its leg angle's wrap removes (AngleWrap),
+  /// kept from one evaluation to the next.
+  std::array<AngleWrap, kMaxContacts> wraps{};
   double thetad = 0;              ///< the wheel's angular velocity in force [rad/s]
   bool algebraic_thetad = false;  ///< θ̇ fixed by the torque balance (I = 0, all feet slipping)
   /// The wheel's constants that every right-hand side needs, remembered for the parameters this
