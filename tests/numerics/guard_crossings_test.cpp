@@ -185,6 +185,28 @@ TEST(GuardCrossings, AGuardThatStaysAwayFromZeroCostsTheSamplesAlone) {
   EXPECT_GE(w.crossings.interior_evaluations(), 2);
 }
 
+TEST(GuardCrossings, ASlotWithoutAGuardIsNotWatchedAndChangesNothingElse) {
+  // Slot 1 of a mode that leaves it unused holds a constant; slot 2 (kNoGuard as well) crosses,
+  // but is not looked at. The dip of slot 0 (ADipBetweenTheSamplesOfALaterStepIsFound) is found
+  // at the same root with the same samples and bisections as when the constant slot is watched.
+  const Guard dip = [](double t) { return (t - 0.52) * (t - 0.58); };
+  const Guard unused = [](double) { return 1.0; };
+  const Guard crossing = [](double t) { return 0.3 - t; };
+  Watch watched({dip, unused});
+  watched.start(-1.0, {-1, -1});
+  Watch skipped({dip, unused, crossing});
+  skipped.start(-1.0, {-1, kNoGuard, kNoGuard});
+  for (Watch* w : {&watched, &skipped}) EXPECT_FALSE(w->check(0.0).has_value());
+  const auto expected = watched.check(1.0);
+  const auto root = skipped.check(1.0);
+  ASSERT_TRUE(expected.has_value() && root.has_value());
+  EXPECT_EQ(*root, *expected);
+  EXPECT_EQ(skipped.crossings.interior_evaluations(), watched.crossings.interior_evaluations());
+  EXPECT_EQ(skipped.crossings.fired()[0], -1);
+  EXPECT_EQ(skipped.crossings.fired()[1], 0);
+  EXPECT_EQ(skipped.crossings.fired()[2], 0);
+}
+
 TEST(GuardCrossings, StartRejectsMismatchedSizes) {
   GuardCrossings c;
   const std::vector<int> directions{0, 0};

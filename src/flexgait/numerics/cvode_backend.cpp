@@ -42,7 +42,8 @@ struct CvodeSolver {
   SUNLinearSolver linear_solver = nullptr;
   SUNNonlinearSolver nonlinear_solver = nullptr;
   int n_guards = -1;
-  std::vector<int> directions;
+  std::vector<int> directions;       // as given to restart() (the watch's)
+  std::vector<int> root_directions;  // CVODE's: kNoGuard as 0 (the slot's constant never crosses)
   std::vector<int> fired;
   double t = 0.0;
   std::int64_t restarts = 0;
@@ -281,7 +282,10 @@ void CvodeBackend::restart_state(double t, std::span<const double> y, std::span<
     m.fired.assign(directions.size(), 0);
   }
   m.directions.assign(directions.begin(), directions.end());
-  if (n_guards > 0) m.check(CVodeSetRootDirection(m.cvode, m.directions.data()), "SetRootDirection");
+  m.root_directions.resize(directions.size());
+  std::transform(directions.begin(), directions.end(), m.root_directions.begin(),
+                 [](int d) { return d == kNoGuard ? 0 : d; });
+  if (n_guards > 0) m.check(CVodeSetRootDirection(m.cvode, m.root_directions.data()), "SetRootDirection");
   ++m.restarts;
   m.interior_crossing = false;
   m.g_end.resize(directions.size());

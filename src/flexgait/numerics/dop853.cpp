@@ -104,7 +104,8 @@ void Dop853::combine(const std::vector<double>& base, int i, double h, std::vect
 namespace {
 
 // Per component c < n, err5/sk and err3/sk of dop853.f's error estimate into q5 and q3: the
-// stages' products added in j's order in registers (compile-time weights, as combine_row), the
+// stages' products added in j's order in registers (compile-time weights, as combine_row; the
+// stages whose weight is 0, 1..4 of e5 and of b, left out: adding 0·k_j changes no sum), the
 // components vectorised. k: stage j at k + j·stride; scale: error_scale's sizes (Scaled only).
 template <bool Scaled, std::size_t... J>
 void scaled_errors(const double* __restrict k, std::size_t stride, const double* __restrict y_old,
@@ -117,8 +118,14 @@ void scaled_errors(const double* __restrict k, std::size_t stride, const double*
     if constexpr (Scaled) size = scale[c] > 0 ? scale[c] : own;
     const double sk = atol + rtol * size;
     double err5 = 0.0, b_sum = 0.0;
-    ((err5 += kE5[J] * k[J * stride + c]), ...);
-    ((b_sum += b[J] * k[J * stride + c]), ...);
+    const auto term = [&]<std::size_t j>() {
+      if constexpr (kE5[j] != 0.0) err5 += kE5[j] * k[j * stride + c];
+    };
+    (term.template operator()<J>(), ...);
+    const auto b_term = [&]<std::size_t j>() {
+      if constexpr (b[j] != 0.0) b_sum += b[j] * k[j * stride + c];
+    };
+    (b_term.template operator()<J>(), ...);
     const double err3 = b_sum - kBhh[0] * k[c] - kBhh[1] * k[8 * stride + c] - kBhh[2] * k[11 * stride + c];
     q5[c] = err5 / sk;
     q3[c] = err3 / sk;

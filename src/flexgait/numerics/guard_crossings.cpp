@@ -37,6 +37,9 @@ double locate_root(const std::function<double(double)>& g, double a, double b, d
 void GuardCrossings::start(double t, std::span<const int> directions, std::span<const double> g) {
   if (g.size() != directions.size()) throw std::invalid_argument("GuardCrossings::start: sizes differ");
   directions_.assign(directions.begin(), directions.end());
+  watched_.clear();
+  for (std::size_t i = 0; i < directions_.size(); ++i)
+    if (directions_[i] != kNoGuard) watched_.push_back(i);
   g_lo_.resize(g.size());
   t_lo_.resize(g.size());
   active_.resize(g.size());
@@ -52,7 +55,7 @@ void GuardCrossings::rearm(double t, std::span<const double> g) {
   first_step_ = true;
   has_prev_ = false;
   inactive_ = 0;
-  for (std::size_t i = 0; i < g.size(); ++i) {
+  for (const std::size_t i : watched_) {
     g_lo_[i] = g[i];
     t_lo_[i] = t;
     active_[i] = g[i] != 0.0;
@@ -63,7 +66,7 @@ void GuardCrossings::rearm(double t, std::span<const double> g) {
 
 void GuardCrossings::probe_unarmed(double t1, std::span<const double> g1, const Values& g_at) {
   const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(t1 - t_));
-  for (std::size_t i = 0; i < directions_.size(); ++i) {
+  for (const std::size_t i : watched_) {
     const int d = directions_[i];
     if (active_[i] == 0 || d == 0 || !(d * g_lo_[i] > 0) || !(d * g1[i] > 0)) continue;
     for (int k = 1; k <= kProbeLevels; ++k) {
@@ -108,7 +111,7 @@ bool GuardCrossings::refine(std::size_t i, Point a, Point b, int depth, const Va
 bool GuardCrossings::coarse_excludes(double t1, std::span<const double> g1, double t_mid, std::size_t mid) const {
   const std::size_t n = directions_.size();
   const double half = 0.5 * (t1 - t_);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const std::size_t i : watched_) {
     if (active_[i] == 0 || t_lo_[i] >= t1) continue;
     // A guard activated after the midpoint has no second difference here: the full samples.
     if (!(t_lo_[i] < t_mid)) return false;
@@ -133,7 +136,7 @@ bool GuardCrossings::previous_step_excludes(double t1, std::span<const double> g
   // reach · |(g(c) - g(b))/h - (g(b) - g(a))/h_prev|.
   const double reach = kCoarseMargin * 0.5 * h * h / (h + h_prev), w = 1.0 / h, w_prev = 1.0 / h_prev;
   bool excluded = true;
-  for (std::size_t i = 0; i < directions_.size(); ++i) {
+  for (const std::size_t i : watched_) {
     const double a = prev_g_[i], b = g_lo_[i], c = g1[i];
     // An unused slot (above) passes the test below, |v| > reach · 0: its arithmetic is skipped.
     if (a == b && b == c && finite_nonzero(a)) continue;
@@ -149,7 +152,7 @@ bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, cons
   const std::size_t inner = kSamples - 1;
   const double h = t1 - t_;
   const auto whole_step = [&] {  // each guard's bracket: the step (its part from t_lo_)
-    for (std::size_t i = 0; i < n; ++i) {
+    for (const std::size_t i : watched_) {
       lo_t_[i] = t_lo_[i], lo_g_[i] = g_lo_[i];
       hi_t_[i] = t1, hi_g_[i] = g1[i];
     }
@@ -178,7 +181,7 @@ bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, cons
     if (j != mid) sample(j);
   budget_ = kRefineBudget;
   std::array<Point, kSamples + 1> points{};
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const std::size_t i : watched_) {
     if (active_[i] == 0 || t_lo_[i] >= t1) continue;
     const int d = directions_[i];
     std::size_t count = 0;
@@ -228,14 +231,13 @@ bool GuardCrossings::sample_interior(double t1, std::span<const double> g1, cons
 
 std::optional<double> GuardCrossings::check(double t1, std::span<const double> g1, const Values& g_at,
                                             const Value& g_i_at) {
-  const std::size_t n = directions_.size();
   const double tol = 100.0 * kUround * (std::abs(t1) + std::abs(t1 - t_));
   // Guards that were 0 where watching started: activated where they have moved away from 0.
   if (inactive_ > 0) {
     const double t_plus = t_ + std::max(tol, 0.1 * (t1 - t_));
     if (t_plus < t1) {
       g_at(t_plus, scratch_);
-      for (std::size_t i = 0; i < n; ++i) {
+      for (const std::size_t i : watched_) {
         if (active_[i] == 0 && scratch_[i] != 0.0) {
           active_[i] = 1;
           --inactive_;
@@ -244,7 +246,7 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
         }
       }
     }
-    for (std::size_t i = 0; i < n; ++i) {
+    for (const std::size_t i : watched_) {
       if (active_[i] == 0 && g1[i] != 0.0) {  // moved away only by the step's end: no crossing yet
         active_[i] = 1;
         --inactive_;
@@ -260,7 +262,8 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
   double first = t1;
   int first_guard = -1;
   if (may_cross) std::fill(roots_.begin(), roots_.end(), std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < n && may_cross; ++i) {
+  for (std::size_t j = 0; j < watched_.size() && may_cross; ++j) {
+    const std::size_t i = watched_[j];
     if (active_[i] == 0 || lo_t_[i] >= hi_t_[i] || !crosses(directions_[i], lo_g_[i], hi_g_[i])) continue;
     const double root = locate_root([&](double t) { return g_i_at(t, static_cast<int>(i)); }, lo_t_[i], hi_t_[i],
                                     lo_g_[i], hi_g_[i], tol);
@@ -280,7 +283,7 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
       std::copy(g1.begin(), g1.end(), g_lo_.begin());
       std::fill(t_lo_.begin(), t_lo_.end(), t1);
     } else {
-      for (std::size_t i = 0; i < n; ++i) {
+      for (const std::size_t i : watched_) {
         if (active_[i] == 0) continue;
         g_lo_[i] = g1[i];
         t_lo_[i] = t1;
@@ -298,7 +301,7 @@ std::optional<double> GuardCrossings::check(double t1, std::span<const double> g
     g_at(first, g);
   else
     std::copy(g1.begin(), g1.end(), g.begin());
-  for (std::size_t i = 0; i < n; ++i) {
+  for (const std::size_t i : watched_) {  // (a slot without a guard keeps fired_ 0 from start())
     // From the start of the guard's bracket in this step where that lies before the crossing.
     const double g_from = lo_t_[i] <= first ? lo_g_[i] : g_lo_[i];
     const bool fired = active_[i] != 0 && (crosses(directions_[i], g_from, g[i]) || roots_[i] <= first + tol);

@@ -59,10 +59,17 @@
 /// h instead of two of h/2). What either rule can miss is a dip whose curvature shows at none of
 /// its points: for this one, a feature that arises within the step and is absent at its ends and
 /// at the previous step's start.
+///
+/// A slot with direction kNoGuard (ode_system.hpp) holds no guard in this mode: none of the rules
+/// above looks at it and it never fires. Its constant value would pass every one of them (no
+/// crossing, every difference 0), so the crossings found are those of watching it, at the cost
+/// of the mode's own guards alone.
 #include <functional>
 #include <optional>
 #include <span>
 #include <vector>
+
+#include "flexgait/numerics/ode_system.hpp"
 
 namespace flexgait::numerics {
 
@@ -77,7 +84,8 @@ class GuardCrossings {
   /// g_i(t): guard i's value at t within the last step (the same number Values gives for it).
   using Value = std::function<double(double t, int i)>;
 
-  /// Starts watching at t with the guards' values g there and their crossing directions.
+  /// Starts watching at t with the guards' values g there and their crossing directions (+1, -1,
+  /// 0, or kNoGuard: not watched).
   void start(double t, std::span<const int> directions, std::span<const double> g);
   /// After a step to t1 with g1 = g(t1) (dim count()): the earliest crossing time in the step if a
   /// guard crossed (fired() says which; watching then restarts there), else nothing (watching
@@ -125,15 +133,16 @@ class GuardCrossings {
   static constexpr int kProbeLevels = 12;  // probes down to h / 4096
   bool first_step_ = false;                // the next check() is the first step after (re)arming
 
-  double t_ = 0.0;               // where watching (re)started: the last step's end or crossing [s]
-  std::vector<int> directions_;  // per guard: +1, -1, 0
-  std::vector<double> g_lo_;     // per guard: its value where its bracket starts
-  std::vector<double> t_lo_;     // per guard: where its bracket starts (t_, or later if it was 0 there)
-  std::vector<char> active_;     // per guard: 0 while it has stayed exactly 0 since t_
-  std::size_t inactive_ = 0;     // guards with active_ 0
-  std::vector<int> fired_;       // per guard: the last crossing's direction, or 0
-  std::vector<double> scratch_;  // guard values at one time
-  std::vector<double> samples_;  // (kSamples - 1) × count(): the guards at the interior samples
+  double t_ = 0.0;                    // where watching (re)started: the last step's end or crossing [s]
+  std::vector<int> directions_;       // per guard: +1, -1, 0 or kNoGuard
+  std::vector<std::size_t> watched_;  // the guards whose direction is not kNoGuard, ascending
+  std::vector<double> g_lo_;          // per guard: its value where its bracket starts
+  std::vector<double> t_lo_;          // per guard: where its bracket starts (t_, or later if it was 0 there)
+  std::vector<char> active_;          // per guard: 0 while it has stayed exactly 0 since t_
+  std::size_t inactive_ = 0;          // guards with active_ 0
+  std::vector<int> fired_;            // per guard: the last crossing's direction, or 0
+  std::vector<double> scratch_;       // guard values at one time
+  std::vector<double> samples_;       // (kSamples - 1) × count(): the guards at the interior samples
   std::vector<double> lo_t_, lo_g_, hi_t_, hi_g_;  // per guard: its bracket in the current step
   std::vector<double> curvature_;                  // per guard: M of the bound above, for the current step
   std::vector<double> roots_;                      // per guard: its root in the current step (infinity: none)

@@ -6,6 +6,13 @@
 
 namespace flexgait::numerics {
 
+/// A guard's crossing direction: +1 upward only, -1 downward only, 0 both, or kNoGuard: the slot
+/// holds no guard in the current mode. A model with a fixed layout of guard slots, some of them
+/// unused in some modes, writes a finite nonzero constant into an unused slot (it never crosses);
+/// with kNoGuard the integrator's guard watch does not look at it at all (its crossing checks
+/// cost what the mode's own guards cost) and never fires it.
+inline constexpr int kNoGuard = 2;
+
 class OdeSystem {
  public:
   virtual ~OdeSystem() = default;

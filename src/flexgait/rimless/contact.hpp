@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <span>
 
@@ -56,21 +57,51 @@ struct ContactSet {
   }
 };
 
+/// x / 2π rounded to the nearest integer, by adding and removing 1.5·2^52 (wrap_angle's n).
+inline double turns(double x) {
+  constexpr double kRound = 0x1.8p52;
+  constexpr double kInvP = 1.0 / (2.0 * std::numbers::pi);
+  return (x * kInvP + kRound) - kRound;
+}
 /// x wrapped to (-π, π] [rad] (inline: the first step of every right-hand side).
 inline double wrap_angle(double x) {
   // remainder(x, P) = x - n P with n the integer nearest x / P, exact in floating point (libm's
-  // remainder is a slow path of the right-hand side). The candidate n, x·(1/P) rounded to an
-  // integer (adding and removing 1.5·2^52), gives r = x - n P exactly by one fused
-  // multiply-add (the exact r is representable); where |r| < P/2 that r is the remainder (the
-  // only representative below P/2), else (a quotient near a half-integer, or huge, or r = 0) libm decides.
+  // remainder is a slow path of the right-hand side). The candidate n, turns(x), gives
+  // r = x - n P exactly by one fused multiply-add (the exact r is representable); where
+  // |r| < P/2 that r is the remainder (the only representative below P/2), else (a quotient
+  // near a half-integer, or huge, or r = 0) libm decides.
   constexpr double P = 2.0 * std::numbers::pi;
-  constexpr double kRound = 0x1.8p52;
-  constexpr double kInvP = 1.0 / P;
-  const double n = (x * kInvP + kRound) - kRound;
+  const double n = turns(x);
   const double r = std::fma(-n, P, x);
   // (r = 0: libm gives it x's sign, the multiply-add +0.)
   return std::abs(r) < 0.5 * P && r != 0.0 ? r : std::remainder(x, P);
 }
+/// wrap_angle for an angle that moves by far less than a turn from one call to the next (a
+/// foot's leg angle over the right-hand sides of a run): the multiple n 2π that wrap_angle removed
+/// last time is kept as hi + lo (hi = n 2π rounded, lo its rounding error: their sum is n 2π
+/// exactly) and removed again by two subtractions, r = (x - hi) - lo. Where that leaves
+/// |r| < 3 (below π with a margin far beyond the rounding of x / 2π), turns(x) is that n, x - hi
+/// is exact (Sterbenz: x lies within a factor 1.5 of hi, or hi = 0) and r is x - n 2π rounded
+/// once: wrap_angle's number, without its rounding of x / 2π and its call of fma. Elsewhere (a
+/// new turn, or the first call) wrap_angle itself, its n kept.
+class AngleWrap {
+ public:
+  double operator()(double x) {
+    const double r = (x - hi_) - lo_;
+    return std::abs(r) < 3.0 && r != 0.0 ? r : rewrap(x);
+  }
+
+ private:
+  double rewrap(double x) {
+    constexpr double P = 2.0 * std::numbers::pi;
+    const double n = turns(x);
+    const bool usable = std::abs(n) < 0x1p30;  // x / 2π rounded far below the margin
+    hi_ = usable ? n * P : std::numeric_limits<double>::quiet_NaN();
+    lo_ = usable ? std::fma(n, P, -hi_) : hi_;  // the product's rounding error, exact
+    return wrap_angle(x);
+  }
+  double hi_ = 0.0, lo_ = 0.0;  // n 2π = hi_ + lo_ (n = 0 at first)
+};
 /// Leg angle β_k = θ + 2αk wrapped to (-π, π] [rad].
 inline double leg_angle(const WheelParams& w, int k, double theta) {
   return wrap_angle(theta + 2.0 * w.alpha() * k);

@@ -154,8 +154,8 @@ Assembly assemble(const WheelParams& w, const ContactSet& contacts, std::span<co
   d.failure.reset();
   d.jammed = false;
   for (int i = 0; i < contacts.count; ++i) {
-    // β = θ + 2αk wrapped (leg_angle), 2α remembered
-    leg_kinematics_at(w, wrap_angle(q[StateIndex::theta] + constants.leg_spacing * contacts.leg[i]), q, d.leg[i]);
+    // β = θ + 2αk wrapped (leg_angle), 2α and the turns the wrap removes remembered
+    leg_kinematics_at(w, d.wraps[i](q[StateIndex::theta] + constants.leg_spacing * contacts.leg[i]), q, d.leg[i]);
     const LegKinematics& g = d.leg[i];
     ContactForce& cf = d.force[i];
     cf = ContactForce{};

@@ -46,6 +46,9 @@ struct Dynamics {
   std::array<double, 3> qdd{};  ///< (ẍ, ÿ, θ̈)
   std::array<ContactForce, kMaxContacts> force{};
   std::array<LegKinematics, kMaxContacts> leg{};
+  /// Per foot (slot i of the contact set): the turns its leg angle's wrap removes (AngleWrap),
+  /// kept from one evaluation to the next.
+  std::array<AngleWrap, kMaxContacts> wraps{};
   double thetad = 0;              ///< the wheel's angular velocity in force [rad/s]
   bool algebraic_thetad = false;  ///< θ̇ fixed by the torque balance (I = 0, all feet slipping)
   /// The wheel's constants that every right-hand side needs, remembered for the parameters this
@@ -61,7 +64,8 @@ struct Dynamics {
   } constants;
 };
 
-/// Dynamics of the contact set `contacts` at state y (dim state_size(w)).
+/// Dynamics of the contact set `contacts` at state y (dim state_size(w)); they depend on y's
+/// configuration and velocities (x, y, θ, ẋ, ẏ, θ̇) alone.
 Dynamics contact_dynamics(const WheelParams& w, const ContactSet& contacts, std::span<const double> y);
 /// The same written into d, the right-hand side's hot path (no zeroing, no copy): every field
 /// but force[i] and leg[i] for i >= contacts.count, which keep what they held.

@@ -41,12 +41,13 @@ class WheelFlow final : public numerics::OdeSystem {
         contacts_(contacts),
         clearance_(clearance),
         clearing_(static_cast<std::size_t>(w.legs), 0) {}
-  // The flow; its dynamics and state are kept until the next evaluation: the guards at a step's
-  // end are evaluated at the point of the step's last evaluation (DOP853's first-same-as-last
-  // stage) and take its dynamics instead of computing them again.
+  // The flow; its dynamics and the configuration and velocities they were computed from are kept
+  // until the next evaluation: the guards at a step's end are evaluated at the point of the step's
+  // last evaluation (DOP853's first-same-as-last stage) and take its dynamics instead of computing
+  // them again.
   bool rhs(double, std::span<const double> y, std::span<double> yd) override {
     const bool ok = flow_derivative(w_, contacts_, y, yd, dynamics_[1 - last_]);
-    std::copy(y.begin(), y.end(), rhs_y_.begin());
+    std::copy_n(y.begin(), kDynamicsInputs, rhs_q_.begin());
     rhs_valid_ = true;
     return ok;
   }
@@ -71,14 +72,12 @@ class WheelFlow final : public numerics::OdeSystem {
   void set_parameter(const ParameterDirection* p) { parameter_ = p; }
   void guards(double, std::span<const double> y, std::span<double> g) override {
     const std::size_t n = static_cast<std::size_t>(guard_count(w_));
-    if (rhs_valid_ && std::memcmp(rhs_y_.data(), y.data(), y.size_bytes()) == 0) {
+    last_y_.assign(y.begin(), y.end());
+    if (rhs_valid_ && std::memcmp(rhs_q_.data(), y.data(), sizeof(rhs_q_)) == 0) {
       last_ = 1 - last_;  // the right-hand side's: the numbers contact_dynamics() gives at y
       if (!dynamics_[last_].failure) normal_forces(contacts_, dynamics_[last_]);  // the flow leaves N out
-      last_y_.swap(rhs_y_);
-      rhs_y_.resize(y.size());
       rhs_valid_ = false;
     } else {
-      last_y_.assign(y.begin(), y.end());
       contact_dynamics(w_, contacts_, y, dynamics_[last_]);
     }
     guard_values(w_, offsets_, contacts_, dynamics_[last_], y, g.first(n));
@@ -164,9 +163,11 @@ class WheelFlow final : public numerics::OdeSystem {
   // guard slot 0 before the clearance (a free foot's height).
   std::vector<double> last_y_;
   std::vector<double> last_heights_ = std::vector<double>(static_cast<std::size_t>(w_.legs));
-  // The latest right-hand side's state (rhs_valid_: one of this mode) and dynamics; the two
-  // Dynamics swap roles when the guards take the right-hand side's.
-  std::vector<double> rhs_y_ = std::vector<double>(static_cast<std::size_t>(state_size(w_)));
+  // The latest right-hand side's configuration and velocities (rhs_valid_: one of this mode) and
+  // dynamics; the two Dynamics swap roles when the guards take the right-hand side's.
+  // contact_dynamics() reads (x, y, θ, ẋ, ẏ, θ̇) alone: equal bits there, equal dynamics.
+  static constexpr std::size_t kDynamicsInputs = StateIndex::thetad + 1;
+  std::array<double, kDynamicsInputs> rhs_q_{};
   bool rhs_valid_ = false;
   std::array<Dynamics, 2> dynamics_;
   int last_ = 0;  // dynamics_[last_]: the latest guard evaluation's; the other: the right-hand side's
@@ -291,6 +292,12 @@ struct FlexibleWheelSimulator::Impl {
         y_minus(static_cast<std::size_t>(state_size(w))) {
     events.reserve(static_cast<std::size_t>(kGuardsPerLeg * w.legs));
     if (parameter) flow.set_parameter(&*parameter);
+  }
+  // The contact mode c: the flow's, and the directions of its guards (the slots it leaves unused
+  // are not watched; an upright guard after them keeps its own).
+  void set_mode(const ContactSet& c) {
+    flow.set_contacts(c);
+    guard_directions(w, c, std::span<int>(directions).first(static_cast<std::size_t>(guard_count(w))));
   }
   static numerics::OdeOptions with_parameter_column(numerics::OdeOptions o, bool column) {
     o.parameter_columns = column && o.sensitivities ? 1 : 0;
@@ -664,7 +671,9 @@ bool FlexibleWheelSimulator::Run::start() {
       return false;
     }
   }
-  m.flow.set_contacts(spec.contacts);
+  m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
+  if (upright_stop) m.directions.push_back(+1);
+  m.set_mode(spec.contacts);
   m.flow.clear_all();
   const Eigen::Index n_state = static_cast<Eigen::Index>(m.y.size());
   sens = Eigen::MatrixXd::Identity(n_state, m.columns());  // [I | 0]
@@ -676,7 +685,7 @@ bool FlexibleWheelSimulator::Run::start() {
       res.final_state = m.y;
       return false;
     }
-    m.flow.set_contacts(dec.contacts);
+    m.set_mode(dec.contacts);
     m.flow.start_clearing(spec.contacts, spec.pending);
     res.jams += dec.jammed_feet;
     // The section state lies on the landing guard by construction: no timing term, reset only.
@@ -699,8 +708,6 @@ bool FlexibleWheelSimulator::Run::start() {
       if (beta < 0 && beta >= -2.0 * w.alpha() * (1 + 1e-12)) m.flow.set_upright_leg(k);
     }
   }
-  m.directions.assign(static_cast<std::size_t>(guard_count(w)), -1);
-  if (upright_stop) m.directions.push_back(+1);
   res.energy_initial = mechanical_energy(w, m.flow.contacts(), m.y).total();
   ke0 = kinetic_energy(w, m.y);
   int stance = spec.stance_leg;  // else a foot landing at t = 0 is the stance foot of the first step
@@ -867,7 +874,7 @@ numerics::HybridNext FlexibleWheelSimulator::Run::reset(double t, std::span<doub
                      (f_plus - R * f_minus) * (g_p / g_y.dot(f_minus));
     }
   }
-  m.flow.set_contacts(dec.contacts);
+  m.set_mode(dec.contacts);
   m.flow.start_clearing(before, events);
   if (dec.consistent > 1) ++res.ambiguous_choices;
   res.jams += dec.jammed_feet;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "flexgait/numerics/ode_system.hpp"
 #include "flexgait/rimless/dynamics.hpp"
 
 namespace flexgait::rimless {
@@ -117,6 +118,15 @@ void guard_values(const WheelParams& w, const LegOffsets& offsets, const Contact
       slot[1] = s * leg.cdot;
       slot[3] = slip_denominator(w, leg, s);
     }
+  }
+}
+
+void guard_directions(const WheelParams& w, const ContactSet& contacts, std::span<int> directions) {
+  for (int k = 0; k < w.legs; ++k) {
+    int* slot = &directions[static_cast<std::size_t>(kGuardsPerLeg * k)];
+    const int i = contacts.find(k);
+    const int used = i < 0 ? 1 : slip_sign(contacts.mode[i]) == 0 ? 3 : 4;  // as guard_values writes them
+    for (int j = 0; j < kGuardsPerLeg; ++j) slot[j] = j < used ? -1 : numerics::kNoGuard;
   }
 }
 

@@ -59,6 +59,11 @@ void guard_values(const WheelParams& w, const ContactSet& contacts, const Dynami
 void guard_values(const WheelParams& w, const LegOffsets& offsets, const ContactSet& contacts, const Dynamics& d,
                   std::span<const double> y, std::span<double> g);
 
+/// The guards' crossing directions in the mode (dim guard_count(w)): -1 (downward) for the slots
+/// guard_values writes, numerics::kNoGuard for those it leaves at +1 (slots 1–3 of a free leg,
+/// slot 3 of a sticking foot): the integrator watches the mode's guards alone.
+void guard_directions(const WheelParams& w, const ContactSet& contacts, std::span<int> directions);
+
 /// The event a guard slot stands for, given whether its leg is on the ground and its mode.
 EventKind guard_event(int slot, bool on_ground, FootMode mode);
 
