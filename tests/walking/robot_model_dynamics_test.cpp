@@ -312,7 +312,7 @@ TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
       FootWrenches feet;
       evaluate(q, kin, dyn, feet);
       for (int side = 0; side < 2; ++side) {
-        const LegTorqueDerivative G = inverse_dynamics_derivative(model, kin, qd, qdd, dyn, feet, side);
+        const LegTorqueDerivative G = inverse_dynamics_derivative(model, kin, dyn, feet, side);
         const LegTorqueDerivative numeric = central_difference(q, side, kStep, [&](const JointVector& angles) {
           RobotModelData k;
           RobotDynamicsData d;
@@ -400,8 +400,7 @@ TEST(RobotModelDynamics, AtRestTheTwoDerivativesAgree) {
     compensation::FootLoads none;
     none.share = {0, 0};
     for (int side = 0; side < 2; ++side) {
-      const LegTorqueDerivative a =
-          inverse_dynamics_derivative(model, kin, JointVector{}, JointVector{}, dyn, {}, side);
+      const LegTorqueDerivative a = inverse_dynamics_derivative(model, kin, dyn, {}, side);
       const LegTorqueDerivative b =
           compensation::gravity_torque_derivative(model, kin, none, compensation::GravityForm::kFull, side);
       EXPECT_LE((a - b).lpNorm<Eigen::Infinity>(), 1e-12 * b.lpNorm<Eigen::Infinity>())  // rounding

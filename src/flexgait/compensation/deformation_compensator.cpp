@@ -237,9 +237,8 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
             gravity_torque_derivative(model_, data_, plan_loads_, params_.gravity, side);
         continue;
       }
-      const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
       G.block<kLegJoints, kLegJoints>(o, o) =
-          walking::inverse_dynamics_derivative(model_, data_, m.velocity, m.acceleration, dynamics_, feet_, side);
+          walking::inverse_dynamics_derivative(model_, data_, dynamics_, feet_, side);
     }
   };
   // control.gear_damping: eq. 11 with the Kelvin–Voigt lag, k/a and θ_enc − (1 − a) δ_{n−1}.
