@@ -255,7 +255,7 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
       }
   }
   const LinkAngleEstimate<kLegDofs> e =
-      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton);
+      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton, !coupled);
   if (params_.gear_damping > 0) {
     set_legs(output_deflection_, legs_of(encoder) - e.newton);
     output_lagged_ = true;
