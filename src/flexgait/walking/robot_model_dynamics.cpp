@@ -43,8 +43,8 @@ void forward_motion(const RobotModel& model, const RobotModelData& kinematics, c
 
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
-                      const FootWrenches& feet, double gravity) {
-  for (int i = 0; i < kBodies; ++i) {
+                      const FootWrenches& feet, double gravity, int first) {
+  for (int i = first; i < kBodies; ++i) {
     forward_step(model, kinematics, base, qd, qdd, data, gravity, i);
     // The body's inertial wrench about its origin: F at the centre c, N about it.
     const auto& b = model.bodies[i];
@@ -56,21 +56,25 @@ void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics,
     const Matrix3d I = f.R * b.inertia * f.R.transpose();
     data.body_wrench[i] = {F, I * alpha + w.cross(I * w) + c.cross(F)};
   }
-  inverse_dynamics_with_feet(model, kinematics, data, feet);
+  inverse_dynamics_with_feet(model, kinematics, data, feet, first);
 }
 
 void inverse_dynamics_with_feet(const RobotModel& model, const RobotModelData& kinematics, RobotDynamicsData& data,
-                                const FootWrenches& feet) {
-  data.joint_wrench = data.body_wrench;
+                                const FootWrenches& feet, int first) {
+  if (first == 0) {
+    data.joint_wrench = data.body_wrench;
+    data.tau.fill(0.0);
+  } else {
+    for (int i = first; i < kBodies; ++i) data.joint_wrench[i] = data.body_wrench[i];
+  }
   for (int side = 0; side < 2; ++side)
     if (feet.given[side]) data.joint_wrench[model.foot[side]] = feet.wrench[side];
   // Backward pass: each subtree's wrench onto its parent, moved to the parent's origin.
-  data.tau.fill(0.0);
-  for (int i = kBodies - 1; i >= 0; --i) {
+  for (int i = kBodies - 1; i >= first; --i) {
     const auto& b = model.bodies[i];
     const Wrench& w = data.joint_wrench[i];
     if (b.joint >= 0) data.tau[b.joint] = (kinematics.frame[i].R * b.axis).dot(w.moment);
-    if (b.parent < 0) continue;
+    if (b.parent < first) continue;
     Wrench& parent = data.joint_wrench[b.parent];
     parent.force += w.force;
     parent.moment += w.moment + (kinematics.frame[i].p - kinematics.frame[b.parent].p).cross(w.force);

@@ -78,15 +78,18 @@ void forward_motion(const RobotModel& model, const RobotModelData& kinematics, c
 /// \param qd joint velocities (humanoid::kJoints) [rad/s]; \param qdd joint accelerations [rad/s^2]
 /// \param gravity 1 to include the weight (model.gravity), 0 for the inertial part alone
 /// \return the torques in data.tau; the pelvis's wrench in data.joint_wrench[0]
+/// \param first > 0: only the bodies from `first` on and their joints' torques, after a whole pass with the same
+/// arguments but these bodies' angles (e.g. kFirstLegBody: the legs' torques after a change of their angles alone,
+/// the same numbers as a whole pass); the wrenches and torques above are kept from that pass.
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
-                      const FootWrenches& feet = {}, double gravity = 1.0);
+                      const FootWrenches& feet = {}, double gravity = 1.0, int first = 0);
 
 /// The backward pass alone: inverse_dynamics's result for other given feet `feet` after an inverse_dynamics(model,
 /// kinematics, base, qd, qdd, data, …) with the same pose and motion (its bodies' own wrenches, data.body_wrench, are
 /// kept); the same numbers as inverse_dynamics with these feet, without its forward pass.
 void inverse_dynamics_with_feet(const RobotModel& model, const RobotModelData& kinematics, RobotDynamicsData& data,
-                                const FootWrenches& feet);
+                                const FootWrenches& feet, int first = 0);
 
 /// ∂τ_i/∂q_j of leg `side`'s joints (rows and columns in role order: hip yaw, roll, pitch, knee, ankle pitch,
 /// roll) [Nm/rad].
