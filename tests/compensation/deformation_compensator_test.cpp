@@ -24,6 +24,31 @@ using walking::Vector3d;
 
 constexpr NewtonSettings kNewton{.jacobian = NewtonJacobian::kEachIteration};
 
+// K + G block diagonal (each leg's torques on its own joints): the factors of the two blocks, put together, solve
+// as the whole matrix's partial-pivoting LU does, in every bit (==), and as Eigen's own solve.
+TEST(LinkAngleNewton, TwoBlockFactorSolvesAsTheWhole) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  using M = Eigen::Matrix<double, 12, 12>;
+  using V = Eigen::Matrix<double, 12, 1>;
+  for (int trial = 0; trial < 20; ++trial) {
+    M A = M::Zero();
+    for (int b = 0; b < 2; ++b)
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j) A(6 * b + i, 6 * b + j) = (i == j ? 1000.0 : 0.0) + 300 * u(rng);
+    V rhs;
+    for (int i = 0; i < 12; ++i) rhs(i) = u(rng);
+    LinkAngleFactor<12> whole, blocks;
+    whole.compute(A, false);
+    blocks.compute(A, true);
+    const V x = whole.solve(rhs), y = blocks.solve(rhs), eigen = Eigen::PartialPivLU<M>(A).solve(rhs);
+    for (int i = 0; i < 12; ++i) {
+      EXPECT_EQ(y(i), x(i)) << "trial " << trial << " row " << i;
+      EXPECT_EQ(x(i), eigen(i)) << "trial " << trial << " row " << i;
+    }
+  }
+}
+
 TEST(LinkAngleNewton, SolvesTheBenchToMachinePrecisionInAtMostFiveIterations) {
   // The thesis's bench: a 13.6 kg load on a 0.3 m arm (±40 Nm), k = 1000 Nm/rad; the gear
   // carries τ_g = −m g l cos θ (θ from horizontal, positive down), so θ_enc = θ + τ_g(θ)/k.

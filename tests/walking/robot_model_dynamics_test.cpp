@@ -312,7 +312,7 @@ TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
       FootWrenches feet;
       evaluate(q, kin, dyn, feet);
       for (int side = 0; side < 2; ++side) {
-        const LegTorqueDerivative G = inverse_dynamics_derivative(model, kin, qd, qdd, dyn, feet, side);
+        const LegTorqueDerivative G = inverse_dynamics_derivative(model, kin, dyn, feet, side);
         const LegTorqueDerivative numeric = central_difference(q, side, kStep, [&](const JointVector& angles) {
           RobotModelData k;
           RobotDynamicsData d;
@@ -325,18 +325,30 @@ TEST(RobotModelDynamics, InverseDynamicsDerivativeMatchesCentralDifferences) {
     }
 }
 
+/// A random floating pelvis pose and motion and joint angles, rates and accelerations.
+struct RandomMotion {
+  Pose pelvis;
+  BaseMotion base;
+  JointVector q{}, qd{}, qdd{};
+};
+RandomMotion random_motion(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  RandomMotion m;
+  m.pelvis = {Vector3d(u(rng), u(rng), 0.7),
+              Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
+  m.base = {Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)), 5 * Vector3d(u(rng), u(rng), u(rng)),
+            5 * Vector3d(u(rng), u(rng), u(rng))};
+  for (int j = 0; j < kJoints; ++j) m.q[j] = 0.6 * u(rng), m.qd[j] = 3 * u(rng), m.qdd[j] = 30 * u(rng);
+  return m;
+}
+
 // The backward pass alone with other feet after a full pass (the input compensator's plan Newton–Euler, then its
 // feet) is the full pass with those feet: the same operations on the same numbers, so equal in every bit (==).
 TEST(RobotModelDynamics, BackwardPassWithOtherFeetIsTheFullPass) {
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> u(-1, 1);
   for (const auto& [name, model] : derivative_robots()) {
-    const Pose pelvis{Vector3d(u(rng), u(rng), 0.7),
-                      Eigen::Quaterniond(1, 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)).normalized().toRotationMatrix()};
-    const BaseMotion base{Vector3d(u(rng), u(rng), u(rng)), Vector3d(u(rng), u(rng), u(rng)),
-                          5 * Vector3d(u(rng), u(rng), u(rng)), 5 * Vector3d(u(rng), u(rng), u(rng))};
-    JointVector q{}, qd{}, qdd{};
-    for (int j = 0; j < kJoints; ++j) q[j] = 0.6 * u(rng), qd[j] = 3 * u(rng), qdd[j] = 30 * u(rng);
+    const auto [pelvis, base, q, qd, qdd] = random_motion(rng);
     RobotModelData kin;
     forward_kinematics(model, kin, pelvis, q);
     FootWrenches feet;
@@ -353,6 +365,38 @@ TEST(RobotModelDynamics, BackwardPassWithOtherFeetIsTheFullPass) {
       EXPECT_EQ(split.joint_wrench[i].moment, full.joint_wrench[i].moment) << name << " body " << i;
     }
     EXPECT_NE(free_feet, full.tau) << name;  // the feet's wrenches changed the torques: the case is not empty
+  }
+}
+
+// After a whole pass, a change of the legs' angles alone recomputed from the first leg body on (the output
+// compensator's Newton iterates) is the whole pass at the new angles: the same operations on the same numbers (==).
+TEST(RobotModelDynamics, LegsAloneAfterAWholePassAreTheWholePass) {
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const auto& [name, model] : derivative_robots()) {
+    const auto [pelvis, base, q, qd, qdd] = random_motion(rng);
+    FootWrenches feet;
+    feet.given = {true, false};
+    feet.wrench[0] = {Vector3d(20 * u(rng), 20 * u(rng), 300), Vector3d(10 * u(rng), 10 * u(rng), 2)};
+    RobotModelData kin;
+    RobotDynamicsData legs;
+    forward_kinematics(model, kin, pelvis, q);
+    inverse_dynamics(model, kin, base, qd, qdd, legs, feet);
+    JointVector moved = q;
+    for (int j = 0; j < kJoints; ++j)
+      if (j != humanoid::kWaistYaw) moved[j] += 0.1 * u(rng);
+    forward_kinematics(model, kin, pelvis, moved, kFirstLegBody);
+    inverse_dynamics(model, kin, base, qd, qdd, legs, feet, 1.0, kFirstLegBody);
+    RobotModelData kin_whole;
+    RobotDynamicsData whole;
+    forward_kinematics(model, kin_whole, pelvis, moved);
+    inverse_dynamics(model, kin_whole, base, qd, qdd, whole, feet);
+    for (int j = 0; j < kJoints; ++j) EXPECT_EQ(legs.tau[j], whole.tau[j]) << name << " joint " << j;
+    for (int i = kFirstLegBody; i < kBodies; ++i) {
+      EXPECT_EQ(kin.frame[i].p, kin_whole.frame[i].p) << name << " body " << i;
+      EXPECT_EQ(kin.frame[i].R, kin_whole.frame[i].R) << name << " body " << i;
+      EXPECT_EQ(legs.joint_wrench[i].moment, whole.joint_wrench[i].moment) << name << " body " << i;
+    }
   }
 }
 
@@ -400,8 +444,7 @@ TEST(RobotModelDynamics, AtRestTheTwoDerivativesAgree) {
     compensation::FootLoads none;
     none.share = {0, 0};
     for (int side = 0; side < 2; ++side) {
-      const LegTorqueDerivative a =
-          inverse_dynamics_derivative(model, kin, JointVector{}, JointVector{}, dyn, {}, side);
+      const LegTorqueDerivative a = inverse_dynamics_derivative(model, kin, dyn, {}, side);
       const LegTorqueDerivative b =
           compensation::gravity_torque_derivative(model, kin, none, compensation::GravityForm::kFull, side);
       EXPECT_LE((a - b).lpNorm<Eigen::Infinity>(), 1e-12 * b.lpNorm<Eigen::Infinity>())  // rounding

@@ -55,9 +55,10 @@ const humanoid::JointVector& DeformationCompensator::torque(const humanoid::Join
 }
 
 const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::JointVector& q,
-                                                               const walking::Matrix3d& R, const SupportPlan& support) {
+                                                               const walking::Matrix3d& R, const SupportPlan& support,
+                                                               int first) {
   // The pelvis position does not change a gravity torque; only its attitude does.
-  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), R}, q);
+  walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), R}, q, first);
   if (params_.load_model == LoadModel::kGravity) {
     if (params_.split == WeightSplit::kCom) plan_loads_ = com_loads(model_, data_, support.swinging);
     tau_ = gravity_torque(model_, data_, plan_loads_, params_.gravity);
@@ -110,7 +111,7 @@ const humanoid::JointVector& DeformationCompensator::torque_at(const humanoid::J
   if (whole_body)  // plan_ground_wrench's forward pass was this pose's and motion's
     walking::inverse_dynamics_with_feet(model_, data_, dynamics_, feet_);
   else
-    walking::inverse_dynamics(model_, data_, m.pelvis, m.velocity, m.acceleration, dynamics_, feet_);
+    walking::inverse_dynamics(model_, data_, m.pelvis, m.velocity, m.acceleration, dynamics_, feet_, 1.0, first);
   tau_ = dynamics_.tau;
   tau_[humanoid::kWaistYaw] = 0.0;  // the waist carries no modelled load (as in the gravity form)
   return tau_;
@@ -202,9 +203,12 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   q_ = encoder;
   const double h = params_.fd_step;
   using LegMatrix = Eigen::Matrix<double, kLegDofs, kLegDofs>;
+  // The first evaluation (at the encoders) is whole; the others change the legs' angles alone.
+  int first = 0;
   auto leg_torque = [&](const LegVector& theta, LegVector& tau) {
     set_legs(q_, theta);
-    tau = legs_of(torque_at(q_, imu_R, support));
+    tau = legs_of(torque_at(q_, imu_R, support, first));
+    first = walking::kFirstLegBody;
   };
   // G = ∂τ_g/∂θ. Each leg's torque depends on its own joints only unless the loads depend on the pose:
   // G is block diagonal, each block the analytic derivative at the pose of the last torque evaluation
@@ -222,13 +226,13 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
         LegVector shifted = theta;
         shifted(j) += h;
         set_legs(q_, shifted);
-        G.col(j) = (legs_of(torque_at(q_, imu_R, support)) - tau) / h;
+        G.col(j) = (legs_of(torque_at(q_, imu_R, support, first)) - tau) / h;
       }
       return;
     }
     if (legs_of(q_) != theta) {  // data_ and dynamics_ must hold this pose
       set_legs(q_, theta);
-      torque_at(q_, imu_R, support);
+      torque_at(q_, imu_R, support, first);
     }
     for (int side = 0; side < 2; ++side) {
       const int o = side * kLegJoints;
@@ -237,9 +241,8 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
             gravity_torque_derivative(model_, data_, plan_loads_, params_.gravity, side);
         continue;
       }
-      const walking::PlannedMotion& m = params_.load_model == LoadModel::kDynamic ? support.motion : kAtRest;
       G.block<kLegJoints, kLegJoints>(o, o) =
-          walking::inverse_dynamics_derivative(model_, data_, m.velocity, m.acceleration, dynamics_, feet_, side);
+          walking::inverse_dynamics_derivative(model_, data_, dynamics_, feet_, side);
     }
   };
   // control.gear_damping: eq. 11 with the Kelvin–Voigt lag, k/a and θ_enc − (1 − a) δ_{n−1}.
@@ -256,7 +259,7 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
       }
   }
   const LinkAngleEstimate<kLegDofs> e =
-      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton);
+      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton, !coupled);
   if (params_.gear_damping > 0) {
     set_legs(output_deflection_, legs_of(encoder) - e.newton);
     output_lagged_ = true;

@@ -336,9 +336,11 @@ class DeformationCompensator {
   /// The field baselines' hip roll offsets on command_.
   void apply_baseline(const humanoid::JointVector& desired, const walking::Matrix3d& pelvis_R,
                       const SupportPlan& support);
-  /// τ_g with the loads of the last split_by_plan (kZmpReference) or of this pose (kCom).
+  /// τ_g with the loads of the last split_by_plan (kZmpReference) or of this pose (kCom). `first` =
+  /// walking::kFirstLegBody after a whole evaluation with the same R and support whose q differed in the legs alone:
+  /// the legs' bodies alone are recomputed (the same numbers; the pelvis's and the chest's kept).
   const humanoid::JointVector& torque_at(const humanoid::JointVector& q, const walking::Matrix3d& R,
-                                         const SupportPlan& support);
+                                         const SupportPlan& support, int first = 0);
 
   walking::RobotModel model_;
   CompensationParams params_;

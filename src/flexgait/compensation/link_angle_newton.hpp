@@ -16,6 +16,7 @@
 /// returned and `converged` is false.
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -47,12 +48,66 @@ struct LinkAngleEstimate {
   bool converged = false;
 };
 
+/// The LU factorisation of K + G (partial pivoting) and its solve. When G is block diagonal in two halves (each
+/// leg's torques depend on its own joints only) each half's block is factored alone: partial pivoting picks the same
+/// pivots and makes the same eliminations as on the whole (none across the zero blocks), so the factors, put together,
+/// are the whole's, and the whole's triangular solves on them give the same numbers.
+template <int N>
+class LinkAngleFactor {
+ public:
+  using Vector = Eigen::Matrix<double, N, 1>;
+  using Matrix = Eigen::Matrix<double, N, N>;
+  void compute(const Matrix& A, bool two_blocks) {
+    if constexpr (N % 2 == 0) {
+      if (two_blocks) {
+        constexpr int H = N / 2;
+        factor(halves_[0], A.template topLeftCorner<H, H>());
+        factor(halves_[1], A.template bottomRightCorner<H, H>());
+        lu_.setZero();
+        lu_.template topLeftCorner<H, H>() = halves_[0]->matrixLU();
+        lu_.template bottomRightCorner<H, H>() = halves_[1]->matrixLU();
+        for (int i = 0; i < H; ++i) {
+          permutation_.indices()(i) = halves_[0]->permutationP().indices()(i);
+          permutation_.indices()(H + i) = H + halves_[1]->permutationP().indices()(i);
+        }
+        return;
+      }
+    }
+    factor(whole_, A);
+    lu_ = whole_->matrixLU();
+    permutation_ = whole_->permutationP();
+  }
+  /// (K + G)⁻¹ b as Eigen's PartialPivLU::solve forms it.
+  Vector solve(const Vector& b) const {
+    Vector x = permutation_ * b;
+    lu_.template triangularView<Eigen::UnitLower>().solveInPlace(x);
+    lu_.template triangularView<Eigen::Upper>().solveInPlace(x);
+    return x;
+  }
+
+ private:
+  template <class LU, class Block>
+  static void factor(std::optional<LU>& lu, const Block& A) {
+    if (lu)
+      lu->compute(A);
+    else
+      lu.emplace(A);
+  }
+  static constexpr int kHalf = N % 2 == 0 ? N / 2 : 1;
+  Matrix lu_ = Matrix::Zero();
+  Eigen::PermutationMatrix<N, N> permutation_;
+  std::optional<Eigen::PartialPivLU<Matrix>> whole_;
+  std::array<std::optional<Eigen::PartialPivLU<Eigen::Matrix<double, kHalf, kHalf>>>, 2> halves_;
+};
+
 /// `torque(θ, τ)` writes τ_g(θ) [Nm]; `jacobian(θ, τ, G)` writes G = ∂τ_g/∂θ [Nm/rad] given
 /// τ = τ_g(θ) (it is only asked for where another step follows). `stiffness`: k per joint [Nm/rad].
+/// `two_blocks`: G is block diagonal in its two halves (N even), K + G is factored block by block.
 template <int N, class Torque, class Jacobian>
 LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encoder,
                                        const Eigen::Matrix<double, N, 1>& stiffness, Torque&& torque,
-                                       Jacobian&& jacobian, const NewtonSettings& settings = {}) {
+                                       Jacobian&& jacobian, const NewtonSettings& settings = {},
+                                       bool two_blocks = false) {
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
   LinkAngleEstimate<N> out;
@@ -65,7 +120,7 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
   double residual = r.template lpNorm<Eigen::Infinity>();
   Vector best = theta;
   double best_residual = residual;
-  std::optional<Eigen::PartialPivLU<Matrix>> lu;  // formed at the first step (refresh), before any solve
+  LinkAngleFactor<N> lu;  // formed at the first step (refresh), before any solve
   bool refresh = true;
   for (int it = 0; it < settings.max_iterations && !(residual <= settings.tolerance); ++it) {
     if (refresh || settings.jacobian == NewtonJacobian::kEachIteration) {
@@ -73,12 +128,9 @@ LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encode
       if (it == 0) out.per_joint = encoder - tau.cwiseQuotient(stiffness + G.diagonal());
       Matrix A = G;
       A.diagonal() += stiffness;
-      if (lu)
-        lu->compute(A);
-      else
-        lu.emplace(A);
+      lu.compute(A, two_blocks);
     }
-    theta += lu->solve(stiffness.cwiseProduct(r));
+    theta += lu.solve(stiffness.cwiseProduct(r));
     if (it == 0) out.one_step = theta;
     torque(theta, tau);
     r = encoder - compliance.cwiseProduct(tau) - theta;

@@ -120,8 +120,8 @@ Matrix3d turned(const Matrix3d& P, const Vector3d& axis, double angle) {
 }  // namespace
 
 void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
-                        const humanoid::JointVector& q) {
-  for (int i = 0; i < kBodies; ++i) {
+                        const humanoid::JointVector& q, int first) {
+  for (int i = first; i < kBodies; ++i) {
     const auto& b = model.bodies[i];
     Pose& f = data.frame[i];
     if (b.parent < 0) {

@@ -21,6 +21,7 @@ namespace flexgait::walking {
 
 inline constexpr int kBodies =
     16;  ///< pelvis, chest, 2 × (hip yaw, hip roll, thigh, shank, ankle pitch, ankle roll, foot)
+inline constexpr int kFirstLegBody = 2;  ///< the left hip yaw body; the legs' bodies follow
 
 /// Every body frame is parallel to the pelvis frame at zero joint angles; a body's origin is its
 /// joint's anchor (a point of the joint axis).
@@ -87,9 +88,11 @@ struct RobotModelData {
   std::array<Vector3d, kBodies> com_world;  ///< world position of each body's centre of mass [m]
 };
 
-/// World frames of every body for this pelvis pose and these joint angles.
+/// World frames of every body for this pelvis pose and these joint angles. With `first` > 0 only the bodies from
+/// `first` on (e.g. kFirstLegBody: the legs after a change of their angles alone); those before are kept from the
+/// last call, the same numbers as a whole pass.
 void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pose& pelvis,
-                        const humanoid::JointVector& q);
+                        const humanoid::JointVector& q, int first = 0);
 /// Whole-body centre of mass after forward_kinematics [m].
 Vector3d center_of_mass(const RobotModel& model, const RobotModelData& data);
 /// World pose of the sole centre of `side` after forward_kinematics.

@@ -20,14 +20,16 @@
 /// the leg torques are leg_gravity_torque's.
 ///
 /// The derivative ∂τ/∂q of one leg's torques with respect to its own joints (inverse_dynamics_derivative) is
-/// the forward-mode derivative of the same recursion (the idea of Carpentier and Mansard 2018, "Analytical
-/// derivatives of rigid body dynamics algorithms", RSS: differentiate the passes, not the result). Turning joint k
-/// by dq_k turns every body below it about its axis u_k through its origin: for each body m at or below k
-///     δu_m = u_k × u_m,  δr_m = u_k × r_m (m below k; 0 for k itself),  δc_m = u_k × c_m,
-///     δI_m x = u_k × (I_m x) − I_m (u_k × x),
-/// and the forward pass's recursions, differentiated, carry δω, δα, δa down from k (zero at k); the backward
-/// pass carries (δf, δn) up to the leg's first joint, and δτ_i = δu_i · n_i + u_i · δn_i. The pelvis's motion
-/// and the gravity do not turn. O(6²) per leg, one pass per column, no allocation.
+/// the recursive derivative of the same algorithm (Carpentier and Mansard 2018, "Analytical derivatives of rigid
+/// body dynamics algorithms", RSS), in spatial vectors about a fixed point (Featherstone 2008, §2). Turning joint k
+/// (motion subspace S_k) turns everything below it rigidly (S_k ×) and changes the motion of every body m below it
+/// by −W_k in velocity and −U_k − W_k × V_m in acceleration, W_k = S_k × V_λ(k), U_k = S_k × A_λ(k) − W_k × V_λ(k);
+/// with the composite inertia I^c and the composite B^c (B_m W = I_m (W × V_m) + W ×* I_m V_m + V_m ×* I_m W) below
+/// each joint,
+///     ∂τ_i/∂q_k = S_iᵀ (S_k ×* f_k − I^c_k U_k − B^c_k W_k)   (i at or above k),
+///     ∂τ_i/∂q_k = −S_iᵀ (I^c_i U_k + B^c_i W_k)               (i below k),
+/// f_k the subtree's force. The pelvis's motion and the gravity do not turn. One backward pass over the leg (the
+/// composites), no allocation.
 #include <array>
 
 #include "flexgait/robot/joints.hpp"
@@ -76,26 +78,28 @@ void forward_motion(const RobotModel& model, const RobotModelData& kinematics, c
 /// \param qd joint velocities (humanoid::kJoints) [rad/s]; \param qdd joint accelerations [rad/s^2]
 /// \param gravity 1 to include the weight (model.gravity), 0 for the inertial part alone
 /// \return the torques in data.tau; the pelvis's wrench in data.joint_wrench[0]
+/// \param first > 0: only the bodies from `first` on and their joints' torques, after a whole pass with the same
+/// arguments but these bodies' angles (e.g. kFirstLegBody: the legs' torques after a change of their angles alone,
+/// the same numbers as a whole pass); the wrenches and torques above are kept from that pass.
 void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics, const BaseMotion& base,
                       const humanoid::JointVector& qd, const humanoid::JointVector& qdd, RobotDynamicsData& data,
-                      const FootWrenches& feet = {}, double gravity = 1.0);
+                      const FootWrenches& feet = {}, double gravity = 1.0, int first = 0);
 
 /// The backward pass alone: inverse_dynamics's result for other given feet `feet` after an inverse_dynamics(model,
 /// kinematics, base, qd, qdd, data, …) with the same pose and motion (its bodies' own wrenches, data.body_wrench, are
 /// kept); the same numbers as inverse_dynamics with these feet, without its forward pass.
 void inverse_dynamics_with_feet(const RobotModel& model, const RobotModelData& kinematics, RobotDynamicsData& data,
-                                const FootWrenches& feet);
+                                const FootWrenches& feet, int first = 0);
 
 /// ∂τ_i/∂q_j of leg `side`'s joints (rows and columns in role order: hip yaw, roll, pitch, knee, ankle pitch,
 /// roll) [Nm/rad].
 using LegTorqueDerivative = Eigen::Matrix<double, 6, 6>;
 
 /// ∂τ/∂q of leg `side`'s six torques with respect to its own six joint angles, the velocities, accelerations
-/// and the pelvis's motion held, after inverse_dynamics(model, kinematics, …, qd, qdd, data, feet, …) with the
-/// same arguments. A foot's given wrench is taken as fixed in the foot (an ankle F/T reading turned into the
-/// world by the foot's frame: it turns with the foot).
+/// and the pelvis's motion held, after inverse_dynamics(model, kinematics, …, data, feet, …) with the same
+/// arguments (the motion is read from `data`). A foot's given wrench is taken as fixed in the foot (an ankle F/T
+/// reading turned into the world by the foot's frame: it turns with the foot).
 LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const RobotModelData& kinematics,
-                                                const humanoid::JointVector& qd, const humanoid::JointVector& qdd,
                                                 const RobotDynamicsData& data, const FootWrenches& feet, int side);
 
 }  // namespace flexgait::walking
