@@ -50,6 +50,11 @@ std::string unit_list(const std::array<double, N>& v) {
   return list(v);
 }
 
+/// The quat attribute of an element in a sole's own frame (humanoid::Sole::quat); "" if it has none.
+std::string sole_frame(const humanoid::Sole& s) {
+  return s.has_own_frame() ? " quat=\"" + unit_list(s.quat) + "\"" : "";
+}
+
 /// A name the twin gives to its own elements: a file geom of that name loses it.
 bool reserved(std::string_view name) {
   return name == "floor" || name == "l_sole" || name == "r_sole";
@@ -66,11 +71,11 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
                      root ? "1 0 0 0" : unit_list(body.quat));
   if (root) out += pad + "  <freejoint name=\"root\"/>\n";
   if (b == r.imu_body) out += pad + "  <site name=\"imu\" pos=\"0 0 0\" size=\"0.01\"/>\n";
-  // The F/T sensor at the foot body's origin, its axes the sole's (humanoid::Sole::quat).
+  // The F/T sensor at the foot body's origin, its axes the sole's.
   for (int side = 0; side < 2; ++side)
     if (b == r.foot[side])
       out += fmt::format("{}  <site name=\"{}_ft\" pos=\"0 0 0\"{} size=\"0.01\"/>\n", pad, side == 0 ? "l" : "r",
-                         r.sole[side].has_own_frame() ? " quat=\"" + unit_list(r.sole[side].quat) + "\"" : "");
+                         sole_frame(r.sole[side]));
   if (body.mass > 0)
     out += fmt::format("{}  <inertial pos=\"{}\" quat=\"{}\" mass=\"{}\" diaginertia=\"{}\"/>\n", pad, list(body.ipos),
                        unit_list(body.iquat), body.mass, list(body.inertia));
@@ -115,20 +120,19 @@ void write_body(std::string& out, const humanoid::LoadedRobot& r, const humanoid
   if (side >= 0 && r.sole[side].geom < 0) {  // a sole plate 10 mm thick on the sole rectangle
     const humanoid::Sole& s = r.sole[side];
     // (on a sole the foot's own geoms make in the twin, the plate only marks it: no contact)
-    const std::string contact = s.hull_in_twin ? R"(contype="0" conaffinity="0")" : sole_contact;
-    const char* alpha = s.hull_in_twin ? "0.3" : "1";
-    if (!s.has_own_frame()) {
-      out += fmt::format(
-          "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{} {} {}\" {} rgba=\".3 .3 .8 {}\"/>\n", pad,
-          sole_name, 0.5 * s.length, 0.5 * s.width, s.center[0], s.center[1], s.center[2] + 0.005, contact, alpha);
-    } else {  // in the sole's frame: its centre 5 mm above the sole along the sole's z
+    // Its centre 5 mm above the sole along the sole's z (in the sole's own frame, if it has one).
+    std::array<double, 3> c = s.center;
+    if (s.has_own_frame()) {
       mjtNum up[3] = {0, 0, 0.005}, shift[3];
       mju_rotVecQuat(shift, up, s.quat.data());
-      const std::array<double, 3> c{s.center[0] + shift[0], s.center[1] + shift[1], s.center[2] + shift[2]};
-      out += fmt::format(
-          "{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{}\" quat=\"{}\" {} rgba=\".3 .3 .8 {}\"/>\n",
-          pad, sole_name, 0.5 * s.length, 0.5 * s.width, list(c), unit_list(s.quat), contact, alpha);
+      for (int i = 0; i < 3; ++i) c[static_cast<std::size_t>(i)] += shift[i];
+    } else {
+      c[2] += 0.005;
     }
+    out +=
+        fmt::format("{}  <geom name=\"{}\" type=\"box\" size=\"{} {} 0.005\" pos=\"{}\"{} {} rgba=\".3 .3 .8 {}\"/>\n",
+                    pad, sole_name, 0.5 * s.length, 0.5 * s.width, list(c), sole_frame(s),
+                    s.hull_in_twin ? R"(contype="0" conaffinity="0")" : sole_contact, s.hull_in_twin ? "0.3" : "1");
   }
   for (std::size_t c = 0; c < r.bodies.size(); ++c)
     if (r.bodies[c].parent == b) write_body(out, r, robot, p, static_cast<int>(c), depth + 1);

@@ -1,5 +1,7 @@
 #include "flexgait/walking/robot_model_dynamics.hpp"
 
+#include "flexgait/walking/rotation.hpp"
+
 namespace flexgait::walking {
 
 namespace {
@@ -103,12 +105,6 @@ Spatial cross_motion(const Spatial& a, const Spatial& b) {
 /// m ×* f of a motion and a force.
 Spatial cross_force(const Spatial& a, const Spatial& f) {
   return spatial(a.head<3>().cross(f.head<3>()) + a.tail<3>().cross(f.tail<3>()), a.head<3>().cross(f.tail<3>()));
-}
-
-Matrix3d skew(const Vector3d& a) {
-  Matrix3d s;
-  s << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return s;
 }
 
 /// A rigid body's (or a composite's) spatial inertia about O: its mass, first moment h = m c and rotational

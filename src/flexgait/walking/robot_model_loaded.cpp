@@ -215,7 +215,6 @@ RobotModel make_robot_model(const LoadedRobot& r) {
   // The soles and the analytic IK's layout.
   for (int side = 0; side < 2; ++side) {
     const int b0 = 2 + 7 * side;
-    const std::string foot_key = std::string("robot.feet.") + (side == 0 ? "left" : "right") + ".body";
     const int fb = r.foot[side];
     const Matrix3d& Rf = R0[static_cast<std::size_t>(fb)];
     // The sole's frame in the foot link's (root-parallel) frame: the foot body's orientation at zero

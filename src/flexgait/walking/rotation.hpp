@@ -45,13 +45,19 @@ inline Vector3d rotation_vector(const Matrix3d& R) {
   return a.angle() * a.axis();
 }
 
+/// [a]×, the matrix of a × (·).
+inline Matrix3d skew(const Vector3d& a) {
+  Matrix3d s;
+  s << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return s;
+}
+
 /// The inverse of SO(3)'s left Jacobian at φ: log(exp([δ]×) exp([φ]×)) = φ + J_l⁻¹(φ) δ + O(δ²),
 ///     J_l⁻¹(φ) = I − ½[φ]× + (1/θ² − (1 + cos θ)/(2 θ sin θ)) [φ]×²,  θ = |φ| < π
 /// (the bracket's series 1/12 + θ²/720 below θ = 1e-4).
 inline Matrix3d left_jacobian_inverse(const Vector3d& phi) {
   const double theta = phi.norm();
-  Matrix3d W;
-  W << 0, -phi.z(), phi.y(), phi.z(), 0, -phi.x(), -phi.y(), phi.x(), 0;
+  const Matrix3d W = skew(phi);
   const double b = theta < 1e-4 ? 1.0 / 12.0 + theta * theta / 720.0
                                 : 1.0 / (theta * theta) - (1 + std::cos(theta)) / (2 * theta * std::sin(theta));
   return Matrix3d::Identity() - 0.5 * W + b * W * W;
