@@ -1,5 +1,6 @@
 #include "flexgait/compensation/deformation_compensator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace flexgait::compensation {
@@ -258,8 +259,30 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
         stiffness(r) /= a;
       }
   }
+  if (kept_stiffness_ != stiffness || kept_swinging_ != support.swinging || kept_coupled_ != coupled) {
+    kept_.forget();
+    kept_periods_ = 0;
+  }
+  kept_stiffness_ = stiffness;
+  kept_swinging_ = support.swinging;
+  kept_coupled_ = coupled;
+  // Newton's start: θ_enc less the deflection extrapolated from the last two periods (its change in a period is
+  // ~1e-4 rad, its second difference smaller still, where θ_enc itself is off by the whole deflection).
+  const LegVector encoder_legs = legs_of(encoder);
+  LegVector start = encoder_legs;
+  if (kept_periods_ == 1) start -= kept_deflection_[0];
+  if (kept_periods_ == 2) start -= 2 * kept_deflection_[0] - kept_deflection_[1];
   const LinkAngleEstimate<kLegDofs> e =
-      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton, !coupled);
+      solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton, !coupled, &kept_,
+                                  forms_, kept_periods_ > 0 ? &start : nullptr);
+  if (e.converged) {
+    kept_deflection_[1] = kept_deflection_[0];
+    kept_deflection_[0] = encoder_legs - e.newton;
+    kept_periods_ = std::min(kept_periods_ + 1, 2);
+  } else {
+    kept_.forget();
+    kept_periods_ = 0;
+  }
   if (params_.gear_damping > 0) {
     set_legs(output_deflection_, legs_of(encoder) - e.newton);
     output_lagged_ = true;

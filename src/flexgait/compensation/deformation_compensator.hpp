@@ -80,8 +80,9 @@ constexpr std::array<EnumName<KEstimation>, 3> enum_names(KEstimation) {
 }
 
 /// The output compensator's Newton: G formed at each iterate, or reused (link_angle_newton.hpp).
-constexpr std::array<EnumName<NewtonJacobian>, 2> enum_names(NewtonJacobian) {
-  return {{{NewtonJacobian::kEachIteration, "each"}, {NewtonJacobian::kReused, "reused"}}};
+constexpr std::array<EnumName<NewtonJacobian>, 3> enum_names(NewtonJacobian) {
+  return {
+      {{NewtonJacobian::kEachIteration, "each"}, {NewtonJacobian::kReused, "reused"}, {NewtonJacobian::kKept, "kept"}}};
 }
 
 /// About which point the weight is split between the feet (eqs. 5-6): the COM of the pose (the
@@ -264,7 +265,10 @@ struct CompensationParams {
       {.unit = "rad", .doc = "output compensator: converged when |N(theta)| <= this", .bounds = closed(1e-15, 1e-3)});
     v("control.newton_jacobian", s.newton.jacobian,
       {.doc = "output compensator: G = dtau/dtheta formed at each Newton iterate (each), or reused while a step cuts "
-              "the residual a hundredfold (reused: the chord method)"});
+              "the residual a hundredfold (the chord method): formed afresh at each period's first step (reused), or "
+              "carried from period to period, Newton starting from the deflection extrapolated from the last two "
+              "periods, and formed again when a step cuts the residual less than a thousandfold or the stiffness or "
+              "the supporting feet change (kept)"});
   }
 
   bool input() const { return mode == CompensationMode::kInput || mode == CompensationMode::kBoth; }
@@ -284,10 +288,11 @@ inline constexpr int kLegDofs = 2 * humanoid::kLegJoints;  ///< the unknowns of 
 using LegVector = Eigen::Matrix<double, kLegDofs, 1>;      ///< left leg then right leg, kinematic order
 
 struct OutputEstimate {
-  humanoid::JointVector newton{};          ///< θ̂ by Newton (eq. 11; the fallback if not converged) [rad]
-  humanoid::JointVector one_step{};        ///< eq. 12 [rad]
-  humanoid::JointVector per_joint{};       ///< eq. 12 joint by joint, the thesis's scalar form (G's diagonal) [rad]
-  humanoid::JointVector conventional{};    ///< θ_enc − τ_g(θ_enc)/k [rad]
+  humanoid::JointVector newton{};    ///< θ̂ by Newton (eq. 11; the fallback if not converged) [rad]
+  humanoid::JointVector one_step{};  ///< eq. 12 [rad] (newton_jacobian = kept: NaN in the legs unless estimate_forms)
+  humanoid::JointVector
+      per_joint{};  ///< eq. 12 joint by joint, the thesis's scalar form (G's diagonal) [rad] (likewise)
+  humanoid::JointVector conventional{};    ///< θ_enc − τ_g(θ_enc)/k [rad] (likewise)
   humanoid::JointVector gravity_torque{};  ///< τ_g(θ̂) [Nm]
   int iterations = 0;
   double residual = 0;  ///< ||N(θ̂)||_inf [rad]
@@ -312,6 +317,8 @@ class DeformationCompensator {
   const humanoid::JointVector& input_torque() const { return input_torque_; }
 
   /// Eqs. 10-13: the real joint angles from the encoders, the IMU's attitude and the support.
+  /// The one-step and per-joint forms (eq. 12, for comparison) are formed with control.newton_jacobian = kept
+  /// only once asked for by estimate_forms; Newton's estimate does not depend on it.
   const OutputEstimate& output(const humanoid::JointVector& encoder, const walking::Matrix3d& imu_R,
                                const SupportPlan& support);
 
@@ -319,6 +326,9 @@ class DeformationCompensator {
   const humanoid::JointVector& torque(const humanoid::JointVector& q, const walking::Matrix3d& R,
                                       const SupportPlan& support);
 
+  /// Whether `output` forms the conventional, one-step and per-joint estimates (a study comparing them asks; off by
+  /// default; with newton_jacobian = kept they are NaN otherwise).
+  void estimate_forms(bool on) { forms_ = on; }
   const CompensationParams& params() const { return params_; }
   /// Replaces the belief of the gears' stiffness (control.k_estimation: the confident estimate) [Nm/rad], > 0.
   void set_stiffness(const humanoid::JointVector& k) { stiffness_ = k; }
@@ -356,6 +366,17 @@ class DeformationCompensator {
   std::array<walking::Wrench, 2> foot_need_;  ///< each foot's own Newton–Euler wrench of the plan, at its origin
   humanoid::JointVector q_{}, tau_{}, command_{}, input_torque_{};
   OutputEstimate estimate_;
+  bool forms_ = false;  ///< estimate_forms
+  /// NewtonJacobian::kKept: the factorisation of K + G carried from period to period, and what it was formed for
+  /// (forgotten when the stiffness, the supporting feet or G's coupling change).
+  LinkAngleFactor<kLegDofs> kept_;
+  LegVector kept_stiffness_ = LegVector::Zero();
+  std::array<bool, 2> kept_swinging_{};
+  bool kept_coupled_ = false;
+  /// θ_enc − θ̂ of the last two periods since the factorisation was formed for this support (Newton's start: their
+  /// linear extrapolation), and how many of them there are (0-2).
+  std::array<LegVector, 2> kept_deflection_{LegVector::Zero(), LegVector::Zero()};
+  int kept_periods_ = 0;
   // load_model measured/dynamic:
   bool sensed_ = false;                  ///< a reading has arrived (the filter starts from it)
   bool planned_cop_ = false;             ///< evaluating for the input side: measured force at the plan's CoP

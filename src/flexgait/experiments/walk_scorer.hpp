@@ -30,6 +30,8 @@ class WalkScorer final : public loop::LoopObserver {
              std::function<void(const WalkSample&)> record);
 
   void observe(const loop::LoopStep& step) override;
+  /// It scores them (summary.json's one-step and per-joint errors, joints.csv).
+  bool reads_estimate_forms() const override { return true; }
   /// The walk must end: the robot fell or lost its support.
   bool fell() const { return out_.metrics.fell; }
   /// The walk's result after its last period (judges the end's support when it ran to its end).

@@ -40,6 +40,9 @@ class LoopObserver {
  public:
   virtual ~LoopObserver() = default;
   virtual void observe(const LoopStep& step) = 0;
+  /// Whether it reads the output estimate's one-step and per-joint forms (eq. 12, for comparison; not formed
+  /// otherwise, DeformationCompensator::estimate_forms).
+  virtual bool reads_estimate_forms() const { return false; }
 };
 
 /// The loop's parts that are not the controller.
@@ -66,7 +69,10 @@ class HumanoidLoop {
   /// compensators apply as configured; the controller is not updated).
   std::optional<SimulationFailure> step(const humanoid::JointVector& desired);
 
-  void attach(LoopObserver& observer) { observers_.push_back(&observer); }
+  void attach(LoopObserver& observer) {
+    observers_.push_back(&observer);
+    if (observer.reads_estimate_forms()) stage_.estimate_forms(true);
+  }
 
   const humanoid::SensorReadings& sensors() const { return plant_.sensors(); }
   const twin::GroundTruth& truth() const { return truth_; }

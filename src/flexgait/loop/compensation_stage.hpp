@@ -46,6 +46,8 @@ class CompensationStage {
   /// τ_g of the input compensator at the last desired pose [Nm].
   const humanoid::JointVector& input_torque() const { return compensator_.input_torque(); }
   const compensation::CompensationParams& params() const { return compensator_.params(); }
+  /// The output estimate's one-step and per-joint forms formed each period (DeformationCompensator::estimate_forms).
+  void estimate_forms(bool on) { compensator_.estimate_forms(on); }
   /// control.k_estimation on or calibrate: each joint's stiffness estimate [Nm/rad]; empty when off.
   std::optional<humanoid::JointVector> k_estimate() const;
   /// control.k_estimation on or calibrate: each joint's relative standard deviation sqrt(P)/c (the compensators use a
