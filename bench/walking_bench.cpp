@@ -52,8 +52,8 @@ BENCHMARK(ControllerUpdate)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 // compensator (Newton, eqs. 10-13) on encoders that carry the model's deflection.
 // Arguments: compensation::WeightSplit, compensation::LoadModel (≤ 30 µs with dynamic),
 // balance (0 pd, 1 dcm with step adjustment; ≤ 30 µs with dcm and both compensators),
-// compensation::NewtonJacobian (0 each iterate, 1 reused), k estimation (1: control.k_estimation on, with
-// the stance offsets, after the update), the default case's physics (1: control.plan_horizontal_force,
+// compensation::NewtonJacobian (0 each iterate, 1 reused, 2 kept: the default), k estimation (1: control.k_estimation
+// on, with the stance offsets, after the update), the default case's physics (1: control.plan_horizontal_force,
 // control.gear_damping and control.load_filter_time as `humanoid walk` resolves them for its default case
 // both-dynamic-horizontal-lag: the plan's whole-body Newton–Euler, the gears' lag, the short F/T low-pass).
 void ControllerUpdateWithCompensators(benchmark::State& state) {
@@ -123,6 +123,8 @@ BENCHMARK(ControllerUpdateWithCompensators)
 
     ->Args({1, 2, 0, 1, 0, 1})
     ->Args({1, 2, 1, 1, 1, 1})
+    ->Args({1, 2, 0, 2, 0, 1})
+    ->Args({1, 2, 1, 2, 1, 1})
     ->Unit(benchmark::kMicrosecond);
 
 // The default `humanoid walk` (10 steps at 1 s/step, both-dynamic-horizontal-lag), end to end with its scorer.

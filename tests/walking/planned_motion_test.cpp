@@ -134,6 +134,41 @@ TEST(PlannedMotion, AJacobianFromATenthOfASecondBeforeServesAsWell) {
   }
 }
 
+TEST(PlannedMotion, PutsTheComWithinToleranceAndLeavesThePosesExactComJacobian) {
+  // The pose it found puts the model's COM over the cart's c (kPlanComTolerance), and the inverse it leaves is
+  // (∂c/∂p)⁻¹ at that pose: central differences of the COM per pelvis move with the soles held (step 1e-6 m:
+  // truncation ~1e-12, rounding ~1e-16/1e-6 = 1e-10 relative) times it give I to 1e-8.
+  Fixture f;
+  const Step& s = f.plan.steps[2];
+  for (double u : {0.0, 0.4, 0.8}) {
+    const double t = u == 0.0 ? 0.5 * (s.t_begin + s.t_lift) : s.t_lift + u * (s.t_land - s.t_lift);
+    RobotModelData data;
+    Pose centre;
+    const PlannedMotion m = f.at(t, data, centre);
+    ASSERT_TRUE(m.valid);
+    const FeetTarget feet = feet_target(f.plan, f.walk.swing_height, t);
+    Pose pose{m.pelvis_position, rot_z(heading_of(feet.sole)) * f.in.tilt};
+    humanoid::JointVector q{};
+    std::array<IkStatus, 2> ik{};
+    auto com_at = [&](const Pose& pelvis) {
+      Pose p = pelvis;
+      solve_com_pose(f.model, data, Eigen::Vector2d::Zero(), feet.sole, p, q, ik, 1);
+      return Eigen::Vector2d(center_of_mass(f.model, data).head<2>());
+    };
+    const Eigen::Vector2d target(f.in.cart[0](0), f.in.cart[1](0));
+    EXPECT_LE((com_at(pose) - target).lpNorm<Eigen::Infinity>(), kPlanComTolerance) << u;
+    Eigen::Matrix2d J;
+    const double h = 1e-6;
+    for (int axis = 0; axis < 2; ++axis) {
+      Pose plus = pose, minus = pose;
+      plus.p(axis) += h;
+      minus.p(axis) -= h;
+      J.col(axis) = (com_at(plus) - com_at(minus)) / (2 * h);
+    }
+    EXPECT_LT((f.last_inverse * J - Eigen::Matrix2d::Identity()).norm(), 1e-8) << u;
+  }
+}
+
 TEST(PlannedMotion, IsTheDerivativeOfThePlansPose) {
   // The plan's pose at t + s (planned_motion.hpp): the soles of feet_target(t + s), the pelvis turned to their
   // heading and at its height over the floor, its xy putting the COM at c + s ċ + s²/2 c̈ (30 rounds of the IK and

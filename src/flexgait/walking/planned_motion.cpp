@@ -9,11 +9,13 @@ namespace flexgait::walking {
 namespace {
 
 /// The pelvis is placed by Newton's method on its xy with one Jacobian ∂c/∂p (the COM's move
-/// per pelvis move, the soles held; ≈ 0.8 I, the legs' links move less than the trunk), taken at
-/// the pose by differences of this step [m] (and kept while it serves: it changes slowly with
-/// the legs' pose); two steps from a guess millimetres off leave < 1e-7 m (planned_motion_test).
+/// per pelvis move, the soles held; ≈ 0.8 I, the legs' links move less than the trunk): the last
+/// pose's exact one, or by differences of this step [m] at the guess; it changes slowly with the
+/// legs' pose. From a guess millimetres off, three steps at most meet kPlanComTolerance (two leave
+/// ~1e-9 m; planned_motion_test); from the last period's pose carried forward by its motion, the guess
+/// is micrometres off and one step, or none, meets it.
 constexpr double kJacobianStep = 1e-3;
-constexpr int kNewtonSteps = 2;
+constexpr int kNewtonSteps = 3;
 
 /// The legs' IK for the soles with the pelvis at `pelvis`; with `com`, the model's COM's xy.
 void place(const RobotModel& model, RobotModelData& data, const std::array<Pose, 2>& soles, Pose& pelvis,
@@ -73,8 +75,9 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
       J.col(axis) = (c_moved - c) / kJacobianStep;
     }
     inverse = J.inverse();
+    place(model, data, feet.sole, p, q, &c);  // (back to the guess's pose: Newton may take no step)
   }
-  for (int step = 0; step < kNewtonSteps; ++step) {
+  for (int step = 0; step < kNewtonSteps && (target - c).lpNorm<Eigen::Infinity>() > kPlanComTolerance; ++step) {
     p.p.head<2>() += inverse * (target - c);
     place(model, data, feet.sole, p, q, &c);  // (the last: the pose's kinematics, for the rates below)
   }
@@ -175,8 +178,11 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
     for (int i = 0; i < humanoid::kLegJoints; ++i) m.acceleration[humanoid::leg_first_joint(side) + i] = accel(i);
   }
   m.com_acceleration = Vector3d(in.cart[0](2), in.cart[1](2), 0.0);
-  m.valid = std::all_of(m.acceleration.begin(), m.acceleration.end(), [](double a) { return std::isfinite(a); });
-  if (!m.valid) m = PlannedMotion{};  // a singular leg (a straight knee): no motion to give
+  m.pelvis_position = p.p;
+  m.valid = std::all_of(m.acceleration.begin(), m.acceleration.end(), [](double a) { return std::isfinite(a); }) &&
+            A_inverse.allFinite();
+  if (!m.valid) return PlannedMotion{};  // a singular leg (a straight knee): no motion to give
+  inverse = A_inverse;                   // (∂c/∂p)⁻¹ at this pose, for the next
   return m;
 }
 

@@ -7,7 +7,7 @@
 /// COM's position, velocity and acceleration), the soles of feet_target (quintic swing, C²), the
 /// pelvis at its height and the feet's mean heading. Its pose at time t is the IK of c, the soles
 /// and the heading, with the pelvis position found so that the model's COM lies over c (Newton on
-/// the pelvis's xy, the Jacobian ∂c/∂p of the pose by differences). The joint and pelvis motion
+/// the pelvis's xy, the Jacobian ∂c/∂p the last pose's exact one, by differences at first). The joint and pelvis motion
 /// is that pose's exact derivative: the soles' rates from feet_motion (the plan's own derivatives),
 /// each leg's q̇ = J⁻¹(sole twist − the pelvis's motion carried to the sole) and q̈ = J⁻¹(sole
 /// acceleration − the bias of q̈ = 0) with J the leg's Jacobian, and the pelvis's horizontal
@@ -31,6 +31,7 @@ struct PlannedMotion {
   humanoid::JointVector velocity{};              ///< q̇ of the plan [rad/s]
   humanoid::JointVector acceleration{};          ///< q̈ of the plan [rad/s^2]
   BaseMotion pelvis;                             ///< the pelvis's planned motion (world)
+  Vector3d pelvis_position = Vector3d::Zero();   ///< the plan pose's pelvis origin (world) [m]
   Vector3d com_acceleration = Vector3d::Zero();  ///< the cart-table's c̈ (horizontal; world) [m/s^2]
 };
 
@@ -55,11 +56,15 @@ struct PlanPoseInputs {
   Matrix3d tilt = Matrix3d::Identity();                  ///< constant pelvis tilt after the heading (balance)
 };
 
-/// The plan's motion at time t, the pose's pelvis from `guess` (the pelvis of a nearby pose, e.g.
-/// the commanded one). `inverse`: (∂c/∂p)⁻¹, the pelvis's Newton step per COM miss, recomputed at
-/// the pose when `refresh` (else used as given: from a pose of the last ~0.1 s it still
-/// converges). `data` is scratch (it holds the pose's kinematics after). Not valid (all zero) where
-/// a leg's Jacobian is singular.
+/// The plan's motion at time t, the pose's pelvis from `guess` (the pelvis of a nearby pose: the
+/// last period's plan pose carried forward by its motion, or the commanded one). `inverse`:
+/// (∂c/∂p)⁻¹, the pelvis's Newton step per COM miss, by differences at the guess when `refresh`
+/// (else used as given: from a pose of the last ~0.1 s it still converges); left as the pose's
+/// exact one (the COM Jacobian with the soles held, which the rates use) when the motion is valid.
+/// Newton stops once the COM's miss is at most kPlanComTolerance. `data` is scratch (it holds the
+/// pose's kinematics after). Not valid (all zero) where a leg's Jacobian is singular.
+inline constexpr double kPlanComTolerance = 1e-9;  ///< [m] on each horizontal axis
+
 PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& guess, RobotModelData& data,
                              Eigen::Matrix2d& inverse, bool refresh = true);
 

@@ -30,7 +30,6 @@ int capture_lift_hold_periods(double period) {
   return static_cast<int>(std::ceil(kCaptureLiftHold / period - 1e-9));
 }
 /// The planned motion's COM Jacobian is taken again every this many periods (0.1 s at 4 ms).
-constexpr int kPlanJacobianPeriods = 25;
 
 /// Each component clamped to [−limit, limit].
 Eigen::Vector2d clamp_abs(const Eigen::Vector2d& v, double limit) {
@@ -684,6 +683,7 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
   }
   solve_pose(status_.com_ref + status_.com_shift, soles, pelvis_command, 2);
   status_.pelvis = pelvis_;
+  const PlannedMotion last_motion = status_.motion;  // (the plan pose's guess below)
   status_.motion.valid = false;
   if (plan_motion_) {
     // The plan's own motion at the commanded pose's time (planned_motion.hpp): the balance's
@@ -696,9 +696,14 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     in.cart = {cart_[0].x, cart_[1].x};
     in.com_offset = status_.com_shift;
     in.tilt = rot_y(d_pitch + calibration.pelvis_pitch) * rot_x(d_roll);
-    const bool refresh = motion_jacobian_age_ <= 0;
-    motion_jacobian_age_ = refresh ? kPlanJacobianPeriods : motion_jacobian_age_ - 1;
-    status_.motion = planned_motion(in, t + period_, pelvis_, motion_data_, motion_jacobian_inverse_, refresh);
+    // From the last period's plan pose carried forward by its motion (else the commanded pose, the
+    // Jacobian by differences there).
+    const bool carried = last_motion.valid;
+    Pose guess = pelvis_;
+    if (carried)
+      guess.p = last_motion.pelvis_position + period_ * last_motion.pelvis.velocity +
+                0.5 * period_ * period_ * last_motion.pelvis.acceleration;
+    status_.motion = planned_motion(in, t + period_, guess, motion_data_, motion_jacobian_inverse_, !carried);
   }
   status_.desired = desired_;
   return desired_;

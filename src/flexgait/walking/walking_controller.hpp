@@ -262,7 +262,6 @@ class WalkingController {
   bool plan_motion_ = false;
   RobotModelData motion_data_;                                             ///< the planned motion's scratch
   Eigen::Matrix2d motion_jacobian_inverse_ = Eigen::Matrix2d::Identity();  ///< its pelvis Newton step per COM miss
-  int motion_jacobian_age_ = 0;                                            ///< periods until that is taken again
 };
 
 }  // namespace flexgait::walking
