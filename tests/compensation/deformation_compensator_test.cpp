@@ -22,7 +22,10 @@ using walking::Matrix3d;
 using walking::Pose;
 using walking::Vector3d;
 
-constexpr NewtonSettings kNewton{.jacobian = NewtonJacobian::kEachIteration};
+// The solver's own convergence is tested to rounding: 1e-12 rad, not the default's 1e-9 (a ten-thousandth of an
+// encoder count, enough for the robot, too loose to tell the methods apart).
+constexpr double kTightTolerance = 1e-12;
+constexpr NewtonSettings kNewton{.tolerance = kTightTolerance, .jacobian = NewtonJacobian::kEachIteration};
 
 // K + G block diagonal (each leg's torques on its own joints): the factors of the two blocks, put together, solve
 // as the whole matrix's partial-pivoting LU does, in every bit (==), and as Eigen's own solve.
@@ -82,7 +85,7 @@ TEST(LinkAngleNewton, PerJointFormIsEquationTwelveWithTheDiagonalAlone) {
   auto torque = [&](const V& q, V& tau) { tau = A * q.array().sin().matrix(); };
   auto jacobian = [&](const V& q, const V&, Eigen::Matrix2d& G) { G = A * q.array().cos().matrix().asDiagonal(); };
   const V encoder(0.3, -0.2), k(800.0, 1200.0);
-  const LinkAngleEstimate<2> e = solve_link_angles<2>(encoder, k, torque, jacobian);
+  const LinkAngleEstimate<2> e = solve_link_angles<2>(encoder, k, torque, jacobian, {.tolerance = kTightTolerance});
   ASSERT_TRUE(e.converged);
   V tau;
   torque(encoder, tau);
@@ -114,7 +117,7 @@ TEST(LinkAngleNewton, ReusedJacobianReachesNewtonsSolutionWithFewerJacobians) {
         ++formed[m];
         G = A * q.array().cos().matrix().asDiagonal();
       };
-      NewtonSettings settings;
+      NewtonSettings settings{.tolerance = kTightTolerance};
       settings.jacobian = m == 0 ? NewtonJacobian::kEachIteration : NewtonJacobian::kReused;
       e[m] = solve_link_angles<2>(encoder, k, torque, jacobian, settings);
       ASSERT_TRUE(e[m].converged) << scale << " " << m;
@@ -157,7 +160,7 @@ TEST(LinkAngleNewton, KeptFactorCarriesAcrossSolvesAndTheFormsChangeNoIterate) {
         ++formed[m];
         G = A * q.array().cos().matrix().asDiagonal();
       };
-      NewtonSettings settings;
+      NewtonSettings settings{.tolerance = kTightTolerance};
       settings.jacobian = m == 0 ? NewtonJacobian::kReused : NewtonJacobian::kKept;
       e[m] = m == 0 ? solve_link_angles<2>(encoder, k, torque, jacobian, settings)
                     : solve_link_angles<2>(encoder, k, torque, jacobian, settings, false, &kept[m - 1], m == 2);
@@ -197,6 +200,7 @@ class OutputCompensatorLegs : public ::testing::TestWithParam<std::tuple<WeightS
 TEST_P(OutputCompensatorLegs, RecoversTheLinkAnglesThatTheModelDeflects) {
   const walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
   CompensationParams p;
+  p.newton.tolerance = kTightTolerance;
   p.split = std::get<0>(GetParam());
   p.gravity = std::get<1>(GetParam());
   DeformationCompensator truth(model, p), compensator(model, p);
@@ -243,6 +247,7 @@ INSTANTIATE_TEST_SUITE_P(SplitsAndForms, OutputCompensatorLegs,
 TEST(OutputCompensator, KeptFactorAndPredictedStartAgreeWithReusedAndTheFormsChangeNothing) {
   const walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
   CompensationParams p;
+  p.newton.tolerance = kTightTolerance;
   p.split = WeightSplit::kZmpReference;
   p.newton.jacobian = NewtonJacobian::kReused;
   DeformationCompensator truth(model, p), reused(model, p);

@@ -23,6 +23,7 @@ CompensationParams params(double damping) {
   CompensationParams p;
   p.mode = CompensationMode::kBoth;
   p.gear_damping = damping;
+  p.newton.tolerance = 1e-12;  // (the solve to rounding: the recovered angles are checked to 1e-10 below)
   return p;
 }
 

@@ -250,7 +250,7 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   const bool lagged = params_.gear_damping > 0 && output_lagged_;
   LegVector observed = legs_of(encoder), stiffness = legs_of(stiffness_);
   if (lagged) {
-    const LegVector previous = legs_of(output_deflection_);
+    const LegVector& previous = deflection_[0];
     for (int side = 0; side < 2; ++side)
       for (int i = 0; i < kLegJoints; ++i) {
         const int r = side * kLegJoints + i;
@@ -261,31 +261,31 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   }
   if (kept_stiffness_ != stiffness || kept_swinging_ != support.swinging || kept_coupled_ != coupled) {
     kept_.forget();
-    kept_periods_ = 0;
+    extrapolable_ = 0;
   }
   kept_stiffness_ = stiffness;
   kept_swinging_ = support.swinging;
   kept_coupled_ = coupled;
-  // Newton's start: θ_enc less the deflection extrapolated from the last two periods (its change in a period is
-  // ~1e-4 rad, its second difference smaller still, where θ_enc itself is off by the whole deflection).
+  // Newton's start: θ_enc less the deflection extrapolated from the last three periods by the parabola through
+  // them, δ ≈ 3δ₁ − 3δ₂ + δ₃ (its error ~ δ⃛ T³; θ_enc itself is off by the whole deflection, ~1e-2 rad); from the
+  // last two or one while there are fewer since the factorisation was formed.
   const LegVector encoder_legs = legs_of(encoder);
   LegVector start = encoder_legs;
-  if (kept_periods_ == 1) start -= kept_deflection_[0];
-  if (kept_periods_ == 2) start -= 2 * kept_deflection_[0] - kept_deflection_[1];
+  if (extrapolable_ == 1) start -= deflection_[0];
+  if (extrapolable_ == 2) start -= 2 * deflection_[0] - deflection_[1];
+  if (extrapolable_ == 3) start -= 3 * (deflection_[0] - deflection_[1]) + deflection_[2];
   const LinkAngleEstimate<kLegDofs> e =
       solve_link_angles<kLegDofs>(observed, stiffness, leg_torque, leg_jacobian, params_.newton, !coupled, &kept_,
-                                  forms_, kept_periods_ > 0 ? &start : nullptr);
+                                  forms_, extrapolable_ > 0 ? &start : nullptr);
+  deflection_[2] = deflection_[1];
+  deflection_[1] = deflection_[0];
+  deflection_[0] = encoder_legs - e.newton;
+  output_lagged_ = true;
   if (e.converged) {
-    kept_deflection_[1] = kept_deflection_[0];
-    kept_deflection_[0] = encoder_legs - e.newton;
-    kept_periods_ = std::min(kept_periods_ + 1, 2);
+    extrapolable_ = std::min(extrapolable_ + 1, 3);
   } else {
     kept_.forget();
-    kept_periods_ = 0;
-  }
-  if (params_.gear_damping > 0) {
-    set_legs(output_deflection_, legs_of(encoder) - e.newton);
-    output_lagged_ = true;
+    extrapolable_ = 0;
   }
   estimate_.newton = estimate_.one_step = estimate_.per_joint = estimate_.conventional = encoder;  // the waist: no τ_g
   set_legs(estimate_.newton, e.newton);

@@ -266,7 +266,7 @@ struct CompensationParams {
     v("control.newton_jacobian", s.newton.jacobian,
       {.doc = "output compensator: G = dtau/dtheta formed at each Newton iterate (each), or reused while a step cuts "
               "the residual a hundredfold (the chord method): formed afresh at each period's first step (reused), or "
-              "carried from period to period, Newton starting from the deflection extrapolated from the last two "
+              "carried from period to period, Newton starting from the deflection extrapolated from the last three "
               "periods, and formed again when a step cuts the residual less than a thousandfold or the stiffness or "
               "the supporting feet change (kept)"});
   }
@@ -357,9 +357,9 @@ class DeformationCompensator {
   double period_;
   double filter_gain_;               ///< 1 − e^{−T/τ} of control.load_filter_time
   humanoid::JointVector stiffness_;  ///< params_.stiffness(), computed once [Nm/rad]
-  // control.gear_damping: the deflections of the last period (Kelvin–Voigt lag) [rad]
+  // control.gear_damping: the deflections of the last period (Kelvin–Voigt lag; the output side's: deflection_[0])
   bool input_lagged_ = false, output_lagged_ = false;  ///< a previous deflection exists
-  humanoid::JointVector input_deflection_{}, output_deflection_{};
+  humanoid::JointVector input_deflection_{};
   walking::RobotModelData data_;
   FootLoads plan_loads_;                      ///< the split about the reference ZMP (kZmpReference), from the plan
   walking::Wrench plan_ground_;               ///< the plan's ground wrench, about its centre of pressure (world)
@@ -373,10 +373,11 @@ class DeformationCompensator {
   LegVector kept_stiffness_ = LegVector::Zero();
   std::array<bool, 2> kept_swinging_{};
   bool kept_coupled_ = false;
-  /// θ_enc − θ̂ of the last two periods since the factorisation was formed for this support (Newton's start: their
-  /// linear extrapolation), and how many of them there are (0-2).
-  std::array<LegVector, 2> kept_deflection_{LegVector::Zero(), LegVector::Zero()};
-  int kept_periods_ = 0;
+  /// The output side's θ_enc − θ̂ of the last three periods, newest first [rad] (the gears' lag reads the last; Newton
+  /// starts from their extrapolation), and how many of them, newest first, are converged estimates since the
+  /// factorisation was formed for this support (0-3).
+  std::array<LegVector, 3> deflection_{LegVector::Zero(), LegVector::Zero(), LegVector::Zero()};
+  int extrapolable_ = 0;
   // load_model measured/dynamic:
   bool sensed_ = false;                  ///< a reading has arrived (the filter starts from it)
   bool planned_cop_ = false;             ///< evaluating for the input side: measured force at the plan's CoP

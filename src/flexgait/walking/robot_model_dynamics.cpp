@@ -55,8 +55,10 @@ void inverse_dynamics(const RobotModel& model, const RobotModelData& kinematics,
     const Vector3d& alpha = data.angular_acceleration[i];
     const Vector3d c = f.R * b.com;
     const Vector3d F = b.mass * (data.acceleration[i] + alpha.cross(c) + w.cross(w.cross(c)));
-    const Matrix3d I = f.R * b.inertia * f.R.transpose();
-    data.body_wrench[i] = {F, I * alpha + w.cross(I * w) + c.cross(F)};
+    // N = R (I ω̇_b + ω_b × I ω_b) with ω_b = Rᵀω, ω̇_b = Rᵀα: the world inertia R I Rᵀ never formed.
+    const Vector3d w_body = f.R.transpose() * w;
+    const Vector3d N = f.R * (b.inertia * (f.R.transpose() * alpha) + w_body.cross(b.inertia * w_body));
+    data.body_wrench[i] = {F, N + c.cross(F)};
   }
   inverse_dynamics_with_feet(model, kinematics, data, feet, first);
 }

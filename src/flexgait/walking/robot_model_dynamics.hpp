@@ -10,7 +10,8 @@
 ///     v_i = v_p + ω_p × r,          a_i = a_p + α_p × r + ω_p × (ω_p × r),
 /// with the pelvis's a_0 = its acceleration − g (gravity as a fictitious upward acceleration).
 /// Each body's inertial wrench at its centre c_i = R_i com:
-///     F_i = m_i (a_i + α_i × c_i + ω_i × (ω_i × c_i)),   N_i = I_i α_i + ω_i × I_i ω_i, I_i = R_i I R_iᵀ.
+///     F_i = m_i (a_i + α_i × c_i + ω_i × (ω_i × c_i)),   N_i = I_i α_i + ω_i × I_i ω_i, I_i = R_i I R_iᵀ,
+/// N_i formed in the body's frame, R_i (I R_iᵀα_i + R_iᵀω_i × I R_iᵀω_i) (the same moment; I_i never formed).
 /// Backward pass (children before parents): the wrench the parent applies to body i's subtree,
 ///     f_i = F_i + Σ_children f_j,   n_i = N_i + c_i × F_i + Σ_children (n_j + (p_j − p_i) × f_j),
 /// about the body origin p_i; the joint torque is τ_i = a · n_i (the gear torque on the child,
