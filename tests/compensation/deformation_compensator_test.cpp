@@ -241,6 +241,21 @@ INSTANTIATE_TEST_SUITE_P(SplitsAndForms, OutputCompensatorLegs,
                          ::testing::Combine(::testing::Values(WeightSplit::kCom, WeightSplit::kZmpReference),
                                             ::testing::Values(GravityForm::kThesis, GravityForm::kFull)));
 
+/// The two tests below: the soles apart, the left ahead, the reference ZMP between them (both feet down), and the
+/// link angles' motion about a bent pose (0.05 rad, 2 rad/s, a phase per joint).
+SupportPlan standing_plan() {
+  SupportPlan plan;
+  plan.soles = {Pose{Vector3d(0.05, 0.093, 0), Matrix3d::Identity()},
+                Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
+  plan.zmp_ref = Eigen::Vector2d(0.02, 0.03);
+  return plan;
+}
+humanoid::JointVector moving_link(const humanoid::JointVector& base, double t) {
+  humanoid::JointVector link = base;
+  for (int j = 0; j < humanoid::kJoints; ++j) link[j] += 0.05 * std::sin(2.0 * t + j);
+  return link;
+}
+
 /// Period after period along a moving pose (a support change halfway), the kept factorisation and the extrapolated
 /// start find the link angles as newton_jacobian = reused does (1e-11 rad, the tolerance's order); asking for the
 /// one-step and per-joint forms changes no bit of Newton's estimate, and the forms equal reused's bit for bit.
@@ -256,16 +271,12 @@ TEST(OutputCompensator, KeptFactorAndPredictedStartAgreeWithReusedAndTheFormsCha
   kept_forms.estimate_forms(true);
   std::mt19937 rng(21);
   const humanoid::JointVector base = bent_pose(rng);
-  SupportPlan plan;
-  plan.soles = {Pose{Vector3d(0.05, 0.093, 0), Matrix3d::Identity()},
-                Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
-  plan.zmp_ref = Eigen::Vector2d(0.02, 0.03);
+  SupportPlan plan = standing_plan();
   int iterations[2] = {0, 0};
   for (int n = 0; n < 250; ++n) {
     const double t = 0.004 * n;
     plan.swinging = {false, n >= 125};
-    humanoid::JointVector link = base;
-    for (int j = 0; j < humanoid::kJoints; ++j) link[j] += 0.05 * std::sin(2.0 * t + j);
+    const humanoid::JointVector link = moving_link(base, t);
     const humanoid::JointVector tau = truth.torque(link, Matrix3d::Identity(), plan);
     humanoid::JointVector encoder = link;
     for (int j = 0; j < humanoid::kJoints; ++j) encoder[j] += tau[j] / 1000.0;
@@ -286,6 +297,46 @@ TEST(OutputCompensator, KeptFactorAndPredictedStartAgreeWithReusedAndTheFormsCha
     }
   }
   // (gravity loads: G moves with the pose, so the chord needs its refreshes; the count is a sanity bound)
+  EXPECT_LE(iterations[1], 2 * iterations[0]);
+}
+
+/// The stiffness changing under the kept factorisation (k estimation: a drift each period, then the jump of the
+/// compensators taking a confident estimate): the chord's residual holds the new K, so every period still meets the
+/// tolerance at the link angles the new stiffness deflects (1e-11 rad), as a compensator built with that stiffness
+/// (reused, G formed afresh) finds them; the stale factor only costs steps (at most twice reused's).
+TEST(OutputCompensator, KeptFactorOutlivesAStiffnessChangeAndFindsTheNewRoot) {
+  const walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
+  CompensationParams p;
+  p.newton.tolerance = kTightTolerance;
+  p.split = WeightSplit::kZmpReference;
+  p.newton.jacobian = NewtonJacobian::kKept;
+  DeformationCompensator kept(model, p);
+  p.newton.jacobian = NewtonJacobian::kReused;
+  DeformationCompensator truth(model, p), reused(model, p);
+  std::mt19937 rng(33);
+  const humanoid::JointVector base = bent_pose(rng);
+  const SupportPlan plan = standing_plan();
+  int iterations[2] = {0, 0};
+  for (int n = 0; n < 200; ++n) {
+    const double t = 0.004 * n;
+    humanoid::JointVector k{};
+    for (int j = 0; j < humanoid::kJoints; ++j) k[j] = (n < 100 ? 1000.0 + 0.5 * n : 1180.0) + 10.0 * j;
+    kept.set_stiffness(k);
+    reused.set_stiffness(k);
+    const humanoid::JointVector link = moving_link(base, t);
+    const humanoid::JointVector tau = truth.torque(link, Matrix3d::Identity(), plan);
+    humanoid::JointVector encoder = link;
+    for (int j = 0; j < humanoid::kJoints; ++j) encoder[j] += tau[j] / k[j];
+    const OutputEstimate r = reused.output(encoder, Matrix3d::Identity(), plan);
+    const OutputEstimate e = kept.output(encoder, Matrix3d::Identity(), plan);
+    ASSERT_TRUE(r.converged && e.converged) << n;
+    iterations[0] += r.iterations;
+    iterations[1] += e.iterations;
+    for (int j = 0; j < humanoid::kJoints; ++j) {
+      EXPECT_NEAR(e.newton[j], link[j], 1e-11) << n << " " << j;
+      EXPECT_NEAR(e.newton[j], r.newton[j], 1e-11) << n << " " << j;
+    }
+  }
   EXPECT_LE(iterations[1], 2 * iterations[0]);
 }
 

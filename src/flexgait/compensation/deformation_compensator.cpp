@@ -259,11 +259,14 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
         stiffness(r) /= a;
       }
   }
-  if (kept_stiffness_ != stiffness || kept_swinging_ != support.swinging || kept_coupled_ != coupled) {
+  // A new support or coupling changes G's form: the factorisation and the deflections' history start again. A new
+  // stiffness (k estimation, the lag's k/a) leaves both: Newton's residual holds the new K, so the chord converges to
+  // the same root, and a factor gone stale (a step cutting the residual less than kKeptChordContraction) is formed
+  // again.
+  if (kept_swinging_ != support.swinging || kept_coupled_ != coupled) {
     kept_.forget();
     extrapolable_ = 0;
   }
-  kept_stiffness_ = stiffness;
   kept_swinging_ = support.swinging;
   kept_coupled_ = coupled;
   // Newton's start: θ_enc less the deflection extrapolated from the last three periods by the parabola through

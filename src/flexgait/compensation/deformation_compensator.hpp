@@ -267,8 +267,8 @@ struct CompensationParams {
       {.doc = "output compensator: G = dtau/dtheta formed at each Newton iterate (each), or reused while a step cuts "
               "the residual a hundredfold (the chord method): formed afresh at each period's first step (reused), or "
               "carried from period to period, Newton starting from the deflection extrapolated from the last three "
-              "periods, and formed again when a step cuts the residual less than a thousandfold or the stiffness or "
-              "the supporting feet change (kept)"});
+              "periods, and formed again when a step cuts the residual less than a thousandfold or the supporting "
+              "feet change (kept)"});
   }
 
   bool input() const { return mode == CompensationMode::kInput || mode == CompensationMode::kBoth; }
@@ -368,9 +368,8 @@ class DeformationCompensator {
   OutputEstimate estimate_;
   bool forms_ = false;  ///< estimate_forms
   /// NewtonJacobian::kKept: the factorisation of K + G carried from period to period, and what it was formed for
-  /// (forgotten when the stiffness, the supporting feet or G's coupling change).
+  /// (forgotten when the supporting feet or G's coupling change).
   LinkAngleFactor<kLegDofs> kept_;
-  LegVector kept_stiffness_ = LegVector::Zero();
   std::array<bool, 2> kept_swinging_{};
   bool kept_coupled_ = false;
   /// The output side's θ_enc − θ̂ of the last three periods, newest first [rad] (the gears' lag reads the last; Newton

@@ -122,10 +122,10 @@ class LinkAngleFactor {
 /// τ = τ_g(θ) (it is only asked for where another step follows). `stiffness`: k per joint [Nm/rad].
 /// `two_blocks`: G is block diagonal in its two halves (N even), K + G is factored block by block.
 /// With NewtonJacobian::kKept, `kept` is the factorisation carried between solves (the caller forgets
-/// it when K or the form of G changes), `start` (if given) Newton's first iterate in θ_enc's place (a
-/// prediction from the last solves), and the conventional, one-step and per-joint forms, which need
-/// τ_g and G at θ_enc, are formed (apart from Newton's iterates, which they do not change) only with
-/// `forms` (else NaN).
+/// it when the form of G changes; a changed K only slows the chord until G is formed again), `start` (if given)
+/// Newton's first iterate in θ_enc's place (a prediction from the last solves), and the conventional, one-step and
+/// per-joint forms, which need τ_g and G at θ_enc, are formed (apart from Newton's iterates, which they do not change)
+/// only with `forms` (else NaN).
 template <int N, class Torque, class Jacobian>
 LinkAngleEstimate<N> solve_link_angles(const Eigen::Matrix<double, N, 1>& encoder,
                                        const Eigen::Matrix<double, N, 1>& stiffness, Torque&& torque,
