@@ -241,7 +241,7 @@ INSTANTIATE_TEST_SUITE_P(SplitsAndForms, OutputCompensatorLegs,
                          ::testing::Combine(::testing::Values(WeightSplit::kCom, WeightSplit::kZmpReference),
                                             ::testing::Values(GravityForm::kThesis, GravityForm::kFull)));
 
-/// The two tests below: the soles apart, the left ahead, the reference ZMP between them (both feet down), and the
+/// The tests below: the soles apart, the left ahead, the reference ZMP between them (both feet down), and the
 /// link angles' motion about a bent pose (0.05 rad, 2 rad/s, a phase per joint).
 SupportPlan standing_plan() {
   SupportPlan plan;
@@ -249,6 +249,14 @@ SupportPlan standing_plan() {
                 Pose{Vector3d(0, -0.093, 0), Matrix3d::Identity()}};
   plan.zmp_ref = Eigen::Vector2d(0.02, 0.03);
   return plan;
+}
+/// Their compensators' parameters: split about the reference ZMP, Newton to kTightTolerance with `jacobian`.
+CompensationParams moving_pose_params(NewtonJacobian jacobian) {
+  CompensationParams p;
+  p.newton.tolerance = kTightTolerance;
+  p.split = WeightSplit::kZmpReference;
+  p.newton.jacobian = jacobian;
+  return p;
 }
 humanoid::JointVector moving_link(const humanoid::JointVector& base, double t) {
   humanoid::JointVector link = base;
@@ -261,13 +269,10 @@ humanoid::JointVector moving_link(const humanoid::JointVector& base, double t) {
 /// one-step and per-joint forms changes no bit of Newton's estimate, and the forms equal reused's bit for bit.
 TEST(OutputCompensator, KeptFactorAndPredictedStartAgreeWithReusedAndTheFormsChangeNothing) {
   const walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
-  CompensationParams p;
-  p.newton.tolerance = kTightTolerance;
-  p.split = WeightSplit::kZmpReference;
-  p.newton.jacobian = NewtonJacobian::kReused;
+  const CompensationParams p = moving_pose_params(NewtonJacobian::kReused);
   DeformationCompensator truth(model, p), reused(model, p);
-  p.newton.jacobian = NewtonJacobian::kKept;
-  DeformationCompensator kept(model, p), kept_forms(model, p);
+  const CompensationParams q = moving_pose_params(NewtonJacobian::kKept);
+  DeformationCompensator kept(model, q), kept_forms(model, q);
   kept_forms.estimate_forms(true);
   std::mt19937 rng(21);
   const humanoid::JointVector base = bent_pose(rng);
@@ -306,12 +311,8 @@ TEST(OutputCompensator, KeptFactorAndPredictedStartAgreeWithReusedAndTheFormsCha
 /// (reused, G formed afresh) finds them; the stale factor only costs steps (at most twice reused's).
 TEST(OutputCompensator, KeptFactorOutlivesAStiffnessChangeAndFindsTheNewRoot) {
   const walking::RobotModel model = walking::make_robot_model(humanoid::RobotParams{});
-  CompensationParams p;
-  p.newton.tolerance = kTightTolerance;
-  p.split = WeightSplit::kZmpReference;
-  p.newton.jacobian = NewtonJacobian::kKept;
-  DeformationCompensator kept(model, p);
-  p.newton.jacobian = NewtonJacobian::kReused;
+  DeformationCompensator kept(model, moving_pose_params(NewtonJacobian::kKept));
+  const CompensationParams p = moving_pose_params(NewtonJacobian::kReused);
   DeformationCompensator truth(model, p), reused(model, p);
   std::mt19937 rng(33);
   const humanoid::JointVector base = bent_pose(rng);
