@@ -179,6 +179,60 @@ TEST(LinkAngleNewton, KeptFactorCarriesAcrossSolvesAndTheFormsChangeNoIterate) {
   EXPECT_EQ(formed[2], formed[1] + 199);  // the forms' own G at each later θ_enc (the first serves Newton too)
 }
 
+/// kKept's test on the predicted residual (link_angle_newton.hpp): along the same moving sequence, Newton starting
+/// from the parabola through the last three solutions (as the output compensator does), the default tolerance 1e-9.
+/// A solve that ends on a predicted residual returns a point whose true residual meets the tolerance, its torque the
+/// chord's own K (θ_enc − θ), within K times the tolerance of τ_g there; it evaluates τ_g less often than every step
+/// evaluated, and never more than kMaxPredictedSolves solves in a row end so.
+TEST(LinkAngleNewton, APredictedResidualEndsASolveOnlyWhereTheTrueOneMeetsTheTolerance) {
+  using V = Eigen::Vector2d;
+  Eigen::Matrix2d A;
+  A << 40.0, 25.0, -15.0, 30.0;  // [Nm]
+  int evaluations[2] = {0, 0};
+  auto torque_of = [&](const V& q) { return V(A * q.array().sin().matrix()); };
+  const V k(800.0, 1200.0);
+  LinkAngleFactor<2> kept[2];  // predicted convergence off, on
+  std::array<std::array<V, 3>, 2> history{};
+  int predicted = 0, in_a_row = 0, most_in_a_row = 0;
+  for (int n = 0; n < 400; ++n) {
+    const double t = 0.004 * n;
+    const V link(0.3 + 0.2 * std::sin(2 * t), -0.2 + 0.1 * std::cos(3 * t));
+    const V encoder = link + torque_of(link).cwiseQuotient(k);
+    for (int m = 0; m < 2; ++m) {
+      auto torque = [&](const V& q, V& tau) {
+        ++evaluations[m];
+        tau = torque_of(q);
+      };
+      auto jacobian = [&](const V& q, const V&, Eigen::Matrix2d& G) { G = A * q.array().cos().matrix().asDiagonal(); };
+      const NewtonSettings settings{.jacobian = NewtonJacobian::kKept, .predicted_convergence = m == 1};
+      const auto& h = history[static_cast<std::size_t>(m)];
+      const V start = n >= 3 ? V(3 * h[0] - 3 * h[1] + h[2]) : encoder;
+      const LinkAngleEstimate<2> e =
+          solve_link_angles<2>(encoder, k, torque, jacobian, settings, false, &kept[m], false, &start);
+      ASSERT_TRUE(e.converged) << n << " " << m;
+      const V residual = encoder - torque_of(e.newton).cwiseQuotient(k) - e.newton;
+      EXPECT_LE(residual.lpNorm<Eigen::Infinity>(), settings.tolerance) << n << " " << m;
+      EXPECT_LE((e.torque - torque_of(e.newton)).lpNorm<Eigen::Infinity>(), k.maxCoeff() * settings.tolerance) << n;
+      if (e.predicted) {
+        EXPECT_EQ(e.torque, V(k.cwiseProduct(encoder - e.newton))) << n;
+      }
+      EXPECT_TRUE(m == 1 || !e.predicted);
+      if (m == 1) {
+        predicted += e.predicted;
+        in_a_row = e.predicted ? in_a_row + 1 : (e.iterations > 0 ? 0 : in_a_row);
+        most_in_a_row = std::max(most_in_a_row, in_a_row);
+      }
+      auto& hm = history[static_cast<std::size_t>(m)];
+      hm = {e.newton, hm[0], hm[1]};
+    }
+  }
+  EXPECT_GT(predicted, 100);
+  EXPECT_LE(most_in_a_row, kMaxPredictedSolves);
+  EXPECT_LE(evaluations[1] + predicted, evaluations[0]);
+  RecordProperty("evaluations_every_step", evaluations[0]);
+  RecordProperty("evaluations_predicted", evaluations[1]);
+}
+
 /// A standing-like pose with the legs bent.
 humanoid::JointVector bent_pose(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-0.1, 0.1);

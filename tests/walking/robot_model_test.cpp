@@ -124,7 +124,8 @@ TEST(RobotModel, JacobianIsTheDerivativeOfTheSolePose) {
 
 // Each joint turns its frame by Rot(axis, q): for the builtin's x, y and z axes the kinematics turn only the plane's
 // two columns. The frames must equal the general product parent R · AngleAxis(q, axis) (the 3 × 3 product with
-// AngleAxisd's matrix) in every bit (== holds ±0 equal), the joint angles exactly 0 included.
+// AngleAxisd's matrix) in every bit (== holds ±0 equal), the joint angles exactly 0 included; and each joint's world
+// axis the kinematics keep is R a, likewise in every bit.
 TEST(RobotModel, CoordinateAxisJointsTurnFramesAsTheGeneralProduct) {
   const RobotModel model = make_robot_model(humanoid::RobotParams{});
   std::mt19937_64 rng(7);
@@ -148,6 +149,9 @@ TEST(RobotModel, CoordinateAxisJointsTurnFramesAsTheGeneralProduct) {
     for (int i = 0; i < kBodies; ++i) {
       EXPECT_EQ(data.frame[i].R, general[i].R) << "trial " << trial << " body " << i;
       EXPECT_EQ(data.frame[i].p, general[i].p) << "trial " << trial << " body " << i;
+      const auto& b = model.bodies[i];
+      EXPECT_EQ(data.axis[i], b.joint >= 0 ? Vector3d(general[i].R * b.axis) : Vector3d::Zero()) << i;
+      EXPECT_EQ(b.axis_index >= 0, b.joint >= 0) << i;  // (the builtin's axes are all x, y or z)
     }
   }
 }

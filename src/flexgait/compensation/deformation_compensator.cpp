@@ -295,12 +295,13 @@ const OutputEstimate& DeformationCompensator::output(const humanoid::JointVector
   set_legs(estimate_.one_step, e.one_step);
   set_legs(estimate_.per_joint, e.per_joint);
   set_legs(estimate_.conventional, e.conventional);
-  // τ_g(θ̂): Newton's last evaluation unless the fallback chose another point.
-  estimate_.gravity_torque =
-      legs_of(q_) == legs_of(estimate_.newton) ? tau_ : torque_at(estimate_.newton, imu_R, support);
+  // τ_g(θ̂) as the solve left it (the waist carries no modelled load).
+  estimate_.gravity_torque.fill(0.0);
+  set_legs(estimate_.gravity_torque, e.torque);
   estimate_.iterations = e.iterations;
   estimate_.residual = e.residual;
   estimate_.converged = e.converged;
+  estimate_.predicted = e.predicted;
   return estimate_;
 }
 

@@ -269,6 +269,11 @@ struct CompensationParams {
               "carried from period to period, Newton starting from the deflection extrapolated from the last three "
               "periods, and formed again when a step cuts the residual less than a thousandfold or the supporting "
               "feet change (kept)"});
+    v("control.newton_predicted_convergence", s.newton.predicted_convergence,
+      {.doc = "output compensator, newton_jacobian = kept: a step whose residual, predicted as the kept factor's "
+              "measured contraction rate times the residual before it, meets newton_tolerance ends the solve without "
+              "evaluating the torque there (CVODE's test; at most 4 periods in a row, the next measures the rate "
+              "again); false: every step evaluated"});
   }
 
   bool input() const { return mode == CompensationMode::kInput || mode == CompensationMode::kBoth; }
@@ -295,8 +300,9 @@ struct OutputEstimate {
   humanoid::JointVector conventional{};    ///< θ_enc − τ_g(θ_enc)/k [rad] (likewise)
   humanoid::JointVector gravity_torque{};  ///< τ_g(θ̂) [Nm]
   int iterations = 0;
-  double residual = 0;  ///< ||N(θ̂)||_inf [rad]
+  double residual = 0;  ///< ||N(θ̂)||_inf [rad] (predicted: the chord's prediction of it)
   bool converged = false;
+  bool predicted = false;  ///< Newton's last step was not evaluated (its residual predicted; NewtonSettings)
 };
 
 class DeformationCompensator {

@@ -84,7 +84,7 @@ walking::LegTorqueDerivative gravity_torque_derivative(const walking::RobotModel
     }
     if (m == 6) continue;
     const walking::Pose& f = data.frame[static_cast<std::size_t>(b0 + m)];
-    u[m] = f.R * b.axis;
+    u[m] = data.axis[static_cast<std::size_t>(b0 + m)];
     phi[m] = moment_below - weight_below * f.p;
     role[m] = b.joint - humanoid::leg_first_joint(side);
   }

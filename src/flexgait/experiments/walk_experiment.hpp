@@ -185,7 +185,8 @@ struct WalkMetrics {
          pelvis_roll_kinematic_estimate_rms = 0;  ///< single support, against the IMU [rad]
   int newton_iterations_max = 0;
   double newton_iterations_mean = 0;
-  int newton_failures = 0;  ///< control periods not converged (fallback used)
+  int newton_failures = 0;            ///< control periods not converged (fallback used)
+  double newton_predicted_share = 0;  ///< control periods whose last Newton step was not evaluated
   // Sensors (docs/guide/humanoid.md, "Sensors, faults and the attitude estimate").
   double attitude_error_rms = 0, attitude_error_max = 0;  ///< controller's roll/pitch − true (norm of both) [rad]
   int sensor_fault_episodes = 0;                          ///< times a sensor turned bad (all sensors)
@@ -306,6 +307,10 @@ struct WalkMetrics {
       {.doc = "Newton iterations per period, mean", .present = estimate});
     v("newton_failures", s.newton_failures,
       {.doc = "control periods Newton did not converge (fallback used)", .present = estimate});
+    v("newton_predicted_share", s.newton_predicted_share,
+      {.doc = "share of control periods whose last Newton step ended on its predicted residual, unevaluated "
+              "(docs/guide/compensation.md)",
+       .present = estimate});
     v("pelvis_roll_kinematic_estimate_rms", s.pelvis_roll_kinematic_estimate_rms,
       {.unit = "rad", .doc = "pelvis roll by kinematics through θ̂ − IMU, single support, rms", .present = estimate});
     v("pelvis_roll_kinematic_encoder_rms", s.pelvis_roll_kinematic_encoder_rms,

@@ -161,6 +161,7 @@ void WalkScorer::score_sensing(const loop::LoopStep& step) {
     newton_iterations_ += estimate->iterations;
     m.newton_iterations_max = std::max(m.newton_iterations_max, estimate->iterations);
     m.newton_failures += !estimate->converged;
+    newton_predicted_ += estimate->predicted;
   }
   // Pelvis roll by kinematics from the stance sole, assumed flat at its true heading (eq. 1).
   roll_enc_ = 0;
@@ -377,6 +378,7 @@ WalkResult WalkScorer::finish(const loop::HumanoidLoop& loop) {
   m.pelvis_roll_kinematic_encoder_rms = roll_kin_encoder_.rms();
   m.pelvis_roll_kinematic_estimate_rms = roll_kin_estimate_.rms();
   m.newton_iterations_mean = newton_calls_ > 0 ? static_cast<double>(newton_iterations_) / newton_calls_ : 0.0;
+  m.newton_predicted_share = newton_calls_ > 0 ? static_cast<double>(newton_predicted_) / newton_calls_ : 0.0;
   m.attitude_error_rms = attitude_error_.rms();
   m.attitude_error_max = attitude_error_.max;
   const walking::SensorHealth& health = controller_.health();

@@ -67,7 +67,7 @@ class WalkScorer final : public loop::LoopObserver {
       per_joint_vs_conventional_, link_error_;
   Accumulator roll_kin_encoder_, roll_kin_estimate_, attitude_error_;
   unsigned flags_since_log_ = 0;
-  long newton_calls_ = 0, newton_iterations_ = 0;
+  long newton_calls_ = 0, newton_iterations_ = 0, newton_predicted_ = 0;
   std::size_t next_landing_ = 0;
   std::vector<walking::Pose> support_;
   std::vector<const walking::SolePolygon*> support_shapes_;  ///< support_'s sole polygons

@@ -124,7 +124,7 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
       moment += b.mass * data.com_world[b0 + i];
       mass += b.mass;
       if (b.joint < 0) continue;
-      const Vector3d a = data.frame[b0 + i].R * b.axis;
+      const Vector3d& a = data.axis[b0 + i];
       Jc[side].col(b.joint - humanoid::leg_first_joint(side)) =
           a.cross(moment - mass * data.frame[b0 + i].p).head<2>() / model.total_mass;
     }
@@ -132,6 +132,18 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
     A -= Jc[side] * per_pelvis[side];
   }
   const Eigen::Matrix2d A_inverse = A.inverse();
+  // The COM's move per pelvis rotation φ (the origin and the soles held): φ × (c − p) and the legs' rates
+  // J⁻¹(−[φ × (s − p); φ]) through J_c (carried_pelvis's next guess).
+  for (int k = 0; k < 3; ++k) {
+    const Vector3d e = Vector3d::Unit(k);
+    Eigen::Vector2d move = e.cross(c_world - p.p).head<2>();
+    for (int side = 0; side < 2; ++side) {
+      Vector6d turn;
+      turn << -e.cross(sole[side] - p.p), -e;
+      move += Jc[side] * lu[side].solve(turn);
+    }
+    m.com_per_rotation.col(k) = move;
+  }
   // Velocities: q̇ = J⁻¹(V_s − [v_p + ω_p × (s − p); ω_p]), v_p = (v_xy, ż) with v_xy from the COM's ċ.
   const Vector3d& wp = m.pelvis.angular_velocity;
   std::array<Vector6d, 2> rate0;  // with v_xy = 0
@@ -177,13 +189,26 @@ PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& gue
     const Vector6d accel = accel0[side] - per_pelvis[side] * a_xy;
     for (int i = 0; i < humanoid::kLegJoints; ++i) m.acceleration[humanoid::leg_first_joint(side) + i] = accel(i);
   }
+  m.com_position = Vector3d(target.x(), target.y(), 0.0);
+  m.com_velocity = Vector3d(in.cart[0](1), in.cart[1](1), 0.0);
   m.com_acceleration = Vector3d(in.cart[0](2), in.cart[1](2), 0.0);
   m.pelvis_position = p.p;
+  m.pelvis_attitude = p.R;
   m.valid = std::all_of(m.acceleration.begin(), m.acceleration.end(), [](double a) { return std::isfinite(a); }) &&
             A_inverse.allFinite();
   if (!m.valid) return PlannedMotion{};  // a singular leg (a straight knee): no motion to give
   inverse = A_inverse;                   // (∂c/∂p)⁻¹ at this pose, for the next
   return m;
+}
+
+Vector3d carried_pelvis(const PlannedMotion& last, double T, const Eigen::Vector2d& com, const Matrix3d& attitude,
+                        const Eigen::Matrix2d& inverse) {
+  Vector3d p = last.pelvis_position + T * last.pelvis.velocity + 0.5 * T * T * last.pelvis.acceleration;
+  const Vector3d carried_com = last.com_position + T * last.com_velocity + 0.5 * T * T * last.com_acceleration;
+  const double heading_turn = T * last.pelvis.angular_velocity.z() + 0.5 * T * T * last.pelvis.angular_acceleration.z();
+  const Vector3d phi = rotation_vector(attitude * (rot_z(heading_turn) * last.pelvis_attitude).transpose());
+  p.head<2>() += inverse * (com - carried_com.head<2>() - last.com_per_rotation * phi);
+  return p;
 }
 
 }  // namespace flexgait::walking

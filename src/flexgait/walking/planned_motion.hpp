@@ -27,12 +27,17 @@
 namespace flexgait::walking {
 
 struct PlannedMotion {
-  bool valid = false;                            ///< computed this period
-  humanoid::JointVector velocity{};              ///< q̇ of the plan [rad/s]
-  humanoid::JointVector acceleration{};          ///< q̈ of the plan [rad/s^2]
-  BaseMotion pelvis;                             ///< the pelvis's planned motion (world)
-  Vector3d pelvis_position = Vector3d::Zero();   ///< the plan pose's pelvis origin (world) [m]
-  Vector3d com_acceleration = Vector3d::Zero();  ///< the cart-table's c̈ (horizontal; world) [m/s^2]
+  bool valid = false;                               ///< computed this period
+  humanoid::JointVector velocity{};                 ///< q̇ of the plan [rad/s]
+  humanoid::JointVector acceleration{};             ///< q̈ of the plan [rad/s^2]
+  BaseMotion pelvis;                                ///< the pelvis's planned motion (world)
+  Vector3d pelvis_position = Vector3d::Zero();      ///< the plan pose's pelvis origin (world) [m]
+  Matrix3d pelvis_attitude = Matrix3d::Identity();  ///< the plan pose's pelvis attitude (world)
+  Vector3d com_position = Vector3d::Zero();         ///< the COM the pose was placed at: the cart's c + offset (xy) [m]
+  Vector3d com_velocity = Vector3d::Zero();         ///< the cart-table's ċ (horizontal; world) [m/s]
+  Vector3d com_acceleration = Vector3d::Zero();     ///< the cart-table's c̈ (horizontal; world) [m/s^2]
+  /// ∂c/∂φ: the COM's horizontal move per rotation φ of the pelvis (world; its origin and the soles held) [m/rad].
+  Eigen::Matrix<double, 2, 3> com_per_rotation = Eigen::Matrix<double, 2, 3>::Zero();
 };
 
 /// Pelvis position (its attitude pelvis.R given) and joint angles that put the soles at `soles`
@@ -69,5 +74,14 @@ inline constexpr double kPlanComTolerance = 1e-7;  ///< [m] on each horizontal a
 
 PlannedMotion planned_motion(const PlanPoseInputs& in, double t, const Pose& guess, RobotModelData& data,
                              Eigen::Matrix2d& inverse, bool refresh = true);
+
+/// The pelvis position a period T after the plan pose `last` that puts the COM at `com` with the pelvis at
+/// `attitude`, to first order: `last` carried by its motion (which moves the COM by ċT + c̈T²/2 and turns the heading
+/// by ψ̇T + ψ̈T²/2), then a Newton step, with `inverse` = (∂c/∂p)⁻¹ at `last`, for what the motion does not hold: the
+/// target's move beyond it (the preview's jerk, T³u/6; the balance's COM shift) and the attitude's turn beyond the
+/// heading's (the balance's counter-tilt) through last.com_per_rotation. Its miss is of second order in the changes
+/// (in the default walk ~1e-8 m, where the motion alone misses by ~1e-6 m).
+Vector3d carried_pelvis(const PlannedMotion& last, double T, const Eigen::Vector2d& com, const Matrix3d& attitude,
+                        const Eigen::Matrix2d& inverse);
 
 }  // namespace flexgait::walking

@@ -62,6 +62,7 @@ RobotModel make_robot_model(const humanoid::RobotParams& r) {
   m.ft_to_sole = m.sole_offset;
   fill_leg_chain(m, 0);
   fill_leg_chain(m, 1);
+  index_joint_axes(m);
   return m;
 }
 
@@ -82,6 +83,14 @@ int clamp_to_ranges(const RobotModel& model, humanoid::JointVector& q) {
   return hits;
 }
 
+void index_joint_axes(RobotModel& model) {
+  for (auto& b : model.bodies) {
+    b.axis_index = -1;
+    for (int k = 0; k < 3; ++k)
+      if (b.axis(k) == 1.0 && b.axis((k + 1) % 3) == 0.0 && b.axis((k + 2) % 3) == 0.0) b.axis_index = k;
+  }
+}
+
 void fill_leg_chain(RobotModel& m, int side) {
   const int b0 = 2 + 7 * side;
   LegGeometry& leg = m.leg[static_cast<std::size_t>(side)];
@@ -97,16 +106,11 @@ void fill_leg_chain(RobotModel& m, int side) {
 
 namespace {
 
-/// P · Rot(a, θ) for a joint axis a. About the frame's own x, y or z axis (the builtin's joints, most loaded legs')
-/// only the two columns of the plane turn: each entry is a sum of at most two nonzero products, so it equals the
-/// general 3 × 3 product with the rotation's entries formed as Eigen::AngleAxisd::toRotationMatrix forms them
-/// (c + (1 − c) on the axis, 0 ± s off it; the structural zeros add nothing) in every bit but a zero's sign.
-/// Other axes: the general product.
-Matrix3d turned(const Matrix3d& P, const Vector3d& axis, double angle) {
-  int k = -1;
-  for (int a = 0; a < 3; ++a)
-    if (axis(a) == 1.0 && axis((a + 1) % 3) == 0.0 && axis((a + 2) % 3) == 0.0) k = a;
-  if (k < 0) return P * Eigen::AngleAxisd(angle, axis);
+/// P · Rot(e_k, θ): only the two columns of the plane turn, each entry a sum of at most two nonzero products, so
+/// it equals the general 3 × 3 product with the rotation's entries formed as Eigen::AngleAxisd::toRotationMatrix
+/// forms them (c + (1 − c) on the axis, 0 ± s off it; the structural zeros add nothing) in every bit but a zero's
+/// sign.
+Matrix3d turned_about(const Matrix3d& P, int k, double angle) {
   const double s = std::sin(angle), c = std::cos(angle);
   const int i = (k + 1) % 3, j = (k + 2) % 3;  // the plane's axes: R_ii = R_jj = c, R_ji = 0 + s, R_ij = 0 − s
   const double plus = 0.0 + s, minus = 0.0 - s;
@@ -129,8 +133,17 @@ void forward_kinematics(const RobotModel& model, RobotModelData& data, const Pos
     } else {
       const Pose& parent = data.frame[b.parent];
       f.p = parent.p + parent.R * b.offset;
-      f.R = b.joint >= 0 ? turned(parent.R, b.axis, q[b.joint]) : parent.R;
+      if (b.joint < 0) {
+        f.R = parent.R;
+      } else if (b.axis_index >= 0) {
+        f.R = turned_about(parent.R, b.axis_index, q[b.joint]);
+        data.axis[i] = f.R.col(b.axis_index);
+      } else {
+        f.R = parent.R * Eigen::AngleAxisd(q[b.joint], b.axis);
+        data.axis[i] = f.R * b.axis;
+      }
     }
+    if (b.joint < 0) data.axis[i].setZero();
     data.com_world[i] = f.p + f.R * b.com;
   }
 }
@@ -152,7 +165,7 @@ LegJacobian leg_jacobian(const RobotModel& model, const RobotModelData& data, in
   const int b0 = 2 + 7 * side;
   for (int i = 0; i < 6; ++i) {
     const Pose& f = data.frame[b0 + i];
-    const Vector3d a = f.R * model.bodies[b0 + i].axis;
+    const Vector3d& a = data.axis[b0 + i];
     const int c = model.bodies[b0 + i].joint - leg_first_joint(side);  // the column of the joint's role
     J.block<3, 1>(0, c) = a.cross(point - f.p);
     J.block<3, 1>(3, c) = a;
@@ -166,7 +179,7 @@ LegTorque leg_gravity_torque(const RobotModel& model, const RobotModelData& data
   const Vector3d g(0, 0, -model.gravity);
   for (int i = 0; i < 6; ++i) {
     const Pose& f = data.frame[b0 + i];
-    const Vector3d a = f.R * model.bodies[b0 + i].axis;
+    const Vector3d& a = data.axis[b0 + i];
     Vector3d moment = Vector3d::Zero();  // gravity moment of the links below joint i about it
     for (int k = b0 + i; k < b0 + 7; ++k) moment += (data.com_world[k] - f.p).cross(model.bodies[k].mass * g);
     tau(model.bodies[b0 + i].joint - leg_first_joint(side)) = -a.dot(moment);

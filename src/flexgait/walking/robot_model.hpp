@@ -34,6 +34,9 @@ struct RobotModel {
     double mass = 0;                      ///< [kg]
     Vector3d com = Vector3d::Zero();      ///< centre of mass in the body frame [m]
     Matrix3d inertia = Matrix3d::Zero();  ///< about the centre of mass, body frame [kg m^2]
+    /// k where `axis` is e_k exactly (the builtin's joints, most loaded legs'; index_joint_axes), −1 otherwise: the
+    /// joint then turns two of the frame's columns only and its world axis is the frame's column k.
+    int axis_index = -1;
   };
   std::array<Body, kBodies> bodies;            ///< parents before children
   std::array<int, 2> foot{};                   ///< foot body of each leg
@@ -82,10 +85,13 @@ RobotModel make_robot_model(const humanoid::LoadedRobot& robot);
 std::string analytic_ik_mismatch(const humanoid::LoadedRobot& robot, int side);
 /// Fills leg[side]'s general chain (axes, anchors, sole) from the model's bodies.
 void fill_leg_chain(RobotModel& model, int side);
+/// Sets each body's axis_index from its axis (the model's factories call it once the bodies are set).
+void index_joint_axes(RobotModel& model);
 
 struct RobotModelData {
   std::array<Pose, kBodies> frame;          ///< world pose of each body
   std::array<Vector3d, kBodies> com_world;  ///< world position of each body's centre of mass [m]
+  std::array<Vector3d, kBodies> axis;       ///< each jointed body's joint axis in the world, R a (0 for a rigid one)
 };
 
 /// World frames of every body for this pelvis pose and these joint angles. With `first` > 0 only the bodies from

@@ -25,7 +25,7 @@ namespace {
   const Vector3d& wp = data.angular_velocity[p];
   Vector3d w = wp, alpha = data.angular_acceleration[p];
   if (b.joint >= 0) {
-    const Vector3d a = f.R * b.axis;
+    const Vector3d& a = kinematics.axis[i];
     w += a * qd[b.joint];
     alpha += a * qdd[b.joint] + wp.cross(a * qd[b.joint]);
   }
@@ -77,7 +77,7 @@ void inverse_dynamics_with_feet(const RobotModel& model, const RobotModelData& k
   for (int i = kBodies - 1; i >= first; --i) {
     const auto& b = model.bodies[i];
     const Wrench& w = data.joint_wrench[i];
-    if (b.joint >= 0) data.tau[b.joint] = (kinematics.frame[i].R * b.axis).dot(w.moment);
+    if (b.joint >= 0) data.tau[b.joint] = kinematics.axis[i].dot(w.moment);
     if (b.parent < first) continue;
     Wrench& parent = data.joint_wrench[b.parent];
     parent.force += w.force;
@@ -159,7 +159,7 @@ LegTorqueDerivative inverse_dynamics_derivative(const RobotModel& model, const R
     const Vector3d p = f.p - origin;
     role[m] = b.joint >= 0 ? b.joint - humanoid::leg_first_joint(side) : -1;
     if (b.joint >= 0) {
-      const Vector3d u = f.R * b.axis;
+      const Vector3d& u = kinematics.axis[k];
       S[m] = spatial(u, p.cross(u));
     } else {
       S[m].setZero();

@@ -293,6 +293,7 @@ RobotModel make_robot_model(const LoadedRobot& r) {
     for (const auto& p : s.hull) corners.emplace_back(p[0] - center[0], p[1] - center[1]);
     m.sole_polygon[static_cast<std::size_t>(side)] = box ? rectangle_sole(s.length, s.width) : polygon_sole(corners);
   }
+  index_joint_axes(m);
   return m;
 }
 

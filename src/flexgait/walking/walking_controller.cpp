@@ -696,13 +696,13 @@ const humanoid::JointVector& WalkingController::update(const humanoid::SensorRea
     in.cart = {cart_[0].x, cart_[1].x};
     in.com_offset = status_.com_shift;
     in.tilt = rot_y(d_pitch + calibration.pelvis_pitch) * rot_x(d_roll);
-    // From the last period's plan pose carried forward by its motion (else the commanded pose, the
-    // Jacobian by differences there).
+    // From the last period's plan pose carried forward (carried_pelvis), else the commanded pose, the Jacobian by
+    // differences there.
     const bool carried = last_motion.valid;
     Pose guess = pelvis_;
     if (carried)
-      guess.p = last_motion.pelvis_position + period_ * last_motion.pelvis.velocity +
-                0.5 * period_ * period_ * last_motion.pelvis.acceleration;
+      guess.p = carried_pelvis(last_motion, period_, Eigen::Vector2d(cart_[0].x(0), cart_[1].x(0)) + in.com_offset,
+                               rot_z(yaw) * in.tilt, motion_jacobian_inverse_);
     status_.motion = planned_motion(in, t + period_, guess, motion_data_, motion_jacobian_inverse_, !carried);
   }
   status_.desired = desired_;
