@@ -15,8 +15,8 @@
 /// iterate with the smallest residual among the Newton iterates and the conventional estimate is
 /// returned and `converged` is false.
 #include <Eigen/Dense>
-#include <algorithm>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
