@@ -89,6 +89,8 @@ class LinkAngleFactor {
   using Vector = Eigen::Matrix<double, N, 1>;
   using Matrix = Eigen::Matrix<double, N, N>;
   void compute(const Matrix& A, bool two_blocks) {
+    rate_ = std::numeric_limits<double>::infinity();  // (a new factor's rate is not known yet)
+    predicted_solves_ = 0;
     if constexpr (N % 2 == 0) {
       if (two_blocks) {
         constexpr int H = N / 2;
@@ -102,8 +104,6 @@ class LinkAngleFactor {
           permutation_.indices()(H + i) = H + halves_[1]->permutationP().indices()(i);
         }
         formed_ = true;
-        rate_ = std::numeric_limits<double>::infinity();
-        predicted_solves_ = 0;
         return;
       }
     }
@@ -111,8 +111,6 @@ class LinkAngleFactor {
     lu_ = whole_->matrixLU();
     permutation_ = whole_->permutationP();
     formed_ = true;
-    rate_ = std::numeric_limits<double>::infinity();
-    predicted_solves_ = 0;
   }
   /// Whether compute has been called since construction or the last forget.
   bool formed() const { return formed_; }
