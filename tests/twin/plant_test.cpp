@@ -155,6 +155,40 @@ TEST(HumanoidPlant, ACopyContinuesAsTheOriginal) {
   EXPECT_NE(plant_data(a), plant_data(b));
 }
 
+// The plant steps a control period's substeps before the last with MuJoCo's sensor stage off
+// (mjDSBL_SENSOR): its readings are taken once per period, and mj_step evaluates the sensors at the
+// start of each substep, so the last one's evaluation is the only one read. That rests on the sensor
+// stage writing nothing the dynamics read: four steps of the walking twin (one control period,
+// standing, in contact) the first three unsensed agree bit for bit with four sensed ones — the
+// state, the solver's warm start and every sensor value.
+TEST(HumanoidPlant, SkippingTheSensorStageOfUnreadSubstepsChangesNoBit) {
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
+  stand(plant, 0.5);
+  const mjModel* m = plant_model(plant);
+  mjModel* unsensed = mj_copyModel(nullptr, m);
+  unsensed->opt.disableflags |= mjDSBL_SENSOR;
+  mjData* a = mj_copyData(nullptr, m, plant_data(plant));
+  mjData* b = mj_copyData(nullptr, m, plant_data(plant));
+  const int substeps = plant.params().substeps();
+  ASSERT_GT(substeps, 1);
+  for (int k = 0; k < substeps; ++k) {
+    mj_step(k + 1 < substeps ? unsensed : m, a);
+    mj_step(m, b);
+  }
+  const auto same = [](const mjtNum* x, const mjtNum* y, int n) {
+    return std::memcmp(x, y, sizeof(mjtNum) * static_cast<std::size_t>(n)) == 0;
+  };
+  EXPECT_GT(a->ncon, 0) << "standing: in contact";
+  EXPECT_EQ(a->time, b->time);
+  EXPECT_TRUE(same(a->qpos, b->qpos, m->nq));
+  EXPECT_TRUE(same(a->qvel, b->qvel, m->nv));
+  EXPECT_TRUE(same(a->qacc_warmstart, b->qacc_warmstart, m->nv));
+  EXPECT_TRUE(same(a->sensordata, b->sensordata, m->nsensordata));
+  mj_deleteData(a);
+  mj_deleteData(b);
+  mj_deleteModel(unsensed);
+}
+
 // reset() depends on the pose only: what the plant did before leaves no trace (the gear springs
 // are forces of the drives' state, not a reference stored in the model), so the first readings
 // after a reset are the same bytes whatever came before.

@@ -79,6 +79,13 @@ struct HumanoidPlant::Impl {
   PlantParams params;
   Terrain terrain;
   std::shared_ptr<const mjModel> model;  ///< shared by copies; never changed after construction
+  /// The same model with MuJoCo's sensor stage off (mjDSBL_SENSOR), for the substeps before a control
+  /// period's last: the sensors are read once per period, after its last substep, and mj_step computes
+  /// them at the start of each substep, so the last substep's evaluation is the only one read (the
+  /// readings, and everything else, are bit for bit those of stepping the model itself). The sensor
+  /// stage (mj_rnePostConstraint for the accelerometer and the F/T sensors) is ~8 % of a MuJoCo step of
+  /// the twin: skipping it in three of a period's four substeps makes the period's physics ~6 % faster.
+  std::shared_ptr<const mjModel> model_unsensed;
   ElasticDrives drives;
   std::array<int, humanoid::kJoints> joint_id{};
   std::array<int, 2> push_body{};  ///< body ids of PushBody: pelvis, chest
@@ -186,6 +193,9 @@ HumanoidPlant::Impl::Impl(const TwinModel& twin, const PlantParams& plant, Terra
       drives(make_drives(m, plant)),
       state(m, static_cast<std::uint64_t>(plant.noise_seed)) {
   drives.take_springs(m);  // before anything runs; the model is const from here on
+  mjModel* unsensed = mj_copyModel(nullptr, m);
+  unsensed->opt.disableflags |= mjDSBL_SENSOR;
+  model_unsensed.reset(unsensed, [](const mjModel* p) { mj_deleteModel(const_cast<mjModel*>(p)); });
   for (int j = 0; j < humanoid::kJoints; ++j) joint_id[j] = twin_joint(m, j);
   (void)require(m, mjOBJ_GEOM, "floor");
   // The root body, and the waist joint's body (the root itself for a trunk without a waist).
@@ -295,7 +305,7 @@ void HumanoidPlant::step(const humanoid::JointVector& command) {
   const int n = p.params.substeps();
   for (int k = 0; k < n; ++k) {
     p.apply_push();
-    p.drives.step(m, d, st.motors, command.data());
+    p.drives.step(k + 1 < n ? p.model_unsensed.get() : m, d, st.motors, command.data());
     // The constraint force on the free joint's translation: the floor contacts' total (the other
     // constraints, joint limits, act within the robot and have no part there).
     for (int i = 0; i < 3; ++i) st.floor_impulse[i] += m->opt.timestep * d->qfrc_constraint[i];
