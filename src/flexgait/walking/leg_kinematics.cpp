@@ -1,6 +1,7 @@
 #include "flexgait/walking/leg_kinematics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -129,19 +130,43 @@ IkSolution leg_inverse_kinematics(const LegGeometry& leg, const Pose& sole) {
     C = c_min;
   }
   auto& q = out.q;  // the layout's angles, turned into the file's at the end
+  // The angles' sines and cosines come from the same algebra as the angles (no sin or cos of an angle just
+  // found: a leg's IK was ~10 % of the walking loop's own time, most of it in libm).
   // Knee from the law of cosines: C² = A² + B² + 2AB cos q4, on the branch the range allows.
-  q[3] = leg.knee_branch() * std::acos(std::clamp((C * C - A * A - B * B) / (2 * A * B), -1.0, 1.0));
+  const double knee = leg.knee_branch();
+  const double c3 = std::clamp((C * C - A * A - B * B) / (2 * A * B), -1.0, 1.0);
+  const double s3 = knee * std::sqrt((1 - c3) * (1 + c3));
+  q[3] = knee * std::acos(c3);
   // Ankle roll: (r_y, r_z) = v_z (sin q6, cos q6). Of the two solutions take |q6| ≤ π/2 (v_z < 0
-  // only when the hip is below the ankle in the foot frame).
+  // only when the hip is below the ankle in the foot frame): cos q6 = |r_z| / h, sin q6 = sgn(r_z) r_y / h.
   q[5] = std::atan(r.y() / r.z());
   if (!std::isfinite(q[5])) q[5] = std::copysign(0.5 * std::numbers::pi, r.y());
-  const double vx = r.x(), vz = r.y() * std::sin(q[5]) + r.z() * std::cos(q[5]);
-  // (v_x, v_z) is (−A sin q4, A cos q4 + B) rotated by −q5 about y.
-  q[4] = std::atan2(-A * std::sin(q[3]), A * std::cos(q[3]) + B) - std::atan2(vx, vz);
+  const double h = std::sqrt(r.y() * r.y() + r.z() * r.z());
+  const double c6 = h > 0 ? std::abs(r.z()) / h : 0.0;
+  const double s6 = h > 0 ? std::copysign(1.0, r.z()) * r.y() / h : std::copysign(1.0, r.y());
+  const double vx = r.x(), vz = r.y() * s6 + r.z() * c6;
+  // (v_x, v_z) is (−A sin q4, A cos q4 + B) rotated by −q5 about y: q5 = α − β, α the angle of
+  // (A cos q4 + B, −A sin q4), β that of (v_z, v_x).
+  const double ax = A * c3 + B, ay = -A * s3;
+  q[4] = std::atan2(ay, ax) - std::atan2(vx, vz);
+  // cos and sin of q4 + q5 = q4 + α − β, the product of the unit vectors (cos, sin) of q4 and α with β's conjugate.
+  // (The unit vector of atan2(y, x): (1, 0) at the origin, where atan2 is 0.)
+  const auto unit = [](double x, double y) {
+    const double n = std::sqrt(x * x + y * y);
+    return n > 0 ? std::array<double, 2>{x / n, y / n} : std::array<double, 2>{1.0, 0.0};
+  };
+  const auto [ca, sa] = unit(ax, ay);
+  const auto [cb, sb] = unit(vz, vx);
+  const double c4a = c3 * ca - s3 * sa, s4a = c3 * sa + s3 * ca;  // q4 + α
+  const double c45 = c4a * cb + s4a * sb, s45 = s4a * cb - c4a * sb;
   // Rz(q1) Rx(q2) Ry(q3) = R_foot Rx(q6)ᵀ Ry(q4 + q5)ᵀ.
-  const Matrix3d M = sole.R * rot_x(-q[5]) * rot_y(-(q[3] + q[4]));
+  Matrix3d Rx6, Ry45;
+  Rx6 << 1, 0, 0, 0, c6, s6, 0, -s6, c6;
+  Ry45 << c45, 0, -s45, 0, 1, 0, s45, 0, c45;
+  const Matrix3d M = sole.R * Rx6 * Ry45;
+  // q1 = atan2(−M01, M11); then −M01 sin q1 + M11 cos q1 = √(M01² + M11²).
   q[0] = std::atan2(-M(0, 1), M(1, 1));
-  q[1] = std::atan2(M(2, 1), -M(0, 1) * std::sin(q[0]) + M(1, 1) * std::cos(q[0]));
+  q[1] = std::atan2(M(2, 1), std::sqrt(M(0, 1) * M(0, 1) + M(1, 1) * M(1, 1)));
   q[2] = std::atan2(-M(2, 0), M(2, 2));
   for (std::size_t i = 0; i < 6; ++i) q[i] *= leg.sign[i];
   return out;

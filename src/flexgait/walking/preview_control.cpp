@@ -52,8 +52,10 @@ PreviewGains preview_gains(double T, double z_c, double g0, double horizon, doub
 double preview_step(const PreviewGains& g, CartTable& cart, const double* p_ref) {
   cart.error_sum += g.C * cart.x - p_ref[0];
   double u = -g.G_i * cart.error_sum - g.G_x * cart.x;
-  const auto N = g.G_p.size();
-  for (std::size_t j = 0; j < N; ++j) u -= g.G_p[j] * p_ref[j + 1];
+  // The preview's sum Σ G_p(j) p_ref(k + j) (Katayama et al. 1985) as Eigen's dot product: its independent partial
+  // sums (vector lanes, unrolled) run in parallel where a running sum waits on each add.
+  const auto N = static_cast<Eigen::Index>(g.G_p.size());
+  u -= Eigen::Map<const Eigen::VectorXd>(g.G_p.data(), N).dot(Eigen::Map<const Eigen::VectorXd>(p_ref + 1, N));
   cart.x = g.A * cart.x + g.B * u;
   return u;
 }
