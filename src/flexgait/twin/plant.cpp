@@ -463,10 +463,14 @@ GroundTruth HumanoidPlant::truth() const {
   g.push_force = st.push_force;
   g.push_impulse = st.push_impulse;
   g.floor_impulse = st.floor_impulse;
-  // The free joint's translational rows of M q̇: ∂T/∂v_root = Σ m_i v_i, the total linear momentum.
-  std::vector<mjtNum> Mv(static_cast<std::size_t>(m->nv));
-  mj_mulM(m, d, Mv.data(), d->qvel);
-  for (int i = 0; i < 3; ++i) g.linear_momentum[i] = Mv[static_cast<std::size_t>(i)];
+  // The free joint's translational rows of M q̇: ∂T/∂v_root = Σ m_i v_i, the total linear momentum (the
+  // product in MuJoCo's own scratch stack, restored at once: no allocation per period).
+  mjData* scratch = st.data.get();
+  const int mark = scratch->pstack;
+  mjtNum* Mv = mj_stackAlloc(scratch, m->nv);
+  mj_mulM(m, scratch, Mv, d->qvel);
+  for (int i = 0; i < 3; ++i) g.linear_momentum[i] = Mv[i];
+  scratch->pstack = mark;
   return g;
 }
 
