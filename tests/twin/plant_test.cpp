@@ -164,13 +164,13 @@ TEST(HumanoidPlant, ACopyContinuesAsTheOriginal) {
 TEST(HumanoidPlant, SkippingTheSensorStageOfUnreadSubstepsChangesNoBit) {
   HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
   stand(plant, 0.5);
+  const int substeps = plant.params().substeps();
+  ASSERT_GT(substeps, 1);
   const mjModel* m = plant_model(plant);
   mjModel* unsensed = mj_copyModel(nullptr, m);
   unsensed->opt.disableflags |= mjDSBL_SENSOR;
   mjData* a = mj_copyData(nullptr, m, plant_data(plant));
   mjData* b = mj_copyData(nullptr, m, plant_data(plant));
-  const int substeps = plant.params().substeps();
-  ASSERT_GT(substeps, 1);
   for (int k = 0; k < substeps; ++k) {
     mj_step(k + 1 < substeps ? unsensed : m, a);
     mj_step(m, b);

@@ -164,6 +164,11 @@ ElasticDrives make_drives(const mjModel* m, const PlantParams& params) {
   return ElasticDrives(m, joints, act);
 }
 
+/// Shares `m`, deleting it with the last copy.
+std::shared_ptr<const mjModel> shared_model(mjModel* m) {
+  return {m, [](const mjModel* p) { mj_deleteModel(const_cast<mjModel*>(p)); }};
+}
+
 /// The twin's model as compiled, the rough floor's heights written in (the plant then hands the
 /// actuated joints' springs to their drives and never changes the model again).
 mjModel* load_twin(const TwinModel& twin, const PlantParams& params, const Terrain& terrain) {
@@ -189,13 +194,13 @@ HumanoidPlant::Impl::Impl(const TwinModel& twin, const PlantParams& plant, Terra
     : sole_center(twin.sole_center),
       params(plant),
       terrain(std::move(floor)),
-      model(m, [](const mjModel* p) { mj_deleteModel(const_cast<mjModel*>(p)); }),
+      model(shared_model(m)),
       drives(make_drives(m, plant)),
       state(m, static_cast<std::uint64_t>(plant.noise_seed)) {
   drives.take_springs(m);  // before anything runs; the model is const from here on
   mjModel* unsensed = mj_copyModel(nullptr, m);
   unsensed->opt.disableflags |= mjDSBL_SENSOR;
-  model_unsensed.reset(unsensed, [](const mjModel* p) { mj_deleteModel(const_cast<mjModel*>(p)); });
+  model_unsensed = shared_model(unsensed);
   for (int j = 0; j < humanoid::kJoints; ++j) joint_id[j] = twin_joint(m, j);
   (void)require(m, mjOBJ_GEOM, "floor");
   // The root body, and the waist joint's body (the root itself for a trunk without a waist).
