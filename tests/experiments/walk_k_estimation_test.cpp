@@ -4,7 +4,10 @@
 // 4.5 %). Off (the default) writes no estimate: no k_est_ columns, no k_estimate in summary.json.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "flexgait/compensation/chain_stiffness_calibration.hpp"
 #include "flexgait/compensation/stiffness_estimator.hpp"
@@ -44,10 +47,10 @@ TEST(WalkKEstimation, TenStepsAt3sFindTheTrueStiffnessWithin6Percent) {
   EXPECT_NE(joints.find("k_est_l_knee"), std::string::npos);
 }
 
-// The field's estimators (the tilt observer), dynamic loads and the identification's attitude from the gyro
-// (control.k_estimation_attitude_time, pulled to the observer over 10⁵ s): measured 1195 to 1222 at 3 s/step
-// (within 4.4 %; 1154 to 1331 with the observer's attitude itself) and 1178 to 1248 at 1 s/step (within 5.7 %,
-// the modelled stance torques' error; 1178 to 1471). The twin's gyro is ideal.
+// The field's estimators (the tilt observer), dynamic loads and the identification's attitude from the IMU's delta
+// angles (control.k_estimation_attitude_time, pulled to the observer over 10⁵ s): measured 1237 to 1302 at 3 s/step
+// (within 4.2 %) and 1193 to 1296 at 1 s/step (within 4.6 %, the modelled stance torques' error). (With one gyro
+// sample per period: 1195 to 1222 and 1178 to 1248.) The twin's gyro is ideal.
 void expect_gyro_attitude_within(double step_time, double tolerance) {
   WalkRunParams p = ten_steps(step_time);
   p.estimator.source = walking::AttitudeSource::kTilt;
@@ -58,6 +61,7 @@ void expect_gyro_attitude_within(double step_time, double tolerance) {
   ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
   for (int j = 0; j < humanoid::kJoints; ++j)
     if (r.k_identified[j]) {
+      ::testing::Test::RecordProperty("k_" + std::string(humanoid::kJointNames[j]), std::to_string(r.k_estimate[j]));
       EXPECT_NEAR(r.k_estimate[j], 1250.0, tolerance * 1250.0) << humanoid::kJointNames[j];
     }
 }
@@ -72,11 +76,11 @@ TEST(WalkKEstimation, TheGyrosAttitudeFindsTheStiffnessWithin7PercentAt1s) {
 // A realistic gyro: a bias of 0.001 rad/s on each axis and a bias walk of 1e-5 rad/s/√s. The gyro is
 // calibrated standing still (control.k_estimation_gyro_rest: 1 s of a 5 s start stance; the bias is the gyro's
 // turn less the legs'), the F/T low-pass is 0.01 s (its lag biases the torques' changes). At 3 s/step each
-// stance's tilt offset is estimated (control.k_estimation_stance_offset: the drift cancels): measured 1212 to 1297
-// (within 3.8 %; 3.9–4.0 % with noise seeds 2 to 4; without the offsets 4.9 %, 7.7 % with an ideal gyro). At
-// 1 s/step without the offsets (with them 25 %: the modelled torques' changes within a stance are off): 1253 to
-// 1277 (within 2.2 %; 1.0–2.7 % with seeds 2 to 4). Before (the gyro alone from the start): 784 to 9112 at 3 s,
-// 977 to 1845 at 1 s.
+// stance's tilt offset is estimated (control.k_estimation_stance_offset: the drift cancels). Measured with the IMU's
+// delta angles: 1252 to 1319 at 3 s/step (within 5.5 %), 1250 to 1315 at 1 s/step without the offsets (within
+// 5.2 %, the pitch groups: the modelled torques' bias). (With one gyro sample per period, aliased: 1212 to 1297 and
+// 1253 to 1277, the sampled rate's drift partly cancelling that bias.) Before (the gyro alone from the start): 784 to
+// 9112 at 3 s, 977 to 1845 at 1 s.
 void expect_drifting_gyro_within(double step_time, bool stance_offset, double tolerance) {
   WalkRunParams p = ten_steps(step_time);
   p.walk.start_time = 5.0;
@@ -97,33 +101,78 @@ void expect_drifting_gyro_within(double step_time, bool stance_offset, double to
     }
 }
 
-TEST(WalkKEstimation, ACalibratedDriftingGyroFindsTheStiffnessWithin5PercentAt3s) {
-  expect_drifting_gyro_within(3.0, true, 0.05);
+TEST(WalkKEstimation, ACalibratedDriftingGyroFindsTheStiffnessWithin7PercentAt3s) {
+  expect_drifting_gyro_within(3.0, true, 0.07);
 }
-TEST(WalkKEstimation, ACalibratedDriftingGyroFindsTheStiffnessWithin5PercentAt1s) {
-  expect_drifting_gyro_within(1.0, false, 0.05);
+TEST(WalkKEstimation, ACalibratedDriftingGyroFindsTheStiffnessWithin7PercentAt1s) {
+  expect_drifting_gyro_within(1.0, false, 0.07);
 }
 
-// The default keys of `humanoid walk` (the default compensation case, the identification's attitude the gyro's over
-// the walk, the regressor through the gears' lag) with control.k_estimation on: 20 steps at 1 s/step on gears of
-// 870 Nm/rad, believed 1000. Each identified joint within 5 % and confident (its relative std at most
-// control.k_estimation_confidence, so the compensators use it). Measured: the roll groups 2.6 and 1.9 % low, the
-// pitch groups 0.4 and 0.9 % (docs/guide/compensation.md's table: the six runs within 3.8 %).
-TEST(WalkKEstimation, TheDefaultKeysFindEachJointWithin5PercentIn20StepsAt1s) {
-  const WalkRunParams p = walk_run_from_config(resolve_config(
-      walk_run_schema(), std::nullopt,
-      {"walk.steps=20", "walk.step_time=1.0", "plant.k_joint=870", "control.k_joint=1000", "control.k_estimation=on"}));
-  const WalkResult r = run_walk(p);
-  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
+/// `humanoid walk`'s parameters for these keys (its defaults resolved as on the command line).
+WalkRunParams walk_with(const std::vector<std::string>& keys) {
+  return walk_run_from_config(resolve_config(walk_run_schema(), std::nullopt, keys));
+}
+
+/// Each identified joint of r within `tolerance` of k and confident (its relative std at most the threshold, so the
+/// compensators use it); returns the worst relative error.
+double expect_each_identified_within(const WalkRunParams& p, const WalkResult& r, double k, double tolerance) {
+  double worst = 0;
   int identified = 0;
   for (int j = 0; j < humanoid::kJoints; ++j) {
     if (!r.k_identified[j]) continue;
     ++identified;
-    EXPECT_NEAR(r.k_estimate[j], 870.0, 0.05 * 870.0) << humanoid::kJointNames[j];
+    worst = std::max(worst, std::abs(r.k_estimate[j] / k - 1));
+    EXPECT_NEAR(r.k_estimate[j], k, tolerance * k) << humanoid::kJointNames[j];
     EXPECT_GT(r.k_relative_std[j], 0.0) << humanoid::kJointNames[j];
     EXPECT_LE(r.k_relative_std[j], p.control.k_estimation_confidence) << humanoid::kJointNames[j];
   }
   EXPECT_EQ(identified, 10);
+  return worst;
+}
+
+// The default keys of `humanoid walk` (the default compensation case, the identification's attitude the IMU's over
+// the walk, the regressor through the gears' lag) with control.k_estimation on: 20 steps at 1 s/step on gears of
+// 870 Nm/rad, believed 1000. Measured: the roll groups 1.6 and 1.0 % low, the pitch groups 5.2 and 4.6 % high (the
+// modelled torques' bias; docs/guide/compensation.md's table). Bound: 6 %.
+TEST(WalkKEstimation, TheDefaultKeysFindEachJointWithin6PercentIn20StepsAt1s) {
+  const WalkRunParams p = walk_with(
+      {"walk.steps=20", "walk.step_time=1.0", "plant.k_joint=870", "control.k_joint=1000", "control.k_estimation=on"});
+  const WalkResult r = run_walk(p);
+  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
+  expect_each_identified_within(p, r, 870.0, 0.06);
+}
+
+// control.k_estimation_torque measured: the servos' torque from their current less the rotors' inertia, the same
+// walk. The modelled torques' bias gone, each group is found within 0.4 % (measured; at 3 s/step and k 1180, 1230
+// within 0.7 %, docs/guide/compensation.md). Bound: 1.5 %.
+TEST(WalkKEstimation, MeasuredTorquesFindEachGroupWithin1Point5PercentAt1s) {
+  const WalkRunParams p = walk_with({"walk.steps=20", "walk.step_time=1.0", "plant.k_joint=870", "control.k_joint=1000",
+                                     "control.k_estimation=on", "control.k_estimation_torque=measured"});
+  const WalkResult r = run_walk(p);
+  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
+  ::testing::Test::RecordProperty("worst", std::to_string(expect_each_identified_within(p, r, 870.0, 0.015)));
+}
+
+// control.k_estimation_per_joint: one 1/k per joint from the measured torques, 20 steps at 1 s/step on gears of
+// 1230 Nm/rad, with the memory of the walk (20 s) and the twin's soles believed (configs/calibrate-stiffness.yaml's
+// values). Measured: every joint within 3.3 % (the left hip pitch; the ankles within 3.2 %), relative std 0.4–2.2 %.
+// Bound: 5 %, the issue's. Asking for it with the modelled torques is refused (exit 2): ill-posed.
+TEST(WalkKEstimation, PerJointMeasuredTorquesFindEachJointWithin5PercentIn20StepsAt1s) {
+  const std::vector<std::string> keys = {"walk.steps=20",
+                                         "walk.step_time=1.0",
+                                         "plant.k_joint=1230",
+                                         "control.k_joint=1000",
+                                         "control.k_estimation=on",
+                                         "control.k_estimation_torque=measured",
+                                         "control.k_estimation_per_joint=true",
+                                         "control.k_estimation_memory=20",
+                                         "control.sole_stiffness_roll=20500",
+                                         "control.sole_stiffness_pitch=54000"};
+  const WalkRunParams p = walk_with(keys);
+  const WalkResult r = run_walk(p);
+  ASSERT_FALSE(r.metrics.fell) << r.metrics.fall_text();
+  ::testing::Test::RecordProperty("worst", std::to_string(expect_each_identified_within(p, r, 1230.0, 0.05)));
+  EXPECT_THROW(walk_with({"control.k_estimation=on", "control.k_estimation_per_joint=true"}), ConfigError);
 }
 
 // control.k_estimation = calibrate (chain_stiffness_calibration.hpp) on the twin, as configs/calibrate-stiffness.yaml

@@ -1,8 +1,9 @@
-// The twin: mass, standing on its own, gravity deflection of the elastic gears, sensors,
-// encoder quantisation, determinism.
+// The twin: mass, standing on its own, gravity deflection of the elastic gears, sensors (the IMU's delta angle,
+// the servos' torque from their current), encoder quantisation, determinism.
 #include "flexgait/twin/plant.hpp"
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <cstring>
@@ -187,6 +188,61 @@ TEST(HumanoidPlant, SkippingTheSensorStageOfUnreadSubstepsChangesNoBit) {
   mj_deleteData(a);
   mj_deleteData(b);
   mj_deleteModel(unsensed);
+}
+
+// The IMU's delta angle (humanoid::Imu::delta_angle) is its frame's turn since the last reading, in that frame: the
+// delta angles of a pushed twin, composed, turn the first AHRS attitude (exact: no AHRS noise) into the last, to
+// round-off (each is a quaternion's rotation vector; 100 compositions, ~1e-16 rad each). A delta in the world frame
+// instead would be off by the pelvis's tilt times the turn (here > 1e-5 rad). A gyro bias b adds b T to each.
+TEST(HumanoidPlant, TheDeltaAnglesComposeToTheAttitudesTurn) {
+  PlantParams biased = default_plant();
+  biased.imu.gyro_bias = 0.002;  // [rad/s]
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant()), with_bias(humanoid::RobotParams{}, biased);
+  stand(plant, 0.2);
+  stand(with_bias, 0.2);
+  const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, kStandHeight);
+  for (HumanoidPlant* p : {&plant, &with_bias})
+    p->set_pushes({Push{.time = 0.2, .body = PushBody::kChest, .force = {60.0, 90.0, 0.0}, .duration = 0.15}});
+  const auto matrix = [](const std::array<double, 4>& q) {
+    return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  };
+  const Eigen::Matrix3d first = matrix(plant.sensors().imu.quat);
+  Eigen::Matrix3d composed = first;
+  for (int i = 0; i < 100; ++i) {
+    humanoid::JointVector command = pose;
+    command[humanoid::kLeftHipRoll] += 0.05 * std::sin(0.1 * i);  // (a turn whose axis moves)
+    plant.step(command);
+    with_bias.step(command);
+    const auto& d = plant.sensors().imu.delta_angle;
+    const Eigen::Vector3d delta(d[0], d[1], d[2]);
+    if (delta.norm() > 0) composed = composed * Eigen::AngleAxisd(delta.norm(), delta.normalized()).toRotationMatrix();
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(with_bias.sensors().imu.delta_angle[a] - d[a], biased.imu.gyro_bias * biased.control_period, 1e-15);
+  }
+  const Eigen::Matrix3d last = matrix(plant.sensors().imu.quat);
+  EXPECT_GT(Eigen::AngleAxisd(Eigen::Matrix3d(first.transpose() * last)).angle(), 0.01) << "the twin turned";
+  EXPECT_LT(Eigen::AngleAxisd(Eigen::Matrix3d(composed.transpose() * last)).angle(), 1e-12);
+}
+
+// The servos' torque from their current (humanoid::SensorReadings::motor_torque) is their mean over the control
+// period: with one physics step per period, the servo torque of that step bit for bit; standing still, the gears'
+// torque (the rotors at rest; measured: within 2e-4 Nm after 1 s).
+TEST(HumanoidPlant, TheMotorTorqueIsTheServosMeanOverThePeriod) {
+  PlantParams single = default_plant();
+  single.control_period = single.physics_dt;
+  HumanoidPlant one(humanoid::RobotParams{}, single);
+  stand(one, 0.1);
+  const GroundTruth g = one.truth();
+  for (int j = 0; j < humanoid::kJoints; ++j) EXPECT_EQ(one.sensors().motor_torque[j], g.servo_torque[j]);
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
+  stand(plant, 1.0);
+  const GroundTruth still = plant.truth();
+  double largest = 0;
+  for (int j = 0; j < humanoid::kJoints; ++j) {
+    EXPECT_NEAR(plant.sensors().motor_torque[j], still.gear_torque[j], 0.01) << humanoid::kJointNames[j];
+    largest = std::max(largest, std::abs(still.gear_torque[j]));
+  }
+  EXPECT_GT(largest, 20.0) << "the legs carry the weight";
 }
 
 // reset() depends on the pose only: what the plant did before leaves no trace (the gear springs

@@ -171,8 +171,8 @@ py::list joint_names() {
 void bind_records(py::module_& m) {
   py::class_<humanoid::SensorReadings>(
       m, "SensorReadings",
-      "What a controller reads in one period (SI units): motor-side encoders, the ankle "
-      "F/T sensors (force on the foot from the leg, foot frame) and the pelvis IMU.")
+      "What a controller reads in one period (SI units): motor-side encoders, the servos' torque from their "
+      "current, the ankle F/T sensors (force on the foot from the leg, foot frame) and the pelvis IMU.")
       .def_property_readonly(
           "t", [](const humanoid::SensorReadings& s) { return s.t; }, "time [s]")
       .def_property_readonly(
@@ -181,6 +181,9 @@ void bind_records(py::module_& m) {
       .def_property_readonly(
           "encoder_stamp", [](const humanoid::SensorReadings& s) { return array_of(s.encoder_stamp); },
           "when each encoder was read [s]")
+      .def_property_readonly(
+          "motor_torque", [](const humanoid::SensorReadings& s) { return array_of(s.motor_torque); },
+          "each servo's torque from its motor current, averaged over the control period [N m]")
       .def_property_readonly(
           "ft_force",
           [](const humanoid::SensorReadings& s) {
@@ -201,7 +204,10 @@ void bind_records(py::module_& m) {
           "pelvis angular rate, pelvis frame [rad/s]")
       .def_property_readonly(
           "accel", [](const humanoid::SensorReadings& s) { return array_of(s.imu.accel); },
-          "specific force, pelvis frame [m/s^2] (+g up at rest)");
+          "specific force, pelvis frame [m/s^2] (+g up at rest)")
+      .def_property_readonly(
+          "delta_angle", [](const humanoid::SensorReadings& s) { return array_of(s.imu.delta_angle); },
+          "the pelvis's turn since the last reading, integrated inside the IMU, pelvis frame [rad]");
   py::class_<twin::GroundTruth>(m, "GroundTruth",
                                 "The twin's true state (for evaluation; a controller is not given it).")
       .def_property_readonly(

@@ -14,14 +14,6 @@ constexpr double kBoundFactor = 10.0;     // c ∈ [c₀/10, 10 c₀]
 constexpr double kOffsetStd = 0.05;       // prior std of y₀'s roll and pitch [rad]
 constexpr double kSettleTime = 1.0;       // after a pass publishes, the commanded pose's change settles [s]
 
-// The sole's compliance in series with an ankle gear about the same axis (0 elsewhere) [rad/Nm].
-double sole_compliance(int joint, const CompensationParams& p) {
-  using namespace humanoid;
-  const double k = (joint == kLeftAnkleRoll || joint == kRightAnkleRoll)     ? p.sole_stiffness_roll
-                   : (joint == kLeftAnklePitch || joint == kRightAnklePitch) ? p.sole_stiffness_pitch
-                                                                             : 0.0;
-  return k > 0 ? 1.0 / k : 0.0;
-}
 }  // namespace
 
 ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& model, const CompensationParams& params,

@@ -79,6 +79,14 @@ constexpr std::array<EnumName<KEstimation>, 3> enum_names(KEstimation) {
   return {{{KEstimation::kOff, "off"}, {KEstimation::kOn, "on"}, {KEstimation::kCalibrate, "calibrate"}}};
 }
 
+/// The torque the walking identification regresses on (stiffness_estimator.hpp): the compensators' modelled torque
+/// (one 1/k per leg joint group), or each servo's torque from its motor current less its rotor's inertia (one 1/k per
+/// joint).
+enum class KTorque { kModelled, kMeasured };
+constexpr std::array<EnumName<KTorque>, 2> enum_names(KTorque) {
+  return {{{KTorque::kModelled, "modelled"}, {KTorque::kMeasured, "measured"}}};
+}
+
 /// The output compensator's Newton: G formed at each iterate, or reused (link_angle_newton.hpp).
 constexpr std::array<EnumName<NewtonJacobian>, 3> enum_names(NewtonJacobian) {
   return {
@@ -138,10 +146,13 @@ struct CompensationParams {
   double k_estimation_min_torque = 5.0;   ///< smallest |regressor| a sample needs [Nm]
   double k_estimation_noise = 0.002;      ///< standard deviation of the foot-tilt observation [rad]
   double k_estimation_confidence = 0.05;  ///< relative standard deviation below which the compensators use the estimate
+  KTorque k_estimation_torque = KTorque::kModelled;  ///< k_estimation on: the regressor's torque
+  bool k_estimation_per_joint = false;               ///< k_estimation on: one 1/k per joint (else per leg joint group)
+  double rotor_inertia = 0.8;  ///< the belief of each rotor's inertia at the gear's output, J_m [kg m^2]
   /// calibrate: the window is split into this many passes, each fitted afresh with the torques modelled (the estimated
   /// pose, the gears' lag) at the previous pass's estimate [-]
   int k_calibration_passes = 1;
-  /// calibrate: the belief of the soles' rotational stiffness about the sole's x (roll) and y (pitch) axes, the foot
+  /// k_estimation: the belief of the soles' rotational stiffness about the sole's x (roll) and y (pitch) axes, the foot
   /// pad and the floor contact in series with the ankle gears [Nm/rad]; 0: rigid soles
   double sole_stiffness_roll = 0.0;
   double sole_stiffness_pitch = 0.0;
@@ -198,6 +209,19 @@ struct CompensationParams {
               "use a group's estimate once confident; calibrate = estimate 1/k of each leg roll and pitch joint in the "
               "start stance's calibration (calibration.*) from the two flat soles' relative tilt through the encoders, "
               "used once confident and kept while walking"});
+    v("control.k_estimation_torque", s.k_estimation_torque,
+      {.doc = "k_estimation on: the torque the stance foot's tilt is regressed on: modelled = the output "
+              "compensator's, measured = each servo's torque from its motor current less its rotor's inertia times "
+              "the encoder's acceleration"});
+    v("control.k_estimation_per_joint", s.k_estimation_per_joint,
+      {.doc = "k_estimation on: one 1/k per leg joint, not per leg joint group (roll, pitch); needs "
+              "control.k_estimation_torque measured (the parallel joints' modelled torques move together) and an "
+              "attitude good to ~0.1 mrad over the walk"});
+    v("control.rotor_inertia", s.rotor_inertia,
+      {.unit = "kg m^2",
+       .doc = "k_estimation_torque measured: the belief of each rotor's inertia at the gear's output (left unset, "
+              "humanoid walk takes plant.rotor_inertia)",
+       .bounds = closed(0, 100)});
     v("control.k_estimation_memory", s.k_estimation_memory,
       {.unit = "s",
        .doc = "k_estimation on: forgetting time constant of the RLS (calibrate: none)",
@@ -211,8 +235,9 @@ struct CompensationParams {
        .doc = "k_estimation: standard deviation of the foot-tilt observation",
        .bounds = closed(1e-9, 1)});
     v("control.k_estimation_confidence", s.k_estimation_confidence,
-      {.doc =
-           "k_estimation: the compensators use a group's estimate once its relative standard deviation is at most this",
+      {.doc = "k_estimation: the compensators use a group's (or joint's) estimate once its relative standard deviation "
+              "is at "
+              "most this",
        .bounds = closed(1e-6, 1)});
     v("control.k_calibration_passes", s.k_calibration_passes,
       {.doc = "k_estimation calibrate: the calibration window is split into this many passes; each fits afresh, its "
@@ -220,14 +245,14 @@ struct CompensationParams {
        .bounds = closed(1, 10)});
     v("control.sole_stiffness_roll", s.sole_stiffness_roll,
       {.unit = "Nm/rad",
-       .doc = "k_estimation calibrate: the belief of each sole's roll stiffness (pad and floor contact, in series with "
-              "the ankle roll gear), taken out of the soles' relative tilt; 0 = rigid soles",
+       .doc = "k_estimation: the belief of each sole's roll stiffness (pad and floor contact, in series with the ankle "
+              "roll gear), taken out of the soles' tilt; 0 = rigid soles",
        .bounds = closed(0, 1e9)});
     v("control.sole_stiffness_pitch", s.sole_stiffness_pitch,
       {.unit = "Nm/rad",
        .doc =
-           "k_estimation calibrate: the belief of each sole's pitch stiffness (pad and floor contact, in series with "
-           "the ankle pitch gear), taken out of the soles' relative tilt; 0 = rigid soles",
+           "k_estimation: the belief of each sole's pitch stiffness (pad and floor contact, in series with the ankle "
+           "pitch gear), taken out of the soles' tilt; 0 = rigid soles",
        .bounds = closed(0, 1e9)});
     v("control.k_estimation_attitude_time", s.k_estimation_attitude_time,
       {.unit = "s",

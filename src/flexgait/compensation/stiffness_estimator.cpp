@@ -47,72 +47,74 @@ StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const C
       stiffness_(belief_),
       rest_end_(rest_end),
       calibrated_(params.k_estimation_gyro_rest <= 0) {
-  group_.fill(kNone);
+  param_.fill(-1);
+  const bool per_joint = params.k_estimation_per_joint;
   const double lambda = std::exp(-period / params.k_estimation_memory);
   for (int side = 0; side < 2; ++side) {
-    // A joint's group by its axis: mostly x (roll) or y (pitch); z (yaw) is not observed.
+    // A joint's parameter: its own (control.k_estimation_per_joint), or its group's by its axis, mostly x (roll) or y
+    // (pitch); z (yaw) is not observed.
     for (const auto& body : model_.bodies) {
       const int j = body.joint;
       if (!humanoid::in_leg(j, side)) continue;
       if (yaw_axis(body.axis)) continue;
       const walking::Vector3d a = body.axis.cwiseAbs();
-      group_[j] = a.x() >= a.y() ? kRoll : kPitch;
+      param_[j] = per_joint ? j - humanoid::leg_first_joint(side) : (a.x() >= a.y() ? kRoll : kPitch);
     }
     ForgettingRls<kStates>::Vector c0 = ForgettingRls<kStates>::Vector::Zero();  // (the offsets: 0)
     ForgettingRls<kStates>::Matrix P0 = ForgettingRls<kStates>::Matrix::Zero();  // (offsets off: variance 0, stay 0)
-    for (int g = 0; g < kGroups; ++g) {
+    for (int p = 0; p < kParams; ++p) {
       double sum = 0;
       int n = 0;
       for (int j = 0; j < humanoid::kJoints; ++j)
-        if (group_[j] == g && humanoid::in_leg(j, side)) {
+        if (param_[j] == p && humanoid::in_leg(j, side)) {
           sum += 1.0 / belief_[j];
           ++n;
         }
-      c0[g] = n > 0 ? sum / n : 1.0 / params.k_joint;
-      P0(g, g) = c0[g] * c0[g];  // prior: 100 % relative standard deviation
-      c_min_[side][g] = c0[g] / kBoundFactor;
-      c_max_[side][g] = c0[g] * kBoundFactor;
+      if (n == 0) continue;  // (not estimated: x 0, variance 0)
+      c0[p] = sum / n;
+      P0(p, p) = c0[p] * c0[p];  // prior: 100 % relative standard deviation
+      c_min_[side][p] = c0[p] / kBoundFactor;
+      c_max_[side][p] = c0[p] * kBoundFactor;
     }
     rls_[side] = ForgettingRls<kStates>(c0, P0, lambda);
   }
 }
 
-double StiffnessEstimator::relative_std(int side, Group g) const {
-  return std::sqrt(std::max(rls_[side].P()(g, g), 0.0)) / rls_[side].x()[g];
+double StiffnessEstimator::relative_std(int side, int param) const {
+  return std::sqrt(std::max(rls_[side].P()(param, param), 0.0)) / rls_[side].x()[param];
 }
 
 double StiffnessEstimator::relative_std(int joint) const {
-  if (group_[joint] == kNone) return 0.0;
-  return relative_std(humanoid::in_leg(joint, 0) ? 0 : 1, group_[joint]);
+  if (param_[joint] < 0) return 0.0;
+  return relative_std(humanoid::in_leg(joint, 0) ? 0 : 1, param_[joint]);
+}
+
+bool StiffnessEstimator::confident(int joint) const {
+  return param_[joint] >= 0 && confident_[humanoid::in_leg(joint, 0) ? 0 : 1][param_[joint]];
 }
 
 void StiffnessEstimator::publish(int side) {
-  for (int g = 0; g < kGroups; ++g)
-    confident_[side][g] = confident_[side][g] || relative_std(side, Group(g)) <= params_.k_estimation_confidence;
   for (int i = 0; i < humanoid::kLegJoints; ++i) {
-    const int j = humanoid::leg_first_joint(side) + i;
-    if (group_[j] == kNone) continue;
-    const double c = rls_[side].x()[group_[j]];
-    estimate_[j] = 1.0 / c;
-    if (relative_std(side, group_[j]) <= params_.k_estimation_confidence) stiffness_[j] = estimate_[j];
+    const int j = humanoid::leg_first_joint(side) + i, p = param_[j];
+    if (p < 0) continue;
+    const bool confident_now = relative_std(side, p) <= params_.k_estimation_confidence;
+    confident_[side][p] = confident_[side][p] || confident_now;
+    estimate_[j] = 1.0 / rls_[side].x()[p];
+    if (confident_now) stiffness_[j] = estimate_[j];
   }
 }
 
-void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& gyro) {
+void StiffnessEstimator::follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& delta_angle) {
   const double time = params_.k_estimation_attitude_time;
-  const walking::Vector3d now = gyro - gyro_bias_;
   if (time <= 0 || !attitude_started_) {
     attitude_ = imu_R;
     attitude_started_ = true;
-    last_rate_ = now;
     return;
   }
-  // A reading is the rate at its period's start, as the encoders' angles: the turn since the last reading is the
-  // trapezoid of the two (the forward rectangle put the attitude a period ahead of the encoders).
-  const walking::Vector3d rate = 0.5 * (last_rate_ + now);
-  last_rate_ = now;
-  const double turn = rate.norm() * period_;
-  if (turn > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn, rate.normalized()).toRotationMatrix();
+  // The IMU's turn since the last reading, less its bias (the delta angle: the turn over the period, as the
+  // encoders' angles are read at its end).
+  const walking::Vector3d turn = delta_angle - gyro_bias_ * period_;
+  if (turn.norm() > 0) attitude_ = attitude_ * Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix();
   const Eigen::AngleAxisd error(walking::Matrix3d(imu_R * attitude_.transpose()));
   attitude_ =
       Eigen::AngleAxisd(error.angle() * std::min(1.0, period_ / time), error.axis()).toRotationMatrix() * attitude_;
@@ -132,9 +134,9 @@ walking::Matrix3d StiffnessEstimator::soles_in_pelvis(const humanoid::JointVecto
   return Eigen::Quaterniond(left.coeffs() + right.coeffs()).normalized().toRotationMatrix();
 }
 
-bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& imu_R, const walking::Vector3d& gyro,
-                                           const walking::Vector3d& accel, const humanoid::JointVector& encoder,
-                                           const humanoid::JointVector& torque) {
+bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& imu_R,
+                                           const walking::Vector3d& delta_angle, const walking::Vector3d& accel,
+                                           const humanoid::JointVector& encoder, const humanoid::JointVector& torque) {
   if (calibrated_) return true;
   if (t < rest_end_) {
     if (t >= rest_end_ - params_.k_estimation_gyro_rest - 0.5 * period_ && accel.norm() > 0) {
@@ -143,8 +145,7 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
       if (rest_.n == 0) rest_.soles_first = soles_in_pelvis(encoder, torque);
       rest_.encoder_last = encoder;
       rest_.torque_last = torque;
-      if (rest_.n > 0) rest_.gyro += rest_.last_gyro;  // the gyro's turn from the first reading to this one
-      rest_.last_gyro = gyro;
+      if (rest_.n > 0) rest_.turn += delta_angle;  // the IMU's turn from the first reading to this one
       rest_.n += 1;
       rest_.t += s;
       rest_.tt += s * s;
@@ -156,7 +157,6 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   calibrated_ = true;
   attitude_started_ = true;
   attitude_ = imu_R;
-  last_rate_ = gyro;
   if (rest_.n < 2) return true;
   // The static alignment. A robot "at rest" still turns slowly (the twin follows its observer's drift, ~1e-4
   // rad/s), so b̂ = (the gyro's turn − the pelvis's turn through the legs) / the window: with both soles flat and
@@ -166,8 +166,7 @@ bool StiffnessEstimator::calibrate_at_rest(double t, const walking::Matrix3d& im
   const double n = rest_.n, window = (n - 1) * period_;
   const walking::Matrix3d soles_last = soles_in_pelvis(rest_.encoder_last, rest_.torque_last);
   const Eigen::AngleAxisd legs(walking::Matrix3d(rest_.soles_first * soles_last.transpose()));
-  gyro_bias_ = (rest_.gyro * period_ - legs.angle() * legs.axis()) / window;
-  last_rate_ = gyro - gyro_bias_;
+  gyro_bias_ = (rest_.turn - legs.angle() * legs.axis()) / window;
   // The tilt: the pelvis's up u = Rᵀ e_z (the accelerometer's direction, +g up at rest), a line u(s) = u₀ + u̇ s
   // fitted over the window (s = t − its end), at the end; the yaw the controller's.
   const double mean_t = rest_.t / n, spread = rest_.tt - n * mean_t * mean_t;
@@ -184,16 +183,17 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
                                const humanoid::Imu& imu, const humanoid::JointVector& torque,
                                const std::array<humanoid::ForceTorque, 2>& ft, const SupportPlan& support,
                                bool sensors_ok) {
-  const walking::Vector3d gyro(imu.gyro[0], imu.gyro[1], imu.gyro[2]), accel(imu.accel[0], imu.accel[1], imu.accel[2]);
-  const bool imu_finite = imu_R.allFinite() && gyro.allFinite() && accel.allFinite();
+  const walking::Vector3d delta(imu.delta_angle[0], imu.delta_angle[1], imu.delta_angle[2]),
+      accel(imu.accel[0], imu.accel[1], imu.accel[2]);
+  const bool imu_finite = imu_R.allFinite() && delta.allFinite() && accel.allFinite();
   if (!imu_finite || !identification_inputs_ok(t, encoder, torque, ft) || !sensors_ok) {
     ++bad_data_;
-    if (imu_finite && calibrated_) follow_attitude(imu_R, gyro);  // (the gyro's turn is not to be missed)
+    if (imu_finite && calibrated_) follow_attitude(imu_R, delta);  // (the IMU's turn is not to be missed)
     return 0;
   }
   lag_.update(torque, stiffness_, params_, period_);
-  if (!calibrate_at_rest(t, imu_R, gyro, accel, encoder, torque)) return 0;
-  follow_attitude(imu_R, gyro);
+  if (!calibrate_at_rest(t, imu_R, delta, accel, encoder, torque)) return 0;
+  follow_attitude(imu_R, delta);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), attitude_}, encoder);
   int used = 0;
@@ -205,28 +205,33 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     if (!firm_support(model_, ft[side], support.soles[side].R, side, kFirmWeightShare)) continue;
     const walking::Pose sole = walking::sole_pose(model_, data_, side);
     const walking::LegJacobian J = walking::leg_jacobian(model_, data_, side, sole.p);
-    // The regressors: H(:, g) = Σ_{i∈g} (a_i)_xy τ_i.
-    Eigen::Matrix<double, 2, kGroups> H = Eigen::Matrix<double, 2, kGroups>::Zero();
+    // The regressors: H(:, p) = Σ_{i∈p} (a_i)_xy τ_i.
+    Eigen::Matrix<double, 2, kParams> H = Eigen::Matrix<double, 2, kParams>::Zero();
     for (int i = 0; i < humanoid::kLegJoints; ++i) {
       const int j = humanoid::leg_first_joint(side) + i;
-      if (group_[j] == kNone) continue;
-      H.col(group_[j]) += J.block<2, 1>(3, i) * lag_.torque()[j];
+      if (param_[j] < 0) continue;
+      H.col(param_[j]) += J.block<2, 1>(3, i) * lag_.torque()[j];
     }
     if (H.norm() < params_.k_estimation_min_torque) continue;
-    const Eigen::Vector2d omega(-sole.R(1, 2), sole.R(0, 2));  // the foot's tilt through the chain
-    if (params_.k_estimation_stance_offset && (new_stance_[side] || rls_[side].P()(kGroups, kGroups) == 0)) {
+    Eigen::Vector2d omega(-sole.R(1, 2), sole.R(0, 2));  // the foot's tilt through the chain
+    for (int i = 0; i < humanoid::kLegJoints; ++i) {     // less the soles' tilt in their contacts (the belief)
+      const int j = humanoid::leg_first_joint(side) + i;
+      omega -= J.block<2, 1>(3, i) * lag_.torque()[j] * sole_compliance(j, params_);
+    }
+    if (params_.k_estimation_stance_offset && (new_stance_[side] || rls_[side].P()(kParams, kParams) == 0)) {
       // A new stance: its tilt offset (the attitude's slow error, the sole's seat) starts anew.
-      for (int r = 0; r < 2; ++r) rls_[side].restart(kGroups + r, kOffsetStd * kOffsetStd);
+      for (int r = 0; r < 2; ++r) rls_[side].restart(kParams + r, kOffsetStd * kOffsetStd);
       new_stance_[side] = false;
     }
     for (int r = 0; r < 2; ++r) {
       ForgettingRls<kStates>::Vector h = ForgettingRls<kStates>::Vector::Zero();
-      h.head<kGroups>() = H.row(r).transpose();
-      h[kGroups + r] = 1.0;  // ω = H c + e
+      h.head<kParams>() = H.row(r).transpose();
+      h[kParams + r] = 1.0;  // ω = H c + e
       rls_[side].update(h, omega[r], noise_variance_);
     }
     auto& x = rls_[side].x();
-    for (int g = 0; g < kGroups; ++g) x[g] = std::clamp(x[g], c_min_[side][g], c_max_[side][g]);
+    for (int p = 0; p < kParams; ++p)
+      if (c_max_[side][p] > 0) x[p] = std::clamp(x[p], c_min_[side][p], c_max_[side][p]);
     publish(side);
     ++used;
   }

@@ -173,6 +173,13 @@ WalkRunParams walk_run_from_config(const Config& c) {
                       fmt::format("key 'control.plan_horizontal_force' = '{}' needs the plan's motion; allowed with "
                                   "control.load_model dynamic (else 0)",
                                   p.control.plan_horizontal_force));
+  if (p.control.k_estimation_per_joint && p.control.k_estimation_torque != compensation::KTorque::kMeasured)
+    throw ConfigError("control.k_estimation_per_joint",
+                      "key 'control.k_estimation_per_joint' = 'true' needs each joint's torque measured: the parallel "
+                      "joints' modelled torques move together while walking and their few-percent errors leave the "
+                      "joints apart ill-determined; allowed with control.k_estimation_torque measured");
+  // The controller believes its servos' datasheet: the rotors' inertia the plant has.
+  if (c.origin("control.rotor_inertia") == "default") p.control.rotor_inertia = p.plant.rotor_inertia;
   const walking::CalibrationMotion& calibration = p.walk.calibration;
   if (calibration.time > 0 && calibration.end() > p.walk.start_time - p.walk.preview_time)
     throw ConfigError("calibration.time",

@@ -8,8 +8,11 @@ namespace flexgait::loop {
 CompensationStage::CompensationStage(const walking::RobotModel& model, const compensation::CompensationParams& params,
                                      double period, const StiffnessWindows& windows)
     : compensator_(model, params, period) {
-  if (params.k_estimation == compensation::KEstimation::kOn)
+  if (params.k_estimation == compensation::KEstimation::kOn) {
     estimator_.emplace(model, params, period, windows.rest_end);
+    if (params.k_estimation_torque == compensation::KTorque::kMeasured)
+      measured_torque_.emplace(params.rotor_inertia, period);
+  }
   if (params.k_estimation == compensation::KEstimation::kCalibrate)
     calibration_.emplace(model, params, period, windows.calibration_begin, windows.calibration_end);
 }
@@ -34,9 +37,12 @@ const humanoid::JointVector& CompensationStage::command(const humanoid::JointVec
   if (estimate_ && params.compensated_feedback)
     for (int j = 0; j < humanoid::kJoints; ++j) deflection_estimate_[j] = estimate_->newton[j] - sensors_.encoder[j];
   if (estimator_ || calibration_) {
-    // The torque the output compensator solved with (docs/guide/compensation.md, "Stiffness identification").
-    const humanoid::JointVector& tau =
-        estimate_ ? estimate_->gravity_torque : compensator_.torque(sensors_.encoder, context.attitude, support);
+    // The torque the output compensator solved with, or the servos' measured one (docs/guide/compensation.md,
+    // "Stiffness identified while walking").
+    const humanoid::JointVector& tau = measured_torque_
+                                           ? measured_torque_->update(sensors_.motor_torque, sensors_.encoder)
+                                       : estimate_ ? estimate_->gravity_torque
+                                                   : compensator_.torque(sensors_.encoder, context.attitude, support);
     if (estimator_) {
       estimator_->update(t, sensors_.encoder, context.attitude, sensors_.imu, tau, sensors_.ft, support,
                          context.sensors_good);
@@ -64,7 +70,7 @@ std::optional<humanoid::JointVector> CompensationStage::k_relative_std() const {
 }
 
 bool CompensationStage::k_identified(int joint) const {
-  if (estimator_) return estimator_->group(joint) != compensation::StiffnessEstimator::kNone;
+  if (estimator_) return estimator_->identified(joint);
   if (calibration_) return calibration_->identified(joint);
   return false;
 }

@@ -15,6 +15,7 @@
 
 #include "flexgait/compensation/chain_stiffness_calibration.hpp"
 #include "flexgait/compensation/deformation_compensator.hpp"
+#include "flexgait/compensation/measured_gear_torque.hpp"
 #include "flexgait/compensation/stiffness_estimator.hpp"
 #include "flexgait/loop/controller.hpp"
 #include "flexgait/walking/robot_model.hpp"
@@ -64,6 +65,7 @@ class CompensationStage {
  private:
   compensation::DeformationCompensator compensator_;
   std::optional<compensation::StiffnessEstimator> estimator_;           ///< control.k_estimation on
+  std::optional<compensation::MeasuredGearTorque> measured_torque_;     ///< control.k_estimation_torque measured
   std::optional<compensation::ChainStiffnessCalibration> calibration_;  ///< control.k_estimation calibrate
   humanoid::JointVector deflection_estimate_{};  ///< θ̂ − θ_enc of the last period (compensated_feedback)
   humanoid::JointVector command_{};

@@ -55,6 +55,8 @@ struct PlantState {
   PlantState(const mjModel* m, std::uint64_t seed) : data(m), rng(seed) {}
   Data data;
   std::vector<ActuatorState> motors;  ///< one per actuated joint, in humanoid::kJointNames order
+  humanoid::JointVector servo_sum{};  ///< Σ of each servo's torque over the substeps of the control period [Nm]
+  std::array<double, 4> last_quat{};  ///< the IMU frame's true attitude at the last reading; 0: none yet
   std::vector<Push> pushes;
   std::array<double, 3> push_force{}, push_impulse{}, floor_impulse{};
   humanoid::SensorReadings sensors;
@@ -70,6 +72,7 @@ struct HumanoidPlant::Impl {
   /// Takes ownership of `m` (as loaded; its springs are handed to the drives here).
   Impl(const TwinModel& twin, const PlantParams& plant, Terrain floor, mjModel* m);
   void read_sensors();
+  void read_delta_angle();
   /// Sets xfrc_applied for the physics step starting now.
   void apply_push();
   /// A geom of the floor: any geom of the world body (the terrain's, terrain.hpp).
@@ -260,6 +263,8 @@ void HumanoidPlant::reset(const humanoid::JointVector& pose) {
   st.push_force = st.push_impulse = st.floor_impulse = {};
   st.gyro_drift = {};
   st.accel_drift = {};
+  st.servo_sum = {};
+  st.last_quat = {};
   const auto& f = p.params.faults.sensor;
   const double T = p.params.control_period;
   st.ft_fault = {FaultChannel<6>(f[humanoid::kFtLeft], T), FaultChannel<6>(f[humanoid::kFtRight], T)};
@@ -308,9 +313,11 @@ void HumanoidPlant::step(const humanoid::JointVector& command) {
   mjData* d = st.data.get();
   const mjModel* m = p.model.get();
   const int n = p.params.substeps();
+  st.servo_sum.fill(0.0);
   for (int k = 0; k < n; ++k) {
     p.apply_push();
     p.drives.step(k + 1 < n ? p.model_unsensed.get() : m, d, st.motors, command.data());
+    for (int j = 0; j < humanoid::kJoints; ++j) st.servo_sum[j] += st.motors[j].servo;
     // The constraint force on the free joint's translation: the floor contacts' total (the other
     // constraints, joint limits, act within the robot and have no part there).
     for (int i = 0; i < 3; ++i) st.floor_impulse[i] += m->opt.timestep * d->qfrc_constraint[i];
@@ -390,6 +397,9 @@ void HumanoidPlant::Impl::read_sensors() {
   }
   if (params.encoder_noise > 0)
     for (int j = 0; j < humanoid::kJoints; ++j) s.encoder[j] = noisy(s.encoder[j], params.encoder_noise);
+  const double substeps = params.substeps();
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    s.motor_torque[j] = noisy(state.servo_sum[j] / substeps, params.motor_torque_noise);
 
   // The fault schedule.
   for (int side = 0; side < 2; ++side) {
@@ -405,12 +415,37 @@ void HumanoidPlant::Impl::read_sensors() {
     }
   }
   state.gyro_fault.apply(now, s.imu.gyro, s.imu.gyro_stamp);
+  read_delta_angle();
   state.accel_fault.apply(now, s.imu.accel, s.imu.accel_stamp);
   state.ahrs_fault.apply(now, s.imu.quat, s.imu.quat_stamp);
   const int j = params.faults.encoder_joint;
   std::array<double, 1> e = {s.encoder[j]};
   state.encoder_fault.apply(now, e, s.encoder_stamp[j]);
   s.encoder[j] = e[0];
+}
+
+// The IMU's turn over the control period, integrated inside it (a strapdown IMU's delta angle, sampled at its own rate,
+// free of the aliasing of one rate sample per period): the true turn between the frame's attitudes at the last two
+// readings, in the frame (q_lastᶜ ⊗ q as a rotation vector), plus T times the gyro reading's error (its noise, bias,
+// drift and faults), so the two channels err alike and draw nothing more from the noise generator.
+void HumanoidPlant::Impl::read_delta_angle() {
+  const mjData* d = state.data.get();
+  humanoid::Imu& imu = state.sensors.imu;
+  const double* q = d->sensordata + quat_adr;
+  std::array<double, 4> last = state.last_quat;
+  if (last[0] == 0 && last[1] == 0 && last[2] == 0 && last[3] == 0) last = {q[0], q[1], q[2], q[3]};
+  // r = lastᶜ ⊗ q; its rotation vector 2 atan2(|v|, w) v/|v| (w ≥ 0: the shorter way).
+  const double w = last[0] * q[0] + last[1] * q[1] + last[2] * q[2] + last[3] * q[3];
+  const std::array<double, 3> v = {last[0] * q[1] - last[1] * q[0] - last[2] * q[3] + last[3] * q[2],
+                                   last[0] * q[2] + last[1] * q[3] - last[2] * q[0] - last[3] * q[1],
+                                   last[0] * q[3] - last[1] * q[2] + last[2] * q[1] - last[3] * q[0]};
+  const double sign = w < 0 ? -1.0 : 1.0, norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  const double scale = norm > 1e-300 ? 2.0 * std::atan2(norm, sign * w) / norm : 2.0;
+  std::array<double, 3> delta{};
+  for (int i = 0; i < 3; ++i) delta[i] = sign * scale * v[i];
+  const double T = params.control_period;
+  for (int i = 0; i < 3; ++i) imu.delta_angle[i] = delta[i] + T * (imu.gyro[i] - d->sensordata[gyro_adr + i]);
+  state.last_quat = {q[0], q[1], q[2], q[3]};
 }
 
 GroundTruth HumanoidPlant::truth() const {

@@ -35,16 +35,17 @@ struct PlantParams {
   double physics_dt = 0.001;         ///< MuJoCo step [s]
   double contact_time_constant =
       0.005;  ///< sole-floor contact stiffness as MuJoCo's solref time constant [s] (≥ 2 physics_dt)
-  double control_period = 0.004;  ///< controller period [s], a multiple of physics_dt
-  double ft_force_noise = 0.0;    ///< std of F/T force noise [N]
-  double ft_torque_noise = 0.0;   ///< std of F/T torque noise [Nm]
-  double gyro_noise = 0.0;        ///< std [rad/s]
-  double accel_noise = 0.0;       ///< std [m/s^2]
-  double encoder_noise = 0.0;     ///< std of the encoder reading's noise, beyond quantisation [rad]
-  int noise_seed = 1;             ///< seed of the sensor noise
-  ImuModel imu;                   ///< IMU bias, bias drift, AHRS error (plant.imu.*)
-  SensorFaults faults;            ///< the sensors' fault schedule (plant.faults.*)
-  TerrainParams terrain;          ///< the floor (terrain.*; flat by default)
+  double control_period = 0.004;    ///< controller period [s], a multiple of physics_dt
+  double ft_force_noise = 0.0;      ///< std of F/T force noise [N]
+  double ft_torque_noise = 0.0;     ///< std of F/T torque noise [Nm]
+  double gyro_noise = 0.0;          ///< std [rad/s]
+  double accel_noise = 0.0;         ///< std [m/s^2]
+  double encoder_noise = 0.0;       ///< std of the encoder reading's noise, beyond quantisation [rad]
+  double motor_torque_noise = 0.0;  ///< std of the noise of each servo's torque from its current [Nm]
+  int noise_seed = 1;               ///< seed of the sensor noise
+  ImuModel imu;                     ///< IMU bias, bias drift, AHRS error (plant.imu.*)
+  SensorFaults faults;              ///< the sensors' fault schedule (plant.faults.*)
+  TerrainParams terrain;            ///< the floor (terrain.*; flat by default)
 
   int substeps() const { return static_cast<int>(std::lround(control_period / physics_dt)); }
   /// The true gear stiffness of each joint, k_joint × k_scale [Nm/rad].
@@ -92,6 +93,8 @@ struct PlantParams {
       {.unit = "m/s^2", .doc = "accelerometer noise std", .bounds = closed(0, 1000)});
     v("plant.noise.encoder", s.encoder_noise,
       {.unit = "rad", .doc = "encoder noise std (beyond quantisation)", .bounds = closed(0, 1)});
+    v("plant.noise.motor_torque", s.motor_torque_noise,
+      {.unit = "Nm", .doc = "noise std of each servo's torque from its motor current", .bounds = closed(0, 1000)});
     v("plant.noise.seed", s.noise_seed, {.doc = "seed of the sensor noise", .bounds = closed(0, 2147483647)});
     ImuModel::visit_fields(s.imu, v);
     SensorFaults::visit_fields(s.faults, v);
