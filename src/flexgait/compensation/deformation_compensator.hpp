@@ -236,8 +236,7 @@ struct CompensationParams {
        .bounds = closed(1e-9, 1)});
     v("control.k_estimation_confidence", s.k_estimation_confidence,
       {.doc = "k_estimation: the compensators use a group's (or joint's) estimate once its relative standard deviation "
-              "is at "
-              "most this",
+              "is at most this",
        .bounds = closed(1e-6, 1)});
     v("control.k_calibration_passes", s.k_calibration_passes,
       {.doc = "k_estimation calibrate: the calibration window is split into this many passes; each fits afresh, its "

@@ -28,7 +28,6 @@ class MeasuredGearTorque {
     if (readings_ < 2) ++readings_;
     return torque_;
   }
-  const humanoid::JointVector& torque() const { return torque_; }  ///< [Nm]
 
  private:
   double rotor_inertia_, period_;

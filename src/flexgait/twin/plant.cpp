@@ -16,6 +16,12 @@
 namespace flexgait::twin {
 namespace {
 
+/// The Hamilton product a ⊗ b of two quaternions (w, x, y, z).
+std::array<double, 4> quat_product(const std::array<double, 4>& a, const std::array<double, 4>& b) {
+  return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
+          a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1], a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
+}
+
 int require(const mjModel* m, mjtObj type, const std::string& name) {
   const int id = mj_name2id(m, type, name.c_str());
   if (id < 0) throw std::logic_error("twin model has no " + name);
@@ -389,9 +395,7 @@ void HumanoidPlant::Impl::read_sensors() {
     const std::array<double, 3> d = {noisy(0, imu.ahrs_noise), noisy(0, imu.ahrs_noise), noisy(0, imu.ahrs_noise)};
     const auto q = s.imu.quat;
     const std::array<double, 4> e = {1.0, 0.5 * d[0], 0.5 * d[1], 0.5 * d[2]};
-    std::array<double, 4> r = {
-        q[0] * e[0] - q[1] * e[1] - q[2] * e[2] - q[3] * e[3], q[0] * e[1] + q[1] * e[0] + q[2] * e[3] - q[3] * e[2],
-        q[0] * e[2] - q[1] * e[3] + q[2] * e[0] + q[3] * e[1], q[0] * e[3] + q[1] * e[2] - q[2] * e[1] + q[3] * e[0]};
+    const std::array<double, 4> r = quat_product(q, e);
     const double n = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
     for (int i = 0; i < 4; ++i) s.imu.quat[i] = r[i] / n;
   }
@@ -435,16 +439,14 @@ void HumanoidPlant::Impl::read_delta_angle() {
   std::array<double, 4> last = state.last_quat;
   if (last[0] == 0 && last[1] == 0 && last[2] == 0 && last[3] == 0) last = {q[0], q[1], q[2], q[3]};
   // r = lastᶜ ⊗ q; its rotation vector 2 atan2(|v|, w) v/|v| (w ≥ 0: the shorter way).
-  const double w = last[0] * q[0] + last[1] * q[1] + last[2] * q[2] + last[3] * q[3];
-  const std::array<double, 3> v = {last[0] * q[1] - last[1] * q[0] - last[2] * q[3] + last[3] * q[2],
-                                   last[0] * q[2] + last[1] * q[3] - last[2] * q[0] - last[3] * q[1],
-                                   last[0] * q[3] - last[1] * q[2] + last[2] * q[1] - last[3] * q[0]};
+  const std::array<double, 4> r = quat_product({last[0], -last[1], -last[2], -last[3]}, {q[0], q[1], q[2], q[3]});
+  const double w = r[0];
+  const std::array<double, 3> v = {r[1], r[2], r[3]};
   const double sign = w < 0 ? -1.0 : 1.0, norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   const double scale = norm > 1e-300 ? 2.0 * std::atan2(norm, sign * w) / norm : 2.0;
-  std::array<double, 3> delta{};
-  for (int i = 0; i < 3; ++i) delta[i] = sign * scale * v[i];
   const double T = params.control_period;
-  for (int i = 0; i < 3; ++i) imu.delta_angle[i] = delta[i] + T * (imu.gyro[i] - d->sensordata[gyro_adr + i]);
+  for (int i = 0; i < 3; ++i)
+    imu.delta_angle[i] = sign * scale * v[i] + T * (imu.gyro[i] - d->sensordata[gyro_adr + i]);
   state.last_quat = {q[0], q[1], q[2], q[3]};
 }
 
