@@ -221,33 +221,56 @@ TEST(ChainStiffnessCalibration, TheGearsLagRunsOnThroughUnusedSamples) {
   }
 }
 
-// The soles tilt in their contacts under the ankles' torques (control.sole_stiffness_*): in the stance below,
-// each ankle's deflection is τ (1/k + 1/k_sole), the sole's about the ankle's own axis, as the calibration models
-// it. Told the soles' stiffness, it finds each gear within 1 % (the stance's second-order terms, as above);
-// believing the soles rigid, it finds each ankle as the gear and the sole in series, 1/(1/k + 1/k_sole), as
-// exactly: the two are not separable, the torque being the same.
+// The soles tilt in their contacts (control.sole_stiffness_*) against the ground's torque about each sole's centre,
+// which the F/T sensors read: in the stance below each period's torques move the centres of pressure so that the
+// ground's torque on each foot balances its ankles' (the sole's centre under the ankle: no lever), and each sole
+// tilts by θ = −M/k_sole, the ankle's link angles following it (the pelvis held). Told the soles' stiffness, the
+// calibration finds each gear within 1 % (the stance's second-order terms, as above); believing the soles rigid, it
+// finds each ankle as the gear and the sole in series, 1/(1/k + 1/k_sole), as exactly: the two are not separable
+// when the sole's torque is the ankle's.
 TEST(ChainStiffnessCalibration, TakesTheSolesTiltOutOfTheAnkles) {
   const Stance s;
   const JointVector k = true_stiffness();
   CompensationParams p = calibration_params();
   p.sole_stiffness_roll = 10000.0;
   p.sole_stiffness_pitch = 20000.0;
-  JointVector series = k;  // what a deflection τ/series[j] is at each joint
-  for (int side = 0; side < 2; ++side) {
-    const int pitch = side == 0 ? humanoid::kLeftAnklePitch : humanoid::kRightAnklePitch, roll = pitch + 1;
-    series[pitch] = 1.0 / (1.0 / k[pitch] + 1.0 / p.sole_stiffness_pitch);
-    series[roll] = 1.0 / (1.0 / k[roll] + 1.0 / p.sole_stiffness_roll);
-  }
-  ChainStiffnessCalibration told(s.model, p, 0.004, 0.0, 4.0);
-  feed(told, s, s.q, series, 1000, 0.0);
+  walking::RobotModelData d;
+  walking::forward_kinematics(s.model, d, walking::Pose{Vector3d::Zero(), Matrix3d::Identity()}, s.q);
+  auto run = [&](const CompensationParams& belief) {
+    ChainStiffnessCalibration c(s.model, belief, 0.004, 0.0, 4.0);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> torque(-20.0, 20.0);
+    for (int n = 0; n < 1000; ++n) {
+      const double t = n * 0.004;
+      JointVector tau{}, encoder{};
+      for (int j = 0; j < kJoints; ++j) tau[j] = torque(rng);
+      std::array<humanoid::ForceTorque, 2> ft = readings(s, t);
+      for (int j = 0; j < kJoints; ++j) encoder[j] = s.q[j] + tau[j] / k[j];
+      for (int side = 0; side < 2; ++side) {
+        const walking::LegJacobian J = walking::leg_jacobian(s.model, d, side, walking::sole_pose(s.model, d, side).p);
+        Vector3d ground = Vector3d::Zero();  // the ground's torque on the foot about the sole's centre (world)
+        for (int i : {4, 5}) ground -= J.block<3, 1>(3, i) * tau[humanoid::leg_first_joint(side) + i];  // (ankles)
+        const Vector3d couple = d.frame[s.model.foot[side]].R.transpose() * ground;  // (foot frame, as the sensor)
+        for (int a = 0; a < 3; ++a) ft[side].torque[a] -= couple[a];  // (the sensor reads the leg's wrench)
+        const Vector3d tilt(-ground.x() / p.sole_stiffness_roll, -ground.y() / p.sole_stiffness_pitch, 0.0);
+        for (int i : {4, 5})  // (the ankles' axes along y and x in the stance, so each takes its part of the tilt)
+          encoder[humanoid::leg_first_joint(side) + i] += tilt.dot(J.block<3, 1>(3, i));
+      }
+      c.update(t, encoder, tau, ft, s.plan(), true);
+    }
+    return c;
+  };
   CompensationParams rigid = p;
   rigid.sole_stiffness_roll = rigid.sole_stiffness_pitch = 0.0;
-  ChainStiffnessCalibration not_told(s.model, rigid, 0.004, 0.0, 4.0);
-  feed(not_told, s, s.q, series, 1000, 0.0);
+  const ChainStiffnessCalibration told = run(p), not_told = run(rigid);
   for (int j = 0; j < kJoints; ++j) {
     if (!told.identified(j)) continue;
+    const bool pitch = j == humanoid::kLeftAnklePitch || j == humanoid::kRightAnklePitch;
+    const bool roll = j == humanoid::kLeftAnkleRoll || j == humanoid::kRightAnkleRoll;
+    const double sole = pitch ? p.sole_stiffness_pitch : roll ? p.sole_stiffness_roll : 0.0;
+    const double series = sole > 0 ? 1.0 / (1.0 / k[j] + 1.0 / sole) : k[j];
     EXPECT_NEAR(told.estimate()[j], k[j], 0.01 * k[j]) << humanoid::kJointNames[j];
-    EXPECT_NEAR(not_told.estimate()[j], series[j], 0.01 * series[j]) << humanoid::kJointNames[j];
+    EXPECT_NEAR(not_told.estimate()[j], series, 0.01 * series) << humanoid::kJointNames[j];
   }
   EXPECT_LT(not_told.estimate()[humanoid::kLeftAnkleRoll], 0.94 * k[humanoid::kLeftAnkleRoll]);  // (0.91: the sole)
 }

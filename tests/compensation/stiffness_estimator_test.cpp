@@ -7,7 +7,8 @@
 // (control.k_estimation_stance_offset) remove an attitude error constant over each stance; the calibration at
 // rest (control.k_estimation_gyro_rest) finds a gyro's bias while the pelvis turns slowly on still legs; per joint
 // (control.k_estimation_per_joint) independent torques find each joint's own gear and proportional ones leave the
-// parallel joints unconfident; the gear's torque from the current's loses the rotor's inertia exactly.
+// parallel joints unconfident; the gear's torque from the current's loses the rotor's inertia exactly; a sole tilts
+// under the ground's torque about its centre, not the ankle's.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -238,6 +239,44 @@ TEST(StiffnessEstimator, PerJointTorquesInProportionLeaveTheParallelJointsUnconf
     EXPECT_GT(e.relative_std(j), 0.2) << humanoid::kJointNames[j];
     EXPECT_FALSE(e.confident(j)) << humanoid::kJointNames[j];
     EXPECT_EQ(e.stiffness()[j], kBelief) << humanoid::kJointNames[j];
+  }
+}
+
+// The soles tilt in their contacts under the ground's torque about each sole's centre (sole_contact, sole_tilt), as
+// the F/T sensor gives it, not under the ankle's. The stance's ground force at each sole's centre: no tilt but the
+// foot's own weight's moment about the sensor, which walking::foot_contact leaves in (m g |c_xy| / k_sole: 6e-6 rad),
+// though the builtin's sole is 14 mm outward of the ankle so the ankle's axes carry the force's moment (asserted
+// > 3 Nm). The same force 10 mm ahead and 20 mm inward of the centre adds M = (Δ_y f_z, −Δ_x f_z) about the centre:
+// θ = −M/k_sole about the sole's x and y more, to 1e-10 relative (round-off).
+TEST(StiffnessEstimator, ASoleTiltsUnderTheGroundsTorqueAboutItsCentreNotTheAnkles) {
+  const fixtures::Stance s;
+  CompensationParams p;
+  p.sole_stiffness_roll = 25000.0;
+  p.sole_stiffness_pitch = 50000.0;
+  walking::RobotModelData d;
+  walking::forward_kinematics(s.model, d, walking::Pose{walking::Vector3d::Zero(), Matrix3d::Identity()}, s.q);
+  for (int side = 0; side < 2; ++side) {
+    const walking::Pose& foot = d.frame[static_cast<std::size_t>(s.model.foot[side])];
+    const walking::Vector3d centre = walking::sole_pose(s.model, d, side).p;
+    const double fz = 0.5 * s.model.total_mass * s.model.gravity;
+    const walking::Vector3d ground(0, 0, fz);
+    // The sensor's reading with the ground's force at `at` (the fixture's, at any point; the sensor at the ankle).
+    auto reading = [&](const walking::Vector3d& at) {
+      humanoid::ForceTorque ft = fixtures::readings(s, 0.0)[static_cast<std::size_t>(side)];
+      const walking::Vector3d extra = foot.R.transpose() * (-(at - centre).cross(ground));  // (the moved force's)
+      for (int a = 0; a < 3; ++a) ft.torque[static_cast<std::size_t>(a)] += extra[a];
+      return ft;
+    };
+    const walking::Vector3d at_centre = sole_tilt(sole_contact(s.model, reading(centre), foot.R, side), p);
+    const auto& foot_body = s.model.bodies[static_cast<std::size_t>(s.model.foot[side])];
+    const double weight_moment = foot_body.mass * s.model.gravity * (foot.R * foot_body.com).head<2>().norm();
+    EXPECT_LE(at_centre.norm(), weight_moment / p.sole_stiffness_roll + 1e-12) << side;
+    EXPECT_GT(std::abs((centre - foot.p).cross(ground).x()), 3.0) << side;  // (the ankle's: the sole's offset)
+    const walking::Vector3d shift(0.01, side == 0 ? -0.02 : 0.02, 0.0);
+    const walking::Vector3d moved = sole_tilt(sole_contact(s.model, reading(centre + shift), foot.R, side), p);
+    const walking::Vector3d expected(-shift.y() * fz / p.sole_stiffness_roll, shift.x() * fz / p.sole_stiffness_pitch,
+                                     0.0);
+    EXPECT_LT((moved - at_centre - expected).norm(), 1e-10 * expected.norm()) << side;
   }
 }
 

@@ -37,7 +37,6 @@ ChainStiffnessCalibration::ChainStiffnessCalibration(const walking::RobotModel& 
     c_max_[n] = kBoundFactor / belief_[j];
     ++n;
   }
-  for (int j = 0; j < humanoid::kJoints; ++j) sole_compliance_[j] = sole_compliance(j, params_);
   start_fit();
 }
 
@@ -73,12 +72,19 @@ double ChainStiffnessCalibration::relative_std(int joint) const {
 
 Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalibration::regressor(
     const humanoid::JointVector& encoder, const humanoid::JointVector& torque, Eigen::Vector2d& y) {
+  return regressor(encoder, torque, {walking::Vector3d::Zero(), walking::Vector3d::Zero()}, y);
+}
+
+Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalibration::regressor(
+    const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+    const std::array<walking::Vector3d, 2>& sole_tilts, Eigen::Vector2d& y) {
   walking::forward_kinematics(model_, data_, walking::Pose{walking::Vector3d::Zero(), walking::Matrix3d::Identity()},
                               encoder);
   const walking::Pose left = walking::sole_pose(model_, data_, 0), right = walking::sole_pose(model_, data_, 1);
   const walking::Vector3d phi = walking::rotation_vector(left.R.transpose() * right.R);
   y = phi.head<2>();
   const walking::Matrix3d to_y = walking::left_jacobian_inverse(phi) * left.R.transpose();
+  y -= (to_y * (right.R * sole_tilts[1] - left.R * sole_tilts[0])).head<2>();  // (the soles' own tilts)
   Eigen::Matrix<double, 2, kStates> H = Eigen::Matrix<double, 2, kStates>::Zero();
   for (int side = 0; side < 2; ++side) {
     const walking::LegJacobian J = walking::leg_jacobian(model_, data_, side, side == 0 ? left.p : right.p);
@@ -86,7 +92,6 @@ Eigen::Matrix<double, 2, ChainStiffnessCalibration::kStates> ChainStiffnessCalib
       const int j = humanoid::leg_first_joint(side) + i;
       const walking::Vector3d axis = J.block<3, 1>(3, i);  // (the angular rows: the joint's axis)
       const Eigen::Vector2d h = (side == 0 ? -1.0 : 1.0) * (to_y * axis).head<2>() * torque[j];
-      y -= h * sole_compliance_[j];  // (an ankle: its sole's tilt, the same torque about the same axis)
       if (state_[j] >= 0)
         H.col(state_[j]) = h;
       else
@@ -121,10 +126,14 @@ int ChainStiffnessCalibration::update(double t, const humanoid::JointVector& enc
     return 0;
   }
   lag_.update(torque, stiffness_, params_, period_);  // (every period with good data)
-  for (int side = 0; side < 2; ++side)
-    if (!firm_support(model_, ft[side], support.soles[side].R, side, kMinWeightShare)) return 0;
+  std::array<walking::Vector3d, 2> sole_tilts;
+  for (int side = 0; side < 2; ++side) {
+    const walking::FootContact contact = sole_contact(model_, ft[side], support.soles[side].R, side);
+    if (!firm_support(model_, contact, side, kMinWeightShare)) return 0;
+    sole_tilts[side] = sole_tilt(contact, params_);
+  }
   Eigen::Vector2d y;
-  const Eigen::Matrix<double, 2, kStates> H = regressor(encoder, lag_.torque(), y);
+  const Eigen::Matrix<double, 2, kStates> H = regressor(encoder, lag_.torque(), sole_tilts, y);
   for (int r = 0; r < 2; ++r) fit_.add(H.row(r).transpose(), y[r], noise_variance_);
   fit_.solve();
   for (int j = 0; j < humanoid::kJoints; ++j) {

@@ -32,9 +32,10 @@
 ///
 /// Three things the chain sees besides the gears (docs/guide/compensation.md, "Stiffness identified while walking"),
 /// each a belief:
-/// - the soles tilt in their contacts (a pad, a soft floor: on the twin 20.5 kNm/rad in roll, 54 kNm/rad in
-///   pitch), about the ankle's axes under the ankle's torque: in series with the ankle gears and, the torque being
-///   the same, not separable from them. control.sole_stiffness_* takes the tilt out of y (0: rigid soles);
+/// - the soles tilt in their contacts (a pad, a soft floor: on the twin 25.6 kNm/rad in roll, 56.2 kNm/rad in
+///   pitch in this stance) against the ground's torque about each sole's centre, which the F/T sensors read
+///   (sole_tilt): in the stance that torque moves with the ankle's, so the tilt is nearly in series with the
+///   ankle's gear, not separable from it. control.sole_stiffness_* takes the tilt out of y (0: rigid soles);
 /// - the gears' lag: control.gear_damping d delays the deflection by d/k behind the torque;
 /// - the modelled torque depends on the stiffness (the output compensator's estimated pose, the lag d/k): with
 ///   control.k_calibration_passes > 1 the window is split, each pass fitted afresh with the torques modelled at
@@ -66,6 +67,10 @@ class ChainStiffnessCalibration {
   /// y itself: y ≈ H x. For the tests (finite differences) and the update.
   Eigen::Matrix<double, 2, kStates> regressor(const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
                                               Eigen::Vector2d& y);
+  /// The same with the soles' tilts in their contacts (sole_tilt: each in its sole's frame, left, right) taken out
+  /// of y: y ≈ H x + J_l⁻¹(y) R_Lᵀ (R_R θ_R − R_L θ_L) through the encoders.
+  Eigen::Matrix<double, 2, kStates> regressor(const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
+                                              const std::array<walking::Vector3d, 2>& sole_tilts, Eigen::Vector2d& y);
 
   const humanoid::JointVector& estimate() const {
     return estimate_;
@@ -91,8 +96,6 @@ class ChainStiffnessCalibration {
   std::array<double, kStates> c_min_{}, c_max_{};
   InformationLeastSquares<kStates> fit_;
   walking::RobotModelData data_;
-  humanoid::JointVector
-      sole_compliance_{};    ///< an ankle's sole in series (control.sole_stiffness_*), 0 elsewhere [rad/Nm]
   bool published_ = false;   ///< the calibration is over and stiffness_ holds its result
   int pass_ = 0;             ///< the pass being fitted (control.k_calibration_passes)
   double settle_until_ = 0;  ///< no samples before this, after a pass published [s]

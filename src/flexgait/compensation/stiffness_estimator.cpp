@@ -14,6 +14,8 @@ constexpr double kFirmCopShare = 0.3;  // ... and the CoP on the sole shrunk abo
                                        // |x| ≤ this × length, |y| ≤ this × width)
 constexpr double kBoundFactor = 10.0;  // c ∈ [c₀/10, 10 c₀]
 constexpr double kOffsetStd = 0.05;    // prior std of a stance's tilt offset (stance_offset) [rad]
+// The regressor's lag d/k takes a joint's estimate once its relative std is at most this (lag_stiffness) [-].
+constexpr double kLagStd = 0.2;
 }  // namespace
 
 bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, const humanoid::JointVector& torque,
@@ -26,14 +28,21 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
   return finite && t - ft[0].stamp <= kStaleAge && t - ft[1].stamp <= kStaleAge;
 }
 
+walking::FootContact sole_contact(const walking::RobotModel& model, const humanoid::ForceTorque& ft,
+                                  const walking::Matrix3d& sole_R, int side) {
+  return walking::foot_contact(ft, sole_R, model.leg[side].ankle_to_sole,
+                               model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.gravity,
+                               model.ft_to_sole[side].head<2>());
+}
+
+bool firm_support(const walking::RobotModel& model, const walking::FootContact& contact, int side, double min_share) {
+  return contact.normal_force >= min_share * model.total_mass * model.gravity &&
+         walking::contains_scaled(model.sole_polygon[static_cast<std::size_t>(side)], contact.cop, kFirmCopShare);
+}
+
 bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R,
                   int side, double min_share) {
-  const walking::FootContact c =
-      walking::foot_contact(ft, sole_R, model.leg[side].ankle_to_sole,
-                            model.bodies[static_cast<std::size_t>(model.foot[side])].mass, model.gravity);
-  const Eigen::Vector2d cop = c.cop - model.ft_to_sole[side].head<2>();
-  return c.normal_force >= min_share * model.total_mass * model.gravity &&
-         walking::contains_scaled(model.sole_polygon[static_cast<std::size_t>(side)], cop, kFirmCopShare);
+  return firm_support(model, sole_contact(model, ft, sole_R, side), side, min_share);
 }
 
 StiffnessEstimator::StiffnessEstimator(const walking::RobotModel& model, const CompensationParams& params,
@@ -91,6 +100,13 @@ double StiffnessEstimator::relative_std(int joint) const {
 
 bool StiffnessEstimator::confident(int joint) const {
   return param_[joint] >= 0 && confident_[humanoid::in_leg(joint, 0) ? 0 : 1][param_[joint]];
+}
+
+humanoid::JointVector StiffnessEstimator::lag_stiffness() const {
+  humanoid::JointVector k = stiffness_;
+  for (int j = 0; j < humanoid::kJoints; ++j)
+    if (param_[j] >= 0 && relative_std(j) <= kLagStd) k[j] = estimate_[j];
+  return k;
 }
 
 void StiffnessEstimator::publish(int side) {
@@ -191,7 +207,7 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
     if (imu_finite && calibrated_) follow_attitude(imu_R, delta);  // (the IMU's turn is not to be missed)
     return 0;
   }
-  lag_.update(torque, stiffness_, params_, period_);
+  lag_.update(torque, lag_stiffness(), params_, period_);
   if (!calibrate_at_rest(t, imu_R, delta, accel, encoder, torque)) return 0;
   follow_attitude(imu_R, delta);
   for (int side = 0; side < 2; ++side) rls_[side].forget();
@@ -202,7 +218,8 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
       new_stance_[side] = true;
       continue;
     }
-    if (!firm_support(model_, ft[side], support.soles[side].R, side, kFirmWeightShare)) continue;
+    const walking::FootContact contact = sole_contact(model_, ft[side], support.soles[side].R, side);
+    if (!firm_support(model_, contact, side, kFirmWeightShare)) continue;
     const walking::Pose sole = walking::sole_pose(model_, data_, side);
     const walking::LegJacobian J = walking::leg_jacobian(model_, data_, side, sole.p);
     // The regressors: H(:, p) = Σ_{i∈p} (a_i)_xy τ_i.
@@ -213,11 +230,9 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
       H.col(param_[j]) += J.block<2, 1>(3, i) * lag_.torque()[j];
     }
     if (H.norm() < params_.k_estimation_min_torque) continue;
-    Eigen::Vector2d omega(-sole.R(1, 2), sole.R(0, 2));  // the foot's tilt through the chain
-    for (int i = 0; i < humanoid::kLegJoints; ++i) {     // less the soles' tilt in their contacts (the belief)
-      const int j = humanoid::leg_first_joint(side) + i;
-      omega -= J.block<2, 1>(3, i) * lag_.torque()[j] * sole_compliance(j, params_);
-    }
+    // The foot's tilt through the chain, less the sole's own tilt in its contact (the belief).
+    const Eigen::Vector2d omega =
+        Eigen::Vector2d(-sole.R(1, 2), sole.R(0, 2)) - (sole.R * sole_tilt(contact, params_)).head<2>();
     if (params_.k_estimation_stance_offset && (new_stance_[side] || rls_[side].P()(kParams, kParams) == 0)) {
       // A new stance: its tilt offset (the attitude's slow error, the sole's seat) starts anew.
       for (int r = 0; r < 2; ++r) rls_[side].restart(kParams + r, kOffsetStd * kOffsetStd);

@@ -19,9 +19,9 @@
 /// (control.k_estimation_per_joint).
 ///
 /// Each leg's c is estimated by RLS with forgetting (forgetting_rls.hpp), the regressor of a parameter
-/// h_p = Σ_{i∈p} (a_i)_xy τ_i (a group's joints, or one joint), τ through the gears' lag (DeflectionLag, with
-/// control.gear_damping); the soles' tilt in their contacts, in series with the ankles' gears under their torques
-/// (control.sole_stiffness_*: Σ_ankles (a_i)_xy τ_i / k_sole), is taken out of ω. A sample is used
+/// h_p = Σ_{i∈p} (a_i)_xy τ_i (a group's joints, or one joint), τ through the gears' lag (DeflectionLag, at
+/// lag_stiffness, with control.gear_damping); the sole's tilt in its contact under the ground's torque about its
+/// centre, from its F/T sensor (sole_tilt, control.sole_stiffness_*), is taken out of ω. A sample is used
 /// only when the foot is in firm support by its F/T sensor (normal force ≥ a quarter of the weight,
 /// the centre of pressure within the middle 60 % of the sole's length and width) and |H| ≥
 /// control.k_estimation_min_torque. Bad data (a NaN, or an F/T reading older than 50 ms, or the
@@ -54,6 +54,7 @@
 
 #include "flexgait/compensation/deformation_compensator.hpp"
 #include "flexgait/compensation/forgetting_rls.hpp"
+#include "flexgait/walking/foot_wrench.hpp"
 
 namespace flexgait::compensation {
 
@@ -67,15 +68,22 @@ bool identification_inputs_ok(double t, const humanoid::JointVector& encoder, co
 /// sole_R the sole's planned attitude.
 bool firm_support(const walking::RobotModel& model, const humanoid::ForceTorque& ft, const walking::Matrix3d& sole_R,
                   int side, double min_share);
+/// The same test on the sole's contact (sole_contact).
+bool firm_support(const walking::RobotModel& model, const walking::FootContact& contact, int side, double min_share);
+
+/// What a sole's F/T sensor says about its contact, the centre of pressure and the ground's torque about the sole's
+/// centre (walking::foot_contact with the model's sensor-to-sole lever). \param sole_R the sole's attitude (world).
+walking::FootContact sole_contact(const walking::RobotModel& model, const humanoid::ForceTorque& ft,
+                                  const walking::Matrix3d& sole_R, int side);
 
 /// The modelled torque as the gears' deflection sees it (both identifications). The deflection lags the load: with
 /// control.gear_damping d the gear is a Kelvin–Voigt element, k δ + d δ̇ = τ, so δ = τ / (k (1 + (d/k) s))
 /// (docs/theory/humanoid.md, "The actuator deformation model"); the modelled torque already lags the load by the F/T
 /// low-pass (control.load_filter_time t_f), so the regressor's torque lags it by the rest, d/k − t_f (time
 /// constants of first-order lags add at the gait's low frequencies), backward Euler over the period; a measured
-/// torque (control.k_estimation_torque) lags by d/k. k is what the
-/// compensators use at the time. A filter in time: it runs every period with good data, whether or not a sample is
-/// taken; it starts from the first torque.
+/// torque (control.k_estimation_torque) lags by d/k. k is the best known at the time (the calibration: what the
+/// compensators use; walking: StiffnessEstimator::lag_stiffness). A filter in time: it runs every period with good
+/// data, whether or not a sample is taken; it starts from the first torque.
 class DeflectionLag {
  public:
   void update(const humanoid::JointVector& torque, const humanoid::JointVector& stiffness,
@@ -95,14 +103,16 @@ class DeflectionLag {
   bool started_ = false;
 };
 
-/// The sole's compliance in series with an ankle gear about the same axis, under the same torque
-/// (control.sole_stiffness_roll / _pitch: the foot pad and the floor contact; 0 elsewhere or for rigid soles) [rad/Nm].
-inline double sole_compliance(int joint, const CompensationParams& p) {
-  using namespace humanoid;
-  const double k = (joint == kLeftAnkleRoll || joint == kRightAnkleRoll)     ? p.sole_stiffness_roll
-                   : (joint == kLeftAnklePitch || joint == kRightAnklePitch) ? p.sole_stiffness_pitch
-                                                                             : 0.0;
-  return k > 0 ? 1.0 / k : 0.0;
+/// The sole's tilt in its contact about the sole's x and y axes (sole frame; z 0) [rad]: the foot pad and the floor
+/// contact turn the sole against the ground's torque about the sole's centre M (sole_contact), θ = −M / k_sole
+/// (control.sole_stiffness_roll, _pitch; 0: rigid). Not the ankle's torque, which adds the ground force's moment
+/// about the ankle: the vertical force times the sole centre's offset from the ankle's axes (the builtin's 14 mm
+/// outward: 8 Nm of ankle roll in single support with the centre of pressure at the sole's centre) and the
+/// horizontal force times the ankle's height; neither tilts the sole.
+inline walking::Vector3d sole_tilt(const walking::FootContact& contact, const CompensationParams& p) {
+  const auto compliance = [](double k) { return k > 0 ? 1.0 / k : 0.0; };
+  return {-contact.torque.x() * compliance(p.sole_stiffness_roll),
+          -contact.torque.y() * compliance(p.sole_stiffness_pitch), 0.0};
 }
 
 /// A joint whose axis (body frame) is mostly vertical, a yaw joint: its deflection barely tilts a sole, so neither
@@ -155,6 +165,10 @@ class StiffnessEstimator {
  private:
   double relative_std(int side, int param) const;
   void publish(int side);
+  /// The stiffness the regressor's lag d/k is taken at: a joint's estimate once its relative std is at most 20 %
+  /// (the lag then within 20 % of the gear's; the belief's may be further off: 13 % at 870 Nm/rad believed 1000,
+  /// and the samples it lags stay in the fit), else what the compensators use.
+  humanoid::JointVector lag_stiffness() const;
   void follow_attitude(const walking::Matrix3d& imu_R, const walking::Vector3d& delta_angle);
   /// control.k_estimation_gyro_rest: sums the gyro, the accelerometer and the legs' turn over the rest window;
   /// at its end, the static alignment (the bias, the attitude). False while it is still to come (no samples then).
