@@ -93,6 +93,49 @@ double StiffnessEstimator::relative_std(int side, int param) const {
   return std::sqrt(std::max(rls_[side].P()(param, param), 0.0)) / rls_[side].x()[param];
 }
 
+void StiffnessEstimator::hold_within_bounds(int side) {
+  // The parameters beyond their bounds (the active set A) are set to them, and the other states (the parameters they
+  // correlate with, the stance's offsets) move to their conditional mean given them, x += P_{:,A} P_AA⁻¹ (b_A − x_A):
+  // the estimate projected onto the constraints in the metric P⁻¹ (Simon, "Kalman filtering with state constraints",
+  // IET Control Theory Appl. 4(8), 2010). A parameter the projection pushes past its own bound joins A and the
+  // projection is made again (at most once per parameter). Clamping x_A alone leaves the correlated states where the
+  // unconstrained update put them, and the next innovations grow without bound (seen with a drifting gyro: the
+  // offsets reached 1e40 rad within a second).
+  auto& rls = rls_[side];
+  using Square = Eigen::Matrix<double, kParams, kParams>;
+  using Column = Eigen::Matrix<double, kParams, 1>;
+  std::array<bool, kParams> active{};
+  Column bound = Column::Zero();
+  for (int pass = 0; pass < kParams; ++pass) {
+    bool added = false;
+    for (int p = 0; p < kParams; ++p) {
+      const double x = rls.x()[p];
+      if (active[p] || !(c_max_[side][p] > 0) || (x >= c_min_[side][p] && x <= c_max_[side][p])) continue;
+      active[p] = added = true;
+      bound[p] = std::clamp(x, c_min_[side][p], c_max_[side][p]);
+    }
+    if (!added) return;
+    Square M = Square::Identity();  // P_AA, the identity on the other parameters (whose step is then 0)
+    Column step = Column::Zero();
+    for (int p = 0; p < kParams; ++p) {
+      if (!active[p]) continue;
+      step[p] = bound[p] - rls.x()[p];
+      for (int q = 0; q < kParams; ++q)
+        if (active[q]) M(p, q) = rls.P()(p, q);
+    }
+    const Eigen::LDLT<Square> factor(M);
+    if (factor.info() == Eigen::Success && factor.isPositive())
+      rls.x() += rls.P().leftCols<kParams>() * factor.solve(step);
+    for (int p = 0; p < kParams; ++p)
+      if (active[p]) rls.x()[p] = bound[p];  // (exactly, against round-off)
+  }
+}
+
+bool StiffnessEstimator::on_bound(int side, int param) const {
+  const double c = rls_[side].x()[param];
+  return c <= c_min_[side][param] || c >= c_max_[side][param];
+}
+
 double StiffnessEstimator::relative_std(int joint) const {
   if (param_[joint] < 0) return 0.0;
   return relative_std(humanoid::in_leg(joint, 0) ? 0 : 1, param_[joint]);
@@ -105,7 +148,8 @@ bool StiffnessEstimator::confident(int joint) const {
 humanoid::JointVector StiffnessEstimator::lag_stiffness() const {
   humanoid::JointVector k = stiffness_;
   for (int j = 0; j < humanoid::kJoints; ++j)
-    if (param_[j] >= 0 && relative_std(j) <= kLagStd) k[j] = estimate_[j];
+    if (param_[j] >= 0 && relative_std(j) <= kLagStd && !on_bound(humanoid::in_leg(j, 0) ? 0 : 1, param_[j]))
+      k[j] = estimate_[j];
   return k;
 }
 
@@ -113,7 +157,7 @@ void StiffnessEstimator::publish(int side) {
   for (int i = 0; i < humanoid::kLegJoints; ++i) {
     const int j = humanoid::leg_first_joint(side) + i, p = param_[j];
     if (p < 0) continue;
-    const bool confident_now = relative_std(side, p) <= params_.k_estimation_confidence;
+    const bool confident_now = relative_std(side, p) <= params_.k_estimation_confidence && !on_bound(side, p);
     confident_[side][p] = confident_[side][p] || confident_now;
     estimate_[j] = 1.0 / rls_[side].x()[p];
     if (confident_now) stiffness_[j] = estimate_[j];
@@ -244,9 +288,7 @@ int StiffnessEstimator::update(double t, const humanoid::JointVector& encoder, c
       h[kParams + r] = 1.0;  // ω = H c + e
       rls_[side].update(h, omega[r], noise_variance_);
     }
-    auto& x = rls_[side].x();
-    for (int p = 0; p < kParams; ++p)
-      if (c_max_[side][p] > 0) x[p] = std::clamp(x[p], c_min_[side][p], c_max_[side][p]);
+    hold_within_bounds(side);
     publish(side);
     ++used;
   }

@@ -27,12 +27,12 @@
 /// control.k_estimation_min_torque. Bad data (a NaN, or an F/T reading older than 50 ms, or the
 /// controller's sensor check flagging a sensor) keeps the last estimate and is counted.
 /// The estimate stays within [0.1, 10] × the belief (so k > 0 always). A parameter is confident when
-/// its relative standard deviation sqrt(P_pp)/c_p ≤ control.k_estimation_confidence (P the RLS
-/// covariance with prior (c₀)² and measurement variance control.k_estimation_noise²); from then
-/// on stiffness() gives 1/c_p for its joints (the last confident value if confidence lapses).
-/// The pelvis attitude the chain starts from: the controller's estimate (control.k_estimation_attitude_time = 0),
-/// or the IMU's turn pulled towards that estimate with time constant t_a, so the estimate's errors at the gait's
-/// frequencies — correlated with the deflections, the dominant error of the identification — are filtered out:
+/// it is inside those bounds and its relative standard deviation sqrt(P_pp)/c_p ≤ control.k_estimation_confidence (P
+/// the RLS covariance with prior (c₀)² and measurement variance control.k_estimation_noise²); from then on stiffness()
+/// gives 1/c_p for its joints (the last confident value if confidence lapses). The pelvis attitude the chain starts
+/// from: the controller's estimate (control.k_estimation_attitude_time = 0), or the IMU's turn pulled towards that
+/// estimate with time constant t_a, so the estimate's errors at the gait's frequencies — correlated with the
+/// deflections, the dominant error of the identification — are filtered out:
 ///     R ← exp([e]× min(1, T/t_a)) R exp([Δθ − b̂ T]×),  e the rotation vector of R_imu Rᵀ,
 /// Δθ the IMU's delta angle, its turn since the last reading integrated at its own rate (humanoid::Imu): one gyro
 /// sample per period aliases the rate's ripple at the control frequency — the servos' steps — into a drift, on the
@@ -164,6 +164,11 @@ class StiffnessEstimator {
 
  private:
   double relative_std(int side, int param) const;
+  /// The parameter is held at a bound of [0.1, 10] × the belief: the data pushed it out of the plausible range (a
+  /// regressor with no information, a wrong attitude), so its estimate is the bound, not a finding; never confident.
+  bool on_bound(int side, int param) const;
+  /// Each of the leg's parameters beyond its bound onto it, the correlated states with it (a projection).
+  void hold_within_bounds(int side);
   void publish(int side);
   /// The stiffness the regressor's lag d/k is taken at: a joint's estimate once its relative std is at most 20 %
   /// (the lag then within 20 % of the gear's; the belief's may be further off: 13 % at 870 Nm/rad believed 1000,
