@@ -2,7 +2,8 @@
 // support of the chosen step, against the timeline's hand formula); the keys the test sets are
 // refused when the user sets them; the bisection's ends are what they say (the recovered
 // impulse is recovered, the one seen to fall falls, within the tolerance); the upper end
-// doubles while it is recovered.
+// doubles while it is recovered; on a synthetic outcome with an island of recovery above the first
+// fall, the bisection ends on the island and the scan on the first fall.
 #include "flexgait/experiments/push_recovery.hpp"
 
 #include <gtest/gtest.h>
@@ -74,6 +75,41 @@ TEST(PushRecoveryExperiment, UpperEndDoublesWhileRecovered) {
   EXPECT_TRUE(std::isnan(r.fell_at));
   EXPECT_EQ(r.runs, 5);
   EXPECT_GT(r.bound, 10.0);
+}
+
+TEST(PushRecoveryBracket, ABisectionCanEndOnAnIslandOfRecoveryAndAScanFindsTheFirstFall) {
+  // Recovered below 32 N s and on an island from 37 to 38.5 N s, falls elsewhere (the shape a grid of
+  // single walks shows for dcm with step adjustment and the static load model, docs/guide/humanoid.md).
+  int calls = 0;
+  const auto falls = [&](double impulse) {
+    ++calls;
+    return impulse >= 32 && !(impulse >= 37 && impulse <= 38.5);
+  };
+  // Bisection on [0, 100]: 100, 50 fall, 25 recovered, 37.5 (on the island) recovered, then it closes in on the
+  // island's upper edge.
+  const PushRecovery bisected = bracket_first_fall(falls, 0, 100, 1.0);
+  EXPECT_EQ(bisected.recovered, 38.28125);
+  EXPECT_EQ(bisected.fell, 39.0625);
+  EXPECT_EQ(bisected.runs, calls);
+  // The scan at 2 N s: 2, 4, ..., 30 recovered, 32 falls (16 runs), then [30, 32] halved once to 1 N s.
+  calls = 0;
+  const PushRecovery scanned = bracket_first_fall(falls, 0, 100, 1.0, 2.0);
+  EXPECT_TRUE(scanned.bracketed);
+  EXPECT_EQ(scanned.recovered, 31.0);
+  EXPECT_EQ(scanned.fell, 32.0);
+  EXPECT_EQ(scanned.runs, 17);
+  EXPECT_EQ(calls, 17);
+  // From a recovered lower end the scan starts above it; with no fall below upper, upper is tried last.
+  const PushRecovery above = bracket_first_fall(falls, 20, 29, 1.0, 4.0);
+  EXPECT_FALSE(above.bracketed);
+  EXPECT_EQ(above.recovered, 29.0);
+  EXPECT_TRUE(std::isnan(above.fell));
+  EXPECT_EQ(above.runs, 3);  // 24, 28, then 29
+  // No fall on the scan (4, ..., 28) but at upper: the bracket is the last gap, [28, 32], halved to 0.5 N s.
+  const PushRecovery last = bracket_first_fall(falls, 0, 32, 0.5, 4.0);
+  EXPECT_EQ(last.recovered, 31.5);
+  EXPECT_EQ(last.fell, 32.0);
+  EXPECT_EQ(last.runs, 7 + 1 + 3);
 }
 
 /// A 4-step walk at 1 s/step in humanoid walk's default case, its push at mid single support of

@@ -183,10 +183,13 @@ Experiment humanoid_push_recovery() {
   e.check = [](const Config& c) { experiments::push_recovery_from_config(c); };
   e.metrics = record_keys<experiments::PushRecoveryResult>();
   e.metric_types = record_types<experiments::PushRecoveryResult>();
-  // About 8 runs of the simulated time each run plans.
+  // About 8 runs of the simulated time each run plans; a scan adds about one per scan step up to
+  // half the first upper end.
   e.cost = [](const Config& c) {
     const bool standing = c.choice("push_recovery.situation") == "standing";
-    return 8 * (standing ? c.real("push_recovery.stand_time") + c.real("push_recovery.settle_time")
+    const double scan = c.real("push_recovery.scan_step");
+    const double runs = 8 + (scan > 0 ? 0.5 * c.real("push_recovery.upper") / scan : 0.0);
+    return runs * (standing ? c.real("push_recovery.stand_time") + c.real("push_recovery.settle_time")
                          : static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"));
   };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {

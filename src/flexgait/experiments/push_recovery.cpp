@@ -9,31 +9,54 @@
 
 namespace flexgait::experiments {
 
-PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d& direction, double upper,
-                                      double tolerance) {
-  const Eigen::Vector2d u = direction.normalized();
+PushRecovery bracket_first_fall(const std::function<bool(double)>& falls, double lower, double upper, double tolerance,
+                                double scan_step) {
   PushRecovery out;
-  const auto falls = [&](double impulse) {
-    const double f = impulse / base.push.duration;
-    base.push.force = {f * u.x(), f * u.y(), 0.0};
-    const WalkMetrics m = run_walk(base).metrics;
+  const auto run = [&](double impulse) {
     ++out.runs;
-    if (m.pushed) out.bound = m.capture_point_bound;
-    return m.fell;
+    return falls(impulse);
   };
-  if (!falls(upper)) {
+  double lo = lower, hi = upper;
+  bool fell_on_scan = false;
+  if (scan_step > 0) {
+    for (int i = 1; lower + i * scan_step < upper; ++i) {
+      const double impulse = lower + i * scan_step;
+      if (run(impulse)) {
+        fell_on_scan = true;
+        hi = impulse;
+        break;
+      }
+      lo = impulse;
+    }
+  }
+  if (!fell_on_scan && !run(upper)) {
     out.bracketed = false;
     out.recovered = upper;
     out.fell = std::numeric_limits<double>::quiet_NaN();
     return out;
   }
-  double lo = 0, hi = upper;
   while (hi - lo > tolerance) {
     const double mid = 0.5 * (lo + hi);
-    (falls(mid) ? hi : lo) = mid;
+    (run(mid) ? hi : lo) = mid;
   }
   out.recovered = lo;
   out.fell = hi;
+  return out;
+}
+
+PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d& direction, double upper,
+                                      double tolerance, double scan_step, double lower) {
+  const Eigen::Vector2d u = direction.normalized();
+  double bound = 0;
+  const auto falls = [&](double impulse) {
+    const double f = impulse / base.push.duration;
+    base.push.force = {f * u.x(), f * u.y(), 0.0};
+    const WalkMetrics m = run_walk(base).metrics;
+    if (m.pushed) bound = m.capture_point_bound;
+    return m.fell;
+  };
+  PushRecovery out = bracket_first_fall(falls, lower, upper, tolerance, scan_step);
+  out.bound = bound;
   return out;
 }
 
@@ -105,9 +128,9 @@ PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p) {
     base.push = walking_push(p);
   }
   const Eigen::Vector2d u = push_direction_vector(p.test.direction);
-  double upper = p.test.upper;
+  double upper = p.test.upper, lower = 0;
   for (int doubling = 0;; ++doubling) {
-    const PushRecovery r = largest_recoverable_push(base, u, upper, p.test.tolerance);
+    const PushRecovery r = largest_recoverable_push(base, u, upper, p.test.tolerance, p.test.scan_step, lower);
     out.runs += r.runs;
     if (r.bracketed) {
       out.recovered = r.recovered;
@@ -123,7 +146,8 @@ PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p) {
       ++out.runs;
       break;
     }
-    upper *= 2;  // upper recovered: a wider bracket
+    if (p.test.scan_step > 0) lower = upper;  // (the scan goes on above the recovered upper)
+    upper *= 2;                               // upper recovered: a wider bracket
   }
   out.fraction = out.bound > 0 ? out.recovered / out.bound : std::numeric_limits<double>::quiet_NaN();
   return out;

@@ -10,6 +10,7 @@
 /// the plan's frame, the push's body and duration from disturbance.push.*.
 #include <Eigen/Dense>
 #include <array>
+#include <functional>
 
 #include "flexgait/core/enum_names.hpp"
 #include "flexgait/core/record.hpp"
@@ -25,12 +26,25 @@ struct PushRecovery {
   bool bracketed = true;  ///< false: `upper` itself was recovered (recovered = upper, fell = NaN)
 };
 
+/// The bracket of a fall threshold on the impulse [N s], given `falls(J)` (one run of the twin per
+/// call), `lower` (an impulse known to be recovered; 0 for none) and `upper`:
+/// - scan_step = 0: bisection on [lower, upper] to `tolerance`, `upper` tried first. It assumes
+///   one threshold (every push below it recovered, every push above it falls). Where the outcome
+///   is not monotone in the impulse, it can end on an island of recovery above the first fall.
+/// - scan_step > 0: `falls` at lower + scan_step, lower + 2 scan_step, ... (below upper) until the
+///   first fall, then bisection between it and the scan point before it; no fall on the scan:
+///   upper is tried. `recovered` is then the first fall's lower end: every scan point below it was
+///   recovered (a window of falls narrower than scan_step can still lie between them).
+/// If upper is recovered (the bracket is too narrow), `bracketed` is false, recovered = upper and
+/// fell = NaN.
+PushRecovery bracket_first_fall(const std::function<bool(double)>& falls, double lower, double upper, double tolerance,
+                                double scan_step = 0);
+
 /// Pushes `base.push.body` at `base.push.time` for `base.push.duration` in the horizontal
-/// `direction`, bisecting the impulse on [0, upper] to `tolerance` [N s]. If upper itself is
-/// recovered (an outcome: the bracket is too narrow), returns after that one run with `bracketed`
-/// false, recovered = upper and fell = NaN.
+/// `direction`: bracket_first_fall on the impulse from `lower` (recovered) to `upper`, to
+/// `tolerance` [N s]; `bound` is the capture-point bound of the push's situation.
 PushRecovery largest_recoverable_push(WalkRunParams base, const Eigen::Vector2d& direction, double upper,
-                                      double tolerance = 1.0);
+                                      double tolerance = 1.0, double scan_step = 0, double lower = 0);
 
 enum class PushSituation { kStanding, kWalking };
 constexpr std::array<EnumName<PushSituation>, 2> enum_names(PushSituation) {
@@ -58,6 +72,7 @@ struct PushRecoveryParams {
   int step = 3;              ///< walking: the push starts at mid single support of this step (1 = the first)
   double upper = 100.0;      ///< first upper end of the bisection; doubled while recovered, at most 3 times [N s]
   double tolerance = 1.0;    ///< bisection to this width [N s]
+  double scan_step = 0;      ///< > 0: scan up at this step to the first fall, then bisect (bracket_first_fall) [N s]
 
   template <class Self, class Visit>
   static void visit_fields(Self& s, Visit& v) {
@@ -76,6 +91,11 @@ struct PushRecoveryParams {
        .bounds = closed(1, 1e4)});
     v("push_recovery.tolerance", s.tolerance,
       {.unit = "N s", .doc = "width the bisection ends at", .bounds = closed(0.01, 100)});
+    v("push_recovery.scan_step", s.scan_step,
+      {.unit = "N s",
+       .doc = "0: bisection on [0, upper] (assumes one threshold); > 0: scan up at this step to the first fall, "
+              "then bisect between it and the scan point before",
+       .bounds = closed(0, 1e4)});
   }
 };
 
@@ -106,7 +126,7 @@ struct PushRecoveryResult {
   PushSituation situation = PushSituation::kStanding;
   PushDirection direction = PushDirection::kForward;
   double push_time = 0;  ///< [s]
-  double recovered = 0;  ///< largest impulse recovered [N s]
+  double recovered = 0;  ///< largest impulse recovered (with a scan: below the first fall) [N s]
   double fell_at = 0;    ///< smallest impulse seen to fall [N s]; null if none fell (recovered is then a lower bound)
   double bound = 0;      ///< capture-point bound of the situation in the push's direction [N s]
   double fraction = 0;   ///< recovered / bound
@@ -128,8 +148,9 @@ struct PushRecoveryResult {
 /// The push's start time of a measurement [s].
 double push_recovery_time(const PushRecoveryRunParams& p);
 
-/// The measurement: the push at push_recovery_time, bisection from [0, upper], upper doubled
-/// while it is recovered (at most 3 times; then fell_at is NaN, null in JSON).
+/// The measurement: the push at push_recovery_time, bracket_first_fall on [0, upper] (with
+/// push_recovery.scan_step), upper doubled while it is recovered (at most 3 times; then fell_at
+/// is NaN, null in JSON; a scan goes on from the last upper, a bisection starts again from 0).
 PushRecoveryResult run_push_recovery(const PushRecoveryRunParams& p);
 
 }  // namespace flexgait::experiments
