@@ -185,10 +185,12 @@ fi
 campaign "${walk_grid[@]}" --out "$work/w1" --jobs 1
 campaign "${walk_grid[@]}" --out "$work/w2" --jobs 2
 check "walk --jobs 2: same bytes" cmp -s "$work/w1/campaign.csv" "$work/w2/campaign.csv"
-# (k = 500 without compensation: the stance leg sags, the swing sole hangs 1.7 cm above the floor
-# when the step should have landed — a missed step, not a walk)
+# (k = 500 without compensation: the stance leg sags and the first step's swing sole is still above
+# the floor when the next step lifts — a missed step, not a walk; with 0.3 m steps the robot tips over)
 check "walk: a missed step is a row with its outcome and reason" \
-  grep -q "^2,0.3,off,missed_step,off,full,off,true,a step did not land" "$work/w1/campaign.csv"
+  grep -q "^0,0.1,off,missed_step,off,full,off,true,a step did not land" "$work/w1/campaign.csv"
+check "walk: a fall is a row with its outcome and reason" \
+  grep -q "^2,0.3,off,pelvis_tilted,off,full,off,true,pelvis tilted" "$work/w1/campaign.csv"
 check "walk: with compensation it walks" grep -q "^3,0.3,both,walked,both,full,both-dynamic-horizontal-lag,false,," \
   "$work/w1/campaign.csv"
 campaign humanoid-push-recovery --grid push_recovery.direction=forward --set push_recovery.tolerance=30 \

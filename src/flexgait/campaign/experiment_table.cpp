@@ -190,7 +190,7 @@ Experiment humanoid_push_recovery() {
     const double scan = c.real("push_recovery.scan_step");
     const double runs = 8 + (scan > 0 ? 0.5 * c.real("push_recovery.upper") / scan : 0.0);
     return runs * (standing ? c.real("push_recovery.stand_time") + c.real("push_recovery.settle_time")
-                         : static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"));
+                            : static_cast<double>(c.integer("walk.steps")) * c.real("walk.step_time"));
   };
   e.run = [](const Config& c, const std::filesystem::path& run_dir) {
     const experiments::PushRecoveryResult r = experiments::run_push_recovery(experiments::push_recovery_from_config(c));

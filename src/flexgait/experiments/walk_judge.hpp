@@ -2,7 +2,8 @@
 /// \file walk_judge.hpp
 /// Whether a walk walked, judged from the ground truth alone (evaluation code: the controller
 /// never sees it). A walk is walked only if every planned step landed — the swing sole on the
-/// floor, once the foot has settled, placed relative to the standing sole within
+/// floor once the foot has settled (at the latest when the next step lifts: landing_due in
+/// walk_scorer.hpp), placed relative to the standing sole within
 /// `position_tolerance` of the plan's step — and the robot stayed supported: some body touches
 /// the floor at least every `airborne_time`, no standing sole slides more than
 /// `position_tolerance` from where it came down, the pelvis is neither sunk nor tilted nor upside

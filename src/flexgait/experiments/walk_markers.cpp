@@ -52,7 +52,8 @@ void WalkMarkers::observe(const loop::LoopStep& step) {
       markers_.actual.push_back(
           footprint(step.before.sole_pos[side][0], step.before.sole_pos[side][1], step.before.sole_yaw[side], terrain));
   // A landing once the foot has settled (as WalkScorer takes it).
-  while (next_landing_ < plan.steps.size() && g.t >= plan.steps[next_landing_].t_land + settle_) {
+  while (next_landing_ < plan.steps.size() &&
+         landing_due(plan, next_landing_, settle_, g.t, g.sole_contact[plan.steps[next_landing_].swing])) {
     const int side = plan.steps[next_landing_++].swing;
     markers_.actual.push_back(footprint(g.sole_pos[side][0], g.sole_pos[side][1], g.sole_yaw[side], terrain));
   }

@@ -62,6 +62,13 @@ double landing_settle(const WalkRunParams& params) {
   return 0.5 * params.walk.dsp_ratio * params.walk.step_time;
 }
 
+bool landing_due(const walking::WalkPlan& plan, std::size_t n, double settle, double t, bool sole_down) {
+  if (n >= plan.steps.size() || t < plan.steps[n].t_land + settle) return false;
+  if (sole_down) return true;
+  const double deadline = n + 1 < plan.steps.size() ? plan.steps[n + 1].t_lift : plan.t_settle;
+  return t >= deadline;
+}
+
 void WalkScorer::Accumulator::add(double v) {
   sum2 += v * v;
   max = std::max(max, std::abs(v));
@@ -253,11 +260,13 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
     m.support_margin_min = std::min(m.support_margin_min, margin);
     for (int side = 0; side < 2; ++side) m.ik_clamped += st.ik[side] != walking::IkStatus::kOk;
   }
-  // Landings, once the foot has settled.
+  // Landings, once the foot has settled (landing_due).
   // (steps a safe stop dropped are never landed)
   // (the controller's plan: a safe stop cuts it, step adjustment moves its landings or adds a recovery step)
   const auto& steps = controller_.plan().steps;
-  while (next_landing_ < steps.size() && t_now >= steps[next_landing_].t_land + settle_ && !m.fell) {
+  while (
+      !m.fell && next_landing_ < steps.size() &&
+      landing_due(controller_.plan(), next_landing_, settle_, t_now, sample.sole_contact[steps[next_landing_].swing])) {
     const walking::Step& s = steps[next_landing_];
     Landing l;
     l.step = static_cast<int>(next_landing_);

@@ -16,9 +16,15 @@ namespace flexgait::experiments {
 
 /// The plan's frame against the truth's: the offset between the initial feet (world = plan + offset) [m].
 Eigen::Vector2d plan_offset(const twin::GroundTruth& g, const walking::WalkPlan& plan);
-/// A step's landing is taken (its sole's pose read) this long after its touchdown, once the foot has
-/// settled: half the double support [s].
+/// A step's landing is taken (its sole's pose read) from this long after its touchdown on, once the
+/// foot has settled: half the double support [s] (landing_due).
 double landing_settle(const WalkRunParams& params);
+/// Whether the landing of plan.steps[n] is taken at t [s]: from its touchdown plus `settle` on,
+/// once its sole is on the floor (`sole_down`). A foot still in the air then (a push can bounce an
+/// early landing off the floor for a moment) is waited for until the next step's touchdown, when
+/// the robot would have no other foot to stand on (after the last step: the plan's t_settle), and
+/// is taken there as it is (WalkJudge::landing: missed).
+bool landing_due(const walking::WalkPlan& plan, std::size_t n, double settle, double t, bool sole_down);
 
 class WalkScorer final : public loop::LoopObserver {
  public:
