@@ -43,6 +43,13 @@ TEST(PushRecoveryExperiment, RefusesTheKeysTheTestSets) {
     EXPECT_EQ(e.key(), "push_recovery.step");
   }
   EXPECT_THROW(push_recovery_from_config(config({"disturbance.push.duration=0"})), ConfigError);
+  try {  // a scan finer than the bisection's tolerance (and, at 1e-6 N s, 10^8 runs to 100 N s)
+    push_recovery_from_config(config({"push_recovery.scan_step=1e-6"}));
+    FAIL() << "a scan finer than the tolerance passed";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "push_recovery.scan_step");
+  }
+  EXPECT_NO_THROW(push_recovery_from_config(config({"push_recovery.scan_step=1"})));
 }
 
 TEST(PushRecoveryExperiment, BracketIsRecoveredBelowAndFallsAbove) {

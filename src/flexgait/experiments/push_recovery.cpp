@@ -1,5 +1,7 @@
 #include "flexgait/experiments/push_recovery.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -86,6 +88,11 @@ PushRecoveryRunParams push_recovery_from_config(const Config& config) {
     if (config.integer("disturbance.push.step") != 0)
       throw ConfigError("disturbance.push.step",
                         "disturbance.push.step: set by the push-recovery test (push_recovery.step); leave it 0");
+    if (p.test.scan_step > 0 && p.test.scan_step < p.test.tolerance)
+      throw ConfigError("push_recovery.scan_step",
+                        fmt::format("push_recovery.scan_step: {:g} N s is finer than push_recovery.tolerance = {:g} N "
+                                    "s; allowed: 0 (bisection alone) or at least the tolerance",
+                                    p.test.scan_step, p.test.tolerance));
     if (p.run.push.duration <= 0)
       throw ConfigError("disturbance.push.duration", "disturbance.push.duration: the push needs a duration > 0");
     if (p.test.situation == PushSituation::kWalking && p.test.step >= p.run.walk.steps)

@@ -117,6 +117,7 @@ inline Schema push_recovery_schema() {
 
 /// The measurement's parameters; throws ConfigError as walk_run_from_config, and naming the key
 /// when disturbance.push.force_* or disturbance.push.time is set (the test sets them), when
+/// push_recovery.scan_step is finer than push_recovery.tolerance (but not 0), when
 /// disturbance.push.duration is 0, or when walking and push_recovery.step is not a step before
 /// the last (walk.steps).
 PushRecoveryRunParams push_recovery_from_config(const Config& config);
