@@ -263,10 +263,10 @@ void WalkScorer::score_motion(const loop::LoopStep& step) {
   // Landings, once the foot has settled (landing_due).
   // (steps a safe stop dropped are never landed)
   // (the controller's plan: a safe stop cuts it, step adjustment moves its landings or adds a recovery step)
-  const auto& steps = controller_.plan().steps;
-  while (
-      !m.fell && next_landing_ < steps.size() &&
-      landing_due(controller_.plan(), next_landing_, settle_, t_now, sample.sole_contact[steps[next_landing_].swing])) {
+  const walking::WalkPlan& plan = controller_.plan();
+  const auto& steps = plan.steps;
+  while (!m.fell && next_landing_ < steps.size() &&
+         landing_due(plan, next_landing_, settle_, t_now, sample.sole_contact[steps[next_landing_].swing])) {
     const walking::Step& s = steps[next_landing_];
     Landing l;
     l.step = static_cast<int>(next_landing_);

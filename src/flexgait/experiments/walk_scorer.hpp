@@ -21,8 +21,8 @@ Eigen::Vector2d plan_offset(const twin::GroundTruth& g, const walking::WalkPlan&
 double landing_settle(const WalkRunParams& params);
 /// Whether the landing of plan.steps[n] is taken at t [s]: from its touchdown plus `settle` on,
 /// once its sole is on the floor (`sole_down`). A foot still in the air then (a push can bounce an
-/// early landing off the floor for a moment) is waited for until the next step's touchdown, when
-/// the robot would have no other foot to stand on (after the last step: the plan's t_settle), and
+/// early landing off the floor for a moment) is waited for until the next step lifts, the end of
+/// the double support in which it takes the load (after the last step: the plan's t_settle), and
 /// is taken there as it is (WalkJudge::landing: missed).
 bool landing_due(const walking::WalkPlan& plan, std::size_t n, double settle, double t, bool sole_down);
 
