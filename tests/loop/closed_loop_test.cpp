@@ -1,6 +1,7 @@
 // The closed loop with a controller of one's own: a hold-pose controller through the interface
 // keeps the twin standing; given commands reach the plant (the encoder follows); observers
-// attached or not leave the trajectory the same to the bit; a failed simulation refuses to step on;
+// attached or not leave the trajectory the same to the bit, and the truth formed on demand where nothing
+// observes is the one observers see; a failed simulation refuses to step on;
 // a non-finite command is refused, naming the joint.
 #include "flexgait/loop/closed_loop.hpp"
 
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "flexgait/experiments/walk_experiment.hpp"
 #include "flexgait/experiments/walk_scorer.hpp"
@@ -147,6 +149,44 @@ TEST(ClosedLoop, ObserversDoNotChangeTheTrajectory) {
   for (int j = 0; j < humanoid::kJoints; ++j) EXPECT_EQ(a.link_angle[j], b.link_angle[j]) << j;  // to the bit
   for (int i = 0; i < 3; ++i) EXPECT_EQ(a.pelvis_pos[i], b.pelvis_pos[i]) << i;
   EXPECT_EQ(bare.loop->command(), watched.loop->command());
+}
+
+// The truth is formed on demand where nothing observes: the same state, to the bit, as an observer is shown;
+// each period starts from the state the last one ended in.
+TEST(ClosedLoop, TheTruthFormedOnDemandIsTheObserversTruth) {
+  experiments::WalkRunParams p;
+  p.walk.steps = 2;
+  struct Recorder final : LoopObserver {
+    std::vector<twin::GroundTruth> before, after;
+    void observe(const LoopStep& s) override {
+      before.push_back(s.before);
+      after.push_back(s.after);
+    }
+  };
+  const auto same = [](const twin::GroundTruth& a, const twin::GroundTruth& b) {
+    return a.t == b.t && a.link_angle == b.link_angle && a.link_velocity == b.link_velocity &&
+           a.motor_angle == b.motor_angle && a.gear_torque == b.gear_torque && a.pelvis_pos == b.pelvis_pos &&
+           a.pelvis_quat == b.pelvis_quat && a.com == b.com && a.zmp == b.zmp && a.sole_pos == b.sole_pos &&
+           a.sole_contact == b.sole_contact && a.normal_force == b.normal_force &&
+           a.linear_momentum == b.linear_momentum && a.floor_impulse == b.floor_impulse;
+  };
+  experiments::WalkLoop bare = experiments::make_walk_loop(p), watched = experiments::make_walk_loop(p);
+  const twin::GroundTruth start = bare.loop->truth();
+  Recorder recorder;
+  watched.loop->attach(recorder);
+  const int periods = 300;
+  for (int k = 0; k < periods; ++k) {
+    ASSERT_FALSE(bare.loop->step());
+    ASSERT_FALSE(watched.loop->step());
+    if (k % 100 == 99) {  // asked for mid-run
+      EXPECT_TRUE(same(bare.loop->truth(), recorder.after.back())) << k;
+    }
+  }
+  ASSERT_EQ(recorder.after.size(), static_cast<std::size_t>(periods));
+  EXPECT_TRUE(same(recorder.before.front(), start));
+  for (int k = 1; k < periods; ++k) EXPECT_TRUE(same(recorder.before[k], recorder.after[k - 1])) << k;
+  EXPECT_TRUE(same(bare.loop->truth(), watched.loop->truth()));
+  EXPECT_EQ(bare.loop->time(), recorder.after.back().t);
 }
 
 }  // namespace

@@ -2,23 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
 namespace flexgait::loop {
-namespace {
-
-bool finite_truth(const twin::GroundTruth& g) {
-  auto finite = [](const auto& values) {
-    return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
-  };
-  return finite(g.link_angle) && finite(g.link_velocity) && finite(g.motor_angle) && finite(g.pelvis_pos) &&
-         finite(g.pelvis_quat) && finite(g.com);
-}
-
-}  // namespace
 
 HumanoidLoop::HumanoidLoop(const LoopSetup& setup, std::shared_ptr<Controller> controller)
     : model_(setup.model),
@@ -27,12 +15,11 @@ HumanoidLoop::HumanoidLoop(const LoopSetup& setup, std::shared_ptr<Controller> c
       plant_(setup.twin, setup.plant),
       clamp_(setup.clamp_to_ranges) {
   if (!controller_) throw std::invalid_argument("HumanoidLoop: no controller");
-  truth_ = plant_.truth();
 }
 
 void HumanoidLoop::reset(const humanoid::JointVector& pose) {
   plant_.reset(pose);
-  truth_ = plant_.truth();
+  truth_current_ = false;
   command_ = pose;
   k_ = 0;
   failure_.reset();
@@ -49,7 +36,7 @@ std::optional<SimulationFailure> HumanoidLoop::step(const humanoid::JointVector&
 std::optional<SimulationFailure> HumanoidLoop::advance(const humanoid::JointVector* given) {
   if (failure_)
     throw std::logic_error(
-        fmt::format("the simulation failed at t = {:.6g} s ({}); reset the loop before stepping again", truth_.t,
+        fmt::format("the simulation failed at t = {:.6g} s ({}); reset the loop before stepping again", time(),
                     name_of(*failure_)));
   const double t = static_cast<double>(k_) * plant_.params().control_period;
   const humanoid::SensorReadings readings = stage_.feedback(plant_.sensors());
@@ -78,20 +65,32 @@ std::optional<SimulationFailure> HumanoidLoop::advance(const humanoid::JointVect
   }
   if (!given) controller_->sent(command_);
 
-  std::swap(before_, truth_);
+  // The ground truth is formed for the observers (and whoever asks for truth()), not for the loop itself.
+  const bool observed = !observers_.empty();
+  if (observed) before_ = truth();
   plant_.step(command_);
-  truth_ = plant_.truth();
-  const LoopStep record{k_,     t,       readings, stage_.sensors(), desired, command_,
-                        stage_, before_, truth_,   plant_,           failure_};
-  ++k_;
+  truth_current_ = false;
+  const long k = k_++;
   // MuJoCo's warnings (it has already reset an unstable state or dropped contacts), or a state that
   // is no longer finite, end the loop.
-  if (truth_.warnings > 0)
+  if (plant_.warning_count() > 0)
     failure_ = SimulationFailure::kMuJoCoWarning;
-  else if (!finite_truth(truth_))
+  else if (!plant_.state_finite())
     failure_ = SimulationFailure::kDiverged;
-  for (LoopObserver* observer : observers_) observer->observe(record);
+  if (observed) {
+    const LoopStep record{k,      t,       readings, stage_.sensors(), desired, command_,
+                          stage_, before_, truth(),  plant_,           failure_};
+    for (LoopObserver* observer : observers_) observer->observe(record);
+  }
   return failure_;
+}
+
+const twin::GroundTruth& HumanoidLoop::truth() const {
+  if (!truth_current_) {
+    truth_ = plant_.truth();
+    truth_current_ = true;
+  }
+  return truth_;
 }
 
 }  // namespace flexgait::loop

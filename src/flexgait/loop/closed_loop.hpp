@@ -75,8 +75,10 @@ class HumanoidLoop {
   }
 
   const humanoid::SensorReadings& sensors() const { return plant_.sensors(); }
-  const twin::GroundTruth& truth() const { return truth_; }
-  double time() const { return truth_.t; }
+  /// The twin's true state now: formed when first asked for after a period (a loop that nothing observes
+  /// does not pay for it); valid until the next step or reset.
+  const twin::GroundTruth& truth() const;
+  double time() const { return plant_.time(); }
   long periods() const { return k_; }
   const std::optional<SimulationFailure>& failure() const { return failure_; }
   /// The last command sent [rad].
@@ -101,7 +103,9 @@ class HumanoidLoop {
   twin::HumanoidPlant plant_;
   bool clamp_ = false;
   std::vector<LoopObserver*> observers_;
-  twin::GroundTruth truth_, before_;  ///< the state now and at the last period's start
+  mutable twin::GroundTruth truth_;     ///< the state now, once formed (truth())
+  mutable bool truth_current_ = false;  ///< truth_ is the state now
+  twin::GroundTruth before_;            ///< the state at the last period's start (for observers)
   humanoid::JointVector command_{};
   long k_ = 0;
   long joint_limit_hits_ = 0;

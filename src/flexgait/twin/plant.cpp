@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -249,6 +250,21 @@ double HumanoidPlant::gravity() const {
 }
 std::string HumanoidPlant::warnings_text() const {
   return mujoco_warnings_text(impl_->state.data.get());
+}
+int HumanoidPlant::warning_count() const {
+  return mujoco_warning_count(impl_->state.data.get());
+}
+bool HumanoidPlant::state_finite() const {
+  const Impl& p = *impl_;
+  const mjData* d = p.state.data.get();
+  const mjModel* m = p.model.get();
+  const auto finite = [](const double* v, int n) {
+    return std::all_of(v, v + n, [](double x) { return std::isfinite(x); });
+  };
+  const int pelvis = 1;
+  return finite(d->qpos, m->nq) && finite(d->qvel, m->nv) && finite(d->subtree_com + 3 * pelvis, 3) &&
+         std::all_of(p.state.motors.begin(), p.state.motors.end(),
+                     [](const ActuatorState& a) { return std::isfinite(a.theta_m); });
 }
 const humanoid::SensorReadings& HumanoidPlant::sensors() const {
   return impl_->state.sensors;

@@ -89,6 +89,11 @@ class HumanoidPlant {
   double gravity() const;
   /// MuJoCo's warnings so far as one line ("" if none; GroundTruth::warnings counts them).
   std::string warnings_text() const;
+  /// MuJoCo's warnings raised so far (GroundTruth::warnings, without forming the rest of the truth).
+  int warning_count() const;
+  /// Whether the state is finite: MuJoCo's positions and velocities, the motors' angles and the whole body's
+  /// centre of mass (a diverged simulation; without forming the truth).
+  bool state_finite() const;
 
   const PlantParams& params() const;
   /// The floor (plant.terrain's geometry; for evaluation only: the controller is not told).
