@@ -17,6 +17,10 @@
 namespace flexgait::twin {
 namespace {
 
+/// MuJoCo's body of the pelvis, the twin's root (the world is body 0): its subtree's centre of mass is the whole
+/// robot's.
+constexpr int kPelvisBody = 1;
+
 /// The Hamilton product a ⊗ b of two quaternions (w, x, y, z).
 std::array<double, 4> quat_product(const std::array<double, 4>& a, const std::array<double, 4>& b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
@@ -261,8 +265,7 @@ bool HumanoidPlant::state_finite() const {
   const auto finite = [](const double* v, int n) {
     return std::all_of(v, v + n, [](double x) { return std::isfinite(x); });
   };
-  const int pelvis = 1;
-  return finite(d->qpos, m->nq) && finite(d->qvel, m->nv) && finite(d->subtree_com + 3 * pelvis, 3) &&
+  return finite(d->qpos, m->nq) && finite(d->qvel, m->nv) && finite(d->subtree_com + 3 * kPelvisBody, 3) &&
          std::all_of(p.state.motors.begin(), p.state.motors.end(),
                      [](const ActuatorState& a) { return std::isfinite(a.theta_m); });
 }
@@ -495,8 +498,7 @@ GroundTruth HumanoidPlant::truth() const {
     }
     g.sole_yaw[side] = std::atan2(R[3], R[0]);
   }
-  const int pelvis = 1;
-  for (int i = 0; i < 3; ++i) g.com[i] = d->subtree_com[3 * pelvis + i];
+  for (int i = 0; i < 3; ++i) g.com[i] = d->subtree_com[3 * kPelvisBody + i];
   double fz = 0, mx = 0, my = 0;
   for (int c = 0; c < d->ncon; ++c) {
     const mjContact& con = d->contact[c];
