@@ -162,9 +162,9 @@ class BadUse(unittest.TestCase):
             loop.step()
 
     def test_use_after_a_failed_step_raises_until_reset(self):
-        # Gears 10^4 times stiffer than THORMANG's, undamped, at the longest physics step: the
+        # Gears 10^5 times stiffer than THORMANG's, undamped, at the longest physics step: the
         # explicit integration of the gears is unstable and MuJoCo warns in the first period.
-        unstable = {**TWO_STEPS, "plant.k_joint": 1e7, "plant.gear_damping": 0, "plant.physics_dt": 0.002}
+        unstable = {**TWO_STEPS, "plant.k_joint": 1e8, "plant.gear_damping": 0, "plant.physics_dt": 0.002}
         loop = flexgait.HumanoidLoop(unstable)
         with self.assertRaisesRegex(RuntimeError, "the simulation failed at t = .*: mujoco_warning"):
             loop.step()

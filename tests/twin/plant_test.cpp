@@ -248,6 +248,23 @@ TEST(HumanoidPlant, TheMotorTorqueIsTheServosMeanOverThePeriod) {
 // reset() depends on the pose only: what the plant did before leaves no trace (the gear springs
 // are forces of the drives' state, not a reference stored in the model), so the first readings
 // after a reset are the same bytes whatever came before.
+// Placed exactly on the floor, a sole's distance is a rounding residue of either sign, and MuJoCo's
+// contact exists only below zero: some poses would start in free fall. reset() puts the lower sole 1 nm
+// into the floor, so every standing pose starts with the floor pushing on both soles. 81 pelvis heights
+// over 0.1 m: their residues take both signs (with the sole exactly on the floor, 44 of them start
+// without contact, the nominal 0.75 m among them).
+TEST(HumanoidPlant, ResetStartsEveryPoseOnTheFloor) {
+  HumanoidPlant plant(humanoid::RobotParams{}, default_plant());
+  for (int i = 0; i <= 80; ++i) {
+    const double height = 0.70 + 0.00125 * i;
+    plant.reset(standing_pose(humanoid::RobotParams{}, height));
+    const GroundTruth t = plant.truth();
+    EXPECT_TRUE(t.sole_contact[0] && t.sole_contact[1]) << "pelvis height " << height;
+    EXPECT_GT(t.normal_force, 0.0) << "pelvis height " << height;
+    EXPECT_NEAR(t.pelvis_pos[2], height, 2e-9) << "1 nm into the floor, not more";
+  }
+}
+
 TEST(HumanoidPlant, ResetDependsOnThePoseOnly) {
   const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, kStandHeight);
   HumanoidPlant fresh(humanoid::RobotParams{}, default_plant());

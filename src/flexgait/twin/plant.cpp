@@ -21,6 +21,14 @@ namespace {
 /// robot's.
 constexpr int kPelvisBody = 1;
 
+/// How far reset() puts the lowest sole point into the floor [m]. Placed exactly on it, the sole's
+/// distance is a rounding residue of ±1e-16 m and its sign decides whether MuJoCo's contact exists
+/// in the first physics step (it needs distance < margin = 0): the robot would start either
+/// supported or falling freely, and two descriptions of one robot could differ by it. 1 nm is far
+/// above that rounding and far below the ~0.1 mm the soft contact settles to under the robot's
+/// weight, so the first step starts supported.
+constexpr double kResetPenetration = 1e-9;
+
 /// The Hamilton product a ⊗ b of two quaternions (w, x, y, z).
 std::array<double, 4> quat_product(const std::array<double, 4>& a, const std::array<double, 4>& b) {
   return {a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3], a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
@@ -326,7 +334,7 @@ void HumanoidPlant::reset(const humanoid::JointVector& pose) {
         lowest = std::min(lowest, x[2] - p.terrain.height(x[0], x[1]));
       }
   }
-  d->qpos[2] -= lowest;
+  d->qpos[2] -= lowest + kResetPenetration;
   mj_forward(m, d);
   st.motors = p.drives.at_rest(d);
   p.read_sensors();

@@ -72,7 +72,8 @@ class HumanoidPlant {
   HumanoidPlant& operator=(const HumanoidPlant& other);
 
   /// Puts the robot in `pose` (link and motor angles), pelvis level, at rest, lowered until a sole
-  /// touches the floor (on a terrain: its lowest point over the soles, terrain.hpp's heights).
+  /// touches the floor (on a terrain: its lowest point over the soles, terrain.hpp's heights), 1 nm
+  /// into it, so that the contact exists from the first physics step whatever the rounding.
   void reset(const humanoid::JointVector& pose);
   /// Advances one control period with these motor-side position commands [rad].
   void step(const humanoid::JointVector& command);

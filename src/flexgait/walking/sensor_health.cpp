@@ -70,18 +70,17 @@ void SensorHealth::check(const humanoid::SensorReadings& s, double t) {
       v[3 + i] = s.ft[side].torque[i];
     }
     // An unloaded foot's sensor reads its unloaded value, zero, exactly when the foot is massless:
-    // not stuck while the foot swings, nor after the planned landing until the foot first bears
-    // load (a nonzero reading), for at most health.hold_time; then the count of repeats starts.
+    // not stuck while the foot swings, nor for health.hold_time after the planned landing (a landing
+    // a little late, or one that touches and bounces off the floor before it bears the load); then
+    // the count of repeats starts.
     const auto i_side = static_cast<std::size_t>(side);
     bool zero = true;
     for (const double x : v) zero = zero && x == 0.0;
     if (unloaded_[i_side]) {
-      awaiting_load_[i_side] = true;
+      swung_[i_side] = true;
       swing_end_[i_side] = t;
-    } else if (!zero) {
-      awaiting_load_[i_side] = false;
     }
-    const bool unloaded_value = zero && awaiting_load_[i_side] && t - swing_end_[i_side] <= p.hold_time;
+    const bool unloaded_value = zero && swung_[i_side] && t - swing_end_[i_side] <= p.hold_time;
     monitor_[side].check(p, t, period_, s.ft[side].stamp, v.data(), 6, !unloaded_value);
     if (unloaded_value) monitor_[side].forget_repeats();
     for (int i = 0; i < 3; ++i) {

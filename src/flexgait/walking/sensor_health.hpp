@@ -9,9 +9,9 @@
 ///           motion make a working gyro, accelerometer, AHRS or F/T sensor change every sample);
 ///           an F/T sensor reading exactly zero (its unloaded value) while its foot swings is not
 ///           stuck: an unloaded massless foot reads exactly that, and a real F/T check likewise
-///           judges a constant reading against the contact it expects (set_unloaded); nor after
-///           the planned landing until the foot first bears load (a nonzero reading: a landing a
-///           little late), for at most health.hold_time; then its count of repeats starts;
+///           judges a constant reading against the contact it expects (set_unloaded); nor for
+///           health.hold_time after the planned landing (a landing a little late, or one that
+///           touches and bounces off the floor first); then its count of repeats starts;
 ///           an encoder (quantised: it legitimately repeats while its motor rests) is stuck when
 ///           its reading has not changed while its motor's command moved by more than
 ///           health.encoder_stuck_motion since the reading last changed (the servo keeps the
@@ -146,10 +146,10 @@ class SensorHealth {
   double period_;
   std::array<SignalMonitor, humanoid::kSensors - 1> monitor_{};  ///< all but the encoders
   std::array<SignalMonitor, humanoid::kJoints> encoder_{};
-  std::array<bool, 2> unloaded_{};       ///< the feet in the air (set_unloaded)
-  std::array<bool, 2> awaiting_load_{};  ///< swung and not loaded since (no nonzero F/T reading)
-  std::array<double, 2> swing_end_{};    ///< the last check in swing [s]
-  humanoid::JointVector command_{};      ///< the last commands sent [rad]
+  std::array<bool, 2> unloaded_{};     ///< the feet in the air (set_unloaded)
+  std::array<bool, 2> swung_{};        ///< the foot has swung (its landing's exemption applies)
+  std::array<double, 2> swing_end_{};  ///< the last check in swing [s]
+  humanoid::JointVector command_{};    ///< the last commands sent [rad]
   bool has_command_ = false;
   humanoid::JointVector encoder_previous_{};  ///< each encoder's last raw reading [rad]
   humanoid::JointVector command_anchor_{};    ///< the command when that reading last changed [rad]
