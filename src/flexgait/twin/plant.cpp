@@ -25,7 +25,7 @@ constexpr int kPelvisBody = 1;
 /// distance is a rounding residue of ±1e-16 m and its sign decides whether MuJoCo's contact exists
 /// in the first physics step (it needs distance < margin = 0): the robot would start either
 /// supported or falling freely, and two descriptions of one robot could differ by it. 1 nm is far
-/// above that rounding and far below the ~0.1 mm the soft contact settles to under the robot's
+/// above that rounding and far below the ~0.06 mm the soft contact settles to under the robot's
 /// weight, so the first step starts supported.
 constexpr double kResetPenetration = 1e-9;
 
