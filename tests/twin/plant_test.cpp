@@ -245,9 +245,6 @@ TEST(HumanoidPlant, TheMotorTorqueIsTheServosMeanOverThePeriod) {
   EXPECT_GT(largest, 20.0) << "the legs carry the weight";
 }
 
-// reset() depends on the pose only: what the plant did before leaves no trace (the gear springs
-// are forces of the drives' state, not a reference stored in the model), so the first readings
-// after a reset are the same bytes whatever came before.
 // Placed exactly on the floor, a sole's distance is a rounding residue of either sign, and MuJoCo's
 // contact exists only below zero: some poses would start in free fall. reset() puts the lower sole 1 nm
 // into the floor, so every standing pose starts with the floor pushing on both soles. 81 pelvis heights
@@ -265,6 +262,9 @@ TEST(HumanoidPlant, ResetStartsEveryPoseOnTheFloor) {
   }
 }
 
+// reset() depends on the pose only: what the plant did before leaves no trace (the gear springs
+// are forces of the drives' state, not a reference stored in the model), so the first readings
+// after a reset are the same bytes whatever came before.
 TEST(HumanoidPlant, ResetDependsOnThePoseOnly) {
   const humanoid::JointVector pose = standing_pose(humanoid::RobotParams{}, kStandHeight);
   HumanoidPlant fresh(humanoid::RobotParams{}, default_plant());
