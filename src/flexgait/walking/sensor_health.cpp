@@ -76,11 +76,8 @@ void SensorHealth::check(const humanoid::SensorReadings& s, double t) {
     const auto i_side = static_cast<std::size_t>(side);
     bool zero = true;
     for (const double x : v) zero = zero && x == 0.0;
-    if (unloaded_[i_side]) {
-      swung_[i_side] = true;
-      swing_end_[i_side] = t;
-    }
-    const bool unloaded_value = zero && swung_[i_side] && t - swing_end_[i_side] <= p.hold_time;
+    if (unloaded_[i_side]) swing_end_[i_side] = t;
+    const bool unloaded_value = zero && t - swing_end_[i_side] <= p.hold_time;
     monitor_[side].check(p, t, period_, s.ft[side].stamp, v.data(), 6, !unloaded_value);
     if (unloaded_value) monitor_[side].forget_repeats();
     for (int i = 0; i < 3; ++i) {

@@ -25,6 +25,7 @@
 /// Pure and allocation-free: readings and time in, cleaned readings and flags out.
 #include <array>
 #include <cstdint>
+#include <limits>
 
 #include "flexgait/core/record.hpp"
 #include "flexgait/robot/sensor_ids.hpp"
@@ -146,10 +147,10 @@ class SensorHealth {
   double period_;
   std::array<SignalMonitor, humanoid::kSensors - 1> monitor_{};  ///< all but the encoders
   std::array<SignalMonitor, humanoid::kJoints> encoder_{};
-  std::array<bool, 2> unloaded_{};     ///< the feet in the air (set_unloaded)
-  std::array<bool, 2> swung_{};        ///< the foot has swung (its landing's exemption applies)
-  std::array<double, 2> swing_end_{};  ///< the last check in swing [s]
-  humanoid::JointVector command_{};    ///< the last commands sent [rad]
+  std::array<bool, 2> unloaded_{};  ///< the feet in the air (set_unloaded)
+  /// The last check in swing [s] (−∞ before the first swing: no landing's exemption yet).
+  std::array<double, 2> swing_end_{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  humanoid::JointVector command_{};  ///< the last commands sent [rad]
   bool has_command_ = false;
   humanoid::JointVector encoder_previous_{};  ///< each encoder's last raw reading [rad]
   humanoid::JointVector command_anchor_{};    ///< the command when that reading last changed [rad]
